@@ -1,0 +1,5 @@
+"""``python -m impactcli`` runs the ``impact`` command line."""
+
+from impactcli.cli import main
+
+main()

@@ -1,0 +1,47 @@
+"""Pieces shared by the commands: output format choice and the Rich console on demand."""
+
+from __future__ import annotations
+
+import enum
+import os
+import sys
+from typing import IO
+
+
+class Format(enum.StrEnum):
+    """Output format of a command."""
+
+    table = "table"
+    csv = "csv"
+    json = "json"
+
+
+def resolve_format(requested: Format | None, output: str | None) -> Format:
+    """The format to write: as requested; else from the ``-o`` file's extension (.json ->
+    json, anything else -> csv); else a Rich table on a terminal and CSV when piped."""
+    if requested is not None:
+        return requested
+    if output is not None and output != "-":
+        return Format.json if os.path.splitext(output)[1].lower() == ".json" else Format.csv
+    return Format.table if sys.stdout.isatty() else Format.csv
+
+
+def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.console.Console
+    """A Rich console on ``stream`` (stdout by default, or stderr). Imported on demand."""
+    from rich.console import Console
+
+    if stderr:
+        return Console(stderr=True, highlight=False)
+    if stream is None or stream is sys.stdout:
+        return Console(highlight=False)
+    return Console(file=stream, highlight=False, width=160, color_system=None)
+
+
+def warn(message: str) -> None:
+    """One warning line on stderr."""
+    print(f"impact: warning: {message}", file=sys.stderr)
+
+
+def note(message: str) -> None:
+    """One note line on stderr."""
+    print(f"impact: note: {message}", file=sys.stderr)

@@ -1,0 +1,55 @@
+"""Contact force laws F(delta) with their work integrals.
+
+Each law is a small frozen dataclass with ``force(delta)`` [N] and ``work(start, end)`` [J],
+the interface :func:`impactcli.film.solve_stage` needs. Parameters may be arrays that
+broadcast against the node arrays (shape (N, 1) for a batch of N collisions).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = ["Hertz", "hertz_stiffness"]
+
+
+def hertz_stiffness(effective_modulus: ArrayLike, effective_radius: ArrayLike) -> NDArray:
+    """Hertz contact stiffness K_h = (4/3) E* sqrt(R), [N/m^1.5] (paper sec. 4.1).
+
+    Parameters
+    ----------
+    effective_modulus : E* = [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1, [Pa]
+    effective_radius : R = (1/R1 + 1/R2)^-1, [m]
+    """
+    return 4.0 / 3.0 * np.asarray(effective_modulus) * np.sqrt(effective_radius)
+
+
+@dataclass(frozen=True)
+class Hertz:
+    """Hertz elastic contact F = K_h delta^(3/2) (spec section 3).
+
+    Parameters
+    ----------
+    stiffness : K_h, [N/m^1.5]
+    offset : indentation at which the force starts, [m]; 0 for first loading, delta_res for
+        the elastic unloading of an elastoplastic contact (paper eq. 16c).
+    """
+
+    stiffness: ArrayLike
+    offset: ArrayLike = 0.0
+
+    def force(self, delta: ArrayLike) -> NDArray:
+        """F = K_h (delta - offset)^1.5 for delta >= offset, else 0, [N]."""
+        gap = np.maximum(np.asarray(delta, dtype=float) - self.offset, 0.0)
+        return self.stiffness * gap * np.sqrt(gap)
+
+    def work(self, start: ArrayLike, end: ArrayLike) -> NDArray:
+        """Integral of F from ``start`` to ``end``: (2/5) K_h [(end-o)^2.5 - (start-o)^2.5], [J]."""
+        return 0.4 * self.stiffness * (_pow25(end, self.offset) - _pow25(start, self.offset))
+
+
+def _pow25(delta: ArrayLike, offset: ArrayLike) -> NDArray:
+    gap = np.maximum(np.asarray(delta, dtype=float) - offset, 0.0)
+    return gap * gap * np.sqrt(gap)

@@ -1,0 +1,99 @@
+"""The FILM stage solver against exact solutions and its own invariants (spec section 4)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from impactcli.film import FilmSolution, solve_stage
+from impactcli.laws import Hertz
+
+
+class Linear:
+    """F = k delta: FILM is exact for a linear law (spec section 4, step 5)."""
+
+    def __init__(self, k: float) -> None:
+        self.k = k
+
+    def force(self, delta):
+        return self.k * np.asarray(delta, dtype=float)
+
+    def work(self, start, end):
+        return 0.5 * self.k * (np.asarray(end) ** 2 - np.asarray(start) ** 2)
+
+
+def test_linear_law_is_exact_quarter_period():
+    # m delta'' = -k delta from delta = 0 at speed V: delta = (V/w) sin(w t), w = sqrt(k/m).
+    k, m, v0 = 3.0e7, 0.02, 1.5
+    w = np.sqrt(k / m)
+    amplitude = v0 / w
+    stage = solve_stage(Linear(k), 0.0, amplitude, v0, m, 7)
+    assert stage.end_time == pytest.approx(np.pi / 2 / w, rel=1e-12)
+    t = np.linspace(0.0, np.pi / 2 / w, 50)
+    delta, delta_dot = FilmSolution((stage,)).evaluate(t)
+    np.testing.assert_allclose(delta, amplitude * np.sin(w * t), rtol=0, atol=1e-12 * amplitude)
+    np.testing.assert_allclose(delta_dot, v0 * np.cos(w * t), rtol=0, atol=1e-9 * v0)
+
+
+def test_node_times_increase_and_velocity_has_stage_sign():
+    law = Hertz(1.25)
+    loading = solve_stage(law, 0.0, 1.0, 1.0, 1.0, 40)
+    unloading = solve_stage(law, 1.0, 0.0, 0.0, 1.0, 40, t_start=loading.end_time)
+    for stage, sign in ((loading, 1.0), (unloading, -1.0)):
+        assert np.all(np.diff(stage.time) > 0)
+        assert np.all(sign * stage.velocity[1:-1] > 0)
+    assert unloading.time[0] == loading.time[-1]
+
+
+def test_node_velocities_hold_energy():
+    # (1/2) m v_r^2 + W(0, delta_r) = (1/2) m V0^2 at every node (eq. 13e).
+    k_h, m, v0 = 2.0e10, 0.03, 0.2
+    delta_m = (5 * m * v0**2 / (4 * k_h)) ** 0.4
+    law = Hertz(k_h)
+    stage = solve_stage(law, 0.0, delta_m, v0, m, 25)
+    energy = 0.5 * m * stage.velocity**2 + law.work(0.0, stage.delta)
+    np.testing.assert_allclose(energy, 0.5 * m * v0**2, rtol=1e-12)
+
+
+def test_evaluate_hits_every_node_it_reaches():
+    law = Hertz(1.25)
+    stage = solve_stage(law, 0.0, 1.0, 1.0, 1.0, 25)
+    delta, _ = FilmSolution((stage,)).evaluate(stage.time[:-1])
+    np.testing.assert_allclose(delta, stage.delta[:-1], atol=1e-14)
+    # Only the last loading segment turns before its node (the chord is stiffer).
+    assert stage.turning.tolist() == [False] * 24 + [True]
+
+
+def test_batch_equals_single_runs():
+    law = Hertz(np.array([[1.0e10], [2.0e10], [5.0e9]]))
+    v0 = np.array([0.1, 0.3, 2.0])
+    m = np.array([0.01, 0.02, 0.5])
+    delta_m = (5 * m * v0**2 / (4 * law.stiffness[:, 0])) ** 0.4
+    batch = solve_stage(law, 0.0, delta_m, v0, m, 25)
+    for i in range(3):
+        one = solve_stage(Hertz(law.stiffness[i, 0]), 0.0, delta_m[i], v0[i], m[i], 25)
+        np.testing.assert_allclose(batch.time[i], one.time, rtol=1e-14)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    n=st.integers(1, 300),
+    k_h=st.floats(1e8, 1e12),
+    m=st.floats(1e-4, 10.0),
+    v0=st.floats(1e-4, 50.0),
+)
+def test_contact_time_scales_as_delta_m_over_v0(n, k_h, m, v0):
+    # Dimensional FILM equals the normalised one scaled by delta_m/V0 (spec section 3).
+    delta_m = (5 * m * v0**2 / (4 * k_h)) ** 0.4
+    dim = solve_stage(Hertz(k_h), 0.0, delta_m, v0, m, n)
+    norm = solve_stage(Hertz(1.25), 0.0, 1.0, 1.0, 1.0, n)
+    assert float(dim.end_time) * v0 / delta_m == pytest.approx(float(norm.end_time), rel=1e-9)
+
+
+def test_rejects_bad_n_and_flat_force():
+    with pytest.raises(ValueError, match="n must be"):
+        solve_stage(Hertz(1.25), 0.0, 1.0, 1.0, 1.0, 0)
+    with pytest.raises(ValueError, match="increase strictly"):
+        solve_stage(Linear(0.0), 0.0, 1.0, 1.0, 1.0, 5)
