@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["Hertz", "hertz_stiffness"]
+__all__ = ["DuWangPlastic", "Hertz", "hertz_stiffness"]
 
 
 def hertz_stiffness(effective_modulus: ArrayLike, effective_radius: ArrayLike) -> NDArray:
@@ -53,3 +53,45 @@ class Hertz:
 def _pow25(delta: ArrayLike, offset: ArrayLike) -> NDArray:
     gap = np.maximum(np.asarray(delta, dtype=float) - offset, 0.0)
     return gap * gap * np.sqrt(gap)
+
+
+@dataclass(frozen=True)
+class DuWangPlastic:
+    """Du & Wang (2009) elastoplastic loading past first yield (paper eq. 16b):
+
+    F = pi R p0 delta - pi^3 R^2 p0^3 / (12 E*^2), for delta_y <= delta <= delta_m,
+
+    continuous in value and slope with Hertz at delta_y = pi^2 R p0^2 / (4 E*^2).
+
+    Parameters
+    ----------
+    radius : effective radius R, [m]
+    mean_pressure : p0 = 2.57 sigma_y, [Pa]
+    modulus : effective modulus E*, [Pa]
+    """
+
+    radius: ArrayLike
+    mean_pressure: ArrayLike
+    modulus: ArrayLike
+
+    @property
+    def slope(self) -> NDArray:
+        """dF/d delta = pi R p0, [N/m]."""
+        return np.pi * np.asarray(self.radius) * self.mean_pressure
+
+    @property
+    def intercept(self) -> NDArray:
+        """pi^3 R^2 p0^3 / (12 E*^2), [N]."""
+        r, p0, e = (
+            np.asarray(v, dtype=float) for v in (self.radius, self.mean_pressure, self.modulus)
+        )
+        return np.pi**3 * r**2 * p0**3 / (12.0 * e**2)
+
+    def force(self, delta: ArrayLike) -> NDArray:
+        """F = pi R p0 delta - pi^3 R^2 p0^3/(12 E*^2), [N]."""
+        return self.slope * np.asarray(delta, dtype=float) - self.intercept
+
+    def work(self, start: ArrayLike, end: ArrayLike) -> NDArray:
+        """Integral of F from ``start`` to ``end``, [J]."""
+        a, b = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
+        return 0.5 * self.slope * (b * b - a * a) - self.intercept * (b - a)
