@@ -1,0 +1,82 @@
+"""Built-in materials: typical room-temperature properties, SI, with where each comes from.
+
+These are handbook values for common sphere materials, good for first estimates; measured
+properties of the actual spheres should replace them for quantitative work
+(``--E --nu --rho --sy`` on the command line).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["MATERIALS", "Material", "material"]
+
+
+@dataclass(frozen=True)
+class Material:
+    """Elastic and plastic properties of a material.
+
+    Attributes
+    ----------
+    name : key used on the command line
+    youngs_modulus : E, [Pa]
+    poisson_ratio : nu, [-]
+    density : rho, [kg/m^3]
+    yield_strength : sigma_y, [Pa]; ``None`` for brittle materials that do not yield
+    source : where the values come from
+    """
+
+    name: str
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float
+    yield_strength: float | None
+    source: str
+
+
+_ASM = "ASM Handbook / MatWeb typical values"
+
+MATERIALS: dict[str, Material] = {
+    m.name: m
+    for m in (
+        Material(
+            "steel",
+            210e9,
+            0.30,
+            7800.0,
+            1000e6,
+            "Big-Alabo (2018) sec. 4.3, the paper's example spheres",
+        ),
+        Material("chrome-steel", 208e9, 0.30, 7830.0, 2030e6, f"AISI 52100 bearing steel; {_ASM}"),
+        Material("stainless-steel", 193e9, 0.29, 8000.0, 215e6, f"AISI 304 annealed; {_ASM}"),
+        Material("aluminium-alloy", 68.9e9, 0.33, 2700.0, 276e6, f"Al 6061-T6; {_ASM}"),
+        Material("brass", 110e9, 0.34, 8530.0, 310e6, f"C26000 cartridge brass, half hard; {_ASM}"),
+        Material("copper", 117e9, 0.34, 8960.0, 70e6, f"C11000 annealed; {_ASM}"),
+        Material("titanium-alloy", 114e9, 0.34, 4430.0, 880e6, f"Ti-6Al-4V annealed; {_ASM}"),
+        Material("alumina", 370e9, 0.22, 3890.0, None, f"99.5% Al2O3, brittle; {_ASM}"),
+        Material("glass", 72e9, 0.23, 2500.0, None, f"soda-lime glass, brittle; {_ASM}"),
+        Material("tungsten-carbide", 600e9, 0.22, 15600.0, None, f"WC-6% Co, brittle; {_ASM}"),
+    )
+}
+
+#: Accepted spellings that map to a built-in name.
+ALIASES = {
+    "aluminum-alloy": "aluminium-alloy",
+    "aluminium": "aluminium-alloy",
+    "al": "aluminium-alloy",
+}
+
+
+def material(name: str) -> Material:
+    """The built-in material called ``name`` (case-insensitive; ``_`` or space for ``-``).
+
+    Raises
+    ------
+    KeyError
+        With the list of known names.
+    """
+    key = name.strip().lower().replace("_", "-").replace(" ", "-")
+    key = ALIASES.get(key, key)
+    if key not in MATERIALS:
+        raise KeyError(f"unknown material {name!r}; known: {', '.join(MATERIALS)}")
+    return MATERIALS[key]
