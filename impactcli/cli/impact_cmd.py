@@ -150,6 +150,8 @@ def _sphere(i: int, p: dict[str, Optional[str]]):
     rho = pick("rho", "density", "density", "density")
     mass = _q(p[f"m{i}"], "mass", f"--m{i}", allow_inf=(i == 2))
     sy = pick("sy", "pressure", "yield_strength", "yield strength")
+    if youngs is not None and np.isinf(youngs) and nu is None:
+        nu = 0.0  # a rigid body: its Poisson's ratio does not enter E*
     for value, what, opts in (
         (youngs, "Young's modulus", f"--E{i} or --E"),
         (nu, "Poisson's ratio", f"--nu{i} or --nu"),
@@ -160,8 +162,6 @@ def _sphere(i: int, p: dict[str, Optional[str]]):
             )
     if mass is None and rho is None:
         raise InputError(f"sphere {i}: density unknown: give --material, --rho{i}/--rho or --m{i}")
-    if youngs is not None and np.isinf(youngs) and nu is None:
-        nu = 0.0
     try:
         return Sphere(diameter, youngs, nu, rho, mass, sy)
     except ValueError as exc:
@@ -453,6 +453,127 @@ def elastoplastic(
 elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 
 
+def restitution(
+    v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
+    v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
+    count: Annotated[int, typer.Option("--count", min=1, help="Number of velocities.")] = 50,
+    linear: Annotated[
+        bool, typer.Option("--linear", help="Evenly spaced velocities (default: log-spaced).")
+    ] = False,
+    d1: D1 = None,
+    d2: D2 = None,
+    material: MAT = None,
+    material1: MAT1 = None,
+    material2: MAT2 = None,
+    E: E = None,
+    E1: E1 = None,
+    E2: E2 = None,
+    nu: NU = None,
+    nu1: NU1 = None,
+    nu2: NU2 = None,
+    rho: RHO = None,
+    rho1: RHO1 = None,
+    rho2: RHO2 = None,
+    m1: M1 = None,
+    m2: M2 = None,
+    sy: SY = None,
+    sy1: SY1 = None,
+    sy2: SY2 = None,
+    p0_factor: Annotated[
+        float, typer.Option("--p0-factor", help="p0 / sigma_y (Du & Wang: 2.57).")
+    ] = 2.57,
+    n: N = 25,
+    split: SPLIT = Split.mass,
+    fmt: FMT = None,
+    output: OUT = None,
+) -> None:
+    """Coefficient of restitution, contact time and permanent indentation against impact
+    velocity (elastoplastic FILM, Du & Wang contact), for calibrating restitution.
+
+    Columns (SI): impact_velocity, restitution, contact_time, delta_max, delta_res,
+    delta1_res, delta2_res, energy_dissipated, plastic (1 above the yield velocity).
+    Only V0 = V1 + V2 matters for these quantities.
+
+    Example: impact restitution --v-min 0.1m/s --v-max 10m/s --count 50 --d1 20mm --d2 40mm
+    --material steel
+    """
+    from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
+
+    p = locals()
+    lo, hi = _velocity(v_min, "--v-min"), _velocity(v_max, "--v-max")
+    if not 0 < lo <= hi:
+        raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
+    if not (np.isfinite(p0_factor) and p0_factor > 0):
+        raise InputError(f"--p0-factor must be a positive number, got {p0_factor}")
+    p.update(v1=None, v2=None)
+    s1, s2 = _sphere(1, p), _sphere(2, p)
+    if s1.yield_strength is None and s2.yield_strength is None:
+        raise InputError(
+            "a yield strength is needed: give --sy, --sy1/--sy2 or a --material with one"
+        )
+    velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
+    try:
+        data = restitution_sweep(
+            s1, s2, velocities, n, pressure_factor=p0_factor, split=split.value
+        )
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    from impactcli.contact import effective_radius
+
+    contact_ratio = np.sqrt(data["delta_max"] / effective_radius(s1.radius, s2.radius))
+    if np.any(contact_ratio > 0.1):
+        v_bad = velocities[contact_ratio > 0.1][0]
+        warn(
+            f"from V0 = {v_bad:.4g} m/s the contact radius exceeds 0.1 R: beyond the "
+            "small-deformation contact model; treat those rows as indicative only"
+        )
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.csv:
+            matrix = np.column_stack([data[c] for c in SWEEP_COLUMNS])
+            write_csv(stream, SWEEP_COLUMNS, [((), matrix)])
+        elif kind is Format.json:
+            write_json(
+                stream,
+                {
+                    "inputs": {
+                        "d1": s1.diameter,
+                        "d2": s2.diameter,
+                        "n": n,
+                        "p0_factor": p0_factor,
+                        "split": split.value,
+                    },
+                    "sweep": data,
+                },
+            )
+        else:
+            from rich.table import Table
+
+            table = Table(title="Restitution against impact velocity (Du & Wang, FILM)")
+            heads = (
+                "V0 (m/s)",
+                "e",
+                "t_c (us)",
+                "delta_max (um)",
+                "delta_res (um)",
+                "E_diss (mJ)",
+                "regime",
+            )
+            for h in heads:
+                table.add_column(h, justify="right")
+            for i in range(velocities.size):
+                table.add_row(
+                    f"{data['impact_velocity'][i]:.4g}",
+                    f"{data['restitution'][i]:.5f}",
+                    f"{data['contact_time'][i] * 1e6:.4g}",
+                    f"{data['delta_max'][i] * 1e6:.4g}",
+                    f"{data['delta_res'][i] * 1e6:.4g}",
+                    f"{data['energy_dissipated'][i] * 1e3:.4g}",
+                    "plastic" if data["plastic"][i] else "elastic",
+                )
+            console(stream if output not in (None, "-") else None).print(table)
+
+
 def materials(fmt: FMT = None, output: OUT = None) -> None:
     """Built-in materials: Young's modulus, Poisson's ratio, density, yield strength, source."""
     from impactcli.materials import MATERIALS
@@ -511,4 +632,5 @@ def materials(fmt: FMT = None, output: OUT = None) -> None:
 def register(app: typer.Typer) -> None:
     app.command("elastic")(elastic)
     app.command("elastoplastic")(elastoplastic)
+    app.command("restitution")(restitution)
     app.command("materials")(materials)
