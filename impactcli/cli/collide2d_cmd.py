@@ -108,7 +108,12 @@ def collide2d(
     """
     import numpy as np
 
-    from impactcli.collision2d import PAPER_ANGLE_SIGN, approach_velocity, oblique_collision
+    from impactcli.collision2d import (
+        PAPER_ANGLE_SIGN,
+        approach_velocity,
+        line_of_centres,
+        oblique_collision,
+    )
     from impactcli.units import parse_vector
 
     sign = PAPER_ANGLE_SIGN if paper_angles else dict.fromkeys(PAPER_ANGLE_SIGN, 1.0)
@@ -135,8 +140,7 @@ def collide2d(
         restitution, model_name = 1.0, (model or Model.elastic).value
     v_rel_n = float(approach_velocity(vel1, vel2, pos1, pos2))
     if not v_rel_n > 0.0:
-        d = np.subtract(pos2, pos1)
-        n = d / np.hypot(*d)
+        n = line_of_centres(pos1, pos2)
         raise InputError(
             "the spheres are not approaching along the line of centres: (v1 - v2).n = "
             f"{v_rel_n:.6g} m/s with n = {_pair(n)} from sphere 1 to sphere 2 (an impact "
