@@ -1,0 +1,351 @@
+"""``impact collide2d``: the oblique 2-D collision of two smooth spheres (paper sec. 4.5)."""
+
+from __future__ import annotations
+
+import enum
+import math
+from typing import IO, Optional
+
+import typer
+
+from impactcli.cli.common import Format, console, resolve_format
+from impactcli.output import InputError, atomic_output, write_csv, write_json
+
+CONVENTIONS = {
+    False: "angles counter-clockwise from +x",
+    True: "paper's angles (sec. 4.5): alpha_1, theta_2 and phi clockwise from +x; "
+    "alpha_2 and theta_1 counter-clockwise",
+}
+
+
+class Model(enum.StrEnum):
+    elastic = "elastic"
+
+
+def collide2d(
+    m1: str = typer.Option(..., "--m1", help="Mass of sphere 1, e.g. 50g or 0.05 (kg)."),
+    m2: str = typer.Option(..., "--m2", help="Mass of sphere 2, e.g. 0.15kg."),
+    v1: str = typer.Option(
+        ...,
+        "--v1",
+        help="Velocity of sphere 1 before the impact: a speed with its angle --a1 "
+        "(--v1 3m/s --a1 -30deg) or components x,y (--v1 2.598,-1.5 in m/s, or "
+        "'2.598m/s,-1.5m/s').",
+    ),
+    a1: Optional[str] = typer.Option(
+        None,
+        "--a1",
+        help="Direction of --v1 when it is a speed: -30deg, -0.5236rad, or a bare number in "
+        "degrees. Counter-clockwise from +x (clockwise, the paper's alpha_1, with "
+        "--paper-angles).",
+    ),
+    v2: str = typer.Option(
+        ..., "--v2", help="Velocity of sphere 2: a speed with --a2, or components x,y."
+    ),
+    a2: Optional[str] = typer.Option(
+        None,
+        "--a2",
+        help="Direction of --v2 when it is a speed; counter-clockwise from +x (also the "
+        "paper's alpha_2).",
+    ),
+    p1: str = typer.Option(
+        ...,
+        "--p1",
+        help="Centre of sphere 1 at contact, x,y (m, or with units: '-1m,2m'). Write "
+        "--p1=-1,2 when x is negative.",
+    ),
+    p2: str = typer.Option(..., "--p2", help="Centre of sphere 2 at contact, x,y."),
+    model: Optional[Model] = typer.Option(
+        None,
+        "--model",
+        help="Contact model giving the coefficient of restitution: elastic (e = 1). "
+        "Default: elastic, unless --e is given.",
+    ),
+    e: Optional[float] = typer.Option(
+        None, "--e", help="Coefficient of restitution 0 <= e <= 1, instead of --model."
+    ),
+    paper_angles: bool = typer.Option(
+        False,
+        "--paper-angles",
+        help="Read --a1 and print theta_2 and phi clockwise, as the paper does (alpha_2 and "
+        "theta_1 stay counter-clockwise), to reproduce sec. 4.5.3 as printed.",
+    ),
+    fmt: Optional[Format] = typer.Option(
+        None,
+        "--format",
+        "-f",
+        help="table (Rich, on a terminal), csv or json. Default: table on a terminal, CSV "
+        "when piped or written with -o (JSON for a .json file).",
+    ),
+    output: Optional[str] = typer.Option(
+        None, "--output", "-o", help="Write to this file instead of stdout ('-' is stdout)."
+    ),
+) -> None:
+    """Oblique 2-D collision of two smooth spheres (paper sec. 4.5, eqs. 17-21).
+
+    The centres' positions at contact give the line of centres, with unit normal
+    n = (p2 - p1)/|p2 - p1| from sphere 1 to sphere 2. Along n the velocities change as in
+    the normal impact with coefficient of restitution e; across it (along t, n turned 90 deg
+    counter-clockwise) they do not: no friction, no rotation. The spheres must approach:
+    (v1 - v2).n > 0.
+
+    \b
+      v1' = v1 - (1+e) m2/(m1+m2) [(v1 - v2).n] n
+      v2' = v2 + (1+e) m1/(m1+m2) [(v1 - v2).n] n
+
+    Units: a bare number is SI (kg, m/s, m), except an angle, which is in degrees; or give
+    a unit (50g, 3m/s, 20mm, -30deg, 0.5rad). Output is SI with angles in degrees.
+
+    Angles are counter-clockwise from +x and printed in (-180, 180]. With --paper-angles
+    they follow the paper's Fig. 12: alpha_1 (--a1), theta_2 (final angle of sphere 2) and
+    phi (line of centres) clockwise; alpha_2 (--a2) and theta_1 counter-clockwise.
+
+    The paper's example (sec. 4.5.3): impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s
+    --a1 30deg --v2 2m/s --a2 50deg --p1=-1,2 --p2=2,-2 --paper-angles gives
+    |v1'| = 2.374 m/s at 97.11 deg and |v2'| = 2.263 m/s at -6.26 deg (clockwise).
+
+    CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"}.
+    """
+    import numpy as np
+
+    from impactcli.collision2d import (
+        PAPER_ANGLE_SIGN,
+        approach_velocity,
+        line_of_centres,
+        oblique_collision,
+    )
+    from impactcli.units import parse_vector
+
+    sign = PAPER_ANGLE_SIGN if paper_angles else dict.fromkeys(PAPER_ANGLE_SIGN, 1.0)
+    mass1 = _mass(m1, "--m1")
+    mass2 = _mass(m2, "--m2")
+    vel1, speed1, angle1 = _velocity(v1, a1, "--v1", "--a1", sign["alpha_1"], paper_angles)
+    vel2, speed2, angle2 = _velocity(v2, a2, "--v2", "--a2", sign["alpha_2"], paper_angles)
+    pos1 = parse_vector(p1, "length", "--p1")
+    pos2 = parse_vector(p2, "length", "--p2")
+    if pos1 == pos2:
+        raise InputError(
+            f"--p1 and --p2 coincide at {_pair(pos1)} m: the centres at contact must differ "
+            "to give the line of centres"
+        )
+    if e is not None and model is not None:
+        raise InputError("give either --model or --e, not both")
+    if e is not None:
+        if not 0.0 <= e <= 1.0:
+            raise InputError(f"--e: the coefficient of restitution must be in [0, 1], got {e}")
+        restitution, model_name = e, "given e"
+    else:
+        # Only the elastic model so far; an elastoplastic one will take e from the FILM run
+        # at the normal impact velocity (spec sec. 7).
+        restitution, model_name = 1.0, (model or Model.elastic).value
+    v_rel_n = float(approach_velocity(vel1, vel2, pos1, pos2))
+    if not v_rel_n > 0.0:
+        n = line_of_centres(pos1, pos2)
+        raise InputError(
+            "the spheres are not approaching along the line of centres: (v1 - v2).n = "
+            f"{v_rel_n:.6g} m/s with n = {_pair(n)} from sphere 1 to sphere 2 (an impact "
+            "needs > 0)"
+        )
+    result = oblique_collision(mass1, mass2, vel1, vel2, pos1, pos2, restitution)
+    summary = _summary(result, sign)
+    inputs = {
+        "m1": mass1,
+        "m2": mass2,
+        "v1_x": vel1[0],
+        "v1_y": vel1[1],
+        "v1_speed": speed1,
+        "v1_angle": angle1,
+        "v2_x": vel2[0],
+        "v2_y": vel2[1],
+        "v2_speed": speed2,
+        "v2_angle": angle2,
+        "p1_x": pos1[0],
+        "p1_y": pos1[1],
+        "p2_x": pos2[0],
+        "p2_y": pos2[1],
+        "model": model_name,
+        "restitution": restitution,
+        "angle_convention": CONVENTIONS[paper_angles],
+    }
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.csv:
+            write_csv(stream, tuple(summary), [((), np.array([list(summary.values())]))])
+        elif kind is Format.json:
+            write_json(stream, {"inputs": inputs, "summary": summary})
+        else:
+            _print_tables(
+                stream if output not in (None, "-") else None, inputs, summary, paper_angles
+            )
+
+
+def _mass(text: str, name: str) -> float:
+    from impactcli.units import parse_quantity
+
+    value = parse_quantity(text, "mass", name)
+    if not value > 0.0:
+        raise InputError(f"{name}: the mass must be > 0, got {value:g} kg")
+    return value
+
+
+def _angle_degrees(text: str, name: str) -> float:
+    """An angle in degrees: a bare number is degrees, anything else goes through pint."""
+    from impactcli.units import parse_quantity
+
+    value = parse_quantity(text, "angle", name)
+    try:
+        float(text)
+    except ValueError:
+        return math.degrees(value)
+    return value
+
+
+def _velocity(
+    text: str, angle: str | None, name: str, angle_name: str, sign: float, paper: bool
+) -> tuple[tuple[float, float], float, float]:
+    """Velocity (x, y) [m/s] from components or from a speed and angle; also the speed and
+    the angle [deg] in the convention used on the command line."""
+    from impactcli.collision2d import polar_angle, velocity_from_polar
+    from impactcli.units import parse_quantity, parse_vector
+
+    if "," in text:
+        if angle is not None:
+            raise InputError(
+                f"{angle_name} is the direction of a speed, but {name} has components x,y: "
+                f"drop {angle_name} or give {name} as a speed"
+            )
+        vx, vy = parse_vector(text, "velocity", name)
+        ccw = math.degrees(float(polar_angle((vx, vy))))
+        return (vx, vy), math.hypot(vx, vy), _wrap(sign * ccw)
+    speed = parse_quantity(text, "velocity", name)
+    if speed < 0.0:
+        raise InputError(
+            f"{name}: a speed must be >= 0, got {speed:g} m/s; give the direction with {angle_name}"
+        )
+    if angle is None:
+        convention = "clockwise" if paper and sign < 0 else "counter-clockwise"
+        raise InputError(
+            f"{name} is a speed: give its direction with {angle_name} (degrees "
+            f"{convention} from +x, e.g. 30deg), or give {name} as components x,y"
+        )
+    degrees = _angle_degrees(angle, angle_name)
+    vx, vy = velocity_from_polar(speed, math.radians(sign * degrees)).tolist()
+    return (vx, vy), speed, degrees
+
+
+def _wrap(degrees: float) -> float:
+    """An angle in degrees in (-180, 180]."""
+    wrapped = math.remainder(degrees, 360.0) + 0.0  # + 0.0: no -0.0
+    return 180.0 if wrapped <= -180.0 else wrapped
+
+
+def _pair(vector) -> str:
+    return "({:.6g}, {:.6g})".format(*(float(v) for v in vector))
+
+
+def _summary(c, sign: dict[str, float]) -> dict[str, float]:
+    """The summary of a single collision, SI with angles in degrees in the chosen convention.
+
+    Its keys, in order, are the CSV header and the JSON "summary"."""
+    from impactcli.collision2d import polar_angle
+
+    def degrees(key: str, radians) -> float:
+        return _wrap(sign[key] * math.degrees(float(radians)))
+
+    summary: dict[str, float] = {
+        "v1_final_speed": math.hypot(*c.v1_final),
+        "v1_final_angle": degrees("theta_1", polar_angle(c.v1_final)),
+        "v1_final_x": c.v1_final[0],
+        "v1_final_y": c.v1_final[1],
+        "v2_final_speed": math.hypot(*c.v2_final),
+        "v2_final_angle": degrees("theta_2", polar_angle(c.v2_final)),
+        "v2_final_x": c.v2_final[0],
+        "v2_final_y": c.v2_final[1],
+        "restitution": c.restitution,
+        "kinetic_energy_before": c.kinetic_energy_before,
+        "kinetic_energy_after": c.kinetic_energy_after,
+        "energy_dissipated": c.energy_dissipated,
+        "line_of_centres_angle": degrees("phi", c.line_of_centres_angle),
+        "approach_velocity": c.approach_velocity,
+        "separation_velocity": c.separation_velocity,
+        "normal_impulse": c.normal_impulse,
+        "v1_normal": c.v1_normal,
+        "v1_tangential": c.v1_tangential,
+        "v1_final_normal": c.v1_final_normal,
+        "v1_final_tangential": c.v1_final_tangential,
+        "v2_normal": c.v2_normal,
+        "v2_tangential": c.v2_tangential,
+        "v2_final_normal": c.v2_final_normal,
+        "v2_final_tangential": c.v2_final_tangential,
+        "momentum_x_before": c.momentum_before[0],
+        "momentum_y_before": c.momentum_before[1],
+        "momentum_x_after": c.momentum_after[0],
+        "momentum_y_after": c.momentum_after[1],
+    }
+    return {k: float(v) for k, v in summary.items()}
+
+
+def _print_tables(
+    stream: IO[str] | None, inputs: dict, s: dict[str, float], paper_angles: bool
+) -> None:
+    from rich.table import Table
+
+    def f(value: float) -> str:
+        return f"{value:.6g}"
+
+    out = console(stream)
+    velocities = Table(
+        title=f"Oblique collision ({inputs['model']}, e = {f(inputs['restitution'])})",
+        caption=f"{CONVENTIONS[paper_angles]}; normal along n from sphere 1 to sphere 2, "
+        "tangential along n turned 90° counter-clockwise",
+    )
+    for header in ("", "sphere 1 before", "sphere 1 after", "sphere 2 before", "sphere 2 after"):
+        velocities.add_column(header, justify="right")
+    velocities.add_column("unit")
+    rows = {
+        "speed": ("speed", "final_speed", "m/s"),
+        "angle": ("angle", "final_angle", "deg"),
+        "x": ("x", "final_x", "m/s"),
+        "y": ("y", "final_y", "m/s"),
+        "normal": ("normal", "final_normal", "m/s"),
+        "tangential": ("tangential", "final_tangential", "m/s"),
+    }
+    both = {**inputs, **s}
+    for label, (before, after, unit) in rows.items():
+        cells = [f(both[f"{i}_{key}"]) for i in ("v1", "v2") for key in (before, after)]
+        velocities.add_row(label, *cells, unit)
+    out.print(velocities)
+
+    collision = Table(title="Line of centres and impulse")
+    for header, justify in (("", "left"), ("value", "right"), ("unit", "left")):
+        collision.add_column(header, justify=justify)
+    for label, key, unit in (
+        ("line of centres angle", "line_of_centres_angle", "deg"),
+        ("approach velocity (v1 - v2).n", "approach_velocity", "m/s"),
+        ("separation velocity (v2' - v1').n", "separation_velocity", "m/s"),
+        ("coefficient of restitution", "restitution", ""),
+        ("normal impulse on sphere 2", "normal_impulse", "N s"),
+        ("energy dissipated", "energy_dissipated", "J"),
+    ):
+        collision.add_row(label, f(s[key]), unit)
+    out.print(collision)
+
+    totals = Table(title="Conservation (eqs. 17a-c)")
+    for header, justify in (
+        ("", "left"),
+        ("before", "right"),
+        ("after", "right"),
+        ("unit", "left"),
+    ):
+        totals.add_column(header, justify=justify)
+    for label, key, unit in (
+        ("momentum x", "momentum_x", "kg m/s"),
+        ("momentum y", "momentum_y", "kg m/s"),
+        ("kinetic energy", "kinetic_energy", "J"),
+    ):
+        totals.add_row(label, f(s[f"{key}_before"]), f(s[f"{key}_after"]), unit)
+    out.print(totals)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("collide2d")(collide2d)

@@ -1,0 +1,397 @@
+r"""Oblique (2-D) collision of two smooth spheres: paper sec. 4.5, eqs. (17)-(21), spec sec. 8.
+
+The positions of the centres at contact fix the line of centres. Along it the velocities
+change as in the normal (1-D) impact with coefficient of restitution e; across it they do not
+(smooth spheres: no friction, no rotation). In vector form, with the unit normal pointing
+from sphere 1 to sphere 2,
+
+.. math::
+
+    \hat n = \frac{r_2 - r_1}{|r_2 - r_1|}, \qquad
+    v_{rel,n} = (v_1 - v_2) \cdot \hat n > 0,
+
+    v_1' = v_1 - (1 + e) \frac{m_2}{m_1 + m_2} v_{rel,n} \hat n, \qquad
+    v_2' = v_2 + (1 + e) \frac{m_1}{m_1 + m_2} v_{rel,n} \hat n.
+
+This is the paper's eq. (20) (final normal velocities, e = 1) written for any e, with the
+tangential components unchanged (sec. 4.5.2). The coefficient of restitution is an input:
+e = 1 for the elastic impact, or the e of an elastoplastic FILM run at the normal impact
+velocity v_rel,n (spec sec. 7).
+
+Conventions
+-----------
+- Everything is SI; angles are in radians, counter-clockwise from +x, in (-pi, pi].
+- Normal components are along n_hat (from sphere 1 to sphere 2), tangential ones along
+  t_hat = n_hat turned 90 deg counter-clockwise. These are the signs of the paper's
+  eqs. (18)-(19) for the example of sec. 4.5.3: there V_1n = V_1 cos(phi - alpha_1) and
+  V_2n = V_2 cos(phi + alpha_2) are both measured along n_hat.
+- The paper measures alpha_1 (initial angle of sphere 1), theta_2 (final angle of sphere 2)
+  and its phi (inclination of the line of centres) clockwise, alpha_2 and theta_1
+  counter-clockwise (Fig. 12); :data:`PAPER_ANGLE_SIGN` converts.
+
+Every function broadcasts: masses and e of shape ``S`` with vectors of shape ``S + (2,)``
+solve a batch of collisions in one call.
+
+References
+----------
+A. Big-Alabo, "Rigid Body Motions and Local Compliance Response during Impact of Two
+Deformable Spheres", Mechanical Engineering Research 8(1), 2018, sec. 4.5,
+doi:10.5539/mer.v8n1p1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "PAPER_ANGLE_SIGN",
+    "ObliqueCollision",
+    "approach_velocity",
+    "line_of_centres",
+    "oblique_collision",
+    "polar_angle",
+    "velocity_from_polar",
+]
+
+Array = NDArray[np.float64]
+
+#: Sign turning a counter-clockwise angle into the paper's convention for it (sec. 4.5.1,
+#: Fig. 12, eqs. 18, 21): alpha_1, theta_2 and phi clockwise; alpha_2, theta_1
+#: counter-clockwise. The conversion is its own inverse.
+PAPER_ANGLE_SIGN: dict[str, float] = {
+    "alpha_1": -1.0,
+    "alpha_2": 1.0,
+    "theta_1": 1.0,
+    "theta_2": -1.0,
+    "phi": -1.0,
+}
+
+
+def velocity_from_polar(speed: ArrayLike, angle: ArrayLike) -> Array:
+    """Velocity components from speed and direction.
+
+    Parameters
+    ----------
+    speed : magnitude of the velocity, [m/s]
+    angle : direction, counter-clockwise from +x, [rad]
+
+    Returns
+    -------
+    velocity : components (x, y) on the last axis, [m/s]
+
+    Examples
+    --------
+    >>> velocity_from_polar(3.0, np.radians(-30.0))
+    array([ 2.598, -1.5  ])
+    """
+    speed = np.asarray(speed, dtype=float)
+    angle = np.asarray(angle, dtype=float)
+    return np.stack(np.broadcast_arrays(speed * np.cos(angle), speed * np.sin(angle)), axis=-1)
+
+
+def polar_angle(vector: ArrayLike) -> Array:
+    """Direction of a 2-D vector, counter-clockwise from +x, in (-pi, pi], [rad].
+
+    A zero vector has angle 0; -0.0 components never give -pi.
+    """
+    vector = np.asarray(vector, dtype=float)
+    # + 0.0 turns -0.0 into +0.0, so arctan2 returns +pi rather than -pi on the -x axis.
+    return np.arctan2(vector[..., 1] + 0.0, vector[..., 0] + 0.0)
+
+
+def line_of_centres(p1: ArrayLike, p2: ArrayLike) -> Array:
+    """Unit normal n_hat = (r2 - r1)/|r2 - r1| from sphere 1 to sphere 2 at contact, [-].
+
+    Parameters
+    ----------
+    p1, p2 : positions of the centres at contact, (x, y) on the last axis, [m]
+
+    Raises
+    ------
+    ValueError
+        The positions coincide (no line of centres) or are not finite.
+    """
+    p1 = np.asarray(p1, dtype=float)
+    p2 = np.asarray(p2, dtype=float)
+    _check_vectors(p1=p1, p2=p2)
+    d = p2 - p1
+    distance = np.hypot(d[..., 0], d[..., 1])
+    coincident = distance == 0.0
+    if np.any(coincident):
+        raise ValueError(
+            f"the positions of the two centres coincide{_where(coincident)}: "
+            "they do not define a line of centres"
+        )
+    return d / distance[..., None]
+
+
+def approach_velocity(v1: ArrayLike, v2: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Array:
+    """Normal impact velocity v_rel,n = (v1 - v2) . n_hat, [m/s] (spec sec. 8).
+
+    Positive when the spheres approach along the line of centres; this is the impact
+    velocity V0 = V1 + V2 of the normal impact (spec sec. 1) in the constituent convention.
+
+    Parameters
+    ----------
+    v1, v2 : velocities before the impact, (x, y) on the last axis, [m/s]
+    p1, p2 : positions of the centres at contact, (x, y) on the last axis, [m]
+    """
+    v1 = np.asarray(v1, dtype=float)
+    v2 = np.asarray(v2, dtype=float)
+    _check_vectors(v1=v1, v2=v2)
+    return np.sum((v1 - v2) * line_of_centres(p1, p2), axis=-1)
+
+
+@dataclass(frozen=True)
+class ObliqueCollision:
+    """Velocities before and after an oblique collision of two smooth spheres (spec sec. 8).
+
+    Vectors have (x, y) on their last axis; every other attribute has the batch shape.
+
+    Attributes
+    ----------
+    m1, m2 : masses, [kg]
+    v1, v2 : velocities before the impact, [m/s]
+    v1_final, v2_final : velocities after the impact, [m/s]
+    normal : unit normal n_hat from sphere 1 to sphere 2 along the line of centres, [-]
+    restitution : coefficient of restitution e, [-]
+    """
+
+    m1: Array
+    m2: Array
+    v1: Array
+    v2: Array
+    v1_final: Array
+    v2_final: Array
+    normal: Array
+    restitution: Array
+
+    @property
+    def tangent(self) -> Array:
+        """Unit tangent t_hat: n_hat turned 90 deg counter-clockwise, [-]."""
+        return np.stack([-self.normal[..., 1], self.normal[..., 0]], axis=-1)
+
+    @property
+    def line_of_centres_angle(self) -> Array:
+        """Direction of n_hat (sphere 1 to sphere 2), counter-clockwise from +x, [rad].
+
+        The paper's phi (eq. 18) is the same line measured clockwise: phi = -this.
+        """
+        return polar_angle(self.normal)
+
+    @property
+    def reduced_mass(self) -> Array:
+        """Effective mass m = (1/m1 + 1/m2)^-1, [kg] (spec sec. 1)."""
+        return self.m1 * self.m2 / (self.m1 + self.m2)
+
+    def _along(self, vector: Array, axis: Array) -> Array:
+        return np.sum(vector * axis, axis=-1)
+
+    @property
+    def v1_normal(self) -> Array:
+        """Normal component of v1 before the impact, along n_hat, [m/s] (eq. 18a)."""
+        return self._along(self.v1, self.normal)
+
+    @property
+    def v2_normal(self) -> Array:
+        """Normal component of v2 before the impact, along n_hat, [m/s] (eq. 18b)."""
+        return self._along(self.v2, self.normal)
+
+    @property
+    def v1_tangential(self) -> Array:
+        """Tangential component of v1, along t_hat, [m/s] (eq. 19a); unchanged by the impact."""
+        return self._along(self.v1, self.tangent)
+
+    @property
+    def v2_tangential(self) -> Array:
+        """Tangential component of v2, along t_hat, [m/s] (eq. 19b); unchanged by the impact."""
+        return self._along(self.v2, self.tangent)
+
+    @property
+    def v1_final_normal(self) -> Array:
+        """Normal component of v1 after the impact, along n_hat, [m/s] (eq. 20)."""
+        return self._along(self.v1_final, self.normal)
+
+    @property
+    def v2_final_normal(self) -> Array:
+        """Normal component of v2 after the impact, along n_hat, [m/s] (eq. 20)."""
+        return self._along(self.v2_final, self.normal)
+
+    @property
+    def v1_final_tangential(self) -> Array:
+        """Tangential component of v1 after the impact, along t_hat, [m/s]."""
+        return self._along(self.v1_final, self.tangent)
+
+    @property
+    def v2_final_tangential(self) -> Array:
+        """Tangential component of v2 after the impact, along t_hat, [m/s]."""
+        return self._along(self.v2_final, self.tangent)
+
+    @property
+    def approach_velocity(self) -> Array:
+        """Normal impact velocity v_rel,n = (v1 - v2) . n_hat > 0, [m/s]."""
+        return self.v1_normal - self.v2_normal
+
+    @property
+    def separation_velocity(self) -> Array:
+        """Normal separation velocity (v2' - v1') . n_hat = e v_rel,n, [m/s]."""
+        return self.v2_final_normal - self.v1_final_normal
+
+    @property
+    def normal_impulse(self) -> Array:
+        """Impulse of sphere 1 on sphere 2, along n_hat: (1 + e) m v_rel,n, [N s]."""
+        return (1.0 + self.restitution) * self.reduced_mass * self.approach_velocity
+
+    @property
+    def momentum_before(self) -> Array:
+        """Total momentum m1 v1 + m2 v2 before the impact, [kg m/s] (eq. 17a,b)."""
+        return self.m1[..., None] * self.v1 + self.m2[..., None] * self.v2
+
+    @property
+    def momentum_after(self) -> Array:
+        """Total momentum m1 v1' + m2 v2' after the impact, [kg m/s] (eq. 17a,b)."""
+        return self.m1[..., None] * self.v1_final + self.m2[..., None] * self.v2_final
+
+    @property
+    def kinetic_energy_before(self) -> Array:
+        """Kinetic energy (m1 |v1|^2 + m2 |v2|^2)/2 before the impact, [J] (eq. 17c)."""
+        return _kinetic_energy(self.m1, self.v1) + _kinetic_energy(self.m2, self.v2)
+
+    @property
+    def kinetic_energy_after(self) -> Array:
+        """Kinetic energy (m1 |v1'|^2 + m2 |v2'|^2)/2 after the impact, [J] (eq. 17c)."""
+        return _kinetic_energy(self.m1, self.v1_final) + _kinetic_energy(self.m2, self.v2_final)
+
+    @property
+    def energy_dissipated(self) -> Array:
+        """Kinetic energy lost in the impact, (1 - e^2) m v_rel,n^2 / 2, [J].
+
+        Written in closed form, so it is exactly 0 for e = 1; it equals
+        ``kinetic_energy_before - kinetic_energy_after`` to rounding.
+        """
+        e = self.restitution
+        return 0.5 * (1.0 - e * e) * self.reduced_mass * self.approach_velocity**2
+
+
+def _kinetic_energy(mass: Array, velocity: Array) -> Array:
+    return 0.5 * mass * np.sum(velocity * velocity, axis=-1)
+
+
+def oblique_collision(
+    m1: ArrayLike,
+    m2: ArrayLike,
+    v1: ArrayLike,
+    v2: ArrayLike,
+    p1: ArrayLike,
+    p2: ArrayLike,
+    restitution: ArrayLike = 1.0,
+) -> ObliqueCollision:
+    r"""Velocities after the oblique collision of two smooth spheres (paper sec. 4.5).
+
+    The normal components change as in the normal impact, the tangential ones do not
+    (paper eqs. 18-20, spec sec. 8):
+
+    .. math::
+
+        v_1' = v_1 - (1 + e) \frac{m_2}{m_1 + m_2} v_{rel,n} \hat n, \qquad
+        v_2' = v_2 + (1 + e) \frac{m_1}{m_1 + m_2} v_{rel,n} \hat n,
+
+    with n_hat = (r2 - r1)/|r2 - r1| and v_rel,n = (v1 - v2) . n_hat. Momentum is conserved
+    (eq. 17a,b); kinetic energy is conserved for e = 1 (eq. 17c) and otherwise drops by
+    (1 - e^2) m v_rel,n^2 / 2.
+
+    Parameters
+    ----------
+    m1, m2 : masses, finite and > 0, [kg]
+    v1, v2 : velocities before the impact, (x, y) on the last axis, [m/s]
+    p1, p2 : positions of the centres at contact, (x, y) on the last axis, [m]; only the
+        direction of p2 - p1 matters
+    restitution : coefficient of restitution e in [0, 1], [-]: 1 for an elastic impact, or
+        the e of the elastoplastic FILM run at the normal impact velocity (spec sec. 7)
+
+    Returns
+    -------
+    ObliqueCollision
+        Velocities before and after, with their normal and tangential parts, momentum and
+        kinetic energy as properties.
+
+    Raises
+    ------
+    ValueError
+        A mass not finite and > 0, e outside [0, 1], coincident positions, or spheres not
+        approaching along the line of centres (v_rel,n <= 0: no impact). For a batch the
+        message gives the index of the first offending collision.
+
+    Notes
+    -----
+    Smooth spheres only: no friction and no rotation, as in the paper. The result does not
+    depend on the radii; the positions at contact give the line of centres.
+
+    Examples
+    --------
+    The paper's example of sec. 4.5.3 (alpha_1 = 30 deg clockwise, alpha_2 = 50 deg
+    counter-clockwise):
+
+    >>> v1 = velocity_from_polar(3.0, np.radians(-30.0))
+    >>> v2 = velocity_from_polar(2.0, np.radians(50.0))
+    >>> c = oblique_collision(0.05, 0.15, v1, v2, (-1.0, 2.0), (2.0, -2.0))
+    >>> float(np.hypot(*c.v1_final)), float(np.degrees(polar_angle(c.v1_final)))
+    (2.374, 97.11)
+    >>> float(np.hypot(*c.v2_final)), float(np.degrees(polar_angle(c.v2_final)))
+    (2.263, 6.26)
+    """
+    m1 = np.asarray(m1, dtype=float)
+    m2 = np.asarray(m2, dtype=float)
+    e = np.asarray(restitution, dtype=float)
+    v1 = np.asarray(v1, dtype=float)
+    v2 = np.asarray(v2, dtype=float)
+    for name, mass in (("m1", m1), ("m2", m2)):
+        bad = ~(np.isfinite(mass) & (mass > 0.0))
+        if np.any(bad):
+            raise ValueError(f"the mass {name} must be finite and > 0" + _where(bad))
+    bad = ~((e >= 0.0) & (e <= 1.0))
+    if np.any(bad):
+        raise ValueError("the coefficient of restitution must be in [0, 1]" + _where(bad))
+    normal = line_of_centres(p1, p2)
+    _check_vectors(v1=v1, v2=v2)
+    v_rel_n = np.sum((v1 - v2) * normal, axis=-1)
+    bad = ~(v_rel_n > 0.0)
+    if np.any(bad):
+        raise ValueError(
+            "the spheres are not approaching along the line of centres"
+            " ((v1 - v2) . n_hat <= 0: no impact)" + _where(bad)
+        )
+    shape = np.broadcast_shapes(m1.shape, m2.shape, e.shape, v_rel_n.shape)
+    m1, m2, e, v_rel_n = (np.broadcast_to(a, shape) for a in (m1, m2, e, v_rel_n))
+    # Impulse per unit of each mass: (1 + e) m v_rel,n / m_i, with m/m1 = m2/(m1 + m2).
+    share1 = (1.0 + e) * (m2 / (m1 + m2)) * v_rel_n
+    share2 = (1.0 + e) * (m1 / (m1 + m2)) * v_rel_n
+    return ObliqueCollision(
+        m1=m1,
+        m2=m2,
+        v1=np.broadcast_to(v1, shape + (2,)),
+        v2=np.broadcast_to(v2, shape + (2,)),
+        v1_final=v1 - share1[..., None] * normal,
+        v2_final=v2 + share2[..., None] * normal,
+        normal=np.broadcast_to(normal, shape + (2,)),
+        restitution=e,
+    )
+
+
+def _check_vectors(**vectors: Array) -> None:
+    for name, vector in vectors.items():
+        if vector.ndim == 0 or vector.shape[-1] != 2:
+            raise ValueError(f"{name} must have its (x, y) components on the last axis")
+        bad = ~np.all(np.isfinite(vector), axis=-1)
+        if np.any(bad):
+            raise ValueError(f"{name} must be finite" + _where(bad))
+
+
+def _where(bad: NDArray[np.bool_]) -> str:
+    """'' for a single collision, else ' (first at index ...)' for a batch."""
+    if np.ndim(bad) == 0:
+        return ""
+    return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
