@@ -264,3 +264,52 @@ def test_help_imports_no_heavy_modules(args):
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert "HEAVY=" in result.stderr
     assert result.stderr.rsplit("HEAVY=", 1)[1].strip() == ""
+
+
+def test_model_elastoplastic_head_on_equals_spec_section_7(impact):
+    # Head-on, the sec. 4.4 spheres at V0 = 1 m/s: e = 0.85611 and d1' = -1.3999 m/s.
+    result = impact(
+        "collide2d",
+        "--m1",
+        "0.0326726",
+        "--m2",
+        "0.261381",
+        "--v1",
+        "0.25,0",
+        "--v2=-0.75,0",
+        "--p1=-0.01,0",
+        "--p2=0.02,0",
+        "--model",
+        "elastoplastic",
+        "--d1",
+        "20mm",
+        "--d2",
+        "40mm",
+        "--material",
+        "steel",
+        "-f",
+        "json",
+    )
+    assert result.returncode == 0, result.stderr
+    s = json.loads(result.stdout)["summary"]
+    assert s["restitution"] == pytest.approx(0.85611, abs=5e-6)
+    assert s["v1_final_x"] == pytest.approx(-1.3999, abs=5e-5)
+    assert s["kinetic_energy_after"] < s["kinetic_energy_before"]
+
+
+def test_model_elastoplastic_needs_sizes(impact):
+    result = impact(
+        "collide2d",
+        "--m1",
+        "1",
+        "--m2",
+        "1",
+        "--v1",
+        "1,0",
+        "--v2=-1,0",
+        "--p1=0,0",
+        "--p2=1,0",
+        "--model",
+        "elastoplastic",
+    )
+    assert result.returncode == 2 and "--d1" in result.stderr

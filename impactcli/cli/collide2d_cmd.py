@@ -20,6 +20,7 @@ CONVENTIONS = {
 
 class Model(enum.StrEnum):
     elastic = "elastic"
+    elastoplastic = "elastoplastic"
 
 
 def collide2d(
@@ -58,9 +59,22 @@ def collide2d(
     model: Optional[Model] = typer.Option(
         None,
         "--model",
-        help="Contact model giving the coefficient of restitution: elastic (e = 1). "
-        "Default: elastic, unless --e is given.",
+        help="Contact model giving the coefficient of restitution: elastic (e = 1), or "
+        "elastoplastic (e from the Du & Wang FILM run at the normal impact velocity; needs "
+        "--d1, --d2, a material and a yield strength). Default: elastic, unless --e is given.",
     ),
+    d1: Optional[str] = typer.Option(
+        None, "--d1", help="Diameter of sphere 1 [m] (elastoplastic)."
+    ),
+    d2: Optional[str] = typer.Option(
+        None, "--d2", help="Diameter of sphere 2 [m] (elastoplastic)."
+    ),
+    material: Optional[str] = typer.Option(
+        None, "--material", help="Material of both spheres (elastoplastic; see impact materials)."
+    ),
+    material1: Optional[str] = typer.Option(None, "--material1", help="Material of sphere 1."),
+    material2: Optional[str] = typer.Option(None, "--material2", help="Material of sphere 2."),
+    sy: Optional[str] = typer.Option(None, "--sy", help="Yield strength [Pa] (elastoplastic)."),
     e: Optional[float] = typer.Option(
         None, "--e", help="Coefficient of restitution 0 <= e <= 1, instead of --model."
     ),
@@ -135,10 +149,12 @@ def collide2d(
             raise InputError(f"--e: the coefficient of restitution must be in [0, 1], got {e}")
         restitution, model_name = e, "given e"
     else:
-        # Only the elastic model so far; an elastoplastic one will take e from the FILM run
-        # at the normal impact velocity (spec sec. 7).
         restitution, model_name = 1.0, (model or Model.elastic).value
     v_rel_n = float(approach_velocity(vel1, vel2, pos1, pos2))
+    if model is Model.elastoplastic and v_rel_n > 0.0:
+        restitution = _elastoplastic_restitution(
+            v_rel_n, mass1, mass2, d1, d2, material, material1, material2, sy
+        )
     if not v_rel_n > 0.0:
         n = line_of_centres(pos1, pos2)
         raise InputError(
@@ -349,3 +365,35 @@ def _print_tables(
 
 def register(app: typer.Typer) -> None:
     app.command("collide2d")(collide2d)
+
+
+def _elastoplastic_restitution(
+    v_rel_n: float, mass1: float, mass2: float, d1, d2, material, material1, material2, sy
+) -> float:
+    """e of the Du & Wang FILM run at the normal impact velocity (spec sec. 7, 8)."""
+    from impactcli.cli.impact_cmd import _sphere
+    from impactcli.impact import elastoplastic_impact
+
+    p = dict(
+        d1=d1,
+        d2=d2,
+        material=material,
+        material1=material1,
+        material2=material2,
+        m1=str(mass1),
+        m2=str(mass2),
+        sy=sy,
+    )
+    if d1 is None or d2 is None or (material is None and (material1 is None or material2 is None)):
+        raise InputError(
+            "--model elastoplastic needs --d1, --d2 and --material (or --material1/--material2)"
+        )
+    s1, s2 = _sphere(1, p), _sphere(2, p)
+    if s1.yield_strength is None and s2.yield_strength is None:
+        raise InputError(
+            "--model elastoplastic needs a yield strength: --sy or a material with one"
+        )
+    try:
+        return float(elastoplastic_impact(s1, s2, v_rel_n, 0.0).summary["restitution"])
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
