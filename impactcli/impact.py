@@ -216,7 +216,7 @@ class ImpactResult:
 
         Parameters
         ----------
-        t : times [s]; default ``points`` evenly spaced over the contact
+        t : times [s], clamped to the contact [0, t_c]; default ``points`` evenly spaced
         method : ``film`` (closed form at any time), ``table`` (the rows of the normalised
             Tables A1/A2 expanded, elastic only; ``t`` is ignored) or ``ode`` (SciPy
             integration of eqs. 1a,b)
@@ -228,6 +228,7 @@ class ImpactResult:
             t, delta, delta_dot = _integrate(self, t)
         elif method == "film":
             t = self.times(points) if t is None else np.asarray(t, dtype=float)
+            t = np.clip(t, 0.0, self.film.end_time)  # as _integrate: d_i must match delta(t)
             delta, delta_dot = self.film.evaluate(t)
         else:
             raise ValueError(f"method must be film, table or ode, got {method!r}")
