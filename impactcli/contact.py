@@ -235,12 +235,15 @@ class DuWangContact:
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Hertz 0 -> delta_y, linear delta_y -> delta_m, unloading delta_m -> delta_res.
 
-        Below the yield velocity (every entry, for a batch) it is the elastic Hertz plan.
-        A batch must be all elastic or all plastic: split it by :meth:`yield_velocity`.
+        Up to the yield velocity (every entry, for a batch) it is the elastic Hertz plan.
+        A batch must be all elastic or all plastic: split it at V0 = V_y (1 + 1e-9).
         """
         v0 = np.asarray(impact_velocity, dtype=float)
         m = np.asarray(mass, dtype=float)
-        plastic = v0 > self.yield_velocity(m)
+        # Within 1e-9 of V_y the plastic stage delta_y -> delta_m is only a few ulps long:
+        # FILM's equal steps collapse to zero length and solve_stage fails. Such an impact
+        # is elastic to that accuracy (delta_m - delta_y < 1e-9 delta_y, 1 - e ~ 1e-16).
+        plastic = v0 > self.yield_velocity(m) * (1.0 + 1e-9)
         if not np.any(plastic):
             return HertzContact(self.stiffness).plan(v0, m)
         if not np.all(plastic):

@@ -275,11 +275,17 @@ class FilmSolution:
         return float(self.stages[-1].time[-1])
 
     def evaluate(self, t: ArrayLike) -> tuple[Array, Array]:
-        """Indentation [m] and its rate [m/s] at times ``t`` [s], clamped to the contact."""
+        """Indentation [m] and its rate [m/s] at times ``t`` [s], clamped to the contact.
+
+        At a node time (to rounding) it gives the node's state (delta_r and the exact
+        velocity of eq. 13e), the last node's at the end, not the oscillator that arrives.
+        """
         t = np.clip(np.asarray(t, dtype=float), self.start_time, self.end_time)
-        seg = np.clip(np.searchsorted(self._start, t, side="right") - 1, 0, self._start.size - 1)
-        tau = np.minimum(t - self._start[seg], self._end[seg] - self._start[seg])
-        return _oscillator(
+        slack = 8.0 * np.finfo(float).eps * max(abs(self.start_time), abs(self.end_time))
+        seg = np.searchsorted(self._start, t + slack, side="right") - 1
+        seg = np.clip(seg, 0, self._start.size - 1)
+        tau = np.clip(t - self._start[seg], 0.0, self._end[seg] - self._start[seg])
+        delta, delta_dot = _oscillator(
             tau,
             self._delta[seg],
             self._direction[seg],
@@ -287,3 +293,6 @@ class FilmSolution:
             self._x[seg],
             self._y[seg],
         )
+        end = t + slack >= self.end_time
+        last = self.stages[-1]
+        return np.where(end, last.delta[-1], delta), np.where(end, last.velocity[-1], delta_dot)

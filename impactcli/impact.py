@@ -216,7 +216,7 @@ class ImpactResult:
 
         Parameters
         ----------
-        t : times [s]; default ``points`` evenly spaced over the contact
+        t : times [s], clamped to the contact [0, t_c]; default ``points`` evenly spaced
         method : ``film`` (closed form at any time), ``table`` (the rows of the normalised
             Tables A1/A2 expanded, elastic only; ``t`` is ignored) or ``ode`` (SciPy
             integration of eqs. 1a,b)
@@ -228,6 +228,7 @@ class ImpactResult:
             t, delta, delta_dot = _integrate(self, t)
         elif method == "film":
             t = self.times(points) if t is None else np.asarray(t, dtype=float)
+            t = np.clip(t, 0.0, self.film.end_time)  # as _integrate: d_i must match delta(t)
             delta, delta_dot = self.film.evaluate(t)
         else:
             raise ValueError(f"method must be film, table or ode, got {method!r}")
@@ -306,7 +307,11 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     return tuple(stages)
 
 
-def _validate(sphere1: Sphere, sphere2: Sphere, v1: float, v2: float, n: int) -> None:
+def _validate(
+    sphere1: Sphere, sphere2: Sphere, v1: float, v2: float, n: int, split: str = "mass"
+) -> None:
+    if split not in ("mass", "compliance"):
+        raise ValueError(f"split must be mass or compliance, got {split!r}")
     for name, value in (("V1", v1), ("V2", v2)):
         if not np.isfinite(value):
             raise ValueError(f"{name} must be a finite velocity, got {value}")
@@ -403,7 +408,7 @@ def elastic_impact(
     >>> round(r.summary["contact_time"] * 1e6, 2), round(r.summary["d1_final"] * 1e6, 4)
     (171.32, -1.0469)
     """
-    _validate(sphere1, sphere2, v1, v2, n)
+    _validate(sphere1, sphere2, v1, v2, n, split)
     m, r, e = _common(sphere1, sphere2)
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
     film = FilmSolution(solve_plan(plan, m, n))
@@ -442,7 +447,7 @@ def elastoplastic_impact(
     >>> round(r.summary["restitution"], 5), round(r.summary["contact_time"] * 1e6, 3)
     (0.85611, 75.988)
     """
-    _validate(sphere1, sphere2, v1, v2, n)
+    _validate(sphere1, sphere2, v1, v2, n, split)
     sigma_y = yield_strength if yield_strength is not None else _yield_strength(sphere1, sphere2)
     if sigma_y is None or not np.isfinite(sigma_y) or sigma_y <= 0:
         raise ValueError("the elastoplastic model needs a positive, finite yield strength")
