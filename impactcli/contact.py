@@ -217,7 +217,7 @@ class DuWangContact:
         a, c = law.slope, law.intercept
         # (a/2) d^2 - c d - [E0 - W_y + (a/2) dy^2 - c dy] = 0, E0 = m V0^2 / 2.
         rest = 0.5 * m * v0**2 - 0.4 * k * dy**2.5 + 0.5 * a * dy**2 - c * dy
-        plastic = (c + np.sqrt(c**2 + 2.0 * a * rest)) / a
+        plastic = (c + np.sqrt(np.maximum(c**2 + 2.0 * a * rest, 0.0))) / a  # used past V_y
         elastic = hertz_maximum_indentation(m, v0, k)
         return np.where(v0 > self.yield_velocity(m), plastic, elastic)
 
