@@ -7,6 +7,10 @@ of the axis.
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -22,6 +26,7 @@ from impactcli.plots import (
     save_figure,
     unit_scale,
 )
+from tests.conftest import ROOT
 
 pytest.importorskip("matplotlib")
 
@@ -321,3 +326,164 @@ def test_collision2d_figure_scales_units_and_rejects_no_line_of_centres():
     assert "(mm)" in annotation(fig, "at:v1").axes.get_xlabel()
     with pytest.raises(ValueError, match="line of centres"):
         collision2d_figure((1, 0), (0, 0), (0, 0), (1, 0), (0, 0), (0, 0))
+
+
+# -- the commands -----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("args", "fmt"),
+    [(ELASTIC_4_3, "png"), (PLASTIC_4_4, "svg"), (["convergence", "--n", "1", "3", "5"], "pdf")],
+    ids=["elastic", "elastoplastic", "convergence"],
+)
+def test_plot_option_writes_an_image(impact, tmp_path, args, fmt):
+    target = tmp_path / f"figure.{fmt}"
+    result = impact(*args, "--plot", str(target), "-o", str(tmp_path / "out.csv"))
+    assert result.returncode == 0, result.stderr
+    check_is_image(target, fmt)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([target.name, "out.csv"])
+
+
+def run_main(monkeypatch, module: str, argv: list[str]):
+    """Run the CLI in-process and return the figure it would have written."""
+    import importlib
+
+    from impactcli.cli import main
+
+    captured = []
+    mod = importlib.import_module(module)
+    monkeypatch.setattr(mod, "save_plot", lambda fig, path: captured.append((fig, path)))
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 0
+    assert len(captured) == 1
+    return captured[0][0]
+
+
+def test_cli_plots_the_history_it_computes(monkeypatch, tmp_path):
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        [*PLASTIC_4_4, "--points", "51", "--plot", "x.png", "-o", str(tmp_path / "h.csv")],
+    )
+    history = elastoplastic_impact(SPHERE1, SPHERE2, 0.25, 0.75).history(points=51)
+    np.testing.assert_allclose(lines(fig, "d2").get_ydata(), history["d2"] / 1e-6, rtol=1e-12)
+    np.testing.assert_allclose(lines(fig, "v1").get_ydata(), history["v1"], rtol=1e-12)
+    np.testing.assert_allclose(lines(fig, "d2").get_xdata(), history["t"] / 1e-6, rtol=1e-12)
+    title = fig.get_suptitle()
+    assert "Elastoplastic (Du & Wang)" in title and "n = 25" in title
+    assert "D1 = 20 mm, D2 = 40 mm, V1 = 250 mm/s, V2 = 750 mm/s, steel" in title
+
+
+def test_cli_check_adds_the_ode_reference(monkeypatch, tmp_path):
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        [*ELASTIC_4_3, "--points", "21", "--check", "--plot", "x.pdf", "-o", str(tmp_path / "h")],
+    )
+    ref = lines(fig, "reference:d1").get_ydata()
+    np.testing.assert_allclose(ref, lines(fig, "d1").get_ydata(), rtol=1e-3, atol=1e-4)
+
+
+def test_cli_convergence_plots_fig_3(monkeypatch, tmp_path):
+    from impactcli.cli.tables_cmd import CURVE_POINTS
+    from impactcli.film import FilmSolution
+    from impactcli.tables import normalised_elastic
+
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.tables_cmd",
+        ["convergence", "--n", "1", "3", "5", "25", "--plot", "c.svg", "-o", str(tmp_path / "c")],
+    )
+    film = FilmSolution(normalised_elastic(5))
+    t = np.linspace(0.0, film.end_time, CURVE_POINTS)
+    np.testing.assert_allclose(lines(fig, "n=5").get_xdata(), t)
+    np.testing.assert_allclose(lines(fig, "n=5").get_ydata(), film.evaluate(t)[0])
+    assert len(lines(fig, "error").get_xdata()) == 4
+
+
+@pytest.mark.parametrize(
+    "args", [ELASTIC_4_3, PLASTIC_4_4, ["convergence"]], ids=["elastic", "plastic", "convergence"]
+)
+@pytest.mark.parametrize("name", ["figure.jpg", "figure"])
+def test_bad_extension_is_one_line_exit_2_before_any_work(impact, tmp_path, args, name):
+    out = tmp_path / "out.csv"
+    result = impact(*args, "--plot", str(tmp_path / name), "-o", str(out))
+    assert result.returncode == 2
+    assert result.stderr.count("\n") == 1 and ".png, .svg or .pdf" in result.stderr
+    assert list(tmp_path.iterdir()) == []  # neither the figure nor the -o file
+
+
+def test_missing_folder_is_one_line_exit_2(impact, tmp_path):
+    result = impact(*ELASTIC_4_3, "--plot", str(tmp_path / "nowhere" / "f.png"))
+    assert result.returncode == 2 and result.stderr.count("\n") == 1
+    assert "no folder" in result.stderr and result.stdout == ""
+
+
+WITHOUT_MATPLOTLIB = (
+    "import sys; sys.modules['matplotlib'] = None; "
+    "from impactcli.cli import main; main(sys.argv[1:])"
+)
+
+
+@pytest.mark.parametrize(
+    "args", [ELASTIC_4_3, ["convergence", "--n", "3"]], ids=["elastic", "convergence"]
+)
+def test_missing_matplotlib_says_how_to_install_it(tmp_path, args):
+    target = tmp_path / "f.png"
+    result = subprocess.run(
+        [sys.executable, "-c", WITHOUT_MATPLOTLIB, *args, "--plot", str(target)],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=os.environ,
+        timeout=120,
+    )
+    assert result.returncode == 2, result.stderr
+    assert result.stderr.count("\n") == 1
+    assert "pip install 'impactcli[plot]'" in result.stderr
+    assert not target.exists()
+
+
+def test_plotting_function_without_matplotlib_raises_import_error():
+    code = (
+        "import sys; sys.modules['matplotlib'] = None\n"
+        "from impactcli.plots import restitution_figure\n"
+        "try:\n"
+        "    restitution_figure([1.0], [1.0], [1.0], [0.0])\n"
+        "except ImportError as exc:\n"
+        "    print(exc)\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=120
+    )
+    assert "pip install 'impactcli[plot]'" in out.stdout, out.stderr
+
+
+IMPORTS_AFTER = (
+    "import sys\n"
+    "from impactcli.cli import main\n"
+    "try:\n"
+    "    main(sys.argv[1:])\n"
+    "except SystemExit:\n"
+    "    pass\n"
+    "print('matplotlib' in sys.modules, file=sys.stderr)\n"
+)
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["--help"], ["elastic", "--help"], [*ELASTIC_4_3, "--points", "3", "-f", "csv"]],
+    ids=["help", "elastic-help", "elastic-without-plot"],
+)
+def test_matplotlib_is_imported_only_to_plot(args):
+    result = subprocess.run(
+        [sys.executable, "-c", IMPORTS_AFTER, *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=120,
+    )
+    assert result.stderr.strip().splitlines()[-1] == "False", result.stderr
+    if "--help" in args[-1:] and args[0] == "elastic":
+        assert "--plot" in result.stdout
