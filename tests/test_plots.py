@@ -375,6 +375,19 @@ def test_cli_plots_the_history_it_computes(monkeypatch, tmp_path):
     assert "D1 = 20 mm, D2 = 40 mm, V1 = 250 mm/s, V2 = 750 mm/s, steel" in title
 
 
+def test_cli_paper_example_4_3_moving_spheres(monkeypatch, tmp_path):
+    """Same V0, both spheres moving at about 100 m/s: d_1 = +17.132 mm at separation."""
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        ["elastic", *PAPER, "--v1", "100.0125m/s", "--v2=-100m/s", "--plot", "m.png", "-o",
+         str(tmp_path / "h.csv")],
+    )  # fmt: skip
+    assert "V1 = 100.0125 m/s, V2 = -100 m/s" in fig.get_suptitle()
+    assert "(mm)" in axes_of(fig, "d1").get_ylabel()
+    assert lines(fig, "d1").get_ydata()[-1] == pytest.approx(17.132, abs=1e-3)
+
+
 def test_cli_check_adds_the_ode_reference(monkeypatch, tmp_path):
     fig = run_main(
         monkeypatch,

@@ -377,7 +377,10 @@ def _plot(path: str, result, history: dict, p: dict[str, Any]) -> None:
 
 def _case_title(result, p: dict[str, Any]) -> str:
     """E.g. 'Elastic (Hertz) impact by FILM, n = 25: D1 = 20 mm, ..., steel'."""
-    from impactcli.plots import format_quantity as q
+    from impactcli.plots import format_quantity
+
+    def q(value: float, unit: str) -> str:  # the inputs as given: 100.0125 m/s, not 100
+        return format_quantity(value, unit, digits=12)
 
     model = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
     how = {
@@ -397,7 +400,7 @@ def _case_title(result, p: dict[str, Any]) -> str:
         parts.append(names[0])
     else:
         for i, (name, sphere) in enumerate(zip(names, (s1, s2)), start=1):
-            parts.append(name or f"E{i} = {q(sphere.youngs_modulus, 'Pa', 3)}")
+            parts.append(name or f"E{i} = {q(sphere.youngs_modulus, 'Pa')}")
     return f"{model} impact {how}: {', '.join(parts)}"
 
 
