@@ -16,9 +16,21 @@ $(STAMP): $(BIN)/python pyproject.toml
 
 venv: $(STAMP)
 
-## run: set up, then print the paper's Tables A1 and A2 (n = 25)
+PAPER := --d1 20mm --d2 40mm --material steel
+
+## run: set up, print the paper's Tables A1 and A2 (n = 25), and draw the figures of its
+##      sections 4.1, 4.3 and 4.4 into figures/ (with each figure's data as CSV)
 run: $(STAMP)
 	$(BIN)/impact tables --n 25 --format table
+	@mkdir -p figures
+	$(BIN)/impact elastic $(PAPER) --v1 5mm/s --v2 7.5mm/s \
+		-o figures/elastic_4_3.csv --plot figures/elastic_4_3.png
+	$(BIN)/impact elastic $(PAPER) --v1 100.0125m/s --v2=-100m/s \
+		-o figures/elastic_4_3_moving.csv --plot figures/elastic_4_3_moving.png
+	$(BIN)/impact elastoplastic $(PAPER) --v1 0.25m/s --v2 0.75m/s \
+		-o figures/elastoplastic_4_4.csv --plot figures/elastoplastic_4_4.png
+	$(BIN)/impact convergence -o figures/convergence.csv --plot figures/convergence.png
+	@echo "Figures (paper sec. 4.1, 4.3, 4.4) and their data: figures/"
 
 ## test: set up, then lint and run the whole test suite
 test: $(STAMP)

@@ -45,3 +45,42 @@ def warn(message: str) -> None:
 def note(message: str) -> None:
     """One note line on stderr."""
     print(f"impact: note: {message}", file=sys.stderr)
+
+
+PLOT_HELP = (
+    "Also draw the figures to FILE: .png, .svg or .pdf, chosen by the extension "
+    "(needs matplotlib: pip install 'impactcli[plot]')."
+)
+
+
+def check_plot(path: str | None) -> None:
+    """Fail before any work if ``--plot FILE`` cannot be drawn: a file type other than
+    .png/.svg/.pdf, no matplotlib, or no such folder. One-line :class:`InputError`, exit
+    status 2."""
+    if path is None:
+        return
+    from impactcli.output import InputError
+    from impactcli.plots import figure_format, require_matplotlib
+
+    try:
+        figure_format(path)
+    except ValueError as exc:
+        raise InputError(f"--plot: {exc}") from None
+    try:
+        require_matplotlib()
+    except ImportError as exc:
+        raise InputError(f"--plot: {exc}") from None
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise InputError(f"--plot: cannot write {path!r}: no folder {folder!r}")
+
+
+def save_plot(fig, path: str) -> None:  # fig: matplotlib.figure.Figure
+    """Write ``fig`` to ``path`` atomically; an unwritable path is a one-line InputError."""
+    from impactcli.output import InputError
+    from impactcli.plots import save_figure
+
+    try:
+        save_figure(fig, path)
+    except OSError as exc:
+        raise InputError(f"--plot: cannot write {path!r}: {exc.strerror or exc}") from None

@@ -8,7 +8,16 @@ from typing import IO, Annotated, Any, Optional
 import numpy as np
 import typer
 
-from impactcli.cli.common import Format, console, note, resolve_format, warn
+from impactcli.cli.common import (
+    PLOT_HELP,
+    Format,
+    check_plot,
+    console,
+    note,
+    resolve_format,
+    save_plot,
+    warn,
+)
 from impactcli.output import InputError, atomic_output, write_csv, write_json
 
 UNITS_HELP = "A bare number is SI; units may be given, e.g. 20mm, 7.5mm/s, 210GPa, 7800kg/m^3."
@@ -86,6 +95,7 @@ FMT = Annotated[
     typer.Option("--format", "-f", help="table (terminal), csv (the history) or json."),
 ]
 OUT = Annotated[Optional[str], typer.Option("--output", "-o", help="Write to this file.")]
+PLOT = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
 
 SUMMARY_UNITS = {
     "contact_time": ("us", 1e6, "contact duration"),
@@ -180,6 +190,7 @@ def _velocity(text: Optional[str], name: str) -> float:
 def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
     from impactcli.impact import elastic_impact, elastoplastic_impact
 
+    check_plot(p["plot"])
     s1 = _sphere(1, p)
     s2 = _sphere(2, p)
     v1, v2 = _velocity(p["v1"], "--v1"), _velocity(p["v2"], "--v2")
@@ -239,8 +250,8 @@ def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
             write_json(stream, doc)
         else:
             _print(stream if p["output"] not in (None, "-") else None, result, history, check)
-    if p.get("plot"):
-        _plot(p["plot"], result, history)
+    if p["plot"]:
+        _plot(p["plot"], result, history, p)
 
 
 def _validity_messages(model: str, result) -> None:
@@ -347,8 +358,50 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         out.print(table)
 
 
-def _plot(path: str, result, history) -> None:
-    raise InputError("--plot is not available yet")
+def _plot(path: str, result, history: dict, p: dict[str, Any]) -> None:
+    """The six panels of the paper's Figs. 4-11 for this impact, written to ``path``."""
+    from impactcli.plots import impact_figure
+
+    reference = None
+    if p["check"]:
+        reference = result.history(t=history["t"], method="ode")
+    fig = impact_figure(
+        history,
+        _case_title(result, p),
+        model=result.model,
+        summary=result.summary,
+        reference=reference,
+    )
+    save_plot(fig, path)
+
+
+def _case_title(result, p: dict[str, Any]) -> str:
+    """E.g. 'Elastic (Hertz) impact by FILM, n = 25: D1 = 20 mm, ..., steel'."""
+    from impactcli.plots import format_quantity
+
+    def q(value: float, unit: str) -> str:  # the inputs as given: 100.0125 m/s, not 100
+        return format_quantity(value, unit, digits=12)
+
+    model = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    how = {
+        "film": f"by FILM, n = {result.n}",
+        "table": f"by the normalised Tables A1/A2, n = {result.n}",
+        "ode": "by SciPy solve_ivp",
+    }[p["method"].value]
+    s1, s2 = result.sphere1, result.sphere2
+    parts = [
+        f"D1 = {q(s1.diameter, 'm')}",
+        f"D2 = {q(s2.diameter, 'm')}",
+        f"V1 = {q(result.v1, 'm/s')}",
+        f"V2 = {q(result.v2, 'm/s')}",
+    ]
+    names = [p["material1"] or p["material"], p["material2"] or p["material"]]
+    if names[0] and names[0] == names[1]:
+        parts.append(names[0])
+    else:
+        for i, (name, sphere) in enumerate(zip(names, (s1, s2)), start=1):
+            parts.append(name or f"E{i} = {q(sphere.youngs_modulus, 'Pa')}")
+    return f"{model} impact {how}: {', '.join(parts)}"
 
 
 def elastic(
@@ -380,6 +433,7 @@ def elastic(
     split: SPLIT = Split.mass,
     fmt: FMT = None,
     output: OUT = None,
+    plot: PLOT = None,
 ) -> None:
     """Elastic (Hertz) impact of two spheres: each sphere's rigid-body motion and indentation.
 
@@ -433,6 +487,7 @@ def elastoplastic(
     split: SPLIT = Split.mass,
     fmt: FMT = None,
     output: OUT = None,
+    plot: PLOT = None,
 ) -> None:
     """Elastoplastic impact (Du & Wang contact, paper eq. 16): each sphere's motion, its
     maximum and permanent indentation, and the coefficient of restitution.

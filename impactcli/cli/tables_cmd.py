@@ -8,7 +8,7 @@ from typing import IO, Optional
 import numpy as np
 import typer
 
-from impactcli.cli.common import Format, console, resolve_format
+from impactcli.cli.common import PLOT_HELP, Format, check_plot, console, resolve_format, save_plot
 from impactcli.output import atomic_output, write_csv, write_json
 
 TABLE_TITLES = {
@@ -157,10 +157,15 @@ def convergence(
     output: Optional[str] = typer.Option(
         None, "--output", "-o", help="Write to this file instead of stdout."
     ),
+    plot: Optional[str] = typer.Option(None, "--plot", metavar="FILE", help=PLOT_HELP),
 ) -> None:
     """Convergence of FILM: normalised contact duration t_c·V0/δm against the number of
     segments n, its error against the exact 2(2/5)B(2/5,1/2) = 2.9432752 and the observed
-    order of convergence (paper sec. 4.1)."""
+    order of convergence (paper sec. 4.1).
+
+    --plot draws the paper's Fig. 3, the indentation history δ/δm against t·V0/δm for
+    several n (all of them if six or fewer, else the five smallest and the largest), and
+    the contact-time error against n on log-log axes."""
     from impactcli.output import InputError
     from impactcli.tables import EXACT_CONTACT_DURATION
     from impactcli.tables import convergence as run
@@ -168,6 +173,7 @@ def convergence(
     values = list(n_option or []) + list(ns or [])
     if any(v < 1 for v in values):
         raise InputError(f"every n must be an integer >= 1, got {min(values)}")
+    check_plot(plot)
     if not values:
         values = [1, 2, 3, 5, 10, 25, 100, 1000, 10000]
     rows = run(values, carry_velocity=carry_velocity)
@@ -213,6 +219,48 @@ def convergence(
                     "" if np.isnan(r.order) else f"{r.order:.2f}",
                 )
             console(stream if output not in (None, "-") else None).print(table)
+    if plot:
+        _plot_convergence(plot, rows, carry_velocity)
+
+
+#: Points per FILM indentation history drawn by ``impact convergence --plot``.
+CURVE_POINTS = 2001
+
+
+def curve_ns(ns: list[int], most: int = 6) -> list[int]:
+    """The n whose histories are drawn: all distinct ones if at most ``most``, else the
+    ``most - 1`` smallest and the largest, the nearest to converged.
+
+    >>> curve_ns([1, 2, 3, 5, 10, 25, 100, 1000, 10000])
+    [1, 2, 3, 5, 10, 10000]
+    """
+    distinct = sorted(set(ns))
+    return distinct if len(distinct) <= most else distinct[: most - 1] + distinct[-1:]
+
+
+def _plot_convergence(path: str, rows, carry_velocity: bool) -> None:
+    from impactcli.film import FilmSolution
+    from impactcli.plots import convergence_figure
+    from impactcli.tables import normalised_elastic
+
+    curves = {}
+    for n in curve_ns([r.n for r in rows]):
+        film = FilmSolution(normalised_elastic(n, carry_velocity))
+        t_bar = np.linspace(0.0, film.end_time, CURVE_POINTS)
+        curves[n] = (t_bar, film.evaluate(t_bar)[0])
+    scheme = (
+        "velocity carried over between segments (the paper's scheme)"
+        if carry_velocity
+        else "node velocities from the energy balance (eq. 13e)"
+    )
+    fig = convergence_figure(
+        curves,
+        [r.n for r in rows],
+        [r.relative_error for r in rows],
+        title=f"Convergence of FILM, normalised Hertz impact (paper sec. 4.1): {scheme}",
+        error_label="FILM, carried velocity" if carry_velocity else "FILM, eq. 13e",
+    )
+    save_plot(fig, path)
 
 
 def register(app: typer.Typer) -> None:

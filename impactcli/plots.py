@@ -1,0 +1,848 @@
+"""Figures of an impact, as in the paper: data in, a matplotlib ``Figure`` out.
+
+Pure functions: they take SI arrays (or dimensionless ones) and return a
+:class:`matplotlib.figure.Figure` without touching pyplot, a GUI or any global state; only
+:func:`save_figure` writes, atomically. matplotlib is an optional dependency
+(``pip install 'impactcli[plot]'``): it is imported inside the functions that draw, never at
+module import, so ``import impactcli.plots`` and ``impact --help`` stay light.
+
+Every line that carries data has a ``gid`` naming it (``"d1"``, ``"p1+p2"``, ``"n=5"``, ...):
+``[l for ax in fig.axes for l in ax.lines if l.get_gid() == "d1"]`` finds it, and its data
+are the input divided by the axis' :class:`UnitScale` factor.
+
+Functions
+---------
+unit_scale : the SI prefix that suits a set of values (one helper for every axis label)
+impact_figure : histories of one normal impact (paper Figs. 4-11) and its force-indentation loop
+convergence_figure : FILM indentation histories for several n (Fig. 3) and the contact-time error
+restitution_figure : a sweep over impact velocity: restitution, contact time, permanent indentation
+collision2d_figure : the oblique 2-D collision: velocities before and after (sec. 4.5, Fig. 12)
+save_figure : write a figure to .png, .svg or .pdf atomically
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import tempfile
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:  # pragma: no cover - typing only; matplotlib is optional
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = [
+    "FIGURE_FORMATS",
+    "MISSING_MATPLOTLIB",
+    "UnitScale",
+    "collision2d_figure",
+    "convergence_figure",
+    "figure_format",
+    "format_quantity",
+    "impact_figure",
+    "require_matplotlib",
+    "restitution_figure",
+    "save_figure",
+    "unit_scale",
+]
+
+#: File extension -> matplotlib format name.
+FIGURE_FORMATS: dict[str, str] = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
+
+#: What to do when matplotlib is missing (one line, for the CLI and for ImportError).
+MISSING_MATPLOTLIB = (
+    "plotting needs matplotlib, which is not installed: pip install 'impactcli[plot]'"
+)
+
+_PREFIXES: dict[int, str] = {
+    -12: "p",
+    -9: "n",
+    -6: "µ",
+    -3: "m",
+    0: "",
+    3: "k",
+    6: "M",
+    9: "G",
+}
+
+SPHERE_COLOURS = ("tab:blue", "tab:orange")
+TOTAL_COLOUR = "black"
+
+# -- units ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class UnitScale:
+    """A unit with an SI prefix: plotted value = SI value / ``factor``.
+
+    Attributes
+    ----------
+    factor : the prefix's power of ten, e.g. 1e-6 for µm, [-]
+    unit : the prefixed unit, e.g. ``"µm"``
+    """
+
+    factor: float
+    unit: str
+
+
+def unit_scale(values: ArrayLike | Sequence[ArrayLike], unit: str) -> UnitScale:
+    """The SI prefix that puts the largest finite ``|value|`` in [1, 1000).
+
+    One prefix serves all the values given, so series that share an axis share a unit.
+    Prefixes run from p (1e-12) to G (1e9); all-zero or non-finite data keep the bare unit.
+
+    Parameters
+    ----------
+    values : one array, or several (ragged) arrays, in the SI ``unit``
+    unit : the SI unit, e.g. ``"m"``, ``"s"``, ``"m/s"``, ``"N"``, ``"N·s"``
+
+    Examples
+    --------
+    >>> unit_scale([0.0, 1.7132e-4], "s")
+    UnitScale(factor=1e-06, unit='µs')
+    >>> unit_scale([[0.005, -0.0172], [0.0075]], "m/s")
+    UnitScale(factor=0.001, unit='mm/s')
+    >>> unit_scale([0.0], "N").unit
+    'N'
+    """
+    flat = _magnitudes(values)
+    flat = flat[np.isfinite(flat)]
+    peak = float(flat.max()) if flat.size else 0.0
+    if peak == 0.0:
+        return UnitScale(1.0, unit)
+    power = 3 * math.floor(math.log10(peak) / 3 + 1e-9)
+    power = min(max(power, min(_PREFIXES)), max(_PREFIXES))
+    return UnitScale(10.0**power, _PREFIXES[power] + unit)
+
+
+def _magnitudes(values: ArrayLike | Sequence[ArrayLike]) -> NDArray:
+    """All |values| in one flat array; ``values`` may be ragged (several arrays)."""
+    try:
+        return np.abs(np.asarray(values, dtype=float)).ravel()
+    except ValueError:  # ragged: one array per series
+        return np.concatenate([_magnitudes(v) for v in values])
+
+
+def format_quantity(value: float, unit: str, digits: int = 4) -> str:
+    """``value`` [SI ``unit``] as text with a suitable prefix, e.g. ``"7.5 mm/s"``.
+
+    Examples
+    --------
+    >>> format_quantity(0.0075, "m/s")
+    '7.5 mm/s'
+    >>> format_quantity(float("inf"), "m")
+    'inf m'
+    """
+    if not np.isfinite(value):
+        return f"{value} {unit}"
+    scale = unit_scale([value], unit)
+    return f"{value / scale.factor:.{digits}g} {scale.unit}"
+
+
+# -- files ------------------------------------------------------------------------------
+
+
+def figure_format(path: str | os.PathLike[str]) -> str:
+    """The image format named by ``path``'s extension: ``png``, ``svg`` or ``pdf``.
+
+    Raises
+    ------
+    ValueError
+        Any other extension (or none).
+
+    Examples
+    --------
+    >>> figure_format("figures/elastic.PNG")
+    'png'
+    """
+    ext = os.path.splitext(os.fspath(path))[1].lower()
+    if ext not in FIGURE_FORMATS:
+        shown = f"'{ext}'" if ext else "no extension"
+        raise ValueError(
+            f"{os.fspath(path)!r} has {shown}: the figure is written as .png, .svg or .pdf, "
+            "chosen by the file's extension"
+        )
+    return FIGURE_FORMATS[ext]
+
+
+def require_matplotlib() -> None:
+    """Import matplotlib, or raise ``ModuleNotFoundError`` saying how to install it."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError as exc:
+        raise ModuleNotFoundError(MISSING_MATPLOTLIB, name="matplotlib") from exc
+
+
+def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = 150) -> None:
+    """Write ``fig`` to ``path`` (.png, .svg or .pdf by extension) atomically.
+
+    The image goes to a temporary file in the same folder, which replaces ``path`` only
+    once it is complete: an error never leaves a half-written or clobbered file.
+
+    Parameters
+    ----------
+    fig : the figure
+    path : the target file; its extension chooses the format (:func:`figure_format`)
+    dpi : resolution of a PNG, [1/inch]
+
+    Raises
+    ------
+    ValueError
+        Unknown extension.
+    OSError
+        The folder does not exist or is not writable.
+    """
+    fmt = figure_format(path)
+    target = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(target))
+    fd, tmp = tempfile.mkstemp(prefix=".impact-", suffix=f".{fmt}.tmp", dir=folder)
+    try:
+        with os.fdopen(fd, "wb") as stream:
+            fig.savefig(stream, format=fmt, dpi=dpi, metadata=_metadata(fmt))
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def _metadata(fmt: str) -> dict[str, str | None]:
+    """Reproducible files: no creation date in SVG/PDF."""
+    if fmt == "svg":
+        return {"Date": None}
+    if fmt == "pdf":
+        return {"CreationDate": None}
+    return {}
+
+
+# -- drawing helpers --------------------------------------------------------------------
+
+
+def _new_figure(width: float, height: float) -> Figure:
+    require_matplotlib()
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=(width, height), layout="constrained")
+
+
+def _series(
+    ax: Axes,
+    x: NDArray,
+    xs: UnitScale,
+    lines: Sequence[tuple[str, str, NDArray, dict]],
+    quantity: str,
+    unit: str,
+) -> UnitScale:
+    """Plot several series sharing one y unit; label the y axis; return its scale."""
+    ys = unit_scale([y for _gid, _label, y, _style in lines], unit)
+    for gid, label, y, style in lines:
+        ax.plot(x / xs.factor, y / ys.factor, label=label, gid=gid, **style)
+    ax.set_ylabel(f"{quantity} ({ys.unit})")
+    ax.set_xlabel(f"time $t$ ({xs.unit})")
+    ax.axhline(0.0, color="0.75", linewidth=0.8, zorder=0)
+    ax.grid(True, linewidth=0.4, alpha=0.5)
+    ax.legend(fontsize="small")
+    return ys
+
+
+def _reference(
+    ax: Axes,
+    x: NDArray,
+    xs: UnitScale,
+    ys: UnitScale,
+    reference: Mapping[str, NDArray] | None,
+    columns: Sequence[tuple[str, str]],
+) -> None:
+    """Markers of a reference solution (e.g. SciPy) over the FILM lines, same scale."""
+    if reference is None:
+        return
+    every = max(1, len(x) // 25)
+    for col, colour in columns:
+        if col not in reference:
+            continue
+        ax.plot(
+            x / xs.factor,
+            np.asarray(reference[col], dtype=float) / ys.factor,
+            linestyle="none",
+            marker="o",
+            markersize=3.5,
+            markerfacecolor="none",
+            markeredgewidth=0.8,
+            color=colour,
+            markevery=every,
+            gid=f"reference:{col}",
+        )
+
+
+# -- one normal impact ------------------------------------------------------------------
+
+_PAPER_FIGURES = {
+    "elastic": {
+        "d": "Fig. 4",
+        "v": "Fig. 5",
+        "delta": "Fig. 6",
+        "delta_dot": "Fig. 7",
+        "p": "Fig. 8",
+    },
+    "elastoplastic": {
+        "d": "Fig. 9",
+        "v": "Fig. 10",
+        "delta": "Fig. 9",
+        "delta_dot": "Fig. 10",
+        "p": "Fig. 11",
+    },
+}
+
+_SUMMARY_LINE = (
+    ("contact_time", "$t_c$", "s"),
+    ("delta_max", r"$\delta_m$", "m"),
+    ("force_max", "$F_m$", "N"),
+    ("delta_res", r"$\delta_{res}$", "m"),
+    ("restitution", "$e$", ""),
+)
+
+
+def impact_figure(
+    history: Mapping[str, ArrayLike],
+    title: str,
+    *,
+    model: str = "elastic",
+    summary: Mapping[str, float] | None = None,
+    reference: Mapping[str, ArrayLike] | None = None,
+    reference_label: str = "SciPy solve_ivp",
+) -> Figure:
+    """Six panels of one normal impact: the paper's Figs. 4-8 (elastic) or 9-11 (elastoplastic).
+
+    Top row, rigid-body motion: (a) displacements d1, d2; (b) velocities v1, v2;
+    (c) momentum p1, p2 and p1 + p2 (constant: momentum is conserved). Bottom row, the
+    contact: (d) indentations delta1, delta2 and their sum delta; (e) indentation rates;
+    (f) force against total indentation: one curve traversed twice when elastic, a loop
+    ending at the permanent indentation when plastic.
+
+    Parameters
+    ----------
+    history : columns ``t`` [s], ``delta``, ``d1``, ``d2``, ``delta1``, ``delta2`` [m],
+        ``delta_dot``, ``v1``, ``v2``, ``delta1_dot``, ``delta2_dot`` [m/s], ``force`` [N],
+        ``p1``, ``p2`` [kg m/s] (:data:`impactcli.impact.HISTORY_COLUMNS`). Displacements
+        and velocities are positive toward the other sphere; momenta in the x-frame where
+        sphere 1 moves +x.
+    title : names the case (spheres, velocities, model)
+    model : ``"elastic"`` or ``"elastoplastic"``: which of the paper's figures each panel
+        corresponds to
+    summary : optional :attr:`impactcli.impact.ImpactResult.summary`: contact time,
+        maximum indentation and force, e are shown under the title; ``delta_y`` and
+        ``delta_res`` are marked on the force-indentation panel
+    reference : optional second history at the same times (e.g. ``method="ode"``), drawn
+        as open circles over the FILM lines, as the paper compared FILM with numerical
+        integration (Figs. 4, 5)
+    reference_label : how the reference is named in the note under the panels
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
+    ref = None if reference is None else {k: np.asarray(v, float) for k, v in reference.items()}
+    figs = _PAPER_FIGURES.get(model, _PAPER_FIGURES["elastic"])
+    fig = _new_figure(15.0, 8.8)
+    (ax_d, ax_v, ax_p), (ax_i, ax_r, ax_f) = fig.subplots(2, 3)
+    t = h["t"]
+    ts = unit_scale(t, "s")
+    c1, c2 = SPHERE_COLOURS
+    total = {"color": TOTAL_COLOUR, "linestyle": "--", "linewidth": 1.2}
+
+    ys = _series(
+        ax_d,
+        t,
+        ts,
+        [("d1", "sphere 1", h["d1"], {"color": c1}), ("d2", "sphere 2", h["d2"], {"color": c2})],
+        "displacement $d_i$",
+        "m",
+    )
+    _reference(ax_d, t, ts, ys, ref, [("d1", c1), ("d2", c2)])
+    ax_d.set_title(f"(a) Rigid-body displacements (paper {figs['d']})", fontsize="medium")
+
+    ys = _series(
+        ax_v,
+        t,
+        ts,
+        [("v1", "sphere 1", h["v1"], {"color": c1}), ("v2", "sphere 2", h["v2"], {"color": c2})],
+        "velocity $\\dot d_i$",
+        "m/s",
+    )
+    _reference(ax_v, t, ts, ys, ref, [("v1", c1), ("v2", c2)])
+    ax_v.set_title(f"(b) Rigid-body velocities (paper {figs['v']})", fontsize="medium")
+
+    ys = _series(
+        ax_i,
+        t,
+        ts,
+        [
+            ("delta1", r"sphere 1, $\delta_1$", h["delta1"], {"color": c1}),
+            ("delta2", r"sphere 2, $\delta_2$", h["delta2"], {"color": c2}),
+            ("delta", r"total, $\delta = \delta_1 + \delta_2$", h["delta"], total),
+        ],
+        r"indentation $\delta$",
+        "m",
+    )
+    _reference(ax_i, t, ts, ys, ref, [("delta1", c1), ("delta2", c2), ("delta", TOTAL_COLOUR)])
+    ax_i.set_title(f"(d) Indentations (paper {figs['delta']})", fontsize="medium")
+
+    ys = _series(
+        ax_r,
+        t,
+        ts,
+        [
+            ("delta1_dot", r"sphere 1, $\dot\delta_1$", h["delta1_dot"], {"color": c1}),
+            ("delta2_dot", r"sphere 2, $\dot\delta_2$", h["delta2_dot"], {"color": c2}),
+            ("delta_dot", r"total, $\dot\delta$", h["delta_dot"], total),
+        ],
+        r"indentation rate $\dot\delta$",
+        "m/s",
+    )
+    _reference(
+        ax_r,
+        t,
+        ts,
+        ys,
+        ref,
+        [("delta1_dot", c1), ("delta2_dot", c2), ("delta_dot", TOTAL_COLOUR)],
+    )
+    ax_r.set_title(f"(e) Indentation rates (paper {figs['delta_dot']})", fontsize="medium")
+
+    _momentum_panel(ax_p, t, ts, h, ref)
+    ax_p.set_title(f"(c) Momentum exchange (paper {figs['p']})", fontsize="medium")
+
+    _force_panel(ax_f, h, summary)
+    ax_f.set_title("(f) Force against indentation", fontsize="medium")
+
+    fig.suptitle(title + _summary_text(summary), fontsize="large")
+    note = (
+        "Displacements and velocities are positive toward the other sphere; momenta are in "
+        "the x-frame where sphere 1 moves +x."
+    )
+    if ref is not None:
+        note += f" Lines: FILM; circles: {reference_label}."
+    fig.text(0.5, 0.0, note, ha="center", va="bottom", fontsize="small", color="0.3")
+    fig.get_layout_engine().set(rect=(0.0, 0.025, 1.0, 0.975))
+    return fig
+
+
+def _summary_text(summary: Mapping[str, float] | None) -> str:
+    if not summary:
+        return ""
+    parts = []
+    for key, symbol, unit in _SUMMARY_LINE:
+        if key in summary and np.isfinite(summary[key]):
+            value = summary[key]
+            parts.append(
+                f"{symbol} = {value:.4g}"
+                if not unit
+                else f"{symbol} = {format_quantity(value, unit)}"
+            )
+    return "\n" + ",  ".join(parts) if parts else ""
+
+
+def _momentum_panel(
+    ax: Axes,
+    t: NDArray,
+    ts: UnitScale,
+    h: Mapping[str, NDArray],
+    ref: Mapping[str, NDArray] | None,
+) -> None:
+    c1, c2 = SPHERE_COLOURS
+    lines = [("p1", "sphere 1, $p_1$", h["p1"], {"color": c1})]
+    if np.all(np.isfinite(h["p2"])):
+        lines += [
+            ("p2", "sphere 2, $p_2$", h["p2"], {"color": c2}),
+            (
+                "p1+p2",
+                "total, $p_1 + p_2$",
+                h["p1"] + h["p2"],
+                {"color": TOTAL_COLOUR, "linestyle": "--", "linewidth": 1.2},
+            ),
+        ]
+    else:
+        ax.text(
+            0.02,
+            0.02,
+            "sphere 2 is fixed (infinite mass): $p_2$ is undefined",
+            transform=ax.transAxes,
+            fontsize="small",
+            color="0.3",
+        )
+    ys = _series(ax, t, ts, lines, "momentum $p_i$", "N·s")
+    _reference(ax, t, ts, ys, ref, [("p1", c1), ("p2", c2)])
+
+
+def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float] | None) -> None:
+    delta, force = h["delta"], h["force"]
+    xs = unit_scale(delta, "m")
+    fs = unit_scale(force, "N")
+    k = int(np.nanargmax(delta)) if delta.size else 0
+    ax.plot(
+        delta[: k + 1] / xs.factor,
+        force[: k + 1] / fs.factor,
+        color="tab:red",
+        label="loading",
+        gid="force:loading",
+    )
+    ax.plot(
+        delta[k:] / xs.factor,
+        force[k:] / fs.factor,
+        color="tab:green",
+        linestyle="--",
+        label="restitution (unloading)",
+        gid="force:unloading",
+    )
+    if summary and "delta_y" in summary and np.isfinite(summary["delta_y"]):
+        dy = summary["delta_y"]
+        ax.axvline(
+            dy / xs.factor,
+            color="0.5",
+            linestyle=":",
+            label=rf"yield, $\delta_y$ = {dy / xs.factor:.4g} {xs.unit}",
+        )
+    if summary and summary.get("delta_res", 0.0) > 0:
+        dr = summary["delta_res"]
+        ax.plot(
+            [dr / xs.factor],
+            [0.0],
+            linestyle="none",
+            marker="o",
+            color="tab:green",
+            label=rf"permanent, $\delta_{{res}}$ = {dr / xs.factor:.4g} {xs.unit}",
+        )
+    ax.set_xlabel(rf"total indentation $\delta$ ({xs.unit})")
+    ax.set_ylabel(f"contact force $F$ ({fs.unit})")
+    ax.grid(True, linewidth=0.4, alpha=0.5)
+    ax.legend(fontsize="small", loc="upper left")
+
+
+# -- convergence of FILM ----------------------------------------------------------------
+
+
+def convergence_figure(
+    curves: Mapping[int, tuple[ArrayLike, ArrayLike]],
+    ns: ArrayLike,
+    relative_errors: ArrayLike,
+    *,
+    title: str = "Convergence of FILM, normalised Hertz impact (paper sec. 4.1)",
+    error_label: str = "FILM",
+    inset: bool = True,
+) -> Figure:
+    """The paper's Fig. 3 (indentation histories for several n) and the contact-time error.
+
+    Parameters
+    ----------
+    curves : n -> (t V0/delta_m, delta/delta_m), the normalised indentation history by
+        FILM with n segments per stage, [-]
+    ns : segment counts of the error panel
+    relative_errors : (t_c - exact)/exact for each of ``ns``, [-]; drawn as |error| on
+        log-log axes (zero errors are left out)
+    title : the figure's title
+    error_label : legend entry of the error series
+    inset : add a zoom on the separation of the largest n, where coarser curves end early
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig = _new_figure(13.0, 5.4)
+    ax_h, ax_e = fig.subplots(1, 2)
+    ordered = sorted(curves.items())
+    styles = ["-", "--", "-.", ":"]
+    ends = []
+    plotted = []
+    for i, (n, (t_bar, d_bar)) in enumerate(ordered):
+        t_bar = np.asarray(t_bar, dtype=float)
+        d_bar = np.asarray(d_bar, dtype=float)
+        style = {"linestyle": styles[i % len(styles)], "linewidth": 1.4}
+        if i == len(ordered) - 1 and len(ordered) > 1:
+            style = {"color": "black", "linewidth": 0.9, "linestyle": "-"}
+        ax_h.plot(t_bar, d_bar, label=f"n = {n}", gid=f"n={n}", **style)
+        ends.append(float(t_bar[-1]))
+        plotted.append((n, t_bar, d_bar, style))
+    ax_h.set_xlabel(r"normalised time $t V_0/\delta_m$ (-)")
+    ax_h.set_ylabel(r"normalised indentation $\delta/\delta_m$ (-)")
+    ax_h.set_title("(a) Indentation history for several n (paper Fig. 3)", fontsize="medium")
+    ax_h.set_xlim(left=0.0)
+    ax_h.set_ylim(bottom=0.0)
+    ax_h.grid(True, linewidth=0.4, alpha=0.5)
+    ax_h.legend(fontsize="small", loc="upper right")
+    if inset and len(plotted) > 1:
+        # Zoom on the separation of the most refined curve, where coarser ones end early.
+        finest = ends[-1]
+        lo, hi = finest - 0.015, finest + 0.003
+        top = max(float(np.interp(lo, t, d)) for _n, t, d, _s in plotted)
+        zoom = ax_h.inset_axes((0.33, 0.08, 0.36, 0.4))  # under the curve, clear of it
+        for n, t, d, style in plotted:
+            zoom.plot(t, d, gid=f"inset:n={n}", **style)
+        zoom.set_xlim(lo, hi)
+        zoom.set_ylim(0.0, 1.05 * top)
+        zoom.tick_params(labelsize="x-small")
+        zoom.set_title(f"separation, n = {plotted[-1][0]}", fontsize="x-small")
+        ax_h.indicate_inset_zoom(zoom, edgecolor="0.4")
+
+    n_arr = np.asarray(ns, dtype=float)
+    err = np.abs(np.asarray(relative_errors, dtype=float))
+    keep = np.isfinite(err) & (err > 0)
+    ax_e.loglog(n_arr[keep], err[keep], marker="o", label=error_label, gid="error")
+    ax_e.set_xlabel("segments per stage $n$ (-)")
+    ax_e.set_ylabel(r"|relative error| of the contact time $t_c$ (-)")
+    ax_e.set_title(
+        "(b) Contact-time error against the exact Beta-function value", fontsize="medium"
+    )
+    ax_e.grid(True, which="both", linewidth=0.4, alpha=0.5)
+    ax_e.legend(fontsize="small")
+    fig.suptitle(title, fontsize="large")
+    return fig
+
+
+# -- a sweep over impact velocity -------------------------------------------------------
+
+
+def restitution_figure(
+    impact_velocity: ArrayLike,
+    restitution: ArrayLike,
+    contact_time: ArrayLike,
+    permanent_indentation: ArrayLike | Mapping[str, ArrayLike],
+    *,
+    title: str = "Coefficient of restitution against impact velocity",
+    yield_velocity: float | None = None,
+    log_velocity: bool | None = None,
+) -> Figure:
+    """Three panels over a sweep of impact velocity V0: e, contact time, permanent indentation.
+
+    Parameters
+    ----------
+    impact_velocity : V0 = V1 + V2 of each impact, [m/s]
+    restitution : coefficient of restitution e, [-]
+    contact_time : contact duration t_c, [s]
+    permanent_indentation : residual indentation delta_res, [m]; or a mapping label ->
+        array to draw several (e.g. ``{"total": ..., "sphere 1": ..., "sphere 2": ...}``)
+    title : names the case (spheres, material, model)
+    yield_velocity : V_y, [m/s]; marked on every panel when given
+    log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Lines have gids ``restitution``, ``contact_time`` and ``permanent_indentation``
+        (``permanent_indentation:<label>`` for a mapping).
+    """
+    v0 = np.asarray(impact_velocity, dtype=float)
+    if log_velocity is None:
+        positive = v0[np.isfinite(v0) & (v0 > 0)]
+        log_velocity = positive.size == v0.size and v0.size > 1 and v0.max() >= 100 * v0.min()
+    if isinstance(permanent_indentation, Mapping):
+        residual = {k: np.asarray(v, dtype=float) for k, v in permanent_indentation.items()}
+        residual = {f"permanent_indentation:{k}": (k, v) for k, v in residual.items()}
+    else:
+        residual = {
+            "permanent_indentation": ("total", np.asarray(permanent_indentation, dtype=float))
+        }
+    fig = _new_figure(15.0, 4.8)
+    ax_e, ax_t, ax_r = fig.subplots(1, 3)
+    vs = unit_scale(v0, "m/s")
+    x = v0 / vs.factor
+
+    ax_e.plot(x, np.asarray(restitution, dtype=float), marker=".", gid="restitution")
+    ax_e.set_ylabel("coefficient of restitution $e$ (-)")
+    ax_e.set_title("(a) Restitution", fontsize="medium")
+
+    tc = np.asarray(contact_time, dtype=float)
+    ts = unit_scale(tc, "s")
+    ax_t.plot(x, tc / ts.factor, marker=".", gid="contact_time")
+    ax_t.set_ylabel(f"contact time $t_c$ ({ts.unit})")
+    ax_t.set_title("(b) Contact time", fontsize="medium")
+
+    rs = unit_scale([v for _label, v in residual.values()], "m")
+    for gid, (label, values) in residual.items():
+        ax_r.plot(x, values / rs.factor, marker=".", label=label, gid=gid)
+    ax_r.set_ylabel(rf"permanent indentation $\delta_{{res}}$ ({rs.unit})")
+    ax_r.set_title("(c) Permanent indentation", fontsize="medium")
+    if len(residual) > 1:
+        ax_r.legend(fontsize="small")
+
+    for ax in (ax_e, ax_t, ax_r):
+        if log_velocity:
+            ax.set_xscale("log")
+        ax.set_xlabel(f"impact velocity $V_0$ ({vs.unit})")
+        ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
+        if yield_velocity is not None and np.isfinite(yield_velocity):
+            ax.axvline(
+                yield_velocity / vs.factor,
+                color="0.5",
+                linestyle=":",
+                label=f"yield, $V_y$ = {yield_velocity / vs.factor:.4g} {vs.unit}",
+            )
+            ax.legend(fontsize="small")
+    fig.suptitle(title, fontsize="large")
+    return fig
+
+
+# -- the oblique 2-D collision ----------------------------------------------------------
+
+
+def collision2d_figure(
+    v1: ArrayLike,
+    v2: ArrayLike,
+    v1_after: ArrayLike,
+    v2_after: ArrayLike,
+    p1: ArrayLike,
+    p2: ArrayLike,
+    *,
+    normal: ArrayLike | None = None,
+    radii: tuple[float, float] | None = None,
+    title: str = "Oblique 2-D collision (paper sec. 4.5)",
+) -> Figure:
+    """The 2-D collision: where the spheres meet and their velocities before and after.
+
+    (a) The centres at contact, the line of centres and the velocity arrows at each
+    centre (solid before, dashed after; all arrows share one length scale). (b) The same
+    velocities as vectors from one origin, with the normal (line of centres) and the
+    tangent: the tangential components do not change (no friction), the normal ones do.
+
+    Parameters
+    ----------
+    v1, v2 : velocities before the collision, (vx, vy), [m/s]
+    v1_after, v2_after : velocities after the collision, (vx, vy), [m/s]
+    p1, p2 : positions of the centres at contact, (x, y), [m]
+    normal : direction of the line of centres; default (p2 - p1)/|p2 - p1|
+    radii : (R1, R2), [m]; draws the spheres and the contact plane when given
+    title : names the case
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The arrows are annotations with gids ``v1``, ``v2``, ``v1_after``, ``v2_after``
+        (panel a: ``at:`` prefixed): tail ``xyann``, head ``xy``, in the axes' units.
+    """
+    vel = {
+        "v1": np.asarray(v1, dtype=float),
+        "v2": np.asarray(v2, dtype=float),
+        "v1_after": np.asarray(v1_after, dtype=float),
+        "v2_after": np.asarray(v2_after, dtype=float),
+    }
+    pos = (np.asarray(p1, dtype=float), np.asarray(p2, dtype=float))
+    if normal is None:
+        normal = pos[1] - pos[0]
+    n_hat = np.asarray(normal, dtype=float)
+    length = float(np.hypot(*n_hat))
+    if not length > 0:
+        raise ValueError("the line of centres needs two distinct positions or a nonzero normal")
+    n_hat = n_hat / length
+    t_hat = np.array([-n_hat[1], n_hat[0]])
+    fig = _new_figure(13.0, 6.2)
+    ax_a, ax_b = fig.subplots(1, 2)
+    c1, c2 = SPHERE_COLOURS
+    colour = {"v1": c1, "v2": c2, "v1_after": c1, "v2_after": c2}
+    centre = {"v1": pos[0], "v2": pos[1], "v1_after": pos[0], "v2_after": pos[1]}
+
+    # (a) at contact: arrows from the centres, one common length scale.
+    ps = unit_scale([pos[0], pos[1]] + ([list(radii)] if radii else []), "m")
+    vs = unit_scale(list(vel.values()), "m/s")
+    gap = float(np.hypot(*(pos[1] - pos[0]))) or float(max(radii or (1.0,)))
+    speed = max(float(np.hypot(*v)) for v in vel.values()) or 1.0
+    arrow = 0.45 * gap / speed  # [m per m/s]
+    points = [pos[0], pos[1]]
+    for key, v in vel.items():
+        tail, head = centre[key], centre[key] + arrow * v
+        points.append(head)
+        _arrow(
+            ax_a,
+            tail / ps.factor,
+            head / ps.factor,
+            colour[key],
+            key.endswith("after"),
+            f"at:{key}",
+        )
+    if radii is not None:
+        from matplotlib.patches import Circle
+
+        for p, r, c in zip(pos, radii, SPHERE_COLOURS):
+            ax_a.add_patch(Circle(tuple(p / ps.factor), r / ps.factor, fill=False, color=c, lw=1))
+            points += [p - r, p + r]
+        contact = pos[0] + radii[0] * n_hat
+        half = 0.6 * max(radii)
+        ends = np.array([contact - half * t_hat, contact + half * t_hat]) / ps.factor
+        ax_a.plot(ends[:, 0], ends[:, 1], color="0.4", lw=1, label="contact plane")
+    for i, (p, c) in enumerate(zip(pos, SPHERE_COLOURS), start=1):
+        ax_a.plot(*(p / ps.factor), marker="o", color=c, gid=f"p{i}", linestyle="none")
+        ax_a.annotate(f"  {i}", tuple(p / ps.factor), color=c, fontsize="medium")
+    line = np.array([pos[0] - 0.3 * gap * n_hat, pos[1] + 0.3 * gap * n_hat]) / ps.factor
+    ax_a.plot(line[:, 0], line[:, 1], color="0.5", linestyle="-.", lw=0.9, label="line of centres")
+    _frame(ax_a, np.array(points) / ps.factor)
+    ax_a.set_xlabel(f"$x$ ({ps.unit})")
+    ax_a.set_ylabel(f"$y$ ({ps.unit})")
+    ax_a.set_title(
+        f"(a) At contact (arrows: 1 {vs.unit} = {format_quantity(arrow * vs.factor, 'm', 3)})",
+        fontsize="medium",
+    )
+
+    # (b) velocity space.
+    tips = [np.zeros(2)]
+    for key, v in vel.items():
+        tips.append(v)
+        _arrow(ax_b, np.zeros(2), v / vs.factor, colour[key], key.endswith("after"), key)
+    reach = 1.15 * speed
+    for direction, style, label in (
+        (n_hat, "-.", "normal (line of centres)"),
+        (t_hat, ":", "tangent"),
+    ):
+        seg = np.array([-reach * direction, reach * direction]) / vs.factor
+        ax_b.plot(seg[:, 0], seg[:, 1], color="0.5", linestyle=style, lw=0.9, label=label)
+    _frame(ax_b, np.array(tips + [reach * n_hat, -reach * n_hat]) / vs.factor)
+    ax_b.set_xlabel(f"$v_x$ ({vs.unit})")
+    ax_b.set_ylabel(f"$v_y$ ({vs.unit})")
+    ax_b.set_title("(b) Velocities before and after", fontsize="medium")
+
+    from matplotlib.lines import Line2D
+
+    handles = [
+        Line2D([], [], color=c1, label="sphere 1"),
+        Line2D([], [], color=c2, label="sphere 2"),
+        Line2D([], [], color="0.2", label="before"),
+        Line2D([], [], color="0.2", linestyle="--", label="after"),
+    ]
+    for ax in (ax_a, ax_b):
+        extra, _labels = ax.get_legend_handles_labels()
+        ax.legend(handles=handles + extra, fontsize="small", loc="best")
+    fig.suptitle(title, fontsize="large")
+    return fig
+
+
+def _arrow(ax: Axes, tail: NDArray, head: NDArray, colour: str, after: bool, gid: str) -> None:
+    ann = ax.annotate(
+        "",
+        xy=tuple(head),
+        xytext=tuple(tail),
+        arrowprops={
+            "arrowstyle": "-|>",
+            "color": colour,
+            "linestyle": "--" if after else "-",
+            "linewidth": 1.6,
+            "shrinkA": 0,
+            "shrinkB": 0,
+            "mutation_scale": 14,
+        },
+    )
+    ann.set_gid(gid)
+
+
+def _frame(ax: Axes, points: NDArray) -> None:
+    """Equal-aspect limits around ``points`` (annotations do not autoscale)."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    centre, half = 0.5 * (lo + hi), 0.5 * float(max(hi - lo)) * 1.12 or 1.0
+    ax.set_xlim(centre[0] - half, centre[0] + half)
+    ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_aspect("equal", adjustable="box")
+    ax.grid(True, linewidth=0.4, alpha=0.5)
