@@ -87,7 +87,10 @@ def hertz_maximum_indentation(
 
 
 def _hertz_velocity(mass: ArrayLike, stiffness: ArrayLike, delta: ArrayLike) -> NDArray:
-    """Impact velocity whose Hertz maximum indentation is ``delta``: sqrt((2/m)(2/5) K_h delta^2.5)."""
+    """Impact velocity whose Hertz maximum indentation is ``delta``, [m/s].
+
+    V = sqrt((2/m)(2/5) K_h delta^2.5).
+    """
     m, k, d = (np.asarray(x, dtype=float) for x in (mass, stiffness, delta))
     return np.sqrt(2.0 / m * 0.4 * k * d**2.5)
 
