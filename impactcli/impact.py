@@ -302,7 +302,14 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     t_start: ArrayLike = np.zeros_like(np.asarray(plan.delta_max, dtype=float))
     for stage in plan.stages:
         film = solve_stage(
-            stage.law, stage.delta_start, stage.delta_end, stage.speed_start, mass, n, t_start
+            stage.law,
+            stage.delta_start,
+            stage.delta_end,
+            stage.speed_start,
+            mass,
+            n,
+            t_start,
+            end_at_rest=stage.end_at_rest,
         )
         stages.append(film)
         t_start = film.end_time
