@@ -29,14 +29,20 @@ class InputError(ValueError):
 
 
 @contextlib.contextmanager
-def atomic_output(path: str | os.PathLike[str] | None) -> Iterator[IO[str]]:
+def atomic_output(path: str | os.PathLike[str] | None, binary: bool = False) -> Iterator[IO]:
     """Yield a text stream: stdout for ``None`` or ``"-"``, else a temporary file beside
     ``path`` that replaces ``path`` only when the block finishes without an exception, so a
-    failed run never leaves a half-written file.
+    failed run never leaves a half-written file. ``binary`` yields a byte stream instead
+    (``sys.stdout.buffer`` for stdout).
     """
     if path is None or str(path) == "-":
-        yield sys.stdout
-        sys.stdout.flush()
+        if binary:
+            sys.stdout.flush()
+            yield sys.stdout.buffer
+            sys.stdout.buffer.flush()
+        else:
+            yield sys.stdout
+            sys.stdout.flush()
         return
     target = os.fspath(path)
     directory = os.path.dirname(os.path.abspath(target))
@@ -45,8 +51,12 @@ def atomic_output(path: str | os.PathLike[str] | None) -> Iterator[IO[str]]:
     except OSError as exc:
         raise InputError(f"cannot write {target!r}: {exc.strerror or exc}") from None
     try:
-        with os.fdopen(fd, "w", newline="", encoding="utf-8") as stream:
-            yield stream
+        if binary:
+            with os.fdopen(fd, "wb") as stream:
+                yield stream
+        else:
+            with os.fdopen(fd, "w", newline="", encoding="utf-8") as stream:
+                yield stream
         os.chmod(tmp, 0o644)
         os.replace(tmp, target)
     except BaseException:
