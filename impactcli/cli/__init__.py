@@ -27,9 +27,10 @@ app = typer.Typer(
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 
-from impactcli.cli import tables_cmd  # noqa: E402
+from impactcli.cli import batch_cmd, tables_cmd  # noqa: E402
 
 tables_cmd.register(app)
+batch_cmd.register(app)
 
 
 def main(argv: list[str] | None = None) -> None:
