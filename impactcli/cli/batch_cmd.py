@@ -14,6 +14,7 @@ import io
 import os
 import sys
 from collections.abc import Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import nullcontext
 from typing import IO, Any, Optional
 
@@ -172,11 +173,13 @@ class _Errors:
         self.add(messages != "", messages)
 
 
-def _text_column(frame, name: str, size: int) -> np.ndarray:
+def _text_column(frame, name: str, size: int, lower: bool = False) -> np.ndarray:
     """A text column as an object array, None where empty (all None if absent)."""
     if name not in frame.columns:
         return np.full(size, None, dtype=object)
     column = frame[name].astype("string").str.strip()
+    if lower:
+        column = column.str.lower()
     return column.astype(object).where(column.notna() & (column != ""), None).to_numpy()
 
 
@@ -240,17 +243,16 @@ def compute_frame(
         spheres.append(sphere)
 
     # The model of each row.
-    models = _text_column(frame, "model", size)
+    key = _text_column(frame, "model", size, lower=True)
     if model is not None:
-        models = np.where(np.equal(models, None), model, models)
-    errors.add(np.equal(models, None), "model is missing (elastic or elastoplastic)")
-    key = np.where(np.equal(models, None), "", models).astype(str)
-    key = np.char.lower(key) if key.size else key
-    unknown = np.flatnonzero((key != "") & ~np.isin(key, MODELS))
+        key = np.where(np.equal(key, None), model, key)
+    errors.add(np.equal(key, None), "model is missing (elastic or elastoplastic)")
+    unknown = np.flatnonzero(~np.equal(key, None) & ~np.isin(key, MODELS))
     if unknown.size:
+        given = _text_column(frame, "model", size)
         message = np.full(size, "", dtype=object)
         message[unknown] = [
-            f"model must be elastic or elastoplastic, got {v!r}" for v in models[unknown]
+            f"model must be elastic or elastoplastic, got {v!r}" for v in given[unknown]
         ]
         errors.add_messages(message)
     plastic = key == "elastoplastic"
@@ -512,6 +514,25 @@ def _progress(enabled: bool | None):
     )
 
 
+def _compute_input(batch, used: list[str]):
+    """The columns :func:`compute_frame` reads, as pandas; text columns that are all
+    numbers become floats here by one Arrow cast, and only the others go through
+    :func:`_quantity_column`'s slower path (numbers, then units)."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    columns = []
+    for name in used:
+        column = batch.column(name)
+        if name in QUANTITY_COLUMNS and pa.types.is_string(column.type):
+            try:
+                column = pc.cast(column, pa.float64())
+            except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+                pass
+        columns.append(column)
+    return pa.RecordBatch.from_arrays(columns, names=used).to_pandas()
+
+
 def _run_numpy(
     path: str,
     output: str | None,
@@ -529,17 +550,27 @@ def _run_numpy(
         used = [c for c in source.schema.names if c in QUANTITY_COLUMNS or c in TEXT_COLUMNS]
         schema = _output_schema(source.schema)
         bar = _progress(progress)
-        with atomic_output(output, binary=True) as out, bar if bar else nullcontext():
+        with (
+            atomic_output(output, binary=True) as out,
+            bar if bar else nullcontext(),
+            ThreadPoolExecutor(max_workers=1) as writer,
+        ):
             task = bar.add_task("impact batch", total=source.total, rows=0) if bar else None
             sink = _Sink(out, schema, fmt)
+            # One chunk is written (pyarrow, without the GIL) while the next is computed.
+            writing = None
             for batch in source.batches:
-                result = compute_frame(batch.select(used).to_pandas(), **options)
+                result = compute_frame(_compute_input(batch, used), **options)
                 report.add(result["error"], report.rows)
-                sink.write(_result_batch(batch, result, schema))
+                if writing is not None:
+                    writing.result()
+                writing = writer.submit(sink.write, _result_batch(batch, result, schema))
                 report.rows += batch.num_rows
                 if bar:
                     done = source.position() if source.position else None
                     bar.update(task, completed=done, rows=report.rows)
+            if writing is not None:
+                writing.result()
             sink.close()
     finally:
         if stream is not sys.stdin.buffer:
