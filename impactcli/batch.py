@@ -74,7 +74,7 @@ def normalised_times(n: int) -> tuple[float, float]:
     """FILM time of maximum indentation and contact time of the normalised Hertz impact.
 
     Returns ``(t_bar_max, t_bar_c)`` in units of delta_m / V0 (spec sec. 3 and 5), for n
-    segments per stage; e.g. (1.4716277, 2.9432513) for n = 25.
+    segments per stage; e.g. (1.4716277, 2.9432487) for n = 25.
     """
     from impactcli.tables import normalised_elastic
 
