@@ -289,11 +289,10 @@ def compute_frame(
 class _Source:
     """A table read in chunks of rows (pyarrow RecordBatches), with its progress."""
 
-    def __init__(self, schema, batches: Iterator, total: int | None = None, position=None):
+    def __init__(self, schema, batches: Iterator, rows: int | None = None):
         self.schema = schema
         self.batches = batches
-        self.total = total  # bytes (CSV file), rows (Parquet) or None (unknown: stdin)
-        self.position = position  # () -> bytes or rows read so far, with ``total``
+        self.rows = rows  # number of rows: Parquet's, a CSV file's estimate, None on stdin
 
 
 def _open_stream(path: str) -> io.BufferedReader:
@@ -351,13 +350,13 @@ def _csv_source(path: str, stream: io.BufferedReader, model: str | None, rows: i
             if batch.num_rows:
                 yield batch
 
-    total = None
-    if path != "-":
+    estimate = None
+    if path != "-":  # for the progress bar: the file's size over the sample's bytes per row
         try:
-            total = os.fstat(stream.fileno()).st_size
+            estimate = int(os.fstat(stream.fileno()).st_size / row_bytes)
         except OSError:
-            total = None
-    return _Source(reader.schema, batches(), total, stream.tell if total else None)
+            estimate = None
+    return _Source(reader.schema, batches(), estimate)
 
 
 def _parquet_source(path: str, stream: io.BufferedReader, model: str | None, rows: int):
@@ -370,14 +369,7 @@ def _parquet_source(path: str, stream: io.BufferedReader, model: str | None, row
         raise InputError(f"{_label(path)}: {_first_line(exc)}") from None
     schema = handle.schema_arrow
     check_columns(schema.names, model)
-    done = [0]
-
-    def batches():
-        for batch in handle.iter_batches(batch_size=rows):
-            done[0] += batch.num_rows
-            yield batch
-
-    return _Source(schema, batches(), handle.metadata.num_rows, lambda: done[0])
+    return _Source(schema, handle.iter_batches(batch_size=rows), handle.metadata.num_rows)
 
 
 def _label(path: str) -> str:
@@ -555,7 +547,7 @@ def _run_numpy(
             bar if bar else nullcontext(),
             ThreadPoolExecutor(max_workers=1) as writer,
         ):
-            task = bar.add_task("impact batch", total=source.total, rows=0) if bar else None
+            task = bar.add_task("impact batch", total=source.rows, rows=0) if bar else None
             sink = _Sink(out, schema, fmt)
             # One chunk is written (pyarrow, without the GIL) while the next is computed.
             writing = None
@@ -567,11 +559,13 @@ def _run_numpy(
                 writing = writer.submit(sink.write, _result_batch(batch, result, schema))
                 report.rows += batch.num_rows
                 if bar:
-                    done = source.position() if source.position else None
-                    bar.update(task, completed=done, rows=report.rows)
+                    total = source.rows and max(source.rows, report.rows + 1)
+                    bar.update(task, total=total, completed=report.rows, rows=report.rows)
             if writing is not None:
                 writing.result()
             sink.close()
+            if bar:
+                bar.update(task, total=report.rows, completed=report.rows)
     finally:
         if stream is not sys.stdin.buffer:
             stream.close()
