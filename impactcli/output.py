@@ -34,6 +34,10 @@ def atomic_output(path: str | os.PathLike[str] | None, binary: bool = False) -> 
     ``path`` that replaces ``path`` only when the block finishes without an exception, so a
     failed run never leaves a half-written file. ``binary`` yields a byte stream instead
     (``sys.stdout.buffer`` for stdout).
+
+    A symbolic link is followed (its target is replaced, not the link). An existing special
+    file (``/dev/null``, a named pipe) is written in place: replacing it would put a regular
+    file where the device or pipe was.
     """
     if path is None or str(path) == "-":
         if binary:
@@ -44,8 +48,18 @@ def atomic_output(path: str | os.PathLike[str] | None, binary: bool = False) -> 
             yield sys.stdout
             sys.stdout.flush()
         return
-    target = os.fspath(path)
-    directory = os.path.dirname(os.path.abspath(target))
+    target = os.path.realpath(os.fspath(path))
+    if os.path.isdir(target):
+        raise InputError(f"cannot write {os.fspath(path)!r}: it is a directory")
+    if os.path.exists(target) and not os.path.isfile(target):
+        try:
+            special = open(target, "wb" if binary else "w", encoding=None if binary else "utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot write {target!r}: {exc.strerror or exc}") from None
+        with special as stream:
+            yield stream
+        return
+    directory = os.path.dirname(target)
     try:
         fd, tmp = tempfile.mkstemp(prefix=".impact-", suffix=".tmp", dir=directory)
     except OSError as exc:

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import io
 import math
+import os
+import stat
 import subprocess
 import sys
+import threading
 
 import numpy as np
 import pandas as pd
@@ -384,6 +387,27 @@ def test_bad_tables_one_line_exit_2(batch, data, fragment):
     assert code == 2 and out == b""
     lines = err.strip().splitlines()
     assert len(lines) == 1 and fragment in lines[0], err
+
+
+def test_special_files_are_written_in_place_and_links_followed(batch, tmp_path):
+    # -o /dev/null or a named pipe must never be replaced by a regular file.
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    got: list[bytes] = []
+    reader = threading.Thread(target=lambda: got.append(fifo.read_bytes()))
+    reader.start()
+    code, _, err = batch("-", "-o", str(fifo), stdin=_csv(UNITS))
+    reader.join(timeout=60)
+    assert code == 0, err
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+    assert len(_frame(got[0])) == len(UNITS)
+    target, link = tmp_path / "real.csv", tmp_path / "link.csv"
+    target.write_text("old")
+    link.symlink_to(target)
+    assert batch("-", "-o", str(link), stdin=_csv(UNITS))[0] == 0
+    assert link.is_symlink() and len(_frame(target.read_bytes())) == len(UNITS)
+    code, _, err = batch("-", "-o", str(tmp_path), stdin=_csv(UNITS))
+    assert code == 2 and "is a directory" in err
 
 
 def test_progress_bar_does_not_touch_the_data(batch):

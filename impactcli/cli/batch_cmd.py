@@ -686,9 +686,11 @@ def _run_dask(
     out = ddf.map_partitions(dask_partition, **options, strict=strict, meta=meta)
 
     local = not _is_url(output)
-    target = os.path.abspath(output) if local else output
+    target = os.path.realpath(output) if local else output
     if local and os.path.isdir(target):
         raise InputError(f"{output!r} is a directory: remove it or choose another OUT")
+    if local and os.path.exists(target) and not os.path.isfile(target):
+        local = False  # a device or a pipe (/dev/null): written in place, never replaced
     write_to = target
     if local:
         import tempfile
