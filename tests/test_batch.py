@@ -262,6 +262,14 @@ def test_csv_rows_with_units_equal_single_impacts(batch):
         assert_row_matches(frame.iloc[i].to_dict(), reference(row))
 
 
+def test_segments_and_split_options_reach_every_row(batch):
+    code, out, err = batch("-", "--n", "7", "--split", "compliance", stdin=_csv(UNITS))
+    assert code == 0, err
+    frame = _frame(out)
+    for i, row in enumerate(UNITS_SI):
+        assert_row_matches(frame.iloc[i].to_dict(), reference(row, "compliance", n=7))
+
+
 def test_paper_examples_through_the_command(batch):
     code, out, _ = batch("-", stdin=_csv(UNITS[:2]))
     frame = _frame(out)
