@@ -11,7 +11,7 @@ $(BIN)/python:
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
 $(STAMP): $(BIN)/python pyproject.toml
-	$(BIN)/python -m pip install --quiet -e '.[test,plot,parquet]'
+	$(BIN)/python -m pip install --quiet -e '.[test,plot,parquet,dask]'
 	touch $(STAMP)
 
 venv: $(STAMP)
@@ -41,6 +41,11 @@ test: $(STAMP)
 tables: $(STAMP)
 	$(BIN)/impact tables --n 25 --stage loading --format csv -o tables/table_a1_n25.csv
 	$(BIN)/impact tables --n 25 --stage restitution --format csv -o tables/table_a2_n25.csv
+
+## bench: FILM against SciPy, impact batch throughput, tables --n 10^6, cold start; writes the
+##        table into README.md (a few minutes)
+bench: $(STAMP)
+	$(BIN)/python benchmarks/bench.py --readme README.md
 
 lint: $(STAMP)
 	$(BIN)/ruff check impactcli tests

@@ -111,13 +111,18 @@ def first_yield_velocity(
 
 @dataclass(frozen=True)
 class StagePlan:
-    """One FILM stage of an impact: its force law, ends [m] and start speed [m/s]."""
+    """One FILM stage of an impact: its force law, ends [m] and start speed [m/s].
+
+    ``end_at_rest`` marks a stage that ends where delta' = 0 (at the maximum indentation),
+    so that FILM ends it at the turning point (:func:`impactcli.film.solve_stage`).
+    """
 
     name: str
     law: ContactLaw
     delta_start: NDArray
     delta_end: NDArray
     speed_start: NDArray
+    end_at_rest: bool = False
 
 
 @dataclass(frozen=True)
@@ -159,7 +164,7 @@ class HertzContact:
         zero = np.zeros_like(delta_m)
         return ImpactPlan(
             stages=(
-                StagePlan("loading", law, zero, delta_m, v0),
+                StagePlan("loading", law, zero, delta_m, v0, end_at_rest=True),
                 StagePlan("restitution", law, delta_m, zero, zero),
             ),
             delta_max=delta_m,
@@ -258,7 +263,7 @@ class DuWangContact:
         return ImpactPlan(
             stages=(
                 StagePlan("elastic loading", hertz, zero, dy, v0),
-                StagePlan("plastic loading", self.plastic_law(), dy, dm, speed_y),
+                StagePlan("plastic loading", self.plastic_law(), dy, dm, speed_y, end_at_rest=True),
                 StagePlan("unloading", Hertz(_col(k), _col(dres)), dm, dres, zero),
             ),
             delta_max=dm,

@@ -145,6 +145,7 @@ def solve_stage(
     n: int,
     t_start: ArrayLike = 0.0,
     carry_velocity: bool = False,
+    end_at_rest: bool = False,
 ) -> FilmStage:
     """Solve one impact stage with FILM on n equal indentation steps (spec section 4).
 
@@ -162,6 +163,13 @@ def solve_stage(
         oscillator arrives with (the paper's own implementation, sec. 4.1), which is the
         exact balance with the chord (trapezoidal) work; default False: the exact work
         integral of the law (eq. 13e, spec section 4 step 2).
+    end_at_rest : the stage ends where the indentation rate is exactly zero (a loading stage
+        that ends at the maximum indentation delta_m): its last segment then ends at its
+        oscillator's turning point. Without it, rounding may put the last node a hair short
+        of the turning point, and the time to reach a point near a turning point is
+        ill-conditioned (it goes as the square root of the distance): the stage time would
+        carry a relative error of order sqrt(machine epsilon) when the chord is exact on
+        the last segment (a linear law). The turning point is the exact FILM result there.
 
     Returns
     -------
@@ -211,6 +219,9 @@ def solve_stage(
     # Mirrored end state at the next node, from the oscillator's own energy.
     x_end_sq = x0**2 - h * (2.0 * y0 + h)
     turning = x_end_sq <= 0.0
+    if end_at_rest:
+        turning[..., -1] = True
+        velocity[..., -1] = 0.0
     x_end = np.sqrt(np.maximum(x_end_sq, 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))

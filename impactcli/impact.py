@@ -45,7 +45,10 @@ __all__ = [
     "ImpactResult",
     "elastic_impact",
     "elastoplastic_impact",
+    "impact_summary",
+    "plastic_summary",
     "solve_plan",
+    "split_fractions",
 ]
 
 HISTORY_COLUMNS: tuple[str, ...] = (
@@ -193,10 +196,10 @@ class ImpactResult:
     @property
     def split_fractions(self) -> tuple[float, float]:
         """delta_i / delta for each sphere, [-]: by mass or by compliance."""
-        if self.split == "mass":
-            return self.mass_ratios
-        c1, c2 = self.sphere1.compliance, self.sphere2.compliance
-        return c1 / (c1 + c2), c2 / (c1 + c2)
+        f1, f2 = split_fractions(
+            self.split, self.m1, self.m2, self.sphere1.compliance, self.sphere2.compliance
+        )
+        return float(f1), float(f2)
 
     @property
     def contact_plane_velocity(self) -> float:
@@ -300,7 +303,14 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     t_start: ArrayLike = np.zeros_like(np.asarray(plan.delta_max, dtype=float))
     for stage in plan.stages:
         film = solve_stage(
-            stage.law, stage.delta_start, stage.delta_end, stage.speed_start, mass, n, t_start
+            stage.law,
+            stage.delta_start,
+            stage.delta_end,
+            stage.speed_start,
+            mass,
+            n,
+            t_start,
+            end_at_rest=stage.end_at_rest,
         )
         stages.append(film)
         t_start = film.end_time
@@ -350,36 +360,138 @@ def _yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
     return min(known) if known else None
 
 
-def _summarise(result: ImpactResult, m: float, r: float, e: float) -> dict[str, float]:
-    plan, film = result.plan, result.film
-    v0 = result.impact_velocity
-    r1, r2 = result.mass_ratios
-    f1, f2 = result.split_fractions
-    t_c = film.end_time
-    restitution = float(plan.restitution)
-    delta_res = float(plan.delta_res)
-    # At separation delta = delta_res and delta' = -e V0 (exact node values, eq. 13e).
+def split_fractions(
+    split: Split,
+    m1: ArrayLike,
+    m2: ArrayLike,
+    compliance1: ArrayLike,
+    compliance2: ArrayLike,
+) -> tuple[NDArray, NDArray]:
+    """delta_i / delta for each sphere, [-]; arrays broadcast.
+
+    ``mass``: the paper's contact plane, delta_i = (m/m_i) delta (eq. 4, spec sec. 2);
+    ``compliance``: Hertz, delta_i proportional to (1 - nu_i^2)/E_i, [1/Pa].
+    """
+    if split == "mass":
+        m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
+        m = effective_mass(m1, m2)
+        return m / m1, m / m2
+    if split == "compliance":
+        c1, c2 = np.asarray(compliance1, dtype=float), np.asarray(compliance2, dtype=float)
+        return c1 / (c1 + c2), c2 / (c1 + c2)
+    raise ValueError(f"split must be mass or compliance, got {split!r}")
+
+
+def impact_summary(
+    v1: ArrayLike,
+    v2: ArrayLike,
+    m1: ArrayLike,
+    m2: ArrayLike,
+    radius: ArrayLike,
+    modulus: ArrayLike,
+    plan: ImpactPlan,
+    t_max: ArrayLike,
+    contact_time: ArrayLike,
+    fractions: tuple[ArrayLike, ArrayLike],
+    yield_strength: ArrayLike | None = None,
+) -> dict[str, NDArray]:
+    """The summary of impacts (:data:`ELASTIC_SUMMARY_KEYS`), SI, from their plans and times.
+
+    Shared by :func:`elastic_impact` (floats) and :mod:`impactcli.batch` (one entry per
+    collision); every argument broadcasts.
+
+    Parameters
+    ----------
+    v1, v2 : velocities toward the other sphere, [m/s]
+    m1, m2 : masses, [kg] (``inf`` for a fixed sphere)
+    radius, modulus : effective radius R [m] and modulus E* [Pa]
+    plan : closed-form values ``delta_max`` [m], ``force_max`` [N], ``delta_res`` [m] and
+        ``restitution`` [-] (an :class:`~impactcli.contact.ImpactPlan`)
+    t_max : time of maximum indentation (end of the last loading stage), [s]
+    contact_time : time of separation, [s]
+    fractions : delta_i / delta of each sphere (:func:`split_fractions`), [-]
+    yield_strength : sigma_y for the first-yield velocity, [Pa] (NaN where unknown); the key
+        is left out when ``None``
+
+    Notes
+    -----
+    At separation delta = delta_res and delta' = -e V0 (exact node values, eq. 13e), so by
+    eq. (12): d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
+    """
+    v1, v2 = np.asarray(v1, dtype=float), np.asarray(v2, dtype=float)
+    m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
+    m = effective_mass(m1, m2)
+    r1, r2 = m / m1, m / m2
+    f1, f2 = fractions
+    v0 = v1 + v2
+    t_c = np.asarray(contact_time, dtype=float)
+    delta_max = np.asarray(plan.delta_max, dtype=float)
+    delta_res = np.asarray(plan.delta_res, dtype=float)
+    restitution = np.asarray(plan.restitution, dtype=float)
     summary = {
         "contact_time": t_c,
-        "delta_max": float(plan.delta_max),
-        "force_max": float(plan.force_max),
-        "t_max": float(film.stages[-2].end_time),
-        "v_cp": result.contact_plane_velocity,
-        "d1_final": result.v1 * t_c - r1 * (v0 * t_c - delta_res),
-        "d2_final": result.v2 * t_c - r2 * (v0 * t_c - delta_res),
-        "v1_final": result.v1 - r1 * (1.0 + restitution) * v0,
-        "v2_final": result.v2 - r2 * (1.0 + restitution) * v0,
-        "delta1_max": f1 * float(plan.delta_max),
-        "delta2_max": f2 * float(plan.delta_max),
+        "delta_max": delta_max,
+        "force_max": np.asarray(plan.force_max, dtype=float),
+        "t_max": np.asarray(t_max, dtype=float),
+        "v_cp": r2 * v1 - r1 * v2,
+        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_res),
+        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_res),
+        "v1_final": v1 - r1 * (1.0 + restitution) * v0,
+        "v2_final": v2 - r2 * (1.0 + restitution) * v0,
+        "delta1_max": f1 * delta_max,
+        "delta2_max": f2 * delta_max,
         "restitution": restitution,
         "effective_mass": m,
-        "effective_radius": r,
-        "effective_modulus": e,
+        "effective_radius": np.asarray(radius, dtype=float),
+        "effective_modulus": np.asarray(modulus, dtype=float),
     }
-    sigma_y = _yield_strength(result.sphere1, result.sphere2)
-    if sigma_y is not None:
-        summary["first_yield_velocity"] = float(first_yield_velocity(m, r, e, sigma_y))
+    if yield_strength is not None:
+        summary["first_yield_velocity"] = first_yield_velocity(m, radius, modulus, yield_strength)
     return summary
+
+
+def plastic_summary(
+    contact: DuWangContact,
+    mass: ArrayLike,
+    impact_velocity: ArrayLike,
+    plan: ImpactPlan,
+    fractions: tuple[ArrayLike, ArrayLike],
+) -> dict[str, NDArray]:
+    """The elastoplastic keys of :data:`PLASTIC_SUMMARY_KEYS` beyond the elastic ones, SI.
+
+    delta_y and V_y of the contact (spec sec. 7), the residual indentation of the pair and
+    of each sphere, and the energy dissipated (1/2) m V0^2 (1 - e^2). Arrays broadcast.
+    """
+    m, v0 = np.asarray(mass, dtype=float), np.asarray(impact_velocity, dtype=float)
+    f1, f2 = fractions
+    delta_res = np.asarray(plan.delta_res, dtype=float)
+    restitution = np.asarray(plan.restitution, dtype=float)
+    return {
+        "delta_y": contact.yield_indentation,
+        "yield_velocity": contact.yield_velocity(m),
+        "delta_res": delta_res,
+        "delta1_res": f1 * delta_res,
+        "delta2_res": f2 * delta_res,
+        "energy_dissipated": 0.5 * m * v0**2 * (1.0 - restitution**2),
+    }
+
+
+def _summarise(result: ImpactResult, r: float, e: float) -> dict[str, float]:
+    """:func:`impact_summary` of one impact, as floats."""
+    summary = impact_summary(
+        result.v1,
+        result.v2,
+        result.m1,
+        result.m2,
+        r,
+        e,
+        result.plan,
+        result.film.stages[-2].end_time,
+        result.film.end_time,
+        result.split_fractions,
+        _yield_strength(result.sphere1, result.sphere2),
+    )
+    return {key: float(value) for key, value in summary.items()}
 
 
 def elastic_impact(
@@ -413,7 +525,7 @@ def elastic_impact(
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
     film = FilmSolution(solve_plan(plan, m, n))
     result = ImpactResult(sphere1, sphere2, v1, v2, plan, film, int(n), split, "elastic")
-    result.summary.update(_summarise(result, m, r, e))
+    result.summary.update(_summarise(result, r, e))
     return result
 
 
@@ -470,17 +582,9 @@ def elastoplastic_impact(
         split,
         "elastic" if elastic else "elastoplastic",
     )
-    summary = _summarise(result, m, r, e)
-    f1, f2 = result.split_fractions
-    delta_res = float(plan.delta_res)
-    summary.update(
-        delta_y=float(contact.yield_indentation),
-        yield_velocity=float(contact.yield_velocity(m)),
-        delta_res=delta_res,
-        delta1_res=f1 * delta_res,
-        delta2_res=f2 * delta_res,
-        energy_dissipated=0.5 * m * v0**2 * (1.0 - float(plan.restitution) ** 2),
-    )
+    summary = _summarise(result, r, e)
+    extra = plastic_summary(contact, m, v0, plan, result.split_fractions)
+    summary.update({key: float(value) for key, value in extra.items()})
     result.summary.update(summary)
     return result
 

@@ -29,24 +29,48 @@ class InputError(ValueError):
 
 
 @contextlib.contextmanager
-def atomic_output(path: str | os.PathLike[str] | None) -> Iterator[IO[str]]:
+def atomic_output(path: str | os.PathLike[str] | None, binary: bool = False) -> Iterator[IO]:
     """Yield a text stream: stdout for ``None`` or ``"-"``, else a temporary file beside
     ``path`` that replaces ``path`` only when the block finishes without an exception, so a
-    failed run never leaves a half-written file.
+    failed run never leaves a half-written file. ``binary`` yields a byte stream instead
+    (``sys.stdout.buffer`` for stdout).
+
+    A symbolic link is followed (its target is replaced, not the link). An existing special
+    file (``/dev/null``, a named pipe) is written in place: replacing it would put a regular
+    file where the device or pipe was.
     """
     if path is None or str(path) == "-":
-        yield sys.stdout
-        sys.stdout.flush()
+        if binary:
+            sys.stdout.flush()
+            yield sys.stdout.buffer
+            sys.stdout.buffer.flush()
+        else:
+            yield sys.stdout
+            sys.stdout.flush()
         return
-    target = os.fspath(path)
-    directory = os.path.dirname(os.path.abspath(target))
+    target = os.path.realpath(os.fspath(path))
+    if os.path.isdir(target):
+        raise InputError(f"cannot write {os.fspath(path)!r}: it is a directory")
+    if os.path.exists(target) and not os.path.isfile(target):
+        try:
+            special = open(target, "wb" if binary else "w", encoding=None if binary else "utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot write {target!r}: {exc.strerror or exc}") from None
+        with special as stream:
+            yield stream
+        return
+    directory = os.path.dirname(target)
     try:
         fd, tmp = tempfile.mkstemp(prefix=".impact-", suffix=".tmp", dir=directory)
     except OSError as exc:
         raise InputError(f"cannot write {target!r}: {exc.strerror or exc}") from None
     try:
-        with os.fdopen(fd, "w", newline="", encoding="utf-8") as stream:
-            yield stream
+        if binary:
+            with os.fdopen(fd, "wb") as stream:
+                yield stream
+        else:
+            with os.fdopen(fd, "w", newline="", encoding="utf-8") as stream:
+                yield stream
         os.chmod(tmp, 0o644)
         os.replace(tmp, target)
     except BaseException:

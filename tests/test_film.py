@@ -97,3 +97,15 @@ def test_rejects_bad_n_and_flat_force():
         solve_stage(Hertz(1.25), 0.0, 1.0, 1.0, 1.0, 0)
     with pytest.raises(ValueError, match="increase strictly"):
         solve_stage(Linear(0.0), 0.0, 1.0, 1.0, 1.0, 5)
+
+
+def test_stage_ending_at_rest_is_insensitive_to_rounding_of_its_end():
+    # A linear law makes the last node the exact turning point; rounding of delta_m by a few
+    # ulps must not move the stage time by ~sqrt(eps), as a node a hair short of it would.
+    k, m, v0 = 3.0e7, 0.02, 1.5
+    w = np.sqrt(k / m)
+    amplitude = v0 / w
+    ends = amplitude * (1.0 + np.arange(-8, 9) * np.finfo(float).eps)
+    stage = solve_stage(Linear(k), 0.0, ends, v0, m, 25, end_at_rest=True)
+    np.testing.assert_allclose(stage.end_time, np.pi / 2 / w, rtol=1e-13)
+    assert np.all(stage.velocity[..., -1] == 0.0) and np.all(stage.turning[..., -1])

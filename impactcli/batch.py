@@ -1,0 +1,354 @@
+"""Many collisions at once: the summary of every impact in a batch (``impact batch``).
+
+One entry per collision, SI NumPy arrays in, a dict of summary arrays out: the same numbers
+as :func:`impactcli.impact.elastic_impact` and :func:`~impactcli.impact.elastoplastic_impact`
+give for each row (their ``summary``, :data:`~impactcli.impact.PLASTIC_SUMMARY_KEYS`), with
+no Python loop over rows. No pandas, files or units here: :mod:`impactcli.cli.batch_cmd`
+reads the tables and maps :func:`batch_impacts` over their chunks.
+
+How each row is computed
+------------------------
+- Elastic (Hertz) rows, and elastoplastic rows below the yield velocity, need no FILM run of
+  their own: in t V0/delta_m every Hertz impact is the same normalised solution (spec
+  sec. 3, :func:`impactcli.tables.normalised_elastic`), so the FILM contact time with n
+  segments is t_c = t_bar_c(n) delta_m / V0 and the time of maximum indentation
+  t_max = t_bar_max(n) delta_m / V0, both from one normalised run.
+- Elastoplastic rows above the yield velocity run their three FILM stages (spec sec. 7) with
+  :func:`impactcli.impact.solve_plan` on arrays of shape (rows, n + 1), in blocks of
+  :data:`FILM_BLOCK` rows so the work arrays stay in cache.
+- Everything else (final displacements and velocities, each sphere's share of the
+  indentation, residual indentation, dissipated energy) is
+  :func:`impactcli.impact.impact_summary` and :func:`~impactcli.impact.plastic_summary`,
+  the functions the single-impact path uses.
+
+Invalid rows (the checks of :class:`~impactcli.impact.Sphere` and the single-impact
+functions, per row) get NaN results and a one-line reason in ``error``; the others are
+computed.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.contact import (
+    DU_WANG_PRESSURE_FACTOR,
+    DuWangContact,
+    HertzContact,
+    ImpactPlan,
+    effective_mass,
+    effective_modulus,
+    effective_radius,
+    sphere_mass,
+)
+from impactcli.impact import (
+    PLASTIC_SUMMARY_KEYS,
+    Split,
+    impact_summary,
+    plastic_summary,
+    solve_plan,
+    split_fractions,
+)
+from impactcli.laws import hertz_stiffness
+
+__all__ = [
+    "BATCH_KEYS",
+    "FILM_BLOCK",
+    "batch_impacts",
+    "material_properties",
+    "normalised_times",
+    "validate",
+]
+
+#: Result columns of a batch, in order: the elastoplastic summary keys (SI).
+BATCH_KEYS: tuple[str, ...] = PLASTIC_SUMMARY_KEYS
+
+#: Rows per block of the per-row FILM runs (elastoplastic rows above the yield velocity).
+FILM_BLOCK = 2048
+
+
+@lru_cache(maxsize=16)
+def normalised_times(n: int) -> tuple[float, float]:
+    """FILM time of maximum indentation and contact time of the normalised Hertz impact.
+
+    Returns ``(t_bar_max, t_bar_c)`` in units of delta_m / V0 (spec sec. 3 and 5), for n
+    segments per stage; e.g. (1.4716277, 2.9432487) for n = 25.
+    """
+    from impactcli.tables import normalised_elastic
+
+    loading, restitution = normalised_elastic(n)
+    return float(loading.end_time), float(restitution.end_time)
+
+
+def _materials() -> dict:
+    """The built-in material table, name -> properties (imported when first needed)."""
+    from impactcli.materials import MATERIALS
+
+    return MATERIALS
+
+
+def _material_key(name: str) -> str:
+    return name.strip().lower().replace("_", "-").replace(" ", "-")
+
+
+def material_properties(
+    names: ArrayLike,
+) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray[np.object_]]:
+    """Properties of the named built-in materials (:mod:`impactcli.materials`), one per row.
+
+    Names are matched ignoring case, with ``_`` or a space for ``-``; an empty name gives
+    NaN properties and no error. Looks up each distinct name once.
+
+    Returns
+    -------
+    youngs_modulus [Pa], poisson_ratio [-], density [kg/m^3], yield_strength [Pa] (NaN where
+    the material has none), and the error of each row (``""``, or "unknown material ...").
+    """
+    names = np.asarray(names, dtype=object).reshape(-1)
+    text = np.where(np.equal(names, None), "", names).astype(str)
+    unique, inverse = np.unique(text, return_inverse=True)
+    table = {_material_key(k): v for k, v in _materials().items()}
+    props = np.full((unique.size, 4), np.nan)
+    messages = np.full(unique.size, "", dtype=object)
+    for i, name in enumerate(unique.tolist()):  # distinct names only
+        if not name.strip():
+            continue
+        found = table.get(_material_key(name))
+        if found is None:
+            messages[i] = f"unknown material {name!r}; known: {', '.join(table)}"
+            continue
+        sy = found.yield_strength
+        props[i] = (
+            found.youngs_modulus,
+            found.poisson_ratio,
+            found.density,
+            np.nan if sy is None else sy,
+        )
+    values = props[inverse.reshape(-1)]
+    return values[:, 0], values[:, 1], values[:, 2], values[:, 3], messages[inverse.reshape(-1)]
+
+
+def _floats(*values: ArrayLike) -> list[NDArray]:
+    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
+    return [np.ascontiguousarray(a).reshape(-1) for a in arrays]
+
+
+def validate(
+    d1: ArrayLike,
+    d2: ArrayLike,
+    v1: ArrayLike,
+    v2: ArrayLike,
+    E1: ArrayLike,
+    nu1: ArrayLike,
+    E2: ArrayLike,
+    nu2: ArrayLike,
+    rho1: ArrayLike = np.nan,
+    rho2: ArrayLike = np.nan,
+    m1: ArrayLike = np.nan,
+    m2: ArrayLike = np.nan,
+    sy1: ArrayLike = np.nan,
+    sy2: ArrayLike = np.nan,
+    plastic: ArrayLike = False,
+) -> NDArray[np.object_]:
+    """Why each row cannot be computed: one line per row, ``""`` for a valid row.
+
+    The checks of :class:`~impactcli.impact.Sphere`, ``elastic_impact`` and
+    ``elastoplastic_impact``, applied to every row at once; a row reports its first failing
+    check. NaN in ``rho``, ``m`` or ``sy`` means "not given" (arguments as
+    :func:`batch_impacts`).
+    """
+    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = _floats(
+        d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2
+    )
+    plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), d1.shape)
+    errors = np.full(d1.shape, "", dtype=object)
+    bad = np.zeros(d1.shape, dtype=bool)
+
+    def check(failed: NDArray[np.bool_], message: str, value: NDArray | None = None) -> None:
+        new = np.flatnonzero(failed & ~bad)
+        if new.size == 0:
+            return
+        bad[new] = True
+        if value is None:
+            errors[new] = message
+        else:  # a loop over the failing rows only, to put each value in its message
+            errors[new] = [message.format(x) for x in value[new].tolist()]
+
+    with np.errstate(invalid="ignore"):
+        for name, x in (("d1", d1), ("d2", d2), ("E1", E1), ("E2", E2)):
+            check(np.isnan(x), f"{name} is missing or NaN")
+            check(~(x > 0), f"{name} must be positive, got {{:g}}", x)
+        for name, x in (("nu1", nu1), ("nu2", nu2)):
+            check(np.isnan(x), f"{name} is missing or NaN")
+            check(~((x > -1.0) & (x < 0.5)), f"{name} must lie in (-1, 0.5), got {{:g}}", x)
+        for name, x in (("rho1", rho1), ("rho2", rho2), ("m1", m1), ("m2", m2)):
+            check(~np.isnan(x) & ~(x > 0), f"{name} must be positive, got {{:g}}", x)
+        for i, (d, rho, m) in enumerate(((d1, rho1, m1), (d2, rho2, m2)), start=1):
+            check(
+                np.isnan(m) & (np.isnan(rho) | ~np.isfinite(d)),
+                f"give m{i}, or a finite d{i} and rho{i}",
+            )
+        for name, x in (("sy1", sy1), ("sy2", sy2)):
+            check(~np.isnan(x) & ~(x > 0), f"{name} must be positive, got {{:g}}", x)
+        for name, x in (("v1", v1), ("v2", v2)):
+            check(~np.isfinite(x), f"{name} must be a finite velocity, got {{:g}}", x)
+        check(
+            ~(v1 + v2 > 0),
+            "the spheres do not approach: v1 + v2 = {:g} m/s must be > 0 "
+            "(velocities are positive toward the other sphere)",
+            v1 + v2,
+        )
+        mass1 = np.where(np.isnan(m1), sphere_mass(d1, rho1), m1)
+        mass2 = np.where(np.isnan(m2), sphere_mass(d2, rho2), m2)
+        check(
+            np.isinf(mass1) & np.isinf(mass2),
+            "at most one sphere can have an infinite (fixed) mass",
+        )
+        check(np.isinf(d1) & np.isinf(d2), "at most one sphere can be flat (infinite diameter)")
+        check(
+            np.isinf(E1) & np.isinf(E2),
+            "at most one sphere can be rigid (infinite Young's modulus)",
+        )
+        sigma_y = np.fmin(sy1, sy2)
+        check(
+            plastic & ~(np.isfinite(sigma_y) & (sigma_y > 0)),
+            "the elastoplastic model needs a positive, finite yield strength (sy, or sy1/sy2)",
+        )
+    return errors
+
+
+def batch_impacts(
+    d1: ArrayLike,
+    d2: ArrayLike,
+    v1: ArrayLike,
+    v2: ArrayLike,
+    E1: ArrayLike,
+    nu1: ArrayLike,
+    E2: ArrayLike,
+    nu2: ArrayLike,
+    rho1: ArrayLike = np.nan,
+    rho2: ArrayLike = np.nan,
+    m1: ArrayLike = np.nan,
+    m2: ArrayLike = np.nan,
+    sy1: ArrayLike = np.nan,
+    sy2: ArrayLike = np.nan,
+    plastic: ArrayLike = False,
+    n: int = 25,
+    split: Split = "mass",
+    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+) -> dict[str, NDArray]:
+    """Summaries of many impacts of two spheres, one per row; arrays broadcast.
+
+    Row i gives what ``elastic_impact`` (``plastic[i]`` False) or ``elastoplastic_impact``
+    (True) give for ``Sphere(d1[i], E1[i], nu1[i], rho1[i], m1[i], sy1[i])``, sphere 2 alike,
+    velocities ``v1[i]``, ``v2[i]``, n segments and ``split``.
+
+    Parameters
+    ----------
+    d1, d2 : diameters, [m]; ``inf`` for a flat target
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]
+    E1, E2 : Young's moduli, [Pa]; ``inf`` for a rigid sphere
+    nu1, nu2 : Poisson's ratios, [-]
+    rho1, rho2 : densities, [kg/m^3]; NaN if the mass is given
+    m1, m2 : masses, [kg]; NaN for rho pi D^3 / 6, ``inf`` for a fixed target
+    sy1, sy2 : yield strengths, [Pa]; NaN where unknown. The lower known one is sigma_y of
+        the elastoplastic model and of ``first_yield_velocity``
+    plastic : True for the elastoplastic (Du & Wang) model, False for elastic Hertz, [-]
+    n : FILM segments per stage
+    split : share of the indentation between the spheres: ``mass`` or ``compliance``
+    pressure_factor : p0 / sigma_y of the elastoplastic model, [-]
+
+    Returns
+    -------
+    dict
+        :data:`BATCH_KEYS` -> float arrays (NaN where a key does not apply: the plastic keys
+        of elastic rows, ``first_yield_velocity`` without a yield strength, every key of an
+        invalid row), and ``error`` -> object array of one-line reasons (``""`` when valid).
+
+    Examples
+    --------
+    The paper's elastic (sec. 4.3) and elastoplastic (sec. 4.4) examples in one call:
+
+    >>> out = batch_impacts(0.02, 0.04, [5e-3, 0.25], [7.5e-3, 0.75], 210e9, 0.3, 210e9, 0.3,
+    ...                     rho1=7800.0, rho2=7800.0, sy1=1e9, sy2=1e9, plastic=[False, True])
+    >>> (out["contact_time"] * 1e6).round(3), out["restitution"].round(5)
+    (array([171.319,  75.988]), array([1.     , 0.85611]))
+    """
+    n = int(n)
+    if n < 1:
+        raise ValueError(f"n must be an integer >= 1, got {n}")
+    if not (np.isfinite(pressure_factor) and pressure_factor > 0):
+        raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
+    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = _floats(
+        d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2
+    )
+    plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), d1.shape).reshape(-1)
+    errors = validate(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, plastic)
+    out = {key: np.full(d1.shape, np.nan) for key in BATCH_KEYS}
+    out["error"] = errors
+    ok = np.flatnonzero(errors == "")
+    if ok.size == 0:
+        return out
+
+    # Valid rows only from here: the per-collision constants (spec sec. 1).
+    d1, d2, v1, v2, E1, nu1, E2, nu2 = (x[ok] for x in (d1, d2, v1, v2, E1, nu1, E2, nu2))
+    rho1, rho2, m1, m2, sy1, sy2 = (x[ok] for x in (rho1, rho2, m1, m2, sy1, sy2))
+    plastic = plastic[ok]
+    mass1 = np.where(np.isnan(m1), sphere_mass(d1, rho1), m1)
+    mass2 = np.where(np.isnan(m2), sphere_mass(d2, rho2), m2)
+    m = effective_mass(mass1, mass2)
+    radius = effective_radius(0.5 * d1, 0.5 * d2)
+    modulus = effective_modulus(E1, nu1, E2, nu2)
+    stiffness = hertz_stiffness(modulus, radius)
+    sigma_y = np.fmin(sy1, sy2)
+    v0 = v1 + v2
+
+    contact = DuWangContact(radius, modulus, sigma_y, pressure_factor)
+    with np.errstate(invalid="ignore"):
+        above = plastic & (v0 > contact.yield_velocity(m))
+    delta_max, force_max, delta_res, restitution, t_max, t_c = (np.empty_like(v0) for _ in range(6))
+
+    # Hertz rows: one normalised FILM solution scaled by delta_m / V0 (spec sec. 3).
+    hertz = np.flatnonzero(~above)
+    if hertz.size:
+        plan = HertzContact(stiffness[hertz]).plan(v0[hertz], m[hertz])
+        t_bar_max, t_bar_c = normalised_times(n)
+        scale = plan.delta_max / v0[hertz]
+        delta_max[hertz], force_max[hertz] = plan.delta_max, plan.force_max
+        delta_res[hertz], restitution[hertz] = plan.delta_res, plan.restitution
+        t_max[hertz], t_c[hertz] = t_bar_max * scale, t_bar_c * scale
+
+    # Elastoplastic rows above the yield velocity: their own three FILM stages (spec sec. 7).
+    yielding = np.flatnonzero(above)
+    for start in range(0, yielding.size, FILM_BLOCK):
+        rows = yielding[start : start + FILM_BLOCK]
+        block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
+        plan = block.plan(v0[rows], m[rows])
+        stages = solve_plan(plan, m[rows], n)
+        delta_max[rows], force_max[rows] = plan.delta_max, plan.force_max
+        delta_res[rows], restitution[rows] = plan.delta_res, plan.restitution
+        t_max[rows], t_c[rows] = stages[-2].end_time, stages[-1].end_time
+
+    plan = ImpactPlan((), delta_max, force_max, delta_res, restitution)
+    compliance1 = (1.0 - nu1**2) / E1
+    compliance2 = (1.0 - nu2**2) / E2
+    fractions = split_fractions(split, mass1, mass2, compliance1, compliance2)
+    summary = impact_summary(
+        v1, v2, mass1, mass2, radius, modulus, plan, t_max, t_c, fractions, sigma_y
+    )
+    for key, value in summary.items():
+        out[key][ok] = value
+    rows = np.flatnonzero(plastic)
+    if rows.size:
+        extra = plastic_summary(
+            DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor),
+            m[rows],
+            v0[rows],
+            ImpactPlan((), delta_max[rows], force_max[rows], delta_res[rows], restitution[rows]),
+            (fractions[0][rows], fractions[1][rows]),
+        )
+        for key, value in extra.items():
+            out[key][ok[rows]] = value
+    return out
