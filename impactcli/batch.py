@@ -82,24 +82,14 @@ def normalised_times(n: int) -> tuple[float, float]:
     return float(loading.end_time), float(restitution.end_time)
 
 
-def _materials() -> dict:
-    """The built-in material table, name -> properties (imported when first needed)."""
-    from impactcli.materials import MATERIALS
-
-    return MATERIALS
-
-
-def _material_key(name: str) -> str:
-    return name.strip().lower().replace("_", "-").replace(" ", "-")
-
-
 def material_properties(
     names: ArrayLike,
 ) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray[np.object_]]:
     """Properties of the named built-in materials (:mod:`impactcli.materials`), one per row.
 
-    Names are matched ignoring case, with ``_`` or a space for ``-``; an empty name gives
-    NaN properties and no error. Looks up each distinct name once.
+    Names are matched as by :func:`impactcli.materials.material` (case, ``_`` or space for
+    ``-``, aliases); an empty name gives NaN properties and no error. Looks up each distinct
+    name once.
 
     Returns
     -------
@@ -109,15 +99,17 @@ def material_properties(
     names = np.asarray(names, dtype=object).reshape(-1)
     text = np.where(np.equal(names, None), "", names).astype(str)
     unique, inverse = np.unique(text, return_inverse=True)
-    table = {_material_key(k): v for k, v in _materials().items()}
+    from impactcli.materials import material
+
     props = np.full((unique.size, 4), np.nan)
     messages = np.full(unique.size, "", dtype=object)
     for i, name in enumerate(unique.tolist()):  # distinct names only
         if not name.strip():
             continue
-        found = table.get(_material_key(name))
-        if found is None:
-            messages[i] = f"unknown material {name!r}; known: {', '.join(table)}"
+        try:
+            found = material(name)
+        except KeyError as exc:
+            messages[i] = exc.args[0]
             continue
         sy = found.yield_strength
         props[i] = (
