@@ -21,7 +21,7 @@ from impactcli.contact import (
 )
 from impactcli.impact import Sphere, solve_plan
 
-__all__ = ["SWEEP_COLUMNS", "restitution_sweep"]
+__all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
 SWEEP_COLUMNS: tuple[str, ...] = (
     "impact_velocity",
@@ -58,21 +58,7 @@ def restitution_sweep(
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
-    known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
-    sigma_y = yield_strength if yield_strength is not None else (min(known) if known else None)
-    if sigma_y is None:
-        raise ValueError("the elastoplastic model needs a yield strength")
-    m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
-    r = float(effective_radius(sphere1.radius, sphere2.radius))
-    e = float(
-        effective_modulus(
-            sphere1.youngs_modulus,
-            sphere1.poisson_ratio,
-            sphere2.youngs_modulus,
-            sphere2.poisson_ratio,
-        )
-    )
-    contact = DuWangContact(r, e, sigma_y, pressure_factor)
+    contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor)
     plastic = v0 > contact.yield_velocity(m)
     out = {name: np.zeros_like(v0) for name in SWEEP_COLUMNS}
     for mask, model in ((~plastic, HertzContact(contact.stiffness)), (plastic, contact)):
@@ -95,3 +81,37 @@ def restitution_sweep(
     out["energy_dissipated"] = 0.5 * m * v0**2 * (1.0 - out["restitution"] ** 2)
     out["plastic"] = plastic.astype(float)
     return out
+
+
+def sweep_yield_velocity(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    yield_strength: float | None = None,
+    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+) -> float:
+    """The impact velocity V_y [m/s] above which :func:`restitution_sweep` is plastic (the
+    Du & Wang contact's yield velocity, spec sec. 7)."""
+    contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor)
+    return float(contact.yield_velocity(m))
+
+
+def _contact(
+    sphere1: Sphere, sphere2: Sphere, yield_strength: float | None, pressure_factor: float
+) -> tuple[DuWangContact, float]:
+    """The Du & Wang contact of the pair and its effective mass m [kg]; the yield strength
+    defaults to the weaker sphere's."""
+    known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
+    sigma_y = yield_strength if yield_strength is not None else (min(known) if known else None)
+    if sigma_y is None:
+        raise ValueError("the elastoplastic model needs a yield strength")
+    m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
+    r = float(effective_radius(sphere1.radius, sphere2.radius))
+    e = float(
+        effective_modulus(
+            sphere1.youngs_modulus,
+            sphere1.poisson_ratio,
+            sphere2.youngs_modulus,
+            sphere2.poisson_ratio,
+        )
+    )
+    return DuWangContact(r, e, sigma_y, pressure_factor), m

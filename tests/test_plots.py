@@ -42,6 +42,12 @@ SI_UNIT.update({f"{k}{i}": u for k, u in (("d", "m"), ("v", "m/s"), ("p", "N·s"
 SI_UNIT.update({f"delta{i}": "m" for i in (1, 2)} | {f"delta{i}_dot": "m/s" for i in (1, 2)})
 ELASTIC_4_3 = ["elastic", *PAPER, "--v1", "5mm/s", "--v2", "7.5mm/s"]
 PLASTIC_4_4 = ["elastoplastic", *PAPER, "--v1", "0.25m/s", "--v2", "0.75m/s"]
+SWEEP = ["restitution", *PAPER, "--v-min", "0.1", "--v-max", "10", "--count", "9"]
+# Paper sec. 4.5.3, e = 1.
+COLLIDE_4_5 = [
+    "collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
+    "--v2", "2m/s", "--a2", "50deg", "--p1=-1,2", "--p2=2,-2", "--paper-angles",
+]  # fmt: skip
 
 
 def lines(fig, gid: str):
@@ -333,8 +339,14 @@ def test_collision2d_figure_scales_units_and_rejects_no_line_of_centres():
 
 @pytest.mark.parametrize(
     ("args", "fmt"),
-    [(ELASTIC_4_3, "png"), (PLASTIC_4_4, "svg"), (["convergence", "--n", "1", "3", "5"], "pdf")],
-    ids=["elastic", "elastoplastic", "convergence"],
+    [
+        (ELASTIC_4_3, "png"),
+        (PLASTIC_4_4, "svg"),
+        (["convergence", "--n", "1", "3", "5"], "pdf"),
+        (SWEEP, "png"),
+        (COLLIDE_4_5, "svg"),
+    ],
+    ids=["elastic", "elastoplastic", "convergence", "restitution", "collide2d"],
 )
 def test_plot_option_writes_an_image(impact, tmp_path, args, fmt):
     target = tmp_path / f"figure.{fmt}"
@@ -415,8 +427,94 @@ def test_cli_convergence_plots_fig_3(monkeypatch, tmp_path):
     assert len(lines(fig, "error").get_xdata()) == 4
 
 
+def test_cli_restitution_plots_the_sweep_it_computes(monkeypatch, tmp_path):
+    from impactcli.sweep import restitution_sweep, sweep_yield_velocity
+
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        [*SWEEP, "--plot", "r.png", "-o", str(tmp_path / "r.csv")],
+    )
+    v0 = np.geomspace(0.1, 10.0, 9)
+    data = restitution_sweep(SPHERE1, SPHERE2, v0)
+    x, e = lines(fig, "restitution").get_data()
+    np.testing.assert_allclose(x, v0, rtol=1e-12)
+    np.testing.assert_allclose(e, data["restitution"], rtol=1e-12)
+    assert lines(fig, "restitution").axes.get_xscale() == "log"
+    tc = lines(fig, "contact_time")
+    assert "(µs)" in tc.axes.get_ylabel()
+    np.testing.assert_allclose(tc.get_ydata(), data["contact_time"] / 1e-6, rtol=1e-12)
+    for label, key in (
+        ("total", "delta_res"),
+        ("sphere 1", "delta1_res"),
+        ("sphere 2", "delta2_res"),
+    ):
+        got = lines(fig, f"permanent_indentation:{label}").get_ydata()
+        np.testing.assert_allclose(got, data[key] / 1e-6, rtol=1e-12)
+    # The paper's sec. 4.4 yield velocity (spec sec. 7): V_y = 0.2566 m/s.
+    assert sweep_yield_velocity(SPHERE1, SPHERE2) == pytest.approx(0.2566, abs=5e-5)
+    legend = axes_of(fig, "restitution").get_legend_handles_labels()[1]
+    assert any("0.2566 m/s" in label for label in legend)
+    assert "D1 = 20 mm, D2 = 40 mm, steel" in fig.get_suptitle()
+
+
+def test_cli_restitution_linear_sweep_has_a_linear_axis(monkeypatch, tmp_path):
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        [*SWEEP, "--linear", "--plot", "r.pdf", "-o", str(tmp_path / "r.csv")],
+    )
+    line = lines(fig, "restitution")
+    assert line.axes.get_xscale() == "linear"
+    np.testing.assert_allclose(line.get_xdata(), np.linspace(0.1, 10.0, 9), rtol=1e-12)
+
+
+def test_cli_collide2d_plots_the_paper_example(monkeypatch, tmp_path):
+    v1, v2, w1, w2, p1, p2 = paper_4_5_collision()
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.collide2d_cmd",
+        [*COLLIDE_4_5, "--plot", "c.png", "-o", str(tmp_path / "c.csv")],
+    )
+    for gid, v in {"v1": v1, "v2": v2, "v1_after": w1, "v2_after": w2}.items():
+        arrow = annotation(fig, gid)
+        np.testing.assert_allclose(arrow.xy, v, rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(annotation(fig, f"at:{gid}").xyann, p1 if "1" in gid else p2)
+    # Paper sec. 4.5.3: |v1'| = 2.374 m/s, |v2'| = 2.263 m/s.
+    assert np.hypot(*annotation(fig, "v1_after").xy) == pytest.approx(2.374, abs=5e-4)
+    assert np.hypot(*annotation(fig, "v2_after").xy) == pytest.approx(2.263, abs=5e-4)
+    assert "elastic, e = 1" in fig.get_suptitle()
+
+
+def test_cli_collide2d_elastoplastic_draws_the_spheres(monkeypatch, tmp_path):
+    """Head-on along x at 1 m/s: e from Du & Wang, the spheres drawn with their radii."""
+    argv = [
+        "collide2d", "--m1", "0.0326726kg", "--m2", "0.261381kg", "--v1", "1,0", "--v2", "0,0",
+        "--p1", "0,0", "--p2", "30mm,0", "--model", "elastoplastic", "--d1", "20mm",
+        "--d2", "40mm", "--material", "steel",
+    ]  # fmt: skip
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.collide2d_cmd",
+        [*argv, "--plot", "c.png", "-o", str(tmp_path / "c")],
+    )
+    from matplotlib.patches import Circle
+
+    circles = [p for ax in fig.axes for p in ax.patches if isinstance(p, Circle)]
+    assert sorted(c.get_radius() for c in circles) == pytest.approx([10.0, 20.0])  # mm
+    m1, m2 = 0.0326726, 0.261381
+    e = elastoplastic_impact(
+        Sphere(0.020, **STEEL, mass=m1), Sphere(0.040, **STEEL, mass=m2), 1.0, 0.0
+    ).summary["restitution"]
+    assert 0.5 < e < 1.0
+    w1 = 1.0 - (1.0 + e) * m2 / (m1 + m2)
+    np.testing.assert_allclose(annotation(fig, "v1_after").xy, (w1, 0.0), rtol=1e-9, atol=1e-12)
+
+
 @pytest.mark.parametrize(
-    "args", [ELASTIC_4_3, PLASTIC_4_4, ["convergence"]], ids=["elastic", "plastic", "convergence"]
+    "args",
+    [ELASTIC_4_3, PLASTIC_4_4, ["convergence"], SWEEP, COLLIDE_4_5],
+    ids=["elastic", "plastic", "convergence", "restitution", "collide2d"],
 )
 @pytest.mark.parametrize("name", ["figure.jpg", "figure"])
 def test_bad_extension_is_one_line_exit_2_before_any_work(impact, tmp_path, args, name):
@@ -440,7 +538,9 @@ WITHOUT_MATPLOTLIB = (
 
 
 @pytest.mark.parametrize(
-    "args", [ELASTIC_4_3, ["convergence", "--n", "3"]], ids=["elastic", "convergence"]
+    "args",
+    [ELASTIC_4_3, ["convergence", "--n", "3"], SWEEP, COLLIDE_4_5],
+    ids=["elastic", "convergence", "restitution", "collide2d"],
 )
 def test_missing_matplotlib_says_how_to_install_it(tmp_path, args):
     target = tmp_path / "f.png"

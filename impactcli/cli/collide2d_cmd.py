@@ -8,7 +8,7 @@ from typing import IO, Optional
 
 import typer
 
-from impactcli.cli.common import Format, console, resolve_format
+from impactcli.cli.common import PLOT_HELP, Format, check_plot, console, resolve_format, save_plot
 from impactcli.output import InputError, atomic_output, write_csv, write_json
 
 CONVENTIONS = {
@@ -94,6 +94,14 @@ def collide2d(
     output: Optional[str] = typer.Option(
         None, "--output", "-o", help="Write to this file instead of stdout ('-' is stdout)."
     ),
+    plot: Optional[str] = typer.Option(
+        None,
+        "--plot",
+        metavar="FILE",
+        help=PLOT_HELP + " Draws the centres at contact with the velocities before and "
+        "after, and the velocities from one origin with the normal and tangent; the spheres "
+        "too when --d1 and --d2 are given.",
+    ),
 ) -> None:
     """Oblique 2-D collision of two smooth spheres (paper sec. 4.5, eqs. 17-21).
 
@@ -130,6 +138,7 @@ def collide2d(
     )
     from impactcli.units import parse_vector
 
+    check_plot(plot)
     sign = PAPER_ANGLE_SIGN if paper_angles else dict.fromkeys(PAPER_ANGLE_SIGN, 1.0)
     mass1 = _mass(m1, "--m1")
     mass2 = _mass(m2, "--m2")
@@ -183,6 +192,7 @@ def collide2d(
         "restitution": restitution,
         "angle_convention": CONVENTIONS[paper_angles],
     }
+    radii = _radii(d1, d2) if plot else None
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -193,6 +203,40 @@ def collide2d(
             _print_tables(
                 stream if output not in (None, "-") else None, inputs, summary, paper_angles
             )
+    if plot:
+        _plot(plot, result, vel1, vel2, pos1, pos2, radii, model_name, restitution)
+
+
+def _radii(d1: str | None, d2: str | None) -> tuple[float, float] | None:
+    """(R1, R2) [m] to draw the spheres, when both diameters are given."""
+    from impactcli.units import parse_quantity
+
+    if d1 is None or d2 is None:
+        return None
+    radii = []
+    for text, name in ((d1, "--d1"), (d2, "--d2")):
+        value = parse_quantity(text, "length", name)
+        if not (math.isfinite(value) and value > 0.0):
+            raise InputError(f"{name}: a diameter must be a finite length > 0, got {value:g} m")
+        radii.append(value / 2.0)
+    return radii[0], radii[1]
+
+
+def _plot(path: str, c, vel1, vel2, pos1, pos2, radii, model: str, e: float) -> None:
+    """The before/after velocity diagram of :func:`impactcli.plots.collision2d_figure`."""
+    from impactcli.plots import collision2d_figure
+
+    fig = collision2d_figure(
+        vel1,
+        vel2,
+        c.v1_final,
+        c.v2_final,
+        pos1,
+        pos2,
+        radii=radii,
+        title=f"Oblique collision ({model}, e = {e:.6g}); angles counter-clockwise from +x",
+    )
+    save_plot(fig, path)
 
 
 def _mass(text: str, name: str) -> float:

@@ -541,6 +541,7 @@ def restitution(
     split: SPLIT = Split.mass,
     fmt: FMT = None,
     output: OUT = None,
+    plot: PLOT = None,
 ) -> None:
     """Coefficient of restitution, contact time and permanent indentation against impact
     velocity (elastoplastic FILM, Du & Wang contact), for calibrating restitution.
@@ -549,12 +550,16 @@ def restitution(
     delta1_res, delta2_res, energy_dissipated, plastic (1 above the yield velocity).
     Only V0 = V1 + V2 matters for these quantities.
 
+    --plot draws e, the contact time and the permanent indentation (total and of each
+    sphere) against V0, with the yield velocity V_y marked.
+
     Example: impact restitution --v-min 0.1m/s --v-max 10m/s --count 50 --d1 20mm --d2 40mm
-    --material steel
+    --material steel --plot restitution.png
     """
     from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
 
     p = locals()
+    check_plot(plot)
     lo, hi = _velocity(v_min, "--v-min"), _velocity(v_max, "--v-max")
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
@@ -627,6 +632,39 @@ def restitution(
                     "plastic" if data["plastic"][i] else "elastic",
                 )
             console(stream if output not in (None, "-") else None).print(table)
+    if plot:
+        _plot_sweep(plot, data, s1, s2, p0_factor, p)
+
+
+def _plot_sweep(path: str, data: dict, s1, s2, p0_factor: float, p: dict[str, Any]) -> None:
+    """e, contact time and permanent indentation against V0, written to ``path``."""
+    from impactcli.plots import format_quantity, restitution_figure
+    from impactcli.sweep import sweep_yield_velocity
+
+    names = [p["material1"] or p["material"], p["material2"] or p["material"]]
+    parts = [
+        f"D1 = {format_quantity(s1.diameter, 'm')}",
+        f"D2 = {format_quantity(s2.diameter, 'm')}",
+    ]
+    if names[0] and names[0] == names[1]:
+        parts.append(names[0])
+    else:
+        parts += [name or f"sphere {i}" for i, name in enumerate(names, start=1)]
+    fig = restitution_figure(
+        data["impact_velocity"],
+        data["restitution"],
+        data["contact_time"],
+        {
+            "total": data["delta_res"],
+            "sphere 1": data["delta1_res"],
+            "sphere 2": data["delta2_res"],
+        },
+        title=f"Restitution against impact velocity (Du & Wang, FILM, n = {p['n']}): "
+        + ", ".join(parts),
+        yield_velocity=sweep_yield_velocity(s1, s2, pressure_factor=p0_factor),
+        log_velocity=not p["linear"],
+    )
+    save_plot(fig, path)
 
 
 def materials(fmt: FMT = None, output: OUT = None) -> None:
