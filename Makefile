@@ -19,7 +19,8 @@ venv: $(STAMP)
 PAPER := --d1 20mm --d2 40mm --material steel
 
 ## run: set up, print the paper's Tables A1 and A2 (n = 25), and draw the figures of its
-##      sections 4.1, 4.3 and 4.4 into figures/ (with each figure's data as CSV)
+##      sections 4.1, 4.3, 4.4 and 4.5 and a restitution sweep into figures/ (with each
+##      figure's data as CSV)
 run: $(STAMP)
 	$(BIN)/impact tables --n 25 --format table
 	@mkdir -p figures
@@ -30,7 +31,12 @@ run: $(STAMP)
 	$(BIN)/impact elastoplastic $(PAPER) --v1 0.25m/s --v2 0.75m/s \
 		-o figures/elastoplastic_4_4.csv --plot figures/elastoplastic_4_4.png
 	$(BIN)/impact convergence -o figures/convergence.csv --plot figures/convergence.png
-	@echo "Figures (paper sec. 4.1, 4.3, 4.4) and their data: figures/"
+	$(BIN)/impact restitution $(PAPER) --v-min 0.05m/s --v-max 2.5m/s --count 40 \
+		-o figures/restitution.csv --plot figures/restitution.png
+	$(BIN)/impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s --a1 30deg --v2 2m/s \
+		--a2 50deg --p1=-1,2 --p2=2,-2 --paper-angles \
+		-o figures/collide2d_4_5.csv --plot figures/collide2d_4_5.png
+	@echo "Figures (paper sec. 4.1, 4.3, 4.4, 4.5) and their data: figures/"
 
 ## test: set up, then lint and run the whole test suite
 test: $(STAMP)
