@@ -13,9 +13,11 @@ How each row is computed
   sec. 3, :func:`impactcli.tables.normalised_elastic`), so the FILM contact time with n
   segments is t_c = t_bar_c(n) delta_m / V0 and the time of maximum indentation
   t_max = t_bar_max(n) delta_m / V0, both from one normalised run.
-- Elastoplastic rows above the yield velocity run their three FILM stages (spec sec. 7) with
-  :func:`impactcli.impact.solve_plan` on arrays of shape (rows, n + 1), in blocks of
-  :data:`FILM_BLOCK` rows so the work arrays stay in cache.
+- Elastoplastic rows above the yield velocity (spec sec. 7): the elastic loading is a FILM
+  run on arrays of shape (rows, n + 1), in blocks of :data:`FILM_BLOCK` rows so the work
+  arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
+  any n; the unloading from rest is the normalised Hertz restitution stage in
+  delta - delta_res, scaled (:func:`plastic_stage_times`).
 - Everything else (final displacements and velocities, each sphere's share of the
   indentation, residual indentation, dissipated energy) is
   :func:`impactcli.impact.impact_summary` and :func:`~impactcli.impact.plastic_summary`,
@@ -43,12 +45,12 @@ from impactcli.contact import (
     effective_radius,
     sphere_mass,
 )
+from impactcli.film import solve_stage
 from impactcli.impact import (
     PLASTIC_SUMMARY_KEYS,
     Split,
     impact_summary,
     plastic_summary,
-    solve_plan,
     split_fractions,
 )
 from impactcli.laws import hertz_stiffness
@@ -80,6 +82,44 @@ def normalised_times(n: int) -> tuple[float, float]:
 
     loading, restitution = normalised_elastic(n)
     return float(loading.end_time), float(restitution.end_time)
+
+
+def plastic_stage_times(
+    plan: ImpactPlan, mass: ArrayLike, impact_velocity: ArrayLike, n: int
+) -> tuple[NDArray, NDArray]:
+    """FILM time of maximum indentation and contact time [s] of elastoplastic impacts above
+    the yield velocity, the three stages of ``plan`` (spec sec. 7) each with n segments.
+
+    The same numbers as :func:`impactcli.impact.solve_plan` (to rounding), with O(n) work
+    per impact only for the elastic loading:
+
+    - elastic loading 0 -> delta_y: FILM on arrays of shape (impacts, n + 1);
+    - plastic loading delta_y -> delta_m: the force is linear in delta, so FILM is exact on
+      every segment (spec sec. 4, item 5) and one segment gives the time of n;
+    - unloading delta_m -> delta_res from rest: a Hertz restitution stage in
+      delta - delta_res, i.e. the normalised one (spec sec. 3) scaled by
+      (delta_m - delta_res) / (e V0), e V0 being the speed at separation.
+    """
+    elastic, plastic_loading, _unloading = plan.stages
+    first = solve_stage(
+        elastic.law, elastic.delta_start, elastic.delta_end, elastic.speed_start, mass, n
+    )
+    second = solve_stage(
+        plastic_loading.law,
+        plastic_loading.delta_start,
+        plastic_loading.delta_end,
+        plastic_loading.speed_start,
+        mass,
+        1,
+        first.end_time,
+        end_at_rest=True,
+    )
+    t_bar_max, t_bar_c = normalised_times(n)
+    rebound = (plan.delta_max - plan.delta_res) / (
+        plan.restitution * np.asarray(impact_velocity, dtype=float)
+    )
+    t_max = second.end_time
+    return t_max, t_max + (t_bar_c - t_bar_max) * rebound
 
 
 def material_properties(
@@ -312,16 +352,15 @@ def batch_impacts(
         delta_res[hertz], restitution[hertz] = plan.delta_res, plan.restitution
         t_max[hertz], t_c[hertz] = t_bar_max * scale, t_bar_c * scale
 
-    # Elastoplastic rows above the yield velocity: their own three FILM stages (spec sec. 7).
+    # Elastoplastic rows above the yield velocity: their three FILM stages (spec sec. 7).
     yielding = np.flatnonzero(above)
     for start in range(0, yielding.size, FILM_BLOCK):
         rows = yielding[start : start + FILM_BLOCK]
         block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
         plan = block.plan(v0[rows], m[rows])
-        stages = solve_plan(plan, m[rows], n)
         delta_max[rows], force_max[rows] = plan.delta_max, plan.force_max
         delta_res[rows], restitution[rows] = plan.delta_res, plan.restitution
-        t_max[rows], t_c[rows] = stages[-2].end_time, stages[-1].end_time
+        t_max[rows], t_c[rows] = plastic_stage_times(plan, m[rows], v0[rows], n)
 
     plan = ImpactPlan((), delta_max, force_max, delta_res, restitution)
     compliance1 = (1.0 - nu1**2) / E1

@@ -499,3 +499,25 @@ def test_batch_help_and_no_heavy_imports_at_start_up():
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert "--engine" in result.stdout and "--strict" in result.stdout
     assert result.stderr.rsplit("HEAVY=", 1)[1].strip() == ""
+
+
+@pytest.mark.parametrize("n", [1, 3, 25, 400])
+def test_plastic_stage_times_equal_the_three_film_stages(n):
+    """The shortcut of the batch kernel (plastic loading in one exact segment, unloading from
+    the normalised restitution stage) gives the times of solve_plan with n segments."""
+    from impactcli.batch import plastic_stage_times
+    from impactcli.contact import DuWangContact
+    from impactcli.impact import solve_plan
+
+    rng = np.random.default_rng(7)
+    size = 300
+    contact = DuWangContact(
+        rng.uniform(1e-3, 0.1, size), rng.uniform(1e9, 3e11, size), rng.uniform(1e8, 2e9, size)
+    )
+    mass = rng.uniform(1e-3, 10.0, size)
+    v0 = contact.yield_velocity(mass) * np.geomspace(1.0001, 1000.0, size)
+    plan = contact.plan(v0, mass)
+    stages = solve_plan(plan, mass, n)
+    t_max, t_c = plastic_stage_times(plan, mass, v0, n)
+    np.testing.assert_allclose(t_max, stages[1].end_time, rtol=1e-13)
+    np.testing.assert_allclose(t_c, stages[2].end_time, rtol=1e-13)
