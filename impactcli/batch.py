@@ -14,8 +14,8 @@ How each row is computed
   segments is t_c = t_bar_c(n) delta_m / V0 and the time of maximum indentation
   t_max = t_bar_max(n) delta_m / V0, both from one normalised run.
 - Elastoplastic rows above the yield velocity (spec sec. 7): the elastic loading is a FILM
-  run on arrays of shape (rows, n + 1), in blocks of :data:`FILM_BLOCK` rows so the work
-  arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
+  run on arrays of shape (rows, n + 1), in blocks of about :data:`FILM_BLOCK` values so
+  the work arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
   any n; the unloading from rest is the normalised Hertz restitution stage in
   delta - delta_res, scaled (:func:`plastic_stage_times`).
 - Everything else (final displacements and velocities, each sphere's share of the
@@ -67,8 +67,11 @@ __all__ = [
 #: Result columns of a batch, in order: the elastoplastic summary keys (SI).
 BATCH_KEYS: tuple[str, ...] = PLASTIC_SUMMARY_KEYS
 
-#: Rows per block of the per-row FILM runs (elastoplastic rows above the yield velocity).
-FILM_BLOCK = 2048
+#: Values (rows x (n + 1) nodes) per block of the per-row FILM runs of elastoplastic rows
+#: above the yield velocity: 256 KiB work arrays stay in cache and below the size at which
+#: each new array is fresh memory from the system (measured: 1.5-2.6x faster than blocks
+#: of 2048 rows for n = 25-100).
+FILM_BLOCK = 32768
 
 
 @lru_cache(maxsize=16)
@@ -354,8 +357,9 @@ def batch_impacts(
 
     # Elastoplastic rows above the yield velocity: their three FILM stages (spec sec. 7).
     yielding = np.flatnonzero(above)
-    for start in range(0, yielding.size, FILM_BLOCK):
-        rows = yielding[start : start + FILM_BLOCK]
+    block_rows = max(1, FILM_BLOCK // (n + 1))
+    for start in range(0, yielding.size, block_rows):
+        rows = yielding[start : start + block_rows]
         block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
         plan = block.plan(v0[rows], m[rows])
         delta_max[rows], force_max[rows] = plan.delta_max, plan.force_max

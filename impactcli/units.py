@@ -16,7 +16,7 @@ from impactcli.output import InputError
 __all__ = ["KINDS", "parse_quantity", "parse_vector"]
 
 #: kind -> (SI unit to convert to, examples for the error message)
-KINDS: dict[str, tuple[str, str, str]] = {
+KINDS: dict[str, tuple[str, str]] = {
     "length": ("m", "20mm, 0.02 m"),
     "velocity": ("m/s", "7.5mm/s, 0.25 m/s"),
     "mass": ("kg", "32.7g, 0.0327 kg"),
@@ -57,7 +57,7 @@ def parse_quantity(text: str | float, kind: str, name: str, allow_inf: bool = Fa
     except ValueError:
         value = _with_units(raw, kind, name, si_unit, examples)
     if math.isnan(value):
-        raise InputError(f"{name}: got NaN; expected a {kind} such as {examples}")
+        raise InputError(f"{name}: got NaN; expected {_article(kind)} such as {examples}")
     if math.isinf(value) and not allow_inf:
         raise InputError(f"{name}: must be finite, got {raw!r}")
     return value
@@ -69,21 +69,29 @@ def _with_units(raw: str, kind: str, name: str, si_unit: str, examples: str) -> 
         quantity = ureg.Quantity(raw)
     except Exception:
         raise InputError(
-            f"{name}: cannot read {raw!r}; expected a {kind} such as {examples}"
+            f"{name}: cannot read {raw!r}; expected {_article(kind)} such as {examples}"
         ) from None
     if not hasattr(quantity, "dimensionality"):
         return float(quantity)
     expected = ureg.Quantity(1, si_unit or "dimensionless").dimensionality
     if quantity.dimensionality != expected:
         got = _describe(quantity.dimensionality)
-        raise InputError(f"{name}: expected a {kind} such as {examples}, got {raw!r} ({got})")
+        raise InputError(
+            f"{name}: expected {_article(kind)} such as {examples}, got {raw!r} ({got})"
+        )
     return float(quantity.to(si_unit).magnitude) if si_unit else float(quantity.magnitude)
+
+
+def _article(kind: str) -> str:
+    """'a length', 'an angle', 'a dimensionless number'."""
+    noun = "dimensionless number" if kind == "dimensionless" else kind
+    return f"{'an' if noun[0] in 'aeiou' else 'a'} {noun}"
 
 
 def _describe(dimensionality) -> str:
     for kind, (si_unit, _) in KINDS.items():
         if si_unit and _registry().Quantity(1, si_unit).dimensionality == dimensionality:
-            return f"a {kind}"
+            return _article(kind)
     return f"dimension {dimensionality}" if str(dimensionality) else "dimensionless"
 
 

@@ -521,3 +521,13 @@ def test_plastic_stage_times_equal_the_three_film_stages(n):
     t_max, t_c = plastic_stage_times(plan, mass, v0, n)
     np.testing.assert_allclose(t_max, stages[1].end_time, rtol=1e-13)
     np.testing.assert_allclose(t_c, stages[2].end_time, rtol=1e-13)
+
+
+def test_keep_freed_memory_sets_glibc_thresholds_once():
+    import platform
+
+    from impactcli.allocator import keep_freed_memory
+
+    glibc = platform.system() == "Linux" and platform.libc_ver()[0] == "glibc"
+    assert keep_freed_memory() is glibc
+    assert keep_freed_memory() is glibc  # idempotent

@@ -291,20 +291,6 @@ def _check(result, points: int) -> dict[str, float]:
     return out
 
 
-def _scaled(values: np.ndarray, unit: str) -> tuple[np.ndarray, str]:
-    """Scale a history column to an engineering unit suited to its size."""
-    prefixes = [(1e-9, "n"), (1e-6, "u"), (1e-3, "m"), (1.0, "")]
-    peak = np.nanmax(np.abs(values)) if values.size else 0.0
-    if not np.isfinite(peak) or peak == 0:
-        return values, unit
-    factor, prefix = prefixes[-1]
-    for f, pre in prefixes:
-        if peak < 1000 * f:
-            factor, prefix = f, pre
-            break
-    return values / factor, prefix + unit
-
-
 HISTORY_UNITS = {
     "t": "s",
     "delta": "m",
@@ -326,6 +312,8 @@ HISTORY_UNITS = {
 def _print(stream: IO[str] | None, result, history: dict, check) -> None:
     from rich.table import Table
 
+    from impactcli.plots import unit_scale
+
     out = console(stream)
     title = (
         "Elastic (Hertz) impact by FILM"
@@ -343,9 +331,10 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
     compact = Table(title=f"History, {len(rows)} of {len(history['t'])} points (-f csv for all)")
     columns = []
     for col in ("t", "delta", "force", "d1", "d2", "v1", "v2"):
-        scaled, unit = _scaled(np.asarray(history[col]), HISTORY_UNITS[col])
-        columns.append(scaled[rows])
-        compact.add_column(f"{col} ({unit})", justify="right", no_wrap=True)
+        values = np.asarray(history[col])
+        scale = unit_scale(values, HISTORY_UNITS[col])
+        columns.append(values[rows] / scale.factor)
+        compact.add_column(f"{col} ({scale.unit})", justify="right", no_wrap=True)
     for r in range(len(rows)):
         compact.add_row(*(f"{c[r]:.4g}" for c in columns))
     out.print(compact)
