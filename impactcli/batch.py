@@ -14,7 +14,7 @@ How each row is computed
   segments is t_c = t_bar_c(n) delta_m / V0 and the time of maximum indentation
   t_max = t_bar_max(n) delta_m / V0, both from one normalised run.
 - Elastoplastic rows above the yield velocity (spec sec. 7): the elastic loading is a FILM
-  run on arrays of shape (rows, n + 1), in blocks of about :data:`FILM_BLOCK` values so
+  run on arrays of shape (rows, n), in blocks of about :data:`FILM_BLOCK` values so
   the work arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
   any n; the unloading from rest is the normalised Hertz restitution stage in
   delta - delta_res, scaled (:func:`plastic_stage_times`).
@@ -45,7 +45,7 @@ from impactcli.contact import (
     effective_radius,
     sphere_mass,
 )
-from impactcli.film import solve_stage
+from impactcli.film import hertz_loading_time, solve_stage
 from impactcli.impact import (
     PLASTIC_SUMMARY_KEYS,
     Split,
@@ -67,11 +67,10 @@ __all__ = [
 #: Result columns of a batch, in order: the elastoplastic summary keys (SI).
 BATCH_KEYS: tuple[str, ...] = PLASTIC_SUMMARY_KEYS
 
-#: Values (rows x (n + 1) nodes) per block of the per-row FILM runs of elastoplastic rows
-#: above the yield velocity: 256 KiB work arrays stay in cache and below the size at which
-#: each new array is fresh memory from the system (measured: 1.5-2.6x faster than blocks
-#: of 2048 rows for n = 25-100).
-FILM_BLOCK = 32768
+#: Values (rows x n segments) per block of the per-row FILM runs of elastoplastic rows above
+#: the yield velocity: 1 MiB work arrays (measured by ``make bench``: faster than blocks of
+#: 2048 rows, 1.5-2.6x for n = 25-100, and than smaller blocks for n in the hundreds).
+FILM_BLOCK = 131072
 
 
 @lru_cache(maxsize=16)
@@ -96,7 +95,8 @@ def plastic_stage_times(
     The same numbers as :func:`impactcli.impact.solve_plan` (to rounding), with O(n) work
     per impact only for the elastic loading:
 
-    - elastic loading 0 -> delta_y: FILM on arrays of shape (impacts, n + 1);
+    - elastic loading 0 -> delta_y: FILM on arrays of shape (impacts, n), the node
+      geometry shared (:func:`impactcli.film.hertz_loading_time`);
     - plastic loading delta_y -> delta_m: the force is linear in delta, so FILM is exact on
       every segment (spec sec. 4, item 5) and one segment gives the time of n;
     - unloading delta_m -> delta_res from rest: a Hertz restitution stage in
@@ -104,8 +104,8 @@ def plastic_stage_times(
       (delta_m - delta_res) / (e V0), e V0 being the speed at separation.
     """
     elastic, plastic_loading, _unloading = plan.stages
-    first = solve_stage(
-        elastic.law, elastic.delta_start, elastic.delta_end, elastic.speed_start, mass, n
+    t_yield = hertz_loading_time(
+        elastic.delta_end, elastic.speed_start, elastic.law.stiffness[..., 0], mass, n
     )
     second = solve_stage(
         plastic_loading.law,
@@ -114,7 +114,7 @@ def plastic_stage_times(
         plastic_loading.speed_start,
         mass,
         1,
-        first.end_time,
+        t_yield,
         end_at_rest=True,
     )
     t_bar_max, t_bar_c = normalised_times(n)

@@ -109,3 +109,38 @@ def test_stage_ending_at_rest_is_insensitive_to_rounding_of_its_end():
     stage = solve_stage(Linear(k), 0.0, ends, v0, m, 25, end_at_rest=True)
     np.testing.assert_allclose(stage.end_time, np.pi / 2 / w, rtol=1e-13)
     assert np.all(stage.velocity[..., -1] == 0.0) and np.all(stage.turning[..., -1])
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    n=st.integers(1, 400),
+    k_h=st.floats(1e6, 1e12),
+    m=st.floats(1e-4, 10.0),
+    ratio=st.floats(1e-3, 0.999),
+)
+def test_hertz_loading_time_equals_solve_stage(n, k_h, m, ratio):
+    """The shared-geometry FILM loading 0 -> delta_e (batch kernel) gives solve_stage's time;
+    ratio = delta_e / delta_m, so the stage ends before the spheres come to rest."""
+    from impactcli.film import hertz_loading_time
+
+    v0 = 1.3
+    delta_e = ratio * (1.25 * m * v0**2 / k_h) ** 0.4
+    ref = solve_stage(Hertz(k_h), 0.0, delta_e, v0, m, n).end_time
+    got = hertz_loading_time(delta_e, v0, k_h, m, n)
+    assert got == pytest.approx(float(ref), rel=1e-12)
+
+
+def test_hertz_loading_time_converges_to_the_integral():
+    """t = int_0^delta_e d delta / sqrt(V0^2 - (4/5)(K/m) delta^2.5), by SciPy quad."""
+    from scipy.integrate import quad
+
+    from impactcli.film import hertz_loading_time
+
+    k_h, m, v0 = 1.6e10, 0.029, 1.0
+    delta_m = (1.25 * m * v0**2 / k_h) ** 0.4
+    delta_e = 0.7 * delta_m
+    exact, _ = quad(lambda d: 1.0 / np.sqrt(v0**2 - 0.8 * k_h / m * d**2.5), 0.0, delta_e,
+                    epsabs=0.0, epsrel=1e-13)  # fmt: skip
+    errors = [abs(hertz_loading_time(delta_e, v0, k_h, m, n) / exact - 1) for n in (10, 20, 40)]
+    assert errors[2] < 1e-6
+    assert errors[0] / errors[1] > 6 and errors[1] / errors[2] > 6  # order about 3

@@ -21,7 +21,7 @@ from typing import IO, Any, Optional
 import numpy as np
 import typer
 
-from impactcli.cli.common import warn
+from impactcli.cli.common import OutputFile, warn
 from impactcli.output import InputError, atomic_output
 
 #: Quantity columns: name -> (kind for :func:`impactcli.units.parse_quantity`, inf allowed).
@@ -763,9 +763,7 @@ def batch(
     source: str = typer.Argument(
         ..., metavar="IN", help="CSV or Parquet table, one collision per row ('-' for stdin)."
     ),
-    output: Optional[str] = typer.Option(
-        None, "--output", "-o", help="Write to this file instead of stdout ('-' is stdout)."
-    ),
+    output: OutputFile = None,
     fmt: Optional[TableFormat] = typer.Option(
         None,
         "--format",

@@ -8,7 +8,16 @@ from typing import IO, Optional
 
 import typer
 
-from impactcli.cli.common import PLOT_HELP, Format, check_plot, console, resolve_format, save_plot
+from impactcli.cli.common import (
+    Format,
+    OutputFile,
+    OutputFormat,
+    PlotFile,
+    check_plot,
+    console,
+    resolve_format,
+    save_plot,
+)
 from impactcli.output import InputError, atomic_output, write_csv, write_json
 
 CONVENTIONS = {
@@ -84,24 +93,9 @@ def collide2d(
         help="Read --a1 and print theta_2 and phi clockwise, as the paper does (alpha_2 and "
         "theta_1 stay counter-clockwise), to reproduce sec. 4.5.3 as printed.",
     ),
-    fmt: Optional[Format] = typer.Option(
-        None,
-        "--format",
-        "-f",
-        help="table (Rich, on a terminal), csv or json. Default: table on a terminal, CSV "
-        "when piped or written with -o (JSON for a .json file).",
-    ),
-    output: Optional[str] = typer.Option(
-        None, "--output", "-o", help="Write to this file instead of stdout ('-' is stdout)."
-    ),
-    plot: Optional[str] = typer.Option(
-        None,
-        "--plot",
-        metavar="FILE",
-        help=PLOT_HELP + " Draws the centres at contact with the velocities before and "
-        "after, and the velocities from one origin with the normal and tangent; the spheres "
-        "too when --d1 and --d2 are given.",
-    ),
+    fmt: OutputFormat = None,
+    output: OutputFile = None,
+    plot: PlotFile = None,
 ) -> None:
     """Oblique 2-D collision of two smooth spheres (paper sec. 4.5, eqs. 17-21).
 
@@ -127,6 +121,9 @@ def collide2d(
     |v1'| = 2.374 m/s at 97.11 deg and |v2'| = 2.263 m/s at -6.26 deg (clockwise).
 
     CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"}.
+    --plot draws the centres at contact with each sphere's velocity before and after (the
+    spheres too when --d1 and --d2 are given), and the four velocities from one origin with
+    the normal and the tangent; angles counter-clockwise from +x.
     """
     import numpy as np
 

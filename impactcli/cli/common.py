@@ -1,11 +1,14 @@
-"""Pieces shared by the commands: output format choice and the Rich console on demand."""
+"""Pieces shared by the commands: the --format/-o/--plot options, the output format choice,
+the Rich console on demand, warnings and figure checks."""
 
 from __future__ import annotations
 
 import enum
 import os
 import sys
-from typing import IO
+from typing import IO, Annotated, Optional
+
+import typer
 
 
 class Format(enum.StrEnum):
@@ -51,6 +54,23 @@ PLOT_HELP = (
     "Also draw the figures to FILE: .png, .svg or .pdf, chosen by the extension "
     "(needs matplotlib: pip install 'impactcli[plot]')."
 )
+
+
+FORMAT_HELP = (
+    "table (Rich, on a terminal), csv or json. Default: table on a terminal, CSV when piped "
+    "or written with -o (JSON for a .json file)."
+)
+OUTPUT_HELP = (
+    "Write to this file instead of stdout ('-' is stdout). Written whole or not at all: a "
+    "failed run leaves no partial file."
+)
+
+#: ``--format/-f``: table, csv or json.
+OutputFormat = Annotated[Optional[Format], typer.Option("--format", "-f", help=FORMAT_HELP)]
+#: ``--output/-o FILE``.
+OutputFile = Annotated[Optional[str], typer.Option("--output", "-o", help=OUTPUT_HELP)]
+#: ``--plot FILE``.
+PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
 
 
 def check_plot(path: str | None) -> None:

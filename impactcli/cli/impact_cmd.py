@@ -9,8 +9,9 @@ import numpy as np
 import typer
 
 from impactcli.cli.common import (
-    PLOT_HELP,
     Format,
+    OutputFile,
+    PlotFile,
     check_plot,
     console,
     note,
@@ -94,8 +95,8 @@ FMT = Annotated[
     Optional[Format],
     typer.Option("--format", "-f", help="table (terminal), csv (the history) or json."),
 ]
-OUT = Annotated[Optional[str], typer.Option("--output", "-o", help="Write to this file.")]
-PLOT = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
+OUT = OutputFile
+PLOT = PlotFile
 
 SUMMARY_UNITS = {
     "contact_time": ("us", 1e6, "contact duration"),

@@ -8,7 +8,16 @@ from typing import IO, Optional
 import numpy as np
 import typer
 
-from impactcli.cli.common import PLOT_HELP, Format, check_plot, console, resolve_format, save_plot
+from impactcli.cli.common import (
+    Format,
+    OutputFile,
+    OutputFormat,
+    PlotFile,
+    check_plot,
+    console,
+    resolve_format,
+    save_plot,
+)
 from impactcli.output import atomic_output, write_csv, write_json
 
 TABLE_TITLES = {
@@ -64,16 +73,8 @@ def tables(
         help="Add the row at the mid-time of the last loading (A1) / first restitution (A2) "
         "segment, as the paper did.",
     ),
-    fmt: Optional[Format] = typer.Option(
-        None,
-        "--format",
-        "-f",
-        help="table (Rich, on a terminal), csv or json. Default: table on a terminal, CSV "
-        "when piped or written with -o (JSON for a .json file).",
-    ),
-    output: Optional[str] = typer.Option(
-        None, "--output", "-o", help="Write to this file instead of stdout ('-' is stdout)."
-    ),
+    fmt: OutputFormat = None,
+    output: OutputFile = None,
 ) -> None:
     """Normalised FILM Tables A1 (loading) and A2 (restitution) of the elastic impact.
 
@@ -151,13 +152,9 @@ def convergence(
         help="Start each segment with the velocity the previous one ends with (the paper's "
         "own scheme) instead of the exact energy balance.",
     ),
-    fmt: Optional[Format] = typer.Option(
-        None, "--format", "-f", help="table, csv or json (default: table on a terminal, else CSV)."
-    ),
-    output: Optional[str] = typer.Option(
-        None, "--output", "-o", help="Write to this file instead of stdout."
-    ),
-    plot: Optional[str] = typer.Option(None, "--plot", metavar="FILE", help=PLOT_HELP),
+    fmt: OutputFormat = None,
+    output: OutputFile = None,
+    plot: PlotFile = None,
 ) -> None:
     """Convergence of FILM: normalised contact duration t_c·V0/δm against the number of
     segments n, its error against the exact 2(2/5)B(2/5,1/2) = 2.9432752 and the observed
