@@ -342,7 +342,7 @@ def batch_impacts(
 
     contact = DuWangContact(radius, modulus, sigma_y, pressure_factor)
     with np.errstate(invalid="ignore"):
-        above = plastic & (v0 > contact.yield_velocity(m))
+        above = plastic & contact.yields(v0, m)
     delta_max, force_max, delta_res, restitution, t_max, t_c = (np.empty_like(v0) for _ in range(6))
 
     # Hertz rows: one normalised FILM solution scaled by delta_m / V0 (spec sec. 3).

@@ -109,6 +109,11 @@ def first_yield_velocity(
     return _hertz_velocity(mass, hertz_stiffness(e, r), delta_y)
 
 
+#: Relative margin above the yield velocity below which an impact counts as elastic
+#: (:meth:`DuWangContact.yields`).
+YIELD_MARGIN = 1e-9
+
+
 @dataclass(frozen=True)
 class StagePlan:
     """One FILM stage of an impact: its force law, ends [m] and start speed [m/s].
@@ -211,6 +216,18 @@ class DuWangContact:
         """V_y = sqrt((2/m)(2/5) K_h delta_y^2.5): below it the impact is elastic, [m/s]."""
         return _hertz_velocity(mass, self.stiffness, self.yield_indentation)
 
+    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray:
+        """True where an impact at V0 is plastic: V0 > V_y (1 + 1e-9), [-].
+
+        Within 1e-9 of V_y the plastic stage delta_y -> delta_m would be only a few ulps
+        long, so FILM's equal steps would collapse to zero length; such an impact is elastic
+        to that accuracy (delta_m - delta_y < 1e-9 delta_y, 1 - e ~ 1e-16). Every caller
+        that splits impacts into elastic and plastic ones uses this test, so that they
+        agree with :meth:`plan`.
+        """
+        v0 = np.asarray(impact_velocity, dtype=float)
+        return v0 > self.yield_velocity(mass) * (1.0 + YIELD_MARGIN)
+
     def plastic_law(self) -> DuWangPlastic:
         return DuWangPlastic(_col(self.radius), _col(self.mean_pressure), _col(self.modulus))
 
@@ -241,14 +258,11 @@ class DuWangContact:
         """Hertz 0 -> delta_y, linear delta_y -> delta_m, unloading delta_m -> delta_res.
 
         Up to the yield velocity (every entry, for a batch) it is the elastic Hertz plan.
-        A batch must be all elastic or all plastic: split it at V0 = V_y (1 + 1e-9).
+        A batch must be all elastic or all plastic: split it with :meth:`yields`.
         """
         v0 = np.asarray(impact_velocity, dtype=float)
         m = np.asarray(mass, dtype=float)
-        # Within 1e-9 of V_y the plastic stage delta_y -> delta_m is only a few ulps long:
-        # FILM's equal steps collapse to zero length and solve_stage fails. Such an impact
-        # is elastic to that accuracy (delta_m - delta_y < 1e-9 delta_y, 1 - e ~ 1e-16).
-        plastic = v0 > self.yield_velocity(m) * (1.0 + 1e-9)
+        plastic = self.yields(v0, m)  # elastic within 1e-9 of V_y: see yields()
         if not np.any(plastic):
             return HertzContact(self.stiffness).plan(v0, m)
         if not np.all(plastic):

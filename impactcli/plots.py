@@ -629,7 +629,8 @@ def restitution_figure(
     permanent_indentation : residual indentation delta_res, [m]; or a mapping label ->
         array to draw several (e.g. ``{"total": ..., "sphere 1": ..., "sphere 2": ...}``)
     title : names the case (spheres, material, model)
-    yield_velocity : V_y, [m/s]; marked on every panel when given
+    yield_velocity : V_y, [m/s]; a dotted line on every panel when within the swept V0, else
+        named in the legends only (a line would stretch the axis away from the data)
     log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more
 
     Returns
@@ -678,12 +679,13 @@ def restitution_figure(
         ax.set_xlabel(f"impact velocity $V_0$ ({vs.unit})")
         ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
         if yield_velocity is not None and np.isfinite(yield_velocity):
-            ax.axvline(
-                yield_velocity / vs.factor,
-                color="0.5",
-                linestyle=":",
-                label=f"yield, $V_y$ = {yield_velocity / vs.factor:.4g} {vs.unit}",
-            )
+            label = f"yield, $V_y$ = {yield_velocity / vs.factor:.4g} {vs.unit}"
+            finite = v0[np.isfinite(v0)]
+            if finite.size and finite.min() <= yield_velocity <= finite.max():
+                ax.axvline(yield_velocity / vs.factor, color="0.5", linestyle=":", label=label)
+            else:  # a line would stretch the axis away from the data: legend only
+                where = "below" if finite.size and yield_velocity < finite.min() else "above"
+                ax.plot([], [], " ", label=f"{label} ({where} this range)")
             ax.legend(fontsize="small")
     fig.suptitle(title, fontsize="large")
     return fig

@@ -59,7 +59,7 @@ def restitution_sweep(
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor)
-    plastic = v0 > contact.yield_velocity(m)
+    plastic = contact.yields(v0, m)
     out = {name: np.zeros_like(v0) for name in SWEEP_COLUMNS}
     for mask, model in ((~plastic, HertzContact(contact.stiffness)), (plastic, contact)):
         if not np.any(mask):

@@ -531,3 +531,22 @@ def test_keep_freed_memory_sets_glibc_thresholds_once():
     glibc = platform.system() == "Linux" and platform.libc_ver()[0] == "glibc"
     assert keep_freed_memory() is glibc
     assert keep_freed_memory() is glibc  # idempotent
+
+
+@pytest.mark.parametrize("margin", [1e-12, 5e-10, 1e-9, 2e-9, 1e-6])
+def test_rows_just_above_the_yield_velocity(margin):
+    """Within 1e-9 of V_y an impact counts as elastic (DuWangContact.yields), in the kernel
+    as in elastoplastic_impact, alone or in a block with an ordinary plastic row."""
+    from impactcli.contact import DuWangContact, effective_mass, effective_modulus, sphere_mass
+
+    m = float(effective_mass(sphere_mass(0.02, 7800.0), sphere_mass(0.04, 7800.0)))
+    modulus = float(effective_modulus(210e9, 0.3, 210e9, 0.3))
+    v_y = float(DuWangContact(1 / 150, modulus, 1e9).yield_velocity(m))  # R = 1/(1/0.01 + 1/0.02)
+    edge = dict(d1=0.02, d2=0.04, v1=v_y * (1 + margin), v2=0.0, model="elastoplastic", sy1=1e9)
+    ordinary = dict(edge, v1=1.0)
+    for rows in ([edge], [edge, ordinary]):
+        out = _kernel(rows)
+        for i, row in enumerate(rows):
+            assert out["error"][i] == ""
+            assert_row_matches({k: out[k][i] for k in BATCH_KEYS}, reference(row))
+    assert _kernel([edge])["restitution"][0] == pytest.approx(1.0, abs=1e-6)

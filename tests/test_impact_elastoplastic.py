@@ -413,3 +413,21 @@ def test_random_impacts_conserve_momentum_and_lose_energy(
         assert out["restitution"] == pytest.approx(ref.restitution(v0), rel=1e-8)
     else:
         assert e == 1.0 and out["delta_res"] == 0.0
+
+
+def test_restitution_sweep_through_the_yield_velocity_equals_single_impacts():
+    """A sweep whose velocities straddle V_y, one within 1e-9 above it (elastic to that
+    accuracy), gives each velocity's elastoplastic_impact."""
+    from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep, sweep_yield_velocity
+
+    s1, s2 = Sphere(0.02, **STEEL), Sphere(0.04, **STEEL)
+    v_y = sweep_yield_velocity(s1, s2)
+    velocities = np.array([0.5 * v_y, v_y * (1 + 1e-12), v_y * (1 + 1e-6), 2.0, 30.0])
+    data = restitution_sweep(s1, s2, velocities)
+    assert list(data["plastic"]) == [0, 0, 1, 1, 1]
+    for i, v0 in enumerate(velocities):
+        summary = elastoplastic_impact(s1, s2, v0, 0.0).summary
+        assert data["restitution"][i] == pytest.approx(summary["restitution"], rel=1e-12)
+        assert data["contact_time"][i] == pytest.approx(summary["contact_time"], rel=1e-12)
+        assert data["delta_res"][i] == pytest.approx(summary["delta_res"], rel=1e-9, abs=1e-20)
+    assert set(SWEEP_COLUMNS) <= set(data)

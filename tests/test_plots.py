@@ -600,3 +600,43 @@ def test_matplotlib_is_imported_only_to_plot(args):
     assert result.stderr.strip().splitlines()[-1] == "False", result.stderr
     if "--help" in args[-1:] and args[0] == "elastic":
         assert "--plot" in result.stdout
+
+
+def test_restitution_yield_velocity_outside_the_sweep_keeps_the_axis_on_the_data():
+    v0 = np.array([50.0, 75.0, 100.0])
+    fig = restitution_figure(v0, [0.6, 0.55, 0.5], [6e-5] * 3, [1e-4, 2e-4, 3e-4],
+                             yield_velocity=0.2566)  # fmt: skip
+    ax = axes_of(fig, "restitution")
+    assert not [ln for ln in ax.lines if ln.get_linestyle() == ":"]
+    lo, hi = ax.get_xlim()
+    assert 40.0 < lo < 50.0 and 100.0 < hi < 110.0
+    assert any("below this range" in label for label in ax.get_legend_handles_labels()[1])
+
+
+def test_cli_collide2d_flat_target_is_plotted_without_spheres(monkeypatch, tmp_path):
+    argv = [
+        "collide2d", "--m1", "0.0326726kg", "--m2", "10kg", "--v1", "1,0", "--v2", "0,0",
+        "--p1", "0,0", "--p2", "30mm,0", "--model", "elastoplastic", "--d1", "20mm",
+        "--d2", "inf", "--material", "steel",
+    ]  # fmt: skip
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.collide2d_cmd",
+        [*argv, "--plot", "c.png", "-o", str(tmp_path / "c")],
+    )
+    from matplotlib.patches import Circle
+
+    assert not [p for ax in fig.axes for p in ax.patches if isinstance(p, Circle)]
+    assert annotation(fig, "v1_after").xy[0] < 0.0  # bounces back off the heavy flat target
+
+
+@pytest.mark.parametrize(
+    "args", [SWEEP, COLLIDE_4_5, ELASTIC_4_3], ids=["restitution", "collide2d", "elastic"]
+)
+def test_plot_to_a_folder_fails_before_any_output(impact, tmp_path, args):
+    (tmp_path / "dir.png").mkdir()
+    out = tmp_path / "o.csv"
+    result = impact(*args, "-o", str(out), "--plot", str(tmp_path / "dir.png"))
+    assert result.returncode == 2 and result.stderr.count("\n") == 1
+    assert "it is a folder" in result.stderr
+    assert not out.exists()

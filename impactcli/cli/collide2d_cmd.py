@@ -205,17 +205,22 @@ def collide2d(
 
 
 def _radii(d1: str | None, d2: str | None) -> tuple[float, float] | None:
-    """(R1, R2) [m] to draw the spheres, when both diameters are given."""
+    """(R1, R2) [m] to draw the spheres: when both diameters are given and finite (a flat
+    target, ``inf``, is not drawn)."""
     from impactcli.units import parse_quantity
 
     if d1 is None or d2 is None:
         return None
     radii = []
     for text, name in ((d1, "--d1"), (d2, "--d2")):
-        value = parse_quantity(text, "length", name)
-        if not (math.isfinite(value) and value > 0.0):
-            raise InputError(f"{name}: a diameter must be a finite length > 0, got {value:g} m")
+        value = parse_quantity(text, "length", name, allow_inf=True)
+        if not value > 0.0:
+            raise InputError(
+                f"{name}: a diameter must be > 0 (or inf for a flat target), got {value:g} m"
+            )
         radii.append(value / 2.0)
+    if not all(math.isfinite(r) for r in radii):
+        return None
     return radii[0], radii[1]
 
 

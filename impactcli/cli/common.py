@@ -75,7 +75,8 @@ PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=
 
 def check_plot(path: str | None) -> None:
     """Fail before any work if ``--plot FILE`` cannot be drawn: a file type other than
-    .png/.svg/.pdf, no matplotlib, or no such folder. One-line :class:`InputError`, exit
+    .png/.svg/.pdf, no matplotlib, no such folder, a folder of that name, or a folder we
+    cannot write to. One-line :class:`InputError`, exit
     status 2."""
     if path is None:
         return
@@ -93,6 +94,10 @@ def check_plot(path: str | None) -> None:
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise InputError(f"--plot: cannot write {path!r}: no folder {folder!r}")
+    if os.path.isdir(path):
+        raise InputError(f"--plot: cannot write {path!r}: it is a folder")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise InputError(f"--plot: cannot write {path!r}: folder {folder!r} is not writable")
 
 
 def save_plot(fig, path: str) -> None:  # fig: matplotlib.figure.Figure
