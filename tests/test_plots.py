@@ -640,3 +640,18 @@ def test_plot_to_a_folder_fails_before_any_output(impact, tmp_path, args):
     assert result.returncode == 2 and result.stderr.count("\n") == 1
     assert "it is a folder" in result.stderr
     assert not out.exists()
+
+
+def test_title_names_an_overridden_modulus(monkeypatch, tmp_path):
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        [*ELASTIC_4_3, "--E2", "70GPa", "--plot", "t.png", "-o", str(tmp_path / "h.csv")],
+    )
+    assert "V2 = 7.5 mm/s, steel, E2 = 70 GPa\n" in fig.get_suptitle()
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        [*SWEEP, "--plot", "r.png", "-o", str(tmp_path / "r.csv")],
+    )
+    assert fig.get_suptitle().endswith("D1 = 20 mm, D2 = 40 mm, steel")

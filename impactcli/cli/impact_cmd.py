@@ -385,13 +385,28 @@ def _case_title(result, p: dict[str, Any]) -> str:
         f"V1 = {q(result.v1, 'm/s')}",
         f"V2 = {q(result.v2, 'm/s')}",
     ]
-    names = [p["material1"] or p["material"], p["material2"] or p["material"]]
-    if names[0] and names[0] == names[1]:
-        parts.append(names[0])
-    else:
-        for i, (name, sphere) in enumerate(zip(names, (s1, s2)), start=1):
-            parts.append(name or f"E{i} = {q(sphere.youngs_modulus, 'Pa')}")
+    parts += _material_parts(p, s1, s2)
     return f"{model} impact {how}: {', '.join(parts)}"
+
+
+def _material_parts(p: dict[str, Any], s1, s2) -> list[str]:
+    """How a figure's title names the spheres' materials: 'steel' when both are the same
+    named material as given; else each sphere's material name, or its E when there is no
+    name or an explicit --E/--E1/--E2 (or nu, rho) changed it."""
+    from impactcli.plots import format_quantity
+
+    names = [p["material1"] or p["material"], p["material2"] or p["material"]]
+    overridden = [
+        any(p.get(k) is not None for k in ("E", f"E{i}", "nu", f"nu{i}", "rho", f"rho{i}"))
+        for i in (1, 2)
+    ]
+    labels = [
+        name if name and not changed else f"E{i} = {format_quantity(s.youngs_modulus, 'Pa')}"
+        for i, (name, changed, s) in enumerate(zip(names, overridden, (s1, s2)), start=1)
+    ]
+    if names[0] and names[0] == names[1] and not any(overridden):
+        return [names[0]]
+    return labels
 
 
 def elastic(
@@ -631,15 +646,11 @@ def _plot_sweep(path: str, data: dict, s1, s2, p0_factor: float, p: dict[str, An
     from impactcli.plots import format_quantity, restitution_figure
     from impactcli.sweep import sweep_yield_velocity
 
-    names = [p["material1"] or p["material"], p["material2"] or p["material"]]
     parts = [
         f"D1 = {format_quantity(s1.diameter, 'm')}",
         f"D2 = {format_quantity(s2.diameter, 'm')}",
+        *_material_parts(p, s1, s2),
     ]
-    if names[0] and names[0] == names[1]:
-        parts.append(names[0])
-    else:
-        parts += [name or f"sphere {i}" for i, name in enumerate(names, start=1)]
     fig = restitution_figure(
         data["impact_velocity"],
         data["restitution"],
