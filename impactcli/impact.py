@@ -44,11 +44,13 @@ __all__ = [
     "Sphere",
     "ImpactResult",
     "elastic_impact",
+    "effective_properties",
     "elastoplastic_impact",
     "impact_summary",
     "plastic_summary",
     "solve_plan",
     "split_fractions",
+    "weaker_yield_strength",
 ]
 
 HISTORY_COLUMNS: tuple[str, ...] = (
@@ -340,7 +342,9 @@ def _validate(
         raise ValueError("at most one sphere can be rigid (infinite Young's modulus)")
 
 
-def _common(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
+def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
+    """Effective mass m [kg], radius R [m] and modulus E* [Pa] of the pair (paper eq. 2,
+    spec sec. 1)."""
     m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
     r = float(effective_radius(sphere1.radius, sphere2.radius))
     e = float(
@@ -354,7 +358,7 @@ def _common(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
     return m, r, e
 
 
-def _yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
+def weaker_yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
     """sigma_y of the sphere that yields first: the lower of the known ones."""
     known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
     return min(known) if known else None
@@ -489,7 +493,7 @@ def _summarise(result: ImpactResult, r: float, e: float) -> dict[str, float]:
         result.film.stages[-2].end_time,
         result.film.end_time,
         result.split_fractions,
-        _yield_strength(result.sphere1, result.sphere2),
+        weaker_yield_strength(result.sphere1, result.sphere2),
     )
     return {key: float(value) for key, value in summary.items()}
 
@@ -521,7 +525,7 @@ def elastic_impact(
     (171.32, -1.0469)
     """
     _validate(sphere1, sphere2, v1, v2, n, split)
-    m, r, e = _common(sphere1, sphere2)
+    m, r, e = effective_properties(sphere1, sphere2)
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
     film = FilmSolution(solve_plan(plan, m, n))
     result = ImpactResult(sphere1, sphere2, v1, v2, plan, film, int(n), split, "elastic")
@@ -560,12 +564,14 @@ def elastoplastic_impact(
     (0.85611, 75.988)
     """
     _validate(sphere1, sphere2, v1, v2, n, split)
-    sigma_y = yield_strength if yield_strength is not None else _yield_strength(sphere1, sphere2)
+    sigma_y = (
+        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
+    )
     if sigma_y is None or not np.isfinite(sigma_y) or sigma_y <= 0:
         raise ValueError("the elastoplastic model needs a positive, finite yield strength")
     if not (np.isfinite(pressure_factor) and pressure_factor > 0):
         raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
-    m, r, e = _common(sphere1, sphere2)
+    m, r, e = effective_properties(sphere1, sphere2)
     contact = DuWangContact(r, e, sigma_y, pressure_factor)
     v0 = v1 + v2
     plan = contact.plan(v0, m)

@@ -22,10 +22,8 @@ save_figure : write a figure to .png, .svg or .pdf atomically
 
 from __future__ import annotations
 
-import contextlib
 import math
 import os
-import tempfile
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -183,7 +181,8 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = 150) -> No
     """Write ``fig`` to ``path`` (.png, .svg or .pdf by extension) atomically.
 
     The image goes to a temporary file in the same folder, which replaces ``path`` only
-    once it is complete: an error never leaves a half-written or clobbered file.
+    once it is complete: an error never leaves a half-written or clobbered file (the
+    atomic writing of every output file, :func:`impactcli.output.atomic_output`).
 
     Parameters
     ----------
@@ -194,23 +193,14 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = 150) -> No
     Raises
     ------
     ValueError
-        Unknown extension.
-    OSError
-        The folder does not exist or is not writable.
+        Unknown extension; or ``path`` is a folder or cannot be written
+        (:class:`impactcli.output.InputError`, from :func:`impactcli.output.atomic_output`).
     """
+    from impactcli.output import atomic_output
+
     fmt = figure_format(path)
-    target = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(target))
-    fd, tmp = tempfile.mkstemp(prefix=".impact-", suffix=f".{fmt}.tmp", dir=folder)
-    try:
-        with os.fdopen(fd, "wb") as stream:
-            fig.savefig(stream, format=fmt, dpi=dpi, metadata=_metadata(fmt))
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, target)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
+    with atomic_output(path, binary=True) as stream:
+        fig.savefig(stream, format=fmt, dpi=dpi, metadata=_metadata(fmt))
 
 
 def _metadata(fmt: str) -> dict[str, str | None]:

@@ -15,11 +15,8 @@ from impactcli.contact import (
     DU_WANG_PRESSURE_FACTOR,
     DuWangContact,
     HertzContact,
-    effective_mass,
-    effective_modulus,
-    effective_radius,
 )
-from impactcli.impact import Sphere, solve_plan
+from impactcli.impact import Sphere, effective_properties, solve_plan, weaker_yield_strength
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
@@ -100,18 +97,10 @@ def _contact(
 ) -> tuple[DuWangContact, float]:
     """The Du & Wang contact of the pair and its effective mass m [kg]; the yield strength
     defaults to the weaker sphere's."""
-    known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
-    sigma_y = yield_strength if yield_strength is not None else (min(known) if known else None)
+    sigma_y = (
+        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
+    )
     if sigma_y is None:
         raise ValueError("the elastoplastic model needs a yield strength")
-    m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
-    r = float(effective_radius(sphere1.radius, sphere2.radius))
-    e = float(
-        effective_modulus(
-            sphere1.youngs_modulus,
-            sphere1.poisson_ratio,
-            sphere2.youngs_modulus,
-            sphere2.poisson_ratio,
-        )
-    )
+    m, r, e = effective_properties(sphere1, sphere2)
     return DuWangContact(r, e, sigma_y, pressure_factor), m

@@ -19,6 +19,7 @@ from impactcli.cli.common import (
     save_plot,
     warn,
 )
+from impactcli.contact import DU_WANG_PRESSURE_FACTOR
 from impactcli.output import InputError, atomic_output, write_csv, write_json
 
 UNITS_HELP = "A bare number is SI; units may be given, e.g. 20mm, 7.5mm/s, 210GPa, 7800kg/m^3."
@@ -97,6 +98,18 @@ FMT = Annotated[
 ]
 OUT = OutputFile
 PLOT = PlotFile
+P0_FACTOR = Annotated[
+    float,
+    typer.Option(
+        "--p0-factor", help="Mean plastic pressure p0 / sigma_y of Du & Wang (2.57), [-]."
+    ),
+]
+
+
+def _check_pressure_factor(value: float) -> None:
+    if not (np.isfinite(value) and value > 0):
+        raise InputError(f"--p0-factor must be a positive number, got {value}")
+
 
 SUMMARY_UNITS = {
     "contact_time": ("us", 1e6, "contact duration"),
@@ -481,10 +494,7 @@ def elastoplastic(
     sy: SY = None,
     sy1: SY1 = None,
     sy2: SY2 = None,
-    p0_factor: Annotated[
-        float,
-        typer.Option("--p0-factor", help="Mean plastic pressure p0 / sigma_y (Du & Wang: 2.57)."),
-    ] = 2.57,
+    p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
     n: N = 25,
     points: POINTS = 201,
     method: METHOD = Method.film,
@@ -505,8 +515,7 @@ def elastoplastic(
     Example (paper sec. 4.4): impact elastoplastic --d1 20mm --d2 40mm --v1 0.25m/s
     --v2 0.75m/s --material steel
     """
-    if not (np.isfinite(p0_factor) and p0_factor > 0):
-        raise InputError(f"--p0-factor must be a positive number, got {p0_factor}")
+    _check_pressure_factor(p0_factor)
     _run("elastoplastic", locals(), p0_factor)
 
 
@@ -539,9 +548,7 @@ def restitution(
     sy: SY = None,
     sy1: SY1 = None,
     sy2: SY2 = None,
-    p0_factor: Annotated[
-        float, typer.Option("--p0-factor", help="p0 / sigma_y (Du & Wang: 2.57).")
-    ] = 2.57,
+    p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
     n: N = 25,
     split: SPLIT = Split.mass,
     fmt: FMT = None,
@@ -568,8 +575,7 @@ def restitution(
     lo, hi = _velocity(v_min, "--v-min"), _velocity(v_max, "--v-max")
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
-    if not (np.isfinite(p0_factor) and p0_factor > 0):
-        raise InputError(f"--p0-factor must be a positive number, got {p0_factor}")
+    _check_pressure_factor(p0_factor)
     p.update(v1=None, v2=None)
     s1, s2 = _sphere(1, p), _sphere(2, p)
     if s1.yield_strength is None and s2.yield_strength is None:
