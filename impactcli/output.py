@@ -16,16 +16,14 @@ from typing import IO, Any
 
 import numpy as np
 
-__all__ = ["InputError", "atomic_output", "to_jsonable", "write_csv", "write_json", "CSV_FLOAT"]
+from impactcli.errors import InputError
+
+__all__ = ["atomic_output", "to_jsonable", "write_csv", "write_json", "CSV_FLOAT"]
 
 #: printf format of floats in CSV: enough digits to round-trip the tables' content.
 CSV_FLOAT = "%.12g"
 
 _CHUNK_ROWS = 20_000
-
-
-class InputError(ValueError):
-    """Bad user input: reported as one line on stderr with exit status 2."""
 
 
 @contextlib.contextmanager

@@ -8,11 +8,11 @@ module import, so ``import impactcli.plots`` and ``impact --help`` stay light.
 
 Every line that carries data has a ``gid`` naming it (``"d1"``, ``"p1+p2"``, ``"n=5"``, ...):
 ``[l for ax in fig.axes for l in ax.lines if l.get_gid() == "d1"]`` finds it, and its data
-are the input divided by the axis' :class:`UnitScale` factor.
+are the input divided by the axis'
+:class:`~impactcli.formatting.UnitScale` factor.
 
 Functions
 ---------
-unit_scale : the SI prefix that suits a set of values (one helper for every axis label)
 impact_figure : histories of one normal impact (paper Figs. 4-11) and its force-indentation loop
 convergence_figure : FILM indentation histories for several n (Fig. 3) and the contact-time error
 restitution_figure : a sweep over impact velocity: restitution, contact time, permanent indentation
@@ -22,14 +22,14 @@ save_figure : write a figure to .png, .svg or .pdf atomically
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from impactcli.formatting import UnitScale, format_quantity, unit_scale
 
 if TYPE_CHECKING:  # pragma: no cover - typing only; matplotlib is optional
     from matplotlib.axes import Axes
@@ -38,16 +38,13 @@ if TYPE_CHECKING:  # pragma: no cover - typing only; matplotlib is optional
 __all__ = [
     "FIGURE_FORMATS",
     "MISSING_MATPLOTLIB",
-    "UnitScale",
     "collision2d_figure",
     "convergence_figure",
     "figure_format",
-    "format_quantity",
     "impact_figure",
     "require_matplotlib",
     "restitution_figure",
     "save_figure",
-    "unit_scale",
 ]
 
 #: File extension -> matplotlib format name.
@@ -58,90 +55,8 @@ MISSING_MATPLOTLIB = (
     "plotting needs matplotlib, which is not installed: pip install 'impactcli[plot]'"
 )
 
-_PREFIXES: dict[int, str] = {
-    -12: "p",
-    -9: "n",
-    -6: "µ",
-    -3: "m",
-    0: "",
-    3: "k",
-    6: "M",
-    9: "G",
-}
-
 SPHERE_COLOURS = ("tab:blue", "tab:orange")
 TOTAL_COLOUR = "black"
-
-# -- units ------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class UnitScale:
-    """A unit with an SI prefix: plotted value = SI value / ``factor``.
-
-    Attributes
-    ----------
-    factor : the prefix's power of ten, e.g. 1e-6 for µm, [-]
-    unit : the prefixed unit, e.g. ``"µm"``
-    """
-
-    factor: float
-    unit: str
-
-
-def unit_scale(values: ArrayLike | Sequence[ArrayLike], unit: str) -> UnitScale:
-    """The SI prefix that puts the largest finite ``|value|`` in [1, 1000).
-
-    One prefix serves all the values given, so series that share an axis share a unit.
-    Prefixes run from p (1e-12) to G (1e9); all-zero or non-finite data keep the bare unit.
-
-    Parameters
-    ----------
-    values : one array, or several (ragged) arrays, in the SI ``unit``
-    unit : the SI unit, e.g. ``"m"``, ``"s"``, ``"m/s"``, ``"N"``, ``"N·s"``
-
-    Examples
-    --------
-    >>> unit_scale([0.0, 1.7132e-4], "s")
-    UnitScale(factor=1e-06, unit='µs')
-    >>> unit_scale([[0.005, -0.0172], [0.0075]], "m/s")
-    UnitScale(factor=0.001, unit='mm/s')
-    >>> unit_scale([0.0], "N").unit
-    'N'
-    """
-    flat = _magnitudes(values)
-    flat = flat[np.isfinite(flat)]
-    peak = float(flat.max()) if flat.size else 0.0
-    if peak == 0.0:
-        return UnitScale(1.0, unit)
-    power = 3 * math.floor(math.log10(peak) / 3 + 1e-9)
-    power = min(max(power, min(_PREFIXES)), max(_PREFIXES))
-    return UnitScale(10.0**power, _PREFIXES[power] + unit)
-
-
-def _magnitudes(values: ArrayLike | Sequence[ArrayLike]) -> NDArray:
-    """All |values| in one flat array; ``values`` may be ragged (several arrays)."""
-    try:
-        return np.abs(np.asarray(values, dtype=float)).ravel()
-    except ValueError:  # ragged: one array per series
-        return np.concatenate([_magnitudes(v) for v in values])
-
-
-def format_quantity(value: float, unit: str, digits: int = 4) -> str:
-    """``value`` [SI ``unit``] as text with a suitable prefix, e.g. ``"7.5 mm/s"``.
-
-    Examples
-    --------
-    >>> format_quantity(0.0075, "m/s")
-    '7.5 mm/s'
-    >>> format_quantity(float("inf"), "m")
-    'inf m'
-    """
-    if not np.isfinite(value):
-        return f"{value} {unit}"
-    scale = unit_scale([value], unit)
-    return f"{value / scale.factor:.{digits}g} {scale.unit}"
-
 
 # -- files ------------------------------------------------------------------------------
 

@@ -2,7 +2,7 @@
 
 A bare number is SI (``0.02`` is 0.02 m for a length) and is read without importing pint;
 anything with a unit (``20mm``, ``7.5 mm/s``, ``210GPa``, ``7800 kg/m^3``, ``-30deg``) goes
-through pint. A quantity of the wrong kind is an :class:`~impactcli.output.InputError`
+through pint. A quantity of the wrong kind is an :class:`~impactcli.errors.InputError`
 that names the kind expected.
 """
 
@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from impactcli.output import InputError
+from impactcli.errors import InputError
 
 __all__ = ["KINDS", "parse_quantity", "parse_vector"]
 

@@ -14,17 +14,15 @@ import sys
 import numpy as np
 import pytest
 
+from impactcli.formatting import UnitScale, format_quantity, unit_scale
 from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
 from impactcli.plots import (
-    UnitScale,
     collision2d_figure,
     convergence_figure,
     figure_format,
-    format_quantity,
     impact_figure,
     restitution_figure,
     save_figure,
-    unit_scale,
 )
 from tests.conftest import ROOT
 

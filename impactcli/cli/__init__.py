@@ -10,7 +10,7 @@ import sys
 
 import typer
 
-from impactcli.output import InputError
+from impactcli.errors import InputError
 
 app = typer.Typer(
     name="impact",

@@ -22,7 +22,8 @@ import numpy as np
 import typer
 
 from impactcli.cli.common import OutputFile, warn
-from impactcli.output import InputError, atomic_output
+from impactcli.errors import InputError
+from impactcli.output import atomic_output
 
 #: Quantity columns: name -> (kind for :func:`impactcli.units.parse_quantity`, inf allowed).
 #: ``E``, ``nu``, ``rho``, ``sy`` apply to both spheres; ``E1``... to one, and win.

@@ -18,7 +18,8 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
-from impactcli.output import InputError, atomic_output, write_csv, write_json
+from impactcli.errors import InputError
+from impactcli.output import atomic_output, write_csv, write_json
 
 CONVENTIONS = {
     False: "angles counter-clockwise from +x",

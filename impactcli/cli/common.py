@@ -80,7 +80,7 @@ def check_plot(path: str | None) -> None:
     status 2."""
     if path is None:
         return
-    from impactcli.output import InputError
+    from impactcli.errors import InputError
     from impactcli.plots import figure_format, require_matplotlib
 
     try:
@@ -102,7 +102,7 @@ def check_plot(path: str | None) -> None:
 
 def save_plot(fig, path: str) -> None:  # fig: matplotlib.figure.Figure
     """Write ``fig`` to ``path`` atomically; an unwritable path is a one-line InputError."""
-    from impactcli.output import InputError
+    from impactcli.errors import InputError
     from impactcli.plots import save_figure
 
     try:

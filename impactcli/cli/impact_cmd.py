@@ -20,7 +20,8 @@ from impactcli.cli.common import (
     warn,
 )
 from impactcli.contact import DU_WANG_PRESSURE_FACTOR
-from impactcli.output import InputError, atomic_output, write_csv, write_json
+from impactcli.errors import InputError
+from impactcli.output import atomic_output, write_csv, write_json
 
 UNITS_HELP = "A bare number is SI; units may be given, e.g. 20mm, 7.5mm/s, 210GPa, 7800kg/m^3."
 SIGN_HELP = (
@@ -326,7 +327,7 @@ HISTORY_UNITS = {
 def _print(stream: IO[str] | None, result, history: dict, check) -> None:
     from rich.table import Table
 
-    from impactcli.plots import unit_scale
+    from impactcli.formatting import unit_scale
 
     out = console(stream)
     title = (
@@ -380,7 +381,7 @@ def _plot(path: str, result, history: dict, p: dict[str, Any]) -> None:
 
 def _case_title(result, p: dict[str, Any]) -> str:
     """E.g. 'Elastic (Hertz) impact by FILM, n = 25: D1 = 20 mm, ..., steel'."""
-    from impactcli.plots import format_quantity
+    from impactcli.formatting import format_quantity
 
     def q(value: float, unit: str) -> str:  # the inputs as given: 100.0125 m/s, not 100
         return format_quantity(value, unit, digits=12)
@@ -406,7 +407,7 @@ def _material_parts(p: dict[str, Any], s1, s2) -> list[str]:
     """How a figure's title names the spheres' materials: 'steel' when both are the same
     named material as given; else each sphere's material name, or its E when there is no
     name or an explicit --E/--E1/--E2 (or nu, rho) changed it."""
-    from impactcli.plots import format_quantity
+    from impactcli.formatting import format_quantity
 
     names = [p["material1"] or p["material"], p["material2"] or p["material"]]
     overridden = [
@@ -649,7 +650,8 @@ def restitution(
 
 def _plot_sweep(path: str, data: dict, s1, s2, p0_factor: float, p: dict[str, Any]) -> None:
     """e, contact time and permanent indentation against V0, written to ``path``."""
-    from impactcli.plots import format_quantity, restitution_figure
+    from impactcli.formatting import format_quantity
+    from impactcli.plots import restitution_figure
     from impactcli.sweep import sweep_yield_velocity
 
     parts = [

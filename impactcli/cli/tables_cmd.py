@@ -163,7 +163,7 @@ def convergence(
     --plot draws the paper's Fig. 3, the indentation history δ/δm against t·V0/δm for
     several n (all of them if six or fewer, else the five smallest and the largest), and
     the contact-time error against n on log-log axes."""
-    from impactcli.output import InputError
+    from impactcli.errors import InputError
     from impactcli.tables import EXACT_CONTACT_DURATION
     from impactcli.tables import convergence as run
 
