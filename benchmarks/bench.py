@@ -10,7 +10,7 @@
 (b) ``impact batch`` throughput, collisions per second, for 10^5 and 10^6 rows, elastic and
     elastoplastic: the kernel alone (``batch_impacts`` in chunks of 10^5 rows) and end to
     end (``impact batch in.csv -o out.csv`` in a new process, start-up included). The
-    kernel runs with freed memory kept (:func:`impactcli.allocator.keep_freed_memory`), as
+    kernel runs with freed memory kept (:func:`impactcli.io.allocator.keep_freed_memory`), as
     in ``impact batch``; 10^5 rows are also timed first with glibc's default settings.
 (c) ``impact tables --n 1000000`` to a CSV file.
 (d) Cold start of ``impact tables --n 25`` against ``python -c "import numpy"``.
@@ -40,7 +40,6 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from impactcli.allocator import keep_freed_memory  # noqa: E402
 from impactcli.batch import batch_impacts, normalised_times  # noqa: E402
 from impactcli.contact import (  # noqa: E402
     DuWangContact,
@@ -52,6 +51,7 @@ from impactcli.contact import (  # noqa: E402
     sphere_mass,
 )
 from impactcli.impact import solve_plan  # noqa: E402
+from impactcli.io.allocator import keep_freed_memory  # noqa: E402
 from impactcli.tables import EXACT_CONTACT_DURATION  # noqa: E402
 
 #: Contact-time accuracies at which FILM and solve_ivp are compared (relative error).

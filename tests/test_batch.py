@@ -526,7 +526,7 @@ def test_plastic_stage_times_equal_the_three_film_stages(n):
 def test_keep_freed_memory_sets_glibc_thresholds_once():
     import platform
 
-    from impactcli.allocator import keep_freed_memory
+    from impactcli.io.allocator import keep_freed_memory
 
     glibc = platform.system() == "Linux" and platform.libc_ver()[0] == "glibc"
     assert keep_freed_memory() is glibc

@@ -1,0 +1,27 @@
+"""Tables of collisions: the table layer of ``impact batch``, usable from Python.
+
+- :mod:`impactcli.io.table`: :func:`~impactcli.io.table.compute_frame`, the pure function
+  from a chunk of rows (a pandas DataFrame of input columns: SI numbers or strings with
+  units, materials, the model of each row) to its result columns; what both engines map.
+- :mod:`impactcli.io.readers` and :mod:`impactcli.io.writers`: CSV and Parquet in chunks
+  (pyarrow).
+- :mod:`impactcli.io.engines`: :func:`~impactcli.io.engines.run_numpy` (a stream of chunks
+  in this process) and :func:`~impactcli.io.engines.run_dask` (a Dask DataFrame's
+  partitions), file to file.
+- :mod:`impactcli.io.allocator`: keep freed memory for the next chunk (glibc).
+
+pandas, pyarrow and dask are imported inside the functions that need them.
+"""
+
+from __future__ import annotations
+
+__all__ = ["compute_frame"]
+
+
+def __getattr__(name: str):
+    """``impactcli.io.compute_frame``, imported on first use."""
+    if name == "compute_frame":
+        from impactcli.io.table import compute_frame
+
+        return compute_frame
+    raise AttributeError(f"module 'impactcli.io' has no attribute {name!r}")

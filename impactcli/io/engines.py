@@ -1,0 +1,284 @@
+"""The two engines of ``impact batch``: many collisions from a table file to a table file.
+
+:func:`run_numpy` streams the chunks of a CSV or Parquet file in this process;
+:func:`run_dask` maps the same per-chunk function (:func:`impactcli.io.table.compute_frame`,
+through :func:`~impactcli.io.table.dask_partition`) over the partitions of a Dask
+DataFrame. Both write the output whole or not at all and return a :class:`BatchReport` of
+the invalid rows; printing it, and any progress bar, is the caller's.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import AbstractContextManager, nullcontext
+
+import numpy as np
+
+from impactcli.errors import InputError
+from impactcli.io.readers import (
+    PARQUET_SUFFIXES,
+    compute_input,
+    first_line,
+    open_source,
+    open_stream,
+)
+from impactcli.io.table import (
+    MAX_ROW_WARNINGS,
+    NULL_VALUES,
+    QUANTITY_COLUMNS,
+    TEXT_COLUMNS,
+    RowError,
+    check_columns,
+    compute_frame,
+    dask_partition,
+    partition_errors,
+)
+from impactcli.io.writers import TableFormat, TableSink, output_schema, result_batch
+from impactcli.output import atomic_output
+
+__all__ = ["BatchReport", "run_dask", "run_numpy"]
+
+
+class BatchReport:
+    """Invalid rows of a run: the first :data:`~impactcli.io.table.MAX_ROW_WARNINGS` as
+    lines ``row N: reason`` (rows count from 1 after the header), and their count.
+
+    With ``strict``, the first invalid row raises :class:`~impactcli.errors.InputError`.
+    """
+
+    def __init__(self, strict: bool) -> None:
+        self.strict = strict
+        self.rows = 0
+        self.invalid = 0
+        self.lines: list[str] = []
+
+    def add(self, errors: np.ndarray, offset: int = 0, rows: np.ndarray | None = None) -> None:
+        """Errors of a chunk; ``rows`` are their 0-based rows if ``errors`` holds only them."""
+        if rows is None:
+            rows = np.flatnonzero(errors != "")
+            errors = errors[rows]
+        if rows.size and self.strict:
+            raise InputError(f"row {offset + int(rows[0]) + 1}: {errors[0]}")
+        self.invalid += rows.size
+        room = MAX_ROW_WARNINGS - len(self.lines)
+        for row, message in zip(rows[:room].tolist(), errors[:room].tolist()):
+            self.lines.append(f"row {offset + row + 1}: {message}")
+
+    def summary(self) -> str | None:
+        """The closing line: how many rows were invalid (None when none was)."""
+        if not self.invalid:
+            return None
+        more = self.invalid - len(self.lines)
+        tail = f"; {more} more not listed" if more > 0 else ""
+        return (
+            f"{self.invalid} of {self.rows} rows invalid (reason in the error column; "
+            f"rows count from 1 after the header){tail}"
+        )
+
+
+def run_numpy(
+    path: str,
+    output: str | None,
+    fmt: TableFormat = TableFormat.csv,
+    *,
+    n: int = 25,
+    split: str = "mass",
+    model: str | None = None,
+    strict: bool = False,
+    rows: int = 100_000,
+    progress: Callable[[int, int | None], None] | None = None,
+) -> BatchReport:
+    """Compute every row of the table at ``path`` (CSV or Parquet, ``-`` for stdin) and
+    write the input columns with the results to ``output`` (``None`` or ``-`` for stdout),
+    ``rows`` rows at a time, so memory stays bounded.
+
+    ``n``, ``split`` and ``model`` are as for :func:`~impactcli.io.table.compute_frame`;
+    ``progress(rows_done, rows_expected)`` is called after each chunk (``rows_expected``
+    is an estimate for CSV, None on stdin).
+    """
+    stream = open_stream(path)
+    report = BatchReport(strict)
+    try:
+        source = open_source(path, stream, model, rows)
+        used = [c for c in source.schema.names if c in QUANTITY_COLUMNS or c in TEXT_COLUMNS]
+        schema = output_schema(source.schema)
+        with (
+            atomic_output(output, binary=True) as out,
+            ThreadPoolExecutor(max_workers=1) as writer,
+        ):
+            if progress:
+                progress(0, source.rows)
+            sink = TableSink(out, schema, fmt)
+            # One chunk is written (pyarrow, without the GIL) while the next is computed.
+            writing = None
+            for batch in source.batches:
+                result = compute_frame(compute_input(batch, used), n=n, split=split, model=model)
+                report.add(result["error"], report.rows)
+                if writing is not None:
+                    writing.result()
+                writing = writer.submit(sink.write, result_batch(batch, result, schema))
+                report.rows += batch.num_rows
+                if progress:
+                    progress(report.rows, source.rows and max(source.rows, report.rows + 1))
+            if writing is not None:
+                writing.result()
+            sink.close()
+            if progress:
+                progress(report.rows, report.rows)
+    finally:
+        if stream is not sys.stdin.buffer:
+            stream.close()
+    return report
+
+
+# -- the Dask engine ----------------------------------------------------------------------
+
+
+def _is_url(path: str) -> bool:
+    return "://" in path
+
+
+def _dask_scheduler(scheduler: str | None):
+    """(compute keyword, client to close): threads by default, ``local`` for a
+    LocalCluster, an address (tcp://host:8786) for a running distributed cluster."""
+    if scheduler in (None, "threads", "synchronous", "processes"):
+        return {"scheduler": scheduler or "threads"}, None
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise InputError(
+            f"--scheduler {scheduler}: needs dask.distributed: pip install 'impactcli[dask]'"
+        ) from None
+    if scheduler == "local":
+        cluster = LocalCluster(
+            n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=None
+        )
+        return {}, Client(cluster)
+    try:
+        return {}, Client(scheduler, timeout="10s")
+    except OSError as exc:
+        raise InputError(f"--scheduler {scheduler}: {first_line(exc)}") from None
+
+
+def run_dask(
+    path: str,
+    output: str,
+    fmt: TableFormat = TableFormat.csv,
+    *,
+    n: int = 25,
+    split: str = "mass",
+    model: str | None = None,
+    strict: bool = False,
+    rows: int = 100_000,
+    progress: Callable[[], AbstractContextManager] | None = None,
+    scheduler: str | None = None,
+) -> BatchReport:
+    """As :func:`run_numpy` on a Dask DataFrame: files, folders of Parquet parts or URLs in
+    and out, :func:`~impactcli.io.table.dask_partition` mapped over the partitions.
+
+    ``rows`` sets the CSV block size (about 100 bytes a row); ``scheduler`` is ``threads``
+    (default), ``processes``, ``synchronous``, ``local`` (a LocalCluster) or the address of
+    a distributed scheduler; ``progress()`` gives a context manager (e.g. dask's
+    ``ProgressBar``) entered around the computation on a local scheduler. A local output
+    is written in a new private folder beside it and moved into place when complete.
+    """
+    import pandas as pd
+
+    try:
+        import dask
+        import dask.dataframe as dd
+    except ImportError:
+        raise InputError("--engine dask needs dask: pip install 'impactcli[dask]'") from None
+    if path == "-" or output in (None, "-"):
+        raise InputError(
+            "--engine dask reads and writes files or URLs, not stdin/stdout: give IN and -o OUT"
+        )
+    parquet = path.lower().endswith(PARQUET_SUFFIXES) or os.path.isdir(path)
+    if not parquet and not _is_url(path) and os.path.isfile(path):
+        with open(path, "rb") as handle:
+            parquet = handle.read(4) == b"PAR1"
+    try:
+        if parquet:
+            ddf = dd.read_parquet(path)
+        else:
+            ddf = dd.read_csv(
+                path,
+                dtype=str,
+                na_values=list(NULL_VALUES),
+                keep_default_na=False,
+                blocksize=max(rows * 100, 1 << 20),
+            )
+    except (OSError, ValueError) as exc:
+        raise InputError(f"{path}: {first_line(exc)}") from None
+    ddf = ddf.rename(columns={c: c.strip() for c in ddf.columns})
+    check_columns(list(ddf.columns), model)
+    options = {"n": n, "split": split, "model": model}
+    meta = dask_partition(ddf._meta, **options)
+    out = ddf.map_partitions(dask_partition, **options, strict=strict, meta=meta)
+
+    local = not _is_url(output)
+    target = os.path.realpath(output) if local else output
+    if local and os.path.isdir(target):
+        raise InputError(f"{output!r} is a directory: remove it or choose another OUT")
+    if local and os.path.exists(target) and not os.path.isfile(target):
+        local = False  # a device or a pipe (/dev/null): written in place, never replaced
+    write_to, stage = target, None
+    if local:  # a new private folder beside the target (mkdtemp: no name race)
+        import tempfile
+
+        try:
+            stage = tempfile.mkdtemp(prefix=".impact-", dir=os.path.dirname(target))
+        except OSError as exc:
+            raise InputError(f"cannot write {output!r}: {exc.strerror or exc}") from None
+        write_to = os.path.join(stage, os.path.basename(target))
+    if fmt is TableFormat.parquet:
+        write = out.to_parquet(write_to, write_index=False, compute=False)
+    else:
+        write = out.to_csv(write_to, single_file=True, index=False, compute=False)
+    # The error summary reuses the partitions the writer computes (the same graph keys):
+    # expressions beside to_parquet's expression, delayed objects beside to_csv's delayed.
+    if fmt is TableFormat.csv:
+        infos = [
+            dask.delayed(partition_errors)(part, partition_info={"number": i})
+            for i, part in enumerate(out.to_delayed())
+        ]
+    else:
+        infos = [out.map_partitions(partition_errors, meta=partition_errors(meta.iloc[:0]))]
+    kwargs, client = _dask_scheduler(scheduler)
+    report = BatchReport(strict=False)
+    try:
+        bar = progress() if progress is not None and client is None else nullcontext()
+        with bar:
+            _, *parts = dask.compute(write, *infos, **kwargs)
+        info = pd.concat(parts, ignore_index=True)
+        offset = 0
+        for _, part in info.groupby("partition", sort=True):
+            first = part.iloc[0]
+            listed = part[part["row"] >= 0]
+            rows = listed["row"].to_numpy()
+            report.add(listed["error"].to_numpy(dtype=object), offset, rows)
+            report.invalid += int(first["invalid"]) - rows.size
+            offset += int(first["length"])
+        report.rows = offset
+        if local:
+            os.replace(write_to, target)
+    except RowError as exc:
+        offset = 0
+        if exc.partition:  # the rows of the partitions before it
+            lengths = ddf.partitions[: exc.partition].map_partitions(len)
+            offset = int(lengths.compute(**kwargs).sum())
+        raise InputError(f"row {offset + exc.row + 1}: {exc.reason}") from None
+    finally:
+        if stage is not None:
+            import shutil
+
+            shutil.rmtree(stage, ignore_errors=True)
+        if client is not None:
+            cluster = getattr(client, "cluster", None)
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    return report

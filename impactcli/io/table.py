@@ -1,0 +1,311 @@
+"""The table layer of ``impact batch``: columns of a chunk of rows -> SI arrays -> summaries.
+
+:func:`compute_frame` is the public, pure per-chunk function: a pandas DataFrame of input
+columns (numbers in SI or strings with units, materials, the model of each row) in, the
+result columns (:func:`output_columns`) out, through the kernel
+:func:`impactcli.batch.batch_impacts`. Both engines map it (:mod:`impactcli.io.engines`):
+the NumPy engine over the chunks of a stream, the Dask engine over the partitions of a
+Dask DataFrame (:func:`dask_partition`); a Dask worker imports this module and the
+physics, never the command line. pandas is imported inside the functions.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from impactcli.errors import InputError
+
+__all__ = [
+    "MAX_ROW_WARNINGS",
+    "MODELS",
+    "NULL_VALUES",
+    "QUANTITY_COLUMNS",
+    "REQUIRED_COLUMNS",
+    "TEXT_COLUMNS",
+    "RowError",
+    "check_columns",
+    "compute_frame",
+    "dask_partition",
+    "output_columns",
+    "partition_errors",
+]
+
+#: Quantity columns: name -> (kind for :func:`impactcli.units.parse_quantity`, inf allowed).
+#: ``E``, ``nu``, ``rho``, ``sy`` apply to both spheres; ``E1``... to one, and win.
+QUANTITY_COLUMNS: dict[str, tuple[str, bool]] = {
+    "d1": ("length", False),
+    "d2": ("length", True),
+    "v1": ("velocity", False),
+    "v2": ("velocity", False),
+    "E": ("pressure", True),
+    "E1": ("pressure", True),
+    "E2": ("pressure", True),
+    "nu": ("dimensionless", False),
+    "nu1": ("dimensionless", False),
+    "nu2": ("dimensionless", False),
+    "rho": ("density", False),
+    "rho1": ("density", False),
+    "rho2": ("density", False),
+    "m1": ("mass", False),
+    "m2": ("mass", True),
+    "sy": ("pressure", False),
+    "sy1": ("pressure", False),
+    "sy2": ("pressure", False),
+}
+TEXT_COLUMNS: tuple[str, ...] = ("model", "material", "material1", "material2")
+REQUIRED_COLUMNS: tuple[str, ...] = ("d1", "d2", "v1", "v2")
+MODELS: tuple[str, ...] = ("elastic", "elastoplastic")
+#: Cells read as missing, in CSV input (both engines).
+NULL_VALUES: tuple[str, ...] = ("", "NA", "N/A", "NaN", "nan", "NULL", "null", "None")
+#: Warnings printed for invalid rows before the count alone is reported.
+MAX_ROW_WARNINGS = 20
+
+
+class RowError(ValueError):
+    """An invalid row under ``--strict``: ``(row within its chunk, 0-based; reason)``."""
+
+    def __init__(self, row: int, reason: str, partition: int | None = None) -> None:
+        super().__init__(row, reason, partition)
+        self.row, self.reason, self.partition = row, reason, partition
+
+
+def output_columns() -> tuple[str, ...]:
+    """Columns added after the input ones: the summary keys (SI), then ``error``."""
+    from impactcli.batch import BATCH_KEYS
+
+    return (*BATCH_KEYS, "error")
+
+
+def check_columns(names: Sequence[str], model: str | None) -> None:
+    """Reject a table whose header cannot give any valid row (one line, exit 2)."""
+    present = set(names)
+    if len(present) != len(names):
+        dup = sorted({c for c in names if list(names).count(c) > 1})
+        raise InputError(f"duplicate input column(s): {', '.join(dup)}")
+    missing = [c for c in REQUIRED_COLUMNS if c not in present]
+    if missing:
+        raise InputError(
+            f"missing input column(s) {', '.join(missing)}; each row needs d1, d2, v1, v2, "
+            "model, and material (or material1, material2) or E1, nu1, rho1, E2, nu2, rho2"
+        )
+    if "model" not in present and model is None:
+        raise InputError("missing input column model (elastic or elastoplastic); or give --model")
+    for i in (1, 2):
+        if not present & {"material", f"material{i}", "E", f"E{i}"}:
+            raise InputError(
+                f"nothing gives sphere {i}'s material: add a column material, material{i}, "
+                f"or E{i}, nu{i}, rho{i}"
+            )
+    clash = [c for c in output_columns() if c in present]
+    if clash:
+        shown = ", ".join(clash[:3]) + (f" and {len(clash) - 3} more" if len(clash) > 3 else "")
+        raise InputError(
+            f"input column(s) {shown} clash with output columns: rename or drop them "
+            "(is this the output of impact batch?)"
+        )
+
+
+def _quantity_column(series, kind: str, name: str, allow_inf: bool):
+    """SI floats of one column (NaN where empty) and each row's parse error (or "")."""
+    import pandas as pd
+
+    from impactcli.units import parse_quantity
+
+    size = len(series)
+    errors = np.full(size, "", dtype=object)
+    if pd.api.types.is_bool_dtype(series.dtype):
+        series = series.astype("string")
+    if pd.api.types.is_numeric_dtype(series.dtype):
+        values = np.array(series.to_numpy(dtype=float, na_value=np.nan))
+    else:
+        numbers = pd.to_numeric(series, errors="coerce")
+        values = np.array(numbers.to_numpy(dtype=float, na_value=np.nan))
+        text = np.flatnonzero(np.isnan(values) & series.notna().to_numpy())
+        if text.size:  # units: parse each distinct string once
+            cells = series.iloc[text].astype(str)
+            parsed: dict[str, tuple[float, str]] = {}
+            for cell in pd.unique(cells):
+                try:
+                    parsed[cell] = (parse_quantity(cell, kind, name, allow_inf), "")
+                except InputError as exc:
+                    parsed[cell] = (np.nan, str(exc))
+            found = [parsed[c] for c in cells.tolist()]
+            values[text] = [v for v, _ in found]
+            errors[text] = [e for _, e in found]
+    if not allow_inf:
+        inf = np.flatnonzero(np.isinf(values))
+        errors[inf] = [f"{name}: must be finite, got {v:g}" for v in values[inf].tolist()]
+        values[inf] = np.nan
+    return values, errors
+
+
+class _Errors:
+    """The first error of each row of a chunk."""
+
+    def __init__(self, size: int) -> None:
+        self.messages = np.full(size, "", dtype=object)
+        self.bad = np.zeros(size, dtype=bool)
+
+    def add(self, failed: np.ndarray, message: str | np.ndarray) -> None:
+        """Rows where ``failed`` get ``message`` (one string, or one per row) if still valid."""
+        new = np.flatnonzero(failed & ~self.bad)
+        if new.size:
+            self.bad[new] = True
+            self.messages[new] = message if isinstance(message, str) else message[new]
+
+    def add_messages(self, messages: np.ndarray) -> None:
+        """Rows with a non-empty message in ``messages`` get it if still valid."""
+        self.add(messages != "", messages)
+
+
+def _text_column(frame, name: str, size: int, lower: bool = False) -> np.ndarray:
+    """A text column as an object array, None where empty (all None if absent)."""
+    if name not in frame.columns:
+        return np.full(size, None, dtype=object)
+    column = frame[name].astype("string").str.strip()
+    if lower:
+        column = column.str.lower()
+    return column.astype(object).where(column.notna() & (column != ""), None).to_numpy()
+
+
+def compute_frame(
+    frame, n: int = 25, split: str = "mass", model: str | None = None
+) -> dict[str, np.ndarray]:
+    """The result columns of a chunk of rows (a pandas DataFrame of input columns).
+
+    Parameters
+    ----------
+    frame : the chunk; columns as :data:`QUANTITY_COLUMNS` (numbers in SI or strings with
+        units) and :data:`TEXT_COLUMNS`; others are ignored
+    n : FILM segments per stage
+    split : ``mass`` or ``compliance`` share of the indentation between the spheres
+    model : model of the rows whose ``model`` cell is empty (or of all, without the column)
+
+    Returns
+    -------
+    dict
+        :func:`output_columns` -> arrays: the summary keys (SI floats, NaN where not
+        applicable or the row is invalid) and ``error`` (object array, ``""`` when valid).
+        Rows are independent: any chunking gives the same rows.
+    """
+    from impactcli.batch import BATCH_KEYS, batch_impacts, material_properties
+
+    size = len(frame)
+    errors = _Errors(size)
+
+    # Quantities, in column order: the first bad cell of a row is its error.
+    q: dict[str, np.ndarray] = {}
+    for name, (kind, allow_inf) in QUANTITY_COLUMNS.items():
+        if name in frame.columns:
+            q[name], bad = _quantity_column(frame[name], kind, name, allow_inf)
+            errors.add_messages(bad)
+        else:
+            q[name] = np.full(size, np.nan)
+
+    # Materials: material{i}, else material. Explicit columns win: E{i}, then E, then these.
+    spheres: list[dict[str, np.ndarray]] = []
+    shared = _text_column(frame, "material", size)
+    for i in (1, 2):
+        own = _text_column(frame, f"material{i}", size)
+        names = np.where(np.equal(own, None), shared, own)
+        *props, bad = material_properties(names)
+        errors.add_messages(bad)
+        sphere = {"m": q[f"m{i}"]}
+        for key, from_material in zip(("E", "nu", "rho", "sy"), props):
+            value = q[f"{key}{i}"]
+            value = np.where(np.isnan(value), q[key], value)
+            sphere[key] = np.where(np.isnan(value), from_material, value)
+        # A rigid body's Poisson's ratio does not enter E*.
+        sphere["nu"] = np.where(np.isinf(sphere["E"]) & np.isnan(sphere["nu"]), 0.0, sphere["nu"])
+        for what, missing, options in (
+            ("Young's modulus", np.isnan(sphere["E"]), f"E{i} or E"),
+            ("Poisson's ratio", np.isnan(sphere["nu"]), f"nu{i} or nu"),
+            ("density", np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), f"rho{i}, rho or m{i}"),
+        ):
+            errors.add(
+                missing, f"sphere {i}: {what} unknown: give material, material{i}, {options}"
+            )
+        spheres.append(sphere)
+
+    # The model of each row.
+    key = _text_column(frame, "model", size, lower=True)
+    if model is not None:
+        key = np.where(np.equal(key, None), model, key)
+    errors.add(np.equal(key, None), "model is missing (elastic or elastoplastic)")
+    unknown = np.flatnonzero(~np.equal(key, None) & ~np.isin(key, MODELS))
+    if unknown.size:
+        given = _text_column(frame, "model", size)
+        message = np.full(size, "", dtype=object)
+        message[unknown] = [
+            f"model must be elastic or elastoplastic, got {v!r}" for v in given[unknown]
+        ]
+        errors.add_messages(message)
+    plastic = key == "elastoplastic"
+    s1, s2 = spheres
+    errors.add(
+        plastic & np.isnan(s1["sy"]) & np.isnan(s2["sy"]),
+        "elastoplastic rows need a yield strength: give sy, sy1/sy2 or a material with one",
+    )
+
+    # The physics, on the rows that parsed; the kernel adds its own checks.
+    ok = np.flatnonzero(~errors.bad)
+    result = {k: np.full(size, np.nan) for k in BATCH_KEYS}
+    if ok.size:
+        args = (
+            q["d1"], q["d2"], q["v1"], q["v2"],
+            s1["E"], s1["nu"], s2["E"], s2["nu"],
+            s1["rho"], s2["rho"], s1["m"], s2["m"], s1["sy"], s2["sy"], plastic,
+        )  # fmt: skip
+        out = batch_impacts(*(a[ok] for a in args), n=n, split=split)
+        for k in BATCH_KEYS:
+            result[k][ok] = out[k]
+        kernel = np.full(size, "", dtype=object)
+        kernel[ok] = out["error"]
+        errors.add_messages(kernel)
+        for k in BATCH_KEYS:
+            result[k][errors.bad] = np.nan
+    result["error"] = errors.messages
+    return result
+
+
+def dask_partition(
+    part, n: int = 25, split: str = "mass", model: str | None = None, strict: bool = False,
+    partition_info: dict | None = None,
+):  # fmt: skip
+    """One Dask partition: its input columns followed by :func:`compute_frame`'s."""
+    import pandas as pd
+
+    used = [c for c in part.columns if c in QUANTITY_COLUMNS or c in TEXT_COLUMNS]
+    result = compute_frame(part[used], n=n, split=split, model=model)
+    if strict:
+        bad = np.flatnonzero(result["error"] != "")
+        if bad.size:
+            number = partition_info["number"] if partition_info else None
+            raise RowError(int(bad[0]), str(result["error"][bad[0]]), number)
+    extra = {c: result[c] for c in output_columns()[:-1]}
+    extra["error"] = pd.Series(result["error"], index=part.index, dtype="string")
+    return pd.concat([part, pd.DataFrame(extra, index=part.index)], axis=1)
+
+
+def partition_errors(part, partition_info: dict | None = None):
+    """A partition's first invalid rows (0-based, in the partition) and reasons, with its
+    length and number of invalid rows: one row per listed error, or one row with row -1."""
+    import pandas as pd
+
+    errors = part["error"].fillna("").to_numpy(dtype=object)
+    bad = np.flatnonzero(errors != "")
+    listed = bad[:MAX_ROW_WARNINGS]
+    rows = listed if listed.size else np.array([-1])
+    return pd.DataFrame(
+        {
+            "partition": (partition_info or {}).get("number", 0),
+            "length": len(part),
+            "invalid": bad.size,
+            "row": rows.astype("int64"),
+            "error": pd.Series(errors[listed] if listed.size else [""], dtype=object).astype(
+                "string"
+            ),
+        }
+    )
