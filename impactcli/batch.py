@@ -54,6 +54,15 @@ from impactcli.impact import (
     split_fractions,
 )
 from impactcli.laws import hertz_stiffness
+from impactcli.validation import (
+    YIELD_STRENGTH_NEEDED,
+    Problems,
+    flat_floats,
+    needs_yield_strength,
+    pair_problems,
+    sphere_names,
+    sphere_problems,
+)
 
 __all__ = [
     "BATCH_KEYS",
@@ -165,11 +174,6 @@ def material_properties(
     return values[:, 0], values[:, 1], values[:, 2], values[:, 3], messages[inverse.reshape(-1)]
 
 
-def _floats(*values: ArrayLike) -> list[NDArray]:
-    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
-    return [np.ascontiguousarray(a).reshape(-1) for a in arrays]
-
-
 def validate(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -194,63 +198,19 @@ def validate(
     check. NaN in ``rho``, ``m`` or ``sy`` means "not given" (arguments as
     :func:`batch_impacts`).
     """
-    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = _floats(
+    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = flat_floats(
         d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2
     )
     plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), d1.shape)
-    errors = np.full(d1.shape, "", dtype=object)
-    bad = np.zeros(d1.shape, dtype=bool)
-
-    def check(failed: NDArray[np.bool_], message: str, value: NDArray | None = None) -> None:
-        new = np.flatnonzero(failed & ~bad)
-        if new.size == 0:
-            return
-        bad[new] = True
-        if value is None:
-            errors[new] = message
-        else:  # a loop over the failing rows only, to put each value in its message
-            errors[new] = [message.format(x) for x in value[new].tolist()]
-
+    problems = Problems(d1.size)
+    sphere_problems(d1, E1, nu1, rho1, m1, sy1, sphere_names(1), problems)
+    sphere_problems(d2, E2, nu2, rho2, m2, sy2, sphere_names(2), problems)
     with np.errstate(invalid="ignore"):
-        for name, x in (("d1", d1), ("d2", d2), ("E1", E1), ("E2", E2)):
-            check(np.isnan(x), f"{name} is missing or NaN")
-            check(~(x > 0), f"{name} must be positive, got {{:g}}", x)
-        for name, x in (("nu1", nu1), ("nu2", nu2)):
-            check(np.isnan(x), f"{name} is missing or NaN")
-            check(~((x > -1.0) & (x < 0.5)), f"{name} must lie in (-1, 0.5), got {{:g}}", x)
-        for name, x in (("rho1", rho1), ("rho2", rho2), ("m1", m1), ("m2", m2)):
-            check(~np.isnan(x) & ~(x > 0), f"{name} must be positive, got {{:g}}", x)
-        for i, (d, rho, m) in enumerate(((d1, rho1, m1), (d2, rho2, m2)), start=1):
-            check(
-                np.isnan(m) & (np.isnan(rho) | ~np.isfinite(d)),
-                f"give m{i}, or a finite d{i} and rho{i}",
-            )
-        for name, x in (("sy1", sy1), ("sy2", sy2)):
-            check(~np.isnan(x) & ~(x > 0), f"{name} must be positive, got {{:g}}", x)
-        for name, x in (("v1", v1), ("v2", v2)):
-            check(~np.isfinite(x), f"{name} must be a finite velocity, got {{:g}}", x)
-        check(
-            ~(v1 + v2 > 0),
-            "the spheres do not approach: v1 + v2 = {:g} m/s must be > 0 "
-            "(velocities are positive toward the other sphere)",
-            v1 + v2,
-        )
         mass1 = np.where(np.isnan(m1), sphere_mass(d1, rho1), m1)
         mass2 = np.where(np.isnan(m2), sphere_mass(d2, rho2), m2)
-        check(
-            np.isinf(mass1) & np.isinf(mass2),
-            "at most one sphere can have an infinite (fixed) mass",
-        )
-        check(np.isinf(d1) & np.isinf(d2), "at most one sphere can be flat (infinite diameter)")
-        check(
-            np.isinf(E1) & np.isinf(E2),
-            "at most one sphere can be rigid (infinite Young's modulus)",
-        )
-        sigma_y = np.fmin(sy1, sy2)
-        check(
-            plastic & ~(np.isfinite(sigma_y) & (sigma_y > 0)),
-            "the elastoplastic model needs a positive, finite yield strength (sy, or sy1/sy2)",
-        )
+    pair_problems(v1, v2, mass1, mass2, d1, d2, E1, E2, problems)
+    problems.add(plastic & needs_yield_strength(sy1, sy2), YIELD_STRENGTH_NEEDED)
+    errors = problems.messages
     return errors
 
 
@@ -316,7 +276,7 @@ def batch_impacts(
         raise ValueError(f"n must be an integer >= 1, got {n}")
     if not (np.isfinite(pressure_factor) and pressure_factor > 0):
         raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
-    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = _floats(
+    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = flat_floats(
         d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2
     )
     plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), d1.shape).reshape(-1)

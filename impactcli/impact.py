@@ -36,6 +36,13 @@ from impactcli.contact import (
 )
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import hertz_stiffness
+from impactcli.validation import (
+    YIELD_STRENGTH_NEEDED,
+    needs_yield_strength,
+    pair_problems,
+    raise_first,
+    sphere_problems,
+)
 
 __all__ = [
     "HISTORY_COLUMNS",
@@ -124,20 +131,21 @@ class Sphere:
     yield_strength: float | None = None
 
     def __post_init__(self) -> None:
-        checks = {
-            "diameter": self.diameter,
-            "Young's modulus": self.youngs_modulus,
-            "density": self.density,
-            "mass": self.mass,
-            "yield strength": self.yield_strength,
-        }
-        for name, value in checks.items():
-            if value is not None and (np.isnan(value) or value <= 0):
-                raise ValueError(f"{name} must be positive, got {value}")
-        if not (np.isfinite(self.poisson_ratio) and -1.0 < self.poisson_ratio < 0.5):
-            raise ValueError(f"Poisson's ratio must lie in (-1, 0.5), got {self.poisson_ratio}")
-        if self.mass is None and (self.density is None or not np.isfinite(self.diameter)):
-            raise ValueError("give the mass, or a finite diameter and the density")
+        raise_first(
+            sphere_problems(
+                self.diameter,
+                self.youngs_modulus,
+                self.poisson_ratio,
+                np.nan if self.density is None else self.density,
+                np.nan if self.mass is None else self.mass,
+                np.nan if self.yield_strength is None else self.yield_strength,
+                given={
+                    "rho": self.density is not None,
+                    "m": self.mass is not None,
+                    "sy": self.yield_strength is not None,
+                },
+            )
+        )
 
     @property
     def radius(self) -> float:
@@ -322,24 +330,23 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
 def _validate(
     sphere1: Sphere, sphere2: Sphere, v1: float, v2: float, n: int, split: str = "mass"
 ) -> None:
+    """The checks of :func:`impactcli.validation.pair_problems`, and n and ``split``."""
     if split not in ("mass", "compliance"):
         raise ValueError(f"split must be mass or compliance, got {split!r}")
-    for name, value in (("V1", v1), ("V2", v2)):
-        if not np.isfinite(value):
-            raise ValueError(f"{name} must be a finite velocity, got {value}")
-    if v1 + v2 <= 0:
-        raise ValueError(
-            f"the spheres do not approach: V1 + V2 = {v1 + v2:g} m/s must be > 0 "
-            "(velocities are positive toward the other sphere)"
-        )
     if int(n) < 1:
         raise ValueError(f"n must be an integer >= 1, got {n}")
-    if not np.isfinite(sphere1.total_mass) and not np.isfinite(sphere2.total_mass):
-        raise ValueError("at most one sphere can have an infinite (fixed) mass")
-    if not np.isfinite(sphere1.diameter) and not np.isfinite(sphere2.diameter):
-        raise ValueError("at most one sphere can be flat (infinite diameter)")
-    if not np.isfinite(sphere1.youngs_modulus) and not np.isfinite(sphere2.youngs_modulus):
-        raise ValueError("at most one sphere can be rigid (infinite Young's modulus)")
+    raise_first(
+        pair_problems(
+            v1,
+            v2,
+            sphere1.total_mass,
+            sphere2.total_mass,
+            sphere1.diameter,
+            sphere2.diameter,
+            sphere1.youngs_modulus,
+            sphere2.youngs_modulus,
+        )
+    )
 
 
 def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
@@ -567,8 +574,8 @@ def elastoplastic_impact(
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
-    if sigma_y is None or not np.isfinite(sigma_y) or sigma_y <= 0:
-        raise ValueError("the elastoplastic model needs a positive, finite yield strength")
+    if sigma_y is None or needs_yield_strength(sigma_y, sigma_y):
+        raise ValueError(YIELD_STRENGTH_NEEDED)
     if not (np.isfinite(pressure_factor) and pressure_factor > 0):
         raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
     m, r, e = effective_properties(sphere1, sphere2)

@@ -16,7 +16,14 @@ from impactcli.contact import (
     DuWangContact,
     HertzContact,
 )
-from impactcli.impact import Sphere, effective_properties, solve_plan, weaker_yield_strength
+from impactcli.impact import (
+    Sphere,
+    effective_properties,
+    solve_plan,
+    split_fractions,
+    weaker_yield_strength,
+)
+from impactcli.validation import YIELD_STRENGTH_NEEDED, pair_problems, raise_first
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
@@ -55,6 +62,19 @@ def restitution_sweep(
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
+    split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance
+    raise_first(
+        pair_problems(
+            v0,
+            0.0,
+            sphere1.total_mass,
+            sphere2.total_mass,
+            sphere1.diameter,
+            sphere2.diameter,
+            sphere1.youngs_modulus,
+            sphere2.youngs_modulus,
+        )
+    )
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor)
     plastic = contact.yields(v0, m)
     out = {name: np.zeros_like(v0) for name in SWEEP_COLUMNS}
@@ -67,11 +87,9 @@ def restitution_sweep(
         out["contact_time"][mask] = stages[-1].end_time
         out["delta_max"][mask] = plan.delta_max
         out["delta_res"][mask] = plan.delta_res
-    if split == "mass":
-        f1, f2 = m / sphere1.total_mass, m / sphere2.total_mass
-    else:
-        c1, c2 = sphere1.compliance, sphere2.compliance
-        f1, f2 = c1 / (c1 + c2), c2 / (c1 + c2)
+    f1, f2 = split_fractions(
+        split, sphere1.total_mass, sphere2.total_mass, sphere1.compliance, sphere2.compliance
+    )
     out["impact_velocity"] = v0
     out["delta1_res"] = f1 * out["delta_res"]
     out["delta2_res"] = f2 * out["delta_res"]
@@ -101,6 +119,6 @@ def _contact(
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
     if sigma_y is None:
-        raise ValueError("the elastoplastic model needs a yield strength")
+        raise ValueError(YIELD_STRENGTH_NEEDED)
     m, r, e = effective_properties(sphere1, sphere2)
     return DuWangContact(r, e, sigma_y, pressure_factor), m

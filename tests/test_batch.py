@@ -121,6 +121,8 @@ def test_kernel_random_rows_equal_single_impacts():
         if math.isinf(row["d2"]) and row["m2"] is None:
             row["m2"] = math.inf
         row["v2"] *= row["v1"]
+        if row["m2"] is not None:  # a fixed target cannot move
+            row["v2"] = 0.0
     clean = [{k: v for k, v in r.items() if v is not None} for r in rows]
     out = _kernel(clean)
     for i, row in enumerate(clean):
@@ -307,7 +309,7 @@ REASONS = {
     3: "d1 is missing or NaN",
     4: "the spheres do not approach",
     5: "unknown material 'unobtainium'",
-    6: "elastoplastic rows need a yield strength",
+    6: "the elastoplastic model needs a yield strength",
     7: "v1: expected a velocity",
     8: "model must be elastic or elastoplastic, got 'plastic'",
 }

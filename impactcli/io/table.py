@@ -16,6 +16,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from impactcli.errors import InputError
+from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
+from impactcli.validation import YIELD_STRENGTH_NEEDED, Problems
 
 __all__ = [
     "MAX_ROW_WARNINGS",
@@ -141,25 +143,6 @@ def _quantity_column(series, kind: str, name: str, allow_inf: bool):
     return values, errors
 
 
-class _Errors:
-    """The first error of each row of a chunk."""
-
-    def __init__(self, size: int) -> None:
-        self.messages = np.full(size, "", dtype=object)
-        self.bad = np.zeros(size, dtype=bool)
-
-    def add(self, failed: np.ndarray, message: str | np.ndarray) -> None:
-        """Rows where ``failed`` get ``message`` (one string, or one per row) if still valid."""
-        new = np.flatnonzero(failed & ~self.bad)
-        if new.size:
-            self.bad[new] = True
-            self.messages[new] = message if isinstance(message, str) else message[new]
-
-    def add_messages(self, messages: np.ndarray) -> None:
-        """Rows with a non-empty message in ``messages`` get it if still valid."""
-        self.add(messages != "", messages)
-
-
 def _text_column(frame, name: str, size: int, lower: bool = False) -> np.ndarray:
     """A text column as an object array, None where empty (all None if absent)."""
     if name not in frame.columns:
@@ -193,7 +176,7 @@ def compute_frame(
     from impactcli.batch import BATCH_KEYS, batch_impacts, material_properties
 
     size = len(frame)
-    errors = _Errors(size)
+    errors = Problems(size)
 
     # Quantities, in column order: the first bad cell of a row is its error.
     q: dict[str, np.ndarray] = {}
@@ -213,20 +196,13 @@ def compute_frame(
         *props, bad = material_properties(names)
         errors.add_messages(bad)
         sphere = {"m": q[f"m{i}"]}
-        for key, from_material in zip(("E", "nu", "rho", "sy"), props):
-            value = q[f"{key}{i}"]
-            value = np.where(np.isnan(value), q[key], value)
-            sphere[key] = np.where(np.isnan(value), from_material, value)
+        for key, from_material in zip(PROPERTIES, props):
+            sphere[key] = resolve_property(q[f"{key}{i}"], q[key], from_material)
         # A rigid body's Poisson's ratio does not enter E*.
         sphere["nu"] = np.where(np.isinf(sphere["E"]) & np.isnan(sphere["nu"]), 0.0, sphere["nu"])
-        for what, missing, options in (
-            ("Young's modulus", np.isnan(sphere["E"]), f"E{i} or E"),
-            ("Poisson's ratio", np.isnan(sphere["nu"]), f"nu{i} or nu"),
-            ("density", np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), f"rho{i}, rho or m{i}"),
-        ):
-            errors.add(
-                missing, f"sphere {i}: {what} unknown: give material, material{i}, {options}"
-            )
+        errors.add(np.isnan(sphere["E"]), unknown_property(i, "E"))
+        errors.add(np.isnan(sphere["nu"]), unknown_property(i, "nu"))
+        errors.add(np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), unknown_property(i, "rho"))
         spheres.append(sphere)
 
     # The model of each row.
@@ -244,10 +220,7 @@ def compute_frame(
         errors.add_messages(message)
     plastic = key == "elastoplastic"
     s1, s2 = spheres
-    errors.add(
-        plastic & np.isnan(s1["sy"]) & np.isnan(s2["sy"]),
-        "elastoplastic rows need a yield strength: give sy, sy1/sy2 or a material with one",
-    )
+    errors.add(plastic & np.isnan(s1["sy"]) & np.isnan(s2["sy"]), YIELD_STRENGTH_NEEDED)
 
     # The physics, on the rows that parsed; the kernel adds its own checks.
     ok = np.flatnonzero(~errors.bad)

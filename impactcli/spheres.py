@@ -1,0 +1,181 @@
+"""The two spheres of an impact from the options a person gives: text with units, or numbers.
+
+One rule for every command and for Python callers: a sphere's property comes from its own
+option (``E1``), else from the shared one (``E``), else from its material (``material1``,
+else ``material``) (:func:`resolve_property`, vectorised, also used row by row by
+:func:`impactcli.io.table.compute_frame`). :class:`SphereOptions` holds the 21 options of
+a pair (d1, d2, v1, v2, material, material1, material2, E, E1, E2, nu, nu1, nu2, rho, rho1,
+rho2, m1, m2, sy, sy1, sy2); :func:`spheres_from_options` turns them into two
+:class:`~impactcli.impact.Sphere`. Units are read by :mod:`impactcli.units` (pint only for
+text with a unit, imported on demand).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.errors import InputError
+
+__all__ = [
+    "PROPERTIES",
+    "SphereOptions",
+    "resolve_property",
+    "sphere_from_options",
+    "spheres_from_options",
+    "unknown_property",
+    "velocities_from_options",
+]
+
+#: Material properties of a sphere: option key -> (kind for
+#: :func:`impactcli.units.parse_quantity`, ``inf`` allowed, Material attribute, name).
+PROPERTIES: dict[str, tuple[str, bool, str, str]] = {
+    "E": ("pressure", True, "youngs_modulus", "Young's modulus"),
+    "nu": ("dimensionless", False, "poisson_ratio", "Poisson's ratio"),
+    "rho": ("density", False, "density", "density"),
+    "sy": ("pressure", False, "yield_strength", "yield strength"),
+}
+
+
+def resolve_property(own: ArrayLike, shared: ArrayLike, from_material: ArrayLike) -> NDArray:
+    """A sphere's property: its own value, else the shared one, else its material's; NaN
+    where none is given. Arrays broadcast (one entry per collision).
+
+    >>> float(resolve_property(np.nan, 200e9, 210e9)), float(resolve_property(1.0, 2.0, 3.0))
+    (200000000000.0, 1.0)
+    """
+    own, shared = np.asarray(own, dtype=float), np.asarray(shared, dtype=float)
+    value = np.where(np.isnan(own), shared, own)
+    return np.where(np.isnan(value), np.asarray(from_material, dtype=float), value)
+
+
+def unknown_property(i: int, key: str, prefix: str = "") -> str:
+    """The message for sphere ``i`` without a Young's modulus, Poisson's ratio or density
+    (``key`` E, nu or rho); ``prefix`` is ``"--"`` for options, ``""`` for columns."""
+    p = prefix
+    where = f"{p}material, {p}material{i}, {p}{key}{i} or {p}{key}"
+    if key == "rho":
+        where = f"{p}material, {p}material{i}, {p}rho{i}, {p}rho or {p}m{i}"
+    return f"sphere {i}: {PROPERTIES[key][3]} unknown: give {where}"
+
+
+@dataclass(frozen=True)
+class SphereOptions:
+    """The options of a pair of spheres, as given: text with units (``"20mm"``), a number
+    in SI, or None when not given. Sphere 2 may be flat (``d2 = inf``), fixed
+    (``m2 = inf``) or rigid (``E2 = inf``, or ``E1``)."""
+
+    d1: str | float | None = None
+    d2: str | float | None = None
+    v1: str | float | None = None
+    v2: str | float | None = None
+    material: str | None = None
+    material1: str | None = None
+    material2: str | None = None
+    E: str | float | None = None
+    E1: str | float | None = None
+    E2: str | float | None = None
+    nu: str | float | None = None
+    nu1: str | float | None = None
+    nu2: str | float | None = None
+    rho: str | float | None = None
+    rho1: str | float | None = None
+    rho2: str | float | None = None
+    m1: str | float | None = None
+    m2: str | float | None = None
+    sy: str | float | None = None
+    sy1: str | float | None = None
+    sy2: str | float | None = None
+
+    @classmethod
+    def names(cls) -> tuple[str, ...]:
+        """The 21 option names, in order."""
+        return tuple(f.name for f in fields(cls))
+
+    def get(self, name: str) -> str | float | None:
+        return getattr(self, name)
+
+
+def _quantity(value: str | float | None, kind: str, name: str, allow_inf: bool = False) -> float:
+    """SI float of an option, NaN when not given."""
+    if value is None:
+        return float("nan")
+    from impactcli.units import parse_quantity
+
+    return parse_quantity(value, kind, name, allow_inf)
+
+
+def _material(options: SphereOptions, i: int, prefix: str):
+    from impactcli.materials import material
+
+    own = options.get(f"material{i}")
+    name = own if own is not None else options.material
+    if name is None:
+        return None
+    try:
+        return material(name)
+    except KeyError as exc:
+        raise InputError(f"{prefix}material{i if own is not None else ''}: {exc.args[0]}") from None
+
+
+def sphere_from_options(options: SphereOptions, i: int, prefix: str = "--"):
+    """Sphere ``i`` (1 or 2) of ``options``: every option given is read and checked, the
+    properties follow :func:`resolve_property`. Raises :class:`InputError` (one line,
+    options named with ``prefix``)."""
+    from impactcli.impact import Sphere
+
+    mat = _material(options, i, prefix)
+    values: dict[str, float] = {}
+    for key, (kind, allow_inf, attr, _name) in PROPERTIES.items():
+        own = _quantity(options.get(f"{key}{i}"), kind, f"{prefix}{key}{i}", allow_inf)
+        shared = _quantity(options.get(key), kind, f"{prefix}{key}", allow_inf)
+        known = getattr(mat, attr) if mat is not None else None
+        values[key] = float(resolve_property(own, shared, np.nan if known is None else known))
+    diameter = _quantity(options.get(f"d{i}"), "length", f"{prefix}d{i}", allow_inf=(i == 2))
+    mass = _quantity(options.get(f"m{i}"), "mass", f"{prefix}m{i}", allow_inf=(i == 2))
+    if np.isnan(diameter) and options.get(f"d{i}") is None:
+        raise InputError(
+            f"missing {prefix}d{i}: the diameter of sphere {i} (e.g. {prefix}d{i} 20mm)"
+        )
+    if np.isinf(values["E"]) and np.isnan(values["nu"]):
+        values["nu"] = 0.0  # a rigid body: its Poisson's ratio does not enter E*
+    for key in ("E", "nu"):
+        if np.isnan(values[key]):
+            raise InputError(unknown_property(i, key, prefix))
+    if np.isnan(values["rho"]) and np.isnan(mass):
+        raise InputError(unknown_property(i, "rho", prefix))
+
+    def given(x: float) -> float | None:
+        return None if np.isnan(x) else x
+
+    try:
+        return Sphere(
+            diameter,
+            values["E"],
+            values["nu"],
+            given(values["rho"]),
+            given(mass),
+            given(values["sy"]),
+        )
+    except ValueError as exc:
+        raise InputError(f"sphere {i}: {exc}") from None
+
+
+def spheres_from_options(options: SphereOptions, prefix: str = "--"):
+    """Both spheres of ``options`` (:func:`sphere_from_options`)."""
+    return sphere_from_options(options, 1, prefix), sphere_from_options(options, 2, prefix)
+
+
+def velocities_from_options(options: SphereOptions, prefix: str = "--") -> tuple[float, float]:
+    """V1 and V2 [m/s] of ``options``, each toward the other sphere; both are needed."""
+    out = []
+    for name in ("v1", "v2"):
+        if options.get(name) is None:
+            raise InputError(
+                f"missing {prefix}{name}: the velocity toward the other sphere "
+                f"(e.g. {prefix}{name} 5mm/s)"
+            )
+        out.append(_quantity(options.get(name), "velocity", f"{prefix}{name}"))
+    return out[0], out[1]

@@ -1,0 +1,228 @@
+"""The checks of the inputs of an impact, written once for one impact and for many.
+
+Every check here is vectorised: it takes floats or arrays (one entry per collision) and
+returns, for each entry, the first problem found (``""`` when there is none). The scalar
+paths (:class:`impactcli.impact.Sphere`, :func:`impactcli.impact.elastic_impact`,
+:func:`impactcli.sweep.restitution_sweep`) run the same checks on size-1 arrays and raise
+the message as a :class:`ValueError`, so a Python caller, ``impact elastic`` and a row of
+``impact batch`` get the same words for the same fault.
+
+NaN in a density, a mass or a yield strength means "not given". No printing here: the
+warnings and notes are returned as text for the caller to show.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "SMALL_DEFORMATION_LIMIT",
+    "SPHERE_NAMES",
+    "YIELD_STRENGTH_NEEDED",
+    "Problems",
+    "below_yield_note",
+    "contact_radius_warning",
+    "first_yield_warning",
+    "flat_floats",
+    "needs_yield_strength",
+    "pair_problems",
+    "raise_first",
+    "sphere_names",
+    "sphere_problems",
+]
+
+#: The one message for an elastoplastic impact without a yield strength.
+YIELD_STRENGTH_NEEDED = (
+    "the elastoplastic model needs a yield strength: give sy, sy1/sy2 or a material that has one"
+)
+
+#: Largest contact radius a / R = sqrt(delta_max / R) of the small-deformation contact
+#: models (Hertz, Du & Wang): Johnson, *Contact Mechanics*, 1985, sec. 4.2.
+SMALL_DEFORMATION_LIMIT = 0.1
+
+#: How the checks name a sphere's properties when it stands alone (:class:`Sphere`).
+SPHERE_NAMES: dict[str, str] = {
+    "d": "diameter",
+    "E": "Young's modulus",
+    "nu": "Poisson's ratio",
+    "rho": "density",
+    "m": "mass",
+    "sy": "yield strength",
+}
+
+
+def sphere_names(i: int) -> dict[str, str]:
+    """How the checks name sphere ``i``'s properties in a pair: ``d1``, ``E1``, ... (the
+    column names of ``impact batch``, the option names of the commands without ``--``)."""
+    return {key: f"{key}{i}" for key in SPHERE_NAMES}
+
+
+class Problems:
+    """The first problem of each entry: ``messages`` (``""`` where none) and ``bad``."""
+
+    def __init__(self, size: int) -> None:
+        self.messages = np.full(size, "", dtype=object)
+        self.bad = np.zeros(size, dtype=bool)
+
+    def add(self, failed: ArrayLike, message: str | NDArray, value: NDArray | None = None):
+        """Entries where ``failed`` get ``message`` if they have no problem yet: one string
+        (formatted with ``value`` of each entry when given, ``{:g}``) or one per entry."""
+        new = np.flatnonzero(np.broadcast_to(failed, self.bad.shape) & ~self.bad)
+        if new.size == 0:
+            return
+        self.bad[new] = True
+        if isinstance(message, str):
+            if value is None:
+                self.messages[new] = message
+            else:  # a loop over the failing entries only, to put each value in its message
+                values = np.broadcast_to(value, self.bad.shape)[new].tolist()
+                self.messages[new] = [message.format(x) for x in values]
+        else:
+            self.messages[new] = np.asarray(message, dtype=object)[new]
+
+    def add_messages(self, messages: NDArray) -> None:
+        """Entries with a non-empty message in ``messages`` get it if still valid."""
+        self.add(messages != "", messages)
+
+
+def flat_floats(*values: ArrayLike) -> list[NDArray]:
+    """The values as flat float arrays of one broadcast shape (one entry per collision)."""
+    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
+    return [np.ascontiguousarray(a).reshape(-1) for a in arrays]
+
+
+def sphere_problems(
+    diameter: ArrayLike,
+    youngs_modulus: ArrayLike,
+    poisson_ratio: ArrayLike,
+    density: ArrayLike = np.nan,
+    mass: ArrayLike = np.nan,
+    yield_strength: ArrayLike = np.nan,
+    names: Mapping[str, str] = SPHERE_NAMES,
+    problems: Problems | None = None,
+    given: Mapping[str, bool] | None = None,
+) -> Problems:
+    """The checks of one sphere, SI: D, E > 0 (``inf`` allowed: flat, rigid), -1 < nu <
+    0.5, rho, m, sigma_y > 0 where given (NaN: not given), and a mass or a finite diameter
+    with a density. ``names`` names the properties in the messages (:data:`SPHERE_NAMES`,
+    :func:`sphere_names`). ``given`` marks rho, m, sy (keys as in ``names``) as given, so
+    that NaN there is a fault, not "not given" (a :class:`~impactcli.impact.Sphere`)."""
+    d, e, nu, rho, m, sy = flat_floats(
+        diameter, youngs_modulus, poisson_ratio, density, mass, yield_strength
+    )
+    p = Problems(d.size) if problems is None else problems
+    with np.errstate(invalid="ignore"):
+        for key, x in (("d", d), ("E", e)):
+            p.add(np.isnan(x), f"{names[key]} is missing or NaN")
+            p.add(~(x > 0), f"{names[key]} must be positive, got {{:g}}", x)
+        p.add(np.isnan(nu), f"{names['nu']} is missing or NaN")
+        p.add(~((nu > -1.0) & (nu < 0.5)), f"{names['nu']} must lie in (-1, 0.5), got {{:g}}", nu)
+        for key, x in (("rho", rho), ("m", m), ("sy", sy)):
+            if given is not None and given.get(key):
+                p.add(np.isnan(x), f"{names[key]} is missing or NaN")
+            p.add(~np.isnan(x) & ~(x > 0), f"{names[key]} must be positive, got {{:g}}", x)
+        p.add(
+            np.isnan(m) & (np.isnan(rho) | ~np.isfinite(d)),
+            f"give {names['m']}, or a finite {names['d']} and {names['rho']}",
+        )
+    return p
+
+
+def pair_problems(
+    v1: ArrayLike,
+    v2: ArrayLike,
+    m1: ArrayLike,
+    m2: ArrayLike,
+    d1: ArrayLike,
+    d2: ArrayLike,
+    E1: ArrayLike,
+    E2: ArrayLike,
+    problems: Problems | None = None,
+) -> Problems:
+    """The checks of a pair of valid spheres and their velocities [m/s] toward each other:
+    finite velocities that approach (V0 = V1 + V2 > 0), a fixed sphere (m = inf) at rest,
+    and at most one fixed, flat or rigid sphere. ``m1``, ``m2`` are the masses [kg]."""
+    v1, v2, m1, m2, d1, d2, E1, E2 = flat_floats(v1, v2, m1, m2, d1, d2, E1, E2)
+    p = Problems(v1.size) if problems is None else problems
+    with np.errstate(invalid="ignore"):
+        for name, x in (("v1", v1), ("v2", v2)):
+            p.add(~np.isfinite(x), f"{name} must be a finite velocity, got {{:g}}", x)
+        p.add(
+            ~(v1 + v2 > 0),
+            "the spheres do not approach: v1 + v2 = {:g} m/s must be > 0 "
+            "(velocities are positive toward the other sphere)",
+            v1 + v2,
+        )
+        p.add(np.isinf(m1) & np.isinf(m2), "at most one sphere can have an infinite (fixed) mass")
+        for i, (m, v) in enumerate(((m1, v1), (m2, v2)), start=1):
+            p.add(
+                np.isinf(m) & (v != 0),
+                f"a fixed target cannot move: m{i} = inf needs v{i} = 0, got {{:g}} m/s",
+                v,
+            )
+        p.add(np.isinf(d1) & np.isinf(d2), "at most one sphere can be flat (infinite diameter)")
+        p.add(
+            np.isinf(E1) & np.isinf(E2),
+            "at most one sphere can be rigid (infinite Young's modulus)",
+        )
+    return p
+
+
+def needs_yield_strength(sy1: ArrayLike, sy2: ArrayLike) -> NDArray[np.bool_]:
+    """Where an elastoplastic impact cannot run: no positive, finite yield strength among
+    the spheres' (NaN: not given; the lower one yields)."""
+    sigma_y = np.fmin(np.asarray(sy1, dtype=float), np.asarray(sy2, dtype=float))
+    with np.errstate(invalid="ignore"):
+        return ~(np.isfinite(sigma_y) & (sigma_y > 0))
+
+
+def raise_first(problems: Problems) -> None:
+    """Raise the first problem as a :class:`ValueError` (the scalar paths)."""
+    bad = np.flatnonzero(problems.bad)
+    if bad.size:
+        raise ValueError(problems.messages[bad[0]])
+
+
+def first_yield_warning(impact_velocity: float, first_yield_velocity: float) -> str | None:
+    """The warning of an elastic impact above the first-yield velocity [m/s] (Hertz peak
+    pressure 1.6 sigma_y), else None."""
+    if not impact_velocity > first_yield_velocity:
+        return None
+    return (
+        f"V0 = {impact_velocity:.4g} m/s exceeds the first-yield velocity "
+        f"{first_yield_velocity:.4g} m/s: the spheres yield and the elastic model no longer "
+        "holds; use 'impact elastoplastic'"
+    )
+
+
+def below_yield_note(impact_velocity: float, yield_velocity: float) -> str:
+    """The note of an elastoplastic impact below its yield velocity V_y [m/s]."""
+    return (
+        f"V0 = {impact_velocity:.4g} m/s is below the yield velocity {yield_velocity:.4g} m/s: "
+        "the impact is elastic (Hertz) and so is this result"
+    )
+
+
+def contact_radius_warning(
+    impact_velocity: ArrayLike, delta_max: ArrayLike, radius: ArrayLike
+) -> str | None:
+    """The warning when the contact radius a = sqrt(delta_max R) exceeds
+    :data:`SMALL_DEFORMATION_LIMIT` R for any impact velocity [m/s] (the first such one is
+    named), else None. ``delta_max`` [m] and ``radius`` R [m] broadcast with it."""
+    v0, delta, r = np.broadcast_arrays(
+        *(np.asarray(x, dtype=float).reshape(-1) for x in (impact_velocity, delta_max, radius))
+    )
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.sqrt(delta / r)
+    over = np.flatnonzero(ratio > SMALL_DEFORMATION_LIMIT)
+    if over.size == 0:
+        return None
+    k = over[0]
+    return (
+        f"contact radius / R = {ratio[k]:.2f} > {SMALL_DEFORMATION_LIMIT:g} from V0 = "
+        f"{v0[k]:.4g} m/s: beyond the small-deformation contact models used here (Hertz, "
+        "Du & Wang); treat the result as indicative only"
+    )
