@@ -41,6 +41,7 @@ doi:10.5539/mer.v8n1p1.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,10 +51,13 @@ __all__ = [
     "PAPER_ANGLE_SIGN",
     "ObliqueCollision",
     "approach_velocity",
+    "collision_summary",
+    "elastoplastic_restitution",
     "line_of_centres",
     "oblique_collision",
     "polar_angle",
     "velocity_from_polar",
+    "wrap_degrees",
 ]
 
 Array = NDArray[np.float64]
@@ -395,3 +399,67 @@ def _where(bad: NDArray[np.bool_]) -> str:
     if np.ndim(bad) == 0:
         return ""
     return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
+
+
+def wrap_degrees(degrees: float) -> float:
+    """An angle in degrees in (-180, 180].
+
+    >>> wrap_degrees(-270.0), wrap_degrees(-180.0)
+    (90.0, 180.0)
+    """
+    wrapped = math.remainder(degrees, 360.0) + 0.0  # + 0.0: no -0.0
+    return 180.0 if wrapped <= -180.0 else wrapped
+
+
+def collision_summary(c: ObliqueCollision, sign: dict[str, float]) -> dict[str, float]:
+    """The summary of a single collision, SI with angles in degrees in (-180, 180].
+
+    ``sign`` gives the direction of each angle: :data:`PAPER_ANGLE_SIGN` for the paper's
+    (Fig. 12), 1.0 for every key for counter-clockwise from +x. Its keys, in order, are
+    ``impact collide2d``'s CSV header and JSON "summary"."""
+
+    def degrees(key: str, radians) -> float:
+        return wrap_degrees(sign[key] * math.degrees(float(radians)))
+
+    summary: dict[str, float] = {
+        "v1_final_speed": math.hypot(*c.v1_final),
+        "v1_final_angle": degrees("theta_1", polar_angle(c.v1_final)),
+        "v1_final_x": c.v1_final[0],
+        "v1_final_y": c.v1_final[1],
+        "v2_final_speed": math.hypot(*c.v2_final),
+        "v2_final_angle": degrees("theta_2", polar_angle(c.v2_final)),
+        "v2_final_x": c.v2_final[0],
+        "v2_final_y": c.v2_final[1],
+        "restitution": c.restitution,
+        "kinetic_energy_before": c.kinetic_energy_before,
+        "kinetic_energy_after": c.kinetic_energy_after,
+        "energy_dissipated": c.energy_dissipated,
+        "line_of_centres_angle": degrees("phi", c.line_of_centres_angle),
+        "approach_velocity": c.approach_velocity,
+        "separation_velocity": c.separation_velocity,
+        "normal_impulse": c.normal_impulse,
+        "v1_normal": c.v1_normal,
+        "v1_tangential": c.v1_tangential,
+        "v1_final_normal": c.v1_final_normal,
+        "v1_final_tangential": c.v1_final_tangential,
+        "v2_normal": c.v2_normal,
+        "v2_tangential": c.v2_tangential,
+        "v2_final_normal": c.v2_final_normal,
+        "v2_final_tangential": c.v2_final_tangential,
+        "momentum_x_before": c.momentum_before[0],
+        "momentum_y_before": c.momentum_before[1],
+        "momentum_x_after": c.momentum_after[0],
+        "momentum_y_after": c.momentum_after[1],
+    }
+    return {k: float(v) for k, v in summary.items()}
+
+
+def elastoplastic_restitution(normal_velocity: float, sphere1, sphere2) -> float:
+    """e of the Du & Wang elastoplastic impact of ``sphere1`` and ``sphere2``
+    (:class:`~impactcli.impact.Sphere`) at the normal approach velocity (v1 - v2).n [m/s]
+    (paper sec. 4.4-4.5): the FILM run of the normal impact, sphere 2 at rest."""
+    from impactcli.impact import elastoplastic_impact
+
+    return float(
+        elastoplastic_impact(sphere1, sphere2, normal_velocity, 0.0).summary["restitution"]
+    )

@@ -22,6 +22,7 @@ from impactcli.errors import InputError
 __all__ = [
     "PROPERTIES",
     "SphereOptions",
+    "check_options",
     "resolve_property",
     "sphere_from_options",
     "spheres_from_options",
@@ -120,12 +121,8 @@ def _material(options: SphereOptions, i: int, prefix: str):
         raise InputError(f"{prefix}material{i if own is not None else ''}: {exc.args[0]}") from None
 
 
-def sphere_from_options(options: SphereOptions, i: int, prefix: str = "--"):
-    """Sphere ``i`` (1 or 2) of ``options``: every option given is read and checked, the
-    properties follow :func:`resolve_property`. Raises :class:`InputError` (one line,
-    options named with ``prefix``)."""
-    from impactcli.impact import Sphere
-
+def _properties(options: SphereOptions, i: int, prefix: str) -> dict[str, float]:
+    """Sphere i's E, nu, rho, sy (:func:`resolve_property`), d and m: SI, NaN if not given."""
     mat = _material(options, i, prefix)
     values: dict[str, float] = {}
     for key, (kind, allow_inf, attr, _name) in PROPERTIES.items():
@@ -133,14 +130,45 @@ def sphere_from_options(options: SphereOptions, i: int, prefix: str = "--"):
         shared = _quantity(options.get(key), kind, f"{prefix}{key}", allow_inf)
         known = getattr(mat, attr) if mat is not None else None
         values[key] = float(resolve_property(own, shared, np.nan if known is None else known))
-    diameter = _quantity(options.get(f"d{i}"), "length", f"{prefix}d{i}", allow_inf=(i == 2))
-    mass = _quantity(options.get(f"m{i}"), "mass", f"{prefix}m{i}", allow_inf=(i == 2))
+    values["d"] = _quantity(options.get(f"d{i}"), "length", f"{prefix}d{i}", allow_inf=(i == 2))
+    values["m"] = _quantity(options.get(f"m{i}"), "mass", f"{prefix}m{i}", allow_inf=(i == 2))
+    if np.isinf(values["E"]) and np.isnan(values["nu"]):
+        values["nu"] = 0.0  # a rigid body: its Poisson's ratio does not enter E*
+    return values
+
+
+def check_options(options: SphereOptions, prefix: str = "--") -> None:
+    """Read and check every option given, for commands that need only some of them (e.g.
+    ``impact collide2d``): the same messages as :func:`sphere_from_options`, without
+    asking for the options not given."""
+    from impactcli.validation import SPHERE_NAMES, raise_first, sphere_problems
+
+    stand_in = {"d": 1.0, "E": 1.0, "nu": 0.0}  # valid values for what is not given
+    for i in (1, 2):
+        v = _properties(options, i, prefix)
+        for key, value in stand_in.items():
+            if np.isnan(v[key]):
+                v[key] = value
+        names = {key: f"sphere {i}: {name}" for key, name in SPHERE_NAMES.items()}
+        try:
+            raise_first(sphere_problems(v["d"], v["E"], v["nu"], v["rho"], v["m"], v["sy"], names))
+        except ValueError as exc:
+            if "give" not in str(exc):  # a mass or a density is needed only to build it
+                raise InputError(str(exc)) from None
+
+
+def sphere_from_options(options: SphereOptions, i: int, prefix: str = "--"):
+    """Sphere ``i`` (1 or 2) of ``options``: every option given is read and checked, the
+    properties follow :func:`resolve_property`. Raises :class:`InputError` (one line,
+    options named with ``prefix``)."""
+    from impactcli.impact import Sphere
+
+    values = _properties(options, i, prefix)
+    diameter, mass = values["d"], values["m"]
     if np.isnan(diameter) and options.get(f"d{i}") is None:
         raise InputError(
             f"missing {prefix}d{i}: the diameter of sphere {i} (e.g. {prefix}d{i} 20mm)"
         )
-    if np.isinf(values["E"]) and np.isnan(values["nu"]):
-        values["nu"] = 0.0  # a rigid body: its Poisson's ratio does not enter E*
     for key in ("E", "nu"):
         if np.isnan(values[key]):
             raise InputError(unknown_property(i, key, prefix))

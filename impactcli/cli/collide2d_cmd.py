@@ -131,15 +131,23 @@ def collide2d(
     from impactcli.collision2d import (
         PAPER_ANGLE_SIGN,
         approach_velocity,
+        collision_summary,
+        elastoplastic_restitution,
         line_of_centres,
         oblique_collision,
     )
+    from impactcli.spheres import SphereOptions, check_options, spheres_from_options
     from impactcli.units import parse_vector
 
     check_plot(plot)
     sign = PAPER_ANGLE_SIGN if paper_angles else dict.fromkeys(PAPER_ANGLE_SIGN, 1.0)
     mass1 = _mass(m1, "--m1")
     mass2 = _mass(m2, "--m2")
+    spheres = SphereOptions(
+        d1=d1, d2=d2, material=material, material1=material1, material2=material2,
+        m1=mass1, m2=mass2, sy=sy,
+    )  # fmt: skip
+    check_options(spheres)  # every option given is checked, used or not
     vel1, speed1, angle1 = _velocity(v1, a1, "--v1", "--a1", sign["alpha_1"], paper_angles)
     vel2, speed2, angle2 = _velocity(v2, a2, "--v2", "--a2", sign["alpha_2"], paper_angles)
     pos1 = parse_vector(p1, "length", "--p1")
@@ -159,9 +167,14 @@ def collide2d(
         restitution, model_name = 1.0, (model or Model.elastic).value
     v_rel_n = float(approach_velocity(vel1, vel2, pos1, pos2))
     if model is Model.elastoplastic and v_rel_n > 0.0:
-        restitution = _elastoplastic_restitution(
-            v_rel_n, mass1, mass2, d1, d2, material, material1, material2, sy
-        )
+        if d1 is None or d2 is None or (material is None and None in (material1, material2)):
+            raise InputError(
+                "--model elastoplastic needs --d1, --d2 and --material (or --material1/--material2)"
+            )
+        try:
+            restitution = elastoplastic_restitution(v_rel_n, *spheres_from_options(spheres))
+        except ValueError as exc:
+            raise InputError(str(exc)) from None
     if not v_rel_n > 0.0:
         n = line_of_centres(pos1, pos2)
         raise InputError(
@@ -170,7 +183,7 @@ def collide2d(
             "needs > 0)"
         )
     result = oblique_collision(mass1, mass2, vel1, vel2, pos1, pos2, restitution)
-    summary = _summary(result, sign)
+    summary = collision_summary(result, sign)
     inputs = {
         "m1": mass1,
         "m2": mass2,
@@ -190,7 +203,7 @@ def collide2d(
         "restitution": restitution,
         "angle_convention": CONVENTIONS[paper_angles],
     }
-    radii = _radii(d1, d2) if plot else None
+    radii = _radii(spheres) if plot else None
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -205,24 +218,18 @@ def collide2d(
         _plot(plot, result, vel1, vel2, pos1, pos2, radii, model_name, restitution)
 
 
-def _radii(d1: str | None, d2: str | None) -> tuple[float, float] | None:
+def _radii(spheres) -> tuple[float, float] | None:
     """(R1, R2) [m] to draw the spheres: when both diameters are given and finite (a flat
-    target, ``inf``, is not drawn)."""
+    target, ``inf``, is not drawn). The diameters were checked by ``check_options``."""
     from impactcli.units import parse_quantity
 
-    if d1 is None or d2 is None:
+    if spheres.d1 is None or spheres.d2 is None:
         return None
-    radii = []
-    for text, name in ((d1, "--d1"), (d2, "--d2")):
-        value = parse_quantity(text, "length", name, allow_inf=True)
-        if not value > 0.0:
-            raise InputError(
-                f"{name}: a diameter must be > 0 (or inf for a flat target), got {value:g} m"
-            )
-        radii.append(value / 2.0)
-    if not all(math.isfinite(r) for r in radii):
+    d1 = parse_quantity(spheres.d1, "length", "--d1")
+    d2 = parse_quantity(spheres.d2, "length", "--d2", allow_inf=True)
+    if not math.isfinite(d2):
         return None
-    return radii[0], radii[1]
+    return d1 / 2.0, d2 / 2.0
 
 
 def _plot(path: str, c, vel1, vel2, pos1, pos2, radii, model: str, e: float) -> None:
@@ -268,7 +275,7 @@ def _velocity(
 ) -> tuple[tuple[float, float], float, float]:
     """Velocity (x, y) [m/s] from components or from a speed and angle; also the speed and
     the angle [deg] in the convention used on the command line."""
-    from impactcli.collision2d import polar_angle, velocity_from_polar
+    from impactcli.collision2d import polar_angle, velocity_from_polar, wrap_degrees
     from impactcli.units import parse_quantity, parse_vector
 
     if "," in text:
@@ -279,7 +286,7 @@ def _velocity(
             )
         vx, vy = parse_vector(text, "velocity", name)
         ccw = math.degrees(float(polar_angle((vx, vy))))
-        return (vx, vy), math.hypot(vx, vy), _wrap(sign * ccw)
+        return (vx, vy), math.hypot(vx, vy), wrap_degrees(sign * ccw)
     speed = parse_quantity(text, "velocity", name)
     if speed < 0.0:
         raise InputError(
@@ -296,56 +303,8 @@ def _velocity(
     return (vx, vy), speed, degrees
 
 
-def _wrap(degrees: float) -> float:
-    """An angle in degrees in (-180, 180]."""
-    wrapped = math.remainder(degrees, 360.0) + 0.0  # + 0.0: no -0.0
-    return 180.0 if wrapped <= -180.0 else wrapped
-
-
 def _pair(vector) -> str:
     return "({:.6g}, {:.6g})".format(*(float(v) for v in vector))
-
-
-def _summary(c, sign: dict[str, float]) -> dict[str, float]:
-    """The summary of a single collision, SI with angles in degrees in the chosen convention.
-
-    Its keys, in order, are the CSV header and the JSON "summary"."""
-    from impactcli.collision2d import polar_angle
-
-    def degrees(key: str, radians) -> float:
-        return _wrap(sign[key] * math.degrees(float(radians)))
-
-    summary: dict[str, float] = {
-        "v1_final_speed": math.hypot(*c.v1_final),
-        "v1_final_angle": degrees("theta_1", polar_angle(c.v1_final)),
-        "v1_final_x": c.v1_final[0],
-        "v1_final_y": c.v1_final[1],
-        "v2_final_speed": math.hypot(*c.v2_final),
-        "v2_final_angle": degrees("theta_2", polar_angle(c.v2_final)),
-        "v2_final_x": c.v2_final[0],
-        "v2_final_y": c.v2_final[1],
-        "restitution": c.restitution,
-        "kinetic_energy_before": c.kinetic_energy_before,
-        "kinetic_energy_after": c.kinetic_energy_after,
-        "energy_dissipated": c.energy_dissipated,
-        "line_of_centres_angle": degrees("phi", c.line_of_centres_angle),
-        "approach_velocity": c.approach_velocity,
-        "separation_velocity": c.separation_velocity,
-        "normal_impulse": c.normal_impulse,
-        "v1_normal": c.v1_normal,
-        "v1_tangential": c.v1_tangential,
-        "v1_final_normal": c.v1_final_normal,
-        "v1_final_tangential": c.v1_final_tangential,
-        "v2_normal": c.v2_normal,
-        "v2_tangential": c.v2_tangential,
-        "v2_final_normal": c.v2_final_normal,
-        "v2_final_tangential": c.v2_final_tangential,
-        "momentum_x_before": c.momentum_before[0],
-        "momentum_y_before": c.momentum_before[1],
-        "momentum_x_after": c.momentum_after[0],
-        "momentum_y_after": c.momentum_after[1],
-    }
-    return {k: float(v) for k, v in summary.items()}
 
 
 def _print_tables(
@@ -412,35 +371,3 @@ def _print_tables(
 
 def register(app: typer.Typer) -> None:
     app.command("collide2d")(collide2d)
-
-
-def _elastoplastic_restitution(
-    v_rel_n: float, mass1: float, mass2: float, d1, d2, material, material1, material2, sy
-) -> float:
-    """e of the Du & Wang FILM run at the normal impact velocity (spec sec. 7, 8)."""
-    from impactcli.cli.impact_cmd import _sphere
-    from impactcli.impact import elastoplastic_impact
-
-    p = dict(
-        d1=d1,
-        d2=d2,
-        material=material,
-        material1=material1,
-        material2=material2,
-        m1=str(mass1),
-        m2=str(mass2),
-        sy=sy,
-    )
-    if d1 is None or d2 is None or (material is None and (material1 is None or material2 is None)):
-        raise InputError(
-            "--model elastoplastic needs --d1, --d2 and --material (or --material1/--material2)"
-        )
-    s1, s2 = _sphere(1, p), _sphere(2, p)
-    if s1.yield_strength is None and s2.yield_strength is None:
-        raise InputError(
-            "--model elastoplastic needs a yield strength: --sy or a material with one"
-        )
-    try:
-        return float(elastoplastic_impact(s1, s2, v_rel_n, 0.0).summary["restitution"])
-    except ValueError as exc:
-        raise InputError(str(exc)) from None

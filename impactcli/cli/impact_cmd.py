@@ -19,9 +19,11 @@ from impactcli.cli.common import (
     save_plot,
     warn,
 )
+from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.contact import DU_WANG_PRESSURE_FACTOR
 from impactcli.errors import InputError
 from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.spheres import SphereOptions
 
 UNITS_HELP = "A bare number is SI; units may be given, e.g. 20mm, 7.5mm/s, 210GPa, 7800kg/m^3."
 SIGN_HELP = (
@@ -49,29 +51,6 @@ def _opt(help_text: str, *names: str, **kw: Any):
     return typer.Option(*names, help=help_text, **kw)
 
 
-D1 = Annotated[Optional[str], _opt("Diameter of sphere 1 [m]. Required.", "--d1")]
-D2 = Annotated[Optional[str], _opt("Diameter of sphere 2 [m]; 'inf' is a flat target.", "--d2")]
-V1 = Annotated[Optional[str], _opt("Velocity of sphere 1 toward sphere 2 [m/s].", "--v1")]
-V2 = Annotated[Optional[str], _opt("Velocity of sphere 2 toward sphere 1 [m/s].", "--v2")]
-MAT = Annotated[
-    Optional[str], _opt("Material of both spheres (see 'impact materials').", "--material")
-]
-MAT1 = Annotated[Optional[str], _opt("Material of sphere 1.", "--material1")]
-MAT2 = Annotated[Optional[str], _opt("Material of sphere 2.", "--material2")]
-E = Annotated[Optional[str], _opt("Young's modulus of both spheres [Pa].", "--E")]
-E1 = Annotated[Optional[str], _opt("Young's modulus of sphere 1 [Pa].", "--E1")]
-E2 = Annotated[Optional[str], _opt("Young's modulus of sphere 2 [Pa]; 'inf' is rigid.", "--E2")]
-NU = Annotated[Optional[str], _opt("Poisson's ratio of both spheres [-].", "--nu")]
-NU1 = Annotated[Optional[str], _opt("Poisson's ratio of sphere 1 [-].", "--nu1")]
-NU2 = Annotated[Optional[str], _opt("Poisson's ratio of sphere 2 [-].", "--nu2")]
-RHO = Annotated[Optional[str], _opt("Density of both spheres [kg/m^3].", "--rho")]
-RHO1 = Annotated[Optional[str], _opt("Density of sphere 1 [kg/m^3].", "--rho1")]
-RHO2 = Annotated[Optional[str], _opt("Density of sphere 2 [kg/m^3].", "--rho2")]
-M1 = Annotated[Optional[str], _opt("Mass of sphere 1 [kg] (default rho pi D^3/6).", "--m1")]
-M2 = Annotated[Optional[str], _opt("Mass of sphere 2 [kg]; 'inf' is a fixed target.", "--m2")]
-SY = Annotated[Optional[str], _opt("Yield strength of both spheres [Pa].", "--sy")]
-SY1 = Annotated[Optional[str], _opt("Yield strength of sphere 1 [Pa].", "--sy1")]
-SY2 = Annotated[Optional[str], _opt("Yield strength of sphere 2 [Pa].", "--sy2")]
 N = Annotated[int, typer.Option("--n", "-n", min=1, help="FILM segments per stage (>= 1).")]
 POINTS = Annotated[
     int, typer.Option("--points", min=2, help="History points, evenly spaced in time (>= 2).")
@@ -138,98 +117,61 @@ SUMMARY_UNITS = {
 }
 
 
-def _q(text: Optional[str], kind: str, name: str, allow_inf: bool = False) -> Optional[float]:
+def _speed(text: str, name: str) -> float:
     from impactcli.units import parse_quantity
 
-    return None if text is None else parse_quantity(text, kind, name, allow_inf)
+    return parse_quantity(text, "velocity", name)
 
 
-def _sphere(i: int, p: dict[str, Optional[str]]):
-    """Sphere i from its own options, the shared ones, then the materials."""
-    from impactcli.impact import Sphere
-    from impactcli.materials import material
-
-    mat = None
-    name = p[f"material{i}"] or p["material"]
-    if name is not None:
-        try:
-            mat = material(name)
-        except KeyError as exc:
-            raise InputError(f"--material{i if p[f'material{i}'] else ''}: {exc.args[0]}") from None
-
-    def pick(key: str, kind: str, attr: str, label: str, allow_inf: bool = False):
-        own, shared = p.get(f"{key}{i}"), p.get(key)
-        if own is not None:
-            return _q(own, kind, f"--{key}{i}", allow_inf)
-        if shared is not None:
-            return _q(shared, kind, f"--{key}", allow_inf)
-        if mat is not None:
-            return getattr(mat, attr)
-        return None
-
-    diameter = _q(p[f"d{i}"], "length", f"--d{i}", allow_inf=(i == 2))
-    if diameter is None:
-        raise InputError(f"missing --d{i}: the diameter of sphere {i} (e.g. --d{i} 20mm)")
-    youngs = pick("E", "pressure", "youngs_modulus", "Young's modulus", allow_inf=True)
-    nu = pick("nu", "dimensionless", "poisson_ratio", "Poisson's ratio")
-    rho = pick("rho", "density", "density", "density")
-    mass = _q(p[f"m{i}"], "mass", f"--m{i}", allow_inf=(i == 2))
-    sy = pick("sy", "pressure", "yield_strength", "yield strength")
-    if youngs is not None and np.isinf(youngs) and nu is None:
-        nu = 0.0  # a rigid body: its Poisson's ratio does not enter E*
-    for value, what, opts in (
-        (youngs, "Young's modulus", f"--E{i} or --E"),
-        (nu, "Poisson's ratio", f"--nu{i} or --nu"),
-    ):
-        if value is None:
-            raise InputError(
-                f"sphere {i}: {what} unknown: give --material, --material{i} or {opts}"
-            )
-    if mass is None and rho is None:
-        raise InputError(f"sphere {i}: density unknown: give --material, --rho{i}/--rho or --m{i}")
-    try:
-        return Sphere(diameter, youngs, nu, rho, mass, sy)
-    except ValueError as exc:
-        raise InputError(f"sphere {i}: {exc}") from None
-
-
-def _velocity(text: Optional[str], name: str) -> float:
-    value = _q(text, "velocity", name)
-    if value is None:
-        raise InputError(
-            f"missing {name}: the velocity toward the other sphere (e.g. {name} 5mm/s)"
-        )
-    return value
-
-
-def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
+def _run(
+    model: str,
+    spheres: SphereOptions,
+    *,
+    n: int,
+    points: int,
+    method: Method,
+    check: bool,
+    split: Split,
+    fmt: Format | None,
+    output: str | None,
+    plot: str | None,
+    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+) -> None:
     from impactcli.impact import elastic_impact, elastoplastic_impact
+    from impactcli.spheres import spheres_from_options, velocities_from_options
+    from impactcli.validation import (
+        below_yield_note,
+        contact_radius_warning,
+        first_yield_warning,
+    )
 
-    check_plot(p["plot"])
-    s1 = _sphere(1, p)
-    s2 = _sphere(2, p)
-    v1, v2 = _velocity(p["v1"], "--v1"), _velocity(p["v2"], "--v2")
-    method: Method = p["method"]
+    check_plot(plot)
+    s1, s2 = spheres_from_options(spheres)
+    v1, v2 = velocities_from_options(spheres)
     try:
         if model == "elastic":
-            result = elastic_impact(s1, s2, v1, v2, p["n"], p["split"].value)
+            result = elastic_impact(s1, s2, v1, v2, n, split.value)
         else:
-            if s1.yield_strength is None and s2.yield_strength is None:
-                raise InputError(
-                    "the elastoplastic model needs a yield strength: give --sy, --sy1/--sy2 "
-                    "or a --material that has one"
-                )
             result = elastoplastic_impact(
-                s1, s2, v1, v2, p["n"], p["split"].value, pressure_factor=pressure_factor
+                s1, s2, v1, v2, n, split.value, pressure_factor=pressure_factor
             )
     except ValueError as exc:
         raise InputError(str(exc)) from None
     if method is Method.table and result.model != "elastic":
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
-    _validity_messages(model, result)
+    s, v0 = result.summary, result.impact_velocity
+    if model == "elastic" and "first_yield_velocity" in s:
+        message = first_yield_warning(v0, s["first_yield_velocity"])
+        if message:
+            warn(message)
+    if model == "elastoplastic" and result.model == "elastic":
+        note(below_yield_note(v0, s["yield_velocity"]))
+    message = contact_radius_warning(v0, s["delta_max"], s["effective_radius"])
+    if message:
+        warn(message)
 
-    history = result.history(points=p["points"], method=method.value)
-    check = _check(result, p["points"]) if p["check"] else None
+    history = result.history(points=points, method=method.value)
+    differences = _check(result, points) if check else None
     inputs = {
         "model": model,
         "d1": s1.diameter,
@@ -244,51 +186,29 @@ def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
         "nu2": s2.poisson_ratio,
         "sy1": s1.yield_strength,
         "sy2": s2.yield_strength,
-        "n": p["n"],
+        "n": n,
         "method": method.value,
-        "split": p["split"].value,
+        "split": split.value,
     }
     if model == "elastoplastic":
         inputs["p0_factor"] = pressure_factor
-    kind = resolve_format(p["fmt"], p["output"])
-    with atomic_output(p["output"]) as stream:
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
         if kind is Format.csv:
             cols = list(history)
             write_csv(stream, cols, [((), np.column_stack([history[c] for c in cols]))])
-            if check:
-                for col, diff in check.items():
+            if differences:
+                for col, diff in differences.items():
                     note(f"FILM vs ODE, {col}: largest relative difference {diff:.2e}")
         elif kind is Format.json:
             doc = {"inputs": inputs, "summary": result.summary, "history": history}
-            if check:
-                doc["check"] = check
+            if differences:
+                doc["check"] = differences
             write_json(stream, doc)
         else:
-            _print(stream if p["output"] not in (None, "-") else None, result, history, check)
-    if p["plot"]:
-        _plot(p["plot"], result, history, p)
-
-
-def _validity_messages(model: str, result) -> None:
-    s = result.summary
-    v0 = result.impact_velocity
-    if model == "elastic" and "first_yield_velocity" in s and v0 > s["first_yield_velocity"]:
-        warn(
-            f"V0 = {v0:.4g} m/s exceeds the first-yield velocity {s['first_yield_velocity']:.4g} "
-            "m/s: the spheres yield and the elastic model no longer holds; use "
-            "'impact elastoplastic'"
-        )
-    if model == "elastoplastic" and result.model == "elastic":
-        note(
-            f"V0 = {v0:.4g} m/s is below the yield velocity {s['yield_velocity']:.4g} m/s: "
-            "the impact is elastic (Hertz) and so is this result"
-        )
-    ratio = np.sqrt(s["delta_max"] / s["effective_radius"])
-    if ratio > 0.1:
-        warn(
-            f"contact radius / R = {ratio:.2f} > 0.1: beyond the small-deformation contact "
-            "models used here (Hertz, Du & Wang); treat the result as indicative only"
-        )
+            _print(stream if output not in (None, "-") else None, result, history, differences)
+    if plot:
+        _plot(plot, result, history, spheres, method, check)
 
 
 def _check(result, points: int) -> dict[str, float]:
@@ -362,16 +282,18 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         out.print(table)
 
 
-def _plot(path: str, result, history: dict, p: dict[str, Any]) -> None:
+def _plot(
+    path: str, result, history: dict, spheres: SphereOptions, method: Method, check: bool
+) -> None:
     """The six panels of the paper's Figs. 4-11 for this impact, written to ``path``."""
     from impactcli.plots import impact_figure
 
     reference = None
-    if p["check"]:
+    if check:
         reference = result.history(t=history["t"], method="ode")
     fig = impact_figure(
         history,
-        _case_title(result, p),
+        _case_title(result, spheres, method),
         model=result.model,
         summary=result.summary,
         reference=reference,
@@ -379,7 +301,7 @@ def _plot(path: str, result, history: dict, p: dict[str, Any]) -> None:
     save_plot(fig, path)
 
 
-def _case_title(result, p: dict[str, Any]) -> str:
+def _case_title(result, spheres: SphereOptions, method: Method) -> str:
     """E.g. 'Elastic (Hertz) impact by FILM, n = 25: D1 = 20 mm, ..., steel'."""
     from impactcli.formatting import format_quantity
 
@@ -391,7 +313,7 @@ def _case_title(result, p: dict[str, Any]) -> str:
         "film": f"by FILM, n = {result.n}",
         "table": f"by the normalised Tables A1/A2, n = {result.n}",
         "ode": "by SciPy solve_ivp",
-    }[p["method"].value]
+    }[method.value]
     s1, s2 = result.sphere1, result.sphere2
     parts = [
         f"D1 = {q(s1.diameter, 'm')}",
@@ -399,17 +321,17 @@ def _case_title(result, p: dict[str, Any]) -> str:
         f"V1 = {q(result.v1, 'm/s')}",
         f"V2 = {q(result.v2, 'm/s')}",
     ]
-    parts += _material_parts(p, s1, s2)
+    parts += _material_parts(spheres, s1, s2)
     return f"{model} impact {how}: {', '.join(parts)}"
 
 
-def _material_parts(p: dict[str, Any], s1, s2) -> list[str]:
+def _material_parts(p: SphereOptions, s1, s2) -> list[str]:
     """How a figure's title names the spheres' materials: 'steel' when both are the same
     named material as given; else each sphere's material name, or its E when there is no
     name or an explicit --E/--E1/--E2 (or nu, rho) changed it."""
     from impactcli.formatting import format_quantity
 
-    names = [p["material1"] or p["material"], p["material2"] or p["material"]]
+    names = [p.material1 or p.material, p.material2 or p.material]
     overridden = [
         any(p.get(k) is not None for k in ("E", f"E{i}", "nu", f"nu{i}", "rho", f"rho{i}"))
         for i in (1, 2)
@@ -423,28 +345,9 @@ def _material_parts(p: dict[str, Any], s1, s2) -> list[str]:
     return labels
 
 
+@with_sphere_options()
 def elastic(
-    d1: D1 = None,
-    d2: D2 = None,
-    v1: V1 = None,
-    v2: V2 = None,
-    material: MAT = None,
-    material1: MAT1 = None,
-    material2: MAT2 = None,
-    E: E = None,
-    E1: E1 = None,
-    E2: E2 = None,
-    nu: NU = None,
-    nu1: NU1 = None,
-    nu2: NU2 = None,
-    rho: RHO = None,
-    rho1: RHO1 = None,
-    rho2: RHO2 = None,
-    m1: M1 = None,
-    m2: M2 = None,
-    sy: SY = None,
-    sy1: SY1 = None,
-    sy2: SY2 = None,
+    spheres: SphereOptions,
     n: N = 25,
     points: POINTS = 201,
     method: METHOD = Method.film,
@@ -467,34 +370,18 @@ def elastic(
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
     """
-    _run("elastic", locals(), 0.0)
+    _run(
+        "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
+        fmt=fmt, output=output, plot=plot,
+    )  # fmt: skip
 
 
 elastic.__doc__ = f"{elastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 
 
+@with_sphere_options()
 def elastoplastic(
-    d1: D1 = None,
-    d2: D2 = None,
-    v1: V1 = None,
-    v2: V2 = None,
-    material: MAT = None,
-    material1: MAT1 = None,
-    material2: MAT2 = None,
-    E: E = None,
-    E1: E1 = None,
-    E2: E2 = None,
-    nu: NU = None,
-    nu1: NU1 = None,
-    nu2: NU2 = None,
-    rho: RHO = None,
-    rho1: RHO1 = None,
-    rho2: RHO2 = None,
-    m1: M1 = None,
-    m2: M2 = None,
-    sy: SY = None,
-    sy1: SY1 = None,
-    sy2: SY2 = None,
+    spheres: SphereOptions,
     p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
     n: N = 25,
     points: POINTS = 201,
@@ -517,12 +404,16 @@ def elastoplastic(
     --v2 0.75m/s --material steel
     """
     _check_pressure_factor(p0_factor)
-    _run("elastoplastic", locals(), p0_factor)
+    _run(
+        "elastoplastic", spheres, n=n, points=points, method=method, check=check,
+        split=split, fmt=fmt, output=output, plot=plot, pressure_factor=p0_factor,
+    )  # fmt: skip
 
 
 elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 
 
+@with_sphere_options(velocities=False)
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
@@ -530,25 +421,7 @@ def restitution(
     linear: Annotated[
         bool, typer.Option("--linear", help="Evenly spaced velocities (default: log-spaced).")
     ] = False,
-    d1: D1 = None,
-    d2: D2 = None,
-    material: MAT = None,
-    material1: MAT1 = None,
-    material2: MAT2 = None,
-    E: E = None,
-    E1: E1 = None,
-    E2: E2 = None,
-    nu: NU = None,
-    nu1: NU1 = None,
-    nu2: NU2 = None,
-    rho: RHO = None,
-    rho1: RHO1 = None,
-    rho2: RHO2 = None,
-    m1: M1 = None,
-    m2: M2 = None,
-    sy: SY = None,
-    sy1: SY1 = None,
-    sy2: SY2 = None,
+    spheres: SphereOptions = None,
     p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
     n: N = 25,
     split: SPLIT = Split.mass,
@@ -569,20 +442,17 @@ def restitution(
     Example: impact restitution --v-min 0.1m/s --v-max 10m/s --count 50 --d1 20mm --d2 40mm
     --material steel --plot restitution.png
     """
+    from impactcli.contact import effective_radius
+    from impactcli.spheres import spheres_from_options
     from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
+    from impactcli.validation import contact_radius_warning
 
-    p = locals()
     check_plot(plot)
-    lo, hi = _velocity(v_min, "--v-min"), _velocity(v_max, "--v-max")
+    lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
     _check_pressure_factor(p0_factor)
-    p.update(v1=None, v2=None)
-    s1, s2 = _sphere(1, p), _sphere(2, p)
-    if s1.yield_strength is None and s2.yield_strength is None:
-        raise InputError(
-            "a yield strength is needed: give --sy, --sy1/--sy2 or a --material with one"
-        )
+    s1, s2 = spheres_from_options(spheres)
     velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
     try:
         data = restitution_sweep(
@@ -590,15 +460,10 @@ def restitution(
         )
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    from impactcli.contact import effective_radius
-
-    contact_ratio = np.sqrt(data["delta_max"] / effective_radius(s1.radius, s2.radius))
-    if np.any(contact_ratio > 0.1):
-        v_bad = velocities[contact_ratio > 0.1][0]
-        warn(
-            f"from V0 = {v_bad:.4g} m/s the contact radius exceeds 0.1 R: beyond the "
-            "small-deformation contact model; treat those rows as indicative only"
-        )
+    radius = effective_radius(s1.radius, s2.radius)
+    message = contact_radius_warning(velocities, data["delta_max"], radius)
+    if message:
+        warn(message)
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -645,10 +510,20 @@ def restitution(
                 )
             console(stream if output not in (None, "-") else None).print(table)
     if plot:
-        _plot_sweep(plot, data, s1, s2, p0_factor, p)
+        _plot_sweep(plot, data, s1, s2, p0_factor, spheres, n=n, linear=linear)
 
 
-def _plot_sweep(path: str, data: dict, s1, s2, p0_factor: float, p: dict[str, Any]) -> None:
+def _plot_sweep(
+    path: str,
+    data: dict,
+    s1,
+    s2,
+    p0_factor: float,
+    spheres: SphereOptions,
+    *,
+    n: int,
+    linear: bool,
+) -> None:
     """e, contact time and permanent indentation against V0, written to ``path``."""
     from impactcli.formatting import format_quantity
     from impactcli.plots import restitution_figure
@@ -657,7 +532,7 @@ def _plot_sweep(path: str, data: dict, s1, s2, p0_factor: float, p: dict[str, An
     parts = [
         f"D1 = {format_quantity(s1.diameter, 'm')}",
         f"D2 = {format_quantity(s2.diameter, 'm')}",
-        *_material_parts(p, s1, s2),
+        *_material_parts(spheres, s1, s2),
     ]
     fig = restitution_figure(
         data["impact_velocity"],
@@ -668,10 +543,10 @@ def _plot_sweep(path: str, data: dict, s1, s2, p0_factor: float, p: dict[str, An
             "sphere 1": data["delta1_res"],
             "sphere 2": data["delta2_res"],
         },
-        title=f"Restitution against impact velocity (Du & Wang, FILM, n = {p['n']}): "
+        title=f"Restitution against impact velocity (Du & Wang, FILM, n = {n}): "
         + ", ".join(parts),
         yield_velocity=sweep_yield_velocity(s1, s2, pressure_factor=p0_factor),
-        log_velocity=not p["linear"],
+        log_velocity=not linear,
     )
     save_plot(fig, path)
 

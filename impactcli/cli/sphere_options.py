@@ -1,0 +1,79 @@
+"""The options of a pair of spheres, declared once for every command that takes them.
+
+:func:`with_sphere_options` adds the options of :class:`impactcli.spheres.SphereOptions`
+(--d1, --d2, --v1, --v2, --material, --material1, --material2, --E, --E1, --E2, --nu...,
+--sy2) to a command's signature in place of its ``spheres`` parameter, and calls the
+command with them gathered in one :class:`~impactcli.spheres.SphereOptions` of the raw
+text. A new sphere option is one line in :data:`SPHERE_OPTIONS` and one field of
+``SphereOptions``.
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+from collections.abc import Callable
+from typing import Annotated, Any, Optional
+
+import typer
+
+from impactcli.spheres import SphereOptions
+
+__all__ = ["SPHERE_OPTIONS", "with_sphere_options"]
+
+#: Option name -> help text, in the order of ``--help``.
+SPHERE_OPTIONS: dict[str, str] = {
+    "d1": "Diameter of sphere 1 [m]. Required.",
+    "d2": "Diameter of sphere 2 [m]; 'inf' is a flat target.",
+    "v1": "Velocity of sphere 1 toward sphere 2 [m/s].",
+    "v2": "Velocity of sphere 2 toward sphere 1 [m/s].",
+    "material": "Material of both spheres (see 'impact materials').",
+    "material1": "Material of sphere 1.",
+    "material2": "Material of sphere 2.",
+    "E": "Young's modulus of both spheres [Pa].",
+    "E1": "Young's modulus of sphere 1 [Pa].",
+    "E2": "Young's modulus of sphere 2 [Pa]; 'inf' is rigid.",
+    "nu": "Poisson's ratio of both spheres [-].",
+    "nu1": "Poisson's ratio of sphere 1 [-].",
+    "nu2": "Poisson's ratio of sphere 2 [-].",
+    "rho": "Density of both spheres [kg/m^3].",
+    "rho1": "Density of sphere 1 [kg/m^3].",
+    "rho2": "Density of sphere 2 [kg/m^3].",
+    "m1": "Mass of sphere 1 [kg] (default rho pi D^3/6).",
+    "m2": "Mass of sphere 2 [kg]; 'inf' is a fixed target.",
+    "sy": "Yield strength of both spheres [Pa].",
+    "sy1": "Yield strength of sphere 1 [Pa].",
+    "sy2": "Yield strength of sphere 2 [Pa].",
+}
+assert tuple(SPHERE_OPTIONS) == SphereOptions.names(), "SPHERE_OPTIONS and SphereOptions differ"
+
+
+def _parameter(name: str) -> inspect.Parameter:
+    annotation = Annotated[Optional[str], typer.Option(f"--{name}", help=SPHERE_OPTIONS[name])]
+    return inspect.Parameter(
+        name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=None, annotation=annotation
+    )
+
+
+def with_sphere_options(velocities: bool = True) -> Callable[[Callable], Callable]:
+    """Decorate a command whose signature has a ``spheres`` parameter: the sphere options
+    (without --v1, --v2 unless ``velocities``) take its place in the command's options,
+    and the command receives them as ``spheres=SphereOptions(...)``."""
+    names = [n for n in SPHERE_OPTIONS if velocities or n not in ("v1", "v2")]
+
+    def decorate(command: Callable) -> Callable:
+        signature = inspect.signature(command, eval_str=True)
+        params = list(signature.parameters.values())
+        where = [p.name for p in params].index("spheres")
+        params[where : where + 1] = [_parameter(n) for n in names]
+
+        @functools.wraps(command)
+        def wrapper(**kwargs: Any) -> Any:
+            spheres = SphereOptions(**{n: kwargs.pop(n) for n in names})
+            return command(spheres=spheres, **kwargs)
+
+        wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
+        wrapper.__annotations__ = {p.name: p.annotation for p in params}
+        return wrapper
+
+    return decorate
