@@ -1,0 +1,292 @@
+"""One library, a thin command line: the import boundary, and each rule written once so that
+Python callers, every command and every row of a batch get the same answer and message."""
+
+from __future__ import annotations
+
+import ast
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from impactcli.batch import batch_impacts
+from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
+from impactcli.spheres import SphereOptions, resolve_property, spheres_from_options
+from impactcli.sweep import restitution_sweep
+from impactcli.validation import YIELD_STRENGTH_NEEDED, contact_radius_warning
+from tests.conftest import ROOT
+
+PACKAGE = Path(ROOT) / "impactcli"
+
+#: The library: physics on plain floats and arrays, and the layers a Python caller uses.
+LIBRARY = (
+    "impactcli.film",
+    "impactcli.laws",
+    "impactcli.contact",
+    "impactcli.impact",
+    "impactcli.sweep",
+    "impactcli.batch",
+    "impactcli.collision2d",
+    "impactcli.tables",
+    "impactcli.materials",
+    "impactcli.validation",
+    "impactcli.spheres",
+    "impactcli.errors",
+    "impactcli.formatting",
+    "impactcli.io.table",
+    "impactcli.io.engines",
+)
+FORBIDDEN = ("typer", "rich", "pint", "pandas", "impactcli.cli")
+
+STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
+ELASTIC = ["--d1", "20mm", "--d2", "40mm", "--v1", "5mm/s", "--v2", "7.5mm/s"]
+
+
+@pytest.fixture
+def cli(capsys):
+    """Run ``impact ARGS`` in this process: (exit status, stdout, stderr)."""
+    from impactcli.cli import main
+
+    def run(*args: str) -> tuple[int, str, str]:
+        with pytest.raises(SystemExit) as stop:
+            main(list(args))
+        out, err = capsys.readouterr()
+        return stop.value.code, out, err
+
+    return run
+
+
+# -- the boundary ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("module", LIBRARY)
+def test_library_module_imports_no_cli_units_or_tables(module):
+    code = f"import sys, {module}\nprint(' '.join(m for m in {FORBIDDEN!r} if m in sys.modules))"
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
+        env=os.environ, timeout=120,
+    )  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == ""
+
+
+@pytest.mark.parametrize("module", LIBRARY)
+def test_library_source_never_imports_the_command_line(module):
+    path = PACKAGE.parent / (module.replace(".", "/") + ".py")
+    tree = ast.parse(path.read_text())
+    names = [a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names]
+    names += [n.module or "" for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)]
+    assert not [n for n in names if n.split(".")[0] in ("typer", "rich")]
+    assert not [n for n in names if n.startswith("impactcli.cli")]
+
+
+def test_input_error_lives_in_the_library_not_in_output():
+    import impactcli.output
+    from impactcli.errors import InputError
+
+    tree = ast.parse((PACKAGE / "output.py").read_text())
+    assert not [n for n in ast.walk(tree) if isinstance(n, ast.ClassDef)]
+    assert InputError.__module__ == "impactcli.errors"
+    assert "InputError" not in impactcli.output.__all__
+
+
+def test_text_formatting_is_not_in_plots():
+    import impactcli.plots
+
+    tree = ast.parse((PACKAGE / "plots.py").read_text())
+    defined = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    assert not defined & {"unit_scale", "UnitScale", "format_quantity"}
+    assert "unit_scale" not in impactcli.plots.__all__
+
+
+# -- property precedence: own > shared > material ------------------------------------------
+
+
+def test_precedence_is_one_function_for_scalars_and_rows():
+    own = np.array([np.nan, 1.0, np.nan])
+    shared = np.array([2.0, 2.0, np.nan])
+    assert resolve_property(own, shared, 3.0).tolist() == [2.0, 1.0, 3.0]
+    s1, s2 = spheres_from_options(
+        SphereOptions(d1="20mm", d2="40mm", material="steel", E="100GPa", E1="300GPa")
+    )
+    assert (s1.youngs_modulus, s2.youngs_modulus) == (300e9, 100e9)
+    assert s1.poisson_ratio == s2.poisson_ratio == 0.3  # from the material
+
+
+def test_cli_and_batch_take_the_same_properties(cli, tmp_path):
+    args = [*ELASTIC, "--material", "steel", "--E", "100GPa", "--E1", "300GPa"]
+    code, out, _ = cli("elastic", *args, "-f", "json")
+    assert code == 0
+    import json
+
+    inputs = json.loads(out)["inputs"]
+    assert (inputs["E1"], inputs["E2"]) == (300e9, 100e9)
+    table = tmp_path / "in.csv"
+    table.write_text(
+        "d1,d2,v1,v2,model,material,E,E1\n20mm,40mm,5mm/s,7.5mm/s,elastic,steel,100GPa,300GPa\n"
+    )
+    code, out, _ = cli("batch", str(table), "-f", "csv")
+    assert code == 0
+    header, row = out.strip().splitlines()
+    values = dict(zip(header.split(","), row.split(",")))
+    assert float(values["effective_modulus"]) == pytest.approx(
+        json.loads(cli("elastic", *args, "-f", "json")[1])["summary"]["effective_modulus"],
+        rel=1e-15,
+    )
+
+
+# -- one message for one fault -------------------------------------------------------------
+
+
+def test_yield_strength_needed_is_one_message_everywhere(cli, tmp_path):
+    elastic_steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
+    with pytest.raises(ValueError) as python:
+        elastoplastic_impact(Sphere(0.02, **elastic_steel), Sphere(0.04, **elastic_steel), 1, 0)
+    assert str(python.value) == YIELD_STRENGTH_NEEDED
+    with pytest.raises(ValueError) as sweep:
+        restitution_sweep(Sphere(0.02, **elastic_steel), Sphere(0.04, **elastic_steel), [1.0])
+    assert str(sweep.value) == YIELD_STRENGTH_NEEDED
+    kernel = batch_impacts(0.02, 0.04, 1.0, 0.0, 210e9, 0.3, 210e9, 0.3, 7800, 7800, plastic=True)
+    assert kernel["error"][0] == YIELD_STRENGTH_NEEDED
+    props = ["--E", "210GPa", "--nu", "0.3", "--rho", "7800"]
+    for command in (
+        ["elastoplastic", "--d1", "20mm", "--d2", "40mm", "--v1", "1", "--v2", "0", *props],
+        ["restitution", "--d1", "20mm", "--d2", "40mm", *props],
+    ):
+        code, _, err = cli(*command)
+        assert (code, err) == (2, f"impact: error: {YIELD_STRENGTH_NEEDED}\n")
+    table = tmp_path / "in.csv"
+    table.write_text("d1,d2,v1,v2,model,E,nu,rho\n20mm,40mm,1,0,elastoplastic,210GPa,0.3,7800\n")
+    code, _, err = cli("batch", str(table), "--strict")
+    assert (code, err) == (2, f"impact: error: row 1: {YIELD_STRENGTH_NEEDED}\n")
+
+
+def test_sphere_and_rows_share_their_checks():
+    cases = [
+        (dict(diameter=-0.02), "diameter must be positive, got -0.02", dict(d1=-0.02),
+         "d1 must be positive, got -0.02"),
+        (dict(poisson_ratio=0.7), "Poisson's ratio must lie in (-1, 0.5), got 0.7",
+         dict(nu1=0.7), "nu1 must lie in (-1, 0.5), got 0.7"),
+        (dict(yield_strength=-5.0), "yield strength must be positive, got -5",
+         dict(sy1=-5.0), "sy1 must be positive, got -5"),
+    ]  # fmt: skip
+    base = dict(diameter=0.02, **STEEL)
+    row = dict(d1=0.02, d2=0.04, v1=1.0, v2=0.0, E1=210e9, nu1=0.3, E2=210e9, nu2=0.3,
+               rho1=7800.0, rho2=7800.0, sy1=1e9)  # fmt: skip
+    for scalar, scalar_message, vector, vector_message in cases:
+        with pytest.raises(ValueError) as caught:
+            Sphere(**{**base, **scalar})
+        assert str(caught.value) == scalar_message
+        assert batch_impacts(**{**row, **vector})["error"][0] == vector_message
+
+
+def test_a_fixed_target_cannot_move(cli, tmp_path):
+    message = "a fixed target cannot move: m2 = inf needs v2 = 0, got 0.5 m/s"
+    ball, wall = Sphere(0.02, **STEEL), Sphere(0.04, 210e9, 0.3, mass=math.inf)
+    with pytest.raises(ValueError, match="a fixed target cannot move"):
+        elastic_impact(ball, wall, 1.0, 0.5)
+    with pytest.raises(ValueError) as caught:
+        elastoplastic_impact(ball, wall, 1.0, 0.5)
+    assert str(caught.value) == message
+    kernel = batch_impacts(0.02, 0.04, 1.0, 0.5, 210e9, 0.3, 210e9, 0.3, 7800, m2=math.inf)
+    assert kernel["error"][0] == message
+    code, _, err = cli(
+        "elastic", "--d1", "20mm", "--d2", "40mm", "--v1", "1", "--v2", "0.5", "--m2", "inf",
+        "--material", "steel",
+    )  # fmt: skip
+    assert (code, err) == (2, f"impact: error: {message}\n")
+    assert elastic_impact(ball, wall, 1.0, 0.0).summary["v2_final"] == 0.0
+
+
+def test_restitution_with_two_rigid_spheres_says_so_like_elastic(cli):
+    message = "impact: error: at most one sphere can be rigid (infinite Young's modulus)\n"
+    code, _, err = cli("restitution", "--d1", "20mm", "--d2", "40mm", "--material", "steel",
+                       "--E", "inf", "--count", "3")  # fmt: skip
+    assert (code, err) == (2, message)
+    code, _, err = cli("elastic", *ELASTIC, "--material", "steel", "--E", "inf")
+    assert (code, err) == (2, message)
+
+
+@pytest.mark.parametrize("split", ["Mass", "bogus", ""])
+def test_sweep_refuses_an_unknown_split(split):
+    steel = Sphere(0.02, **STEEL)
+    with pytest.raises(ValueError, match="split must be mass or compliance"):
+        restitution_sweep(steel, steel, [0.5, 1.0], split=split)
+
+
+def test_sweep_compliance_split_is_the_impacts():
+    s1, s2 = Sphere(0.02, **STEEL), Sphere(0.04, 70e9, 0.33, 2700.0, yield_strength=3e8)
+    sweep = restitution_sweep(s1, s2, [2.0], split="compliance")
+    single = elastoplastic_impact(s1, s2, 2.0, 0.0, split="compliance").summary
+    assert sweep["delta1_res"][0] == pytest.approx(single["delta1_res"], rel=1e-12)
+    assert sweep["delta2_res"][0] == pytest.approx(single["delta2_res"], rel=1e-12)
+
+
+COLLIDE = ["collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
+           "--v2", "2m/s", "--a2", "50deg", "--p1=-1,2", "--p2=2,-2"]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("extra", "reason"),
+    [
+        (["--d1", "abc"], "--d1"),
+        (["--sy", "-5"], "yield strength must be positive, got -5"),
+        (["--material", "unobtanium"], "unknown material 'unobtanium'"),
+        (["--d2", "-1mm"], "diameter must be positive"),
+    ],
+)
+def test_collide2d_checks_every_option_given(cli, extra, reason):
+    code, out, err = cli(*COLLIDE, *extra, "-f", "csv")
+    assert code == 2 and out == ""
+    assert reason in err and len(err.strip().splitlines()) == 1
+
+
+def test_collide2d_elastoplastic_e_is_the_normal_impacts(cli):
+    from impactcli.collision2d import approach_velocity, elastoplastic_restitution
+
+    code, out, _ = cli(*COLLIDE, "--model", "elastoplastic", "--d1", "20mm", "--d2", "40mm",
+                       "--material", "steel", "-f", "json")  # fmt: skip
+    assert code == 0
+    import json
+
+    e = json.loads(out)["summary"]["restitution"]
+    v_n = float(approach_velocity(
+        (3 * math.cos(math.radians(30)), 3 * math.sin(math.radians(30))),
+        (2 * math.cos(math.radians(50)), 2 * math.sin(math.radians(50))),
+        (-1.0, 2.0), (2.0, -2.0),
+    ))  # fmt: skip
+    from impactcli.materials import material
+
+    steel = material("steel")
+    s1 = Sphere(0.02, steel.youngs_modulus, steel.poisson_ratio, mass=0.05,
+                yield_strength=steel.yield_strength)  # fmt: skip
+    s2 = Sphere(0.04, steel.youngs_modulus, steel.poisson_ratio, mass=0.15,
+                yield_strength=steel.yield_strength)  # fmt: skip
+    assert e == pytest.approx(elastoplastic_restitution(v_n, s1, s2), rel=1e-12)
+    assert 0 < e < 1
+
+
+# -- warnings as library messages -------------------------------------------------------------
+
+
+def test_contact_radius_warning_names_the_first_velocity_beyond_the_limit():
+    radius = 0.01
+    delta = np.array([1e-6, 50e-6, 200e-6])  # a/R = 0.01, 0.071, 0.141
+    assert contact_radius_warning([1.0, 2.0], delta[:2], radius) is None
+    message = contact_radius_warning([1.0, 2.0, 3.0], delta, radius)
+    assert "contact radius / R = 0.14 > 0.1 from V0 = 3 m/s" in message
+
+
+def test_sphere_options_are_declared_once_and_listed_by_every_command(cli):
+    from impactcli.cli.sphere_options import SPHERE_OPTIONS
+
+    assert tuple(SPHERE_OPTIONS) == SphereOptions.names() and len(SPHERE_OPTIONS) == 21
+    for command, skip in (("elastic", ()), ("elastoplastic", ()), ("restitution", ("v1", "v2"))):
+        code, out, _ = cli(command, "--help")
+        assert code == 0
+        listed = [name for name in SPHERE_OPTIONS if f"--{name} " in out]
+        assert listed == [name for name in SPHERE_OPTIONS if name not in skip]
