@@ -50,6 +50,7 @@ __all__ = [
     "PLASTIC_SUMMARY_KEYS",
     "Sphere",
     "ImpactResult",
+    "check_pair",
     "elastic_impact",
     "effective_properties",
     "elastoplastic_impact",
@@ -335,6 +336,12 @@ def _validate(
         raise ValueError(f"split must be mass or compliance, got {split!r}")
     if int(n) < 1:
         raise ValueError(f"n must be an integer >= 1, got {n}")
+    check_pair(sphere1, sphere2, v1, v2)
+
+
+def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -> None:
+    """Raise the first fault of the pair at velocities V1, V2 [m/s] (arrays broadcast):
+    the checks of :func:`impactcli.validation.pair_problems`, as for a row of a batch."""
     raise_first(
         pair_problems(
             v1,

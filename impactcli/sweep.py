@@ -18,12 +18,13 @@ from impactcli.contact import (
 )
 from impactcli.impact import (
     Sphere,
+    check_pair,
     effective_properties,
     solve_plan,
     split_fractions,
     weaker_yield_strength,
 )
-from impactcli.validation import YIELD_STRENGTH_NEEDED, pair_problems, raise_first
+from impactcli.validation import YIELD_STRENGTH_NEEDED
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
@@ -63,18 +64,7 @@ def restitution_sweep(
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
     split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance
-    raise_first(
-        pair_problems(
-            v0,
-            0.0,
-            sphere1.total_mass,
-            sphere2.total_mass,
-            sphere1.diameter,
-            sphere2.diameter,
-            sphere1.youngs_modulus,
-            sphere2.youngs_modulus,
-        )
-    )
+    check_pair(sphere1, sphere2, v0, 0.0)
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor)
     plastic = contact.yields(v0, m)
     out = {name: np.zeros_like(v0) for name in SWEEP_COLUMNS}
