@@ -3,8 +3,9 @@
 One entry per collision, SI NumPy arrays in, a dict of summary arrays out: the same numbers
 as :func:`impactcli.impact.elastic_impact` and :func:`~impactcli.impact.elastoplastic_impact`
 give for each row (their ``summary``, :data:`~impactcli.impact.PLASTIC_SUMMARY_KEYS`), with
-no Python loop over rows. No pandas, files or units here: :mod:`impactcli.cli.batch_cmd`
-reads the tables and maps :func:`batch_impacts` over their chunks.
+no Python loop over rows. No pandas, files or units here: :mod:`impactcli.io.table`
+(:func:`~impactcli.io.table.compute_frame`) reads the tables and maps :func:`batch_impacts`
+over their chunks.
 
 How each row is computed
 ------------------------

@@ -109,7 +109,7 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = 150) -> No
     ------
     ValueError
         Unknown extension; or ``path`` is a folder or cannot be written
-        (:class:`impactcli.output.InputError`, from :func:`impactcli.output.atomic_output`).
+        (:class:`impactcli.errors.InputError`, from :func:`impactcli.output.atomic_output`).
     """
     from impactcli.output import atomic_output
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from impactcli.errors import InputError
 from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
-from impactcli.validation import YIELD_STRENGTH_NEEDED, Problems
+from impactcli.validation import Problems
 
 __all__ = [
     "MAX_ROW_WARNINGS",
@@ -219,8 +219,7 @@ def compute_frame(
         ]
         errors.add_messages(message)
     plastic = key == "elastoplastic"
-    s1, s2 = spheres
-    errors.add(plastic & np.isnan(s1["sy"]) & np.isnan(s2["sy"]), YIELD_STRENGTH_NEEDED)
+    s1, s2 = spheres  # the kernel checks the rest, the yield strength of plastic rows too
 
     # The physics, on the rows that parsed; the kernel adds its own checks.
     ok = np.flatnonzero(~errors.bad)
