@@ -153,9 +153,7 @@ def check_options(options: SphereOptions, prefix: str = "--") -> None:
             v["m"] = 1.0  # a mass or a density is needed only to build the sphere
         names = {key: f"sphere {i}: {name}" for key, name in SPHERE_NAMES.items()}
         try:
-            raise_first(
-                sphere_problems(v["d"], v["E"], v["nu"], v["rho"], v["m"], v["sy"], names)
-            )
+            raise_first(sphere_problems(v["d"], v["E"], v["nu"], v["rho"], v["m"], v["sy"], names))
         except ValueError as exc:
             raise InputError(str(exc)) from None
 
