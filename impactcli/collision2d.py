@@ -364,9 +364,12 @@ def oblique_collision(
     v_rel_n = np.sum((v1 - v2) * normal, axis=-1)
     bad = ~(v_rel_n > 0.0)
     if np.any(bad):
+        first = tuple(np.argwhere(bad)[0]) if np.ndim(bad) else ()
+        n_first = np.broadcast_to(normal, bad.shape + (2,))[first]
         raise ValueError(
-            "the spheres are not approaching along the line of centres"
-            " ((v1 - v2) . n_hat <= 0: no impact)" + _where(bad)
+            "the spheres are not approaching along the line of centres: (v1 - v2).n = "
+            f"{float(v_rel_n[first]):.6g} m/s with n = ({n_first[0]:.6g}, {n_first[1]:.6g}) "
+            "from sphere 1 to sphere 2 (an impact needs > 0)" + _where(bad)
         )
     shape = np.broadcast_shapes(m1.shape, m2.shape, e.shape, v_rel_n.shape)
     m1, m2, e, v_rel_n = (np.broadcast_to(a, shape) for a in (m1, m2, e, v_rel_n))

@@ -133,7 +133,6 @@ def collide2d(
         approach_velocity,
         collision_summary,
         elastoplastic_restitution,
-        line_of_centres,
         oblique_collision,
     )
     from impactcli.spheres import SphereOptions, check_options, spheres_from_options
@@ -175,14 +174,10 @@ def collide2d(
             restitution = elastoplastic_restitution(v_rel_n, *spheres_from_options(spheres))
         except ValueError as exc:
             raise InputError(str(exc)) from None
-    if not v_rel_n > 0.0:
-        n = line_of_centres(pos1, pos2)
-        raise InputError(
-            "the spheres are not approaching along the line of centres: (v1 - v2).n = "
-            f"{v_rel_n:.6g} m/s with n = {_pair(n)} from sphere 1 to sphere 2 (an impact "
-            "needs > 0)"
-        )
-    result = oblique_collision(mass1, mass2, vel1, vel2, pos1, pos2, restitution)
+    try:  # the spheres must approach along the line of centres
+        result = oblique_collision(mass1, mass2, vel1, vel2, pos1, pos2, restitution)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
     summary = collision_summary(result, sign)
     inputs = {
         "m1": mass1,
