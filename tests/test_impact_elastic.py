@@ -327,20 +327,26 @@ def test_swapping_the_spheres_mirrors_the_results(split):
 
 @pytest.mark.parametrize("n", [3, 25])
 def test_table_method_equals_film_at_the_table_rows(n):
+    # The normalised Tables A1 + A2 (docs/method.md §5) scaled by delta_m and V0 are this
+    # impact's FILM solution (paper eq. 14): at the table's own rows and at --points times.
+    from impactcli.tables import normalised_table
+
     s1, s2 = steel_pair()
     res = elastic_impact(s1, s2, 5e-3, 7.5e-3, n=n)
-    table = res.history(method="table")
-    # Tables A1 + A2 (spec sec. 5): n + 2 rows each, the shared delta_bar = 1 row once.
-    assert table["t"].size == 2 * (n + 2) - 1
-    assert np.all(np.diff(table["t"]) > 0)
-    film = res.history(t=table["t"], method="film")
-    for column in HISTORY_COLUMNS:
-        scale = np.max(np.abs(film[column]))
-        np.testing.assert_allclose(
-            table[column], film[column], rtol=0, atol=1e-12 * scale, err_msg=column
-        )
-    # The node rows are the exact energy balance: delta' = +-V0 sqrt(1 - delta_bar^2.5).
     v0, delta_m = 0.0125, res.summary["delta_max"]
+    rows = [normalised_table(n, stage) for stage in ("loading", "restitution")]
+    t_rows = np.concatenate([rows[0]["t_bar"], rows[1]["t_bar"][1:]]) * delta_m / v0
+    for t in (t_rows, None):
+        table = res.history(t=t, points=37, method="table")
+        assert table["t"].size == (t_rows.size if t is not None else 37)
+        film = res.history(t=table["t"], method="film")
+        for column in HISTORY_COLUMNS:
+            scale = np.max(np.abs(film[column]))
+            np.testing.assert_allclose(
+                table[column], film[column], rtol=0, atol=1e-12 * scale, err_msg=column
+            )
+    # The node rows are the exact energy balance: delta' = +-V0 sqrt(1 - delta_bar^2.5).
+    table = res.history(t=t_rows, method="table")
     d_bar = table["delta"] / delta_m
     np.testing.assert_allclose(
         np.abs(table["delta_dot"])[[0, -1]], v0 * np.sqrt(1 - d_bar[[0, -1]] ** 2.5), rtol=1e-12

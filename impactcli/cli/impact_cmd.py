@@ -79,16 +79,17 @@ METHOD = Annotated[
     Method,
     typer.Option(
         "--method",
-        help="film: FILM closed form at any time; table: the normalised Tables A1/A2 rows "
-        "scaled to this impact (elastic); ode: SciPy solve_ivp of eqs. 1a,b.",
+        help="film: FILM closed form at any time; table: the normalised Tables A1/A2 "
+        "solution (same n) scaled to this impact (elastic); ode: SciPy solve_ivp of "
+        "eqs. 1a,b with turning point and separation found by events (summary and history).",
     ),
 ]
 CHECK = Annotated[
     bool,
     typer.Option(
         "--check",
-        help="Also integrate with SciPy and report the largest relative "
-        "difference of each history column from FILM.",
+        help="Also report the largest relative difference of each history column between "
+        "FILM and SciPy integration (with --plot: the other method as markers).",
     ),
 ]
 SPLIT = Annotated[Split, typer.Option("--split", help=SPLIT_HELP)]
@@ -211,7 +212,7 @@ def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
     method: Method = p["method"]
     try:
         if model == "elastic":
-            result = elastic_impact(s1, s2, v1, v2, p["n"], p["split"].value)
+            result = elastic_impact(s1, s2, v1, v2, p["n"], p["split"].value, method.value)
         else:
             if s1.yield_strength is None and s2.yield_strength is None:
                 raise InputError(
@@ -219,7 +220,14 @@ def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
                     "or a --material that has one"
                 )
             result = elastoplastic_impact(
-                s1, s2, v1, v2, p["n"], p["split"].value, pressure_factor=pressure_factor
+                s1,
+                s2,
+                v1,
+                v2,
+                p["n"],
+                p["split"].value,
+                pressure_factor=pressure_factor,
+                method=method.value,
             )
     except ValueError as exc:
         raise InputError(str(exc)) from None
@@ -227,8 +235,8 @@ def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
     _validity_messages(model, result)
 
-    history = result.history(points=p["points"], method=method.value)
-    check = _check(result, p["points"]) if p["check"] else None
+    history = result.history(points=p["points"])
+    check, reference = _check(result, history) if p["check"] else (None, None)
     inputs = {
         "model": model,
         "d1": s1.diameter,
@@ -265,7 +273,7 @@ def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
         else:
             _print(stream if p["output"] not in (None, "-") else None, result, history, check)
     if p["plot"]:
-        _plot(p["plot"], result, history, p)
+        _plot(p["plot"], result, history, reference, p)
 
 
 def _validity_messages(model: str, result) -> None:
@@ -290,10 +298,12 @@ def _validity_messages(model: str, result) -> None:
         )
 
 
-def _check(result, points: int) -> dict[str, float]:
-    t = result.times(points)
-    film = result.history(t=t, method="film")
-    ode = result.history(t=t, method="ode")
+def _check(result, history: dict) -> tuple[dict[str, float], dict]:
+    """Largest FILM - ODE difference of each column at the history's times, and the other
+    method's history there (the ODE's, or FILM's for --method ode)."""
+    t = history["t"]
+    film = history if result.method == "film" else result.history(t=t, method="film")
+    ode = history if result.method == "ode" else result.history(t=t, method="ode")
     out = {}
     for col in film:
         if col == "t":
@@ -302,7 +312,7 @@ def _check(result, points: int) -> dict[str, float]:
         if not np.isfinite(scale) or scale == 0:
             continue
         out[col] = float(np.nanmax(np.abs(film[col] - ode[col])) / scale)
-    return out
+    return out, (film if result.method == "ode" else ode)
 
 
 HISTORY_UNITS = {
@@ -329,12 +339,9 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
     from impactcli.plots import unit_scale
 
     out = console(stream)
-    title = (
-        "Elastic (Hertz) impact by FILM"
-        if result.model == "elastic"
-        else "Elastoplastic (Du & Wang) impact by FILM"
-    )
-    summary = Table(title=f"{title}, n = {result.n}", caption=SIGN_HELP)
+    title = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
+    summary = Table(title=f"{title} impact by {how}", caption=SIGN_HELP)
     for header in ("quantity", "value", "unit", "meaning"):
         summary.add_column(header, justify="right" if header == "value" else "left")
     for key, value in result.summary.items():
@@ -361,19 +368,19 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         out.print(table)
 
 
-def _plot(path: str, result, history: dict, p: dict[str, Any]) -> None:
-    """The six panels of the paper's Figs. 4-11 for this impact, written to ``path``."""
+def _plot(path: str, result, history: dict, reference, p: dict[str, Any]) -> None:
+    """The six panels of the paper's Figs. 4-11 for this impact, written to ``path``
+    (with the --check reference history as markers)."""
     from impactcli.plots import impact_figure
 
-    reference = None
-    if p["check"]:
-        reference = result.history(t=history["t"], method="ode")
+    label = f"FILM, n = {result.n}" if result.method == "ode" else "SciPy solve_ivp"
     fig = impact_figure(
         history,
         _case_title(result, p),
         model=result.model,
         summary=result.summary,
         reference=reference,
+        reference_label=label,
     )
     save_plot(fig, path)
 
