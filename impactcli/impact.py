@@ -3,10 +3,10 @@
 :func:`elastic_impact` and :func:`elastoplastic_impact` take the two spheres' sizes,
 materials and velocities in SI and return an :class:`ImpactResult`: the summary of the
 impact and its histories at any times, by FILM (closed form), by the normalised tables
-(elastic), or by SciPy integration of eqs. (1a,b).
+(elastic), or by SciPy integration of eqs. 1a,b.
 
-Sign convention (spec sec. 1): velocities along the line of centres, positive toward the
-other sphere; V0 = V1 + V2 > 0. Rigid-body motion of each centre (eq. 12, spec sec. 2):
+Sign convention (docs/method.md §1): velocities along the line of centres, positive toward the
+other sphere; V0 = V1 + V2 > 0. Rigid-body motion of each centre (eq. 12, docs/method.md §2):
 
     d_i(t)  = V_i t - (m/m_i) (V0 t - delta(t)),   d_i'(t) = V_i - (m/m_i) (V0 - delta'(t)).
 
@@ -285,7 +285,7 @@ class ImpactResult:
     def _columns(
         self, t: NDArray, delta: NDArray, delta_dot: NDArray, force: NDArray
     ) -> dict[str, NDArray]:
-        """Every history column from delta(t) and delta'(t) by eq. (12a,b) and eq. (4)."""
+        """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4."""
         v0 = self.impact_velocity
         r1, r2 = self.mass_ratios
         f1, f2 = self.split_fractions
@@ -378,7 +378,7 @@ def _validate(
 
 def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
     """Effective mass m [kg], radius R [m] and modulus E* [Pa] of the pair (paper eq. 2,
-    spec sec. 1)."""
+    docs/method.md §1)."""
     m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
     r = float(effective_radius(sphere1.radius, sphere2.radius))
     e = float(
@@ -407,7 +407,7 @@ def split_fractions(
 ) -> tuple[NDArray, NDArray]:
     """delta_i / delta for each sphere, [-]; arrays broadcast.
 
-    ``mass``: the paper's contact plane, delta_i = (m/m_i) delta (eq. 4, spec sec. 2);
+    ``mass``: the paper's contact plane, delta_i = (m/m_i) delta (eq. 4, docs/method.md §2);
     ``compliance``: Hertz, delta_i proportional to (1 - nu_i^2)/E_i, [1/Pa].
     """
     if split == "mass":
@@ -454,7 +454,7 @@ def impact_summary(
     Notes
     -----
     At separation delta = delta_res and delta' = -e V0 (exact node values, eq. 13e), so by
-    eq. (12): d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
+    eq. 12: d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
     """
     v1, v2 = np.asarray(v1, dtype=float), np.asarray(v2, dtype=float)
     m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
@@ -497,7 +497,7 @@ def plastic_summary(
 ) -> dict[str, NDArray]:
     """The elastoplastic keys of :data:`PLASTIC_SUMMARY_KEYS` beyond the elastic ones, SI.
 
-    delta_y and V_y of the contact (spec sec. 7), the residual indentation of the pair and
+    delta_y and V_y of the contact (docs/method.md §7), the residual indentation of the pair and
     of each sphere, and the energy dissipated (1/2) m V0^2 (1 - e^2). Arrays broadcast.
     """
     m, v0 = np.asarray(mass, dtype=float), np.asarray(impact_velocity, dtype=float)
@@ -537,7 +537,7 @@ def integrate_impact(result: ImpactResult) -> dict[str, float]:
 
     The turning point (t_max, delta_max, force_max) and separation (contact_time, delta at
     separation, e = -delta'(t_c)/V0) are events of :func:`impactcli.ode.integrate_plan`;
-    the final displacements and velocities follow from them by eq. (12a,b), the residual
+    the final displacements and velocities follow from them by eq. 12a,b, the residual
     indentations and the energy dissipated from delta and e at separation. Quantities of the
     inputs alone (effective properties, delta_y, yield velocities) are the closed forms.
     The integration is :attr:`ImpactResult.ode`, done once per result.
@@ -602,7 +602,7 @@ def elastic_impact(
     split: Split = "mass",
     method: Method = "film",
 ) -> ImpactResult:
-    """Elastic (Hertz) impact of two spheres by FILM (paper sec. 3, 4.2-4.3; spec sec. 1-3).
+    """Elastic (Hertz) impact of two spheres by FILM (paper sec. 3, 4.2-4.3; docs/method.md §1-3).
 
     Parameters
     ----------
@@ -649,7 +649,7 @@ def elastoplastic_impact(
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
     method: Method = "film",
 ) -> ImpactResult:
-    """Elastoplastic impact (Du & Wang contact, paper eq. 16, sec. 4.4; spec sec. 7).
+    """Elastoplastic impact (Du & Wang contact, paper eq. 16, sec. 4.4; docs/method.md §7).
 
     FILM runs Hertz loading 0 -> delta_y, linear plastic loading delta_y -> delta_m and
     Hertz unloading delta_m -> delta_res; separation is at delta = delta_res. Below the

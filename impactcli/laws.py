@@ -28,7 +28,7 @@ def hertz_stiffness(effective_modulus: ArrayLike, effective_radius: ArrayLike) -
 
 @dataclass(frozen=True)
 class Hertz:
-    """Hertz elastic contact F = K_h delta^(3/2) (spec section 3).
+    """Hertz elastic contact F = K_h delta^(3/2) (docs/method.md §3).
 
     Parameters
     ----------

@@ -1,11 +1,11 @@
 """Normalised FILM solution of the elastic (Hertz) impact: the paper's Tables A1 and A2.
 
-In normalised variables (spec section 3) t_bar = t V0/delta_m, delta_bar = delta/delta_m,
+In normalised variables (docs/method.md §3) t_bar = t V0/delta_m, delta_bar = delta/delta_m,
 delta_dot_bar = delta'/V0 and F_bar = F/F_m, the Hertz impact has m = 1, V0 = 1,
 delta_m = 1 and K_h = 5/4 whatever the spheres, so one FILM run serves every elastic impact.
 
 Each table row gives a sphere's rigid-body motion through three coefficients (paper eq. 14,
-spec section 5), with V_bar_i = V_i/V0 and m_bar_i = m_i/m:
+docs/method.md §5), with V_bar_i = V_i/V0 and m_bar_i = m_i/m:
 
     d_i / delta_m = disp_V * V_bar_i - disp_m / m_bar_i
     d_i' / V0     = V_bar_i - vel_m / m_bar_i
@@ -33,10 +33,10 @@ __all__ = [
     "normalised_table",
 ]
 
-#: Exact normalised Hertz contact duration t_c V0/delta_m = 2 (2/5) B(2/5, 1/2) (spec sec. 3).
+#: Exact normalised Hertz contact duration t_c V0/delta_m = 2 (2/5) B(2/5, 1/2) (docs/method.md §3).
 EXACT_CONTACT_DURATION: float = 2.0 * 0.4 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
 
-#: Normalised Hertz stiffness: K_h delta_m^(5/2) / (m V0^2) = 5/4 (from delta_m, spec sec. 3).
+#: Normalised Hertz stiffness: K_h delta_m^(5/2) / (m V0^2) = 5/4 (from delta_m, docs/method.md §3).
 NORMALISED_STIFFNESS: float = 1.25
 
 #: Numeric columns of Tables A1/A2, in order (CSV names).
@@ -78,7 +78,7 @@ def normalised_contact_duration(n: int, carry_velocity: bool = False) -> float:
 def normalised_table(
     n: int, stage: str = "loading", midpoint: bool = True
 ) -> dict[str, NDArray[np.float64]]:
-    """Table A1 (``stage="loading"``) or A2 (``"restitution"``) for n segments (spec sec. 5).
+    """Table A1 (``stage="loading"``) or A2 (``"restitution"``) for n segments (docs/method.md §5).
 
     One row per node (delta_bar = r/n, r = 0..n in the stage's order), plus, if
     ``midpoint``, a row at the mid-time of the last loading segment (A1) or of the first

@@ -416,7 +416,7 @@ def register(app: typer.Typer) -> None:
 def _elastoplastic_restitution(
     v_rel_n: float, mass1: float, mass2: float, d1, d2, material, material1, material2, sy
 ) -> float:
-    """e of the Du & Wang FILM run at the normal impact velocity (spec sec. 7, 8)."""
+    """e of the Du & Wang FILM run at the normal impact velocity (docs/method.md §7, §8)."""
     from impactcli.cli.impact_cmd import _sphere
     from impactcli.impact import elastoplastic_impact
 
