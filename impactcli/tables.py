@@ -9,6 +9,13 @@ docs/method.md §5), with V_bar_i = V_i/V0 and m_bar_i = m_i/m:
 
     d_i / delta_m = disp_V * V_bar_i - disp_m / m_bar_i
     d_i' / V0     = V_bar_i - vel_m / m_bar_i
+
+Examples
+--------
+FILM with n = 25 against the exact Beta-function contact duration (docs/method.md §3, §6):
+
+>>> round(normalised_contact_duration(25), 7), round(EXACT_CONTACT_DURATION, 7)
+(2.9432487, 2.9432752)
 """
 
 from __future__ import annotations
@@ -88,6 +95,16 @@ def normalised_table(
     -------
     dict
         Column name (:data:`TABLE_COLUMNS`) -> array of n+1 (or n+2) values, [-].
+
+    Examples
+    --------
+    The mid row and the last row of Table A1 (paper, n = 25):
+
+    >>> a1 = normalised_table(25, "loading")
+    >>> [round(float(a1[c][-2]), 5) for c in ("t_bar", "delta_bar", "disp_V")]
+    [1.34451, 0.98992, 1.34451]
+    >>> round(float(a1["t_bar"][-1]), 5), float(a1["delta_dot_bar"][-1])
+    (1.47163, 0.0)
     """
     if stage not in STAGES:
         raise ValueError(f"stage must be one of {', '.join(STAGES)}, got {stage!r}")
@@ -142,6 +159,11 @@ def convergence(ns: list[int], carry_velocity: bool = False) -> list[Convergence
 
     The observed order between successive n is log(e_prev/e)/log(n/n_prev) on the absolute
     errors; ``ns`` is used in the order given.
+
+    Examples
+    --------
+    >>> [(r.n, round(r.contact_duration, 7), round(r.order, 1)) for r in convergence([50, 100])]
+    [(50, 2.9432705, nan), (100, 2.9432744, 2.5)]
     """
     rows: list[ConvergenceRow] = []
     for n in ns:
