@@ -166,7 +166,10 @@ class Sphere:
 class ImpactResult:
     """One impact: its plan, FILM solution, summary and histories.
 
-    Use :meth:`history` for the columns of :data:`HISTORY_COLUMNS` at any times.
+    ``summary`` is FILM's, or the SciPy integration's when ``method == "ode"``
+    (:func:`integrate_impact`); :attr:`ode` holds that integration, done once on first use.
+    Use :meth:`history` for the columns of :data:`HISTORY_COLUMNS` at any times, by any
+    method (default ``method``).
     """
 
     sphere1: Sphere
