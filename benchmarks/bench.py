@@ -2,7 +2,7 @@
 
 (a) FILM against SciPy ``solve_ivp`` for one collision, elastic and elastoplastic, both tuned
     to the same contact-time accuracy against the exact value (elastic: the Beta-function
-    contact time, spec sec. 3; elastoplastic: FILM with n = 10^6, checked against DOP853 at
+    contact time, docs/method.md §3; elastoplastic: FILM with n = 10^6, checked against DOP853 at
     rtol 1e-13). FILM takes the smallest n, solve_ivp the fastest of RK45/DOP853/LSODA at the
     loosest rtol, that reach the accuracy. FILM is timed three ways: its stages solved for
     this one collision (``solve_plan``), per collision inside ``impact batch`` (the kernel

@@ -10,11 +10,11 @@ over their chunks.
 How each row is computed
 ------------------------
 - Elastic (Hertz) rows, and elastoplastic rows below the yield velocity, need no FILM run of
-  their own: in t V0/delta_m every Hertz impact is the same normalised solution (spec
-  sec. 3, :func:`impactcli.tables.normalised_elastic`), so the FILM contact time with n
+  their own: in t V0/delta_m every Hertz impact is the same normalised solution
+  (docs/method.md §3, :func:`impactcli.tables.normalised_elastic`), so the FILM contact time with n
   segments is t_c = t_bar_c(n) delta_m / V0 and the time of maximum indentation
   t_max = t_bar_max(n) delta_m / V0, both from one normalised run.
-- Elastoplastic rows above the yield velocity (spec sec. 7): the elastic loading is a FILM
+- Elastoplastic rows above the yield velocity (docs/method.md §7): the elastic loading is a FILM
   run on arrays of shape (rows, n), in blocks of about :data:`FILM_BLOCK` values so
   the work arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
   any n; the unloading from rest is the normalised Hertz restitution stage in
@@ -87,7 +87,7 @@ FILM_BLOCK = 131072
 def normalised_times(n: int) -> tuple[float, float]:
     """FILM time of maximum indentation and contact time of the normalised Hertz impact.
 
-    Returns ``(t_bar_max, t_bar_c)`` in units of delta_m / V0 (spec sec. 3 and 5), for n
+    Returns ``(t_bar_max, t_bar_c)`` in units of delta_m / V0 (docs/method.md §3 and §5), for n
     segments per stage; e.g. (1.4716277, 2.9432487) for n = 25.
     """
     from impactcli.tables import normalised_elastic
@@ -100,7 +100,7 @@ def plastic_stage_times(
     plan: ImpactPlan, mass: ArrayLike, impact_velocity: ArrayLike, n: int
 ) -> tuple[NDArray, NDArray]:
     """FILM time of maximum indentation and contact time [s] of elastoplastic impacts above
-    the yield velocity, the three stages of ``plan`` (spec sec. 7) each with n segments.
+    the yield velocity, the three stages of ``plan`` (docs/method.md §7) each with n segments.
 
     The same numbers as :func:`impactcli.impact.solve_plan` (to rounding), with O(n) work
     per impact only for the elastic loading:
@@ -108,9 +108,9 @@ def plastic_stage_times(
     - elastic loading 0 -> delta_y: FILM on arrays of shape (impacts, n), the node
       geometry shared (:func:`impactcli.film.hertz_loading_time`);
     - plastic loading delta_y -> delta_m: the force is linear in delta, so FILM is exact on
-      every segment (spec sec. 4, item 5) and one segment gives the time of n;
+      every segment (docs/method.md §4, item 5) and one segment gives the time of n;
     - unloading delta_m -> delta_res from rest: a Hertz restitution stage in
-      delta - delta_res, i.e. the normalised one (spec sec. 3) scaled by
+      delta - delta_res, i.e. the normalised one (docs/method.md §3) scaled by
       (delta_m - delta_res) / (e V0), e V0 being the speed at separation.
     """
     elastic, plastic_loading, _unloading = plan.stages
@@ -288,7 +288,7 @@ def batch_impacts(
     if ok.size == 0:
         return out
 
-    # Valid rows only from here: the per-collision constants (spec sec. 1).
+    # Valid rows only from here: the per-collision constants (docs/method.md §1).
     d1, d2, v1, v2, E1, nu1, E2, nu2 = (x[ok] for x in (d1, d2, v1, v2, E1, nu1, E2, nu2))
     rho1, rho2, m1, m2, sy1, sy2 = (x[ok] for x in (rho1, rho2, m1, m2, sy1, sy2))
     plastic = plastic[ok]
@@ -306,7 +306,7 @@ def batch_impacts(
         above = plastic & contact.yields(v0, m)
     delta_max, force_max, delta_res, restitution, t_max, t_c = (np.empty_like(v0) for _ in range(6))
 
-    # Hertz rows: one normalised FILM solution scaled by delta_m / V0 (spec sec. 3).
+    # Hertz rows: one normalised FILM solution scaled by delta_m / V0 (docs/method.md §3).
     hertz = np.flatnonzero(~above)
     if hertz.size:
         plan = HertzContact(stiffness[hertz]).plan(v0[hertz], m[hertz])
@@ -316,7 +316,7 @@ def batch_impacts(
         delta_res[hertz], restitution[hertz] = plan.delta_res, plan.restitution
         t_max[hertz], t_c[hertz] = t_bar_max * scale, t_bar_c * scale
 
-    # Elastoplastic rows above the yield velocity: their three FILM stages (spec sec. 7).
+    # Elastoplastic rows above the yield velocity: their three FILM stages (docs/method.md §7).
     yielding = np.flatnonzero(above)
     block_rows = max(1, FILM_BLOCK // (n + 1))
     for start in range(0, yielding.size, block_rows):

@@ -1,4 +1,4 @@
-r"""Oblique (2-D) collision of two smooth spheres: paper sec. 4.5, eqs. (17)-(21), spec sec. 8.
+r"""Oblique (2-D) collision of two smooth spheres: paper sec. 4.5, eqs. 17-21; docs/method.md §8.
 
 The positions of the centres at contact fix the line of centres. Along it the velocities
 change as in the normal (1-D) impact with coefficient of restitution e; across it they do not
@@ -13,17 +13,17 @@ from sphere 1 to sphere 2,
     v_1' = v_1 - (1 + e) \frac{m_2}{m_1 + m_2} v_{rel,n} \hat n, \qquad
     v_2' = v_2 + (1 + e) \frac{m_1}{m_1 + m_2} v_{rel,n} \hat n.
 
-This is the paper's eq. (20) (final normal velocities, e = 1) written for any e, with the
+This is the paper's eq. 20 (final normal velocities, e = 1) written for any e, with the
 tangential components unchanged (sec. 4.5.2). The coefficient of restitution is an input:
 e = 1 for the elastic impact, or the e of an elastoplastic FILM run at the normal impact
-velocity v_rel,n (spec sec. 7).
+velocity v_rel,n (docs/method.md §7).
 
 Conventions
 -----------
 - Everything is SI; angles are in radians, counter-clockwise from +x, in (-pi, pi].
 - Normal components are along n_hat (from sphere 1 to sphere 2), tangential ones along
   t_hat = n_hat turned 90 deg counter-clockwise. These are the signs of the paper's
-  eqs. (18)-(19) for the example of sec. 4.5.3: there V_1n = V_1 cos(phi - alpha_1) and
+  eqs. 18-19 for the example of sec. 4.5.3: there V_1n = V_1 cos(phi - alpha_1) and
   V_2n = V_2 cos(phi + alpha_2) are both measured along n_hat.
 - The paper measures alpha_1 (initial angle of sphere 1), theta_2 (final angle of sphere 2)
   and its phi (inclination of the line of centres) clockwise, alpha_2 and theta_1
@@ -133,10 +133,10 @@ def line_of_centres(p1: ArrayLike, p2: ArrayLike) -> Array:
 
 
 def approach_velocity(v1: ArrayLike, v2: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Array:
-    """Normal impact velocity v_rel,n = (v1 - v2) . n_hat, [m/s] (spec sec. 8).
+    """Normal impact velocity v_rel,n = (v1 - v2) . n_hat, [m/s] (docs/method.md §8).
 
     Positive when the spheres approach along the line of centres; this is the impact
-    velocity V0 = V1 + V2 of the normal impact (spec sec. 1) in the constituent convention.
+    velocity V0 = V1 + V2 of the normal impact (docs/method.md §1) in the constituent convention.
 
     Parameters
     ----------
@@ -151,7 +151,7 @@ def approach_velocity(v1: ArrayLike, v2: ArrayLike, p1: ArrayLike, p2: ArrayLike
 
 @dataclass(frozen=True)
 class ObliqueCollision:
-    """Velocities before and after an oblique collision of two smooth spheres (spec sec. 8).
+    """Velocities before and after an oblique collision of two smooth spheres (docs/method.md §8).
 
     Vectors have (x, y) on their last axis; every other attribute has the batch shape.
 
@@ -188,7 +188,7 @@ class ObliqueCollision:
 
     @property
     def reduced_mass(self) -> Array:
-        """Effective mass m = (1/m1 + 1/m2)^-1, [kg] (spec sec. 1)."""
+        """Effective mass m = (1/m1 + 1/m2)^-1, [kg] (docs/method.md §1)."""
         return self.m1 * self.m2 / (self.m1 + self.m2)
 
     def _along(self, vector: Array, axis: Array) -> Array:
@@ -296,7 +296,7 @@ def oblique_collision(
     r"""Velocities after the oblique collision of two smooth spheres (paper sec. 4.5).
 
     The normal components change as in the normal impact, the tangential ones do not
-    (paper eqs. 18-20, spec sec. 8):
+    (paper eqs. 18-20, docs/method.md §8):
 
     .. math::
 
@@ -314,7 +314,7 @@ def oblique_collision(
     p1, p2 : positions of the centres at contact, (x, y) on the last axis, [m]; only the
         direction of p2 - p1 matters
     restitution : coefficient of restitution e in [0, 1], [-]: 1 for an elastic impact, or
-        the e of the elastoplastic FILM run at the normal impact velocity (spec sec. 7)
+        the e of the elastoplastic FILM run at the normal impact velocity (docs/method.md §7)
 
     Returns
     -------

@@ -1,6 +1,6 @@
 """Two spheres in contact: effective properties and the stages of one impact.
 
-Spec sections 1, 3 and 7. Everything is SI and vectorised: every function takes floats or
+docs/method.md §1, §3 and §7. Everything is SI and vectorised: every function takes floats or
 arrays (one entry per collision) and broadcasts. An infinite diameter is a flat target, an
 infinite mass a fixed one, an infinite Young's modulus a rigid one.
 
@@ -49,7 +49,7 @@ def _inverse(x: ArrayLike) -> NDArray:
 
 
 def sphere_mass(diameter: ArrayLike, density: ArrayLike) -> NDArray:
-    """Mass of a solid sphere rho pi D^3 / 6, [kg] (spec sec. 1).
+    """Mass of a solid sphere rho pi D^3 / 6, [kg] (docs/method.md §1).
 
     >>> round(float(sphere_mass(0.02, 7800.0)), 7)
     0.0326726
@@ -81,7 +81,7 @@ def effective_modulus(e1: ArrayLike, nu1: ArrayLike, e2: ArrayLike, nu2: ArrayLi
 def hertz_maximum_indentation(
     mass: ArrayLike, velocity: ArrayLike, stiffness: ArrayLike
 ) -> NDArray:
-    """delta_m = (5 m V0^2 / (4 K_h))^(2/5), [m] (spec sec. 3)."""
+    """delta_m = (5 m V0^2 / (4 K_h))^(2/5), [m] (docs/method.md §3)."""
     m, v, k = (np.asarray(x, dtype=float) for x in (mass, velocity, stiffness))
     return (5.0 * m * v**2 / (4.0 * k)) ** 0.4
 
@@ -98,9 +98,10 @@ def _hertz_velocity(mass: ArrayLike, stiffness: ArrayLike, delta: ArrayLike) -> 
 def first_yield_velocity(
     mass: ArrayLike, radius: ArrayLike, modulus: ArrayLike, yield_strength: ArrayLike
 ) -> NDArray:
-    """Impact velocity at which yield starts in an elastic (Hertz) impact, [m/s] (spec sec. 7).
+    """Impact velocity at which yield starts in an elastic (Hertz) impact, [m/s].
 
-    The Hertz peak pressure reaches 1.6 sigma_y at delta_Y = pi^2 R (1.6 sigma_y)^2 / (4 E*^2);
+    docs/method.md §7.1: the Hertz peak pressure reaches 1.6 sigma_y at
+    delta_Y = pi^2 R (1.6 sigma_y)^2 / (4 E*^2);
     V_Y = sqrt((2/m)(2/5) K_h delta_Y^2.5).
     """
     r, e = np.asarray(radius, dtype=float), np.asarray(modulus, dtype=float)
@@ -157,7 +158,7 @@ def _col(x: ArrayLike) -> NDArray:
 
 @dataclass(frozen=True)
 class HertzContact:
-    """Elastic Hertz contact F = K_h delta^1.5 (spec sec. 3)."""
+    """Elastic Hertz contact F = K_h delta^1.5 (docs/method.md §3)."""
 
     stiffness: ArrayLike
 
@@ -181,7 +182,7 @@ class HertzContact:
 
 @dataclass(frozen=True)
 class DuWangContact:
-    """Elastoplastic contact of Du & Wang (2009), paper eq. (16a-c), spec sec. 7.
+    """Elastoplastic contact of Du & Wang (2009), paper eq. 16a-c, docs/method.md §7.
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""The force-indentation linearisation method (FILM), paper eqs. (5)-(8).
+"""The force-indentation linearisation method (FILM), paper eqs. 5-8.
 
 FILM replaces a nonlinear contact force F(delta) on each of n equal indentation steps by its
 chord, so that m delta'' = -F(delta) becomes a linear oscillator on every segment and has a
@@ -62,7 +62,7 @@ class ContactLaw(Protocol):
 
 @dataclass(frozen=True)
 class FilmStage:
-    """The FILM solution of one impact stage (spec section 4).
+    """The FILM solution of one impact stage (docs/method.md §4).
 
     Node arrays have n+1 entries on their last axis, segment arrays n.
 
@@ -154,7 +154,7 @@ def solve_stage(
     carry_velocity: bool = False,
     end_at_rest: bool = False,
 ) -> FilmStage:
-    """Solve one impact stage with FILM on n equal indentation steps (spec section 4).
+    """Solve one impact stage with FILM on n equal indentation steps (docs/method.md §4).
 
     Parameters
     ----------
@@ -163,13 +163,13 @@ def solve_stage(
         ``delta_end > delta_start``, unloading otherwise.
     speed_start : magnitude of the indentation rate at the start, [m/s] (zero when
         unloading from rest)
-    mass : effective mass m of eq. (2), [kg]
+    mass : effective mass m of eq. 2, [kg]
     n : number of segments, >= 1
     t_start : time at which the stage starts, [s]
     carry_velocity : if True, each segment starts with the velocity the previous segment's
         oscillator arrives with (the paper's own implementation, sec. 4.1), which is the
         exact balance with the chord (trapezoidal) work; default False: the exact work
-        integral of the law (eq. 13e, spec section 4 step 2).
+        integral of the law (eq. 13e, docs/method.md §4 step 2).
     end_at_rest : the stage ends where the indentation rate is exactly zero (a loading stage
         that ends at the maximum indentation delta_m): its last segment then ends at its
         oscillator's turning point. Without it, rounding may put the last node a hair short
@@ -189,6 +189,20 @@ def solve_stage(
     (2/m) W(delta_a, delta_r)) (eq. 13e). Segment r -> s: K_rs = (F_s - F_r)/(delta_s -
     delta_r), C_rs = delta_r - F_r/K_rs, omega_rs = sqrt(K_rs/m) (eqs. 5-7). The segment ends
     at the next node, or at the oscillator's turning point when it turns first (eq. 8).
+
+    Examples
+    --------
+    The normalised Hertz impact (m = V0 = delta_m = 1, K_h = 5/4; docs/method.md §3) with
+    n = 25: loading ends at t_bar = 1.4716277 (exact 1.4716376), turning in its last
+    segment, and with restitution from rest the contact lasts 2.9432487 (exact 2.9432752):
+
+    >>> from impactcli.laws import Hertz
+    >>> loading = solve_stage(Hertz(1.25), 0.0, 1.0, 1.0, 1.0, 25, end_at_rest=True)
+    >>> float(loading.end_time), bool(loading.turning[-1])
+    (1.4716277, True)
+    >>> restitution = solve_stage(Hertz(1.25), 1.0, 0.0, 0.0, 1.0, 25, loading.end_time)
+    >>> float(restitution.end_time)
+    2.9432487
     """
     n = int(n)
     if n < 1:
@@ -292,7 +306,7 @@ def hertz_loading_time(
 ) -> Array:
     """FILM duration [s] of Hertz loading stages 0 -> delta_end that do not end at rest.
 
-    The elastic loading of an elastoplastic impact up to first yield (spec sec. 7). The
+    The elastic loading of an elastoplastic impact up to first yield (docs/method.md §7). The
     result is that of :func:`solve_stage` with ``Hertz(stiffness)`` and n equal steps, to
     rounding, at a fraction of the cost for many impacts: in xi = delta / delta_end the
     nodes xi_r = r/n, the chord slopes and the offsets are the same for every impact, and
@@ -312,6 +326,16 @@ def hertz_loading_time(
     With lengths in units of delta_end and Omega = sqrt(K_h delta_end^0.5 / m): chord slopes
     k_r = n (xi_s^1.5 - xi_r^1.5), omega_rs = Omega sqrt(k_r), y0 = xi_r^1.5 / k_r, h = 1/n,
     and x0 = sqrt(A - (4/5) xi_r^2.5) / sqrt(k_r) from the energy balance (eq. 13e).
+
+    Examples
+    --------
+    The same time as :func:`solve_stage` (normalised units, start speed 1.2):
+
+    >>> from impactcli.laws import Hertz
+    >>> float(hertz_loading_time(1.0, 1.2, 1.25, 1.0, 25))
+    0.96176108
+    >>> float(solve_stage(Hertz(1.25), 0.0, 1.0, 1.2, 1.0, 25).end_time)
+    0.96176108
     """
     n = int(n)
     if n < 1:

@@ -3,10 +3,10 @@
 :func:`elastic_impact` and :func:`elastoplastic_impact` take the two spheres' sizes,
 materials and velocities in SI and return an :class:`ImpactResult`: the summary of the
 impact and its histories at any times, by FILM (closed form), by the normalised tables
-(elastic), or by SciPy integration of eqs. (1a,b).
+(elastic), or by SciPy integration of eqs. 1a,b.
 
-Sign convention (spec sec. 1): velocities along the line of centres, positive toward the
-other sphere; V0 = V1 + V2 > 0. Rigid-body motion of each centre (eq. 12, spec sec. 2):
+Sign convention (docs/method.md §1): velocities along the line of centres, positive toward the
+other sphere; V0 = V1 + V2 > 0. Rigid-body motion of each centre (eq. 12, docs/method.md §2):
 
     d_i(t)  = V_i t - (m/m_i) (V0 t - delta(t)),   d_i'(t) = V_i - (m/m_i) (V0 - delta'(t)).
 
@@ -17,8 +17,9 @@ delta_i proportional to (1 - nu_i^2)/E_i (``split="compliance"``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Any, Literal
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -44,6 +45,9 @@ from impactcli.validation import (
     sphere_problems,
 )
 
+if TYPE_CHECKING:
+    from impactcli.ode import OdeSolution
+
 __all__ = [
     "HISTORY_COLUMNS",
     "ELASTIC_SUMMARY_KEYS",
@@ -55,6 +59,7 @@ __all__ = [
     "effective_properties",
     "elastoplastic_impact",
     "impact_summary",
+    "integrate_impact",
     "plastic_summary",
     "solve_plan",
     "split_fractions",
@@ -170,7 +175,10 @@ class Sphere:
 class ImpactResult:
     """One impact: its plan, FILM solution, summary and histories.
 
-    Use :meth:`history` for the columns of :data:`HISTORY_COLUMNS` at any times.
+    ``summary`` is FILM's, or the SciPy integration's when ``method == "ode"``
+    (:func:`integrate_impact`); :attr:`ode` holds that integration, done once on first use.
+    Use :meth:`history` for the columns of :data:`HISTORY_COLUMNS` at any times, by any
+    method (default ``method``).
     """
 
     sphere1: Sphere
@@ -183,6 +191,7 @@ class ImpactResult:
     split: Split
     model: str
     summary: dict[str, float] = field(default_factory=dict)
+    method: Method = "film"
 
     # -- derived constants -------------------------------------------------------------
     @property
@@ -218,44 +227,63 @@ class ImpactResult:
         r1, r2 = self.mass_ratios  # m/m1 = m2/(m1+m2)... written to allow m2 = inf
         return r2 * self.v1 - r1 * self.v2
 
-    def times(self, points: int = 201) -> NDArray:
-        """``points`` evenly spaced times over the whole contact, [s]."""
-        return np.linspace(0.0, self.film.end_time, points)
+    @cached_property
+    def ode(self) -> OdeSolution:
+        """SciPy integration of this impact's plan (:func:`impactcli.ode.integrate_plan`),
+        computed once, on first use."""
+        from impactcli.ode import integrate_plan
+
+        mass = float(effective_mass(self.m1, self.m2))
+        return integrate_plan(self.plan, mass, self.impact_velocity)
+
+    def times(self, points: int = 201, method: Method | None = None) -> NDArray:
+        """``points`` evenly spaced times over the whole contact of ``method``, [s]: FILM's
+        (``film``, ``table``) or the integration's (``ode``) own contact duration."""
+        method = self.method if method is None else method
+        end = self.ode.end_time if method == "ode" else self.film.end_time
+        return np.linspace(0.0, end, points)
 
     # -- histories ---------------------------------------------------------------------
     def history(
-        self, t: ArrayLike | None = None, points: int = 201, method: Method = "film"
+        self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
     ) -> dict[str, NDArray]:
         """Histories over the contact (:data:`HISTORY_COLUMNS`, SI).
 
         Parameters
         ----------
-        t : times [s], clamped to the contact [0, t_c]; default ``points`` evenly spaced
-        method : ``film`` (closed form at any time), ``table`` (the rows of the normalised
-            Tables A1/A2 expanded, elastic only; ``t`` is ignored) or ``ode`` (SciPy
-            integration of eqs. 1a,b)
+        t : times [s], clamped to the method's contact [0, t_c]; default ``points`` evenly
+            spaced over it (:meth:`times`)
+        method : ``film`` (closed form at any time), ``table`` (the normalised solution of
+            Tables A1/A2 with the same n, scaled to this impact: elastic only; equal to
+            ``film`` to rounding) or ``ode`` (SciPy integration, :attr:`ode`); default the
+            method the result was computed with
         """
-        if method == "table":
-            t, delta, delta_dot = self._table_rows()
-        elif method == "ode":
-            t = self.times(points) if t is None else np.asarray(t, dtype=float)
-            t, delta, delta_dot = _integrate(self, t)
-        elif method == "film":
-            t = self.times(points) if t is None else np.asarray(t, dtype=float)
-            t = np.clip(t, 0.0, self.film.end_time)  # as _integrate: d_i must match delta(t)
-            delta, delta_dot = self.film.evaluate(t)
-        else:
+        method = self.method if method is None else method
+        if method not in ("film", "table", "ode"):
             raise ValueError(f"method must be film, table or ode, got {method!r}")
-        return self._columns(np.asarray(t, dtype=float), delta, delta_dot)
+        t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
+        if method == "table":
+            t = np.clip(t, 0.0, self.film.end_time)
+            delta, delta_dot = self._table_state(t)
+            return self._columns(t, delta, delta_dot, self.force(t, delta))
+        if method == "ode":
+            t = np.clip(t, 0.0, self.ode.end_time)
+            delta, delta_dot = self.ode.evaluate(t)
+            return self._columns(t, delta, delta_dot, self.ode.force(t, delta))
+        t = np.clip(t, 0.0, self.film.end_time)  # d_i must match the clamped delta(t)
+        delta, delta_dot = self.film.evaluate(t)
+        return self._columns(t, delta, delta_dot, self.force(t, delta))
 
-    def dataframe(self, t: ArrayLike | None = None, points: int = 201, method: Method = "film"):
+    def dataframe(
+        self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
+    ):
         """The history as a pandas DataFrame."""
         import pandas as pd
 
         return pd.DataFrame(self.history(t, points, method))
 
     def force(self, t: ArrayLike, delta: ArrayLike) -> NDArray:
-        """Contact force F(delta) of the stage each time falls in, [N]."""
+        """Contact force F(delta) of the FILM stage each time falls in, [N]."""
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
         ends = [float(stage.end_time) for stage in self.film.stages]
         stage = np.minimum(np.searchsorted(ends, t, side="left"), len(ends) - 1)
@@ -266,7 +294,10 @@ class ImpactResult:
                 force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
         return force
 
-    def _columns(self, t: NDArray, delta: NDArray, delta_dot: NDArray) -> dict[str, NDArray]:
+    def _columns(
+        self, t: NDArray, delta: NDArray, delta_dot: NDArray, force: NDArray
+    ) -> dict[str, NDArray]:
+        """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4."""
         v0 = self.impact_velocity
         r1, r2 = self.mass_ratios
         f1, f2 = self.split_fractions
@@ -281,7 +312,7 @@ class ImpactResult:
             "t": t,
             "delta": delta,
             "delta_dot": delta_dot,
-            "force": self.force(t, delta),
+            "force": force,
             "d1": d1,
             "d2": d2,
             "v1": v1,
@@ -294,18 +325,16 @@ class ImpactResult:
             "p2": p2,
         }
 
-    def _table_rows(self) -> tuple[NDArray, NDArray, NDArray]:
-        """Normalised Tables A1/A2 rows scaled to this impact (spec sec. 5)."""
+    def _table_state(self, t: NDArray) -> tuple[NDArray, NDArray]:
+        """delta [m] and delta' [m/s] at times ``t`` [s] from the normalised elastic solution
+        of Tables A1/A2 (same n), scaled by delta_m and V0 (docs/method.md §5)."""
         if self.model != "elastic":
             raise ValueError("the table method is for elastic impacts only")
-        from impactcli.tables import normalised_table
+        from impactcli.tables import normalised_elastic
 
         v0, delta_m = self.impact_velocity, float(self.plan.delta_max)
-        rows = [normalised_table(self.n, s) for s in ("loading", "restitution")]
-        t_bar = np.concatenate([rows[0]["t_bar"], rows[1]["t_bar"][1:]])
-        d_bar = np.concatenate([rows[0]["delta_bar"], rows[1]["delta_bar"][1:]])
-        v_bar = np.concatenate([rows[0]["delta_dot_bar"], rows[1]["delta_dot_bar"][1:]])
-        return t_bar * delta_m / v0, d_bar * delta_m, v_bar * v0
+        d_bar, v_bar = FilmSolution(normalised_elastic(self.n)).evaluate(t * v0 / delta_m)
+        return d_bar * delta_m, v_bar * v0
 
 
 def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:
@@ -329,9 +358,18 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
 
 
 def _validate(
-    sphere1: Sphere, sphere2: Sphere, v1: float, v2: float, n: int, split: str = "mass"
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    n: int,
+    split: str = "mass",
+    method: str = "film",
 ) -> None:
-    """The checks of :func:`impactcli.validation.pair_problems`, and n and ``split``."""
+    """The checks of :func:`impactcli.validation.pair_problems`, and n, ``split`` and
+    ``method``."""
+    if method not in ("film", "table", "ode"):
+        raise ValueError(f"method must be film, table or ode, got {method!r}")
     if split not in ("mass", "compliance"):
         raise ValueError(f"split must be mass or compliance, got {split!r}")
     if int(n) < 1:
@@ -358,7 +396,7 @@ def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -
 
 def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
     """Effective mass m [kg], radius R [m] and modulus E* [Pa] of the pair (paper eq. 2,
-    spec sec. 1)."""
+    docs/method.md §1)."""
     m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
     r = float(effective_radius(sphere1.radius, sphere2.radius))
     e = float(
@@ -387,7 +425,7 @@ def split_fractions(
 ) -> tuple[NDArray, NDArray]:
     """delta_i / delta for each sphere, [-]; arrays broadcast.
 
-    ``mass``: the paper's contact plane, delta_i = (m/m_i) delta (eq. 4, spec sec. 2);
+    ``mass``: the paper's contact plane, delta_i = (m/m_i) delta (eq. 4, docs/method.md §2);
     ``compliance``: Hertz, delta_i proportional to (1 - nu_i^2)/E_i, [1/Pa].
     """
     if split == "mass":
@@ -434,7 +472,7 @@ def impact_summary(
     Notes
     -----
     At separation delta = delta_res and delta' = -e V0 (exact node values, eq. 13e), so by
-    eq. (12): d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
+    eq. 12: d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
     """
     v1, v2 = np.asarray(v1, dtype=float), np.asarray(v2, dtype=float)
     m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
@@ -477,7 +515,7 @@ def plastic_summary(
 ) -> dict[str, NDArray]:
     """The elastoplastic keys of :data:`PLASTIC_SUMMARY_KEYS` beyond the elastic ones, SI.
 
-    delta_y and V_y of the contact (spec sec. 7), the residual indentation of the pair and
+    delta_y and V_y of the contact (docs/method.md §7), the residual indentation of the pair and
     of each sphere, and the energy dissipated (1/2) m V0^2 (1 - e^2). Arrays broadcast.
     """
     m, v0 = np.asarray(mass, dtype=float), np.asarray(impact_velocity, dtype=float)
@@ -512,10 +550,77 @@ def _summarise(result: ImpactResult, r: float, e: float) -> dict[str, float]:
     return {key: float(value) for key, value in summary.items()}
 
 
+def integrate_impact(result: ImpactResult) -> dict[str, float]:
+    """The summary of ``result``'s impact (same keys) by SciPy integration of its plan.
+
+    The turning point (t_max, delta_max, force_max) and separation (contact_time, delta at
+    separation, e = -delta'(t_c)/V0) are events of :func:`impactcli.ode.integrate_plan`;
+    the final displacements and velocities follow from them by eq. 12a,b, the residual
+    indentations and the energy dissipated from delta and e at separation. Quantities of the
+    inputs alone (effective properties, delta_y, yield velocities) are the closed forms.
+    The integration is :attr:`ImpactResult.ode`, done once per result.
+
+    Examples
+    --------
+    >>> steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
+    >>> r = elastic_impact(Sphere(0.02, **steel), Sphere(0.04, **steel), 5e-3, 7.5e-3)
+    >>> round(integrate_impact(r)["contact_time"] * 1e6, 3)
+    171.32
+    """
+    ode = result.ode
+    plan = replace(
+        result.plan,
+        delta_max=np.asarray(ode.delta_max),
+        force_max=np.asarray(ode.force_max),
+        delta_res=np.asarray(ode.delta_end),
+        restitution=np.asarray(ode.restitution),
+    )
+    m, r, e = effective_properties(result.sphere1, result.sphere2)
+    summary = impact_summary(
+        result.v1,
+        result.v2,
+        result.m1,
+        result.m2,
+        r,
+        e,
+        plan,
+        ode.t_max,
+        ode.end_time,
+        result.split_fractions,
+        weaker_yield_strength(result.sphere1, result.sphere2),
+    )
+    out = {key: float(value) for key, value in summary.items()}
+    if "delta_res" in result.summary:  # elastoplastic keys (PLASTIC_SUMMARY_KEYS)
+        f1, f2 = result.split_fractions
+        out.update(
+            delta_y=result.summary["delta_y"],
+            yield_velocity=result.summary["yield_velocity"],
+            delta_res=ode.delta_end,
+            delta1_res=f1 * ode.delta_end,
+            delta2_res=f2 * ode.delta_end,
+            energy_dissipated=0.5 * m * result.impact_velocity**2 * (1.0 - ode.restitution**2),
+        )
+    return {key: out[key] for key in result.summary if key in out}
+
+
+def _finish(result: ImpactResult, summary: dict[str, float]) -> ImpactResult:
+    """Fill ``result.summary``: FILM's, or the integration's for ``method="ode"``."""
+    result.summary.update(summary)
+    if result.method == "ode":
+        result.summary.update(integrate_impact(result))
+    return result
+
+
 def elastic_impact(
-    sphere1: Sphere, sphere2: Sphere, v1: float, v2: float, n: int = 25, split: Split = "mass"
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    n: int = 25,
+    split: Split = "mass",
+    method: Method = "film",
 ) -> ImpactResult:
-    """Elastic (Hertz) impact of two spheres by FILM (paper sec. 3, 4.2-4.3; spec sec. 1-3).
+    """Elastic (Hertz) impact of two spheres by FILM (paper sec. 3, 4.2-4.3; docs/method.md §1-3).
 
     Parameters
     ----------
@@ -524,6 +629,9 @@ def elastic_impact(
     n : FILM segments per stage
     split : how delta is shared between the spheres: ``mass`` (the paper's contact plane)
         or ``compliance`` (Hertz)
+    method : where the summary and the default history come from: ``film`` (n segments
+        per stage), ``table`` (FILM's normalised Tables A1/A2; summary as ``film``) or
+        ``ode`` (SciPy integration, :func:`integrate_impact`)
 
     Returns
     -------
@@ -538,13 +646,14 @@ def elastic_impact(
     >>> round(r.summary["contact_time"] * 1e6, 2), round(r.summary["d1_final"] * 1e6, 4)
     (171.32, -1.0469)
     """
-    _validate(sphere1, sphere2, v1, v2, n, split)
+    _validate(sphere1, sphere2, v1, v2, n, split, method)
     m, r, e = effective_properties(sphere1, sphere2)
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
     film = FilmSolution(solve_plan(plan, m, n))
-    result = ImpactResult(sphere1, sphere2, v1, v2, plan, film, int(n), split, "elastic")
-    result.summary.update(_summarise(result, r, e))
-    return result
+    result = ImpactResult(
+        sphere1, sphere2, v1, v2, plan, film, int(n), split, "elastic", method=method
+    )
+    return _finish(result, _summarise(result, r, e))
 
 
 def elastoplastic_impact(
@@ -556,8 +665,9 @@ def elastoplastic_impact(
     split: Split = "mass",
     yield_strength: float | None = None,
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    method: Method = "film",
 ) -> ImpactResult:
-    """Elastoplastic impact (Du & Wang contact, paper eq. 16, sec. 4.4; spec sec. 7).
+    """Elastoplastic impact (Du & Wang contact, paper eq. 16, sec. 4.4; docs/method.md §7).
 
     FILM runs Hertz loading 0 -> delta_y, linear plastic loading delta_y -> delta_m and
     Hertz unloading delta_m -> delta_res; separation is at delta = delta_res. Below the
@@ -568,6 +678,8 @@ def elastoplastic_impact(
     ----------
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
     pressure_factor : p0 / sigma_y, [-]
+    method : ``film`` or ``ode``, as for :func:`elastic_impact` (``table`` only below the
+        yield velocity)
 
     Examples
     --------
@@ -577,7 +689,7 @@ def elastoplastic_impact(
     >>> round(r.summary["restitution"], 5), round(r.summary["contact_time"] * 1e6, 3)
     (0.85611, 75.988)
     """
-    _validate(sphere1, sphere2, v1, v2, n, split)
+    _validate(sphere1, sphere2, v1, v2, n, split, method)
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
@@ -601,83 +713,9 @@ def elastoplastic_impact(
         int(n),
         split,
         "elastic" if elastic else "elastoplastic",
+        method=method,
     )
     summary = _summarise(result, r, e)
     extra = plastic_summary(contact, m, v0, plan, result.split_fractions)
     summary.update({key: float(value) for key, value in extra.items()})
-    result.summary.update(summary)
-    return result
-
-
-def _integrate(result: ImpactResult, t_eval: NDArray) -> tuple[NDArray, NDArray, NDArray]:
-    """SciPy solve_ivp of eqs. (1a,b): m_i d_i'' = -F(d_1 + d_2), with tight tolerances.
-
-    The force law switches from loading to unloading when delta' reaches zero and the
-    integration stops at separation (delta back to delta_res). Returns the times (those of
-    ``t_eval`` up to separation), delta and delta'.
-    """
-    from scipy.integrate import solve_ivp
-
-    plan = result.plan
-    inv1, inv2 = 1.0 / result.m1, 1.0 / result.m2
-    loading_laws = [s.law for s in plan.stages[:-1]]
-    bounds = [float(np.reshape(s.delta_end, -1)[0]) for s in plan.stages[:-1]]
-    unloading = plan.stages[-1].law
-    delta_res = float(plan.delta_res)
-    delta_max = float(plan.delta_max)
-
-    def loading_force(delta: float) -> float:
-        k = min(int(np.searchsorted(bounds, delta)), len(loading_laws) - 1)
-        return float(np.reshape(loading_laws[k].force(delta), -1)[0])
-
-    def rhs(force):
-        def f(_t, y):
-            F = force(y[0] + y[1])
-            return [y[2], y[3], -F * inv1, -F * inv2]
-
-        return f
-
-    scale_t = result.film.end_time
-    atol = 1e-12 * delta_max
-    opts = dict(method="DOP853", rtol=1e-12, atol=[atol, atol, 1e-12, 1e-12], dense_output=True)
-
-    def turning(_t, y):
-        return y[2] + y[3]
-
-    turning.terminal = True
-    turning.direction = -1
-    y0 = [0.0, 0.0, result.v1, result.v2]
-    first = solve_ivp(rhs(loading_force), (0.0, 2 * scale_t), y0, events=turning, **opts)
-    t_turn = float(first.t_events[0][0])
-    y_turn = first.y_events[0][0]
-
-    def separation(_t, y):
-        return y[0] + y[1] - delta_res
-
-    separation.terminal = True
-    separation.direction = -1
-
-    def unloading_force(delta: float) -> float:
-        return float(np.reshape(unloading.force(delta), -1)[0])
-
-    second = solve_ivp(
-        rhs(unloading_force), (t_turn, t_turn + 2 * scale_t), y_turn, events=separation, **opts
-    )
-    t_end = float(second.t_events[0][0])
-    t_eval = np.clip(np.asarray(t_eval, dtype=float), 0.0, t_end)
-    y = np.where(
-        t_eval <= t_turn,
-        first.sol(np.minimum(t_eval, t_turn)),
-        second.sol(np.clip(t_eval, t_turn, t_end)),
-    )
-    return t_eval, y[0] + y[1], y[2] + y[3]
-
-
-def integrated_summary(result: ImpactResult) -> dict[str, Any]:
-    """Contact time and final state by SciPy integration (for checks)."""
-    t, delta, delta_dot = _integrate(result, np.array([np.inf]))
-    return {
-        "contact_time": float(t[-1]),
-        "delta_end": float(delta[-1]),
-        "delta_dot_end": float(delta_dot[-1]),
-    }
+    return _finish(result, summary)

@@ -22,19 +22,37 @@ def hertz_stiffness(effective_modulus: ArrayLike, effective_radius: ArrayLike) -
     ----------
     effective_modulus : E* = [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1, [Pa]
     effective_radius : R = (1/R1 + 1/R2)^-1, [m]
+
+    Examples
+    --------
+    Steel spheres of 20 and 40 mm (docs/method.md §6): E* = 115.385 GPa, R = 6.6667 mm.
+
+    >>> float(hertz_stiffness(115.385e9, 0.02 * 0.04 / (2 * 0.06)))
+    1.25615e10
     """
     return 4.0 / 3.0 * np.asarray(effective_modulus) * np.sqrt(effective_radius)
 
 
 @dataclass(frozen=True)
 class Hertz:
-    """Hertz elastic contact F = K_h delta^(3/2) (spec section 3).
+    """Hertz elastic contact F = K_h delta^(3/2) (docs/method.md §3).
 
     Parameters
     ----------
     stiffness : K_h, [N/m^1.5]
     offset : indentation at which the force starts, [m]; 0 for first loading, delta_res for
         the elastic unloading of an elastoplastic contact (paper eq. 16c).
+
+    Examples
+    --------
+    In normalised units (K_h = 5/4, docs/method.md §3) the force at delta_m is 5/4 and the
+    work up to it is m V0^2 / 2 = 1/2:
+
+    >>> law = Hertz(1.25)
+    >>> float(law.force(1.0)), float(law.work(0.0, 1.0))
+    (1.25, 0.5)
+    >>> float(Hertz(1.25, offset=0.2).force(0.2))  # no force at the residual indentation
+    0.0
     """
 
     stiffness: ArrayLike
@@ -68,6 +86,15 @@ class DuWangPlastic:
     radius : effective radius R, [m]
     mean_pressure : p0 = 2.57 sigma_y, [Pa]
     modulus : effective modulus E*, [Pa]
+
+    Examples
+    --------
+    With R = p0 = E* = 1, delta_y = pi^2/4 and K_h = 4/3: both laws give pi^3/6 there.
+
+    >>> import math
+    >>> delta_y = math.pi**2 / 4
+    >>> float(Hertz(4 / 3).force(delta_y)), float(DuWangPlastic(1.0, 1.0, 1.0).force(delta_y))
+    (5.1677128, 5.1677128)
     """
 
     radius: ArrayLike

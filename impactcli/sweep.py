@@ -1,6 +1,6 @@
 """Restitution, contact time and permanent indentation against impact velocity.
 
-One elastoplastic FILM run (Du & Wang contact, spec sec. 7) per impact velocity, vectorised
+One elastoplastic FILM run (Du & Wang contact, docs/method.md §7) per impact velocity, vectorised
 over the velocities: the elastic ones (below the yield velocity) and the plastic ones are
 each solved as one batch. People calibrate the coefficient of restitution of DEM contact
 models this way.
@@ -50,7 +50,7 @@ def restitution_sweep(
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
     split: str = "mass",
 ) -> dict[str, NDArray]:
-    """Elastoplastic impact quantities for each impact velocity V0 [m/s] (spec sec. 7).
+    """Elastoplastic impact quantities for each impact velocity V0 [m/s] (docs/method.md §7).
 
     Returns
     -------
@@ -95,7 +95,7 @@ def sweep_yield_velocity(
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
 ) -> float:
     """The impact velocity V_y [m/s] above which :func:`restitution_sweep` is plastic (the
-    Du & Wang contact's yield velocity, spec sec. 7)."""
+    Du & Wang contact's yield velocity, docs/method.md §7)."""
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor)
     return float(contact.yield_velocity(m))
 

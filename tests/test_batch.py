@@ -131,7 +131,7 @@ def test_kernel_random_rows_equal_single_impacts():
 
 
 def test_elastic_rows_scale_one_normalised_solution():
-    # t_c = t_bar_c(n) delta_m / V0 (spec sec. 3): the FILM time with n segments.
+    # t_c = t_bar_c(n) delta_m / V0 (docs/method.md §3): the FILM time with n segments.
     t_max, t_c = normalised_times(25)
     assert t_c == pytest.approx(normalised_contact_duration(25), rel=1e-15)
     assert t_max == pytest.approx(1.4716277, abs=5e-8)

@@ -64,9 +64,12 @@ def test_check_reports_small_differences(impact):
     assert max(doc["check"].values()) < 1e-4
 
 
-def test_table_method_rows(impact):
-    doc = json.loads(impact("elastic", *PAPER_4_3, "--method", "table", "-f", "json").stdout)
-    assert len(doc["history"]["t"]) == 2 * 27 - 1
+def test_table_method_honours_points(impact):
+    args = ("elastic", *PAPER_4_3, "-f", "json", "--points", "17")
+    table = json.loads(impact(*args, "--method", "table").stdout)["history"]
+    film = json.loads(impact(*args).stdout)["history"]
+    assert len(table["t"]) == 17
+    np.testing.assert_allclose(table["delta"], film["delta"], rtol=0, atol=1e-12 * 7.3e-7)
 
 
 def test_paper_example_4_4_elastoplastic(impact):

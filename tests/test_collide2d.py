@@ -1,5 +1,5 @@
 """The oblique 2-D collision core against the paper's example and the conservation laws
-(paper sec. 4.5, eqs. 17-21; spec section 8)."""
+(paper sec. 4.5, eqs. 17-21; docs/method.md §8)."""
 
 from __future__ import annotations
 
@@ -46,7 +46,7 @@ def test_paper_example_4_5_3_elastic():
 
 def test_paper_example_4_5_3_components_of_eqs_18_to_21():
     c = oblique_collision(M1, M2, V1, V2, P1, P2)
-    # spec sec. 8: v1 = (2.598, -1.5), v2 = (1.286, 1.532)
+    # docs/method.md §8: v1 = (2.598, -1.5), v2 = (1.286, 1.532)
     np.testing.assert_allclose(V1, [2.598, -1.5], atol=5e-4)
     np.testing.assert_allclose(V2, [1.286, 1.532], atol=5e-4)
     # The paper's phi (clockwise) is the angle of (3, -4): 53.13 deg.
@@ -75,8 +75,8 @@ def test_head_on_equals_the_normal_impact():
     np.testing.assert_allclose(c.v2_final, [expected_2, 0.0], rtol=1e-15, atol=tol)
 
 
-def test_head_on_matches_spec_section_7_final_velocities():
-    # Spec sec. 7 in the constituent convention: d_i' = V_i - (m/m_i)(1 + e) V0, V0 = V1 + V2.
+def test_head_on_matches_the_paper_4_4_final_velocities():
+    # docs/method.md §7 in the constituent convention: d_i' = V_i - (m/m_i)(1 + e) V0, V0 = V1 + V2.
     m1, m2, big_v1, big_v2, e = 0.0326726, 0.261381, 0.25, 0.75, 0.85611
     m = m1 * m2 / (m1 + m2)
     c = oblique_collision(m1, m2, (0.0, big_v1), (0.0, -big_v2), (0, 0), (0, 1), e)
@@ -84,7 +84,8 @@ def test_head_on_matches_spec_section_7_final_velocities():
     assert c.approach_velocity == pytest.approx(v0, rel=1e-15)
     assert c.v1_final[1] == pytest.approx(big_v1 - m / m1 * (1 + e) * v0, rel=1e-14)
     assert -c.v2_final[1] == pytest.approx(big_v2 - m / m2 * (1 + e) * v0, rel=1e-14)
-    assert c.v1_final[1] == pytest.approx(-1.3999, abs=5e-5)  # spec sec. 7: d_1' = -1.3999 m/s
+    # docs/method.md §7: d_1' = -1.3999 m/s
+    assert c.v1_final[1] == pytest.approx(-1.3999, abs=5e-5)
 
 
 def test_perfectly_plastic_spheres_move_together_along_the_normal():

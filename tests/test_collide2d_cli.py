@@ -1,4 +1,4 @@
-"""``impact collide2d`` through the real entry point (paper sec. 4.5.3, spec section 8)."""
+"""``impact collide2d`` through the real entry point (paper sec. 4.5.3, docs/method.md §8)."""
 
 from __future__ import annotations
 
@@ -266,7 +266,7 @@ def test_help_imports_no_heavy_modules(args):
     assert result.stderr.rsplit("HEAVY=", 1)[1].strip() == ""
 
 
-def test_model_elastoplastic_head_on_equals_spec_section_7(impact):
+def test_model_elastoplastic_head_on_equals_the_paper_4_4(impact):
     # Head-on, the sec. 4.4 spheres at V0 = 1 m/s: e = 0.85611 and d1' = -1.3999 m/s.
     result = impact(
         "collide2d",

@@ -1,7 +1,7 @@
-"""Effective properties, contact laws and impact plans (spec sections 1, 3 and 7).
+"""Effective properties, contact laws and impact plans (docs/method.md §1, §3 and §7).
 
-Checked against the spec's printed numbers, Hertz theory (peak pressure), SciPy quadrature of
-the force laws and the limits of a flat, fixed or rigid counterpart.
+Checked against the printed numbers of docs/method.md, Hertz theory (peak pressure), SciPy
+quadrature of the force laws and the limits of a flat, fixed or rigid counterpart.
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from impactcli.contact import (
 from impactcli.impact import solve_plan
 from impactcli.laws import DuWangPlastic, Hertz, hertz_stiffness
 
-# The spec sec. 6 spheres: steel, D1 = 20 mm, D2 = 40 mm, sigma_y = 1000 MPa.
+# The docs/method.md §6 spheres: steel, D1 = 20 mm, D2 = 40 mm, sigma_y = 1000 MPa.
 M1, M2 = 7800.0 * np.pi * 0.020**3 / 6, 7800.0 * np.pi * 0.040**3 / 6
 M = M1 * M2 / (M1 + M2)
 R = 0.010 * 0.020 / 0.030
@@ -43,7 +43,7 @@ def steel_contact(pressure_factor: float = 2.57) -> DuWangContact:
     return DuWangContact(R, E_STAR, SIGMA_Y, pressure_factor)
 
 
-# -- effective properties (spec sec. 1, 6) ------------------------------------------------
+# -- effective properties (docs/method.md §1, §6) -----------------------------------------------
 
 
 def test_paper_section_6_effective_properties():
@@ -80,7 +80,7 @@ def test_effective_properties_broadcast_over_a_batch():
     np.testing.assert_allclose(effective_radius(d / 2, 0.02), [0.004, 0.01 * 0.02 / 0.03, 0.01])
 
 
-# -- Hertz contact (spec sec. 3) ----------------------------------------------------------
+# -- Hertz contact (docs/method.md §3) ----------------------------------------------------------
 
 
 def test_hertz_maximum_indentation_balances_the_energy():
@@ -114,7 +114,7 @@ def test_hertz_plan_is_loading_then_restitution():
     assert_printed(float(plan.force_max), "7.796")
 
 
-# -- first yield (spec sec. 7) ------------------------------------------------------------
+# -- first yield (docs/method.md §7) ------------------------------------------------------------
 
 
 def test_first_yield_velocity_paper_4_3_spheres():
@@ -132,7 +132,7 @@ def test_first_yield_is_where_the_hertz_peak_pressure_reaches_1_6_sigma_y():
     assert float(steel_contact(1.6).yield_velocity(M)) == pytest.approx(v_y, rel=1e-14)
 
 
-# -- Du & Wang elastoplastic contact (spec sec. 7) ----------------------------------------
+# -- Du & Wang elastoplastic contact (docs/method.md §7) ----------------------------------------
 
 
 def test_paper_example_4_4_contact_quantities():
@@ -146,7 +146,7 @@ def test_paper_example_4_4_contact_quantities():
 
 
 def test_yield_indentation_is_where_the_mean_pressure_reaches_p0():
-    # Spec sec. 7: delta_y = pi^2 R p0^2 / (4 E*^2), i.e. the Hertz p_max = 2 E* a/(pi R)
+    # docs/method.md §7: delta_y = pi^2 R p0^2 / (4 E*^2), i.e. the Hertz p_max = 2 E* a/(pi R)
     # at a = sqrt(R delta_y) equals p0 = 2.57 sigma_y; V_y brings Hertz delta_m to delta_y.
     c = steel_contact()
     dy = float(c.yield_indentation)

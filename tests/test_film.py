@@ -1,4 +1,4 @@
-"""The FILM stage solver against exact solutions and its own invariants (spec section 4)."""
+"""The FILM stage solver against exact solutions and its own invariants (docs/method.md §4)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from impactcli.laws import Hertz
 
 
 class Linear:
-    """F = k delta: FILM is exact for a linear law (spec section 4, step 5)."""
+    """F = k delta: FILM is exact for a linear law (docs/method.md §4, step 5)."""
 
     def __init__(self, k: float) -> None:
         self.k = k
@@ -85,7 +85,7 @@ def test_batch_equals_single_runs():
     v0=st.floats(1e-4, 50.0),
 )
 def test_contact_time_scales_as_delta_m_over_v0(n, k_h, m, v0):
-    # Dimensional FILM equals the normalised one scaled by delta_m/V0 (spec section 3).
+    # Dimensional FILM equals the normalised one scaled by delta_m/V0 (docs/method.md §3).
     delta_m = (5 * m * v0**2 / (4 * k_h)) ** 0.4
     dim = solve_stage(Hertz(k_h), 0.0, delta_m, v0, m, n)
     norm = solve_stage(Hertz(1.25), 0.0, 1.0, 1.0, 1.0, n)

@@ -1,6 +1,6 @@
-"""Elastic (Hertz) impact of two spheres, dimensional (issue 3; spec sections 1-3, 6).
+"""Elastic (Hertz) impact of two spheres, dimensional (issue 3; docs/method.md §1-§3, §6).
 
-Reference values come from the spec (sections 5 and 6, reproduced independently of this code)
+Reference values come from docs/method.md (§5 and §6, reproduced independently of this code)
 or from closed forms computed here: the Beta-function contact time, conservation of momentum
 and energy, and the limits of a flat, fixed or rigid counterpart.
 """
@@ -20,7 +20,7 @@ from impactcli.impact import HISTORY_COLUMNS, Sphere, elastic_impact
 STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1000e6)
 ALUMINIUM = dict(youngs_modulus=70e9, poisson_ratio=0.33, density=2700.0)
 
-#: t_c V0 / delta_m = 2 (2/5) B(2/5, 1/2) for the Hertz impact (spec sec. 3).
+#: t_c V0 / delta_m = 2 (2/5) B(2/5, 1/2) for the Hertz impact (docs/method.md §3).
 EXACT_TC_BAR = 2.0 * 0.4 * beta(0.4, 0.5)
 
 
@@ -31,12 +31,12 @@ def assert_printed(value: float, printed: str) -> None:
 
 
 def steel_pair() -> tuple[Sphere, Sphere]:
-    """The paper's spheres (spec sec. 6): steel, D1 = 20 mm, D2 = 40 mm."""
+    """The paper's spheres (docs/method.md §6): steel, D1 = 20 mm, D2 = 40 mm."""
     return Sphere(0.020, **STEEL), Sphere(0.040, **STEEL)
 
 
 def hertz_reference(s1: Sphere, s2: Sphere, v0: float) -> dict[str, float]:
-    """m, R, E*, K_h, delta_m and the exact t_c from the spec's formulas (sec. 1, 3)."""
+    """m, R, E*, K_h, delta_m and the exact t_c from the formulas of docs/method.md §1, §3."""
     m1 = s1.density * np.pi * s1.diameter**3 / 6 if s1.mass is None else s1.mass
     m2 = s2.density * np.pi * s2.diameter**3 / 6 if s2.mass is None else s2.mass
     m = 1.0 / (1.0 / m1 + 1.0 / m2)
@@ -57,7 +57,7 @@ def column_error(a: dict, b: dict, column: str) -> float:
     return float(np.max(np.abs(a[column] - b[column])) / np.max(np.abs(b[column])))
 
 
-# -- the paper's examples (spec sec. 5, 6) ----------------------------------------------
+# -- the paper's examples (docs/method.md §5, §6) ---------------------------------------------
 
 
 def test_paper_example_4_3_elastic():
@@ -79,7 +79,7 @@ def test_paper_example_4_3_elastic():
     assert_printed(out["v1_final"] * 1e3, "-17.222")
     assert_printed(out["v2_final"] * 1e3, "4.722")
     assert out["restitution"] == 1.0
-    # Loading-end time at n = 25 (spec sec. 5): t_bar = 1.4716277.
+    # Loading-end time at n = 25 (docs/method.md §5): t_bar = 1.4716277.
     assert_printed(out["t_max"] * 0.0125 / out["delta_max"], "1.4716277")
 
 
@@ -99,8 +99,8 @@ def test_first_yield_velocity_paper_4_3_spheres():
     assert_printed(out["first_yield_velocity"], "0.0785")
 
 
-def test_spec_6_convergence_figures():
-    # Spec sec. 6 quotes 2.94325 for n = 25: the contact duration (loading + restitution).
+def test_paper_4_1_convergence_figures():
+    # docs/method.md §6 quotes 2.94325 for n = 25: the contact duration (loading + restitution).
     # Its 2.94089 (n = 3) and 2.94252 (n = 5) are twice the loading time: with the chord
     # stiffer than the curve, FILM's restitution is shorter than its loading, so the two
     # differ at small n (2.93794 and 2.94180 for the contact duration), and 2 t_max would
@@ -116,7 +116,7 @@ def test_spec_6_convergence_figures():
 
 
 def film_stage_reference(force, work, a, b, v_a, m, n):
-    """Node times of one FILM stage, written straight from spec sec. 4 (steps 1-4).
+    """Node times of one FILM stage, written straight from docs/method.md §4 (steps 1-4).
 
     A plain loop with the textbook arcsin end phase: independent of impactcli.film.
     """
@@ -144,7 +144,7 @@ def film_stage_reference(force, work, a, b, v_a, m, n):
 
 
 @pytest.mark.parametrize("n", [1, 3, 5, 25])
-def test_film_stages_match_an_independent_implementation_of_spec_4(n):
+def test_film_stages_match_an_independent_implementation_of_the_algorithm(n):
     s1, s2 = steel_pair()
     v0 = 0.0125
     ref = hertz_reference(s1, s2, v0)
@@ -164,7 +164,7 @@ def test_film_stages_match_an_independent_implementation_of_spec_4(n):
     np.testing.assert_allclose(two.time - one.end_time, restitution, rtol=1e-9, atol=0)
 
 
-# -- exact contact time (spec sec. 3) -----------------------------------------------------
+# -- exact contact time (docs/method.md §3) -----------------------------------------------------
 
 
 def test_contact_time_equals_beta_function_closed_form():
@@ -180,7 +180,7 @@ def test_contact_time_equals_beta_function_closed_form():
     assert errors[-1] < 1e-7
 
 
-# -- conservation laws and kinematics (spec sec. 2) ---------------------------------------
+# -- conservation laws and kinematics (docs/method.md §2) ---------------------------------------
 
 
 @pytest.mark.parametrize(("v1", "v2"), [(5e-3, 7.5e-3), (100.0125, -100.0), (-0.3, 2.0)])
@@ -261,7 +261,7 @@ def test_constituent_indentations_add_up(split):
 
 
 def test_mass_split_follows_the_contact_plane():
-    # Spec sec. 2 (eq. 3, 4): delta_1 = d_1 - V_cp t, delta_2 = d_2 + V_cp t,
+    # docs/method.md §2 (eq. 3, 4): delta_1 = d_1 - V_cp t, delta_2 = d_2 + V_cp t,
     # V_cp = (m1 V1 - m2 V2)/(m1 + m2).
     s1, s2 = steel_pair()
     v1, v2 = 5e-3, 7.5e-3
@@ -327,20 +327,26 @@ def test_swapping_the_spheres_mirrors_the_results(split):
 
 @pytest.mark.parametrize("n", [3, 25])
 def test_table_method_equals_film_at_the_table_rows(n):
+    # The normalised Tables A1 + A2 (docs/method.md §5) scaled by delta_m and V0 are this
+    # impact's FILM solution (paper eq. 14): at the table's own rows and at --points times.
+    from impactcli.tables import normalised_table
+
     s1, s2 = steel_pair()
     res = elastic_impact(s1, s2, 5e-3, 7.5e-3, n=n)
-    table = res.history(method="table")
-    # Tables A1 + A2 (spec sec. 5): n + 2 rows each, the shared delta_bar = 1 row once.
-    assert table["t"].size == 2 * (n + 2) - 1
-    assert np.all(np.diff(table["t"]) > 0)
-    film = res.history(t=table["t"], method="film")
-    for column in HISTORY_COLUMNS:
-        scale = np.max(np.abs(film[column]))
-        np.testing.assert_allclose(
-            table[column], film[column], rtol=0, atol=1e-12 * scale, err_msg=column
-        )
-    # The node rows are the exact energy balance: delta' = +-V0 sqrt(1 - delta_bar^2.5).
     v0, delta_m = 0.0125, res.summary["delta_max"]
+    rows = [normalised_table(n, stage) for stage in ("loading", "restitution")]
+    t_rows = np.concatenate([rows[0]["t_bar"], rows[1]["t_bar"][1:]]) * delta_m / v0
+    for t in (t_rows, None):
+        table = res.history(t=t, points=37, method="table")
+        assert table["t"].size == (t_rows.size if t is not None else 37)
+        film = res.history(t=table["t"], method="film")
+        for column in HISTORY_COLUMNS:
+            scale = np.max(np.abs(film[column]))
+            np.testing.assert_allclose(
+                table[column], film[column], rtol=0, atol=1e-12 * scale, err_msg=column
+            )
+    # The node rows are the exact energy balance: delta' = +-V0 sqrt(1 - delta_bar^2.5).
+    table = res.history(t=t_rows, method="table")
     d_bar = table["delta"] / delta_m
     np.testing.assert_allclose(
         np.abs(table["delta_dot"])[[0, -1]], v0 * np.sqrt(1 - d_bar[[0, -1]] ** 2.5), rtol=1e-12
@@ -358,7 +364,7 @@ def test_film_agrees_with_ode_integration(n, tolerance):
         assert column_error(film, ode, column) < tolerance, column
 
 
-# -- limits: flat, fixed and rigid counterparts (spec sec. 1) -----------------------------
+# -- limits: flat, fixed and rigid counterparts (docs/method.md §1) -----------------------------
 
 
 def test_flat_target_has_the_radius_of_the_ball():

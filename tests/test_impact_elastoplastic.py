@@ -1,6 +1,6 @@
-"""Elastoplastic impact of two spheres, Du & Wang contact (issue 4; spec section 7).
+"""Elastoplastic impact of two spheres, Du & Wang contact (issue 4; docs/method.md §7).
 
-Reference values are the spec's (sec. 7) or are computed here from the spec's force laws
+Reference values are those of docs/method.md §7 or are computed here from its force laws
 with SciPy (quad, brentq, solve_ivp), independently of impactcli's own work integrals,
 quadratic for delta_m and ODE history.
 """
@@ -29,12 +29,12 @@ def assert_printed(value: float, printed: str) -> None:
 
 
 def steel_pair() -> tuple[Sphere, Sphere]:
-    """The paper's spheres (spec sec. 6): steel, sigma_y = 1000 MPa, D1 = 20 mm, D2 = 40 mm."""
+    """The paper's spheres (docs/method.md §6): steel, sigma_y = 1000 MPa, D1 = 20, D2 = 40 mm."""
     return Sphere(0.020, **STEEL), Sphere(0.040, **STEEL)
 
 
 class DuWangReference:
-    """The spec's sec. 1 and 7 formulas, evaluated directly (no impactcli code)."""
+    """The formulas of docs/method.md §1 and §7, evaluated directly (no impactcli code)."""
 
     def __init__(self, s1: Sphere, s2: Sphere, sigma_y: float, pressure_factor: float = 2.57):
         def mass(s):
@@ -123,7 +123,7 @@ class DuWangReference:
         return dict(t_max=t_max, delta_m=delta_m, t_c=t_c, e=-v_end / v0)
 
 
-# -- the paper's example (spec sec. 7) ----------------------------------------------------
+# -- the paper's example (docs/method.md §7) ----------------------------------------------------
 
 
 def test_paper_example_4_4_elastoplastic():
@@ -148,7 +148,7 @@ def test_paper_example_4_4_elastoplastic():
 
 
 def test_paper_example_4_4_closed_forms():
-    # The same numbers from the spec's formulas with SciPy root finding and quadrature.
+    # The same numbers from the formulas of §7 with SciPy root finding and quadrature.
     s1, s2 = steel_pair()
     ref = DuWangReference(s1, s2, 1000e6)
     out = elastoplastic_impact(s1, s2, 0.25, 0.75).summary
@@ -164,7 +164,7 @@ def test_paper_example_4_4_closed_forms():
     assert out["v2_final"] == pytest.approx(0.75 - ref.m / ref.m2 * (1 + e), rel=1e-13)
 
 
-# -- the force laws (spec sec. 7, eq. 16) -------------------------------------------------
+# -- the force laws (docs/method.md §7, eq. 16) -------------------------------------------------
 
 
 def test_force_continuous_at_delta_y_and_delta_m():
@@ -180,7 +180,7 @@ def test_force_continuous_at_delta_y_and_delta_m():
     # The loading laws meet at delta_y, loading and unloading meet at delta_m.
     assert force(laws[1], dy) == pytest.approx(force(laws[0], dy), rel=1e-12)
     assert force(laws[2], dm) == pytest.approx(force(laws[1], dm), rel=1e-12)
-    # ... and are the spec's laws.
+    # ... and are the laws of docs/method.md §7.
     for d in np.linspace(0.1, 1.0, 7) * dy:
         assert force(laws[0], d) == pytest.approx(ref.loading_force(d), rel=1e-13)
     for d in np.linspace(dy, dm, 7):
@@ -200,7 +200,7 @@ def test_force_history_has_no_jump_between_stages():
         assert np.ptp(h["force"]) < 1e-6 * f_m
 
 
-# -- energy (spec sec. 7) -----------------------------------------------------------------
+# -- energy (docs/method.md §7) -----------------------------------------------------------------
 
 
 @pytest.mark.parametrize("v0", [0.3, 1.0, 4.0, 20.0])
@@ -297,7 +297,7 @@ def test_just_above_the_yield_velocity_restitution_is_close_to_one(excess):
     assert out["delta_max"] == pytest.approx(ref.delta_y, rel=2 * excess + 1e-15)
     assert res.model == ("elastoplastic" if excess > 1e-9 else "elastic")
     # Continuous with the elastic impact at V_y. FILM's contact time is least accurate here
-    # (the Hertz stage ends at delta_y with almost no speed: spec sec. 4 step 4 stops the
+    # (the Hertz stage ends at delta_y with almost no speed: docs/method.md §4 step 4 stops the
     # last segment at the chord oscillator's turning point): 4e-4 at n = 25, 1e-6 excess.
     elastic = elastic_impact(s1, s2, ref.v_y, 0.0).summary
     assert out["contact_time"] == pytest.approx(elastic["contact_time"], rel=1e-3)

@@ -30,7 +30,7 @@ pytest.importorskip("matplotlib")
 
 MAGIC = {"png": b"\x89PNG\r\n\x1a\n", "pdf": b"%PDF-", "svg": b"<?xml"}
 
-# Paper sec. 4.3 / 4.4 spheres (spec sec. 6): steel, D1 = 20 mm, D2 = 40 mm.
+# Paper sec. 4.3 / 4.4 spheres (docs/method.md §6): steel, D1 = 20 mm, D2 = 40 mm.
 STEEL = {"youngs_modulus": 210e9, "poisson_ratio": 0.3, "density": 7800.0, "yield_strength": 1e9}
 SPHERE1 = Sphere(0.020, **STEEL)
 SPHERE2 = Sphere(0.040, **STEEL)
@@ -177,7 +177,7 @@ def test_paper_example_4_4_units_and_loop(plastic_4_4):
     assert "(m/s)" in axes_of(fig, "v1").get_ylabel()  # v_1' = -1.40 m/s
     assert "(µm)" in axes_of(fig, "delta").get_ylabel()
     assert "(mN·s)" in axes_of(fig, "p1").get_ylabel()
-    # Momentum p1 + p2 = m1 V1 - m2 V2 at every instant (spec sec. 2).
+    # Momentum p1 + p2 = m1 V1 - m2 V2 at every instant (docs/method.md §2).
     _x, total = lines(fig, "p1+p2").get_data()
     np.testing.assert_allclose(total * 1e-3, result.m1 * 0.25 - result.m2 * 0.75, rtol=1e-9)
     # The force-indentation loop: loading then unloading, together the whole history.
@@ -283,7 +283,7 @@ def test_restitution_figure_one_array_linear_axis():
 
 
 def paper_4_5_collision():
-    """Paper sec. 4.5.3 by the vector form of spec sec. 8 (elastic, e = 1)."""
+    """Paper sec. 4.5.3 by the vector form of docs/method.md §8 (elastic, e = 1)."""
     m1, m2 = 0.05, 0.15
     v1 = 3.0 * np.array([np.cos(np.radians(-30)), np.sin(np.radians(-30))])
     v2 = 2.0 * np.array([np.cos(np.radians(50)), np.sin(np.radians(50))])
@@ -449,7 +449,7 @@ def test_cli_restitution_plots_the_sweep_it_computes(monkeypatch, tmp_path):
     ):
         got = lines(fig, f"permanent_indentation:{label}").get_ydata()
         np.testing.assert_allclose(got, data[key] / 1e-6, rtol=1e-12)
-    # The paper's sec. 4.4 yield velocity (spec sec. 7): V_y = 0.2566 m/s.
+    # The paper's sec. 4.4 yield velocity (docs/method.md §7): V_y = 0.2566 m/s.
     assert sweep_yield_velocity(SPHERE1, SPHERE2) == pytest.approx(0.2566, abs=5e-5)
     legend = axes_of(fig, "restitution").get_legend_handles_labels()[1]
     assert any("0.2566 m/s" in label for label in legend)

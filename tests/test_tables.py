@@ -70,7 +70,7 @@ def test_paper_table_a2_n25_within_the_print_drift():
             assert abs(ours[col][i] - float(row[col])) <= tol, (i, col, ours[col][i], row[col])
 
 
-def test_loading_end_n25_matches_spec():
+def test_loading_end_n25_matches_the_film_value():
     loading, _ = normalised_elastic(25)
     assert float(loading.end_time) == pytest.approx(1.4716277, abs=5e-8)
 
@@ -99,8 +99,8 @@ def test_observed_order_is_about_two_and_a_half():
     assert all(2.3 < r.order < 2.7 for r in rows[1:])
 
 
-def test_twice_loading_gives_the_spec_small_n_figures():
-    # Spec section 6: 2.94089 (n = 3), 2.94252 (n = 5) are twice the loading time.
+def test_twice_loading_gives_the_small_n_convergence_figures():
+    # docs/method.md §6: 2.94089 (n = 3), 2.94252 (n = 5) are twice the loading time.
     assert 2 * float(normalised_elastic(3)[0].end_time) == pytest.approx(2.94089, abs=5e-6)
     assert 2 * float(normalised_elastic(5)[0].end_time) == pytest.approx(2.94252, abs=5e-6)
 

@@ -59,16 +59,17 @@ METHOD = Annotated[
     Method,
     typer.Option(
         "--method",
-        help="film: FILM closed form at any time; table: the normalised Tables A1/A2 rows "
-        "scaled to this impact (elastic); ode: SciPy solve_ivp of eqs. 1a,b.",
+        help="film: FILM closed form at any time; table: the normalised Tables A1/A2 "
+        "solution (same n) scaled to this impact (elastic); ode: SciPy solve_ivp of "
+        "eqs. 1a,b with turning point and separation found by events (summary and history).",
     ),
 ]
 CHECK = Annotated[
     bool,
     typer.Option(
         "--check",
-        help="Also integrate with SciPy and report the largest relative "
-        "difference of each history column from FILM.",
+        help="Also report the largest relative difference of each history column between "
+        "FILM and SciPy integration (with --plot: the other method as markers).",
     ),
 ]
 SPLIT = Annotated[Split, typer.Option("--split", help=SPLIT_HELP)]
@@ -150,10 +151,17 @@ def _run(
     v1, v2 = velocities_from_options(spheres)
     try:
         if model == "elastic":
-            result = elastic_impact(s1, s2, v1, v2, n, split.value)
+            result = elastic_impact(s1, s2, v1, v2, n, split.value, method.value)
         else:
             result = elastoplastic_impact(
-                s1, s2, v1, v2, n, split.value, pressure_factor=pressure_factor
+                s1,
+                s2,
+                v1,
+                v2,
+                n,
+                split.value,
+                pressure_factor=pressure_factor,
+                method=method.value,
             )
     except ValueError as exc:
         raise InputError(str(exc)) from None
@@ -170,8 +178,8 @@ def _run(
     if message:
         warn(message)
 
-    history = result.history(points=points, method=method.value)
-    differences = _check(result, points) if check else None
+    history = result.history(points=points)
+    differences, reference = _check(result, history) if check else (None, None)
     inputs = {
         "model": model,
         "d1": s1.diameter,
@@ -208,13 +216,15 @@ def _run(
         else:
             _print(stream if output not in (None, "-") else None, result, history, differences)
     if plot:
-        _plot(plot, result, history, spheres, method, check)
+        _plot(plot, result, history, reference, spheres, method)
 
 
-def _check(result, points: int) -> dict[str, float]:
-    t = result.times(points)
-    film = result.history(t=t, method="film")
-    ode = result.history(t=t, method="ode")
+def _check(result, history: dict) -> tuple[dict[str, float], dict]:
+    """Largest FILM - ODE difference of each column at the history's times, and the other
+    method's history there (the ODE's, or FILM's for --method ode)."""
+    t = history["t"]
+    film = history if result.method == "film" else result.history(t=t, method="film")
+    ode = history if result.method == "ode" else result.history(t=t, method="ode")
     out = {}
     for col in film:
         if col == "t":
@@ -223,7 +233,7 @@ def _check(result, points: int) -> dict[str, float]:
         if not np.isfinite(scale) or scale == 0:
             continue
         out[col] = float(np.nanmax(np.abs(film[col] - ode[col])) / scale)
-    return out
+    return out, (film if result.method == "ode" else ode)
 
 
 HISTORY_UNITS = {
@@ -250,12 +260,9 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
     from impactcli.formatting import unit_scale
 
     out = console(stream)
-    title = (
-        "Elastic (Hertz) impact by FILM"
-        if result.model == "elastic"
-        else "Elastoplastic (Du & Wang) impact by FILM"
-    )
-    summary = Table(title=f"{title}, n = {result.n}", caption=SIGN_HELP)
+    title = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
+    summary = Table(title=f"{title} impact by {how}", caption=SIGN_HELP)
     for header in ("quantity", "value", "unit", "meaning"):
         summary.add_column(header, justify="right" if header == "value" else "left")
     for key, value in result.summary.items():
@@ -283,20 +290,20 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
 
 
 def _plot(
-    path: str, result, history: dict, spheres: SphereOptions, method: Method, check: bool
+    path: str, result, history: dict, reference, spheres: SphereOptions, method: Method
 ) -> None:
-    """The six panels of the paper's Figs. 4-11 for this impact, written to ``path``."""
+    """The six panels of the paper's Figs. 4-11 for this impact, written to ``path``
+    (with the --check reference history as markers)."""
     from impactcli.plots import impact_figure
 
-    reference = None
-    if check:
-        reference = result.history(t=history["t"], method="ode")
+    label = f"FILM, n = {result.n}" if result.method == "ode" else "SciPy solve_ivp"
     fig = impact_figure(
         history,
         _case_title(result, spheres, method),
         model=result.model,
         summary=result.summary,
         reference=reference,
+        reference_label=label,
     )
     save_plot(fig, path)
 
