@@ -136,7 +136,9 @@ def _fast_units() -> dict[str, tuple[Fraction, Dims]]:
 #: Unit names read without pint: name -> (SI factor, exponents of length, mass, time, angle).
 FAST_UNITS: dict[str, tuple[Fraction, Dims]] = _fast_units()
 
-_NAME = r"[^\W\d¹²³⁰⁴-⁹]+|°"  # letters (µ, μ included) and underscore, or the degree sign
+# Letters (µ, μ included) and underscore but not superscript digits, or the degree sign (a
+# negative look-ahead, as a set of those characters takes 20 ms to compile).
+_NAME = r"(?:(?![¹²³⁰⁴-⁹])[^\W\d])+|°"
 _POWER = r"(?:\s*(?:\^|\*\*)\s*(?P<power>[+-]?[0-9])|(?P<superscript>[²³]))"
 _FACTOR = rf"(?P<name>{_NAME}){_POWER}?"
 _UNIT = rf"(?:{_NAME})(?:\s*(?:\^|\*\*)\s*[+-]?[0-9]|[²³])?(?:(?:\s*[*/·]\s*|\s+)(?:{_NAME})" \
