@@ -257,15 +257,20 @@ def _nonzero(number: str) -> bool:
     return any(c in "123456789" for c in re.split("[eE]", number)[0])
 
 
-@lru_cache(maxsize=512)
-def _unit(text: str) -> tuple[tuple[float, bool], Dims]:
+def _unit(text: str) -> tuple[tuple[float, bool], Dims | str]:
     """SI factor (as (float, divide?): SI = x / f if divide else x * f, which keeps 20mm
     at 0.02 exactly) and dimensions of a unit expression that matched ``_UNIT``."""
+    return _unit_fast(text) or _unit_by_pint(text)
+
+
+@lru_cache(maxsize=512)
+def _unit_fast(text: str) -> tuple[tuple[float, bool], Dims] | None:
+    """As :func:`_unit` from :data:`FAST_UNITS`; None if a name is not there."""
     total, dims = Fraction(1), [0, 0, 0, 0]
     for match in _FACTORS.finditer(text):
         known = FAST_UNITS.get(match["name"])
         if known is None:
-            return _unit_by_pint(text)
+            return None
         power = int(match["power"] or _SUPERSCRIPTS.get(match["superscript"], 1))
         if match["op"] and match["op"].strip() == "/":
             power = -power
@@ -290,6 +295,7 @@ def _registry():
 _PINT_ROOTS = {"meter": 0, "gram": 1, "second": 2, "radian": 3}
 
 
+@lru_cache(maxsize=512)
 def _unit_by_pint(text: str) -> tuple[tuple[float, bool], Dims | str]:
     """As :func:`_unit`, by pint, for unit names not in :data:`FAST_UNITS`. Dimensions
     other than length, mass, time and angle come back as pint's description (a str)."""
@@ -383,8 +389,8 @@ def parse_quantities(
     Returns ``(values, errors)``: SI floats (NaN where a cell is missing or refused) and,
     per cell, the one-line message of its refusal or ``""``. Missing cells (``None``, NaN,
     empty or blank text) are NaN with no error: the caller decides what missing means.
-    Each distinct cell is parsed once and each distinct unit looked up once, so a column
-    of 10^6 cells costs about a second at most, and pint is imported only for units that
+    Each distinct cell is parsed once (a few microseconds) and each distinct unit looked
+    up once; a repeated cell costs a dict look-up. pint is imported only for units that
     are not in :data:`FAST_UNITS`.
 
     >>> values, errors = parse_quantities(["20mm", "0.04", None, "20mm", "3kg"], "length", "d1")
@@ -393,17 +399,17 @@ def parse_quantities(
     >>> errors.tolist()
     ['', '', '', '', "d1: expected a length such as 20mm, 0.02 m, got '3kg' (a mass)"]
     """
+    items = cells.tolist() if isinstance(cells, np.ndarray) else list(cells)
     index: dict[object, int] = {}
-    codes = np.fromiter(
-        (index.setdefault(_key(c), len(index)) for c in cells), dtype=np.intp, count=-1
-    )
-    values = np.full(len(index), np.nan)
-    errors = np.full(len(index), "", dtype=object)
-    for cell, i in index.items():
-        if cell is None:
+    codes = np.array([index.setdefault(c, len(index)) for c in items], dtype=np.intp)
+    keys = [_key(c) for c in index]  # each distinct cell once
+    values = np.full(len(keys), np.nan)
+    errors = np.full(len(keys), "", dtype=object)
+    for i, key in enumerate(keys):
+        if key is None:
             continue
         try:
-            values[i] = parse_quantity(cell, kind, name, allow_inf)
+            values[i] = parse_quantity(key, kind, name, allow_inf)  # type: ignore[arg-type]
         except InputError as exc:
             errors[i] = str(exc)
     return values[codes], errors[codes]
