@@ -280,3 +280,27 @@ def test_parse_quantities_on_a_column_of_distinct_cells():
     values, errors = parse_quantities(cells, "length", "d1")
     np.testing.assert_allclose(values, np.arange(10**5) * 1e-3, rtol=1e-15)
     assert not errors.any()
+
+
+@pytest.mark.parametrize(
+    "value,fragment",
+    [
+        ("mm", "got 'mm' (a unit without a number)"),
+        ("9**9**9 m", "(not a quantity: one number, then a unit"),
+        ("10**400 m", "(not a quantity: one number, then a unit"),
+        ("3 4", "(not a quantity: one number, then a unit"),
+        ("0,02", "(not a quantity: use a decimal point"),
+        ("1e400 mm", "(overflows to infinity in SI)"),
+    ],
+)
+def test_cli_refuses_with_one_line(impact, value, fragment):
+    result = impact(
+        "elastic", "--d1", value, "--d2", "40mm", "--v1", "5mm/s", "--v2", "0", "--material",
+        "steel",
+    )  # fmt: skip
+    assert result.returncode == 2
+    assert result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "--d1: expected a length such as 20mm, 0.02 m" in lines[0]
+    assert fragment in lines[0]
+    assert "Traceback" not in result.stderr and "angle" not in result.stderr
