@@ -580,7 +580,7 @@ class TabulatedContact:
                 f"{need:.6g} m (the last segment extended), the largest tabulated one is "
                 f"{self.loading.delta[-1]:.6g} m"
             )
-        if self.unloading is not None and np.any(dm > self.unloading.delta_max[-1]):
+        if self.unloading is not None and np.any(dm > self.unloading.delta_max[-1] * (1.0 + 1e-9)):
             raise InputError(
                 f"the impact reaches delta_max = {float(np.max(dm)):.6g} m, beyond the largest "
                 f"delta_max of the unloading curves, {self.unloading.delta_max[-1]:.6g} m"
