@@ -375,17 +375,23 @@ def test_unloading_curves_above_loading_are_rejected():
 # -- Energy and vectorisation --------------------------------------------------------------
 
 
+def stage_work(stage, start, end, size: int) -> np.ndarray:
+    """Work of a stage's law from ``start`` to ``end`` for each of ``size`` impacts, [J]."""
+    a, b = (np.broadcast_to(np.asarray(x, dtype=float), (size,))[:, None] for x in (start, end))
+    return stage.law.work(a, b)[:, 0]
+
+
 @pytest.mark.parametrize("name", ["du-wang", "thornton", "walton-braun", "tabulated-unloading"])
 def test_energy_never_created(name):
     contact = _cases()[name][0]
-    v0 = np.geomspace(0.02, 1.8, 40)
+    v0 = np.geomspace(0.02, 1.5, 40)
     for rows, plan in plan_groups(contact, v0, M):
         stages = solve_plan(plan, M, 20)
         loading = sum(
-            s.law.work(s.delta_start[:, None], s.delta_end[:, None])[:, 0] for s in plan.stages[:-1]
+            stage_work(s, s.delta_start, s.delta_end, rows.size) for s in plan.stages[:-1]
         )
         last = plan.stages[-1]
-        returned = last.law.work(last.delta_end[:, None], last.delta_start[:, None])[:, 0]
+        returned = stage_work(last, last.delta_end, last.delta_start, rows.size)
         assert np.all(returned <= loading * (1 + 1e-12))
         assert np.all(plan.restitution <= 1.0 + 1e-12)
         assert np.all(-stages[-1].velocity[:, -1] <= v0[rows] * (1 + 1e-12))
