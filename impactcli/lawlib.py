@@ -144,7 +144,7 @@ class HertzLawContact:
 
 
 def thornton_restitution(velocity_ratio: ArrayLike) -> Array:
-    """Thornton's (1997) closed-form coefficient of restitution, [-] (his eq. 26; spec sec. 9).
+    """Thornton's (1997) closed-form coefficient of restitution, [-] (spec sec. 9).
 
     e = sqrt(6 sqrt(3) / 5) sqrt(1 - r^2/6) [r / (r + 2 sqrt(6/5 - r^2/5))]^(1/4),
     r = V_y / V0 <= 1 (e = 1 for r >= 1).
@@ -297,8 +297,7 @@ class WaltonBraunContact:
     """Hysteretic linear spring of Walton & Braun (1986): loading F = K1 delta, unloading
     F = K2 (delta - delta_res) with K2 >= K1 and delta_res = delta_m (1 - K1/K2).
 
-    Closed forms (their eqs. for the normal force, 'partially latching spring'):
-    delta_m = V0 sqrt(m / K1), e = sqrt(K1 / K2) whatever V0, contact time
+    Closed forms of the law: delta_m = V0 sqrt(m / K1), e = sqrt(K1 / K2) whatever V0, contact time
     t_c = (pi/2) [sqrt(m/K1) + sqrt(m/K2)]. Plastic from the first touch: delta_y = 0, V_y = 0.
 
     Parameters
@@ -567,8 +566,26 @@ class TabulatedContact:
         shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass)).shape
         return np.full(shape, self.unloading is not None)
 
+    def reach_errors(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.object_]:
+        """Why each impact cannot be computed with these curves: one line per impact, ``""``
+        when it stays within them (the checks of :meth:`maximum_indentation`, per row)."""
+        v0, m = np.broadcast_arrays(
+            np.asarray(impact_velocity, dtype=float), np.asarray(mass, dtype=float)
+        )
+        dm = self.loading.indentation_for_work(0.5 * m * v0**2)
+        failed = ~np.isfinite(dm)
+        if self.unloading is not None:
+            failed |= dm > self.unloading.delta_max[-1] * (1.0 + 1e-9)
+        errors = np.full(v0.shape, "", dtype=object)
+        for i in zip(*np.nonzero(failed)):  # a loop over the failing rows only, to word them
+            try:
+                self.maximum_indentation(v0[i], m[i])
+            except InputError as exc:
+                errors[i] = str(exc)
+        return errors
+
     def maximum_indentation(self, impact_velocity: ArrayLike, mass: ArrayLike) -> Array:
-        """delta_m from (1/2) m V0^2 = W(0, delta_m), [m]; a ValueError naming the largest
+        """delta_m from (1/2) m V0^2 = W(0, delta_m), [m]; an InputError naming the largest
         tabulated indentation and the one needed when an impact goes past the curve."""
         v0, m = np.asarray(impact_velocity, dtype=float), np.asarray(mass, dtype=float)
         energy = 0.5 * m * v0**2
