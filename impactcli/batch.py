@@ -402,12 +402,12 @@ def batch_impacts(
     return out
 
 
-def _needs_yield_strength(law: str, params: Mapping[str, Any]) -> bool:
-    """Whether rows of ``law`` need sigma_y (Thornton's p_y, when given, replaces it)."""
+def _needs_yield_strength(law: str, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
+    """Whether rows of ``law`` need sigma_y (Thornton's p_y, where given, replaces it)."""
     from impactcli.lawlib import get_law
 
     spec = get_law(law)
-    return spec.needs_yield_strength and not (spec.name == "thornton" and "py" in params)
+    return spec.yield_strength_needed(spec.resolve(params))
 
 
 def law_stage_times(
@@ -471,9 +471,8 @@ def _batch_law(
     per_row = {k: np.asarray(v)[ok] for k, v in per_row.items()}
 
     def contact_of(rows: NDArray[np.intp]):
-        sy = sigma_y[rows] if np.all(np.isfinite(sigma_y[rows])) else None
         chosen = {k: v[rows] for k, v in per_row.items()}
-        return spec.contact(radius[rows], modulus[rows], sy, **fixed, **chosen)
+        return spec.contact(radius[rows], modulus[rows], sigma_y[rows], **fixed, **chosen)
 
     everything = np.arange(v0.size)
     contact = contact_of(everything)

@@ -652,8 +652,10 @@ class Parameter:
     name : as in ``--name`` options and batch columns (``-`` for ``_``)
     unit : SI unit (``-`` for dimensionless; ``file`` for a path)
     kind : pint dimension or ``file``/``choice``: pressure, dimensionless, stiffness, ...
-    default : the value used when none is given; None when required or derived
+    default : the value used when none is given (or NaN, for a row of a batch); None when
+        required or derived
     description : one line, including how a missing value is derived
+    required : the law cannot run without it
     """
 
     name: str
@@ -661,6 +663,7 @@ class Parameter:
     kind: str
     default: float | str | None
     description: str
+    required: bool = False
 
 
 @dataclass(frozen=True)
@@ -696,8 +699,10 @@ class LawSpec:
     build: Callable[..., ContactModel] = field(repr=False)
 
     def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
-        """The parameters with defaults filled in; a ValueError (one line) for an unknown
-        name or a value that is not a positive finite number."""
+        """The parameters with defaults filled in (also for NaN entries of per-row arrays);
+        a ValueError (one line) for an unknown name, a missing required parameter or a value
+        that is not a positive finite number. NaN stays in a derived parameter (Thornton's
+        p_y from sigma_y)."""
         given = {k.replace("-", "_"): v for k, v in (params or {}).items() if v is not None}
         known = {p.name: p for p in self.parameters}
         for key in given:
@@ -711,13 +716,32 @@ class LawSpec:
             value = given.get(p.name, p.default)
             if value is not None and p.kind not in ("file", "choice"):
                 arr = np.asarray(value, dtype=float)
-                if not np.all(np.isfinite(arr) & (arr > 0)):
+                missing = np.isnan(arr)
+                if p.default is not None:
+                    arr = np.where(missing, float(p.default), arr)
+                elif p.required and np.any(missing):
+                    value = None
+                rest = arr[~np.isnan(arr)]
+                if not np.all(np.isfinite(rest) & (rest > 0)):
                     raise ValueError(
                         f"{p.name} of law {self.name!r} must be a positive, finite number "
                         f"[{p.unit}], got {value}"
                     )
+                if value is not None:
+                    value = arr if arr.ndim else float(arr)
+            if value is None and p.required:
+                raise ValueError(
+                    f"law {self.name!r} needs the parameter {p.name} [{p.unit}]: {p.description}"
+                )
             out[p.name] = value
         return out
+
+    def yield_strength_needed(self, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
+        """Whether the law needs sigma_y with these (resolved) parameters: per row where a
+        parameter derived from it is missing (Thornton's p_y, NaN or not given)."""
+        if self.name == "thornton" and params.get("py") is not None:
+            return np.isnan(np.asarray(params["py"], dtype=float))
+        return self.needs_yield_strength
 
     def contact(
         self,
@@ -729,13 +753,11 @@ class LawSpec:
         """The contact model for effective radius R [m], modulus E* [Pa] and yield strength
         sigma_y [Pa] (of the weaker sphere), one entry per collision; ``params`` by name."""
         resolved = self.resolve(params)
-        # Thornton's p_y, when given, replaces the yield strength it defaults from.
-        needs = self.needs_yield_strength and not (
-            self.name == "thornton" and resolved.get("py") is not None
-        )
-        sy = None if yield_strength is None else np.asarray(yield_strength, dtype=float)
-        if needs and (sy is None or not np.all(np.isfinite(sy) & (sy > 0))):
-            raise ValueError(f"law {self.name!r} needs a positive, finite yield strength")
+        needed = self.yield_strength_needed(resolved)
+        if np.any(needed):
+            sy = np.asarray(np.nan if yield_strength is None else yield_strength, dtype=float)
+            if np.any(needed & ~(np.isfinite(sy) & (sy > 0))):
+                raise ValueError(f"law {self.name!r} needs a positive, finite yield strength")
         return self.build(radius, modulus, yield_strength, resolved)
 
     def describe(self) -> dict[str, Any]:
@@ -756,13 +778,13 @@ def _build_hertz(radius, modulus, _sy, _params) -> ContactModel:
 
 
 def _build_du_wang(radius, modulus, sy, params) -> ContactModel:
-    return DuWangContact(radius, modulus, sy, float(params["p0_factor"]))
+    return DuWangContact(radius, modulus, sy, params["p0_factor"])  # float or per-row array
 
 
 def _build_thornton(radius, modulus, sy, params) -> ContactModel:
-    py = params["py"]
-    if py is None:
-        py = FIRST_YIELD_PRESSURE_FACTOR * np.asarray(sy, dtype=float)
+    py = np.asarray(np.nan if params["py"] is None else params["py"], dtype=float)
+    if np.any(np.isnan(py)):  # default: the Hertz peak pressure at first yield
+        py = np.where(np.isnan(py), FIRST_YIELD_PRESSURE_FACTOR * np.asarray(sy, float), py)
     return ThorntonContact(radius, modulus, py)
 
 
@@ -784,8 +806,6 @@ def _build_tabulated(_radius, _modulus, _sy, params) -> ContactModel:
     )
 
     curve = params["curve"]
-    if curve is None:
-        raise ValueError("law 'tabulated' needs a loading curve (curve = CSV file)")
     kind = params["interpolation"]
     if kind not in ("linear", "pchip"):
         raise ValueError(f"interpolation of law 'tabulated' must be linear or pchip, got {kind!r}")
@@ -893,9 +913,9 @@ LAWS: dict[str, LawSpec] = {
                 "F = k_unload (delta - delta_res); e = sqrt(k_load / k_unload)."
             ),
             parameters=(
-                Parameter("k_load", "N/m", "stiffness", None, "loading stiffness K1 (required)"),
+                Parameter("k_load", "N/m", "stiffness", None, "loading stiffness K1", True),
                 Parameter(
-                    "k_unload", "N/m", "stiffness", None, "unloading stiffness K2 >= K1 (required)"
+                    "k_unload", "N/m", "stiffness", None, "unloading stiffness K2 >= K1", True
                 ),
             ),
             reference=Reference(
@@ -920,7 +940,7 @@ LAWS: dict[str, LawSpec] = {
             ),
             parameters=(
                 Parameter(
-                    "curve", "file", "file", None, "CSV delta,force of the loading curve (required)"
+                    "curve", "file", "file", None, "CSV delta,force of the loading curve", True
                 ),
                 Parameter(
                     "unload_curves",

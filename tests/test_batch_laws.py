@@ -74,3 +74,19 @@ def test_thornton_needs_sigma_y_or_py_per_row():
     out = run("thornton")
     assert np.all(out["error"] == out["error"][0]) and "yield strength" in out["error"][0]
     assert np.all(run("thornton", law_params={"py": 1.6e9})["error"] == "")
+
+
+def test_nan_parameters_take_their_default_per_row():
+    """An empty cell (NaN) of a parameter column: p0_factor 2.57, Thornton's p_y 1.6 sigma_y."""
+    dw = run("du-wang", sy1=1e9, sy2=1e9, law_params={"p0_factor": [np.nan, 2.57, 3.0, 2.57, 2.57]})
+    ref = run("du-wang", sy1=1e9, sy2=1e9)
+    np.testing.assert_allclose(dw["restitution"][:2], ref["restitution"][:2], rtol=1e-14)
+    assert dw["delta_y"][2] > ref["delta_y"][2]
+    py = np.array([np.nan, 1.6e9, np.nan, 2e9, np.nan])
+    th = run("thornton", sy1=1e9, sy2=1e9, law_params={"py": py})
+    default = run("thornton", sy1=1e9, sy2=1e9)
+    same = np.isnan(py) | (py == 1.6e9)
+    np.testing.assert_allclose(th["restitution"][same], default["restitution"][same], rtol=1e-14)
+    # without sigma_y only the rows with p_y can run
+    no_sy = run("thornton", law_params={"py": py})
+    np.testing.assert_array_equal(no_sy["error"] == "", ~np.isnan(py))

@@ -21,7 +21,9 @@ def test_laws_json_lists_every_law(impact):
         "kind": "dimensionless",
         "default": 2.57,
         "description": "p0 / sigma_y, mean pressure of fully plastic contact",
+        "required": False,
     }
+    assert listed["walton-braun"]["parameters"][0]["required"] is True
 
 
 def test_laws_csv_one_row_per_parameter(impact):
@@ -32,6 +34,8 @@ def test_laws_csv_one_row_per_parameter(impact):
     assert len(rows) == expected
     thornton = [r for r in rows if r["law"] == "thornton"]
     assert thornton[0]["parameter"] == "py" and thornton[0]["unit"] == "Pa"
+    assert thornton[0]["required"] == "no"
+    assert [r["required"] for r in rows if r["law"] == "walton-braun"] == ["yes", "yes"]
 
 
 def test_laws_table_shows_units(impact, tmp_path):
@@ -39,4 +43,9 @@ def test_laws_table_shows_units(impact, tmp_path):
     done = impact("laws", "--format", "table", "-o", str(out))
     assert done.returncode == 0, done.stderr
     text = out.read_text()
-    assert "py [Pa]" in text and "walton-braun" in text and "10.1115/1.2787319" in text
+    assert (
+        "py [Pa]" in text
+        and "k_load [N/m] (required)" in text
+        and "walton-braun" in text
+        and "10.1115/1.2787319" in text
+    )

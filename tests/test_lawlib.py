@@ -410,3 +410,14 @@ def test_plan_groups_equal_one_impact_at_a_time():
     one = [float(spec.contact(radius[i], E, sy[i]).plan(v0[i], M).restitution) for i in range(4)]
     np.testing.assert_allclose(out, one, rtol=1e-14)
     assert out[0] == 1.0 and out[1] < 1.0
+
+
+def test_required_parameters():
+    with pytest.raises(ValueError, match=r"law 'walton-braun' needs the parameter k_load \[N/m\]"):
+        get_law("walton-braun").contact(R, E, k_unload=1e7)
+    with pytest.raises(ValueError, match=r"law 'tabulated' needs the parameter curve \[file\]"):
+        get_law("tabulated").contact(R, E)
+    contact = get_law("thornton").contact(R, E, None, py=1.6 * SIGMA_Y)
+    assert float(contact.plan(1.0, M).restitution) == pytest.approx(
+        float(get_law("thornton").contact(R, E, SIGMA_Y).plan(1.0, M).restitution), rel=1e-15
+    )

@@ -17,6 +17,7 @@ CSV_COLUMNS = (
     "unit",
     "parameter_kind",
     "default",
+    "required",
     "parameter_description",
     "reference",
     "doi",
@@ -33,8 +34,8 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
     published reference of each (authors, year, journal, DOI, equations).
 
     CSV: one row per parameter (a law without parameters has one row with an empty
-    parameter); columns law,kind,parameter,unit,parameter_kind,default,
-    parameter_description,reference,doi,validity. An empty default means required or
+    parameter); columns law,kind,parameter,unit,parameter_kind,default,required,
+    parameter_description,reference,doi,validity. An empty default that is not required is
     derived (see the description)."""
     from impactcli.lawlib import LAWS
 
@@ -50,13 +51,14 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
                 cite = f"{ref.authors} ({ref.year}), {ref.journal}; {ref.equations}"
                 for p in spec.parameters or (None,):
                     fields = (
-                        ("", "", "", "", "")
+                        ("", "", "", "", "", "")
                         if p is None
                         else (
                             p.name,
                             p.unit,
                             p.kind,
                             _default(p.default),
+                            "yes" if p.required else "no",
                             p.description,
                         )
                     )
@@ -78,6 +80,7 @@ def _print_laws(stream: IO[str] | None) -> None:
         params = "\n".join(
             f"{p.name} [{p.unit}]"
             + (f" = {_default(p.default)}" if p.default is not None else "")
+            + (" (required)" if p.required else "")
             + f": {p.description}"
             for p in spec.parameters
         )
