@@ -67,3 +67,19 @@ def test_tabulated_elastic_law_impact():
     assert result.model == "tabulated" and result.summary["restitution"] == 1.0
     assert result.summary["contact_time"] == pytest.approx(hertz.summary["contact_time"], rel=1e-4)
     assert result.summary["effective_mass"] == pytest.approx(m)
+
+
+def test_restitution_sweep_with_a_law():
+    from impactcli.lawlib import thornton_restitution
+    from impactcli.sweep import restitution_sweep, sweep_yield_velocity
+
+    v_y = sweep_yield_velocity(S1, S2, law="thornton")
+    v0 = v_y * np.array([0.5, 1.5, 10.0, 100.0])
+    out = restitution_sweep(S1, S2, v0, law="thornton")
+    np.testing.assert_allclose(out["restitution"], thornton_restitution(v_y / v0), rtol=1e-12)
+    np.testing.assert_array_equal(out["plastic"], [0, 1, 1, 1])
+    old = restitution_sweep(S1, S2, [0.1, 1.0])
+    new = restitution_sweep(S1, S2, [0.1, 1.0], law="du-wang")
+    for key, value in old.items():
+        np.testing.assert_array_equal(new[key], value)
+    assert np.isnan(sweep_yield_velocity(S1, S2, law="hertz"))
