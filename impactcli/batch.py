@@ -18,6 +18,10 @@ How each row is computed
   the work arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
   any n; the unloading from rest is the normalised Hertz restitution stage in
   delta - delta_res, scaled (:func:`plastic_stage_times`).
+- Rows of another law of :mod:`impactcli.lawlib` (``law=``, one law per call): the law's
+  plans for the elastic and plastic groups (:func:`impactcli.lawlib.plan_groups`), timed by
+  the fast paths above when the plan is Hertz-based, else by FILM on blocks of
+  about :data:`FILM_BLOCK` values (:func:`law_stage_times`).
 - Everything else (final displacements and velocities, each sphere's share of the
   indentation, residual indentation, dissipated energy) is
   :func:`impactcli.impact.impact_summary` and :func:`~impactcli.impact.plastic_summary`,

@@ -421,3 +421,22 @@ def test_required_parameters():
     assert float(contact.plan(1.0, M).restitution) == pytest.approx(
         float(get_law("thornton").contact(R, E, SIGMA_Y).plan(1.0, M).restitution), rel=1e-15
     )
+
+
+def test_film_exact_on_a_piecewise_linear_curve_when_nodes_coincide():
+    """With the FILM nodes on the tabulated points every chord is the law itself, so FILM
+    is exact for any n that puts them there (spec sec. 4): here delta_m is the 6th point."""
+    d = np.linspace(0.0, 10e-6, 11)
+    f = K_H * d**1.5
+    contact = get_law("tabulated").contact(R, E, curve=(d, f))
+    v0 = float(np.sqrt(2.0 * contact.loading.cumulative_work[5] / M))
+    plan = contact.plan(v0, M)
+    assert float(plan.delta_max) == pytest.approx(d[5], rel=1e-14)
+    got = film(plan, 5)
+
+    def force(x):
+        return float(np.interp(x, d, f))
+
+    ref = integrate(force, lambda dm: (force, 0.0), v0, d[5])
+    assert got["contact_time"] == pytest.approx(ref["contact_time"], rel=1e-9)
+    assert film(plan, 4)["contact_time"] != pytest.approx(ref["contact_time"], rel=1e-6)
