@@ -65,6 +65,7 @@ __all__ = [
     "BATCH_KEYS",
     "FILM_BLOCK",
     "batch_impacts",
+    "law_stage_times",
     "material_properties",
     "normalised_times",
     "validate",
@@ -490,7 +491,7 @@ def _batch_law(
     for start in range(0, good.size, block):
         chunk = good[start : start + block]
         sub = contact_of(chunk)
-        for rows, plan in plan_groups_of(sub, v0[chunk], m[chunk], contact_of, chunk):
+        for rows, plan in _plan_groups_of(sub, v0[chunk], m[chunk], contact_of, chunk):
             values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
@@ -520,7 +521,7 @@ def _batch_law(
     return out
 
 
-def plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray[np.intp]):
+def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray[np.intp]):
     """(rows of the batch, plan) for the elastic and plastic impacts of ``chunk``."""
     from impactcli.lawlib import plan_groups
 

@@ -867,7 +867,7 @@ LAWS: dict[str, LawSpec] = {
                 2009,
                 "Energy dissipation in normal elastoplastic impact between two spheres",
                 "J. Appl. Mech. 76(6):061010",
-                "10.1115/1.3112739",
+                "10.1115/1.3130801",
                 "Big-Alabo (2018) eq. 16a-c",
             ),
             validity="elastic-perfectly-plastic spheres, delta << R; any V0 (elastic below V_y)",
