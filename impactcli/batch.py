@@ -19,6 +19,10 @@ How each row is computed
   the work arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
   any n; the unloading from rest is the normalised Hertz restitution stage in
   delta - delta_res, scaled (:func:`plastic_stage_times`).
+- Rows of another law of :mod:`impactcli.lawlib` (``law=``, one law per call): the law's
+  plans for the elastic and plastic groups (:func:`impactcli.lawlib.plan_groups`), timed by
+  the fast paths above when the plan is Hertz-based, else by FILM on blocks of
+  about :data:`FILM_BLOCK` values (:func:`law_stage_times`).
 - Everything else (final displacements and velocities, each sphere's share of the
   indentation, residual indentation, dissipated energy) is
   :func:`impactcli.impact.impact_summary` and :func:`~impactcli.impact.plastic_summary`,
@@ -31,7 +35,9 @@ computed.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -69,6 +75,7 @@ __all__ = [
     "BATCH_KEYS",
     "FILM_BLOCK",
     "batch_impacts",
+    "law_stage_times",
     "material_properties",
     "normalised_times",
     "validate",
@@ -234,6 +241,8 @@ def batch_impacts(
     n: int = 25,
     split: Split = "mass",
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    law: str | None = None,
+    law_params: Mapping[str, Any] | None = None,
 ) -> dict[str, NDArray]:
     """Summaries of many impacts of two spheres, one per row; arrays broadcast.
 
@@ -255,6 +264,10 @@ def batch_impacts(
     n : FILM segments per stage
     split : share of the indentation between the spheres: ``mass`` or ``compliance``
     pressure_factor : p0 / sigma_y of the elastoplastic model, [-]
+    law : a law of :data:`impactcli.lawlib.LAWS` for every row (``plastic`` and
+        ``pressure_factor`` are then ignored; rows of several laws: one call per law, e.g.
+        on the groups of a ``law`` column); None: Du & Wang where ``plastic``, else Hertz
+    law_params : the law's parameters by name, scalars or one value per row (SI)
 
     Returns
     -------
@@ -281,6 +294,8 @@ def batch_impacts(
         d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2
     )
     plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), d1.shape).reshape(-1)
+    if law is not None:  # the law's own need of a yield strength
+        plastic = np.broadcast_to(_needs_yield_strength(law, law_params or {}), d1.shape)
     errors = validate(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, plastic)
     out = {key: np.full(d1.shape, np.nan) for key in BATCH_KEYS}
     out["error"] = errors
@@ -300,6 +315,9 @@ def batch_impacts(
     stiffness = hertz_stiffness(modulus, radius)
     sigma_y = np.fmin(sy1, sy2)
     v0 = v1 + v2
+    if law is not None:
+        args = (v1, v2, mass1, mass2, nu1, nu2, E1, E2, m, radius, modulus, sigma_y, n, split)
+        return _batch_law(out, ok, law, law_params or {}, *args)
 
     contact = DuWangContact(radius, modulus, sigma_y, pressure_factor)
     with np.errstate(invalid="ignore"):
@@ -348,3 +366,125 @@ def batch_impacts(
         for key, value in extra.items():
             out[key][ok[rows]] = value
     return out
+
+
+def _needs_yield_strength(law: str, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
+    """Whether rows of ``law`` need sigma_y (Thornton's p_y, where given, replaces it)."""
+    from impactcli.lawlib import get_law
+
+    spec = get_law(law)
+    return spec.yield_strength_needed(spec.resolve(params))
+
+
+def law_stage_times(
+    plan: ImpactPlan, mass: ArrayLike, impact_velocity: ArrayLike, n: int
+) -> tuple[NDArray, NDArray]:
+    """FILM time of maximum indentation and contact time [s] of a batch of impacts of any
+    law (one plan), n segments per stage.
+
+    The fast paths when the plan allows: an elastic Hertz plan is the normalised solution
+    scaled (:func:`normalised_times`); Hertz, linear, Hertz-from-rest stages (Du & Wang,
+    Thornton) go through :func:`plastic_stage_times`. Any other plan is solved by
+    :func:`impactcli.impact.solve_plan` (callers pass blocks of about :data:`FILM_BLOCK`
+    values).
+    """
+    from impactcli.impact import solve_plan
+    from impactcli.laws import DuWangPlastic, Hertz
+
+    v0 = np.asarray(impact_velocity, dtype=float)
+    m = np.broadcast_to(np.asarray(mass, dtype=float), v0.shape)
+    laws = [type(stage.law) for stage in plan.stages]
+    hertz_from_zero = laws[0] is Hertz and np.all(np.asarray(plan.stages[0].law.offset) == 0)
+    if hertz_from_zero and laws == [Hertz, Hertz] and np.all(plan.delta_res == 0):
+        t_bar_max, t_bar_c = normalised_times(n)
+        scale = plan.delta_max / v0
+        return t_bar_max * scale, t_bar_c * scale
+    if hertz_from_zero and laws == [Hertz, DuWangPlastic, Hertz]:
+        return plastic_stage_times(plan, m, v0, n)
+    stages = solve_plan(plan, m, n)
+    return stages[-2].end_time, stages[-1].end_time
+
+
+def _batch_law(
+    out: dict[str, NDArray],
+    ok: NDArray[np.intp],
+    law: str,
+    params: Mapping[str, Any],
+    v1: NDArray,
+    v2: NDArray,
+    mass1: NDArray,
+    mass2: NDArray,
+    nu1: NDArray,
+    nu2: NDArray,
+    E1: NDArray,
+    E2: NDArray,
+    m: NDArray,
+    radius: NDArray,
+    modulus: NDArray,
+    sigma_y: NDArray,
+    n: int,
+    split: Split,
+) -> dict[str, NDArray]:
+    """The rows ``ok`` (valid) of :func:`batch_impacts` under one law of the library."""
+    from impactcli.lawlib import get_law
+
+    spec = get_law(law)
+    v0 = v1 + v2
+    per_row = {
+        k: v for k, v in params.items() if np.ndim(v) == 1 and np.size(v) == out["error"].size
+    }
+    fixed = {k: v for k, v in params.items() if k not in per_row}
+    per_row = {k: np.asarray(v)[ok] for k, v in per_row.items()}
+
+    def contact_of(rows: NDArray[np.intp]):
+        chosen = {k: v[rows] for k, v in per_row.items()}
+        return spec.contact(radius[rows], modulus[rows], sigma_y[rows], **fixed, **chosen)
+
+    everything = np.arange(v0.size)
+    contact = contact_of(everything)
+    errors = np.full(v0.size, "", dtype=object)
+    reach = getattr(contact, "reach_errors", None)
+    if reach is not None:
+        errors = reach(v0, m)
+    good = np.flatnonzero(errors == "")
+    values = {k: np.full(v0.size, np.nan) for k in ("dm", "fm", "dres", "e", "tmax", "tc")}
+    block = max(1, FILM_BLOCK // (n + 1))
+    for start in range(0, good.size, block):
+        chunk = good[start : start + block]
+        sub = contact_of(chunk)
+        for rows, plan in _plan_groups_of(sub, v0[chunk], m[chunk], contact_of, chunk):
+            values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
+            values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
+            values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
+    plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"])
+    compliance1 = (1.0 - nu1**2) / E1
+    compliance2 = (1.0 - nu2**2) / E2
+    fractions = split_fractions(split, mass1, mass2, compliance1, compliance2)
+    summary = impact_summary(
+        v1,
+        v2,
+        mass1,
+        mass2,
+        radius,
+        modulus,
+        plan,
+        values["tmax"],
+        values["tc"],
+        fractions,
+        sigma_y,
+    )
+    summary.update(plastic_summary(contact, m, v0, plan, fractions))
+    for key, value in summary.items():
+        column = np.broadcast_to(np.asarray(value, dtype=float), v0.shape).copy()
+        column[errors != ""] = np.nan
+        out[key][ok] = column
+    out["error"][ok] = errors
+    return out
+
+
+def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray[np.intp]):
+    """(rows of the batch, plan) for the elastic and plastic impacts of ``chunk``."""
+    from impactcli.lawlib import plan_groups
+
+    for local, plan in plan_groups(contact, v0, m, lambda r: contact_of(chunk[r])):
+        yield chunk[local], plan

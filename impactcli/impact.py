@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -60,6 +60,7 @@ __all__ = [
     "elastoplastic_impact",
     "impact_summary",
     "integrate_impact",
+    "law_impact",
     "plastic_summary",
     "solve_plan",
     "split_fractions",
@@ -719,3 +720,75 @@ def elastoplastic_impact(
     extra = plastic_summary(contact, m, v0, plan, result.split_fractions)
     summary.update({key: float(value) for key, value in extra.items()})
     return _finish(result, summary)
+
+
+def law_impact(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    law: str = "du-wang",
+    params: dict[str, Any] | None = None,
+    n: int = 25,
+    split: Split = "mass",
+    yield_strength: float | None = None,
+    method: Method = "film",
+) -> ImpactResult:
+    """Impact of two spheres under any law of the library (:mod:`impactcli.lawlib`) by FILM.
+
+    The stages come from the law's plan (loading, plastic loading, unloading from rest);
+    ``summary`` holds :data:`PLASTIC_SUMMARY_KEYS` whatever the law (``delta_y`` and
+    ``yield_velocity`` NaN for a law without a yield point). ``law="du-wang"`` gives the
+    numbers of :func:`elastoplastic_impact`, ``law="hertz"`` those of
+    :func:`elastic_impact` (plus the plastic keys). ``model`` is ``elastic`` for a Hertz
+    elastic plan (so the normalised tables apply), ``elastoplastic`` for an impact past the
+    law's yield point, else the law's name.
+
+    Parameters
+    ----------
+    law : name of the law (``impact laws`` lists them)
+    params : the law's parameters by name (SI; files for ``tabulated``)
+    yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
+
+    Raises
+    ------
+    ValueError
+        Bad spheres, velocities or law parameters; an impact beyond a tabulated curve
+        (:class:`~impactcli.output.InputError`).
+
+    Examples
+    --------
+    >>> steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0,
+    ...              yield_strength=1e9)
+    >>> r = law_impact(Sphere(0.02, **steel), Sphere(0.04, **steel), 0.25, 0.75, "thornton")
+    >>> round(r.summary["restitution"], 5), r.model
+    (0.62143, 'elastoplastic')
+    """
+    from impactcli.lawlib import get_law
+    from impactcli.laws import Hertz
+
+    _validate(sphere1, sphere2, v1, v2, n, split, method)
+    spec = get_law(law)
+    sigma_y = (
+        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
+    )
+    m, r, e = effective_properties(sphere1, sphere2)
+    contact = spec.contact(r, e, sigma_y, **(params or {}))
+    v0 = v1 + v2
+    plan = contact.plan(v0, m)
+    film = FilmSolution(solve_plan(plan, m, n))
+    hertz = len(plan.stages) == 2 and all(type(s.law) is Hertz for s in plan.stages)
+    if hertz and float(plan.delta_res) == 0.0:
+        model = "elastic"
+    elif bool(np.all(contact.yields(v0, m))):
+        model = "elastoplastic"
+    else:
+        model = spec.name
+    result = ImpactResult(
+        sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method
+    )
+    summary = _summarise(result, r, e)
+    extra = plastic_summary(contact, m, v0, plan, result.split_fractions)
+    summary.update({key: float(value) for key, value in extra.items()})
+    return _finish(result, summary)
+

@@ -8,14 +8,12 @@ models this way.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.contact import (
-    DU_WANG_PRESSURE_FACTOR,
-    DuWangContact,
-    HertzContact,
-)
+from impactcli.contact import DU_WANG_PRESSURE_FACTOR, DuWangContact
 from impactcli.impact import (
     Sphere,
     check_pair,
@@ -49,8 +47,13 @@ def restitution_sweep(
     yield_strength: float | None = None,
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
     split: str = "mass",
+    law: str | None = None,
+    law_params: dict[str, Any] | None = None,
 ) -> dict[str, NDArray]:
     """Elastoplastic impact quantities for each impact velocity V0 [m/s] (docs/method.md §7).
+
+    ``law``: any law of :mod:`impactcli.lawlib` with its ``law_params`` instead of Du & Wang
+    (``pressure_factor`` is then ignored); ``plastic`` is 1 past the law's yield point.
 
     Returns
     -------
@@ -65,10 +68,10 @@ def restitution_sweep(
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
     split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance
     check_pair(sphere1, sphere2, v0, 0.0)
-    contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor)
-    plastic = contact.yields(v0, m)
+    contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)
+    plastic = np.broadcast_to(contact.yields(v0, m), v0.shape)
     out = {name: np.zeros_like(v0) for name in SWEEP_COLUMNS}
-    for mask, model in ((~plastic, HertzContact(contact.stiffness)), (plastic, contact)):
+    for mask, model in ((~plastic, contact), (plastic, contact)):
         if not np.any(mask):
             continue
         plan = model.plan(v0[mask], m)
@@ -93,21 +96,34 @@ def sweep_yield_velocity(
     sphere2: Sphere,
     yield_strength: float | None = None,
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    law: str | None = None,
+    law_params: dict[str, Any] | None = None,
 ) -> float:
     """The impact velocity V_y [m/s] above which :func:`restitution_sweep` is plastic (the
-    Du & Wang contact's yield velocity, docs/method.md §7)."""
-    contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor)
+    Du & Wang contact's yield velocity, docs/method.md §7, or that of ``law``; NaN for a
+    law without a yield point)."""
+    contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)
     return float(contact.yield_velocity(m))
 
 
 def _contact(
-    sphere1: Sphere, sphere2: Sphere, yield_strength: float | None, pressure_factor: float
+    sphere1: Sphere,
+    sphere2: Sphere,
+    yield_strength: float | None,
+    pressure_factor: float,
+    law: str | None = None,
+    law_params: dict[str, Any] | None = None,
 ) -> tuple[DuWangContact, float]:
-    """The Du & Wang contact of the pair and its effective mass m [kg]; the yield strength
-    defaults to the weaker sphere's."""
+    """The Du & Wang contact of the pair (or that of ``law``) and its effective mass m [kg];
+    the yield strength defaults to the weaker sphere's."""
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
+    if law is not None:
+        from impactcli.lawlib import get_law
+
+        m, r, e = effective_properties(sphere1, sphere2)
+        return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     if sigma_y is None:
         raise ValueError(YIELD_STRENGTH_NEEDED)
     m, r, e = effective_properties(sphere1, sphere2)

@@ -27,12 +27,13 @@ app = typer.Typer(
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 
-from impactcli.cli import batch_cmd, collide2d_cmd, impact_cmd, tables_cmd  # noqa: E402
+from impactcli.cli import batch_cmd, collide2d_cmd, impact_cmd, laws_cmd, tables_cmd  # noqa: E402
 
 tables_cmd.register(app)
 impact_cmd.register(app)
 collide2d_cmd.register(app)
 batch_cmd.register(app)
+laws_cmd.register(app)
 
 
 def main(argv: list[str] | None = None) -> None:

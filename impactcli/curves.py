@@ -1,0 +1,217 @@
+"""Reading the user's force-indentation curves (law ``tabulated``) from CSV files, into SI.
+
+A loading curve is a CSV file with the columns ``delta,force`` (SI: m and N), or with units in
+the header, e.g. ``delta [um],force [N]`` or ``delta [mm],force [kN]``. Unloading curves
+measured from several maximum indentations are one file with the columns
+``delta_max,delta,force`` (units alike). Blank lines and lines starting with ``#`` are
+skipped.
+
+Rules (each failure is one :class:`~impactcli.output.InputError` line naming the file, and
+the line where there is one):
+
+- numbers only, finite, indentations and forces >= 0;
+- loading: delta and force increase strictly from row to row. The curve starts at (0, 0):
+  a first row (0, 0) is kept, a first row (delta > 0, force > 0) is joined to (0, 0) by a
+  straight segment, anything else is an error;
+- unloading: rows grouped by delta_max (any order of rows); in each group delta and force
+  increase together (rows may be given in either direction), the smallest force is exactly
+  0 (the residual indentation), and no delta exceeds its delta_max.
+
+pint is imported only when a header carries units.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+import re
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.errors import InputError
+
+__all__ = [
+    "check_loading_curve",
+    "check_unloading_curves",
+    "read_curve_table",
+    "read_loading_curve",
+    "read_unloading_curves",
+]
+
+#: column -> (SI unit, what it is)
+_COLUMNS: dict[str, tuple[str, str]] = {
+    "delta": ("m", "a length"),
+    "delta_max": ("m", "a length"),
+    "force": ("N", "a force"),
+}
+
+_HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
+
+
+def _unit_factor(unit: str, column: str, where: str) -> float:
+    """Factor from ``unit`` to the column's SI unit; InputError for a wrong kind."""
+    si, what = _COLUMNS[column]
+    if unit in ("", si):
+        return 1.0
+    import pint
+
+    registry = pint.UnitRegistry()
+    try:
+        return float(registry.Quantity(1.0, unit).to(si).magnitude)
+    except (pint.errors.DimensionalityError, pint.errors.UndefinedUnitError, ValueError) as exc:
+        raise InputError(
+            f"{where}: unit [{unit}] of column {column} is not {what} "
+            f"({type(exc).__name__}); use e.g. [{si}]"
+        ) from None
+
+
+def read_curve_table(path: str | os.PathLike[str], columns: tuple[str, ...]) -> dict[str, NDArray]:
+    """The columns of a curve CSV file, in SI: ``{name: array}``.
+
+    The header names exactly ``columns`` (in any order, each optionally with ``[unit]``).
+    """
+    name = os.fspath(path)
+    try:
+        with open(name, newline="", encoding="utf-8-sig") as stream:
+            lines = list(enumerate(csv.reader(stream), start=1))
+    except OSError as exc:
+        raise InputError(f"cannot read curve file {name!r}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{name}: not a text (UTF-8) CSV file") from None
+    rows = [(i, r) for i, r in lines if r and any(c.strip() for c in r)]
+    rows = [(i, r) for i, r in rows if not r[0].lstrip().startswith("#")]
+    expected = ",".join(columns)
+    if not rows:
+        raise InputError(f"{name}: empty; expected a header {expected} and rows of numbers")
+    line, header = rows[0]
+    names, factors = [], []
+    for cell in header:
+        match = _HEADER.match(cell)
+        if not match or match.group(1).lower() not in columns:
+            raise InputError(
+                f"{name} line {line}: header {','.join(header)!r} must name the columns "
+                f"{expected} (optionally with units, e.g. 'delta [um]')"
+            )
+        column = match.group(1).lower()
+        names.append(column)
+        factors.append(_unit_factor(match.group(2) or "", column, f"{name} line {line}"))
+    if sorted(names) != sorted(columns):
+        raise InputError(
+            f"{name} line {line}: header {','.join(header)!r} must name the columns {expected}"
+        )
+    values = np.empty((len(rows) - 1, len(names)))
+    for k, (i, row) in enumerate(rows[1:]):
+        if len(row) != len(names):
+            raise InputError(f"{name} line {i}: {len(row)} fields, expected {len(names)}")
+        for j, cell in enumerate(row):
+            try:
+                x = float(cell)
+            except ValueError:
+                raise InputError(f"{name} line {i}: {cell.strip()!r} is not a number") from None
+            if not np.isfinite(x) or x < 0:
+                raise InputError(
+                    f"{name} line {i}: {names[j]} must be a finite number >= 0, got {cell.strip()}"
+                )
+            values[k, j] = x * factors[j]
+    if values.shape[0] < 1:
+        raise InputError(f"{name}: no rows of numbers after the header")
+    return {column: values[:, j] for j, column in enumerate(names)}
+
+
+def check_loading_curve(
+    delta: ArrayLike, force: ArrayLike, source: str = "loading curve"
+) -> tuple[NDArray, NDArray]:
+    """A loading curve (delta [m], force [N]) checked and starting at (0, 0).
+
+    Raises
+    ------
+    InputError
+        Negative or non-finite values, delta or force not increasing strictly, or a start
+        that cannot be joined to (0, 0).
+    """
+    d, f = np.asarray(delta, dtype=float).ravel(), np.asarray(force, dtype=float).ravel()
+    if d.size != f.size or d.size == 0:
+        raise InputError(f"{source}: delta and force need the same number of points (>= 1)")
+    if not (np.all(np.isfinite(d) & (d >= 0)) and np.all(np.isfinite(f) & (f >= 0))):
+        raise InputError(f"{source}: delta and force must be finite and >= 0")
+    if d[0] > 0:
+        if f[0] <= 0:
+            raise InputError(
+                f"{source}: the first point ({d[0]:.6g} m, {f[0]:.6g} N) has no force; the "
+                "curve must start at (0, 0) or at a point with a positive force"
+            )
+        d, f = np.r_[0.0, d], np.r_[0.0, f]
+    elif f[0] != 0:
+        raise InputError(f"{source}: the force at delta = 0 must be 0, got {f[0]:.6g} N")
+    if d.size < 2:
+        raise InputError(f"{source}: needs at least one point with delta > 0")
+    for values, what in ((d, "delta"), (f, "force")):
+        bad = np.flatnonzero(np.diff(values) <= 0)
+        if bad.size:
+            k = int(bad[0]) + 1
+            raise InputError(
+                f"{source}: {what} must increase strictly; point {k + 1} "
+                f"({d[k]:.6g} m, {f[k]:.6g} N) does not exceed the one before "
+                f"({d[k - 1]:.6g} m, {f[k - 1]:.6g} N)"
+            )
+    return d, f
+
+
+def check_unloading_curves(
+    delta_max: ArrayLike, delta: ArrayLike, force: ArrayLike, source: str = "unloading curves"
+):
+    """Unloading curves from rows (delta_max [m], delta [m], force [N]), checked, as
+    :class:`~impactcli.lawlib.UnloadingCurves`.
+
+    Raises
+    ------
+    InputError
+        A rule of the module docstring broken; the message names the curve's delta_max.
+    """
+    from impactcli.lawlib import UnloadingCurves
+
+    dm = np.asarray(delta_max, dtype=float).ravel()
+    d, f = np.asarray(delta, dtype=float).ravel(), np.asarray(force, dtype=float).ravel()
+    if not (dm.size == d.size == f.size) or dm.size == 0:
+        raise InputError(f"{source}: delta_max, delta and force need the same number of rows")
+    tops = np.unique(dm)
+    curves = []
+    for top in tops.tolist():
+        rows = dm == top
+        order = np.argsort(d[rows], kind="stable")
+        cd, cf = d[rows][order], f[rows][order]
+        label = f"{source}: the curve from delta_max = {top:.6g} m"
+        if cd.size < 2:
+            raise InputError(f"{label} has {cd.size} point; it needs at least 2")
+        if top <= 0:
+            raise InputError(f"{label}: delta_max must be > 0")
+        if cd[-1] > top * (1 + 1e-9):
+            raise InputError(f"{label} has a point at delta = {cd[-1]:.6g} m beyond delta_max")
+        if np.any(np.diff(cd) <= 0) or np.any(np.diff(cf) <= 0):
+            raise InputError(
+                f"{label}: force must increase strictly with delta (no repeated points)"
+            )
+        if cf[0] != 0:
+            raise InputError(
+                f"{label} must reach zero force at its residual indentation; its smallest "
+                f"force is {cf[0]:.6g} N at delta = {cd[0]:.6g} m"
+            )
+        curves.append((cd, cf))
+    return UnloadingCurves(tops, tuple(curves))
+
+
+def read_loading_curve(path: str | os.PathLike[str]) -> tuple[NDArray, NDArray]:
+    """Loading curve (delta [m], force [N]) from a ``delta,force`` CSV file, checked
+    (:func:`check_loading_curve`) and starting at (0, 0)."""
+    table = read_curve_table(path, ("delta", "force"))
+    return check_loading_curve(table["delta"], table["force"], os.fspath(path))
+
+
+def read_unloading_curves(path: str | os.PathLike[str]):
+    """Unloading curves from a ``delta_max,delta,force`` CSV file, checked
+    (:func:`check_unloading_curves`), as :class:`~impactcli.lawlib.UnloadingCurves`."""
+    table = read_curve_table(path, ("delta_max", "delta", "force"))
+    return check_unloading_curves(
+        table["delta_max"], table["delta"], table["force"], os.fspath(path)
+    )

@@ -1,0 +1,51 @@
+"""``impact laws``: every law listed with its parameters and reference."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+
+from impactcli.lawlib import LAWS
+
+
+def test_laws_json_lists_every_law(impact):
+    done = impact("laws", "--format", "json")
+    assert done.returncode == 0, done.stderr
+    listed = {law["name"]: law for law in json.loads(done.stdout)["laws"]}
+    assert list(listed) == list(LAWS)
+    assert listed["thornton"]["reference"]["doi"] == "10.1115/1.2787319"
+    assert listed["du-wang"]["parameters"][0] == {
+        "name": "p0_factor",
+        "unit": "-",
+        "kind": "dimensionless",
+        "default": 2.57,
+        "description": "p0 / sigma_y, mean pressure of fully plastic contact",
+        "required": False,
+    }
+    assert listed["walton-braun"]["parameters"][0]["required"] is True
+
+
+def test_laws_csv_one_row_per_parameter(impact):
+    done = impact("laws", "--format", "csv")
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader(io.StringIO(done.stdout)))
+    expected = sum(max(1, len(spec.parameters)) for spec in LAWS.values())
+    assert len(rows) == expected
+    thornton = [r for r in rows if r["law"] == "thornton"]
+    assert thornton[0]["parameter"] == "py" and thornton[0]["unit"] == "Pa"
+    assert thornton[0]["required"] == "no"
+    assert [r["required"] for r in rows if r["law"] == "walton-braun"] == ["yes", "yes"]
+
+
+def test_laws_table_shows_units(impact, tmp_path):
+    out = tmp_path / "laws.txt"
+    done = impact("laws", "--format", "table", "-o", str(out))
+    assert done.returncode == 0, done.stderr
+    text = out.read_text()
+    assert (
+        "py [Pa]" in text
+        and "k_load [N/m] (required)" in text
+        and "walton-braun" in text
+        and "10.1115/1.2787319" in text
+    )
