@@ -61,8 +61,12 @@ __all__ = [
     "ViscoelasticLaw",
     "damped_impact_ode",
     "damping_for_restitution",
+    "hunt_crossley_alpha_published",
     "make_damping_law",
     "solve_damped_impact",
+    "tsuji_alpha_dem",
+    "tsuji_alpha_hertz_mindlin",
+    "tsuji_restitution_overlap",
 ]
 
 Array = NDArray[np.float64]
@@ -150,10 +154,9 @@ class TsujiDamping(_HertzElastic):
     ----------
     stiffness : K = (4/3) E* sqrt(R), [N/m^1.5]
     mass : effective mass m, [kg]
-    alpha : damping ratio alpha >= 0, [-]. Note: the alpha(e) fit DEM codes use (Tsuji et
-        al. 1992, Fig. 3) is written with c = alpha' sqrt(m k_n) delta^(1/4) and
-        k_n = (sqrt(2)/3) E sqrt(R) for equal spheres, which is K / sqrt(2) with
-        E* = E / (2(1-nu^2)) ignored; in our K, alpha = sqrt(2) alpha' (docs/damping.md).
+    alpha : damping ratio alpha >= 0, [-]. The alpha(e) polynomial DEM codes use
+        (:func:`tsuji_alpha_dem`) is written with the particle mass in Tsuji et al.; with the
+        effective mass m used here, alpha = sqrt(2) alpha_Tsuji (docs/damping.md).
     """
 
     stiffness: ArrayLike
@@ -718,15 +721,6 @@ def law_force_nodes(law, stage: DampedStage) -> Array:
 # -- the inverse problem: alpha for a given restitution ---------------------------------------
 
 
-def _tsuji_dem_alpha(e: ArrayLike) -> Array:
-    """alpha(e) fit used by DEM codes for the Tsuji law (Tsuji et al. 1992, Fig. 3), in our
-    convention (sqrt(2) times theirs, docs/damping.md); an initial guess only."""
-    e = np.asarray(e, dtype=float)
-    coeffs = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
-    poly = sum(c * e**i for i, c in enumerate(coeffs))
-    return np.sqrt(2.0) * np.maximum(poly, 1e-3)
-
-
 def damping_for_restitution(
     name: str,
     restitution: ArrayLike,
@@ -772,7 +766,7 @@ def damping_for_restitution(
         return solve_damped_impact(law, v0, m, n, separation).restitution - e_t
 
     if name == TsujiDamping.name:
-        guess = _tsuji_dem_alpha(e_t)
+        guess = np.maximum(tsuji_alpha_dem(e_t), 1e-3)  # initial guess only
     else:
         guess = 3.0 * (1.0 - e_t) / (2.0 * v0)  # Hunt & Crossley (1975)
     todo = e_t < 1.0
@@ -883,4 +877,69 @@ def damped_impact_ode(
         "force_max": max(-float(res.fun), float(f_grid[j])),
         "dissipated": float(y_c[2]),
         "stored": float(law.elastic_work(0.0, d_sep)),
+    }
+
+
+# -- published alpha(e) relations, for comparison with the exact model ------------------------
+
+
+def tsuji_alpha_dem(restitution: ArrayLike) -> Array:
+    """alpha(e) of the Tsuji law as DEM codes use it, in this module's convention, [-].
+
+    alpha = sqrt(2) (1.2728 - 4.2783 e + 11.087 e^2 - 22.348 e^3 + 27.467 e^4 - 18.022 e^5
+    + 4.8218 e^6): the polynomial fit of Tsuji et al. (1992) as written for the damping
+    eta = alpha (m K)^(1/2) delta^(1/4) with the effective mass m (LAMMPS pair granular,
+    ``damping tsuji``; the sqrt(2) comes from Tsuji's use of the particle mass, Marshall
+    2009, J. Comput. Phys. 228:1541-1561, doi:10.1016/j.jcp.2008.10.032). It matches the
+    ``overlap`` separation rule (docs/damping.md).
+    """
+    e = np.asarray(restitution, dtype=float)
+    coeffs = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
+    return np.sqrt(2.0) * sum(c * e**i for i, c in enumerate(coeffs))
+
+
+def tsuji_restitution_overlap(alpha: ArrayLike) -> Array:
+    """Closed-form e of the Tsuji law, ``overlap`` rule: e = exp(-pi alpha / sqrt(5 - alpha^2)).
+
+    Antypov & Elliott (2011), EPL 94:50004, doi:10.1209/0295-5075/94/50004, treat this damped
+    Hertzian spring analytically; the expression agrees with SciPy integration of the law to
+    1e-12 for alpha from 0.07 to 1.5 (tests/test_damping.py). For
+    alpha >= sqrt(5) the indentation creeps back to 0 without ever reaching it: e = 0.
+    Inverse: :func:`tsuji_alpha_hertz_mindlin`.
+    """
+    a = np.asarray(alpha, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = np.exp(-np.pi * a / np.sqrt(5.0 - a * a))
+    return np.where(a < np.sqrt(5.0), e, 0.0)
+
+
+def tsuji_alpha_hertz_mindlin(restitution: ArrayLike) -> Array:
+    """alpha(e) of the Hertz-Mindlin damping of LIGGGHTS/EDEM, in this module's convention.
+
+    Their damping gamma_n = -2 sqrt(5/6) beta sqrt(S_n m), S_n = 2 E* sqrt(R delta) and
+    beta = ln e / sqrt(ln^2 e + pi^2) (the linear spring-dashpot relation) is a Tsuji-type
+    damping with alpha = sqrt(5) (-ln e) / sqrt(ln^2 e + pi^2), [-]. This is the exact
+    inverse of :func:`tsuji_restitution_overlap` (the ``overlap`` rule), not an approximation.
+    """
+    log_e = np.log(np.asarray(restitution, dtype=float))
+    return np.sqrt(5.0) * -log_e / np.sqrt(log_e**2 + np.pi**2)
+
+
+def hunt_crossley_alpha_published(restitution: ArrayLike, impact_velocity: ArrayLike) -> dict:
+    """Published alpha(e, V0) for F = K delta^1.5 (1 + (3/2) alpha delta'), [s/m].
+
+    Each paper writes F = K delta^1.5 (1 + d delta'/V0); here alpha = (2/3) d / V0:
+
+    - Hunt & Crossley (1975): d = (3/2)(1 - e), alpha = (1 - e) / V0;
+    - Lankarani & Nikravesh (1990), J. Mech. Des. 112:369-376, doi:10.1115/1.2912617:
+      d = (3/4)(1 - e^2), alpha = (1 - e^2) / (2 V0);
+    - Flores et al. (2011), Multibody Syst. Dyn. 25:357-375, doi:10.1007/s11044-010-9237-4:
+      d = (8/5)(1 - e)/e, alpha = 16 (1 - e) / (15 e V0).
+    """
+    e = np.asarray(restitution, dtype=float)
+    v0 = np.asarray(impact_velocity, dtype=float)
+    return {
+        "hunt-crossley": (1.0 - e) / v0,
+        "lankarani-nikravesh": (1.0 - e * e) / (2.0 * v0),
+        "flores": 16.0 * (1.0 - e) / (15.0 * e * v0),
     }

@@ -14,8 +14,12 @@ from impactcli.damping import (
     TsujiDamping,
     damped_impact_ode,
     damping_for_restitution,
+    hunt_crossley_alpha_published,
     make_damping_law,
     solve_damped_impact,
+    tsuji_alpha_dem,
+    tsuji_alpha_hertz_mindlin,
+    tsuji_restitution_overlap,
 )
 from impactcli.film import solve_stage
 from impactcli.laws import Hertz
@@ -198,3 +202,39 @@ def test_bad_input_is_refused():
         solve_damped_impact(TsujiDamping(K, M, -0.1), V0, M)
     with pytest.raises(ValueError, match="restitution"):
         damping_for_restitution("tsuji", 1.2, V0, K, M)
+
+
+def test_tsuji_overlap_restitution_has_a_closed_form():
+    # e = exp(-pi alpha / sqrt(5 - alpha^2)) (Antypov & Elliott 2011): SciPy to 1e-10, FILM
+    # (n = 400) to 1e-6.
+    alpha = np.array([0.1, 0.3, 0.6, 1.0])
+    exact = tsuji_restitution_overlap(alpha)
+    for a, e in zip(alpha, exact):
+        assert damped_impact_ode(TsujiDamping(K, M, a), V0, M)["restitution"] == pytest.approx(
+            e, abs=1e-10
+        )
+    film = solve_damped_impact(TsujiDamping(K, M, alpha), V0, M, n=N)
+    np.testing.assert_allclose(film.restitution, exact, atol=1e-6)
+    # Its inverse is the Hertz-Mindlin relation of LIGGGHTS/EDEM, in our alpha.
+    np.testing.assert_allclose(tsuji_alpha_hertz_mindlin(exact), alpha, rtol=1e-12)
+    # The DEM polynomial (times sqrt 2 for the effective mass) is a fit of it to about 1e-3.
+    e = np.linspace(0.1, 0.95, 18)
+    np.testing.assert_allclose(tsuji_restitution_overlap(tsuji_alpha_dem(e)), e, atol=1.5e-3)
+
+
+def test_published_hunt_crossley_relations_hold_only_near_e_1():
+    # Near e = 1 the model gives 1 - e^2 = 2 alpha V0 to first order (dissipation along the
+    # Hertz path). Hunt-Crossley and Lankarani-Nikravesh agree with it to first order in 1 - e
+    # and break down as e falls (at e = 0.5 they give e > 0.65); Flores et al. is off by
+    # (1 - e)/15 near e = 1 (its alpha is 16/15 too large there) but closer at e = 0.5.
+    e = np.array([0.99, 0.5])
+    published = hunt_crossley_alpha_published(e, V0)
+    e_model = {
+        name: _film(HuntCrossleyDamping(K, alpha), n=200).restitution
+        for name, alpha in published.items()
+    }
+    for name in ("hunt-crossley", "lankarani-nikravesh"):
+        assert abs(e_model[name][0] - e[0]) < 3.0 * (1.0 - e[0]) ** 2, name
+        assert e_model[name][1] > 0.65, name
+    assert e_model["flores"][0] - e[0] == pytest.approx(-(1.0 - e[0]) / 15.0, rel=0.05)
+    assert abs(e_model["flores"][1] - 0.5) < 0.05
