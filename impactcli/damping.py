@@ -515,7 +515,6 @@ def _stage(
     active = np.ones(nc, dtype=bool)
     stuck = np.zeros(nc, dtype=bool)
     dissipated = np.zeros(nc)
-    sep_delta = np.zeros(nc)
     for r in range(n):
         a = start + s * r * h
         b = end.copy() if r == n - 1 else start + s * (r + 1) * h
@@ -574,7 +573,6 @@ def _stage(
         velocity[idx, r + 1] = s * w_end[idx]
         count[idx] = r + 1
         dissipated = np.where(active, dissipated + seg_loss, dissipated)
-        sep_delta = np.where(active & ends_here, d_end, sep_delta)
         t, w = np.where(active, t_end, t), np.where(active, w_end, w)
         active &= ~ends_here
         if not np.any(active):
@@ -628,8 +626,12 @@ def solve_damped_impact(
     m = np.asarray(mass, dtype=float)
     param_shapes = [np.shape(getattr(law, f.name)) for f in fields(law)]
     shape = np.broadcast_shapes(v0.shape, m.shape, *param_shapes)
-    if np.any(np.broadcast_to(v0, shape) <= 0.0):
+    if np.any(~(np.broadcast_to(v0, shape) > 0.0)):
         raise ValueError("the impact velocity V0 must be positive")
+    if np.any(~(np.broadcast_to(m, shape) > 0.0)) or np.any(
+        ~(np.asarray(law.stiffness, dtype=float) > 0.0)
+    ):
+        raise ValueError("the effective mass m and the stiffness K must be positive")
     if np.any(np.broadcast_to(np.asarray(law.alpha, dtype=float), shape) < 0.0):
         raise ValueError("the damping parameter alpha must be >= 0")
     flat = _flatten_law(law, shape)
@@ -674,7 +676,7 @@ def _maximum_force(law, load: DampedStage, mass: Array) -> Array:
     """
     nc = load.time.shape[0]
     rows = np.arange(nc)
-    f_nodes = law_force_nodes(law, load)
+    f_nodes = _law_force_nodes(law, load)
     j = np.nanargmax(np.where(np.isnan(f_nodes), -np.inf, f_nodes), axis=1)
     lo_node = np.maximum(j - 1, 0)
     hi_node = np.minimum(j + 1, load.count)
@@ -712,7 +714,7 @@ def _maximum_force(law, load: DampedStage, mass: Array) -> Array:
     return best
 
 
-def law_force_nodes(law, stage: DampedStage) -> Array:
+def _law_force_nodes(law, stage: DampedStage) -> Array:
     """Total force at the nodes of a stage (N, n+1), NaN past its end."""
     params = {f.name: np.asarray(getattr(law, f.name), dtype=float)[:, None] for f in fields(law)}
     return replace(law, **params).force(stage.delta, stage.velocity)
