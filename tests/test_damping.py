@@ -6,6 +6,8 @@ Normalised units unless stated: m = 1, V0 = 1, K = 5/4, so the Hertz maximum ind
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import pytest
 
@@ -238,3 +240,66 @@ def test_published_hunt_crossley_relations_hold_only_near_e_1():
         assert e_model[name][1] > 0.65, name
     assert e_model["flores"][0] - e[0] == pytest.approx(-(1.0 - e[0]) / 15.0, rel=0.05)
     assert abs(e_model["flores"][1] - 0.5) < 0.05
+
+
+@dataclass(frozen=True)
+class KelvinVoigt:
+    """F = k delta + c delta' (linear spring-dashpot): FILM's segments are then exact."""
+
+    stiffness: float
+    alpha: float  # the dashpot constant c, [N s/m]
+
+    def elastic_force(self, delta):
+        return self.stiffness * np.maximum(np.asarray(delta, dtype=float), 0.0)
+
+    def elastic_work(self, start, end):
+        a, b = (np.maximum(np.asarray(x, dtype=float), 0.0) for x in (start, end))
+        return 0.5 * self.stiffness * (b * b - a * a)
+
+    def mean_damping(self, start, end):
+        return self.alpha + 0.0 * np.asarray(start, dtype=float)
+
+    def damping_coefficient(self, delta):
+        return self.alpha + 0.0 * np.asarray(delta, dtype=float)
+
+    def force(self, delta, delta_dot):
+        return self.elastic_force(delta) + self.alpha * np.asarray(delta_dot, dtype=float)
+
+    def reduced_force(self, delta, delta_dot):
+        return self.force(delta, delta_dot)
+
+
+@pytest.mark.parametrize("zeta", [0.05, 0.3, 0.6, 0.9])
+def test_linear_spring_dashpot_is_exact_for_any_n(zeta):
+    # m x'' + c x' + k x = 0 from x = 0 at V0: x = (V0/wd) e^(-b t) sin(wd t), b = zeta w0.
+    # Overlap rule: t_c = pi/wd, e = exp(-pi zeta / sqrt(1 - zeta^2)). Force rule: F = 0 at
+    # wd t = pi - atan2(2 b wd, w0^2 - 2 b^2). Checks the closed form of every damping regime
+    # that the segments pass through and the node-time root-finding, with n = 3.
+    k = K
+    w0 = np.sqrt(k / M)
+    b = zeta * w0
+    wd = w0 * np.sqrt(1.0 - zeta**2)
+    law = KelvinVoigt(k, 2.0 * M * b)
+    overlap = solve_damped_impact(law, V0, M, n=3)
+    assert float(overlap.contact_time) == pytest.approx(np.pi / wd, rel=1e-12)
+    assert float(overlap.restitution) == pytest.approx(np.exp(-np.pi * b / wd), rel=1e-12)
+    t_top = np.arctan2(wd, b) / wd
+    assert float(overlap.t_max) == pytest.approx(t_top, rel=1e-12)
+    assert float(overlap.delta_max) == pytest.approx(
+        V0 / wd * np.exp(-b * t_top) * np.sin(wd * t_top), rel=1e-12
+    )
+    force = solve_damped_impact(law, V0, M, n=3, separation="force")
+    t_f = (np.pi - np.arctan2(2.0 * b * wd, w0**2 - 2.0 * b**2)) / wd
+    rate = V0 * np.exp(-b * t_f) * (np.cos(wd * t_f) - b / wd * np.sin(wd * t_f))
+    assert float(force.contact_time) == pytest.approx(t_f, rel=1e-10)
+    assert float(force.restitution) == pytest.approx(-rate / V0, rel=1e-10)
+
+
+def test_overdamped_linear_contact_never_ends_under_the_overlap_rule():
+    # zeta > 1: x = 0 is approached only as t -> inf; the force rule still separates.
+    law = KelvinVoigt(K, 2.0 * M * 1.5 * np.sqrt(K / M))
+    overlap = solve_damped_impact(law, V0, M, n=4)
+    assert np.isinf(float(overlap.contact_time)) and float(overlap.restitution) == 0.0
+    assert float(overlap.dissipated) == pytest.approx(0.5 * M * V0**2, rel=1e-12)
+    force = solve_damped_impact(law, V0, M, n=4, separation="force")
+    assert np.isfinite(float(force.contact_time)) and float(force.delta_separation) > 0.0
