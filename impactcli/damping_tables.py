@@ -1,0 +1,150 @@
+"""Tables of restitution against damping for the Tsuji and Hunt-Crossley laws (docs/damping.md).
+
+``python -m impactcli.damping_tables [n]`` prints Markdown tables: e(alpha) of the exact model
+(FILM, both separation rules) and, for target restitutions, the alpha of the exact model
+against the published alpha(e) relations, with the e each relation actually gives. The
+numbers come from :mod:`impactcli.damping`; this module only formats them.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+
+from impactcli.damping import (
+    HuntCrossleyDamping,
+    TsujiDamping,
+    damping_for_restitution,
+    hunt_crossley_alpha_published,
+    solve_damped_impact,
+    tsuji_alpha_dem,
+    tsuji_alpha_hertz_mindlin,
+)
+
+# Normalised units: m = V0 = 1 and K = 5/4, so the Hertz maximum indentation is 1.
+K, M, V0 = 1.25, 1.0, 1.0
+ALPHAS = (0.0, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.5, 2.0)
+TARGETS = (0.95, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1)
+
+
+def tsuji_e_of_alpha(n: int = 400) -> dict[str, np.ndarray]:
+    """e(alpha) of the Tsuji law under both separation rules, and tc V0 / delta_mH."""
+    alpha = np.array(ALPHAS)
+    law = TsujiDamping(K, M, alpha)
+    out: dict[str, np.ndarray] = {"alpha": alpha}
+    for rule in ("overlap", "force"):
+        sol = solve_damped_impact(law, V0, M, n=n, separation=rule)
+        out[f"e_{rule}"] = sol.restitution
+        out[f"tc_{rule}"] = sol.contact_time
+        out[f"dsep_{rule}"] = sol.delta_separation
+    return out
+
+
+def _e_model(law_cls, alpha: np.ndarray, n: int, rule: str) -> np.ndarray:
+    law = TsujiDamping(K, M, alpha) if law_cls is TsujiDamping else HuntCrossleyDamping(K, alpha)
+    return solve_damped_impact(law, V0, M, n=n, separation=rule).restitution
+
+
+def tsuji_relations(n: int = 400) -> dict[str, np.ndarray]:
+    """alpha for target e: exact (both rules) against the DEM polynomial and Hertz-Mindlin."""
+    e = np.array(TARGETS)
+    out: dict[str, np.ndarray] = {"e": e}
+    for rule in ("overlap", "force"):
+        out[f"alpha_{rule}"] = damping_for_restitution("tsuji", e, V0, K, M, n=n, separation=rule)
+    for name, alpha in (
+        ("dem", tsuji_alpha_dem(e)),
+        ("dem_unscaled", tsuji_alpha_dem(e) / np.sqrt(2.0)),
+        ("hm", tsuji_alpha_hertz_mindlin(e)),
+    ):
+        out[f"alpha_{name}"] = alpha
+        for rule in ("overlap", "force"):
+            out[f"e_{name}_{rule}"] = _e_model(TsujiDamping, alpha, n, rule)
+    return out
+
+
+def hunt_crossley_relations(n: int = 400) -> dict[str, np.ndarray]:
+    """alpha V0 for target e: exact against Hunt-Crossley, Lankarani-Nikravesh, Flores."""
+    e = np.array(TARGETS)
+    out: dict[str, np.ndarray] = {"e": e}
+    out["alpha_exact"] = damping_for_restitution("hunt-crossley", e, V0, K, M, n=n)
+    for name, alpha in hunt_crossley_alpha_published(e, V0).items():
+        out[f"alpha_{name}"] = alpha
+        out[f"e_{name}"] = _e_model(HuntCrossleyDamping, alpha, n, "overlap")
+    return out
+
+
+def _markdown(header: list[str], rows: list[list[float]], digits: int = 4) -> str:
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    for row in rows:
+        lines.append("| " + " | ".join(f"{x:.{digits}f}" for x in row) + " |")
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> None:
+    args = sys.argv[1:] if argv is None else argv
+    n = int(args[0]) if args else 400
+    t = tsuji_e_of_alpha(n)
+    print(f"### Tsuji: e against alpha (FILM, n = {n})\n")
+    keys = ["alpha", "e_overlap", "tc_overlap", "e_force", "tc_force", "dsep_force"]
+    header = [
+        "alpha",
+        "e (overlap)",
+        "tc V0/dmH (overlap)",
+        "e (force)",
+        "tc V0/dmH (force)",
+        "delta_sep/dmH (force)",
+    ]
+    print(_markdown(header, [list(r) for r in zip(*(t[k] for k in keys))]))
+    r = tsuji_relations(n)
+    print("\n### Tsuji: alpha for a target e, exact against published relations\n")
+    keys = [
+        "e",
+        "alpha_overlap",
+        "alpha_force",
+        "alpha_dem",
+        "e_dem_overlap",
+        "e_dem_unscaled_overlap",
+        "alpha_hm",
+        "e_hm_overlap",
+        "e_hm_force",
+    ]
+    header = [
+        "e target",
+        "alpha exact (overlap)",
+        "alpha exact (force)",
+        "alpha DEM poly x sqrt2",
+        "e of it (overlap)",
+        "e of poly without sqrt2 (overlap)",
+        "alpha Hertz-Mindlin",
+        "e of it (overlap)",
+        "e of it (force)",
+    ]
+    print(_markdown(header, [list(x) for x in zip(*(r[k] for k in keys))]))
+    h = hunt_crossley_relations(n)
+    print("\n### Hunt-Crossley: alpha V0 for a target e (both rules agree)\n")
+    keys = [
+        "e",
+        "alpha_exact",
+        "alpha_hunt-crossley",
+        "e_hunt-crossley",
+        "alpha_lankarani-nikravesh",
+        "e_lankarani-nikravesh",
+        "alpha_flores",
+        "e_flores",
+    ]
+    header = [
+        "e target",
+        "alpha V0 exact",
+        "HC (1-e)",
+        "e of it",
+        "LN (1-e^2)/2",
+        "e of it",
+        "Flores 16(1-e)/(15e)",
+        "e of it",
+    ]
+    print(_markdown(header, [list(x) for x in zip(*(h[k] for k in keys))]))
+
+
+if __name__ == "__main__":
+    main()
