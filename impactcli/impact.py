@@ -784,11 +784,8 @@ def law_impact(
         model = "elastoplastic"
     else:
         model = spec.name
-    result = ImpactResult(
-        sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method
-    )
+    result = ImpactResult(sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method)
     summary = _summarise(result, r, e)
     extra = plastic_summary(contact, m, v0, plan, result.split_fractions)
     summary.update({key: float(value) for key, value in extra.items()})
     return _finish(result, summary)
-

@@ -42,8 +42,8 @@ from impactcli.contact import (
     ImpactPlan,
     StagePlan,
 )
-from impactcli.laws import Hertz, hertz_stiffness
 from impactcli.errors import InputError
+from impactcli.laws import Hertz, hertz_stiffness
 
 __all__ = [
     "LAWS",

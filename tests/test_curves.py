@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from impactcli.curves import read_loading_curve, read_unloading_curves
-from impactcli.lawlib import get_law
 from impactcli.errors import InputError
+from impactcli.lawlib import get_law
 
 
 def write(tmp_path, text: str, name: str = "curve.csv"):

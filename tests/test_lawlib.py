@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from impactcli.contact import DuWangContact
+from impactcli.errors import InputError
 from impactcli.impact import Sphere, effective_properties, solve_plan
 from impactcli.lawlib import (
     LAWS,
@@ -16,7 +17,6 @@ from impactcli.lawlib import (
     plan_groups,
     thornton_restitution,
 )
-from impactcli.errors import InputError
 
 STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
 #: The spheres of the paper's sec. 4.3/4.4 examples (D = 20 and 40 mm steel).
