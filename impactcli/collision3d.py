@@ -116,9 +116,7 @@ TANGENTIAL_MODELS: tuple[str, ...] = ("rigid", "mindlin")
 _HISTORY_RTOL = 1e-6
 
 
-def effective_shear_modulus(
-    e1: ArrayLike, nu1: ArrayLike, e2: ArrayLike, nu2: ArrayLike
-) -> Array:
+def effective_shear_modulus(e1: ArrayLike, nu1: ArrayLike, e2: ArrayLike, nu2: ArrayLike) -> Array:
     r"""Effective shear modulus G* of Mindlin's tangential stiffness, [Pa].
 
     .. math::
@@ -190,8 +188,9 @@ class NormalHistory:
         :func:`~impactcli.impact.elastoplastic_impact`) at ``points`` even times from first
         contact to separation, stacked on a leading axis (one row per impact)."""
         rows = [impact.history(impact.times(points)) for impact in impacts]
-        return cls(*(np.stack([row[key] for row in rows]) for key in
-                     ("t", "delta", "delta_dot", "force")))
+        return cls(
+            *(np.stack([row[key] for row in rows]) for key in ("t", "delta", "delta_dot", "force"))
+        )
 
 
 @dataclass(frozen=True)
@@ -341,8 +340,10 @@ class Collision3D:
         return _momentum(self.m1, self.v1_final) + _momentum(self.m2, self.v2_final)
 
     def _angular(self, i: int, point: Array, final: bool) -> Array:
-        m, r, rot, p = ((self.m1, self.r1, self.rotation1, self.p1),
-                        (self.m2, self.r2, self.rotation2, self.p2))[i - 1]
+        m, r, rot, p = (
+            (self.m1, self.r1, self.rotation1, self.p1),
+            (self.m2, self.r2, self.rotation2, self.p2),
+        )[i - 1]
         v = getattr(self, f"v{i}_final" if final else f"v{i}")
         w = getattr(self, f"w{i}_final" if final else f"w{i}")
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -523,8 +524,10 @@ def oblique_impact(
     bad = ~((mu >= 0.0) & np.isfinite(mu))
     if np.any(bad):
         raise ValueError("the friction coefficient mu must be finite and >= 0" + _where(bad))
-    vectors = {k: np.asarray(x, dtype=float) for k, x in
-               dict(p1=p1, p2=p2, v1=v1, v2=v2, w1=w1, w2=w2).items()}
+    vectors = {
+        k: np.asarray(x, dtype=float)
+        for k, x in dict(p1=p1, p2=p2, v1=v1, v2=v2, w1=w1, w2=w2).items()
+    }
     _check_vectors(**vectors)
     p1, p2, v1, v2, w1, w2 = vectors.values()
     for name, r, w in (("w1", r1, w1), ("w2", r2, w2)):
@@ -544,7 +547,14 @@ def oblique_impact(
             " ((v1 - v2) . n_hat <= 0: no impact)" + _where(bad)
         )
     shape = np.broadcast_shapes(
-        m1.shape, m2.shape, r1.shape, r2.shape, e.shape, mu.shape, rot1.shape, rot2.shape,
+        m1.shape,
+        m2.shape,
+        r1.shape,
+        r2.shape,
+        e.shape,
+        mu.shape,
+        rot1.shape,
+        rot2.shape,
         u_n.shape,
     )
     m1, m2, r1, r2, e, mu, rot1, rot2, u_n = (
@@ -555,8 +565,9 @@ def oblique_impact(
     u_t = u - u_n[..., None] * normal
     slip = np.sqrt(_dot(u_t, u_t))
     with np.errstate(invalid="ignore", divide="ignore"):
-        t_hat = np.where((slip > 0.0)[..., None], u_t / np.where(slip > 0.0, slip, 1.0)[..., None],
-                         0.0)
+        t_hat = np.where(
+            (slip > 0.0)[..., None], u_t / np.where(slip > 0.0, slip, 1.0)[..., None], 0.0
+        )
     inv_m1, inv_m2 = 1.0 / m1, 1.0 / m2
     m_t = 1.0 / (inv_m1 + inv_m2 + rot1 + rot2)
     # Normal impulse per unit of each mass, written as collision2d.oblique_collision does so
@@ -597,15 +608,33 @@ def oblique_impact(
         p1 + np.where(np.isinf(r1), 0.0, r1)[..., None] * normal,
     )
     return Collision3D(
-        m1=m1, m2=m2, r1=r1, r2=r2, rotation1=rot1, rotation2=rot2,
-        p1=np.broadcast_to(p1, vec), p2=np.broadcast_to(p2, vec),
-        v1=np.broadcast_to(v1, vec), v2=np.broadcast_to(v2, vec),
-        w1=np.broadcast_to(w1, vec), w2=np.broadcast_to(w2, vec),
-        v1_final=np.broadcast_to(v1_final, vec), v2_final=np.broadcast_to(v2_final, vec),
-        w1_final=np.broadcast_to(w1_final, vec), w2_final=np.broadcast_to(w2_final, vec),
-        normal=normal, contact_point=np.broadcast_to(contact, vec), slip_direction=t_hat,
-        restitution=e, friction=mu, normal_impulse=j_n, tangential_impulse=j_t,
-        stuck=np.asarray(stuck), model=tangential, times=times, tangential_force=force,
+        m1=m1,
+        m2=m2,
+        r1=r1,
+        r2=r2,
+        rotation1=rot1,
+        rotation2=rot2,
+        p1=np.broadcast_to(p1, vec),
+        p2=np.broadcast_to(p2, vec),
+        v1=np.broadcast_to(v1, vec),
+        v2=np.broadcast_to(v2, vec),
+        w1=np.broadcast_to(w1, vec),
+        w2=np.broadcast_to(w2, vec),
+        v1_final=np.broadcast_to(v1_final, vec),
+        v2_final=np.broadcast_to(v2_final, vec),
+        w1_final=np.broadcast_to(w1_final, vec),
+        w2_final=np.broadcast_to(w2_final, vec),
+        normal=normal,
+        contact_point=np.broadcast_to(contact, vec),
+        slip_direction=t_hat,
+        restitution=e,
+        friction=mu,
+        normal_impulse=j_n,
+        tangential_impulse=j_t,
+        stuck=np.asarray(stuck),
+        model=tangential,
+        times=times,
+        tangential_force=force,
     )
 
 
@@ -697,7 +726,8 @@ def _line_of_centres(p1: Array, p2: Array) -> Array:
     bad = distance == 0.0
     if np.any(bad):
         raise ValueError(
-            "the positions of the two centres coincide" + _where(bad)
+            "the positions of the two centres coincide"
+            + _where(bad)
             + ": they do not define a line of centres"
         )
     return d / distance[..., None]
