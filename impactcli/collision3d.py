@@ -348,8 +348,8 @@ class Collision3D:
         w = getattr(self, f"w{i}_final" if final else f"w{i}")
         with np.errstate(invalid="ignore", divide="ignore"):
             inertia = r * r / rot
-        spin = np.where(np.isfinite(inertia)[..., None], inertia[..., None] * w, np.nan)
-        return np.cross(p - point, _momentum(m, v)) + spin
+            spin = np.where(np.isfinite(inertia)[..., None], inertia[..., None] * w, np.nan)
+            return np.cross(p - point, _momentum(m, v)) + spin
 
     def angular_momentum_contact(self, sphere: int, final: bool = False) -> Array:
         """Angular momentum of one sphere about the contact point c,
@@ -459,9 +459,10 @@ def oblique_impact(
     - ``mindlin``: incremental Mindlin spring k_t = 8 G* sqrt(R delta) with the Coulomb cap
       mu F_n, scaled down while the contact shrinks (Thornton, Cummins & Cleary 2011),
       integrated over ``history``. Each interval is solved exactly as a harmonic oscillator
-      of stiffness k_t (at the interval's end) and mass m_t; where that exceeds the Coulomb
-      cap the interval slides with the impulse mu dJ_n, dJ_n being the interval's share of
-      J_n from the change of delta'. In gross slip throughout J_t = mu J_n to rounding.
+      of stiffness k_t (the mean of its ends) and mass m_t; where the spring would end
+      above mu F_n the interval slides with the impulse mu dJ_n (dJ_n: the interval's share
+      of J_n, from the change of delta'), but no more than the elastic interval's, and ends
+      at |F_t| = mu F_n. In gross slip throughout J_t = mu J_n to rounding.
 
     With mu = 0 both models give the smooth collision of
     :func:`impactcli.collision2d.oblique_collision` (exactly, for planar input with z = 0).
@@ -556,6 +557,7 @@ def oblique_impact(
         rot1.shape,
         rot2.shape,
         u_n.shape,
+        () if history is None or tangential != "mindlin" else history.t.shape[:-1],
     )
     m1, m2, r1, r2, e, mu, rot1, rot2, u_n = (
         np.broadcast_to(a, shape) for a in (m1, m2, r1, r2, e, mu, rot1, rot2, u_n)
@@ -664,9 +666,16 @@ def _mindlin(
     bad = ~np.isclose(-end, e * u_n, rtol=_HISTORY_RTOL, atol=_HISTORY_RTOL * u_n)
     if np.any(bad):
         raise ValueError("the normal history must end at delta' = -e u_n" + _where(bad))
-    # Share of J_n in each interval, from the change of delta' (m delta'' = -F_n): it sums
-    # to J_n to rounding, so gross slip gives J_t = mu J_n to rounding.
-    d_jn = j_n[..., None] * (-np.diff(hist["delta_dot"], axis=-1)) / (start - end)[..., None]
+    # Share of J_n in each interval: the trapezoid of F_n dt, scaled to sum to J_n to
+    # rounding, so gross slip gives J_t = mu J_n to rounding. (Between FILM nodes delta'
+    # is not monotonic to rounding, so its differences are not used.)
+    f_n = hist["force"]
+    area = 0.5 * (f_n[..., 1:] + f_n[..., :-1]) * np.diff(hist["t"], axis=-1)
+    total = np.sum(area, axis=-1)
+    bad = ~(total > 0.0)
+    if np.any(bad):
+        raise ValueError("the normal history has no contact force" + _where(bad))
+    d_jn = j_n[..., None] * area / total[..., None]
     stiffness = 8.0 * g[..., None] * np.sqrt(radius[..., None] * hist["delta"])
     cap = mu[..., None] * hist["force"]
     dt = np.diff(hist["t"], axis=-1)
@@ -677,17 +686,23 @@ def _mindlin(
     stopped = slip == 0.0
     for j in range(k_points - 1):
         k_old, k = stiffness[..., j], stiffness[..., j + 1]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            f = np.where(k < k_old, f * (k / np.where(k_old > 0.0, k_old, 1.0)), f)
-        omega_dt = np.sqrt(k / m_t) * dt[..., j]
+        k_mid = 0.5 * (k_old + k)
+        omega_dt = np.sqrt(k_mid / m_t) * dt[..., j]
         cos, sinc = np.cos(omega_dt), np.sinc(omega_dt / np.pi)
         s_trial = s * cos - f * dt[..., j] * sinc / m_t
-        f_trial = f * cos + k * s * dt[..., j] * sinc
+        f_trial = f * cos + k_mid * s * dt[..., j] * sinc
+        # Coulomb: where the spring would end above mu F_n the step slides, with the
+        # impulse mu dJ_n, but never more than the elastic step's (the force is bounded by
+        # both); the end force is held within mu F_n.
+        dj_elastic = m_t * (s - s_trial)
         slides = np.abs(f_trial) >= cap[..., j + 1]
-        direction = np.where(f_trial != 0.0, np.sign(f_trial), np.sign(s))
-        dj = np.where(slides, direction * mu * d_jn[..., j], m_t * (s - s_trial))
+        dj_slide = np.sign(dj_elastic) * np.minimum(mu * d_jn[..., j], np.abs(dj_elastic))
+        dj = np.where(slides, dj_slide, dj_elastic)
         s = np.where(slides, s - dj / m_t, s_trial)
-        f = np.where(slides, direction * cap[..., j + 1], f_trial)
+        f = np.clip(f_trial, -cap[..., j + 1], cap[..., j + 1])
+        # A shrinking contact scales the force with the stiffness (Thornton et al. 2011).
+        with np.errstate(invalid="ignore", divide="ignore"):
+            f = np.where(k < k_old, f * (k / np.where(k_old > 0.0, k_old, 1.0)), f)
         j_t = j_t + dj
         forces[..., j + 1] = f
         stopped |= s <= 0.0
