@@ -76,7 +76,7 @@ R. M. Brach, Mechanical Impact Dynamics, Wiley, 1991.
 W. J. Stronge, Impact Mechanics, Cambridge University Press, 2000.
 R. D. Mindlin, "Compliance of elastic bodies in contact", J. Appl. Mech. 16:259-268, 1949.
 C. Thornton, K. K. Yin, "Impact of elastic spheres with and without adhesion", Powder
-Technol. 65:153-166, 1991, doi:10.1016/0032-5910(91)80178-L.
+Technol. 65:153-166, 1991.
 A. Di Renzo, F. P. Di Maio, "Comparison of contact-force models for the simulation of
 collisions in DEM-based granular flow codes", Chem. Eng. Sci. 59:525-541, 2004,
 doi:10.1016/j.ces.2003.09.037.
