@@ -214,8 +214,9 @@ class Collision3D:
     friction : Coulomb friction coefficient mu, [-]
     normal_impulse : J_n = (1 + e) m u_n, on sphere 2 along n_hat, [N s]
     tangential_impulse : J_t . t_hat, on sphere 2 along t_hat, [N s] (>= 0)
-    stuck : True where the slip at the contact point stopped (rigid: m_t |u_t| <= mu J_n;
-        mindlin: u_t . t_hat reached 0 at some time, then stuck or reversed), [-]
+    stuck : True where the contact stuck (rigid: m_t |u_t| <= mu J_n; mindlin: the spring
+        was below the Coulomb limit during part of the contact), False where it slid
+        throughout at |F_t| = mu F_n, [-]
     model : ``rigid`` or ``mindlin``
     times, tangential_force : the tangential force on sphere 2 along t_hat at the times of
         the normal history, [s], [N] (``mindlin`` only, else ``None``)
@@ -683,7 +684,7 @@ def _mindlin(
     f = np.zeros(shape)  # tangential force on sphere 2 along t_hat
     j_t = np.zeros(shape)
     forces = np.zeros(shape + (k_points,))
-    stopped = slip == 0.0
+    stuck = np.zeros(shape, dtype=bool)
     for j in range(k_points - 1):
         k_old, k = stiffness[..., j], stiffness[..., j + 1]
         k_mid = 0.5 * (k_old + k)
@@ -705,8 +706,8 @@ def _mindlin(
             f = np.where(k < k_old, f * (k / np.where(k_old > 0.0, k_old, 1.0)), f)
         j_t = j_t + dj
         forces[..., j + 1] = f
-        stopped |= s <= 0.0
-    return j_t, stopped, forces
+        stuck |= ~slides
+    return j_t, stuck, forces
 
 
 def _contact_velocity(v1, v2, w1, w2, r1, r2, normal) -> Array:

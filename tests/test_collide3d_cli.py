@@ -89,3 +89,16 @@ def test_bad_input_one_line(impact, args, message):
     assert message in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
     assert "Traceback" not in r.stderr
+
+
+def test_plots(impact, tmp_path):
+    pytest.importorskip("matplotlib")
+    diagram, force = tmp_path / "c3d.png", tmp_path / "force.svg"
+    r = impact(*ALUMINA_ON_PLANE, "--v1=1.95,0,-3.3775", "--tangential", "mindlin",
+               "--points", "401", "-f", "csv", "--plot", str(diagram),
+               "--plot-force", str(force))  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert diagram.stat().st_size > 0 and force.stat().st_size > 0
+    bad = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", "--plot-force", str(tmp_path / "x.png"))
+    assert bad.returncode == 2 and "--tangential mindlin" in bad.stderr
+    assert not (tmp_path / "x.png").exists()

@@ -12,8 +12,11 @@ from impactcli.cli.common import (
     Format,
     OutputFile,
     OutputFormat,
+    PlotFile,
+    check_plot,
     console,
     resolve_format,
+    save_plot,
 )
 from impactcli.output import InputError, atomic_output, write_csv, write_json
 
@@ -89,6 +92,14 @@ def collide3d(
     ),
     fmt: OutputFormat = None,
     output: OutputFile = None,
+    plot: PlotFile = None,
+    plot_force: Optional[str] = typer.Option(
+        None,
+        "--plot-force",
+        metavar="FILE",
+        help="With --tangential mindlin: draw the tangential force history and its Coulomb "
+        "limit mu F_n to FILE (.png, .svg or .pdf).",
+    ),
 ) -> None:
     """Oblique 3-D collision of two rough, spinning spheres (or a sphere and a flat target).
 
@@ -111,7 +122,9 @@ def collide3d(
     --p1 0,0,0 --p2=0,0,-1 --v1=1.95,0,-3.3775 --mu 0.092 --tangential mindlin
 
     CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"} (with
-    the tangential force history for mindlin).
+    the tangential force history for mindlin). --plot draws the velocities before and after
+    in the plane of the impact (horizontal: the initial slip direction t, vertical: n),
+    projected on it; --plot-force the mindlin tangential force history.
     """
     params: dict[str, Any] = dict(
         d1=d1, d2=d2, material=material, material1=material1, material2=material2,
@@ -135,10 +148,16 @@ def collide3d(
             "--e cannot drive --tangential mindlin, which needs the normal force history: "
             "use --model elastic or elastoplastic"
         )
+    check_plot(plot)
+    check_plot(plot_force)
+    if plot_force is not None and tangential is not Tangential.mindlin:
+        raise InputError("--plot-force draws the mindlin force history: add --tangential mindlin")
     if points < 3:
         raise InputError(f"--points: need at least 3 time points, got {points}")
     s1, s2 = sphere_pair(params)
-    result, summary, inputs, force = _solve(s1, s2, vectors, model, e, mu, tangential, points)
+    result, summary, inputs, force, limit = _solve(
+        s1, s2, vectors, model, e, mu, tangential, points
+    )
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -150,6 +169,42 @@ def collide3d(
             write_json(stream, document)
         else:
             _print_tables(stream if output not in (None, "-") else None, inputs, summary)
+    if plot:
+        _plot(plot, result, inputs)
+    if plot_force:
+        from impactcli.plots import tangential_force_figure
+
+        save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
+
+
+def _plot(path: str, c, inputs: dict) -> None:
+    """The before/after diagram of :func:`impactcli.plots.collision2d_figure` in the plane
+    of the impact: horizontal along the initial slip t (or any tangent), vertical along n."""
+    import numpy as np
+
+    from impactcli.plots import collision2d_figure
+
+    n = np.asarray(c.normal)
+    t = np.asarray(c.slip_direction)
+    if not np.any(t):
+        t = np.cross(n, [1.0, 0.0, 0.0])
+        if np.linalg.norm(t) < 1e-6:
+            t = np.cross(n, [0.0, 1.0, 0.0])
+        t = t / np.linalg.norm(t)
+
+    def plane(v):
+        return np.array([np.dot(v, t), np.dot(v, n)])
+
+    radii = (float(c.r1), float(c.r2))
+    origin = np.asarray(c.p1)
+    fig = collision2d_figure(
+        plane(c.v1), plane(c.v2), plane(c.v1_final), plane(c.v2_final),
+        plane(np.asarray(c.p1) - origin), plane(np.asarray(c.p2) - origin),
+        radii=radii if all(np.isfinite(radii)) else None,
+        title=f"Oblique 3-D collision ({inputs['tangential_model']}, mu = {inputs['mu']:.6g}) "
+        "in the plane of the impact: x along the initial slip, y along n",
+    )  # fmt: skip
+    save_plot(fig, path)
 
 
 def sphere_pair(params: dict[str, Any]):  # -> tuple[Sphere, Sphere]
@@ -203,9 +258,11 @@ def _solve(s1, s2, vectors, model, e, mu, tangential, points):
         )  # fmt: skip
     except ValueError as exc:
         raise InputError(str(exc)) from None
+    limit = None
     if tangential is Tangential.mindlin:
         result = _first(result)
         force = {"t": result.times.tolist(), "force": result.tangential_force.tolist()}
+        limit = mu * history.force[0]
     else:
         force = None
     inputs = {
@@ -218,7 +275,7 @@ def _solve(s1, s2, vectors, model, e, mu, tangential, points):
         "tangential_model": tangential.value,
         "mu": mu,
     }
-    return result, summary(result), inputs, force
+    return result, summary(result), inputs, force, limit
 
 
 def _first(result):
