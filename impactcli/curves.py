@@ -6,7 +6,7 @@ measured from several maximum indentations are one file with the columns
 ``delta_max,delta,force`` (units alike). Blank lines and lines starting with ``#`` are
 skipped.
 
-Rules (each failure is one :class:`~impactcli.output.InputError` line naming the file, and
+Rules (each failure is one :class:`~impactcli.errors.InputError` line naming the file, and
 the line where there is one):
 
 - numbers only, finite, indentations and forces >= 0;

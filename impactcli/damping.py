@@ -1,7 +1,7 @@
 """FILM for rate-dependent (viscoelastic) contact laws: Hertz elasticity plus viscous damping.
 
 The laws here have the form F(delta, delta') = F_e(delta) + c(delta) delta', with the Hertz
-elastic part F_e = K delta^1.5, K = (4/3) E* sqrt(R) (spec sec. 3), and a damping coefficient
+elastic part F_e = K delta^1.5, K = (4/3) E* sqrt(R) (docs/method.md §3), and a damping coefficient
 c(delta) [N s/m]:
 
 - :class:`TsujiDamping`, Tsuji, Tanaka & Ishida (1992), Powder Technol. 71:239-250,
@@ -11,7 +11,7 @@ c(delta) [N s/m]:
 
 FILM on a damped segment
 ------------------------
-As in the elastic FILM (paper eqs. 5-8, spec sec. 4) the elastic force on segment r -> s is
+As in the elastic FILM (paper eqs. 5-8, docs/method.md §4) the elastic force on segment r -> s is
 replaced by its chord, K_rs (delta - C_rs). The damping coefficient is replaced by its exact
 mean over the segment, c_rs = (1/(delta_s - delta_r)) * integral of c from delta_r to
 delta_s; with this choice the damping impulse integral of c delta' dt over a segment that is

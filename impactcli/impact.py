@@ -754,7 +754,7 @@ def law_impact(
     ------
     ValueError
         Bad spheres, velocities or law parameters; an impact beyond a tabulated curve
-        (:class:`~impactcli.output.InputError`).
+        (:class:`~impactcli.errors.InputError`).
 
     Examples
     --------

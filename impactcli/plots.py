@@ -753,3 +753,42 @@ def _frame(ax: Axes, points: NDArray) -> None:
     ax.set_ylim(centre[1] - half, centre[1] + half)
     ax.set_aspect("equal", adjustable="box")
     ax.grid(True, linewidth=0.4, alpha=0.5)
+
+
+def tangential_force_figure(
+    t: ArrayLike,
+    force: ArrayLike,
+    limit: ArrayLike,
+    *,
+    title: str = "Tangential force over the contact (Mindlin spring with Coulomb slip)",
+) -> Figure:
+    """The tangential contact force history of an oblique impact with its Coulomb limit.
+
+    Parameters
+    ----------
+    t : times from first contact to separation, [s]
+    force : tangential force on sphere 2 along the initial slip direction, [N]
+    limit : Coulomb limit mu F_n at the same times, [N]; drawn as +/- mu F_n
+    title : names the case
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Lines with gids ``force``, ``limit`` and ``-limit``.
+    """
+    t, force, limit = (np.asarray(x, dtype=float) for x in (t, force, limit))
+    ts = unit_scale(t, "s")
+    fs = unit_scale([force, limit], "N")
+    fig = _new_figure(8.0, 4.8)
+    ax = fig.subplots()
+    ax.plot(t / ts.factor, force / fs.factor, color="tab:blue", label="F_t", gid="force")
+    ax.plot(t / ts.factor, limit / fs.factor, color="0.4", linestyle="--", label="± μ F_n",
+            gid="limit")  # fmt: skip
+    ax.plot(t / ts.factor, -limit / fs.factor, color="0.4", linestyle="--", gid="-limit")
+    ax.axhline(0.0, color="0.7", linewidth=0.6)
+    ax.set_xlabel(f"time [{ts.unit}]")
+    ax.set_ylabel(f"tangential force [{fs.unit}]")
+    ax.set_title(title)
+    ax.legend(loc="best")
+    ax.grid(True, linewidth=0.4, alpha=0.5)
+    return fig

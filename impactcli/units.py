@@ -367,7 +367,7 @@ def parse_vector3(text: str, kind: str, name: str) -> tuple[float, float, float]
     >>> parse_vector3("1,2", "velocity", "--v1")
     Traceback (most recent call last):
         ...
-    impactcli.output.InputError: --v1: expected three components 'x,y,z', got '1,2'
+    impactcli.errors.InputError: --v1: expected three components 'x,y,z', got '1,2'
     """
     x, y, z = _components(text, kind, name, 3, "'x,y,z'")
     return x, y, z

@@ -1,7 +1,7 @@
 """FILM for viscoelastic (damped) contact laws against SciPy, exact limits and conservation.
 
 Normalised units unless stated: m = 1, V0 = 1, K = 5/4, so the Hertz maximum indentation is 1
-(spec sec. 3). FILM runs n = 400 segments per stage, where its error is below 1e-6.
+(docs/method.md §3). FILM runs n = 400 segments per stage, where its error is below 1e-6.
 """
 
 from __future__ import annotations
@@ -98,7 +98,7 @@ def test_convergence_is_second_order_in_n():
 
 
 def test_tsuji_restitution_does_not_depend_on_impact_velocity():
-    # SI steel spheres of spec sec. 6; V0 over four decades; e depends on alpha only.
+    # SI steel spheres of docs/method.md §6; V0 over four decades; e depends on alpha only.
     k_h, m = 1.25615e10, 0.0290423
     v0 = np.array([1e-3, 1e-2, 0.1, 1.0, 10.0])
     film = solve_damped_impact(TsujiDamping(k_h, m, 0.4), v0, m, n=100)
@@ -115,10 +115,10 @@ def test_alpha_zero_is_hertz():
     n = 200
     film = _film(TsujiDamping(K, M, 0.0), n=n)
     # Loading with velocities carried over is the elastic FILM stage of the paper's own
-    # implementation (spec sec. 6), to rounding.
+    # implementation (docs/method.md §6), to rounding.
     loading = solve_stage(Hertz(K), 0.0, 1.0, V0, M, n, carry_velocity=True, end_at_rest=True)
     assert float(film.t_max) == pytest.approx(loading.end_time, rel=1e-13)
-    # Contact time: the Beta-function value 2.9432752 delta_m / V0 (spec sec. 3), to FILM's
+    # Contact time: the Beta-function value 2.9432752 delta_m / V0 (docs/method.md §3), to FILM's
     # second-order accuracy; e = 1 and nothing dissipated.
     assert float(film.contact_time) == pytest.approx(2.9432752, abs=0.1 / n**2)
     assert float(film.restitution) == pytest.approx(1.0, abs=1e-8)

@@ -27,11 +27,19 @@ app = typer.Typer(
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 
-from impactcli.cli import batch_cmd, collide2d_cmd, impact_cmd, laws_cmd, tables_cmd  # noqa: E402
+from impactcli.cli import (  # noqa: E402
+    batch_cmd,
+    collide2d_cmd,
+    collide3d_cmd,
+    impact_cmd,
+    laws_cmd,
+    tables_cmd,
+)
 
 tables_cmd.register(app)
 impact_cmd.register(app)
 collide2d_cmd.register(app)
+collide3d_cmd.register(app)
 batch_cmd.register(app)
 laws_cmd.register(app)
 

@@ -1,0 +1,774 @@
+r"""Oblique 3-D collision of two spheres with Coulomb friction and spin.
+
+The smooth collision of :mod:`impactcli.collision2d` (paper sec. 4.5) extended to rough
+spheres in three dimensions. The spheres are rigid bodies during the short contact
+(impulsive approximation: the positions do not change); the contact deforms only through
+the normal law, which supplies the coefficient of restitution e, and, for the ``mindlin``
+model, through a tangential spring.
+
+Kinematics
+----------
+With the unit normal from sphere 1 to sphere 2 and the contact point on the line of centres,
+
+.. math::
+
+    \hat n = \frac{r_2 - r_1}{|r_2 - r_1|}, \qquad c = r_1 + R_1 \hat n,
+
+the velocity of sphere 1 relative to sphere 2 at the contact point is
+
+.. math::
+
+    u = v_1 - v_2 + (R_1 \omega_1 + R_2 \omega_2) \times \hat n,
+
+with the normal approach velocity u_n = u . n_hat > 0 and the slip u_t = u - u_n n_hat. An
+impulse J = J_n n_hat + J_t acts on sphere 2 at c and -J on sphere 1:
+
+.. math::
+
+    v_1' = v_1 - J/m_1, \quad v_2' = v_2 + J/m_2, \quad
+    \omega_1' = \omega_1 - \frac{R_1}{I_1} \hat n \times J, \quad
+    \omega_2' = \omega_2 - \frac{R_2}{I_2} \hat n \times J,
+
+so that u_n' = u_n - J_n/m and u_t' = u_t - J_t/m_t with the effective and the tangential
+masses
+
+.. math::
+
+    \frac{1}{m} = \frac{1}{m_1} + \frac{1}{m_2}, \qquad
+    \frac{1}{m_t} = \frac{1}{m_1} + \frac{1}{m_2} + \frac{R_1^2}{I_1} + \frac{R_2^2}{I_2}.
+
+The normal law gives J_n = (1 + e) m u_n (paper eq. 20 for any e). Normal and tangential
+motions are uncoupled for spheres, and the tangential impulse stays along the initial slip
+direction t_hat = u_t/|u_t| in both models below.
+
+Tangential models
+-----------------
+``rigid``: the impulse model with Coulomb friction (Brach 1991; Stronge 2000, ch. 5; as in
+the algebraic models of Walton 1993). The impulse that stops the slip is m_t |u_t|; if it is
+at most mu J_n the contact sticks (u_t' = 0), else it slides throughout with
+J_t = mu J_n t_hat. For a solid sphere on a fixed plane (m_t = 2 m / 7) in gross slip,
+v_t' = v_t - mu (1 + e) v_n and |omega'| = (5/2) mu (1 + e) v_n / R, and the contact sticks
+when tan(theta) = |u_t|/u_n <= (7/2) mu (1 + e).
+
+``mindlin``: the tangential compliance of Mindlin (1949) with Coulomb slip, in the simplified
+incremental form used in DEM (Thornton & Yin 1991; Di Renzo & Di Maio 2004; Thornton, Cummins
+& Cleary 2011): a tangential spring of the no-slip Mindlin stiffness
+
+.. math::
+
+    k_t = 8 G^* a, \qquad a = \sqrt{R \delta}, \qquad
+    \frac{1}{G^*} = \frac{2 - \nu_1}{G_1} + \frac{2 - \nu_2}{G_2},
+
+loaded incrementally, dF_t = k_t u_t dt, capped by Coulomb's law |F_t| <= mu F_n (gross
+slip), and, while the contact shrinks (k_t decreasing), scaled down with the stiffness,
+F_t <- F_t k_t,new / k_t,old, so that the spring never returns more energy than it stored.
+It is integrated over the normal history delta(t), F_n(t) of the normal law (FILM). Partial
+slip inside the contact (the Mindlin-Deresiewicz annulus) is not resolved: the spring is
+elastic up to the Coulomb limit, then slides.
+
+Every function broadcasts over a leading batch shape S: scalars of shape S, vectors of
+shape S + (3,), histories of shape S + (K,).
+
+References
+----------
+A. Big-Alabo, Mechanical Engineering Research 8(1), 2018, sec. 4.5, doi:10.5539/mer.v8n1p1.
+R. M. Brach, Mechanical Impact Dynamics, Wiley, 1991.
+W. J. Stronge, Impact Mechanics, Cambridge University Press, 2000.
+R. D. Mindlin, "Compliance of elastic bodies in contact", J. Appl. Mech. 16:259-268, 1949.
+C. Thornton, K. K. Yin, "Impact of elastic spheres with and without adhesion", Powder
+Technol. 65:153-166, 1991.
+A. Di Renzo, F. P. Di Maio, "Comparison of contact-force models for the simulation of
+collisions in DEM-based granular flow codes", Chem. Eng. Sci. 59:525-541, 2004,
+doi:10.1016/j.ces.2003.09.037.
+C. Thornton, S. J. Cummins, P. W. Cleary, "An investigation of the comparative behaviour of
+alternative contact force models during inelastic collisions", Powder Technol. 210:189-197,
+2011, doi:10.1016/j.powtec.2011.01.013.
+Y. C. Chung, J. Y. Ooi, "Benchmark tests for verifying discrete element modelling codes at
+particle impact level", Granular Matter 13:643-656, 2011, doi:10.1007/s10035-011-0277-0.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "TANGENTIAL_MODELS",
+    "Collision3D",
+    "NormalHistory",
+    "effective_shear_modulus",
+    "oblique_impact",
+]
+
+if TYPE_CHECKING:
+    from impactcli.impact import ImpactResult
+
+Array = NDArray[np.float64]
+
+#: The tangential models of :func:`oblique_impact`.
+TANGENTIAL_MODELS: tuple[str, ...] = ("rigid", "mindlin")
+
+#: Relative tolerance on the agreement of a normal history with u_n and e.
+_HISTORY_RTOL = 1e-6
+
+
+def effective_shear_modulus(e1: ArrayLike, nu1: ArrayLike, e2: ArrayLike, nu2: ArrayLike) -> Array:
+    r"""Effective shear modulus G* of Mindlin's tangential stiffness, [Pa].
+
+    .. math::
+
+        \frac{1}{G^*} = \frac{2 - \nu_1}{G_1} + \frac{2 - \nu_2}{G_2}, \qquad
+        G_i = \frac{E_i}{2 (1 + \nu_i)},
+
+    so that k_t = 8 G* a (Mindlin 1949; Thornton, Cummins & Cleary 2011). A rigid body
+    (E = inf) adds nothing.
+
+    Parameters
+    ----------
+    e1, e2 : Young's moduli, [Pa] (``inf`` for a rigid body)
+    nu1, nu2 : Poisson's ratios, [-]
+
+    Examples
+    --------
+    >>> round(float(effective_shear_modulus(380e9, 0.23, np.inf, 0.0)) / 1e9, 3)
+    87.272
+    """
+    total = np.zeros(np.broadcast_shapes(*(np.shape(x) for x in (e1, nu1, e2, nu2))))
+    for youngs, nu in ((e1, nu1), (e2, nu2)):
+        youngs, nu = np.asarray(youngs, dtype=float), np.asarray(nu, dtype=float)
+        with np.errstate(divide="ignore"):
+            total = total + (2.0 - nu) * 2.0 * (1.0 + nu) / youngs
+    with np.errstate(divide="ignore"):
+        return 1.0 / total
+
+
+@dataclass(frozen=True)
+class NormalHistory:
+    """The normal contact history of each collision, from the normal law (FILM).
+
+    Arrays have the batch shape S followed by K >= 2 time points, from first contact to
+    separation. The ``mindlin`` model takes one tangential step per interval, so K sets its
+    resolution (a few thousand points resolve the tangential oscillation).
+
+    Attributes
+    ----------
+    t : times, increasing, [s]
+    delta : total indentation delta(t), [m]
+    delta_dot : indentation rate delta'(t), [m/s]; delta'(0) = u_n, at separation -e u_n
+    force : normal contact force F_n(t) >= 0, [N]
+    """
+
+    t: Array
+    delta: Array
+    delta_dot: Array
+    force: Array
+
+    def __post_init__(self) -> None:
+        arrays = [np.asarray(getattr(self, k), dtype=float) for k in ("t", "delta")]
+        arrays += [np.asarray(getattr(self, k), dtype=float) for k in ("delta_dot", "force")]
+        shape = np.broadcast_shapes(*(a.shape for a in arrays))
+        if len(shape) == 0 or shape[-1] < 2:
+            raise ValueError("a normal history needs at least 2 time points on its last axis")
+        for key, value in zip(("t", "delta", "delta_dot", "force"), arrays):
+            if not np.all(np.isfinite(value)):
+                raise ValueError(f"the normal history {key} must be finite")
+            object.__setattr__(self, key, np.broadcast_to(value, shape))
+        if np.any(np.diff(self.t, axis=-1) <= 0.0):
+            raise ValueError("the times of a normal history must increase")
+        if np.any(self.force < 0.0) or np.any(self.delta < 0.0):
+            raise ValueError("a normal history needs delta >= 0 and F_n >= 0")
+
+    @classmethod
+    def from_impacts(cls, impacts: Sequence[ImpactResult], points: int = 4001) -> NormalHistory:
+        """The FILM histories of normal impacts (:func:`impactcli.impact.elastic_impact`,
+        :func:`~impactcli.impact.elastoplastic_impact`) at ``points`` even times from first
+        contact to separation, stacked on a leading axis (one row per impact)."""
+        rows = [impact.history(impact.times(points)) for impact in impacts]
+        return cls(
+            *(np.stack([row[key] for row in rows]) for key in ("t", "delta", "delta_dot", "force"))
+        )
+
+
+@dataclass(frozen=True)
+class Collision3D:
+    """State before and after an oblique 3-D collision with friction (SI).
+
+    Vectors have (x, y, z) on their last axis; other attributes have the batch shape.
+
+    Attributes
+    ----------
+    m1, m2 : masses, [kg] (``inf`` for a fixed target)
+    r1, r2 : radii, [m] (``inf`` for a flat target)
+    rotation1, rotation2 : R_i^2 / I_i, [1/kg] (0 for a body that cannot turn)
+    p1, p2 : centres at contact, [m]
+    v1, v2, w1, w2 : velocities [m/s] and angular velocities [rad/s] before the impact
+    v1_final, v2_final, w1_final, w2_final : the same after the impact
+    normal : unit normal n_hat from sphere 1 to sphere 2, [-]
+    contact_point : c, on the line of centres at distance R_1 from centre 1, [m]
+    slip_direction : t_hat = u_t/|u_t| before the impact (zero without slip), [-]
+    restitution : normal coefficient of restitution e (from the normal law), [-]
+    friction : Coulomb friction coefficient mu, [-]
+    normal_impulse : J_n = (1 + e) m u_n, on sphere 2 along n_hat, [N s]
+    tangential_impulse : J_t . t_hat, on sphere 2 along t_hat, [N s] (>= 0)
+    stuck : True where the contact stuck (rigid: m_t |u_t| <= mu J_n; mindlin: the spring
+        was below the Coulomb limit during part of the contact), False where it slid
+        throughout at |F_t| = mu F_n, [-]
+    model : ``rigid`` or ``mindlin``
+    times, tangential_force : the tangential force on sphere 2 along t_hat at the times of
+        the normal history, [s], [N] (``mindlin`` only, else ``None``)
+    """
+
+    m1: Array
+    m2: Array
+    r1: Array
+    r2: Array
+    rotation1: Array
+    rotation2: Array
+    p1: Array
+    p2: Array
+    v1: Array
+    v2: Array
+    w1: Array
+    w2: Array
+    v1_final: Array
+    v2_final: Array
+    w1_final: Array
+    w2_final: Array
+    normal: Array
+    contact_point: Array
+    slip_direction: Array
+    restitution: Array
+    friction: Array
+    normal_impulse: Array
+    tangential_impulse: Array
+    stuck: NDArray[np.bool_]
+    model: str
+    times: Array | None = field(default=None, repr=False)
+    tangential_force: Array | None = field(default=None, repr=False)
+
+    # -- masses ------------------------------------------------------------------------
+    @property
+    def effective_mass(self) -> Array:
+        """m = (1/m1 + 1/m2)^-1, [kg]."""
+        return 1.0 / (1.0 / self.m1 + 1.0 / self.m2)
+
+    @property
+    def tangential_mass(self) -> Array:
+        """m_t = (1/m1 + 1/m2 + R1^2/I1 + R2^2/I2)^-1, [kg] (2 m1 / 7 for a solid sphere on a
+        fixed plane)."""
+        return 1.0 / (1.0 / self.m1 + 1.0 / self.m2 + self.rotation1 + self.rotation2)
+
+    # -- contact-point velocities ------------------------------------------------------
+    def _contact_velocity(self, v1, v2, w1, w2) -> Array:
+        return _contact_velocity(v1, v2, w1, w2, self.r1, self.r2, self.normal)
+
+    @property
+    def contact_velocity(self) -> Array:
+        """u = v1 - v2 + (R1 w1 + R2 w2) x n_hat before the impact, [m/s]."""
+        return self._contact_velocity(self.v1, self.v2, self.w1, self.w2)
+
+    @property
+    def contact_velocity_final(self) -> Array:
+        """u' after the impact, [m/s]."""
+        return self._contact_velocity(self.v1_final, self.v2_final, self.w1_final, self.w2_final)
+
+    @property
+    def approach_velocity(self) -> Array:
+        """u_n = u . n_hat > 0 before the impact, [m/s]."""
+        return _dot(self.contact_velocity, self.normal)
+
+    @property
+    def separation_velocity(self) -> Array:
+        """-u_n' = e u_n after the impact, [m/s]."""
+        return -_dot(self.contact_velocity_final, self.normal)
+
+    @property
+    def slip_speed(self) -> Array:
+        """|u_t| before the impact, [m/s]."""
+        return _dot(self.contact_velocity, self.slip_direction)
+
+    @property
+    def slip_speed_final(self) -> Array:
+        """u_t' . t_hat after the impact, [m/s]: < 0 where the slip reversed."""
+        return _dot(self.contact_velocity_final, self.slip_direction)
+
+    @property
+    def normal_restitution(self) -> Array:
+        """-u_n'/u_n, [-]: e."""
+        return self.separation_velocity / self.approach_velocity
+
+    @property
+    def tangential_restitution(self) -> Array:
+        """-u_t' . t_hat / |u_t|, [-], in [-1, 1]: 0 when the contact sticks, < 0 while it
+        still slides forward, > 0 when the slip reverses; NaN without initial slip."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(self.slip_speed > 0.0, -self.slip_speed_final / self.slip_speed, np.nan)
+
+    @property
+    def incident_angle(self) -> Array:
+        """Angle of the contact-point velocity u to the normal before the impact,
+        arctan(|u_t| / u_n), [rad]."""
+        return np.arctan2(self.slip_speed, self.approach_velocity)
+
+    @property
+    def rebound_angle(self) -> Array:
+        """Rebound angle at the contact patch, arctan(u_t' . t_hat / (-u_n')), [rad]:
+        positive when the contact point leaves in the direction of the initial slip,
+        negative when the slip reversed."""
+        return np.arctan2(self.slip_speed_final, self.separation_velocity)
+
+    @property
+    def centre_rebound_angle(self) -> Array:
+        """Angle to the normal of the velocity of centre 1 relative to centre 2 after the
+        impact, arctan(w_t . t_hat / (w . n_hat)) with w = v2' - v1' (positive along the
+        initial slip of sphere 1), [rad]."""
+        rel = self.v1_final - self.v2_final
+        return np.arctan2(_dot(rel, self.slip_direction), -_dot(rel, self.normal))
+
+    # -- momentum ----------------------------------------------------------------------
+    @property
+    def momentum_before(self) -> Array:
+        """m1 v1 + m2 v2, [kg m/s] (infinite for a fixed target)."""
+        return _momentum(self.m1, self.v1) + _momentum(self.m2, self.v2)
+
+    @property
+    def momentum_after(self) -> Array:
+        """m1 v1' + m2 v2', [kg m/s]."""
+        return _momentum(self.m1, self.v1_final) + _momentum(self.m2, self.v2_final)
+
+    def _angular(self, i: int, point: Array, final: bool) -> Array:
+        m, r, rot, p = (
+            (self.m1, self.r1, self.rotation1, self.p1),
+            (self.m2, self.r2, self.rotation2, self.p2),
+        )[i - 1]
+        v = getattr(self, f"v{i}_final" if final else f"v{i}")
+        w = getattr(self, f"w{i}_final" if final else f"w{i}")
+        with np.errstate(invalid="ignore", divide="ignore"):
+            inertia = r * r / rot
+            spin = np.where(np.isfinite(inertia)[..., None], inertia[..., None] * w, np.nan)
+            return np.cross(p - point, _momentum(m, v)) + spin
+
+    def angular_momentum_contact(self, sphere: int, final: bool = False) -> Array:
+        """Angular momentum of one sphere about the contact point c,
+        m_i (r_i - c) x v_i + I_i w_i, [kg m^2/s]; conserved sphere by sphere because the
+        impulse acts at c. NaN for a body of infinite mass or inertia."""
+        return self._angular(sphere, self.contact_point, final)
+
+    def angular_momentum_origin(self, final: bool = False) -> Array:
+        """Total angular momentum about the origin, sum of m_i r_i x v_i + I_i w_i,
+        [kg m^2/s]; conserved (NaN with a fixed target)."""
+        origin = np.zeros_like(self.contact_point)
+        return self._angular(1, origin, final) + self._angular(2, origin, final)
+
+    # -- energy ------------------------------------------------------------------------
+    def kinetic_energy(self, sphere: int, final: bool = False) -> Array:
+        """(m_i |v_i|^2 + I_i |w_i|^2)/2 of one sphere, [J] (the reference frame is the
+        given one; a fixed target has no kinetic energy, 0)."""
+        m, r, rot = ((self.m1, self.r1, self.rotation1), (self.m2, self.r2, self.rotation2))[
+            sphere - 1
+        ]
+        v = getattr(self, f"v{sphere}_final" if final else f"v{sphere}")
+        w = getattr(self, f"w{sphere}_final" if final else f"w{sphere}")
+        with np.errstate(invalid="ignore", divide="ignore"):
+            inertia = np.where(rot > 0.0, r * r / np.where(rot > 0.0, rot, 1.0), 0.0)
+            spin = np.where(np.isfinite(inertia), 0.5 * inertia * _dot(w, w), 0.0)
+            return np.where(np.isfinite(m), 0.5 * m * _dot(v, v), 0.0) + spin
+
+    @property
+    def energy_dissipated_normal(self) -> Array:
+        """Energy lost by the normal law, (1 - e^2) m u_n^2 / 2, [J]."""
+        e = self.restitution
+        return 0.5 * (1.0 - e * e) * self.effective_mass * self.approach_velocity**2
+
+    @property
+    def energy_dissipated_friction(self) -> Array:
+        """Energy lost to friction, m_t (|u_t|^2 - |u_t'|^2) / 2, [J] (>= 0).
+
+        Normal and tangential motions are uncoupled for spheres, so the kinetic energy lost
+        is the sum of this and :attr:`energy_dissipated_normal` (the tangential spring of
+        ``mindlin`` is unloaded at separation, F_n = 0)."""
+        u_t = self.contact_velocity - self.approach_velocity[..., None] * self.normal
+        u_t_final = self.contact_velocity_final + self.separation_velocity[..., None] * self.normal
+        return 0.5 * self.tangential_mass * (_dot(u_t, u_t) - _dot(u_t_final, u_t_final))
+
+    @property
+    def energy_dissipated(self) -> Array:
+        """Total kinetic energy lost, normal + friction, [J]."""
+        return self.energy_dissipated_normal + self.energy_dissipated_friction
+
+    @property
+    def normal_share(self) -> tuple[Array, Array]:
+        """Share of each sphere in the normal dissipation, m/m_i, [-] (sums to 1).
+
+        The paper's contact plane splits the indentation delta_i = (m/m_i) delta (eq. 4), so
+        the work of the normal force on each sphere's indentation is (m/m_i) of the total.
+        """
+        m = self.effective_mass
+        return m / self.m1, m / self.m2
+
+    @property
+    def tangential_share(self) -> tuple[Array, Array]:
+        """Share of each sphere in the friction dissipation, m_t/m_t,i with
+        1/m_t,i = 1/m_i + R_i^2/I_i, [-] (sums to 1).
+
+        The tangential analogue of the contact plane: the slip at the contact splits between
+        the two contact points in proportion to their tangential compliances 1/m_t,i, so
+        a fixed or non-rotating rigid target takes its share only through 1/m_2 (0 for a
+        fixed one)."""
+        mt = self.tangential_mass
+        return mt * (1.0 / self.m1 + self.rotation1), mt * (1.0 / self.m2 + self.rotation2)
+
+    def energy_dissipated_by(self, sphere: int) -> dict[str, Array]:
+        """Energy lost in sphere i: ``normal`` and ``friction`` parts by the shares of
+        :attr:`normal_share` and :attr:`tangential_share`, and their ``total``, [J]."""
+        normal = self.normal_share[sphere - 1] * self.energy_dissipated_normal
+        friction = self.tangential_share[sphere - 1] * self.energy_dissipated_friction
+        return {"normal": normal, "friction": friction, "total": normal + friction}
+
+
+def oblique_impact(
+    m1: ArrayLike,
+    m2: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    p1: ArrayLike,
+    p2: ArrayLike,
+    v1: ArrayLike,
+    v2: ArrayLike,
+    w1: ArrayLike = (0.0, 0.0, 0.0),
+    w2: ArrayLike = (0.0, 0.0, 0.0),
+    restitution: ArrayLike = 1.0,
+    friction: ArrayLike = 0.0,
+    tangential: str = "rigid",
+    inertia1: ArrayLike | None = None,
+    inertia2: ArrayLike | None = None,
+    history: NormalHistory | None = None,
+    shear_modulus: ArrayLike | None = None,
+) -> Collision3D:
+    r"""Velocities and spins after the oblique collision of two rough spheres.
+
+    See the module docstring for the equations. The normal impulse is
+    J_n = (1 + e) m u_n (paper eq. 20, any e); the tangential impulse follows from the
+    ``tangential`` model:
+
+    - ``rigid``: J_t = m_t |u_t| (stick) if that is <= mu J_n, else mu J_n (gross slip),
+      along the slip direction t_hat (Brach 1991; Stronge 2000).
+    - ``mindlin``: incremental Mindlin spring k_t = 8 G* sqrt(R delta) with the Coulomb cap
+      mu F_n, scaled down while the contact shrinks (Thornton, Cummins & Cleary 2011),
+      integrated over ``history``. Each interval is solved exactly as a harmonic oscillator
+      of stiffness k_t (the mean of its ends) and mass m_t; where the spring would end
+      above mu F_n the interval slides with the impulse mu dJ_n (dJ_n: the interval's share
+      of J_n, from the change of delta'), but no more than the elastic interval's, and ends
+      at |F_t| = mu F_n. In gross slip throughout J_t = mu J_n to rounding.
+
+    With mu = 0 both models give the smooth collision of
+    :func:`impactcli.collision2d.oblique_collision` (exactly, for planar input with z = 0).
+
+    Parameters
+    ----------
+    m1, m2 : masses, > 0, [kg]; ``inf`` for a fixed target (at most one)
+    r1, r2 : radii, > 0, [m]; ``inf`` for a flat target (at most one)
+    p1, p2 : centres at contact, (x, y, z) on the last axis, [m]; for a flat target p2 - p1
+        only gives the normal direction
+    v1, v2 : velocities before the impact, [m/s]
+    w1, w2 : angular velocities before the impact, [rad/s]; a flat target must not spin
+    restitution : normal coefficient of restitution e in [0, 1], [-], from the normal law
+        (elastic: 1; elastoplastic: the FILM run at the normal approach velocity u_n)
+    friction : Coulomb coefficient mu >= 0, [-]
+    tangential : ``rigid`` or ``mindlin``
+    inertia1, inertia2 : moments of inertia, [kg m^2]; default a solid sphere,
+        I = (2/5) m R^2 (then R^2/I = 5/(2 m) also for a flat or fixed body)
+    history : the normal history (``mindlin`` only), consistent with u_n and e to 1e-6
+    shear_modulus : G* of :func:`effective_shear_modulus`, [Pa] (``mindlin`` only)
+
+    Returns
+    -------
+    Collision3D
+
+    Raises
+    ------
+    ValueError
+        Masses, radii, e, mu or vectors out of range, coincident centres, spheres not
+        approaching (u_n <= 0), an unknown model, or a ``mindlin`` call without a history
+        consistent with u_n and e. For a batch the message names the first bad collision.
+
+    Examples
+    --------
+    A solid sphere (R = 2.5 mm) on a fixed plane at 3.9 m/s, 60 deg from the normal,
+    mu = 0.092, e = 1: gross slip, v_t' = v_t - 2 mu v_n.
+
+    >>> s, c = np.sin(np.radians(60.0)), np.cos(np.radians(60.0))
+    >>> r = oblique_impact(2.6e-4, np.inf, 2.5e-3, np.inf, (0, 0, 0), (0, 0, -1),
+    ...                    (3.9 * s, 0.0, -3.9 * c), (0, 0, 0), friction=0.092)
+    >>> bool(r.stuck), round(float(r.v1_final[0]), 6), round(float(r.w1_final[1]), 3)
+    (False, 3.018699, 358.8)
+    """
+    if tangential not in TANGENTIAL_MODELS:
+        raise ValueError(f"the tangential model must be rigid or mindlin, got {tangential!r}")
+    m1, m2, r1, r2, e, mu = (
+        np.asarray(x, dtype=float) for x in (m1, m2, r1, r2, restitution, friction)
+    )
+    for name, value in (("m1", m1), ("m2", m2), ("R1", r1), ("R2", r2)):
+        bad = ~(value > 0.0)
+        if np.any(bad):
+            raise ValueError(f"{name} must be > 0 (inf for a fixed or flat target)" + _where(bad))
+    for name, a, b in (("mass", m1, m2), ("radius", r1, r2)):
+        bad = np.isinf(a) & np.isinf(b)
+        if np.any(bad):
+            raise ValueError(f"at most one body can have an infinite {name}" + _where(bad))
+    bad = ~((e >= 0.0) & (e <= 1.0))
+    if np.any(bad):
+        raise ValueError("the coefficient of restitution must be in [0, 1]" + _where(bad))
+    bad = ~((mu >= 0.0) & np.isfinite(mu))
+    if np.any(bad):
+        raise ValueError("the friction coefficient mu must be finite and >= 0" + _where(bad))
+    vectors = {
+        k: np.asarray(x, dtype=float)
+        for k, x in dict(p1=p1, p2=p2, v1=v1, v2=v2, w1=w1, w2=w2).items()
+    }
+    _check_vectors(**vectors)
+    p1, p2, v1, v2, w1, w2 = vectors.values()
+    for name, r, w in (("w1", r1, w1), ("w2", r2, w2)):
+        bad = np.isinf(r) & np.any(w != 0.0, axis=-1)
+        if np.any(bad):
+            raise ValueError(f"a flat target cannot spin: {name} must be 0" + _where(bad))
+
+    normal = _line_of_centres(p1, p2)
+    rot1 = _rotation(m1, r1, inertia1, "inertia1")
+    rot2 = _rotation(m2, r2, inertia2, "inertia2")
+    u = _contact_velocity(v1, v2, w1, w2, r1, r2, normal)
+    u_n = np.sum((v1 - v2) * normal, axis=-1)  # as collision2d: spin adds nothing along n
+    bad = ~(u_n > 0.0)
+    if np.any(bad):
+        raise ValueError(
+            "the spheres are not approaching along the line of centres"
+            " ((v1 - v2) . n_hat <= 0: no impact)" + _where(bad)
+        )
+    shape = np.broadcast_shapes(
+        m1.shape,
+        m2.shape,
+        r1.shape,
+        r2.shape,
+        e.shape,
+        mu.shape,
+        rot1.shape,
+        rot2.shape,
+        u_n.shape,
+        () if history is None or tangential != "mindlin" else history.t.shape[:-1],
+    )
+    m1, m2, r1, r2, e, mu, rot1, rot2, u_n = (
+        np.broadcast_to(a, shape) for a in (m1, m2, r1, r2, e, mu, rot1, rot2, u_n)
+    )
+    vec = shape + (3,)
+    normal, u = np.broadcast_to(normal, vec), np.broadcast_to(u, vec)
+    u_t = u - u_n[..., None] * normal
+    slip = np.sqrt(_dot(u_t, u_t))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t_hat = np.where(
+            (slip > 0.0)[..., None], u_t / np.where(slip > 0.0, slip, 1.0)[..., None], 0.0
+        )
+    inv_m1, inv_m2 = 1.0 / m1, 1.0 / m2
+    m_t = 1.0 / (inv_m1 + inv_m2 + rot1 + rot2)
+    # Normal impulse per unit of each mass, written as collision2d.oblique_collision does so
+    # that mu = 0 reproduces it bit for bit; m/m1 = m2/(m1 + m2) also when m2 = inf.
+    with np.errstate(invalid="ignore"):
+        ratio1 = np.where(np.isinf(m2), 1.0, np.where(np.isinf(m1), 0.0, m2 / (m1 + m2)))
+        ratio2 = np.where(np.isinf(m1), 1.0, np.where(np.isinf(m2), 0.0, m1 / (m1 + m2)))
+    share1 = (1.0 + e) * ratio1 * u_n
+    share2 = (1.0 + e) * ratio2 * u_n
+    m = 1.0 / (inv_m1 + inv_m2)
+    j_n = (1.0 + e) * m * u_n
+
+    times = force = None
+    if tangential == "rigid":
+        j_stick = m_t * slip
+        stuck = j_stick <= mu * j_n
+        j_t = np.where(stuck, j_stick, mu * j_n)
+    else:
+        if history is None or shear_modulus is None:
+            raise ValueError("the mindlin model needs the normal history and G*")
+        g = np.broadcast_to(np.asarray(shear_modulus, dtype=float), shape)
+        bad = ~(g > 0.0)
+        if np.any(bad):
+            raise ValueError("the effective shear modulus G* must be > 0" + _where(bad))
+        radius = 1.0 / (1.0 / r1 + 1.0 / r2)
+        j_t, stuck, force = _mindlin(history, shape, u_n, e, j_n, slip, m_t, mu, g, radius)
+        times = np.broadcast_to(history.t, force.shape)
+
+    impulse_t = j_t[..., None] * t_hat  # on sphere 2
+    v1_final = v1 - share1[..., None] * normal - impulse_t * inv_m1[..., None]
+    v2_final = v2 + share2[..., None] * normal + impulse_t * inv_m2[..., None]
+    n_x_jt = np.cross(normal, impulse_t)
+    w1_final = w1 - _lever(r1, rot1)[..., None] * n_x_jt
+    w2_final = w2 - _lever(r2, rot2)[..., None] * n_x_jt
+    contact = np.where(
+        np.isinf(r1)[..., None],
+        p2 - np.where(np.isinf(r2), 0.0, r2)[..., None] * normal,
+        p1 + np.where(np.isinf(r1), 0.0, r1)[..., None] * normal,
+    )
+    return Collision3D(
+        m1=m1,
+        m2=m2,
+        r1=r1,
+        r2=r2,
+        rotation1=rot1,
+        rotation2=rot2,
+        p1=np.broadcast_to(p1, vec),
+        p2=np.broadcast_to(p2, vec),
+        v1=np.broadcast_to(v1, vec),
+        v2=np.broadcast_to(v2, vec),
+        w1=np.broadcast_to(w1, vec),
+        w2=np.broadcast_to(w2, vec),
+        v1_final=np.broadcast_to(v1_final, vec),
+        v2_final=np.broadcast_to(v2_final, vec),
+        w1_final=np.broadcast_to(w1_final, vec),
+        w2_final=np.broadcast_to(w2_final, vec),
+        normal=normal,
+        contact_point=np.broadcast_to(contact, vec),
+        slip_direction=t_hat,
+        restitution=e,
+        friction=mu,
+        normal_impulse=j_n,
+        tangential_impulse=j_t,
+        stuck=np.asarray(stuck),
+        model=tangential,
+        times=times,
+        tangential_force=force,
+    )
+
+
+def _mindlin(
+    history: NormalHistory,
+    shape: tuple[int, ...],
+    u_n: Array,
+    e: Array,
+    j_n: Array,
+    slip: Array,
+    m_t: Array,
+    mu: Array,
+    g: Array,
+    radius: Array,
+) -> tuple[Array, NDArray[np.bool_], Array]:
+    """Tangential impulse, stick flag and force history of the Mindlin spring (see
+    :func:`oblique_impact`). One vectorised step per interval of the history."""
+    k_points = history.t.shape[-1]
+    hist = {
+        key: np.broadcast_to(getattr(history, key), shape + (k_points,))
+        for key in ("t", "delta", "delta_dot", "force")
+    }
+    start, end = hist["delta_dot"][..., 0], hist["delta_dot"][..., -1]
+    bad = ~np.isclose(start, u_n, rtol=_HISTORY_RTOL, atol=0.0)
+    if np.any(bad):
+        raise ValueError("the normal history must start at delta' = u_n" + _where(bad))
+    bad = ~np.isclose(-end, e * u_n, rtol=_HISTORY_RTOL, atol=_HISTORY_RTOL * u_n)
+    if np.any(bad):
+        raise ValueError("the normal history must end at delta' = -e u_n" + _where(bad))
+    # Share of J_n in each interval: the trapezoid of F_n dt, scaled to sum to J_n to
+    # rounding, so gross slip gives J_t = mu J_n to rounding. (Between FILM nodes delta'
+    # is not monotonic to rounding, so its differences are not used.)
+    f_n = hist["force"]
+    area = 0.5 * (f_n[..., 1:] + f_n[..., :-1]) * np.diff(hist["t"], axis=-1)
+    total = np.sum(area, axis=-1)
+    bad = ~(total > 0.0)
+    if np.any(bad):
+        raise ValueError("the normal history has no contact force" + _where(bad))
+    d_jn = j_n[..., None] * area / total[..., None]
+    stiffness = 8.0 * g[..., None] * np.sqrt(radius[..., None] * hist["delta"])
+    cap = mu[..., None] * hist["force"]
+    dt = np.diff(hist["t"], axis=-1)
+    s = slip.copy()  # slip speed along t_hat
+    f = np.zeros(shape)  # tangential force on sphere 2 along t_hat
+    j_t = np.zeros(shape)
+    forces = np.zeros(shape + (k_points,))
+    stuck = np.zeros(shape, dtype=bool)
+    for j in range(k_points - 1):
+        k_old, k = stiffness[..., j], stiffness[..., j + 1]
+        k_mid = 0.5 * (k_old + k)
+        omega_dt = np.sqrt(k_mid / m_t) * dt[..., j]
+        cos, sinc = np.cos(omega_dt), np.sinc(omega_dt / np.pi)
+        s_trial = s * cos - f * dt[..., j] * sinc / m_t
+        f_trial = f * cos + k_mid * s * dt[..., j] * sinc
+        # Coulomb: where the spring would end above mu F_n the step slides, with the
+        # impulse mu dJ_n, but never more than the elastic step's (the force is bounded by
+        # both); the end force is held within mu F_n.
+        dj_elastic = m_t * (s - s_trial)
+        slides = np.abs(f_trial) >= cap[..., j + 1]
+        dj_slide = np.sign(dj_elastic) * np.minimum(mu * d_jn[..., j], np.abs(dj_elastic))
+        dj = np.where(slides, dj_slide, dj_elastic)
+        s = np.where(slides, s - dj / m_t, s_trial)
+        f = np.clip(f_trial, -cap[..., j + 1], cap[..., j + 1])
+        # A shrinking contact scales the force with the stiffness (Thornton et al. 2011).
+        with np.errstate(invalid="ignore", divide="ignore"):
+            f = np.where(k < k_old, f * (k / np.where(k_old > 0.0, k_old, 1.0)), f)
+        j_t = j_t + dj
+        forces[..., j + 1] = f
+        stuck |= ~slides
+    return j_t, stuck, forces
+
+
+def _contact_velocity(v1, v2, w1, w2, r1, r2, normal) -> Array:
+    """u = v1 - v2 + (R1 w1 + R2 w2) x n_hat, [m/s]; a flat body (R = inf) does not spin."""
+    r1 = np.where(np.isinf(r1), 0.0, r1)
+    r2 = np.where(np.isinf(r2), 0.0, r2)
+    spin = r1[..., None] * np.asarray(w1) + r2[..., None] * np.asarray(w2)
+    return v1 - v2 + np.cross(spin, normal)
+
+
+def _rotation(m: Array, r: Array, inertia: ArrayLike | None, name: str) -> Array:
+    """R^2 / I, [1/kg]: 5/(2 m) for a solid sphere; 0 for an infinite mass or inertia."""
+    if inertia is None:
+        return 2.5 / m
+    inertia = np.asarray(inertia, dtype=float)
+    bad = ~(inertia > 0.0)
+    if np.any(bad):
+        raise ValueError(f"{name}: a moment of inertia must be > 0" + _where(bad))
+    with np.errstate(invalid="ignore"):
+        return np.where(np.isfinite(inertia) & np.isfinite(r), r * r / inertia, 0.0)
+
+
+def _lever(r: Array, rotation: Array) -> Array:
+    """R / I = (R^2/I)/R, [1/(kg m)]: 0 for a flat body."""
+    return np.where(np.isinf(r), 0.0, rotation / r)
+
+
+def _line_of_centres(p1: Array, p2: Array) -> Array:
+    d = p2 - p1
+    # hypot(hypot(x, y), z): for z = 0 the same number as collision2d's hypot(x, y).
+    distance = np.hypot(np.hypot(d[..., 0], d[..., 1]), d[..., 2])
+    bad = distance == 0.0
+    if np.any(bad):
+        raise ValueError(
+            "the positions of the two centres coincide"
+            + _where(bad)
+            + ": they do not define a line of centres"
+        )
+    return d / distance[..., None]
+
+
+def _dot(a: Array, b: Array) -> Array:
+    return np.sum(a * b, axis=-1)
+
+
+def _momentum(m: Array, v: Array) -> Array:
+    with np.errstate(invalid="ignore"):
+        return m[..., None] * v
+
+
+def _check_vectors(**vectors: Array) -> None:
+    for name, vector in vectors.items():
+        if vector.ndim == 0 or vector.shape[-1] != 3:
+            raise ValueError(f"{name} must have its (x, y, z) components on the last axis")
+        bad = ~np.all(np.isfinite(vector), axis=-1)
+        if np.any(bad):
+            raise ValueError(f"{name} must be finite" + _where(bad))
+
+
+def _where(bad: NDArray[np.bool_]) -> str:
+    """'' for a single collision, else ' (first at index ...)' for a batch."""
+    if np.ndim(bad) == 0:
+        return ""
+    return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"

@@ -1,0 +1,423 @@
+"""The oblique 3-D collision with friction and spin against closed forms, the smooth 2-D
+collision (paper sec. 4.5), SciPy integration and the conservation laws.
+
+Chung & Ooi (2011, Granular Matter 13:643-656, doi:10.1007/s10035-011-0277-0), tests 4 and
+5: a sphere on a rigid plane, at constant speed 3.9 m/s and varying incident angle (test 4,
+alumina), and at constant normal velocity 5 m/s and varying tangential velocity (test 5,
+aluminium alloy). The radius of the aluminium sphere is taken equal to the alumina one
+(2.5 mm): the dimensionless curves do not depend on it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from impactcli.collision2d import oblique_collision, velocity_from_polar
+from impactcli.collision3d import (
+    NormalHistory,
+    effective_shear_modulus,
+    oblique_impact,
+)
+from impactcli.contact import effective_modulus
+from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
+from impactcli.laws import hertz_stiffness
+
+ALUMINA = dict(youngs_modulus=380e9, poisson_ratio=0.23, density=4000.0)
+ALUMINIUM = dict(youngs_modulus=70e9, poisson_ratio=0.33, density=2700.0)
+R = 2.5e-3
+MU = 0.092
+PLANE = Sphere(np.inf, np.inf, 0.0, mass=np.inf)
+ORIGIN = (0.0, 0.0, 0.0)
+BELOW = (0.0, 0.0, -1.0)  # the plane's normal direction from the sphere: n_hat = -z
+
+
+def on_plane(material: dict, v_t, v_n, model: str, mu: float = MU, points: int = 4001):
+    """A solid sphere on a fixed rigid plane: v = (v_t, 0, -v_n), elastic normal law."""
+    v_t, v_n = np.broadcast_arrays(np.asarray(v_t, float), np.asarray(v_n, float))
+    sphere = Sphere(2 * R, **material)
+    v1 = np.stack([v_t, 0.0 * v_t, -v_n], axis=-1)
+    history = None
+    if model == "mindlin":
+        impacts = [elastic_impact(sphere, PLANE, float(v), 0.0) for v in v_n.ravel()]
+        history = NormalHistory.from_impacts(impacts, points)
+    g = effective_shear_modulus(material["youngs_modulus"], material["poisson_ratio"], np.inf, 0)
+    return oblique_impact(
+        sphere.total_mass, np.inf, R, np.inf, ORIGIN, BELOW, v1, ORIGIN,
+        friction=mu, tangential=model, history=history, shear_modulus=g,
+    )  # fmt: skip
+
+
+# -- closed forms of the rigid model, solid sphere on a fixed plane -----------------------
+
+
+def rigid_closed_form(tan_theta, v_n, e, mu):
+    """(e_t, spin, tan rebound angle) of a solid sphere on a fixed plane (Brach 1991)."""
+    slip = tan_theta > 3.5 * mu * (1 + e)
+    e_t = np.where(slip, -(1.0 - 3.5 * mu * (1 + e) / tan_theta), 0.0)
+    spin = np.where(slip, 2.5 * mu * (1 + e) * v_n / R, (5.0 / 7.0) * tan_theta * v_n / R)
+    tan_rebound = np.where(slip, (tan_theta - 3.5 * mu * (1 + e)) / e, 0.0)
+    return e_t, spin, tan_rebound
+
+
+def test_chung_ooi_test_4_rigid_closed_forms():
+    theta = np.radians(np.linspace(0.5, 89.5, 179))
+    v_n, v_t = 3.9 * np.cos(theta), 3.9 * np.sin(theta)
+    r = on_plane(ALUMINA, v_t, v_n, "rigid")
+    e_t, spin, tan_rebound = rigid_closed_form(np.tan(theta), v_n, 1.0, MU)
+    np.testing.assert_allclose(r.tangential_restitution, e_t, rtol=1e-12, atol=1e-13)
+    np.testing.assert_allclose(r.w1_final[:, 1], spin, rtol=1e-12)
+    np.testing.assert_allclose(np.tan(r.rebound_angle), tan_rebound, rtol=1e-12, atol=1e-13)
+    np.testing.assert_allclose(r.incident_angle, theta, rtol=1e-13)
+    np.testing.assert_array_equal(r.stuck, np.tan(theta) <= 3.5 * MU * 2)
+
+
+def test_chung_ooi_test_5_rigid_closed_forms():
+    v_t = np.linspace(0.1, 30.0, 120)
+    r = on_plane(ALUMINIUM, v_t, 5.0, "rigid")
+    e_t, spin, tan_rebound = rigid_closed_form(v_t / 5.0, 5.0, 1.0, MU)
+    np.testing.assert_allclose(r.tangential_restitution, e_t, rtol=1e-12, atol=1e-13)
+    np.testing.assert_allclose(r.w1_final[:, 1], spin, rtol=1e-12)
+    np.testing.assert_allclose(np.tan(r.rebound_angle), tan_rebound, rtol=1e-12, atol=1e-13)
+
+
+@pytest.mark.parametrize("e", [1.0, 0.8, 0.3])
+def test_gross_slip_rigid_to_rounding(e):
+    # v_t' = v_t - mu (1 + e) v_n, w' = (5/2) mu (1 + e) v_n / R, for tan(theta) > 3.5 mu (1+e)
+    v_n, v_t = 3.0, np.array([3.0, 5.0, 20.0])
+    m = 1.0e-3
+    r = oblique_impact(
+        m,
+        np.inf,
+        R,
+        np.inf,
+        ORIGIN,
+        BELOW,
+        np.stack([v_t, 0 * v_t, -v_n + 0 * v_t], -1),
+        ORIGIN,
+        restitution=e,
+        friction=0.1,
+    )
+    assert not np.any(r.stuck)
+    np.testing.assert_allclose(r.v1_final[:, 0], v_t - 0.1 * (1 + e) * v_n, rtol=1e-15)
+    np.testing.assert_allclose(r.w1_final[:, 1], 2.5 * 0.1 * (1 + e) * v_n / R, rtol=1e-15)
+    np.testing.assert_allclose(r.v1_final[:, 2], e * v_n, rtol=1e-15)
+    np.testing.assert_allclose(r.tangential_impulse, 0.1 * r.normal_impulse, rtol=1e-15)
+
+
+def test_gross_slip_mindlin_to_rounding_elastic_and_elastoplastic():
+    # Every Coulomb model gives the same gross slip: J_t = mu J_n.
+    theta = np.radians([40.0, 60.0, 85.0])
+    v_n, v_t = 3.9 * np.cos(theta), 3.9 * np.sin(theta)
+    r = on_plane(ALUMINA, v_t, v_n, "mindlin", points=801)
+    assert not np.any(r.stuck)
+    np.testing.assert_allclose(r.v1_final[:, 0], v_t - MU * 2 * v_n, rtol=1e-14)
+    np.testing.assert_allclose(r.w1_final[:, 1], 2.5 * MU * 2 * v_n / R, rtol=1e-13)
+    # An elastoplastic normal law (Du & Wang), e < 1.
+    sphere = Sphere(2 * R, **ALUMINA, yield_strength=0.5e9)
+    impacts = [elastoplastic_impact(sphere, PLANE, float(v), 0.0) for v in v_n]
+    e = np.array([i.summary["restitution"] for i in impacts])
+    assert np.all(e < 0.9)
+    g = effective_shear_modulus(380e9, 0.23, np.inf, 0.0)
+    r = oblique_impact(
+        sphere.total_mass, np.inf, R, np.inf, ORIGIN, BELOW,
+        np.stack([v_t, 0 * v_t, -v_n], -1), ORIGIN, restitution=e, friction=MU,
+        tangential="mindlin", history=NormalHistory.from_impacts(impacts, 801), shear_modulus=g,
+    )  # fmt: skip
+    assert not np.any(r.stuck)
+    np.testing.assert_allclose(r.v1_final[:, 0], v_t - MU * (1 + e) * v_n, rtol=1e-14)
+    np.testing.assert_allclose(r.w1_final[:, 1], 2.5 * MU * (1 + e) * v_n / R, rtol=1e-13)
+    np.testing.assert_allclose(r.normal_restitution, e, rtol=1e-13)
+
+
+def test_stick_slip_transition_rigid():
+    # tan(theta_c) = (7/2) mu (1 + e)
+    e, v_n = 0.7, 2.0
+    tan_c = 3.5 * MU * (1 + e)
+    v_t = v_n * tan_c * np.array([1 - 1e-9, 1 + 1e-9])
+    r = oblique_impact(
+        1e-3,
+        np.inf,
+        R,
+        np.inf,
+        ORIGIN,
+        BELOW,
+        np.stack([v_t, 0 * v_t, -v_n + 0 * v_t], -1),
+        ORIGIN,
+        restitution=e,
+        friction=MU,
+    )
+    assert r.stuck.tolist() == [True, False]
+    assert r.tangential_restitution[0] == pytest.approx(0.0, abs=1e-15)
+    assert abs(r.tangential_restitution[1]) < 1e-8
+    # At the transition the contact point leaves rolling: v_t' = R w'.
+    np.testing.assert_allclose(r.v1_final[:, 0], R * r.w1_final[:, 1], rtol=1e-8)
+
+
+# -- the Mindlin model --------------------------------------------------------------------
+
+
+def test_chung_ooi_test_4_mindlin_behaviour():
+    theta = np.radians(np.linspace(1.0, 89.0, 45))
+    v_n, v_t = 3.9 * np.cos(theta), 3.9 * np.sin(theta)
+    rigid = on_plane(ALUMINA, v_t, v_n, "rigid")
+    mindlin = on_plane(ALUMINA, v_t, v_n, "mindlin", points=2001)
+    e_t = mindlin.tangential_restitution
+    assert np.all((e_t >= -1.0) & (e_t <= 1.0))
+    # Beyond the rigid model's stick limit both slide throughout: the same result.
+    slide = np.tan(theta) > 3.5 * MU * 2 * 1.05
+    np.testing.assert_allclose(e_t[slide], rigid.tangential_restitution[slide], rtol=1e-12)
+    # Below it the tangential compliance reverses the slip over a range of angles (Maw,
+    # Barber & Fawcett 1976): e_t > 0 and a negative rebound angle, which the rigid model
+    # (e_t = 0 when it sticks) cannot give.
+    reversed_ = (e_t > 0.05) & (mindlin.rebound_angle < 0.0)
+    assert np.any(reversed_ & ~slide)
+    assert not np.any(reversed_ & slide)
+    # The spin never exceeds the gross-slip value (|J_t| <= mu J_n at all times).
+    assert np.all(mindlin.w1_final[:, 1] <= 2.5 * MU * 2 * v_n / R * (1 + 1e-10))
+    assert np.all(mindlin.energy_dissipated_friction >= -1e-15 * mindlin.kinetic_energy(1))
+
+
+def test_chung_ooi_test_5_mindlin_behaviour():
+    v_t = np.linspace(0.2, 10.0, 25)
+    rigid = on_plane(ALUMINIUM, v_t, 5.0, "rigid")
+    mindlin = on_plane(ALUMINIUM, v_t, 5.0, "mindlin", points=2001)
+    slide = v_t / 5.0 > 3.5 * MU * 2 * 1.05
+    np.testing.assert_allclose(
+        mindlin.w1_final[slide], rigid.w1_final[slide], rtol=1e-12, atol=1e-12
+    )
+    assert np.any((mindlin.tangential_restitution > 0.05) & ~slide)
+
+
+def _mindlin_no_slip_scipy(material: dict, v_n: float, v_t: float) -> float:
+    """e_t of the no-slip Mindlin spring on a sphere on a rigid plane by SciPy: Hertz
+    m delta'' = -K delta^1.5 coupled with m_t s' = -F, dF = k_t s dt while loading and
+    F = k_t xi, xi' = s while unloading (the force scaled with the stiffness)."""
+    from scipy.integrate import solve_ivp
+
+    sphere = Sphere(2 * R, **material)
+    m = sphere.total_mass
+    m_t = 2.0 * m / 7.0
+    e_star = float(effective_modulus(material["youngs_modulus"], material["poisson_ratio"],
+                                     np.inf, 0.0))  # fmt: skip
+    k_h = float(hertz_stiffness(e_star, R))
+    g = float(effective_shear_modulus(material["youngs_modulus"], material["poisson_ratio"],
+                                      np.inf, 0.0))  # fmt: skip
+
+    def k_t(delta):
+        return 8.0 * g * np.sqrt(R * max(delta, 0.0))
+
+    def loading(_t, y):
+        delta, rate, s, f = y
+        return [rate, -k_h * max(delta, 0.0) ** 1.5 / m, -f / m_t, k_t(delta) * s]
+
+    def unloading(_t, y):
+        delta, rate, s, xi = y
+        return [rate, -k_h * max(delta, 0.0) ** 1.5 / m, -k_t(delta) * xi / m_t, s]
+
+    def turn(_t, y):
+        return y[1]
+
+    def separate(_t, y):
+        return y[0]
+
+    turn.terminal = separate.terminal = True
+    turn.direction = separate.direction = -1
+    opts = dict(method="DOP853", rtol=1e-11, atol=[1e-18, 1e-12, 1e-12, 1e-12])
+    first = solve_ivp(loading, (0, 1e-3), [0.0, v_n, v_t, 0.0], events=turn, **opts)
+    delta, rate, s, f = first.y_events[0][0]
+    second = solve_ivp(
+        unloading, (first.t_events[0][0], 1e-3), [delta, rate, s, f / k_t(delta)],
+        events=separate, **opts,
+    )  # fmt: skip
+    return -second.y_events[0][0][2] / v_t
+
+
+@pytest.mark.parametrize("material", [ALUMINA, ALUMINIUM], ids=["alumina", "aluminium"])
+def test_mindlin_no_slip_against_scipy(material):
+    # mu large: the spring never reaches the Coulomb limit (Mindlin's no-slip stiffness).
+    reference = _mindlin_no_slip_scipy(material, 3.0, 0.3)
+    r = on_plane(material, 0.3, 3.0, "mindlin", mu=1e3, points=4001)
+    assert r.tangential_restitution == pytest.approx(reference, abs=6e-4)  # first order in dt
+    assert bool(r.stuck)
+
+
+def test_mindlin_tangential_force_history():
+    r = on_plane(ALUMINA, 1.0, 3.0, "mindlin", points=1001)
+    assert r.times.shape == r.tangential_force.shape == (1, 1001)
+    times, force = r.times[0], r.tangential_force[0]
+    assert force[0] == 0.0 and force[-1] == 0.0
+    # The force history integrates to the tangential impulse (rectangle rule of the
+    # scheme's end-of-step forces is close; the impulse itself is exact).
+    integral = np.trapezoid(force, times)
+    assert integral == pytest.approx(float(r.tangential_impulse[0]), rel=2e-2)
+    # Coulomb: |F_t| <= mu F_n at every time.
+    impact = elastic_impact(Sphere(2 * R, **ALUMINA), PLANE, 3.0, 0.0)
+    f_n = impact.history(times)["force"]
+    assert np.all(np.abs(force) <= MU * f_n * (1 + 1e-12) + 1e-12)
+
+
+# -- the smooth limit ---------------------------------------------------------------------
+
+
+def _planar_pair(m1, m2, v1, v2, p1, p2):
+    zero = np.zeros(np.shape(v1)[:-1] + (1,))
+    return [np.concatenate([np.asarray(x, float), zero], axis=-1) for x in (v1, v2, p1, p2)]
+
+
+def test_mu_zero_equals_collide2d_paper_example():
+    # Paper sec. 4.5.3: m1 = 0.05, m2 = 0.15 kg, 3 m/s at -30 deg, 2 m/s at 50 deg.
+    v1, v2 = velocity_from_polar(3.0, np.radians(-30.0)), velocity_from_polar(2.0, np.radians(50))
+    p1, p2 = np.array([-1.0, 2.0]), np.array([2.0, -2.0])
+    smooth = oblique_collision(0.05, 0.15, v1, v2, p1, p2, 0.9)
+    v1_3, v2_3, p1_3, p2_3 = _planar_pair(0.05, 0.15, v1, v2, p1, p2)
+    spin = (0.0, 0.0, 40.0)
+    rigid = oblique_impact(0.05, 0.15, 0.02, 0.03, p1_3, p2_3, v1_3, v2_3, spin, spin, 0.9, 0.0)
+    np.testing.assert_array_equal(rigid.v1_final[:2], smooth.v1_final)
+    np.testing.assert_array_equal(rigid.v2_final[:2], smooth.v2_final)
+    assert rigid.v1_final[2] == 0.0 and rigid.v2_final[2] == 0.0
+    np.testing.assert_array_equal(rigid.w1_final, spin)
+    np.testing.assert_array_equal(rigid.w2_final, spin)
+    # mindlin with mu = 0: the same, over an elastoplastic-free FILM history of u_n.
+    steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
+    s1, s2 = Sphere(0.04, **steel, mass=0.05), Sphere(0.06, **steel, mass=0.15)
+    impact = elastic_impact(s1, s2, float(smooth.approach_velocity), 0.0)
+    history = NormalHistory.from_impacts([impact], 201)
+    mindlin = oblique_impact(
+        0.05, 0.15, 0.02, 0.03, p1_3, p2_3, v1_3, v2_3, restitution=1.0, friction=0.0,
+        tangential="mindlin", history=history, shear_modulus=80e9,
+    )  # fmt: skip
+    elastic = oblique_collision(0.05, 0.15, v1, v2, p1, p2, 1.0)
+    np.testing.assert_array_equal(mindlin.v1_final[0, :2], elastic.v1_final)
+    np.testing.assert_array_equal(mindlin.v2_final[0, :2], elastic.v2_final)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.floats(0.01, 10.0),
+    st.floats(0.01, 10.0),
+    st.lists(st.floats(-5.0, 5.0), min_size=8, max_size=8),
+    st.floats(0.0, 1.0),
+)
+def test_mu_zero_equals_collide2d_random_planar(m1, m2, xs, e):
+    v1, v2, p1, p2 = (np.array(xs[i : i + 2]) for i in range(0, 8, 2))
+    assume(np.hypot(*(p2 - p1)) > 1e-3)
+    n = (p2 - p1) / np.hypot(*(p2 - p1))
+    assume(np.dot(v1 - v2, n) > 1e-6)
+    smooth = oblique_collision(m1, m2, v1, v2, p1, p2, e)
+    v1_3, v2_3, p1_3, p2_3 = _planar_pair(m1, m2, v1, v2, p1, p2)
+    r = oblique_impact(m1, m2, 0.1, 0.2, p1_3, p2_3, v1_3, v2_3, restitution=e, friction=0.0)
+    np.testing.assert_array_equal(r.v1_final[:2], smooth.v1_final)
+    np.testing.assert_array_equal(r.v2_final[:2], smooth.v2_final)
+
+
+# -- invariants over random 3-D collisions -----------------------------------------------
+
+vector = st.lists(st.floats(-10.0, 10.0), min_size=3, max_size=3).map(np.array)
+
+
+def _assert_invariants(r):
+    scale_p = float(np.max(np.abs(r.m1[..., None] * r.v1)) + np.max(np.abs(r.m2[..., None] * r.v2)))
+    np.testing.assert_allclose(r.momentum_after, r.momentum_before, rtol=0, atol=1e-13 * scale_p)
+    for i in (1, 2):
+        before = r.angular_momentum_contact(i)
+        after = r.angular_momentum_contact(i, final=True)
+        scale = float(np.max(np.abs(before))) + scale_p * float(np.max(r.r1 + r.r2))
+        np.testing.assert_allclose(after, before, rtol=0, atol=1e-12 * scale)
+    before, after = r.angular_momentum_origin(), r.angular_momentum_origin(final=True)
+    scale = float(np.max(np.abs(before))) + scale_p * 40.0
+    np.testing.assert_allclose(after, before, rtol=0, atol=1e-12 * scale)
+    ke_before = r.kinetic_energy(1) + r.kinetic_energy(2)
+    ke_after = r.kinetic_energy(1, True) + r.kinetic_energy(2, True)
+    tol = 1e-11 * ke_before
+    assert np.all(r.energy_dissipated_normal >= -tol)
+    assert np.all(r.energy_dissipated_friction >= -tol)
+    assert np.all(np.abs(ke_before - ke_after - r.energy_dissipated) <= tol)
+    shares = [r.energy_dissipated_by(i)["total"] for i in (1, 2)]
+    np.testing.assert_allclose(shares[0] + shares[1], r.energy_dissipated, rtol=1e-12,
+                               atol=1e-300)  # fmt: skip
+    np.testing.assert_allclose(r.normal_restitution, r.restitution, rtol=1e-9, atol=1e-12)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    st.floats(1e-3, 10.0), st.floats(1e-3, 10.0), st.floats(1e-3, 1.0), st.floats(1e-3, 1.0),
+    vector, vector, vector, vector, vector, st.floats(0.0, 1.0), st.floats(0.0, 2.0),
+)  # fmt: skip
+def test_rigid_invariants_random_3d(m1, m2, r1, r2, direction, v1, v2, w1, w2, e, mu):
+    assume(np.linalg.norm(direction) > 1e-2)
+    n = direction / np.linalg.norm(direction)
+    p1 = np.array([1.0, -2.0, 0.5])
+    p2 = p1 + (r1 + r2) * n
+    assume(np.dot(v1 - v2, n) > 1e-3)
+    r = oblique_impact(m1, m2, r1, r2, p1, p2, v1, v2, w1, w2, e, mu)
+    _assert_invariants(r)
+    assert -1.0 - 1e-12 <= r.tangential_restitution <= 1.0 + 1e-12 or np.isnan(
+        r.tangential_restitution
+    )
+    assert float(r.tangential_impulse) <= float(mu * r.normal_impulse) * (1 + 1e-12)
+
+
+def test_mindlin_invariants_two_spheres_3d():
+    rng = np.random.default_rng(18)
+    s1, s2 = Sphere(0.01, **ALUMINA), Sphere(0.02, **ALUMINIUM)
+    n = rng.normal(size=(6, 3))
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    p1 = rng.normal(size=(6, 3))
+    p2 = p1 + 0.015 * n
+    v1 = rng.normal(size=(6, 3))
+    v2 = rng.normal(size=(6, 3))
+    v1 += (0.5 + np.abs(np.sum((v1 - v2) * n, -1)))[:, None] * n  # approaching
+    w1, w2 = 300 * rng.normal(size=(6, 3)), 300 * rng.normal(size=(6, 3))
+    u_n = np.sum((v1 - v2) * n, -1)
+    impacts = [elastic_impact(s1, s2, float(u), 0.0) for u in u_n]
+    g = effective_shear_modulus(380e9, 0.23, 70e9, 0.33)
+    mu = np.array([0.05, 0.1, 0.3, 0.5, 1.0, 3.0])
+    r = oblique_impact(
+        s1.total_mass, s2.total_mass, 0.005, 0.01, p1, p2, v1, v2, w1, w2, 1.0, mu,
+        tangential="mindlin", history=NormalHistory.from_impacts(impacts, 1001), shear_modulus=g,
+    )  # fmt: skip
+    _assert_invariants(r)
+    assert np.all(np.abs(r.tangential_restitution) <= 1.0)
+
+
+def test_fixed_target_angular_momentum_of_sphere_about_contact():
+    r = on_plane(ALUMINA, np.array([0.5, 3.0]), 3.0, "rigid")
+    np.testing.assert_allclose(
+        r.angular_momentum_contact(1, final=True), r.angular_momentum_contact(1), atol=1e-18
+    )
+    assert np.all(np.isnan(r.angular_momentum_contact(2)))
+    # All the dissipation is in the sphere: the fixed plane takes no share.
+    assert np.all(r.energy_dissipated_by(2)["total"] == 0.0)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(friction=-0.1), "friction"),
+        (dict(restitution=1.5), "restitution"),
+        (dict(tangential="soft"), "rigid or mindlin"),
+        (dict(tangential="mindlin"), "history"),
+        (dict(v1=(0.0, 0.0, 1.0)), "not approaching"),
+        (dict(p2=(0.0, 0.0, 0.0)), "coincide"),
+        (dict(w2=(1.0, 0.0, 0.0)), "flat target cannot spin"),
+    ],
+)
+def test_bad_input(kwargs, message):
+    args = dict(m1=1e-3, m2=np.inf, r1=R, r2=np.inf, p1=ORIGIN, p2=BELOW, v1=(1.0, 0.0, -1.0),
+                v2=ORIGIN)  # fmt: skip
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=message):
+        oblique_impact(**args)
+
+
+def test_history_must_match_the_approach_velocity():
+    sphere = Sphere(2 * R, **ALUMINA)
+    history = NormalHistory.from_impacts([elastic_impact(sphere, PLANE, 2.0, 0.0)], 101)
+    with pytest.raises(ValueError, match="u_n"):
+        oblique_impact(
+            sphere.total_mass, np.inf, R, np.inf, ORIGIN, BELOW, (1.0, 0.0, -3.0), ORIGIN,
+            friction=0.1, tangential="mindlin", history=history, shear_modulus=80e9,
+        )  # fmt: skip
