@@ -249,8 +249,10 @@ def _reference(
     ys: UnitScale,
     reference: Mapping[str, NDArray] | None,
     columns: Sequence[tuple[str, str]],
+    offsets: Mapping[str, float] | None = None,
 ) -> None:
-    """Markers of a reference solution (e.g. SciPy) over the FILM lines, same scale."""
+    """Markers of a reference solution (e.g. SciPy) over the FILM lines, same scale (less
+    the same ``offsets`` as the lines, when they show changes)."""
     if reference is None:
         return
     every = max(1, len(x) // 25)
@@ -259,7 +261,8 @@ def _reference(
             continue
         ax.plot(
             x / xs.factor,
-            np.asarray(reference[col], dtype=float) / ys.factor,
+            (np.asarray(reference[col], dtype=float) - (offsets or {}).get(col, 0.0))
+            / ys.factor,
             linestyle="none",
             marker="o",
             markersize=3.5,
@@ -359,16 +362,26 @@ def impact_figure(
     _reference(ax_d, t, ts, ys, ref, [("d1", c1), ("d2", c2)])
     ax_d.set_title(f"(a) Rigid-body displacements (paper {figs['d']})", fontsize="medium")
 
+    v0 = change_offsets(h, ("v1", "v2"))
     ys = _series(
         ax_v,
         t,
         ts,
-        [("v1", "sphere 1", h["v1"], {"color": c1}), ("v2", "sphere 2", h["v2"], {"color": c2})],
-        "velocity $\\dot d_i$",
+        [
+            ("v1", "sphere 1" + _initial("V_1", v0, "v1", "m/s"), h["v1"] - v0.get("v1", 0.0),
+             {"color": c1}),
+            ("v2", "sphere 2" + _initial("V_2", v0, "v2", "m/s"), h["v2"] - v0.get("v2", 0.0),
+             {"color": c2}),
+        ],  # fmt: skip
+        "velocity change $\\dot d_i - V_i$" if v0 else "velocity $\\dot d_i$",
         "m/s",
     )
-    _reference(ax_v, t, ts, ys, ref, [("v1", c1), ("v2", c2)])
-    ax_v.set_title(f"(b) Rigid-body velocities (paper {figs['v']})", fontsize="medium")
+    _reference(ax_v, t, ts, ys, ref, [("v1", c1), ("v2", c2)], v0)
+    ax_v.set_title(
+        f"(b) Rigid-body velocities{' less their initial $V_i$' if v0 else ''} "
+        f"(paper {figs['v']})",
+        fontsize="medium",
+    )
 
     ys = _series(
         ax_i,
@@ -407,8 +420,12 @@ def impact_figure(
     )
     ax_r.set_title(f"(e) Indentation rates (paper {figs['delta_dot']})", fontsize="medium")
 
-    _momentum_panel(ax_p, t, ts, h, ref)
-    ax_p.set_title(f"(c) Momentum exchange (paper {figs['p']})", fontsize="medium")
+    momentum_change = _momentum_panel(ax_p, t, ts, h, ref)
+    ax_p.set_title(
+        f"(c) Momentum {'change from the start' if momentum_change else 'exchange'} "
+        f"(paper {figs['p']})",
+        fontsize="medium",
+    )
 
     _force_panel(ax_f, h, summary)
     ax_f.set_title("(f) Force against indentation", fontsize="medium")
@@ -446,19 +463,25 @@ def _momentum_panel(
     ts: UnitScale,
     h: Mapping[str, NDArray],
     ref: Mapping[str, NDArray] | None,
-) -> None:
+) -> bool:
+    """Momenta (or their changes, see :func:`change_offsets`); True if changes are drawn."""
     c1, c2 = SPHERE_COLOURS
-    lines = [("p1", "sphere 1, $p_1$", h["p1"], {"color": c1})]
-    if np.all(np.isfinite(h["p2"])):
+    fixed = not np.all(np.isfinite(h["p2"]))
+    p0 = change_offsets(h, ("p1",) if fixed else ("p1", "p2"))
+    lines = [("p1", "sphere 1, $p_1$" + _initial("p_1(0)", p0, "p1", "N·s"),
+              h["p1"] - p0.get("p1", 0.0), {"color": c1})]  # fmt: skip
+    if not fixed:
+        total0 = p0.get("p1", 0.0) + p0.get("p2", 0.0)
         lines += [
-            ("p2", "sphere 2, $p_2$", h["p2"], {"color": c2}),
+            ("p2", "sphere 2, $p_2$" + _initial("p_2(0)", p0, "p2", "N·s"),
+             h["p2"] - p0.get("p2", 0.0), {"color": c2}),
             (
                 "p1+p2",
-                "total, $p_1 + p_2$",
-                h["p1"] + h["p2"],
+                "total, $p_1 + p_2$" + (f" less {format_quantity(total0, 'N·s', 7)}" if p0 else ""),
+                h["p1"] + h["p2"] - total0,
                 {"color": TOTAL_COLOUR, "linestyle": "--", "linewidth": 1.2},
             ),
-        ]
+        ]  # fmt: skip
     else:
         ax.text(
             0.02,
@@ -468,8 +491,40 @@ def _momentum_panel(
             fontsize="small",
             color="0.3",
         )
-    ys = _series(ax, t, ts, lines, "momentum $p_i$", "N·s")
-    _reference(ax, t, ts, ys, ref, [("p1", c1), ("p2", c2)])
+    quantity = "momentum change $p_i - p_i(0)$" if p0 else "momentum $p_i$"
+    ys = _series(ax, t, ts, lines, quantity, "N·s")
+    _reference(ax, t, ts, ys, ref, [("p1", c1), ("p2", c2)], p0)
+    return bool(p0)
+
+
+#: A panel shows changes from the initial values when they are smaller than this fraction
+#: of the values (e.g. spheres at 100 m/s whose velocities change by 12.5 mm/s).
+CHANGE_FRACTION = 0.05
+
+
+def change_offsets(h: Mapping[str, NDArray], columns: Sequence[str]) -> dict[str, float]:
+    """The initial values to subtract from ``columns`` when the change over the history is
+    below :data:`CHANGE_FRACTION` of the largest value (else an empty dict: plot values).
+
+    >>> change_offsets({"v1": np.array([100.0, 99.99]), "v2": np.array([-100.0, -99.99])},
+    ...                ("v1", "v2"))
+    {'v1': 100.0, 'v2': -100.0}
+    >>> change_offsets({"v1": np.array([0.005, -0.017])}, ("v1",))
+    {}
+    """
+    values = [np.asarray(h[c], dtype=float) for c in columns]
+    largest = max((float(np.nanmax(np.abs(v))) for v in values if v.size), default=0.0)
+    change = max((float(np.nanmax(np.abs(v - v[0]))) for v in values if v.size), default=0.0)
+    if largest == 0.0 or change >= CHANGE_FRACTION * largest:
+        return {}
+    return {c: float(v[0]) for c, v in zip(columns, values)}
+
+
+def _initial(symbol: str, offsets: Mapping[str, float], column: str, unit: str) -> str:
+    """Legend suffix naming the subtracted initial value, e.g. ', V_1 = 100 m/s'."""
+    if column not in offsets:
+        return ""
+    return f", ${symbol}$ = {format_quantity(offsets[column], unit, digits=7)}"
 
 
 def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float] | None) -> None:
@@ -548,37 +603,76 @@ def convergence_figure(
     fig = _new_figure(13.0, 5.4)
     ax_h, ax_e = fig.subplots(1, 2)
     ordered = sorted(curves.items())
-    styles = ["-", "--", "-.", ":"]
-    ends = []
+    # The finest n is drawn first, wide and light, as the near-exact reference; the coarser
+    # ones over it, thin, each with its own colour, dash and marker, so none hides another.
+    dashes = ["-", "--", "-.", ":", (0, (5, 1, 1, 1))]
+    markers = ["o", "s", "^", "v", "D"]
+    colours = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"]
     plotted = []
+    turns = []
     for i, (n, (t_bar, d_bar)) in enumerate(ordered):
         t_bar = np.asarray(t_bar, dtype=float)
         d_bar = np.asarray(d_bar, dtype=float)
-        style = {"linestyle": styles[i % len(styles)], "linewidth": 1.4}
-        if i == len(ordered) - 1 and len(ordered) > 1:
-            style = {"color": "black", "linewidth": 0.9, "linestyle": "-"}
-        ax_h.plot(t_bar, d_bar, label=f"n = {n}", gid=f"n={n}", **style)
-        ends.append(float(t_bar[-1]))
+        finest = i == len(ordered) - 1 and len(ordered) > 1
+        if finest:
+            style = {"color": "0.7", "linewidth": 4.0, "linestyle": "-", "zorder": 1.5}
+            label = f"n = {n} (converged)"
+        else:
+            k = i % len(dashes)
+            every = max(len(t_bar) // 8, 1)
+            style = {"color": colours[k], "linestyle": dashes[k], "linewidth": 1.3,
+                     "marker": markers[k], "markersize": 4,
+                     "markevery": (every * (k + 1) // (len(dashes) + 1), every),
+                     "zorder": 3.0 - 0.1 * i}  # fmt: skip
+            label = f"n = {n}"
+        # NaN rows separate the stages (loading, restitution): one line, drawn in pieces.
+        breaks = np.flatnonzero(np.isnan(t_bar) | np.isnan(d_bar))
+        for b in breaks:
+            if 0 < b < len(d_bar) - 1 and abs(d_bar[b + 1] - d_bar[b - 1]) > 5e-3:
+                turns.append((n, t_bar[b - 1], d_bar[b - 1], d_bar[b + 1], style["color"]))
+                label += f", loading ends at {d_bar[b - 1]:.3f}"
+        ax_h.plot(t_bar, d_bar, label=label, gid=f"n={n}", **style)
         plotted.append((n, t_bar, d_bar, style))
+    for n, t_turn, d_end, d_start, colour in turns:
+        ax_h.plot([t_turn], [d_end], "o", mfc="white", mec=colour, ms=6, zorder=4,
+                  gid=f"loading_end:n={n}")  # fmt: skip
+        ax_h.plot([t_turn], [d_start], "o", color=colour, ms=6, zorder=4,
+                  gid=f"restitution_start:n={n}")  # fmt: skip
+    if turns:
+        ax_h.text(
+            0.02, 0.84,
+            "Loading and restitution have n segments each: the last\n"
+            "loading segment turns (○) short of the node δ/δm = 1,\n"
+            "where restitution starts (●).",
+            transform=ax_h.transAxes, va="top", fontsize="x-small",
+        )  # fmt: skip
     ax_h.set_xlabel(r"normalised time $t V_0/\delta_m$ (-)")
     ax_h.set_ylabel(r"normalised indentation $\delta/\delta_m$ (-)")
     ax_h.set_title("(a) Indentation history for several n (paper Fig. 3)", fontsize="medium")
     ax_h.set_xlim(left=0.0)
-    ax_h.set_ylim(bottom=0.0)
+    ax_h.set_ylim(0.0, 1.3 if turns else 1.05)
     ax_h.grid(True, linewidth=0.4, alpha=0.5)
-    ax_h.legend(fontsize="small", loc="upper right")
+    ax_h.legend(fontsize="x-small", loc="upper right", ncol=2 if len(ordered) > 3 else 1)
     if inset and len(plotted) > 1:
         # Zoom on the separation of the most refined curve, where coarser ones end early.
+        ends = [float(np.nanmax(t)) for _n, t, _d, _s in plotted]
         finest = ends[-1]
         lo, hi = finest - 0.015, finest + 0.003
-        top = max(float(np.interp(lo, t, d)) for _n, t, d, _s in plotted)
+        top = max(float(np.interp(lo, t[~np.isnan(t)], d[~np.isnan(t)]))
+                  for _n, t, d, _s in plotted)  # fmt: skip
         zoom = ax_h.inset_axes((0.33, 0.08, 0.36, 0.4))  # under the curve, clear of it
         for n, t, d, style in plotted:
-            zoom.plot(t, d, gid=f"inset:n={n}", **style)
+            zoom.plot(t, d, gid=f"inset:n={n}", **{**style, "markevery": None, "marker": None})
         zoom.set_xlim(lo, hi)
         zoom.set_ylim(0.0, 1.05 * top)
         zoom.tick_params(labelsize="x-small")
-        zoom.set_title(f"separation, n = {plotted[-1][0]}", fontsize="x-small")
+        early = [n for (n, *_), end in zip(plotted, ends) if end < lo]
+        zoom.set_title(
+            "separation, all n"
+            + (f" (n = {', '.join(map(str, early))} end{'s' if len(early) == 1 else ''} earlier)"
+               if early else ""),
+            fontsize="x-small",
+        )  # fmt: skip
         ax_h.indicate_inset_zoom(zoom, edgecolor="0.4")
 
     n_arr = np.asarray(ns, dtype=float)

@@ -398,6 +398,21 @@ def test_cli_paper_example_4_3_moving_spheres(monkeypatch, tmp_path):
     assert "V1 = 100.0125 m/s, V2 = -100 m/s" in fig.get_suptitle()
     assert "(mm)" in axes_of(fig, "d1").get_ylabel()
     assert lines(fig, "d1").get_ydata()[-1] == pytest.approx(17.132, abs=1e-3)
+    # velocities change by mm/s on 100 m/s: the panels show the change, in mm/s, and say so.
+    # Same final velocities as the sec. 4.3 case at rest (V0 and masses equal): -17.222 and
+    # +4.722 mm/s, i.e. changes of -22.222 and -2.778 mm/s.
+    ax = axes_of(fig, "v1")
+    assert "velocity change" in ax.get_ylabel() and "(mm/s)" in ax.get_ylabel()
+    assert lines(fig, "v1").get_ydata()[0] == 0.0
+    assert lines(fig, "v1").get_ydata()[-1] == pytest.approx(-22.222, abs=2e-3)
+    assert lines(fig, "v2").get_ydata()[-1] == pytest.approx(-2.778, abs=2e-3)
+    assert "100.0125 m/s" in lines(fig, "v1").get_label()
+    # momentum: the changes are equal and opposite; their sum stays at zero (conservation)
+    ax = axes_of(fig, "p1")
+    assert "momentum change" in ax.get_ylabel()
+    p1, p2 = lines(fig, "p1").get_ydata(), lines(fig, "p2").get_ydata()
+    np.testing.assert_allclose(p1, -p2, atol=1e-9 * np.abs(p1).max())
+    assert np.abs(lines(fig, "p1+p2").get_ydata()).max() < 1e-6 * np.abs(p1).max()
 
 
 def test_cli_check_adds_the_ode_reference(monkeypatch, tmp_path):
@@ -421,10 +436,39 @@ def test_cli_convergence_plots_fig_3(monkeypatch, tmp_path):
         ["convergence", "--n", "1", "3", "5", "25", "--plot", "c.svg", "-o", str(tmp_path / "c")],
     )
     film = FilmSolution(normalised_elastic(5))
-    t = np.linspace(0.0, film.end_time, CURVE_POINTS)
-    np.testing.assert_allclose(lines(fig, "n=5").get_xdata(), t)
-    np.testing.assert_allclose(lines(fig, "n=5").get_ydata(), film.evaluate(t)[0])
+    t = lines(fig, "n=5").get_xdata()
+    assert len(t) == CURVE_POINTS + 1 and np.isnan(t).sum() == 1
+    stage_end = film.stages[0].end_time
+    assert np.nanmin(t) == 0.0 and np.nanmax(t) == film.end_time
+    inside = ~np.isnan(t) & (np.abs(t - stage_end) > 1e-9)
+    np.testing.assert_allclose(lines(fig, "n=5").get_ydata()[inside], film.evaluate(t[inside])[0])
     assert len(lines(fig, "error").get_xdata()) == 4
+
+
+def test_convergence_n_1_is_drawn_as_its_two_stages():
+    """With one segment the loading chord (stiffness F(delta_m)/delta_m) stores m V0^2/2 at
+    delta^2 = (4/5) delta_m^2: it turns at 2/sqrt(5) = 0.894, short of the node delta_m where
+    restitution starts. The curve is two pieces with the ends marked, not a vertical jump."""
+    from impactcli.tables import normalised_history
+
+    curves = {n: normalised_history(n, 401) for n in (1, 10, 10000)}
+    fig = convergence_figure(curves, [1, 10, 10000], [0.04, 1e-4, 3e-12])
+    t, d = lines(fig, "n=1").get_data()
+    gap = int(np.flatnonzero(np.isnan(d))[0])
+    assert d[gap - 1] == pytest.approx(2 / 5**0.5, rel=1e-9) and d[gap + 1] == 1.0
+    assert t[gap - 1] == pytest.approx(t[gap + 1], rel=1e-9)
+    assert lines(fig, "loading_end:n=1").get_ydata()[0] == pytest.approx(0.894427191)
+    assert lines(fig, "restitution_start:n=1").get_ydata()[0] == 1.0
+    assert "loading ends at 0.894" in lines(fig, "n=1").get_label()
+    # n = 10 (4e-5 short of the node) is not marked; the converged curve lies under the others
+    assert "loading ends" not in lines(fig, "n=10").get_label()
+    assert lines(fig, "n=10000").get_zorder() < lines(fig, "n=10").get_zorder()
+    assert lines(fig, "n=10").get_linestyle() != lines(fig, "n=10000").get_linestyle() or (
+        lines(fig, "n=10").get_color() != lines(fig, "n=10000").get_color()
+    )
+    (inset,) = lines(fig, "n=1").axes.child_axes
+    assert {ln.get_gid() for ln in inset.lines} == {"inset:n=1", "inset:n=10", "inset:n=10000"}
+    assert inset.get_title() == "separation, all n (n = 1 ends earlier)"
 
 
 def test_cli_restitution_plots_the_sweep_it_computes(monkeypatch, tmp_path):

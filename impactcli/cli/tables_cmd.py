@@ -236,15 +236,13 @@ def curve_ns(ns: list[int], most: int = 6) -> list[int]:
 
 
 def _plot_convergence(path: str, rows, carry_velocity: bool) -> None:
-    from impactcli.film import FilmSolution
     from impactcli.plots import convergence_figure
-    from impactcli.tables import normalised_elastic
+    from impactcli.tables import normalised_history
 
-    curves = {}
-    for n in curve_ns([r.n for r in rows]):
-        film = FilmSolution(normalised_elastic(n, carry_velocity))
-        t_bar = np.linspace(0.0, film.end_time, CURVE_POINTS)
-        curves[n] = (t_bar, film.evaluate(t_bar)[0])
+    curves = {
+        n: normalised_history(n, CURVE_POINTS, carry_velocity)
+        for n in curve_ns([r.n for r in rows])
+    }
     scheme = (
         "velocity carried over between segments (the paper's scheme)"
         if carry_velocity
