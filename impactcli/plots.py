@@ -701,6 +701,7 @@ def restitution_figure(
     *,
     title: str = "Coefficient of restitution against impact velocity",
     yield_velocity: float | None = None,
+    first_yield_velocity: float | None = None,
     log_velocity: bool | None = None,
 ) -> Figure:
     """Three panels over a sweep of impact velocity V0: e, contact time, permanent indentation.
@@ -715,7 +716,10 @@ def restitution_figure(
     title : names the case (spheres, material, model)
     yield_velocity : V_y, [m/s]; a dotted line on every panel when within the swept V0, else
         named in the legends only (a line would stretch the axis away from the data)
-    log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more
+    first_yield_velocity : where a Hertz impact first yields (peak pressure 1.6 sigma_y),
+        [m/s]; a dashed line (or a legend entry), as for ``yield_velocity``
+    log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more.
+        Ticks at 1, 2 and 5 of each decade, all labelled
 
     Returns
     -------
@@ -754,22 +758,36 @@ def restitution_figure(
         ax_r.plot(x, values / rs.factor, marker=".", label=label, gid=gid)
     ax_r.set_ylabel(rf"permanent indentation $\delta_{{res}}$ ({rs.unit})")
     ax_r.set_title("(c) Permanent indentation", fontsize="medium")
-    if len(residual) > 1:
-        ax_r.legend(fontsize="small")
 
+    marks = [
+        (velocity, text, style)
+        for velocity, text, style in (
+            (first_yield_velocity, r"first yield (Hertz, 1.6 $\sigma_y$)", "--"),
+            (yield_velocity, "yield, $V_y$ (Du & Wang)", ":"),
+        )
+        if velocity is not None and np.isfinite(velocity)
+    ]
+    finite = v0[np.isfinite(v0)]
     for ax in (ax_e, ax_t, ax_r):
         if log_velocity:
+            from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
             ax.set_xscale("log")
+            if finite.size and finite.max() < 1e3 * finite.min():  # else decades only
+                ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+                ax.xaxis.set_minor_locator(LogLocator(subs=np.arange(2, 10)))
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda value, _pos: f"{value:g}"))
+            ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel(f"impact velocity $V_0$ ({vs.unit})")
         ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
-        if yield_velocity is not None and np.isfinite(yield_velocity):
-            label = f"yield, $V_y$ = {yield_velocity / vs.factor:.4g} {vs.unit}"
-            finite = v0[np.isfinite(v0)]
-            if finite.size and finite.min() <= yield_velocity <= finite.max():
-                ax.axvline(yield_velocity / vs.factor, color="0.5", linestyle=":", label=label)
+        for velocity, text, style in marks:
+            label = f"{text} = {velocity / vs.factor:.4g} {vs.unit}"
+            if finite.size and finite.min() <= velocity <= finite.max():
+                ax.axvline(velocity / vs.factor, color="0.45", linestyle=style, label=label)
             else:  # a line would stretch the axis away from the data: legend only
-                where = "below" if finite.size and yield_velocity < finite.min() else "above"
+                where = "below" if finite.size and velocity < finite.min() else "above"
                 ax.plot([], [], " ", label=f"{label} ({where} this range)")
+        if marks or ax is ax_r and len(residual) > 1:
             ax.legend(fontsize="small")
     fig.suptitle(title, fontsize="large")
     return fig

@@ -502,6 +502,28 @@ def test_cli_restitution_plots_the_sweep_it_computes(monkeypatch, tmp_path):
     assert "D1 = 20 mm, D2 = 40 mm, steel" in fig.get_suptitle()
 
 
+def test_restitution_figure_marks_first_yield_and_labels_the_log_axis(monkeypatch, tmp_path):
+    """make run's sweep, 0.05 to 2.5 m/s (1.7 decades): the V0 axis is labelled at 1, 2 and 5
+    of each decade, and both yield criteria are marked: first yield of the Hertz impact at a
+    peak pressure of 1.6 sigma_y (0.0785 m/s for the sec. 4.4 steel spheres) and the Du &
+    Wang V_y (0.2566 m/s)."""
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        ["restitution", *PAPER, "--v-min", "0.05m/s", "--v-max", "2.5m/s", "--count", "5",
+         "--plot", "r.png", "-o", str(tmp_path / "r.csv")],
+    )  # fmt: skip
+    ax = axes_of(fig, "restitution")
+    lo, hi = ax.get_xlim()
+    ticks = [t for t in ax.xaxis.get_major_locator()() if lo <= t <= hi]
+    labels = [ax.xaxis.get_major_formatter()(t, i) for i, t in enumerate(ticks)]
+    assert labels == ["0.05", "0.1", "0.2", "0.5", "1", "2"]
+    marked = {ln.get_label(): ln.get_xdata()[0] for ln in ax.lines if ln.get_gid() is None}
+    first = [v for label, v in marked.items() if label.startswith("first yield")]
+    assert first == [pytest.approx(0.0785, abs=5e-5)]
+    assert [v for label, v in marked.items() if "V_y" in label] == [pytest.approx(0.2566, 2e-4)]
+
+
 def test_cli_restitution_linear_sweep_has_a_linear_axis(monkeypatch, tmp_path):
     fig = run_main(
         monkeypatch,

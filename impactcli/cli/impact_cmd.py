@@ -650,7 +650,7 @@ def restitution(
 def _plot_sweep(path: str, data: dict, s1, s2, p0_factor: float, p: dict[str, Any]) -> None:
     """e, contact time and permanent indentation against V0, written to ``path``."""
     from impactcli.plots import format_quantity, restitution_figure
-    from impactcli.sweep import sweep_yield_velocity
+    from impactcli.sweep import sweep_first_yield_velocity, sweep_yield_velocity
 
     parts = [
         f"D1 = {format_quantity(s1.diameter, 'm')}",
@@ -669,6 +669,7 @@ def _plot_sweep(path: str, data: dict, s1, s2, p0_factor: float, p: dict[str, An
         title=f"Restitution against impact velocity (Du & Wang, FILM, n = {p['n']}): "
         + ", ".join(parts),
         yield_velocity=sweep_yield_velocity(s1, s2, pressure_factor=p0_factor),
+        first_yield_velocity=sweep_first_yield_velocity(s1, s2),
         log_velocity=not p["linear"],
     )
     save_plot(fig, path)
