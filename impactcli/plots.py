@@ -806,6 +806,7 @@ def collision2d_figure(
     *,
     normal: ArrayLike | None = None,
     radii: tuple[float, float] | None = None,
+    masses: tuple[float, float] | None = None,
     title: str = "Oblique 2-D collision (paper sec. 4.5)",
 ) -> Figure:
     """The 2-D collision: where the spheres meet and their velocities before and after.
@@ -822,7 +823,11 @@ def collision2d_figure(
     p1, p2 : positions of the centres at contact, (x, y), [m]
     normal : direction of the line of centres; default (p2 - p1)/|p2 - p1|
     radii : (R1, R2), [m]; draws the spheres and the contact plane when given
-    title : names the case
+    masses : (m1, m2), [kg]; named under the title with the speeds before and after
+    title : names the case; a second line gives the masses and the speeds
+
+    The arrows of (a) share one round scale, 1, 2 or 5 times a power of ten of the
+    position unit per velocity unit, named in the panel's title.
 
     Returns
     -------
@@ -856,7 +861,7 @@ def collision2d_figure(
     vs = unit_scale(list(vel.values()), "m/s")
     gap = float(np.hypot(*(pos[1] - pos[0]))) or float(max(radii or (1.0,)))
     speed = max(float(np.hypot(*v)) for v in vel.values()) or 1.0
-    arrow = 0.45 * gap / speed  # [m per m/s]
+    arrow = round_scale(0.45 * gap / speed * ps.factor / vs.factor) * vs.factor / ps.factor
     points = [pos[0], pos[1]]
     for key, v in vel.items():
         tail, head = centre[key], centre[key] + arrow * v
@@ -881,14 +886,19 @@ def collision2d_figure(
         ax_a.plot(ends[:, 0], ends[:, 1], color="0.4", lw=1, label="contact plane")
     for i, (p, c) in enumerate(zip(pos, SPHERE_COLOURS), start=1):
         ax_a.plot(*(p / ps.factor), marker="o", color=c, gid=f"p{i}", linestyle="none")
-        ax_a.annotate(f"  {i}", tuple(p / ps.factor), color=c, fontsize="medium")
+        away = _clear_direction([vel[f"v{i}"], vel[f"v{i}_after"], n_hat, -n_hat])
+        ax_a.annotate(
+            str(i), tuple(p / ps.factor), xytext=tuple(13 * away),
+            textcoords="offset points", ha="center", va="center", color=c,
+            fontsize="medium", fontweight="bold", gid=f"label:{i}",
+        )  # fmt: skip
     line = np.array([pos[0] - 0.3 * gap * n_hat, pos[1] + 0.3 * gap * n_hat]) / ps.factor
     ax_a.plot(line[:, 0], line[:, 1], color="0.5", linestyle="-.", lw=0.9, label="line of centres")
     _frame(ax_a, np.array(points) / ps.factor)
     ax_a.set_xlabel(f"$x$ ({ps.unit})")
     ax_a.set_ylabel(f"$y$ ({ps.unit})")
     ax_a.set_title(
-        f"(a) At contact (arrows: 1 {vs.unit} = {format_quantity(arrow * vs.factor, 'm', 3)})",
+        f"(a) At contact (arrows: 1 {vs.unit} ↦ {arrow * vs.factor / ps.factor:g} {ps.unit})",
         fontsize="medium",
     )
 
@@ -920,8 +930,44 @@ def collision2d_figure(
     for ax in (ax_a, ax_b):
         extra, _labels = ax.get_legend_handles_labels()
         ax.legend(handles=handles + extra, fontsize="small", loc="best")
-    fig.suptitle(title, fontsize="large")
+    speeds = [
+        f"|v{i}| = {format_quantity(float(np.hypot(*vel[f'v{i}'])), 'm/s')} → "
+        f"{format_quantity(float(np.hypot(*vel[f'v{i}_after'])), 'm/s')}"
+        for i in (1, 2)
+    ]
+    if masses is not None:
+        speeds = [f"m{i} = {format_quantity(m * 1e3, 'g')}, {v}"
+                  for i, (m, v) in enumerate(zip(masses, speeds), start=1)]  # fmt: skip
+    fig.suptitle(title + "\n" + ";  ".join(speeds), fontsize="large")
     return fig
+
+
+def _clear_direction(directions: Sequence[ArrayLike]) -> NDArray:
+    """The unit vector, of 16 around the circle, farthest in angle from all ``directions``
+    (where a label next to a point overlaps none of the lines leaving it)."""
+    taken = np.array([math.atan2(d[1], d[0]) for d in map(np.asarray, directions)
+                      if np.hypot(*d) > 0])  # fmt: skip
+    candidates = np.arange(16) * (np.pi / 8) + np.pi / 16
+    if taken.size == 0:
+        best = candidates[0]
+    else:
+        gap = np.abs((candidates[:, None] - taken[None, :] + np.pi) % (2 * np.pi) - np.pi)
+        best = candidates[int(np.argmax(gap.min(axis=1)))]
+    return np.array([math.cos(best), math.sin(best)])
+
+
+def round_scale(value: float) -> float:
+    """The largest of 1, 2, 5 times a power of ten not above ``value`` (> 0).
+
+    >>> round_scale(0.75), round_scale(10.0), round_scale(0.031)
+    (0.5, 10.0, 0.02)
+    """
+    exponent = math.floor(math.log10(value))
+    for step in (5.0, 2.0, 1.0):
+        candidate = step * 10.0**exponent
+        if candidate <= value * (1 + 1e-12):
+            return float(f"{candidate:.12g}")
+    return float(f"{10.0**exponent:.12g}")
 
 
 def _arrow(ax: Axes, tail: NDArray, head: NDArray, colour: str, after: bool, gid: str) -> None:

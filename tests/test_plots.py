@@ -321,6 +321,37 @@ def test_collision2d_figure_paper_example():
     np.testing.assert_allclose(lines(fig, "p2").get_xydata()[0], p2)
 
 
+def test_collision2d_figure_round_arrow_scale_masses_speeds_and_clear_labels():
+    v1, v2, w1, w2, p1, p2 = paper_4_5_collision()
+    fig = collision2d_figure(v1, v2, w1, w2, p1, p2, masses=(0.05, 0.15), title="sec. 4.5.3")
+    # one round scale for every arrow of panel (a): 1 m/s -> 0.5 m (0.45 of the 5 m gap at 3 m/s
+    # would be 0.75 m per m/s; rounded down to 1-2-5)
+    for gid, v in {"v1": v1, "v2": v2, "v1_after": w1, "v2_after": w2}.items():
+        at = annotation(fig, f"at:{gid}")
+        np.testing.assert_allclose(np.subtract(at.xy, at.xyann), 0.5 * v, rtol=1e-12)
+    assert "1 m/s ↦ 0.5 m" in annotation(fig, "at:v1").axes.get_title()
+    title = fig.get_suptitle()
+    assert "m1 = 50 g, |v1| = 3 m/s → 2.374 m/s" in title  # paper: 2.374 and 2.263 m/s
+    assert "m2 = 150 g, |v2| = 2 m/s → 2.263 m/s" in title
+    # the labels sit off their dots (in points), away from the arrows leaving the centre
+    for i, (p, v, w) in enumerate(((p1, v1, w1), (p2, v2, w2)), start=1):
+        label = annotation(fig, f"label:{i}")
+        np.testing.assert_allclose(label.xy, p)
+        offset = np.array(label.xyann)
+        assert np.hypot(*offset) >= 10
+        for direction in (v, w):
+            cosine = offset @ direction / np.hypot(*offset) / np.hypot(*direction)
+            assert cosine < np.cos(np.radians(30))
+
+
+def test_round_scale():
+    from impactcli.plots import round_scale
+
+    assert [round_scale(x) for x in (0.75, 1.0, 1.9, 3.0, 7.0, 0.0123)] == [
+        0.5, 1.0, 1.0, 2.0, 5.0, 0.01
+    ]  # fmt: skip
+
+
 def test_collision2d_figure_scales_units_and_rejects_no_line_of_centres():
     fig = collision2d_figure(
         (0.003, 0.0), (0.0, 0.0), (0.0, 0.0), (0.003, 0.0), (0.0, 0.0), (0.02, 0.0),
