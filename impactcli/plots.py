@@ -2,9 +2,9 @@
 
 Pure functions: they take SI arrays (or dimensionless ones) and return a
 :class:`matplotlib.figure.Figure` without touching pyplot, a GUI or any global state; only
-:func:`save_figure` writes, atomically. matplotlib is an optional dependency
-(``pip install 'impactcli[plot]'``): it is imported inside the functions that draw, never at
-module import, so ``import impactcli.plots`` and ``impact --help`` stay light.
+:func:`save_figure` writes, atomically. matplotlib is an optional dependency (the ``plot``
+extra, ``pip install '.[plot]'`` in the checkout): it is imported inside the functions that
+draw, never at module import, so ``import impactcli.plots`` and ``impact --help`` stay light.
 
 Every line that carries data has a ``gid`` naming it (``"d1"``, ``"p1+p2"``, ``"n=5"``, ...):
 ``[l for ax in fig.axes for l in ax.lines if l.get_gid() == "d1"]`` finds it, and its data
@@ -55,7 +55,8 @@ FIGURE_FORMATS: dict[str, str] = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
 
 #: What to do when matplotlib is missing (one line, for the CLI and for ImportError).
 MISSING_MATPLOTLIB = (
-    "plotting needs matplotlib, which is not installed: pip install 'impactcli[plot]'"
+    "plotting needs matplotlib, which is not installed: pip install matplotlib (or, in the "
+    "impactcli checkout, pip install '.[plot]')"
 )
 
 _PREFIXES: dict[int, str] = {

@@ -98,7 +98,7 @@ def note(message: str) -> None:
 
 PLOT_HELP = (
     "Also draw the figures to FILE: .png, .svg or .pdf, chosen by the extension "
-    "(needs matplotlib: pip install 'impactcli[plot]')."
+    "(needs matplotlib: pip install matplotlib)."
 )
 
 
