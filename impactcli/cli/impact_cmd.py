@@ -377,9 +377,16 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         for col in kind:
             values = np.asarray(history[col], dtype=float)[rows] / scale.factor
             largest = float(np.nanmax(np.abs(values))) if values.size else 0.0
-            # four significant digits of the column's largest value, the same decimals down
-            # the column; rounding noise (-1e-22) shows as 0, never -0
-            decimals = 0 if largest == 0 else max(0, 3 - math.floor(math.log10(largest)))
+            spread = float(np.nanmax(values) - np.nanmin(values)) if values.size else 0.0
+            # four significant digits of the column's largest value, or of its change when
+            # that is smaller (v1 = 100.0125 -> 99.9903 m/s), but at most seven in all (80
+            # columns); the same decimals down the column; rounding noise (-1e-22) shows as
+            # 0, never -0
+            ref = min(largest, spread) if spread > 0 else largest
+            decimals = 0
+            if ref > 0:
+                most = 6 - math.floor(math.log10(largest))
+                decimals = max(0, min(3 - math.floor(math.log10(ref)), most))
             columns[col] = [_no_negative_zero(f"{v:.{decimals}f}") for v in values]
             headers[col] = f"{col} ({scale.unit})"
     order = ("t", "delta", "force", "d1", "d2", "v1", "v2")
