@@ -1,27 +1,43 @@
 # impactcli: `make run` and `make test` work on a fresh machine with only Python 3.11 and pip.
+# Each target installs what it needs into .venv, one stamp file per set of extras, so
+# `make run` then `make test` installs only the difference.
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
-STAMP  := $(VENV)/.installed
+PIP    := $(BIN)/python -m pip install --disable-pip-version-check
 
 .PHONY: run test tables bench lint clean venv
 
 $(BIN)/python:
+	@echo "== creating $(VENV) with $(PYTHON)"
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
 
-$(STAMP): $(BIN)/python pyproject.toml
-	$(BIN)/python -m pip install --quiet -e '.[test,plot,parquet,dask]'
-	touch $(STAMP)
+# the command and its figures: the package and the plot extra
+$(VENV)/.run-installed: $(BIN)/python pyproject.toml
+	@echo "== installing impactcli[plot] into $(VENV) (first time: about a minute)"
+	$(PIP) -e '.[plot]'
+	touch $@
 
-venv: $(STAMP)
+# the test suite: + pytest, hypothesis, ruff, and Dask with pyarrow for the batch tests
+$(VENV)/.test-installed: $(BIN)/python pyproject.toml
+	@echo "== installing impactcli[plot,test,dask] into $(VENV) (pytest, hypothesis, ruff, dask, pyarrow)"
+	$(PIP) -e '.[plot,test,dask]'
+	touch $(VENV)/.run-installed $@
+
+# the benchmarks: + pyarrow for batch input and output
+$(VENV)/.bench-installed: $(BIN)/python pyproject.toml
+	@echo "== installing impactcli[plot,batch] into $(VENV) (pyarrow for batch input and output)"
+	$(PIP) -e '.[plot,batch]'
+	touch $(VENV)/.run-installed $@
+
+venv: $(VENV)/.run-installed
 
 PAPER := --d1 20mm --d2 40mm --material steel
 
 ## run: set up, print the paper's Tables A1 and A2 (n = 25), and draw the figures of its
 ##      sections 4.1, 4.3, 4.4 and 4.5 and a restitution sweep into figures/ (with each
 ##      figure's data as CSV)
-run: $(STAMP)
+run: $(VENV)/.run-installed
 	$(BIN)/impact tables --n 25 --format table
 	@mkdir -p figures
 	$(BIN)/impact elastic $(PAPER) --v1 5mm/s --v2 7.5mm/s \
@@ -37,23 +53,24 @@ run: $(STAMP)
 		--a2 50deg --p1=-1,2 --p2=2,-2 --paper-angles \
 		-o figures/collide2d_4_5.csv --plot figures/collide2d_4_5.png
 	@echo "Figures (paper sec. 4.1, 4.3, 4.4, 4.5) and their data: figures/"
+	@echo "Run the command as .venv/bin/impact, or after: source .venv/bin/activate"
 
 ## test: set up, then lint and run the whole test suite
-test: $(STAMP)
+test: $(VENV)/.test-installed
 	$(BIN)/ruff check impactcli tests
 	$(BIN)/python -m pytest -q
 
 ## tables: regenerate the committed normalised tables in tables/
-tables: $(STAMP)
+tables: $(VENV)/.run-installed
 	$(BIN)/impact tables --n 25 --stage loading --format csv -o tables/table_a1_n25.csv
 	$(BIN)/impact tables --n 25 --stage restitution --format csv -o tables/table_a2_n25.csv
 
-## bench: FILM against SciPy, impact batch throughput, tables --n 10^6, cold start; writes the
-##        table into README.md (a few minutes)
-bench: $(STAMP)
-	$(BIN)/python benchmarks/bench.py --readme README.md
+## bench: FILM against SciPy, impact batch throughput, tables --n 10^6, cold start (a few
+##        minutes); prints the table, and writes it into README.md with `make bench README=1`
+bench: $(VENV)/.bench-installed
+	$(BIN)/python benchmarks/bench.py $(if $(filter 1 yes true,$(README)),--readme README.md)
 
-lint: $(STAMP)
+lint: $(VENV)/.test-installed
 	$(BIN)/ruff check impactcli tests
 
 clean:

@@ -50,7 +50,9 @@ from numpy.typing import ArrayLike, NDArray
 __all__ = [
     "PAPER_ANGLE_SIGN",
     "ObliqueCollision",
+    "CONTACT_DISTANCE_RTOL",
     "approach_velocity",
+    "check_contact_distance",
     "collision_summary",
     "elastoplastic_restitution",
     "line_of_centres",
@@ -130,6 +132,45 @@ def line_of_centres(p1: ArrayLike, p2: ArrayLike) -> Array:
             "they do not define a line of centres"
         )
     return d / distance[..., None]
+
+
+#: Relative tolerance of :func:`check_contact_distance` on |p2 - p1| = R1 + R2 (positions
+#: typed to three or four digits, e.g. 21.2 mm for 30 mm at 45 degrees, pass).
+CONTACT_DISTANCE_RTOL = 1e-3
+
+
+def check_contact_distance(
+    p1: ArrayLike,
+    p2: ArrayLike,
+    radius1: float,
+    radius2: float,
+    rtol: float = CONTACT_DISTANCE_RTOL,
+) -> None:
+    """Check that the centres are at contact: |p2 - p1| = R1 + R2 within ``rtol``.
+
+    Parameters
+    ----------
+    p1, p2 : positions of the centres at contact, (x, y), [m]
+    radius1, radius2 : radii of the spheres, [m] (finite; a flat target has no centre)
+    rtol : relative tolerance on the distance
+
+    Raises
+    ------
+    ValueError
+        The distance between the centres differs from the sum of the radii.
+
+    >>> check_contact_distance((0.0, 0.0), (0.018, 0.024), 0.01, 0.02)
+    >>> check_contact_distance((-1.0, 2.0), (2.0, -2.0), 0.01, 0.02)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ValueError: the centres are 5 m apart but the spheres touch at R1 + R2 = 0.03 m: ...
+    """
+    distance = float(np.hypot(*(np.asarray(p2, dtype=float) - np.asarray(p1, dtype=float))))
+    touch = float(radius1) + float(radius2)
+    if not abs(distance - touch) <= rtol * touch:
+        raise ValueError(
+            f"the centres are {distance:.6g} m apart but the spheres touch at R1 + R2 = "
+            f"{touch:.6g} m: give positions at contact or no diameters"
+        )
 
 
 def approach_velocity(v1: ArrayLike, v2: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Array:

@@ -2,9 +2,9 @@
 
 Pure functions: they take SI arrays (or dimensionless ones) and return a
 :class:`matplotlib.figure.Figure` without touching pyplot, a GUI or any global state; only
-:func:`save_figure` writes, atomically. matplotlib is an optional dependency
-(``pip install 'impactcli[plot]'``): it is imported inside the functions that draw, never at
-module import, so ``import impactcli.plots`` and ``impact --help`` stay light.
+:func:`save_figure` writes, atomically. matplotlib is an optional dependency (the ``plot``
+extra, ``pip install '.[plot]'`` in the checkout): it is imported inside the functions that
+draw, never at module import, so ``import impactcli.plots`` and ``impact --help`` stay light.
 
 Every line that carries data has a ``gid`` naming it (``"d1"``, ``"p1+p2"``, ``"n=5"``, ...):
 ``[l for ax in fig.axes for l in ax.lines if l.get_gid() == "d1"]`` finds it, and its data
@@ -22,6 +22,7 @@ save_figure : write a figure to .png, .svg or .pdf atomically
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
@@ -52,7 +53,8 @@ FIGURE_FORMATS: dict[str, str] = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
 
 #: What to do when matplotlib is missing (one line, for the CLI and for ImportError).
 MISSING_MATPLOTLIB = (
-    "plotting needs matplotlib, which is not installed: pip install 'impactcli[plot]'"
+    "plotting needs matplotlib, which is not installed: pip install matplotlib (or, in the "
+    "impactcli checkout, pip install '.[plot]')"
 )
 
 SPHERE_COLOURS = ("tab:blue", "tab:orange")
@@ -164,8 +166,10 @@ def _reference(
     ys: UnitScale,
     reference: Mapping[str, NDArray] | None,
     columns: Sequence[tuple[str, str]],
+    offsets: Mapping[str, float] | None = None,
 ) -> None:
-    """Markers of a reference solution (e.g. SciPy) over the FILM lines, same scale."""
+    """Markers of a reference solution (e.g. SciPy) over the FILM lines, same scale (less
+    the same ``offsets`` as the lines, when they show changes)."""
     if reference is None:
         return
     every = max(1, len(x) // 25)
@@ -174,7 +178,8 @@ def _reference(
             continue
         ax.plot(
             x / xs.factor,
-            np.asarray(reference[col], dtype=float) / ys.factor,
+            (np.asarray(reference[col], dtype=float) - (offsets or {}).get(col, 0.0))
+            / ys.factor,
             linestyle="none",
             marker="o",
             markersize=3.5,
@@ -274,16 +279,26 @@ def impact_figure(
     _reference(ax_d, t, ts, ys, ref, [("d1", c1), ("d2", c2)])
     ax_d.set_title(f"(a) Rigid-body displacements (paper {figs['d']})", fontsize="medium")
 
+    v0 = change_offsets(h, ("v1", "v2"))
     ys = _series(
         ax_v,
         t,
         ts,
-        [("v1", "sphere 1", h["v1"], {"color": c1}), ("v2", "sphere 2", h["v2"], {"color": c2})],
-        "velocity $\\dot d_i$",
+        [
+            ("v1", "sphere 1" + _initial("V_1", v0, "v1", "m/s"), h["v1"] - v0.get("v1", 0.0),
+             {"color": c1}),
+            ("v2", "sphere 2" + _initial("V_2", v0, "v2", "m/s"), h["v2"] - v0.get("v2", 0.0),
+             {"color": c2}),
+        ],  # fmt: skip
+        "velocity change $\\dot d_i - V_i$" if v0 else "velocity $\\dot d_i$",
         "m/s",
     )
-    _reference(ax_v, t, ts, ys, ref, [("v1", c1), ("v2", c2)])
-    ax_v.set_title(f"(b) Rigid-body velocities (paper {figs['v']})", fontsize="medium")
+    _reference(ax_v, t, ts, ys, ref, [("v1", c1), ("v2", c2)], v0)
+    ax_v.set_title(
+        f"(b) Rigid-body velocities{' less their initial $V_i$' if v0 else ''} "
+        f"(paper {figs['v']})",
+        fontsize="medium",
+    )
 
     ys = _series(
         ax_i,
@@ -322,8 +337,12 @@ def impact_figure(
     )
     ax_r.set_title(f"(e) Indentation rates (paper {figs['delta_dot']})", fontsize="medium")
 
-    _momentum_panel(ax_p, t, ts, h, ref)
-    ax_p.set_title(f"(c) Momentum exchange (paper {figs['p']})", fontsize="medium")
+    momentum_change = _momentum_panel(ax_p, t, ts, h, ref)
+    ax_p.set_title(
+        f"(c) Momentum {'change from the start' if momentum_change else 'exchange'} "
+        f"(paper {figs['p']})",
+        fontsize="medium",
+    )
 
     _force_panel(ax_f, h, summary)
     ax_f.set_title("(f) Force against indentation", fontsize="medium")
@@ -361,19 +380,25 @@ def _momentum_panel(
     ts: UnitScale,
     h: Mapping[str, NDArray],
     ref: Mapping[str, NDArray] | None,
-) -> None:
+) -> bool:
+    """Momenta (or their changes, see :func:`change_offsets`); True if changes are drawn."""
     c1, c2 = SPHERE_COLOURS
-    lines = [("p1", "sphere 1, $p_1$", h["p1"], {"color": c1})]
-    if np.all(np.isfinite(h["p2"])):
+    fixed = not np.all(np.isfinite(h["p2"]))
+    p0 = change_offsets(h, ("p1",) if fixed else ("p1", "p2"))
+    lines = [("p1", "sphere 1, $p_1$" + _initial("p_1(0)", p0, "p1", "N·s"),
+              h["p1"] - p0.get("p1", 0.0), {"color": c1})]  # fmt: skip
+    if not fixed:
+        total0 = p0.get("p1", 0.0) + p0.get("p2", 0.0)
         lines += [
-            ("p2", "sphere 2, $p_2$", h["p2"], {"color": c2}),
+            ("p2", "sphere 2, $p_2$" + _initial("p_2(0)", p0, "p2", "N·s"),
+             h["p2"] - p0.get("p2", 0.0), {"color": c2}),
             (
                 "p1+p2",
-                "total, $p_1 + p_2$",
-                h["p1"] + h["p2"],
+                "total, $p_1 + p_2$" + (f" less {format_quantity(total0, 'N·s', 7)}" if p0 else ""),
+                h["p1"] + h["p2"] - total0,
                 {"color": TOTAL_COLOUR, "linestyle": "--", "linewidth": 1.2},
             ),
-        ]
+        ]  # fmt: skip
     else:
         ax.text(
             0.02,
@@ -383,8 +408,40 @@ def _momentum_panel(
             fontsize="small",
             color="0.3",
         )
-    ys = _series(ax, t, ts, lines, "momentum $p_i$", "N·s")
-    _reference(ax, t, ts, ys, ref, [("p1", c1), ("p2", c2)])
+    quantity = "momentum change $p_i - p_i(0)$" if p0 else "momentum $p_i$"
+    ys = _series(ax, t, ts, lines, quantity, "N·s")
+    _reference(ax, t, ts, ys, ref, [("p1", c1), ("p2", c2)], p0)
+    return bool(p0)
+
+
+#: A panel shows changes from the initial values when they are smaller than this fraction
+#: of the values (e.g. spheres at 100 m/s whose velocities change by 12.5 mm/s).
+CHANGE_FRACTION = 0.05
+
+
+def change_offsets(h: Mapping[str, NDArray], columns: Sequence[str]) -> dict[str, float]:
+    """The initial values to subtract from ``columns`` when the change over the history is
+    below :data:`CHANGE_FRACTION` of the largest value (else an empty dict: plot values).
+
+    >>> change_offsets({"v1": np.array([100.0, 99.99]), "v2": np.array([-100.0, -99.99])},
+    ...                ("v1", "v2"))
+    {'v1': 100.0, 'v2': -100.0}
+    >>> change_offsets({"v1": np.array([0.005, -0.017])}, ("v1",))
+    {}
+    """
+    values = [np.asarray(h[c], dtype=float) for c in columns]
+    largest = max((float(np.nanmax(np.abs(v))) for v in values if v.size), default=0.0)
+    change = max((float(np.nanmax(np.abs(v - v[0]))) for v in values if v.size), default=0.0)
+    if largest == 0.0 or change >= CHANGE_FRACTION * largest:
+        return {}
+    return {c: float(v[0]) for c, v in zip(columns, values)}
+
+
+def _initial(symbol: str, offsets: Mapping[str, float], column: str, unit: str) -> str:
+    """Legend suffix naming the subtracted initial value, e.g. ', V_1 = 100 m/s'."""
+    if column not in offsets:
+        return ""
+    return f", ${symbol}$ = {format_quantity(offsets[column], unit, digits=7)}"
 
 
 def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float] | None) -> None:
@@ -463,37 +520,76 @@ def convergence_figure(
     fig = _new_figure(13.0, 5.4)
     ax_h, ax_e = fig.subplots(1, 2)
     ordered = sorted(curves.items())
-    styles = ["-", "--", "-.", ":"]
-    ends = []
+    # The finest n is drawn first, wide and light, as the near-exact reference; the coarser
+    # ones over it, thin, each with its own colour, dash and marker, so none hides another.
+    dashes = ["-", "--", "-.", ":", (0, (5, 1, 1, 1))]
+    markers = ["o", "s", "^", "v", "D"]
+    colours = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"]
     plotted = []
+    turns = []
     for i, (n, (t_bar, d_bar)) in enumerate(ordered):
         t_bar = np.asarray(t_bar, dtype=float)
         d_bar = np.asarray(d_bar, dtype=float)
-        style = {"linestyle": styles[i % len(styles)], "linewidth": 1.4}
-        if i == len(ordered) - 1 and len(ordered) > 1:
-            style = {"color": "black", "linewidth": 0.9, "linestyle": "-"}
-        ax_h.plot(t_bar, d_bar, label=f"n = {n}", gid=f"n={n}", **style)
-        ends.append(float(t_bar[-1]))
+        finest = i == len(ordered) - 1 and len(ordered) > 1
+        if finest:
+            style = {"color": "0.7", "linewidth": 4.0, "linestyle": "-", "zorder": 1.5}
+            label = f"n = {n} (converged)"
+        else:
+            k = i % len(dashes)
+            every = max(len(t_bar) // 8, 1)
+            style = {"color": colours[k], "linestyle": dashes[k], "linewidth": 1.3,
+                     "marker": markers[k], "markersize": 4,
+                     "markevery": (every * (k + 1) // (len(dashes) + 1), every),
+                     "zorder": 3.0 - 0.1 * i}  # fmt: skip
+            label = f"n = {n}"
+        # NaN rows separate the stages (loading, restitution): one line, drawn in pieces.
+        breaks = np.flatnonzero(np.isnan(t_bar) | np.isnan(d_bar))
+        for b in breaks:
+            if 0 < b < len(d_bar) - 1 and abs(d_bar[b + 1] - d_bar[b - 1]) > 5e-3:
+                turns.append((n, t_bar[b - 1], d_bar[b - 1], d_bar[b + 1], style["color"]))
+                label += f", loading ends at {d_bar[b - 1]:.3f}"
+        ax_h.plot(t_bar, d_bar, label=label, gid=f"n={n}", **style)
         plotted.append((n, t_bar, d_bar, style))
+    for n, t_turn, d_end, d_start, colour in turns:
+        ax_h.plot([t_turn], [d_end], "o", mfc="white", mec=colour, ms=6, zorder=4,
+                  gid=f"loading_end:n={n}")  # fmt: skip
+        ax_h.plot([t_turn], [d_start], "o", color=colour, ms=6, zorder=4,
+                  gid=f"restitution_start:n={n}")  # fmt: skip
+    if turns:
+        ax_h.text(
+            0.02, 0.84,
+            "Loading and restitution have n segments each: the last\n"
+            "loading segment turns (○) short of the node δ/δm = 1,\n"
+            "where restitution starts (●).",
+            transform=ax_h.transAxes, va="top", fontsize="x-small",
+        )  # fmt: skip
     ax_h.set_xlabel(r"normalised time $t V_0/\delta_m$ (-)")
     ax_h.set_ylabel(r"normalised indentation $\delta/\delta_m$ (-)")
     ax_h.set_title("(a) Indentation history for several n (paper Fig. 3)", fontsize="medium")
     ax_h.set_xlim(left=0.0)
-    ax_h.set_ylim(bottom=0.0)
+    ax_h.set_ylim(0.0, 1.3 if turns else 1.05)
     ax_h.grid(True, linewidth=0.4, alpha=0.5)
-    ax_h.legend(fontsize="small", loc="upper right")
+    ax_h.legend(fontsize="x-small", loc="upper right", ncol=2 if len(ordered) > 3 else 1)
     if inset and len(plotted) > 1:
         # Zoom on the separation of the most refined curve, where coarser ones end early.
+        ends = [float(np.nanmax(t)) for _n, t, _d, _s in plotted]
         finest = ends[-1]
         lo, hi = finest - 0.015, finest + 0.003
-        top = max(float(np.interp(lo, t, d)) for _n, t, d, _s in plotted)
+        top = max(float(np.interp(lo, t[~np.isnan(t)], d[~np.isnan(t)]))
+                  for _n, t, d, _s in plotted)  # fmt: skip
         zoom = ax_h.inset_axes((0.33, 0.08, 0.36, 0.4))  # under the curve, clear of it
         for n, t, d, style in plotted:
-            zoom.plot(t, d, gid=f"inset:n={n}", **style)
+            zoom.plot(t, d, gid=f"inset:n={n}", **{**style, "markevery": None, "marker": None})
         zoom.set_xlim(lo, hi)
         zoom.set_ylim(0.0, 1.05 * top)
         zoom.tick_params(labelsize="x-small")
-        zoom.set_title(f"separation, n = {plotted[-1][0]}", fontsize="x-small")
+        early = [n for (n, *_), end in zip(plotted, ends) if end < lo]
+        zoom.set_title(
+            "separation, all n"
+            + (f" (n = {', '.join(map(str, early))} end{'s' if len(early) == 1 else ''} earlier)"
+               if early else ""),
+            fontsize="x-small",
+        )  # fmt: skip
         ax_h.indicate_inset_zoom(zoom, edgecolor="0.4")
 
     n_arr = np.asarray(ns, dtype=float)
@@ -522,6 +618,7 @@ def restitution_figure(
     *,
     title: str = "Coefficient of restitution against impact velocity",
     yield_velocity: float | None = None,
+    first_yield_velocity: float | None = None,
     log_velocity: bool | None = None,
 ) -> Figure:
     """Three panels over a sweep of impact velocity V0: e, contact time, permanent indentation.
@@ -536,7 +633,10 @@ def restitution_figure(
     title : names the case (spheres, material, model)
     yield_velocity : V_y, [m/s]; a dotted line on every panel when within the swept V0, else
         named in the legends only (a line would stretch the axis away from the data)
-    log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more
+    first_yield_velocity : where a Hertz impact first yields (peak pressure 1.6 sigma_y),
+        [m/s]; a dashed line (or a legend entry), as for ``yield_velocity``
+    log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more.
+        Ticks at 1, 2 and 5 of each decade, all labelled
 
     Returns
     -------
@@ -575,22 +675,36 @@ def restitution_figure(
         ax_r.plot(x, values / rs.factor, marker=".", label=label, gid=gid)
     ax_r.set_ylabel(rf"permanent indentation $\delta_{{res}}$ ({rs.unit})")
     ax_r.set_title("(c) Permanent indentation", fontsize="medium")
-    if len(residual) > 1:
-        ax_r.legend(fontsize="small")
 
+    marks = [
+        (velocity, text, style)
+        for velocity, text, style in (
+            (first_yield_velocity, r"first yield (Hertz, 1.6 $\sigma_y$)", "--"),
+            (yield_velocity, "yield, $V_y$ (Du & Wang)", ":"),
+        )
+        if velocity is not None and np.isfinite(velocity)
+    ]
+    finite = v0[np.isfinite(v0)]
     for ax in (ax_e, ax_t, ax_r):
         if log_velocity:
+            from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
             ax.set_xscale("log")
+            if finite.size and finite.max() < 1e3 * finite.min():  # else decades only
+                ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+                ax.xaxis.set_minor_locator(LogLocator(subs=np.arange(2, 10)))
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda value, _pos: f"{value:g}"))
+            ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel(f"impact velocity $V_0$ ({vs.unit})")
         ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
-        if yield_velocity is not None and np.isfinite(yield_velocity):
-            label = f"yield, $V_y$ = {yield_velocity / vs.factor:.4g} {vs.unit}"
-            finite = v0[np.isfinite(v0)]
-            if finite.size and finite.min() <= yield_velocity <= finite.max():
-                ax.axvline(yield_velocity / vs.factor, color="0.5", linestyle=":", label=label)
+        for velocity, text, style in marks:
+            label = f"{text} = {velocity / vs.factor:.4g} {vs.unit}"
+            if finite.size and finite.min() <= velocity <= finite.max():
+                ax.axvline(velocity / vs.factor, color="0.45", linestyle=style, label=label)
             else:  # a line would stretch the axis away from the data: legend only
-                where = "below" if finite.size and yield_velocity < finite.min() else "above"
+                where = "below" if finite.size and velocity < finite.min() else "above"
                 ax.plot([], [], " ", label=f"{label} ({where} this range)")
+        if marks or ax is ax_r and len(residual) > 1:
             ax.legend(fontsize="small")
     fig.suptitle(title, fontsize="large")
     return fig
@@ -609,6 +723,7 @@ def collision2d_figure(
     *,
     normal: ArrayLike | None = None,
     radii: tuple[float, float] | None = None,
+    masses: tuple[float, float] | None = None,
     title: str = "Oblique 2-D collision (paper sec. 4.5)",
 ) -> Figure:
     """The 2-D collision: where the spheres meet and their velocities before and after.
@@ -625,7 +740,11 @@ def collision2d_figure(
     p1, p2 : positions of the centres at contact, (x, y), [m]
     normal : direction of the line of centres; default (p2 - p1)/|p2 - p1|
     radii : (R1, R2), [m]; draws the spheres and the contact plane when given
-    title : names the case
+    masses : (m1, m2), [kg]; named under the title with the speeds before and after
+    title : names the case; a second line gives the masses and the speeds
+
+    The arrows of (a) share one round scale, 1, 2 or 5 times a power of ten of the
+    position unit per velocity unit, named in the panel's title.
 
     Returns
     -------
@@ -659,7 +778,7 @@ def collision2d_figure(
     vs = unit_scale(list(vel.values()), "m/s")
     gap = float(np.hypot(*(pos[1] - pos[0]))) or float(max(radii or (1.0,)))
     speed = max(float(np.hypot(*v)) for v in vel.values()) or 1.0
-    arrow = 0.45 * gap / speed  # [m per m/s]
+    arrow = round_scale(0.45 * gap / speed * ps.factor / vs.factor) * vs.factor / ps.factor
     points = [pos[0], pos[1]]
     for key, v in vel.items():
         tail, head = centre[key], centre[key] + arrow * v
@@ -684,14 +803,19 @@ def collision2d_figure(
         ax_a.plot(ends[:, 0], ends[:, 1], color="0.4", lw=1, label="contact plane")
     for i, (p, c) in enumerate(zip(pos, SPHERE_COLOURS), start=1):
         ax_a.plot(*(p / ps.factor), marker="o", color=c, gid=f"p{i}", linestyle="none")
-        ax_a.annotate(f"  {i}", tuple(p / ps.factor), color=c, fontsize="medium")
+        away = _clear_direction([vel[f"v{i}"], vel[f"v{i}_after"], n_hat, -n_hat])
+        ax_a.annotate(
+            str(i), tuple(p / ps.factor), xytext=tuple(13 * away),
+            textcoords="offset points", ha="center", va="center", color=c,
+            fontsize="medium", fontweight="bold", gid=f"label:{i}",
+        )  # fmt: skip
     line = np.array([pos[0] - 0.3 * gap * n_hat, pos[1] + 0.3 * gap * n_hat]) / ps.factor
     ax_a.plot(line[:, 0], line[:, 1], color="0.5", linestyle="-.", lw=0.9, label="line of centres")
     _frame(ax_a, np.array(points) / ps.factor)
     ax_a.set_xlabel(f"$x$ ({ps.unit})")
     ax_a.set_ylabel(f"$y$ ({ps.unit})")
     ax_a.set_title(
-        f"(a) At contact (arrows: 1 {vs.unit} = {format_quantity(arrow * vs.factor, 'm', 3)})",
+        f"(a) At contact (arrows: 1 {vs.unit} ↦ {arrow * vs.factor / ps.factor:g} {ps.unit})",
         fontsize="medium",
     )
 
@@ -723,8 +847,44 @@ def collision2d_figure(
     for ax in (ax_a, ax_b):
         extra, _labels = ax.get_legend_handles_labels()
         ax.legend(handles=handles + extra, fontsize="small", loc="best")
-    fig.suptitle(title, fontsize="large")
+    speeds = [
+        f"|v{i}| = {format_quantity(float(np.hypot(*vel[f'v{i}'])), 'm/s')} → "
+        f"{format_quantity(float(np.hypot(*vel[f'v{i}_after'])), 'm/s')}"
+        for i in (1, 2)
+    ]
+    if masses is not None:
+        speeds = [f"m{i} = {format_quantity(m * 1e3, 'g')}, {v}"
+                  for i, (m, v) in enumerate(zip(masses, speeds), start=1)]  # fmt: skip
+    fig.suptitle(title + "\n" + ";  ".join(speeds), fontsize="large")
     return fig
+
+
+def _clear_direction(directions: Sequence[ArrayLike]) -> NDArray:
+    """The unit vector, of 16 around the circle, farthest in angle from all ``directions``
+    (where a label next to a point overlaps none of the lines leaving it)."""
+    taken = np.array([math.atan2(d[1], d[0]) for d in map(np.asarray, directions)
+                      if np.hypot(*d) > 0])  # fmt: skip
+    candidates = np.arange(16) * (np.pi / 8) + np.pi / 16
+    if taken.size == 0:
+        best = candidates[0]
+    else:
+        gap = np.abs((candidates[:, None] - taken[None, :] + np.pi) % (2 * np.pi) - np.pi)
+        best = candidates[int(np.argmax(gap.min(axis=1)))]
+    return np.array([math.cos(best), math.sin(best)])
+
+
+def round_scale(value: float) -> float:
+    """The largest of 1, 2, 5 times a power of ten not above ``value`` (> 0).
+
+    >>> round_scale(0.75), round_scale(10.0), round_scale(0.031)
+    (0.5, 10.0, 0.02)
+    """
+    exponent = math.floor(math.log10(value))
+    for step in (5.0, 2.0, 1.0):
+        candidate = step * 10.0**exponent
+        if candidate <= value * (1 + 1e-12):
+            return float(f"{candidate:.12g}")
+    return float(f"{10.0**exponent:.12g}")
 
 
 def _arrow(ax: Axes, tail: NDArray, head: NDArray, colour: str, after: bool, gid: str) -> None:

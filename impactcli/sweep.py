@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.contact import DU_WANG_PRESSURE_FACTOR, DuWangContact
+from impactcli.contact import DU_WANG_PRESSURE_FACTOR, DuWangContact, first_yield_velocity
 from impactcli.impact import (
     Sphere,
     check_pair,
@@ -104,6 +104,23 @@ def sweep_yield_velocity(
     law without a yield point)."""
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)
     return float(contact.yield_velocity(m))
+
+
+def sweep_first_yield_velocity(
+    sphere1: Sphere, sphere2: Sphere, yield_strength: float | None = None
+) -> float:
+    """The impact velocity [m/s] at which a Hertz impact of the pair first yields: the peak
+    pressure reaches 1.6 sigma_y (docs/method.md §7;
+    :func:`impactcli.contact.first_yield_velocity`),
+    below the Du & Wang V_y of :func:`sweep_yield_velocity` (0.0785 against 0.2566 m/s for
+    the paper's sec. 4.4 steel spheres)."""
+    sigma_y = (
+        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
+    )
+    if sigma_y is None:
+        raise ValueError("the first-yield velocity needs a yield strength")
+    m, r, e = effective_properties(sphere1, sphere2)
+    return float(first_yield_velocity(m, r, e, sigma_y))
 
 
 def _contact(

@@ -248,8 +248,10 @@ def test_collide2d_checks_every_option_given(cli, extra, reason):
 def test_collide2d_elastoplastic_e_is_the_normal_impacts(cli):
     from impactcli.collision2d import approach_velocity, elastoplastic_restitution
 
-    code, out, _ = cli(*COLLIDE, "--model", "elastoplastic", "--d1", "20mm", "--d2", "40mm",
-                       "--material", "steel", "-f", "json")  # fmt: skip
+    # centres at contact (|p2 - p1| = R1 + R2 = 30 mm) on the paper's line of centres
+    at_contact = [*COLLIDE[:-2], "--p1=-6mm,12mm", "--p2=12mm,-12mm"]
+    code, out, _ = cli(*at_contact, "--model", "elastoplastic", "--d1", "20mm", "--d2",
+                       "40mm", "--material", "steel", "-f", "json")  # fmt: skip
     assert code == 0
     import json
 
@@ -257,7 +259,7 @@ def test_collide2d_elastoplastic_e_is_the_normal_impacts(cli):
     v_n = float(approach_velocity(
         (3 * math.cos(math.radians(30)), 3 * math.sin(math.radians(30))),
         (2 * math.cos(math.radians(50)), 2 * math.sin(math.radians(50))),
-        (-1.0, 2.0), (2.0, -2.0),
+        (-0.006, 0.012), (0.012, -0.012),
     ))  # fmt: skip
     from impactcli.materials import material
 

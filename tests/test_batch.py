@@ -347,6 +347,7 @@ def test_chunking_does_not_change_the_rows(batch):
 
 
 def test_parquet_and_csv_round_trip(batch, tmp_path):
+    pytest.importorskip("pyarrow")
     source = tmp_path / "in.csv"
     source.write_bytes(_csv(UNITS))
     pq_out, csv_out = tmp_path / "out.parquet", tmp_path / "back.csv"
@@ -428,11 +429,15 @@ def test_progress_bar_does_not_touch_the_data(batch):
 
 # -- the Dask engine ----------------------------------------------------------------------
 
-pytest.importorskip("dask.dataframe")
+
+@pytest.fixture
+def dask_dataframe():
+    """Skip the test (only it, not the module) when the dask extra is not installed."""
+    return pytest.importorskip("dask.dataframe")
 
 
 @pytest.mark.parametrize("fmt", ["csv", "parquet"])
-def test_dask_engine_gives_the_same_rows(batch, tmp_path, fmt):
+def test_dask_engine_gives_the_same_rows(batch, tmp_path, fmt, dask_dataframe):
     source = tmp_path / "in.csv"
     source.write_bytes(_csv(BAD + UNITS))
     _, reference_out, _ = batch(str(source))
@@ -448,7 +453,7 @@ def test_dask_engine_gives_the_same_rows(batch, tmp_path, fmt):
     assert "row 1: d1 must be positive" in err and "7 of 14 rows invalid" in err
 
 
-def test_dask_strict_counts_rows_across_partitions(batch, tmp_path):
+def test_dask_strict_counts_rows_across_partitions(batch, tmp_path, dask_dataframe):
     folder = tmp_path / "parts"
     folder.mkdir()
     rows = pd.DataFrame(UNITS + BAD[1:]).astype("string")
@@ -463,7 +468,7 @@ def test_dask_strict_counts_rows_across_partitions(batch, tmp_path):
     assert not (tmp_path / "o.parquet").exists()
 
 
-def test_dask_engine_on_a_local_cluster(tmp_path):
+def test_dask_engine_on_a_local_cluster(tmp_path, dask_dataframe):
     pytest.importorskip("distributed")
     source = tmp_path / "in.csv"
     source.write_bytes(_csv(UNITS))
@@ -479,7 +484,7 @@ def test_dask_engine_on_a_local_cluster(tmp_path):
         assert_row_matches(frame.iloc[i].to_dict(), reference(row))
 
 
-def test_dask_needs_files(batch):
+def test_dask_needs_files(batch, dask_dataframe):
     code, _, err = batch("-", "--engine", "dask", stdin=_csv(UNITS))
     assert code == 2 and "not stdin/stdout" in err
 

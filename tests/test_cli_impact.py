@@ -191,3 +191,84 @@ def test_materials_lists_sources(impact):
     names = {r["name"] for r in rows}
     assert {"steel", "aluminium-alloy", "alumina", "glass", "brass"} <= names
     assert all(r["source"] for r in rows)
+
+
+# -- numbers on screen, -o extensions, --summary ------------------------------------------
+
+MOVING_4_3 = ["elastic", "--d1", "20mm", "--d2", "40mm", "--v1", "100.0125m/s",
+              "--v2=-100m/s", "--material", "steel"]  # fmt: skip
+
+
+def _cells(table: str) -> list[list[str]]:
+    return [[c.strip() for c in line.split("│")[1:-1]] for line in table.splitlines()
+            if line.startswith("│")]  # fmt: skip
+
+
+def test_screen_table_units_prefixes_and_summary_last(impact):
+    """The summary comes last (a terminal keeps it in view), in µs/µm like the history, each
+    value with its own prefix (d1 = 17.132 mm at separation, paper 17.131 mm); the history
+    has one prefix per quantity kind and no '-0'."""
+    result = impact(*MOVING_4_3, "-f", "table", env={"COLUMNS": "80"})
+    assert result.returncode == 0, result.stderr
+    out = result.stdout
+    assert out.index("History") < out.index("Elastic (Hertz) impact by FILM")
+    summary = {row[0]: row[1:3] for row in _cells(out.split("Elastic (Hertz) impact")[1]) if row[0]}
+    assert summary["d1_final"] == ["17.1321", "mm"]
+    assert summary["contact_time"] == ["171.319", "µs"]  # paper 171.32 us
+    assert summary["delta_max"] == ["727.592", "nm"]  # paper 0.72759 um
+    assert summary["effective_mass"] == ["29.0423", "g"]
+    assert " us " not in out and " um " not in out
+    header = next(line for line in out.splitlines() if "delta (" in line)
+    assert "v1 (m/s)" in header and "v2 (m/s)" in header
+    assert "d1 (mm)" in header and "d2 (mm)" in header and "delta (mm)" in header
+    history = _cells(out.split("Elastic (Hertz) impact")[0])
+    assert history and all(cell != "-0" and not cell.startswith("-0.0") or cell.strip("-0.")
+                           for row in history for cell in row)  # fmt: skip
+    plastic = impact("elastoplastic", *PAPER_4_4, "-f", "table").stdout
+    assert "v1 (m/s)" in plastic and "v2 (m/s)" in plastic  # not m/s and mm/s
+
+
+@pytest.mark.parametrize("name", ["hist.xlsx", "hist.parquet", "h.tsv"])
+def test_unknown_output_extension_is_refused(impact, tmp_path, name):
+    target = tmp_path / name
+    result = impact("elastic", *PAPER_4_3, "-o", str(target))
+    assert result.returncode == 2 and not target.exists()
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and ".csv, .json or .txt" in lines[0] and name in lines[0]
+
+
+def test_output_extensions(impact, tmp_path):
+    for name, check in (
+        ("h.csv", lambda text: text.startswith("t,delta,")),
+        ("h.json", lambda text: "summary" in json.loads(text)),
+        ("h.txt", lambda text: "History" in text and "contact_time" in text),
+        ("h", lambda text: text.startswith("t,delta,")),
+    ):
+        assert impact("elastic", *PAPER_4_3, "-o", str(tmp_path / name)).returncode == 0
+        assert check((tmp_path / name).read_text()), name
+
+
+def test_summary_csv_is_one_row_of_the_summary(impact, tmp_path):
+    target = tmp_path / "s.csv"
+    result = impact("elastoplastic", *PAPER_4_4, "--summary", str(target), "-f", "json")
+    assert result.returncode == 0, result.stderr
+    rows = list(csv.DictReader(io.StringIO(target.read_text())))
+    summary = json.loads(result.stdout)["summary"]
+    assert len(rows) == 1 and list(rows[0]) == list(summary)
+    for key, value in summary.items():
+        assert float(rows[0][key]) == pytest.approx(value, rel=1e-11)  # CSV: 12 digits
+    assert float(rows[0]["restitution"]) == pytest.approx(0.85611, abs=5e-6)  # paper sec. 4.4
+    piped = impact("elastic", *PAPER_4_3, "--summary", "-", "-o", str(tmp_path / "h.csv"))
+    assert piped.returncode == 0 and piped.stdout.splitlines()[0].startswith("contact_time,")
+    assert len(piped.stdout.splitlines()) == 2
+
+
+@pytest.mark.parametrize(
+    "args,fragment",
+    [(["--summary", "-"], "stdout already carries"), (["--summary", "s.xlsx"], "summary is CSV")],
+)
+def test_bad_summary_target_one_line(impact, args, fragment):
+    result = impact("elastic", *PAPER_4_3, *args)
+    assert result.returncode == 2 and result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and fragment in lines[0]

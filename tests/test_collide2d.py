@@ -245,3 +245,15 @@ def test_rotating_the_frame_and_moving_it_rotates_and_shifts_the_answer(args, tu
     scale = np.hypot(*c.v1) + np.hypot(*c.v2) + np.hypot(*drift)
     np.testing.assert_allclose(r.v1_final, rot @ c.v1_final + drift, rtol=0, atol=1e-11 * scale)
     np.testing.assert_allclose(r.v2_final, rot @ c.v2_final + drift, rtol=0, atol=1e-11 * scale)
+
+
+def test_contact_distance_is_the_sum_of_the_radii():
+    from impactcli.collision2d import CONTACT_DISTANCE_RTOL, check_contact_distance
+
+    check_contact_distance((0.0, 0.0), (0.018, 0.024), 0.01, 0.02)  # 3-4-5: 30 mm
+    check_contact_distance((0.0, 0.0), (0.0212, 0.0212), 0.01, 0.02)  # 29.98 mm, typed digits
+    with pytest.raises(ValueError, match="apart"):
+        far = 0.03 * (1 + 2 * CONTACT_DISTANCE_RTOL)
+        check_contact_distance((0.0, 0.0), (far, 0.0), 0.01, 0.02)
+    with pytest.raises(ValueError, match="5 m apart"):
+        check_contact_distance((-1.0, 2.0), (2.0, -2.0), 0.01, 0.02)

@@ -313,3 +313,15 @@ def test_model_elastoplastic_needs_sizes(impact):
         "elastoplastic",
     )
     assert result.returncode == 2 and "--d1" in result.stderr
+
+
+def test_diameters_must_match_the_distance_between_centres(impact):
+    """With --d1/--d2 the positions are the centres at contact: |p2 - p1| = R1 + R2."""
+    base = ["collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
+            "--v2", "2m/s", "--a2", "150deg", "--d1", "20mm", "--d2", "40mm"]  # fmt: skip
+    result = impact(*base, "--p1=0,0", "--p2=18mm,24mm", "-f", "json")  # 30 mm apart
+    assert result.returncode == 0, result.stderr
+    result = impact(*base, "--p1=-1,2", "--p2=2,-2", "-f", "json")  # 5 m apart
+    assert result.returncode == 2 and result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "5 m apart" in lines[0] and "R1 + R2 = 0.03 m" in lines[0]

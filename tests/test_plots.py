@@ -319,6 +319,37 @@ def test_collision2d_figure_paper_example():
     np.testing.assert_allclose(lines(fig, "p2").get_xydata()[0], p2)
 
 
+def test_collision2d_figure_round_arrow_scale_masses_speeds_and_clear_labels():
+    v1, v2, w1, w2, p1, p2 = paper_4_5_collision()
+    fig = collision2d_figure(v1, v2, w1, w2, p1, p2, masses=(0.05, 0.15), title="sec. 4.5.3")
+    # one round scale for every arrow of panel (a): 1 m/s -> 0.5 m (0.45 of the 5 m gap at 3 m/s
+    # would be 0.75 m per m/s; rounded down to 1-2-5)
+    for gid, v in {"v1": v1, "v2": v2, "v1_after": w1, "v2_after": w2}.items():
+        at = annotation(fig, f"at:{gid}")
+        np.testing.assert_allclose(np.subtract(at.xy, at.xyann), 0.5 * v, rtol=1e-12)
+    assert "1 m/s ↦ 0.5 m" in annotation(fig, "at:v1").axes.get_title()
+    title = fig.get_suptitle()
+    assert "m1 = 50 g, |v1| = 3 m/s → 2.374 m/s" in title  # paper: 2.374 and 2.263 m/s
+    assert "m2 = 150 g, |v2| = 2 m/s → 2.263 m/s" in title
+    # the labels sit off their dots (in points), away from the arrows leaving the centre
+    for i, (p, v, w) in enumerate(((p1, v1, w1), (p2, v2, w2)), start=1):
+        label = annotation(fig, f"label:{i}")
+        np.testing.assert_allclose(label.xy, p)
+        offset = np.array(label.xyann)
+        assert np.hypot(*offset) >= 10
+        for direction in (v, w):
+            cosine = offset @ direction / np.hypot(*offset) / np.hypot(*direction)
+            assert cosine < np.cos(np.radians(30))
+
+
+def test_round_scale():
+    from impactcli.plots import round_scale
+
+    assert [round_scale(x) for x in (0.75, 1.0, 1.9, 3.0, 7.0, 0.0123)] == [
+        0.5, 1.0, 1.0, 2.0, 5.0, 0.01
+    ]  # fmt: skip
+
+
 def test_collision2d_figure_scales_units_and_rejects_no_line_of_centres():
     fig = collision2d_figure(
         (0.003, 0.0), (0.0, 0.0), (0.0, 0.0), (0.003, 0.0), (0.0, 0.0), (0.02, 0.0),
@@ -396,6 +427,21 @@ def test_cli_paper_example_4_3_moving_spheres(monkeypatch, tmp_path):
     assert "V1 = 100.0125 m/s, V2 = -100 m/s" in fig.get_suptitle()
     assert "(mm)" in axes_of(fig, "d1").get_ylabel()
     assert lines(fig, "d1").get_ydata()[-1] == pytest.approx(17.132, abs=1e-3)
+    # velocities change by mm/s on 100 m/s: the panels show the change, in mm/s, and say so.
+    # Same final velocities as the sec. 4.3 case at rest (V0 and masses equal): -17.222 and
+    # +4.722 mm/s, i.e. changes of -22.222 and -2.778 mm/s.
+    ax = axes_of(fig, "v1")
+    assert "velocity change" in ax.get_ylabel() and "(mm/s)" in ax.get_ylabel()
+    assert lines(fig, "v1").get_ydata()[0] == 0.0
+    assert lines(fig, "v1").get_ydata()[-1] == pytest.approx(-22.222, abs=2e-3)
+    assert lines(fig, "v2").get_ydata()[-1] == pytest.approx(-2.778, abs=2e-3)
+    assert "100.0125 m/s" in lines(fig, "v1").get_label()
+    # momentum: the changes are equal and opposite; their sum stays at zero (conservation)
+    ax = axes_of(fig, "p1")
+    assert "momentum change" in ax.get_ylabel()
+    p1, p2 = lines(fig, "p1").get_ydata(), lines(fig, "p2").get_ydata()
+    np.testing.assert_allclose(p1, -p2, atol=1e-9 * np.abs(p1).max())
+    assert np.abs(lines(fig, "p1+p2").get_ydata()).max() < 1e-6 * np.abs(p1).max()
 
 
 def test_cli_check_adds_the_ode_reference(monkeypatch, tmp_path):
@@ -419,10 +465,39 @@ def test_cli_convergence_plots_fig_3(monkeypatch, tmp_path):
         ["convergence", "--n", "1", "3", "5", "25", "--plot", "c.svg", "-o", str(tmp_path / "c")],
     )
     film = FilmSolution(normalised_elastic(5))
-    t = np.linspace(0.0, film.end_time, CURVE_POINTS)
-    np.testing.assert_allclose(lines(fig, "n=5").get_xdata(), t)
-    np.testing.assert_allclose(lines(fig, "n=5").get_ydata(), film.evaluate(t)[0])
+    t = lines(fig, "n=5").get_xdata()
+    assert len(t) == CURVE_POINTS + 1 and np.isnan(t).sum() == 1
+    stage_end = film.stages[0].end_time
+    assert np.nanmin(t) == 0.0 and np.nanmax(t) == film.end_time
+    inside = ~np.isnan(t) & (np.abs(t - stage_end) > 1e-9)
+    np.testing.assert_allclose(lines(fig, "n=5").get_ydata()[inside], film.evaluate(t[inside])[0])
     assert len(lines(fig, "error").get_xdata()) == 4
+
+
+def test_convergence_n_1_is_drawn_as_its_two_stages():
+    """With one segment the loading chord (stiffness F(delta_m)/delta_m) stores m V0^2/2 at
+    delta^2 = (4/5) delta_m^2: it turns at 2/sqrt(5) = 0.894, short of the node delta_m where
+    restitution starts. The curve is two pieces with the ends marked, not a vertical jump."""
+    from impactcli.tables import normalised_history
+
+    curves = {n: normalised_history(n, 401) for n in (1, 10, 10000)}
+    fig = convergence_figure(curves, [1, 10, 10000], [0.04, 1e-4, 3e-12])
+    t, d = lines(fig, "n=1").get_data()
+    gap = int(np.flatnonzero(np.isnan(d))[0])
+    assert d[gap - 1] == pytest.approx(2 / 5**0.5, rel=1e-9) and d[gap + 1] == 1.0
+    assert t[gap - 1] == pytest.approx(t[gap + 1], rel=1e-9)
+    assert lines(fig, "loading_end:n=1").get_ydata()[0] == pytest.approx(0.894427191)
+    assert lines(fig, "restitution_start:n=1").get_ydata()[0] == 1.0
+    assert "loading ends at 0.894" in lines(fig, "n=1").get_label()
+    # n = 10 (4e-5 short of the node) is not marked; the converged curve lies under the others
+    assert "loading ends" not in lines(fig, "n=10").get_label()
+    assert lines(fig, "n=10000").get_zorder() < lines(fig, "n=10").get_zorder()
+    assert lines(fig, "n=10").get_linestyle() != lines(fig, "n=10000").get_linestyle() or (
+        lines(fig, "n=10").get_color() != lines(fig, "n=10000").get_color()
+    )
+    (inset,) = lines(fig, "n=1").axes.child_axes
+    assert {ln.get_gid() for ln in inset.lines} == {"inset:n=1", "inset:n=10", "inset:n=10000"}
+    assert inset.get_title() == "separation, all n (n = 1 ends earlier)"
 
 
 def test_cli_restitution_plots_the_sweep_it_computes(monkeypatch, tmp_path):
@@ -454,6 +529,28 @@ def test_cli_restitution_plots_the_sweep_it_computes(monkeypatch, tmp_path):
     legend = axes_of(fig, "restitution").get_legend_handles_labels()[1]
     assert any("0.2566 m/s" in label for label in legend)
     assert "D1 = 20 mm, D2 = 40 mm, steel" in fig.get_suptitle()
+
+
+def test_restitution_figure_marks_first_yield_and_labels_the_log_axis(monkeypatch, tmp_path):
+    """make run's sweep, 0.05 to 2.5 m/s (1.7 decades): the V0 axis is labelled at 1, 2 and 5
+    of each decade, and both yield criteria are marked: first yield of the Hertz impact at a
+    peak pressure of 1.6 sigma_y (0.0785 m/s for the sec. 4.4 steel spheres) and the Du &
+    Wang V_y (0.2566 m/s)."""
+    fig = run_main(
+        monkeypatch,
+        "impactcli.cli.impact_cmd",
+        ["restitution", *PAPER, "--v-min", "0.05m/s", "--v-max", "2.5m/s", "--count", "5",
+         "--plot", "r.png", "-o", str(tmp_path / "r.csv")],
+    )  # fmt: skip
+    ax = axes_of(fig, "restitution")
+    lo, hi = ax.get_xlim()
+    ticks = [t for t in ax.xaxis.get_major_locator()() if lo <= t <= hi]
+    labels = [ax.xaxis.get_major_formatter()(t, i) for i, t in enumerate(ticks)]
+    assert labels == ["0.05", "0.1", "0.2", "0.5", "1", "2"]
+    marked = {ln.get_label(): ln.get_xdata()[0] for ln in ax.lines if ln.get_gid() is None}
+    first = [v for label, v in marked.items() if label.startswith("first yield")]
+    assert first == [pytest.approx(0.0785, abs=5e-5)]
+    assert [v for label, v in marked.items() if "V_y" in label] == [pytest.approx(0.2566, 2e-4)]
 
 
 def test_cli_restitution_linear_sweep_has_a_linear_axis(monkeypatch, tmp_path):
@@ -552,7 +649,7 @@ def test_missing_matplotlib_says_how_to_install_it(tmp_path, args):
     )
     assert result.returncode == 2, result.stderr
     assert result.stderr.count("\n") == 1
-    assert "pip install 'impactcli[plot]'" in result.stderr
+    assert "pip install matplotlib" in result.stderr
     assert not target.exists()
 
 
@@ -568,7 +665,7 @@ def test_plotting_function_without_matplotlib_raises_import_error():
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=120
     )
-    assert "pip install 'impactcli[plot]'" in out.stdout, out.stderr
+    assert "pip install matplotlib" in out.stdout, out.stderr
 
 
 IMPORTS_AFTER = (

@@ -131,6 +131,7 @@ def collide2d(
     from impactcli.collision2d import (
         PAPER_ANGLE_SIGN,
         approach_velocity,
+        check_contact_distance,
         collision_summary,
         elastoplastic_restitution,
         oblique_collision,
@@ -156,6 +157,12 @@ def collide2d(
             f"--p1 and --p2 coincide at {_pair(pos1)} m: the centres at contact must differ "
             "to give the line of centres"
         )
+    radii = _radii(spheres)
+    if radii is not None:
+        try:
+            check_contact_distance(pos1, pos2, *radii)
+        except ValueError as exc:
+            raise InputError(f"--p1, --p2, --d1, --d2: {exc}") from None
     if e is not None and model is not None:
         raise InputError("give either --model or --e, not both")
     if e is not None:
@@ -198,7 +205,6 @@ def collide2d(
         "restitution": restitution,
         "angle_convention": CONVENTIONS[paper_angles],
     }
-    radii = _radii(spheres) if plot else None
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -239,6 +245,7 @@ def _plot(path: str, c, vel1, vel2, pos1, pos2, radii, model: str, e: float) -> 
         pos1,
         pos2,
         radii=radii,
+        masses=(float(c.m1), float(c.m2)),
         title=f"Oblique collision ({model}, e = {e:.6g}); angles counter-clockwise from +x",
     )
     save_plot(fig, path)

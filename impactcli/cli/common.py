@@ -19,14 +19,60 @@ class Format(enum.StrEnum):
     json = "json"
 
 
+#: ``-o FILE`` extension -> the format written when --format is not given (no extension:
+#: CSV). Any other extension is refused, since nothing else is written.
+OUTPUT_EXTENSIONS: dict[str, Format] = {
+    ".csv": Format.csv,
+    ".json": Format.json,
+    ".txt": Format.table,
+    "": Format.csv,
+}
+
+
 def resolve_format(requested: Format | None, output: str | None) -> Format:
-    """The format to write: as requested; else from the ``-o`` file's extension (.json ->
-    json, anything else -> csv); else a Rich table on a terminal and CSV when piped."""
+    """The format to write: as requested; else from the ``-o`` file's extension (.csv or
+    none -> csv, .json -> json, .txt -> the table as text; another extension is a one-line
+    :class:`~impactcli.output.InputError`); else a Rich table on a terminal and CSV when
+    piped ('-' is stdout)."""
     if requested is not None:
         return requested
     if output is not None and output != "-":
-        return Format.json if os.path.splitext(output)[1].lower() == ".json" else Format.csv
+        extension = os.path.splitext(output)[1].lower()
+        if extension not in OUTPUT_EXTENSIONS:
+            from impactcli.output import InputError
+
+            raise InputError(
+                f"-o {output}: unknown file type {extension!r}: use .csv, .json or .txt (the "
+                "table as text), or give --format"
+            )
+        return OUTPUT_EXTENSIONS[extension]
     return Format.table if sys.stdout.isatty() else Format.csv
+
+
+SUMMARY_HELP = (
+    "Also write the summary to FILE as CSV: a header of its keys and one row of values in "
+    "SI ('-' is stdout, then give -o FILE for the history)."
+)
+#: ``--summary FILE``: the one-row summary CSV of ``impact elastic/elastoplastic``.
+SummaryFile = Annotated[
+    Optional[str], typer.Option("--summary", metavar="FILE", help=SUMMARY_HELP)
+]
+
+
+def check_summary_file(path: str | None, output: str | None) -> None:
+    """Fail before any work if ``--summary FILE`` is not CSV (.csv or no extension) or
+    would share stdout with the history."""
+    if path is None:
+        return
+    from impactcli.output import InputError
+
+    if path == "-":
+        if output in (None, "-"):
+            raise InputError("--summary -: stdout already carries the history; give -o FILE")
+        return
+    extension = os.path.splitext(path)[1].lower()
+    if extension not in (".csv", ""):
+        raise InputError(f"--summary {path}: the summary is CSV: use a .csv file or '-'")
 
 
 def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.console.Console
@@ -52,7 +98,7 @@ def note(message: str) -> None:
 
 PLOT_HELP = (
     "Also draw the figures to FILE: .png, .svg or .pdf, chosen by the extension "
-    "(needs matplotlib: pip install 'impactcli[plot]')."
+    "(needs matplotlib: pip install matplotlib)."
 )
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import enum
+import math
 from typing import IO, Annotated, Any, Optional
 
 import numpy as np
@@ -12,7 +13,9 @@ from impactcli.cli.common import (
     Format,
     OutputFile,
     PlotFile,
+    SummaryFile,
     check_plot,
+    check_summary_file,
     console,
     note,
     resolve_format,
@@ -92,30 +95,56 @@ def _check_pressure_factor(value: float) -> None:
         raise InputError(f"--p0-factor must be a positive number, got {value}")
 
 
+#: Summary key -> (SI unit, meaning). The screen shows each value with the SI prefix that
+#: suits it (17.13 mm, 727.6 nm); CSV and JSON stay in SI.
 SUMMARY_UNITS = {
-    "contact_time": ("us", 1e6, "contact duration"),
-    "delta_max": ("um", 1e6, "maximum total indentation"),
-    "force_max": ("N", 1.0, "maximum contact force"),
-    "t_max": ("us", 1e6, "time of maximum indentation"),
-    "v_cp": ("m/s", 1.0, "contact-plane velocity (x-frame, sphere 1 moves +x)"),
-    "d1_final": ("um", 1e6, "sphere 1 displacement at separation (toward sphere 2 +)"),
-    "d2_final": ("um", 1e6, "sphere 2 displacement at separation (toward sphere 1 +)"),
-    "v1_final": ("m/s", 1.0, "sphere 1 velocity at separation (toward sphere 2 +)"),
-    "v2_final": ("m/s", 1.0, "sphere 2 velocity at separation (toward sphere 1 +)"),
-    "delta1_max": ("um", 1e6, "maximum indentation of sphere 1"),
-    "delta2_max": ("um", 1e6, "maximum indentation of sphere 2"),
-    "restitution": ("", 1.0, "coefficient of restitution e"),
-    "effective_mass": ("kg", 1.0, "m = (1/m1 + 1/m2)^-1"),
-    "effective_radius": ("mm", 1e3, "R = (1/R1 + 1/R2)^-1"),
-    "effective_modulus": ("GPa", 1e-9, "E* = [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1"),
-    "first_yield_velocity": ("m/s", 1.0, "impact velocity at first yield (1.6 sigma_y)"),
-    "delta_y": ("um", 1e6, "indentation at yield, Du & Wang"),
-    "yield_velocity": ("m/s", 1.0, "yield velocity V_y, Du & Wang"),
-    "delta_res": ("um", 1e6, "residual (permanent) total indentation"),
-    "delta1_res": ("um", 1e6, "permanent indentation of sphere 1"),
-    "delta2_res": ("um", 1e6, "permanent indentation of sphere 2"),
-    "energy_dissipated": ("mJ", 1e3, "kinetic energy lost, (1/2) m V0^2 (1 - e^2)"),
+    "contact_time": ("s", "contact duration"),
+    "delta_max": ("m", "maximum total indentation"),
+    "force_max": ("N", "maximum contact force"),
+    "t_max": ("s", "time of maximum indentation"),
+    "v_cp": ("m/s", "contact-plane velocity (x-frame, sphere 1 moves +x)"),
+    "d1_final": ("m", "sphere 1 displacement at separation (toward sphere 2 +)"),
+    "d2_final": ("m", "sphere 2 displacement at separation (toward sphere 1 +)"),
+    "v1_final": ("m/s", "sphere 1 velocity at separation (toward sphere 2 +)"),
+    "v2_final": ("m/s", "sphere 2 velocity at separation (toward sphere 1 +)"),
+    "delta1_max": ("m", "maximum indentation of sphere 1"),
+    "delta2_max": ("m", "maximum indentation of sphere 2"),
+    "restitution": ("", "coefficient of restitution e"),
+    "effective_mass": ("kg", "m = (1/m1 + 1/m2)^-1"),
+    "effective_radius": ("m", "R = (1/R1 + 1/R2)^-1"),
+    "effective_modulus": ("Pa", "E* = [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1"),
+    "first_yield_velocity": ("m/s", "impact velocity at first yield (1.6 sigma_y)"),
+    "delta_y": ("m", "indentation at yield, Du & Wang"),
+    "yield_velocity": ("m/s", "yield velocity V_y, Du & Wang"),
+    "delta_res": ("m", "residual (permanent) total indentation"),
+    "delta1_res": ("m", "permanent indentation of sphere 1"),
+    "delta2_res": ("m", "permanent indentation of sphere 2"),
+    "energy_dissipated": ("J", "kinetic energy lost, (1/2) m V0^2 (1 - e^2)"),
 }
+
+
+def screen_value(value: float, unit: str, digits: int = 6) -> tuple[str, str]:
+    """``value`` [SI ``unit``] as (number, unit) for the screen, with the SI prefix that puts
+    it in [1, 1000) (grams for kg), ``digits`` significant digits and no negative zero.
+
+    >>> screen_value(0.0171321, "m"), screen_value(7.2759e-07, "m"), screen_value(-0.0, "m/s")
+    (('17.1321', 'mm'), ('727.59', 'nm'), ('0', 'm/s'))
+    >>> screen_value(0.0290423, "kg"), screen_value(0.85611, "")
+    (('29.0423', 'g'), ('0.85611', ''))
+    """
+    from impactcli.formatting import unit_scale
+
+    if not unit or not np.isfinite(value):
+        return _no_negative_zero(f"{value:.{digits}g}"), unit
+    if unit == "kg":
+        value, unit = value * 1e3, "g"
+    scale = unit_scale([value], unit)
+    return _no_negative_zero(f"{value / scale.factor:.{digits}g}"), scale.unit
+
+
+def _no_negative_zero(text: str) -> str:
+    """'-0', '-0.000' (a value that rounds to zero) -> without the sign."""
+    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
 
 
 def _speed(text: str, name: str) -> float:
@@ -136,6 +165,7 @@ def _run(
     fmt: Format | None,
     output: str | None,
     plot: str | None,
+    summary: str | None = None,
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
 ) -> None:
     from impactcli.impact import elastic_impact, elastoplastic_impact
@@ -147,6 +177,7 @@ def _run(
     )
 
     check_plot(plot)
+    check_summary_file(summary, output)
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
     try:
@@ -215,6 +246,8 @@ def _run(
             write_json(stream, doc)
         else:
             _print(stream if output not in (None, "-") else None, result, history, differences)
+    if summary:
+        _write_summary(summary, result)
     if plot:
         _plot(plot, result, history, reference, spheres, method)
 
@@ -254,31 +287,45 @@ HISTORY_UNITS = {
 }
 
 
+#: The compact history's columns by quantity kind: one SI prefix per kind, so that v1 and
+#: v2 (and delta, d1, d2) read in the same unit.
+HISTORY_KINDS = (("t",), ("delta", "d1", "d2"), ("force",), ("v1", "v2"))
+
+
 def _print(stream: IO[str] | None, result, history: dict, check) -> None:
+    """The compact history, the FILM-ODE check, then the summary last (so a terminal of
+    80 columns and 24 lines still shows it without scrolling)."""
     from rich.table import Table
 
     from impactcli.formatting import unit_scale
 
     out = console(stream)
-    title = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
-    how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
-    summary = Table(title=f"{title} impact by {how}", caption=SIGN_HELP)
-    for header in ("quantity", "value", "unit", "meaning"):
-        summary.add_column(header, justify="right" if header == "value" else "left")
-    for key, value in result.summary.items():
-        unit, factor, meaning = SUMMARY_UNITS.get(key, ("", 1.0, ""))
-        summary.add_row(key, f"{value * factor:.6g}", unit, meaning)
-    out.print(summary)
     rows = np.unique(np.linspace(0, len(history["t"]) - 1, 11).round().astype(int))
     compact = Table(title=f"History, {len(rows)} of {len(history['t'])} points (-f csv for all)")
-    columns = []
-    for col in ("t", "delta", "force", "d1", "d2", "v1", "v2"):
-        values = np.asarray(history[col])
-        scale = unit_scale(values, HISTORY_UNITS[col])
-        columns.append(values[rows] / scale.factor)
-        compact.add_column(f"{col} ({scale.unit})", justify="right", no_wrap=True)
+    columns: dict[str, list[str]] = {}
+    headers: dict[str, str] = {}
+    for kind in HISTORY_KINDS:
+        scale = unit_scale([np.asarray(history[c]) for c in kind], HISTORY_UNITS[kind[0]])
+        for col in kind:
+            values = np.asarray(history[col], dtype=float)[rows] / scale.factor
+            largest = float(np.nanmax(np.abs(values))) if values.size else 0.0
+            spread = float(np.nanmax(values) - np.nanmin(values)) if values.size else 0.0
+            # four significant digits of the column's largest value, or of its change when
+            # that is smaller (v1 = 100.0125 -> 99.9903 m/s), but at most seven in all (80
+            # columns); the same decimals down the column; rounding noise (-1e-22) shows as
+            # 0, never -0
+            ref = min(largest, spread) if spread > 0 else largest
+            decimals = 0
+            if ref > 0:
+                most = 6 - math.floor(math.log10(largest))
+                decimals = max(0, min(3 - math.floor(math.log10(ref)), most))
+            columns[col] = [_no_negative_zero(f"{v:.{decimals}f}") for v in values]
+            headers[col] = f"{col} ({scale.unit})"
+    order = ("t", "delta", "force", "d1", "d2", "v1", "v2")
+    for col in order:
+        compact.add_column(headers[col], justify="right", no_wrap=True)
     for r in range(len(rows)):
-        compact.add_row(*(f"{c[r]:.4g}" for c in columns))
+        compact.add_row(*(columns[c][r] for c in order))
     out.print(compact)
     if check:
         table = Table(title="FILM vs SciPy solve_ivp: largest difference / column maximum")
@@ -287,6 +334,22 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         for col, diff in check.items():
             table.add_row(col, f"{diff:.2e}")
         out.print(table)
+    title = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
+    summary = Table(title=f"{title} impact by {how}", caption=SIGN_HELP)
+    for header in ("quantity", "value", "unit", "meaning"):
+        summary.add_column(header, justify="right" if header == "value" else "left")
+    for key, value in result.summary.items():
+        unit, meaning = SUMMARY_UNITS.get(key, ("", ""))
+        summary.add_row(key, *screen_value(value, unit), meaning)
+    out.print(summary)
+
+
+def _write_summary(path: str, result) -> None:
+    """``--summary FILE``: the summary's keys and one row of values (SI), CSV."""
+    keys = list(result.summary)
+    with atomic_output(path) as stream:
+        write_csv(stream, keys, [((), np.array([[result.summary[k] for k in keys]]))])
 
 
 def _plot(
@@ -363,6 +426,7 @@ def elastic(
     fmt: FMT = None,
     output: OUT = None,
     plot: PLOT = None,
+    summary: SummaryFile = None,
 ) -> None:
     """Elastic (Hertz) impact of two spheres: each sphere's rigid-body motion and indentation.
 
@@ -379,7 +443,7 @@ def elastic(
     """
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
-        fmt=fmt, output=output, plot=plot,
+        fmt=fmt, output=output, plot=plot, summary=summary,
     )  # fmt: skip
 
 
@@ -398,6 +462,7 @@ def elastoplastic(
     fmt: FMT = None,
     output: OUT = None,
     plot: PLOT = None,
+    summary: SummaryFile = None,
 ) -> None:
     """Elastoplastic impact (Du & Wang contact, paper eq. 16): each sphere's motion, its
     maximum and permanent indentation, and the coefficient of restitution.
@@ -413,7 +478,8 @@ def elastoplastic(
     _check_pressure_factor(p0_factor)
     _run(
         "elastoplastic", spheres, n=n, points=points, method=method, check=check,
-        split=split, fmt=fmt, output=output, plot=plot, pressure_factor=p0_factor,
+        split=split, fmt=fmt, output=output, plot=plot, summary=summary,
+        pressure_factor=p0_factor,
     )  # fmt: skip
 
 
@@ -534,7 +600,7 @@ def _plot_sweep(
     """e, contact time and permanent indentation against V0, written to ``path``."""
     from impactcli.formatting import format_quantity
     from impactcli.plots import restitution_figure
-    from impactcli.sweep import sweep_yield_velocity
+    from impactcli.sweep import sweep_first_yield_velocity, sweep_yield_velocity
 
     parts = [
         f"D1 = {format_quantity(s1.diameter, 'm')}",
@@ -553,6 +619,7 @@ def _plot_sweep(
         title=f"Restitution against impact velocity (Du & Wang, FILM, n = {n}): "
         + ", ".join(parts),
         yield_velocity=sweep_yield_velocity(s1, s2, pressure_factor=p0_factor),
+        first_yield_velocity=sweep_first_yield_velocity(s1, s2),
         log_velocity=not linear,
     )
     save_plot(fig, path)

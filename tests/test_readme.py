@@ -1,0 +1,176 @@
+"""The README works verbatim: every shell command in its code blocks runs as written.
+
+Each command of a ```sh block runs in bash, in order, in one scratch directory whose PATH
+starts with an ``impact`` that is this interpreter's ``python -m impactcli`` (with this
+checkout importable), as after ``make run`` and ``source .venv/bin/activate``; the scratch
+directory also holds ``.venv/bin/impact`` and ``.venv/bin/activate`` doing the same, and the
+README's example ``collisions.csv`` (its ```csv block) with a Parquet copy. Commands that set
+up the machine are checked, not run: ``make TARGET`` must be a target of the Makefile (``make
+-n``), ``pip install '.[extras]'`` must name extras of pyproject.toml. A command carrying the
+comment ``# placeholder`` stands for the reader's own (a program, a cluster) and is skipped.
+The ```python blocks run too, each as one script.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
+FENCE = re.compile(r"^(?P<indent>\s*)```(?P<lang>[\w-]*)\s*$")
+
+
+def code_blocks(text: str) -> list[tuple[str, int, list[str]]]:
+    """(language, first line number, lines with the fence's indentation removed) per block."""
+    blocks: list[tuple[str, int, list[str]]] = []
+    lines = text.splitlines()
+    i = 0
+    while i < len(lines):
+        opening = FENCE.match(lines[i])
+        if not opening or not opening["lang"]:
+            i += 1
+            continue
+        indent, body, start = len(opening["indent"]), [], i + 2
+        i += 1
+        while i < len(lines) and not FENCE.match(lines[i]):
+            body.append(lines[i][indent:])
+            i += 1
+        blocks.append((opening["lang"], start, body))
+        i += 1
+    return blocks
+
+
+def shell_commands(text: str) -> list[tuple[int, str]]:
+    """(README line number, command) for each command of the ```sh blocks, with
+    backslash-continued lines joined and comment-only lines dropped."""
+    commands: list[tuple[int, str]] = []
+    for lang, start, body in code_blocks(text):
+        if lang not in ("sh", "bash", "shell", "console"):
+            continue
+        pending, first = "", start
+        for number, line in enumerate(body, start):
+            if not pending:
+                if not line.strip() or line.lstrip().startswith("#"):
+                    continue
+                first = number
+            if line.rstrip().endswith("\\"):
+                pending += line.rstrip()[:-1] + " "
+                continue
+            commands.append((first, pending + line))
+            pending = ""
+    return commands
+
+
+TEXT = README.read_text()
+COMMANDS = shell_commands(TEXT)
+PYTHON_BLOCKS = [(start, "\n".join(body)) for lang, start, body in code_blocks(TEXT)
+                 if lang == "python"]  # fmt: skip
+
+
+def _has(module: str) -> bool:
+    try:
+        __import__(module)
+    except ImportError:
+        return False
+    return True
+
+
+@pytest.fixture(scope="module")
+def workdir(tmp_path_factory) -> Path:
+    """A scratch directory set up as the README's reader has it after ``make run``."""
+    work = tmp_path_factory.mktemp("readme")
+    venv_bin = work / ".venv" / "bin"
+    venv_bin.mkdir(parents=True)
+    shim = venv_bin / "impact"
+    shim.write_text(f'#!/bin/sh\nexec "{sys.executable}" -m impactcli "$@"\n')
+    shim.chmod(0o755)
+    (venv_bin / "activate").write_text(f'PATH="{venv_bin}:$PATH"\nexport PATH\n')
+    csv_blocks = [body for lang, _, body in code_blocks(TEXT) if lang == "csv"]
+    assert csv_blocks, "the README shows an example input table in a ```csv block"
+    (work / "collisions.csv").write_text("\n".join(csv_blocks[0]) + "\n")
+    if _has("pyarrow"):
+        import pandas as pd
+
+        frame = pd.read_csv(work / "collisions.csv", dtype=str, keep_default_na=False)
+        frame.to_parquet(work / "collisions.parquet")
+    return work
+
+
+def _environment(work: Path) -> dict[str, str]:
+    path = os.pathsep.join([str(work / ".venv" / "bin"), os.environ.get("PATH", "")])
+    pythonpath = os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))
+    return {**os.environ, "PATH": path, "PYTHONPATH": pythonpath, "COLUMNS": "100"}
+
+
+def test_the_readme_starts_with_make_run_and_make_test():
+    assert [command.split("#")[0].strip() for _, command in COMMANDS[:2]] == [
+        "make run", "make test"
+    ]  # fmt: skip
+
+
+def test_commands_were_found():
+    """The extraction sees the README's commands (guards against a silent empty list)."""
+    assert len(COMMANDS) > 20
+    assert any(c.startswith("impact collide2d") and "--paper-angles" in c for _, c in COMMANDS)
+
+
+def test_make_bench_leaves_the_readme_alone_unless_asked():
+    if shutil.which("make") is None:
+        pytest.skip("no make")
+    plain = subprocess.run(["make", "-n", "-C", str(ROOT), "bench"], capture_output=True,
+                           text=True, check=True).stdout  # fmt: skip
+    asked = subprocess.run(["make", "-n", "-C", str(ROOT), "bench", "README=1"],
+                           capture_output=True, text=True, check=True).stdout  # fmt: skip
+    assert "--readme" not in plain and "--readme README.md" in asked
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("line,command", COMMANDS, ids=[f"line{n}" for n, _ in COMMANDS])
+def test_readme_shell_command_runs_as_written(workdir, line, command):
+    if "# placeholder" in command:
+        pytest.skip(f"README line {line} is a placeholder")
+    words = command.split("#")[0].split()
+    if words[0] == "make":
+        if shutil.which("make") is None:
+            pytest.skip("no make")
+        # the targets install and run for minutes: check that make knows them, run nothing
+        result = subprocess.run(["make", "-n", "-C", str(ROOT), *words[1:]],
+                                capture_output=True, text=True)  # fmt: skip
+        assert result.returncode == 0, f"README line {line}: {command}\n{result.stderr}"
+        return
+    if words[:2] == ["pip", "install"]:
+        extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
+            "optional-dependencies"
+        ]
+        for spec in words[2:]:
+            found = re.fullmatch(r"'?\.\[(?P<extras>[\w,]+)\]'?", spec)
+            assert found, f"README line {line}: install from the checkout, '.[extra]': {spec}"
+            assert set(found["extras"].split(",")) <= set(extras), f"README line {line}"
+        return
+    if "parquet" in command and not _has("pyarrow"):
+        pytest.skip("needs pyarrow")
+    if "--plot" in command and not _has("matplotlib"):
+        pytest.skip("needs matplotlib")
+    result = subprocess.run(["bash", "-c", command], cwd=workdir, env=_environment(workdir),
+                            capture_output=True, text=True, timeout=600)  # fmt: skip
+    assert result.returncode == 0, f"README line {line}: {command}\n{result.stderr}"
+    assert "Traceback" not in result.stderr
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("line,code", PYTHON_BLOCKS, ids=[f"line{n}" for n, _ in PYTHON_BLOCKS])
+def test_readme_python_block_runs(workdir, line, code):
+    if "impactcli.plots" in code and not _has("matplotlib"):
+        pytest.skip("needs matplotlib")
+    result = subprocess.run([sys.executable, "-c", code], cwd=workdir,
+                            env=_environment(workdir), capture_output=True, text=True,
+                            timeout=600)  # fmt: skip
+    assert result.returncode == 0, f"README line {line}\n{result.stderr}"
