@@ -191,8 +191,9 @@ def yield_limit_diameter(
     k = resize - 1
     if densities[k] is None:
         raise ValueError(f"sphere {resize}: its density is needed to change its diameter")
-    modulus = effective_modulus(youngs_moduli[0], poisson_ratios[0], youngs_moduli[1],
-                                poisson_ratios[1])
+    modulus = effective_modulus(
+        youngs_moduli[0], poisson_ratios[0], youngs_moduli[1], poisson_ratios[1]
+    )
 
     def v_yield(diameter: NDArray) -> NDArray:
         d = [np.asarray(diameters[0], dtype=float), np.asarray(diameters[1], dtype=float)]

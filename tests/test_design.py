@@ -50,8 +50,16 @@ def test_hertz_contact_time_against_integration():
         return y[0]
 
     back.terminal, back.direction = True, -1
-    sol = solve_ivp(rhs, (0, 1e-3), [0.0, v0], events=back, rtol=1e-12, atol=1e-18,
-                    method="DOP853", first_step=1e-9)
+    sol = solve_ivp(
+        rhs,
+        (0, 1e-3),
+        [0.0, v0],
+        events=back,
+        rtol=1e-12,
+        atol=1e-18,
+        method="DOP853",
+        first_step=1e-9,
+    )
     assert float(hertz_contact_time(m, r, e, v0)) == pytest.approx(sol.t_events[0][0], rel=1e-8)
     assert float(hertz_contact_time(m, r, e, v0)) * 1e6 == pytest.approx(171.32, abs=0.005)
 
@@ -111,8 +119,9 @@ def test_yield_limit_diameter_is_where_first_yield_meets_the_velocity():
 
     def v_yield(d1: float) -> float:
         m = float(effective_mass(sphere_mass(d1, 7800.0), sphere_mass(0.04, 7800.0)))
-        return float(first_yield_velocities(m, float(effective_radius(d1 / 2, 0.02)), e,
-                                            1e9, None)[0])
+        return float(
+            first_yield_velocities(m, float(effective_radius(d1 / 2, 0.02)), e, 1e9, None)[0]
+        )
 
     v0 = 0.1
     d1 = yield_limit_diameter(v0, **args)

@@ -34,7 +34,9 @@ def _energies(result, points=4001, split="mass"):
 
     dm = float(result.plan.delta_max)
     shares = sphere_shares(
-        split, result.mass_ratios, (result.sphere1.compliance, result.sphere2.compliance),
+        split,
+        result.mass_ratios,
+        (result.sphere1.compliance, result.sphere2.compliance),
         (result.sphere1.yield_strength, result.sphere2.yield_strength),
     )
     cols = energy_history(
