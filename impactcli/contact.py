@@ -96,16 +96,20 @@ def _hertz_velocity(mass: ArrayLike, stiffness: ArrayLike, delta: ArrayLike) -> 
 
 
 def first_yield_velocity(
-    mass: ArrayLike, radius: ArrayLike, modulus: ArrayLike, yield_strength: ArrayLike
+    mass: ArrayLike,
+    radius: ArrayLike,
+    modulus: ArrayLike,
+    yield_strength: ArrayLike,
+    pressure_factor: float = FIRST_YIELD_PRESSURE_FACTOR,
 ) -> NDArray:
     """Impact velocity at which yield starts in an elastic (Hertz) impact, [m/s].
 
-    docs/method.md §7.1: the Hertz peak pressure reaches 1.6 sigma_y at
-    delta_Y = pi^2 R (1.6 sigma_y)^2 / (4 E*^2);
+    docs/method.md §7.1: the Hertz peak pressure reaches 1.6 sigma_y (``pressure_factor``
+    sigma_y) at delta_Y = pi^2 R (1.6 sigma_y)^2 / (4 E*^2);
     V_Y = sqrt((2/m)(2/5) K_h delta_Y^2.5).
     """
     r, e = np.asarray(radius, dtype=float), np.asarray(modulus, dtype=float)
-    p = FIRST_YIELD_PRESSURE_FACTOR * np.asarray(yield_strength, dtype=float)
+    p = pressure_factor * np.asarray(yield_strength, dtype=float)
     delta_y = np.pi**2 * r * p**2 / (4.0 * e**2)
     return _hertz_velocity(mass, hertz_stiffness(e, r), delta_y)
 

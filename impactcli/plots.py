@@ -178,8 +178,7 @@ def _reference(
             continue
         ax.plot(
             x / xs.factor,
-            (np.asarray(reference[col], dtype=float) - (offsets or {}).get(col, 0.0))
-            / ys.factor,
+            (np.asarray(reference[col], dtype=float) - (offsets or {}).get(col, 0.0)) / ys.factor,
             linestyle="none",
             marker="o",
             markersize=3.5,
@@ -285,18 +284,25 @@ def impact_figure(
         t,
         ts,
         [
-            ("v1", "sphere 1" + _initial("V_1", v0, "v1", "m/s"), h["v1"] - v0.get("v1", 0.0),
-             {"color": c1}),
-            ("v2", "sphere 2" + _initial("V_2", v0, "v2", "m/s"), h["v2"] - v0.get("v2", 0.0),
-             {"color": c2}),
+            (
+                "v1",
+                "sphere 1" + _initial("V_1", v0, "v1", "m/s"),
+                h["v1"] - v0.get("v1", 0.0),
+                {"color": c1},
+            ),
+            (
+                "v2",
+                "sphere 2" + _initial("V_2", v0, "v2", "m/s"),
+                h["v2"] - v0.get("v2", 0.0),
+                {"color": c2},
+            ),
         ],  # fmt: skip
         "velocity change $\\dot d_i - V_i$" if v0 else "velocity $\\dot d_i$",
         "m/s",
     )
     _reference(ax_v, t, ts, ys, ref, [("v1", c1), ("v2", c2)], v0)
     ax_v.set_title(
-        f"(b) Rigid-body velocities{' less their initial $V_i$' if v0 else ''} "
-        f"(paper {figs['v']})",
+        f"(b) Rigid-body velocities{' less their initial $V_i$' if v0 else ''} (paper {figs['v']})",
         fontsize="medium",
     )
 

@@ -54,9 +54,7 @@ SUMMARY_HELP = (
     "SI ('-' is stdout, then give -o FILE for the history)."
 )
 #: ``--summary FILE``: the one-row summary CSV of ``impact elastic/elastoplastic``.
-SummaryFile = Annotated[
-    Optional[str], typer.Option("--summary", metavar="FILE", help=SUMMARY_HELP)
-]
+SummaryFile = Annotated[Optional[str], typer.Option("--summary", metavar="FILE", help=SUMMARY_HELP)]
 
 
 def check_summary_file(path: str | None, output: str | None) -> None:

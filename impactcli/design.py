@@ -1,0 +1,226 @@
+"""Design questions: which sphere yields first, how fast or how big it may be and stay
+elastic, and the time step of a DEM simulation of such particles.
+
+Pure functions on SI floats and arrays (they broadcast). The first-yield criterion is the
+one :func:`impactcli.contact.first_yield_velocity` uses: yield starts under the contact when
+the Hertz peak pressure p_max = 2 E* a / (pi R) reaches 1.6 sigma_y (Johnson 1985, sec.
+6.2; Stronge 2000, sec. 6.2). Both spheres carry the same contact pressure, so the sphere
+with the lower yield strength yields first; a sphere without a yield strength (glass,
+ceramics) is brittle: it does not yield, and fracture is outside these models.
+
+References
+----------
+K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985.
+W. J. Stronge, *Impact Mechanics*, Cambridge University Press, 2000.
+C. Thornton and C. W. Randall, "Applications of theoretical contact mechanics to solid
+particle system simulation", in *Micromechanics of Granular Materials*, Elsevier, 1988,
+pp. 133-142 (the Rayleigh time step of DEM).
+Y. Li, Y. Xu and C. Thornton, "A comparison of discrete element simulations and
+experiments for 'sandpiles' composed of spherical particles", Powder Technol. 160 (2005)
+219-228, doi:10.1016/j.powtec.2005.09.002 (T_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766)).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.contact import (
+    FIRST_YIELD_PRESSURE_FACTOR,
+    effective_mass,
+    effective_modulus,
+    effective_radius,
+    first_yield_velocity,
+    hertz_maximum_indentation,
+    sphere_mass,
+)
+from impactcli.laws import hertz_stiffness
+
+__all__ = [
+    "HERTZ_CONTACT_TIME_FACTOR",
+    "RAYLEIGH_FRACTIONS",
+    "CONTACT_TIME_DIVISORS",
+    "hertz_contact_time",
+    "rayleigh_time_step",
+    "first_yield_velocities",
+    "yield_limit_diameter",
+]
+
+#: t_c V0 / delta_m = 2 (2/5) B(2/5, 1/2) for Hertz contact (docs/method.md §3), [-].
+HERTZ_CONTACT_TIME_FACTOR = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
+
+#: Fractions of the Rayleigh time step commonly taken as the DEM time step, [-]
+#: (20 % to 40 % is the range usually quoted for Hertz-Mindlin DEM).
+RAYLEIGH_FRACTIONS: tuple[float, ...] = (0.1, 0.2, 0.3, 0.4)
+#: Divisors of the contact duration: a DEM time step of t_c/20 to t_c/50 resolves a
+#: collision with 20 to 50 steps, [-].
+CONTACT_TIME_DIVISORS: tuple[int, ...] = (20, 50)
+
+
+def rayleigh_time_step(
+    radius: ArrayLike, youngs_modulus: ArrayLike, poisson_ratio: ArrayLike, density: ArrayLike
+) -> NDArray:
+    """Rayleigh time step of a sphere, [s]: the time a Rayleigh surface wave takes to cross
+    a hemisphere,
+
+    .. math:: T_R = \\frac{\\pi R \\sqrt{\\rho / G}}{0.1631 \\nu + 0.8766},
+              \\quad G = \\frac{E}{2 (1 + \\nu)}
+
+    (Thornton & Randall 1988; Li, Xu & Thornton 2005, eq. 16). The DEM time step is a
+    fraction of the smallest T_R of the particles (:data:`RAYLEIGH_FRACTIONS`).
+
+    Parameters
+    ----------
+    radius : R, [m]
+    youngs_modulus : E, [Pa]
+    poisson_ratio : nu, [-]
+    density : rho, [kg/m^3]
+
+    Examples
+    --------
+    A 2 mm steel sphere (E = 210 GPa, nu = 0.3, rho = 7800 kg/m^3):
+
+    >>> round(float(rayleigh_time_step(1e-3, 210e9, 0.3, 7800.0)) * 1e6, 4)
+    1.0548
+    """
+    r = np.asarray(radius, dtype=float)
+    e, nu = np.asarray(youngs_modulus, dtype=float), np.asarray(poisson_ratio, dtype=float)
+    shear = e / (2.0 * (1.0 + nu))
+    return np.pi * r * np.sqrt(np.asarray(density, dtype=float) / shear) / (0.1631 * nu + 0.8766)
+
+
+def hertz_contact_time(
+    mass: ArrayLike, radius: ArrayLike, modulus: ArrayLike, impact_velocity: ArrayLike
+) -> NDArray:
+    """Exact duration of an elastic Hertz impact, [s] (docs/method.md §3):
+
+    .. math:: t_c = 2 \\cdot \\tfrac{2}{5} B(\\tfrac{2}{5}, \\tfrac{1}{2})\\,
+              \\delta_m / V_0 = 2.9432752\\, \\delta_m / V_0,
+              \\quad \\delta_m = (5 m V_0^2 / 4 K_h)^{2/5}
+
+    Parameters
+    ----------
+    mass : effective mass m, [kg]
+    radius : effective radius R, [m]
+    modulus : effective modulus E*, [Pa]
+    impact_velocity : V0 > 0, [m/s]
+
+    Examples
+    --------
+    The paper's sec. 4.3 impact (steel, D1 = 20 mm, D2 = 40 mm, V0 = 12.5 mm/s):
+
+    >>> round(float(hertz_contact_time(0.0290423, 0.02 / 3, 115.385e9, 0.0125)) * 1e6, 2)
+    171.32
+    """
+    v0 = np.asarray(impact_velocity, dtype=float)
+    stiffness = hertz_stiffness(modulus, radius)
+    return HERTZ_CONTACT_TIME_FACTOR * hertz_maximum_indentation(mass, v0, stiffness) / v0
+
+
+def first_yield_velocities(
+    mass: ArrayLike,
+    radius: ArrayLike,
+    modulus: ArrayLike,
+    yield_strength1: ArrayLike | None,
+    yield_strength2: ArrayLike | None,
+    pressure_factor: float = FIRST_YIELD_PRESSURE_FACTOR,
+) -> tuple[NDArray, NDArray]:
+    """The impact velocity at which each sphere starts to yield, [m/s].
+
+    Both spheres carry the same Hertz pressure, so sphere i yields when the peak pressure
+    reaches ``pressure_factor`` sigma_y,i: V_Y,i = sqrt((2/m)(2/5) K_h delta_Y,i^2.5) with
+    delta_Y,i = pi^2 R (1.6 sigma_y,i)^2 / (4 E*^2) (docs/method.md §7). A sphere with no
+    yield strength (``None`` or NaN: brittle) never yields here: its entry is ``inf``.
+
+    Parameters
+    ----------
+    mass, radius, modulus : effective m [kg], R [m], E* [Pa] of the pair
+    yield_strength1, yield_strength2 : sigma_y of each sphere, [Pa], or ``None``
+
+    Examples
+    --------
+    Glass (no yield strength) on steel (sigma_y = 1 GPa): only the steel yields.
+
+    >>> v_glass, v_steel = first_yield_velocities(1e-4, 1.5e-3, 50e9, None, 1e9)
+    >>> bool(np.isinf(v_glass)), bool(np.isfinite(v_steel))
+    (True, True)
+    """
+
+    def one(sigma: ArrayLike | None) -> NDArray:
+        if sigma is None:
+            return np.full(np.broadcast(mass, radius, modulus).shape, np.inf)
+        s = np.asarray(sigma, dtype=float)
+        with np.errstate(invalid="ignore"):
+            v = first_yield_velocity(mass, radius, modulus, s, pressure_factor)
+        return np.where(np.isnan(s), np.inf, v)
+
+    return one(yield_strength1), one(yield_strength2)
+
+
+def yield_limit_diameter(
+    velocity: float,
+    which: int,
+    resize: int,
+    diameters: tuple[float, float],
+    youngs_moduli: tuple[float, float],
+    poisson_ratios: tuple[float, float],
+    densities: tuple[float | None, float | None],
+    masses: tuple[float | None, float | None],
+    yield_strength: float,
+    pressure_factor: float = FIRST_YIELD_PRESSURE_FACTOR,
+) -> float:
+    """The largest diameter of sphere ``resize`` for which sphere ``which`` stays elastic in
+    an impact at ``velocity``, [m]; ``inf`` when no size yields it, ``0`` when every size
+    does.
+
+    The first-yield velocity scales as V_Y^2 ~ R^3 / m (same E* and sigma_y), so it
+    depends on the size only through the effective radius and mass. For a sphere on a flat,
+    fixed target (R = R_1, m = m_1 ~ R_1^3) it does not depend on the size at all.
+
+    Parameters
+    ----------
+    velocity : impact velocity V0, [m/s]
+    which : the sphere that must stay elastic, 1 or 2
+    resize : the sphere whose diameter is sought, 1 or 2 (its mass follows from its density)
+    diameters, youngs_moduli, poisson_ratios, densities, masses : of spheres 1 and 2, SI
+        (the entry of ``resize`` in ``diameters`` and ``masses`` is ignored)
+    yield_strength : sigma_y of sphere ``which``, [Pa]
+    """
+    k = resize - 1
+    if densities[k] is None:
+        raise ValueError(f"sphere {resize}: its density is needed to change its diameter")
+    modulus = effective_modulus(
+        youngs_moduli[0], poisson_ratios[0], youngs_moduli[1], poisson_ratios[1]
+    )
+
+    def v_yield(diameter: NDArray) -> NDArray:
+        d = [np.asarray(diameters[0], dtype=float), np.asarray(diameters[1], dtype=float)]
+        m = [masses[0], masses[1]]
+        d[k] = diameter
+        m[k] = sphere_mass(diameter, densities[k])
+        for i in (0, 1):
+            if m[i] is None:
+                m[i] = sphere_mass(d[i], densities[i])
+        mass = effective_mass(m[0], m[1])
+        radius = effective_radius(0.5 * d[0], 0.5 * d[1])
+        return first_yield_velocity(mass, radius, modulus, yield_strength, pressure_factor)
+
+    grid = np.geomspace(1e-9, 1e3, 241)
+    elastic = v_yield(grid) >= velocity
+    if elastic.all():
+        return math.inf
+    if not elastic[0]:
+        return 0.0
+    first = int(np.argmin(elastic))  # first size that yields
+    lo, hi = math.log(grid[first - 1]), math.log(grid[first])
+    for _ in range(200):  # bisection on log D: V_Y is continuous in D
+        mid = 0.5 * (lo + hi)
+        if float(v_yield(np.exp(mid))) >= velocity:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-14:
+            break
+    return float(math.exp(lo))

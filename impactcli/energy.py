@@ -1,0 +1,252 @@
+"""Each sphere's share: kinetic energy, stored (recoverable) strain energy and dissipated
+energy during an impact, and how the indentation splits between the spheres.
+
+Pure functions on SI arrays. The energy balance they express (docs/method.md §9):
+
+    ke1 + ke2 + strain_energy + dissipated = ke1(0) + ke2(0)     at every time,
+
+where ke_i = (1/2) m_i d_i'^2 is sphere i's kinetic energy in the frame of the inputs,
+``strain_energy`` the part of the contact work that unloading from the present state would
+give back, and ``dissipated`` the rest (plastic work, and viscous work for rate-dependent
+laws). The contact work done up to time t is W(t) = integral of F d(delta) along the path;
+the relative kinetic energy is (1/2) m delta'^2 and the kinetic energy of the centre of mass
+does not change, so the balance is (1/2) m delta'^2 + W(t) = (1/2) m V0^2.
+
+Splits of the indentation delta = delta_1 + delta_2 between the spheres (paper eq. 4):
+
+- ``mass``: the paper's contact plane moving at V_cp, delta_i = (m/m_i) delta;
+- ``compliance``: Hertz, delta_i proportional to (1 - nu_i^2)/E_i;
+- ``yield``: the recoverable part delta - delta_p by compliance, the permanent part delta_p
+  to the sphere that yields (:func:`yield_shares`).
+
+Each is written as two pairs of fractions, ``elastic`` (of delta - delta_p) and
+``permanent`` (of delta_p): delta_i = e_i (delta - delta_p) + p_i delta_p. For ``mass`` and
+``compliance`` both pairs are the same, so delta_i = f_i delta.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "YIELD_TIE_TOLERANCE",
+    "kinetic_energy",
+    "sphere_shares",
+    "yield_shares",
+]
+
+#: Yield strengths within this relative difference count as equal (:func:`yield_shares`).
+YIELD_TIE_TOLERANCE = 0.02
+
+
+def kinetic_energy(mass: ArrayLike, velocity: ArrayLike) -> NDArray:
+    """(1/2) m v^2, [J]; zero for a fixed body (m = inf, v = 0).
+
+    >>> float(kinetic_energy(2.0, 3.0)), float(kinetic_energy(np.inf, 0.0))
+    (9.0, 0.0)
+    """
+    m, v = np.asarray(mass, dtype=float), np.asarray(velocity, dtype=float)
+    with np.errstate(invalid="ignore"):
+        return np.where(np.isinf(m) & (v == 0.0), 0.0, 0.5 * m * v * v)
+
+
+def yield_shares(
+    yield_strength1: float | None,
+    yield_strength2: float | None,
+    tolerance: float = YIELD_TIE_TOLERANCE,
+) -> tuple[float, float]:
+    """Share of the permanent indentation taken by each sphere, [-]; they add up to 1.
+
+    Both spheres carry the same contact pressure, so the one with the lower yield strength
+    yields first and takes the permanent indentation. A sphere with no yield strength
+    (``None``: glass, ceramics) is brittle and is taken not to yield. When the yield
+    strengths are equal to within ``tolerance`` (2 %, less than the scatter of measured
+    yield strengths), both spheres yield, and ``(nan, nan)`` tells the caller to share the
+    permanent part as it shares the recoverable one (by compliance): for like materials
+    the stress fields under the contact are mirror images, so both bodies deform alike.
+
+    Raises
+    ------
+    ValueError
+        Neither sphere has a yield strength: nothing can yield.
+
+    Examples
+    --------
+    >>> yield_shares(None, 1e9)     # glass on steel: the steel takes the dent
+    (0.0, 1.0)
+    >>> yield_shares(276e6, 1e9)    # aluminium on steel: the aluminium does
+    (1.0, 0.0)
+    """
+    if yield_strength1 is None and yield_strength2 is None:
+        raise ValueError(
+            "neither sphere has a yield strength, so neither can yield: give --sy1 or --sy2"
+        )
+    if yield_strength1 is None:
+        return 0.0, 1.0
+    if yield_strength2 is None:
+        return 1.0, 0.0
+    low, high = sorted((float(yield_strength1), float(yield_strength2)))
+    if high <= low * (1.0 + tolerance):
+        return float("nan"), float("nan")
+    return (1.0, 0.0) if yield_strength1 < yield_strength2 else (0.0, 1.0)
+
+
+def sphere_shares(
+    split: str,
+    mass_ratios: tuple[float, float],
+    compliances: tuple[float, float],
+    yield_strengths: tuple[float | None, float | None] = (None, None),
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The ``(elastic, permanent)`` fraction pairs of a split (module docstring), [-].
+
+    Parameters
+    ----------
+    split : ``mass``, ``compliance`` or ``yield``
+    mass_ratios : m/m_1 and m/m_2 (they add up to 1)
+    compliances : (1 - nu_i^2)/E_i of each sphere, [1/Pa]
+    yield_strengths : sigma_y of each sphere, [Pa], or ``None`` (for ``yield``)
+
+    Examples
+    --------
+    >>> sphere_shares("yield", (0.9, 0.1), (1.0, 3.0), (None, 1e9))
+    ((0.25, 0.75), (0.0, 1.0))
+    """
+    c1, c2 = compliances
+    by_compliance = (c1 / (c1 + c2), c2 / (c1 + c2))
+    if split == "mass":
+        shares = (float(mass_ratios[0]), float(mass_ratios[1]))
+        return shares, shares
+    if split == "compliance":
+        return by_compliance, by_compliance
+    if split == "yield":
+        p1, p2 = yield_shares(*yield_strengths)
+        permanent = by_compliance if np.isnan(p1) else (p1, p2)
+        return by_compliance, permanent
+    raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
+
+
+def film_contact_work(stages, laws, t: ArrayLike) -> NDArray:
+    """Work done by the contact force up to times ``t`` along a FILM solution, [J].
+
+    FILM integrates, on each segment, the chord-linearised law F = K_rs (delta - C_rs)
+    (eqs. 5-7) from the node state given by the exact energy balance (eq. 13e). The work
+    consistent with it is the exact work of the law up to the segment's start node plus the
+    chord work from there:
+
+        W(t) = W(0, delta_r) + (K_rs/2) [(delta - C_rs)^2 - (delta_r - C_rs)^2],
+
+    so that (1/2) m delta'^2 + W(t) = (1/2) m V0^2 holds to rounding at every time (in each
+    segment the oscillator conserves its own energy, and at each node the energy balance
+    of eq. 13e is exact). Within a segment it differs from the exact W(0, delta(t)) by
+    FILM's linearisation error.
+
+    Parameters
+    ----------
+    stages : the :class:`~impactcli.film.FilmStage` objects of one impact, in time order
+    laws : the force law of each stage (``work(start, end)``, [J])
+    t : times, [s]; clamped to the contact
+    """
+    t = np.asarray(t, dtype=float)
+    base = 0.0
+    starts, ends, node_work, deltas, stiff, offset = [], [], [], [], [], []
+    for stage, law in zip(stages, laws):
+        a = stage.delta[0]
+        work = base + np.reshape(law.work(a, stage.delta), -1)
+        starts.append(stage.time[:-1])
+        ends.append(stage.time[1:])
+        node_work.append(work[:-1])
+        deltas.append(stage.delta[:-1])
+        stiff.append(stage.stiffness)
+        offset.append(stage.offset)
+        base = float(work[-1])
+    starts, ends = np.concatenate(starts), np.concatenate(ends)
+    node_work, deltas = np.concatenate(node_work), np.concatenate(deltas)
+    stiff, offset = np.concatenate(stiff), np.concatenate(offset)
+    from impactcli.film import FilmSolution
+
+    film = FilmSolution(tuple(stages))
+    delta, _ = film.evaluate(t)
+    t0, t1 = film.start_time, film.end_time
+    tc = np.clip(t, t0, t1)
+    slack = 8.0 * np.finfo(float).eps * max(abs(t0), abs(t1))
+    seg = np.clip(np.searchsorted(starts, tc + slack, side="right") - 1, 0, starts.size - 1)
+    d_r, c = deltas[seg], offset[seg]
+    work = node_work[seg] + 0.5 * stiff[seg] * (delta - d_r) * (delta + d_r - 2.0 * c)
+    return np.where(tc + slack >= t1, base, work)
+
+
+def loading_work(laws, bounds, delta: ArrayLike) -> NDArray:
+    """Exact work of the loading law from 0 to ``delta``, [J].
+
+    Parameters
+    ----------
+    laws : force law of each loading stage, in order
+    bounds : ``(start, end)`` indentation of each loading stage, [m]
+    delta : indentation, [m]; beyond the last stage the last law is extended
+    """
+    delta = np.asarray(delta, dtype=float)
+    work = np.zeros_like(delta)
+    done = 0.0
+    for k, (law, (a, b)) in enumerate(zip(laws, bounds)):
+        last = k == len(laws) - 1
+        inside = (delta > a) & ((delta <= b) | last)
+        if np.any(inside):
+            work[inside] = done + np.reshape(law.work(a, delta[inside]), -1)
+        done += float(np.reshape(law.work(a, b), -1)[0])
+    return work
+
+
+def energy_history(
+    t: ArrayLike,
+    delta: ArrayLike,
+    contact_work: ArrayLike,
+    t_max: float,
+    delta_max: float,
+    loading: NDArray,
+    recoverable: NDArray,
+    recoverable_max: float,
+    loading_max: float,
+    masses: tuple[float, float],
+    velocities: tuple[ArrayLike, ArrayLike],
+    shares: tuple[tuple[float, float], tuple[float, float]],
+) -> dict[str, NDArray]:
+    """Energy columns of an impact history (module docstring), SI.
+
+    Parameters
+    ----------
+    t, delta : times [s] and indentation [m] of the history
+    contact_work : work done by the contact force up to each time, W(t), [J]
+        (:func:`film_contact_work` for FILM, the exact work for an integration)
+    t_max, delta_max : time and value of the maximum indentation, [s], [m]
+    loading : exact loading work W(0, delta) at each time's delta, [J]
+    recoverable : work that unloading from each time's delta (taken as the maximum)
+        would give back, [J]
+    recoverable_max, loading_max : the same at delta_max, [J]
+    masses : m_1, m_2, [kg]
+    velocities : d_1', d_2' at each time, [m/s], toward the other sphere
+    shares : ``(elastic, permanent)`` fraction pairs (:func:`sphere_shares`)
+
+    Returns
+    -------
+    dict
+        ``ke1``, ``ke2``, ``strain_energy``, ``strain_energy1``, ``strain_energy2``,
+        ``dissipated``, ``dissipated1``, ``dissipated2``, [J].
+    """
+    t = np.asarray(t, dtype=float)
+    w = np.asarray(contact_work, dtype=float)
+    during = np.asarray(loading, dtype=float) - np.asarray(recoverable, dtype=float)
+    dissipated = np.where(t <= t_max, during, loading_max - recoverable_max)
+    dissipated = np.maximum(dissipated, 0.0)
+    strain = w - dissipated
+    (e1, e2), (p1, p2) = shares
+    return {
+        "ke1": kinetic_energy(masses[0], velocities[0]),
+        "ke2": kinetic_energy(masses[1], velocities[1]),
+        "strain_energy": strain,
+        "strain_energy1": e1 * strain,
+        "strain_energy2": e2 * strain,
+        "dissipated": dissipated,
+        "dissipated1": p1 * dissipated,
+        "dissipated2": p2 * dissipated,
+    }
