@@ -69,6 +69,7 @@ from impactcli.validation import (
     pair_problems,
     sphere_names,
     sphere_problems,
+    yield_scale_problems,
 )
 
 __all__ = [
@@ -322,7 +323,9 @@ def batch_impacts(
     contact = DuWangContact(radius, modulus, sigma_y, pressure_factor)
     with np.errstate(invalid="ignore"):
         above = plastic & contact.yields(v0, m)
-    delta_max, force_max, delta_res, restitution, t_max, t_c = (np.empty_like(v0) for _ in range(6))
+    delta_max, force_max, delta_res, restitution, t_max, t_c = (
+        np.full_like(v0, np.nan) for _ in range(6)
+    )
 
     # Hertz rows: one normalised FILM solution scaled by delta_m / V0 (docs/method.md §3).
     hertz = np.flatnonzero(~above)
@@ -340,7 +343,16 @@ def batch_impacts(
     for start in range(0, yielding.size, block_rows):
         rows = yielding[start : start + block_rows]
         block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
-        plan = block.plan(v0[rows], m[rows])
+        with np.errstate(all="ignore"):
+            plan = block.plan(v0[rows], m[rows])
+        scale = yield_scale_problems(plan.stages[0].delta_end, plan.delta_max)
+        if scale.bad.any():  # out of double precision: the row's error, not a NaN
+            out["error"][ok[rows[scale.bad]]] = scale.messages[scale.bad]
+            rows = rows[~scale.bad]
+            if rows.size == 0:
+                continue
+            block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
+            plan = block.plan(v0[rows], m[rows])
         delta_max[rows], force_max[rows] = plan.delta_max, plan.force_max
         delta_res[rows], restitution[rows] = plan.delta_res, plan.restitution
         t_max[rows], t_c[rows] = plastic_stage_times(plan, m[rows], v0[rows], n)
@@ -365,6 +377,9 @@ def batch_impacts(
         )
         for key, value in extra.items():
             out[key][ok[rows]] = value
+    refused = out["error"] != ""  # rows out of range (yield_scale_problems): no numbers
+    for key in BATCH_KEYS:
+        out[key][refused] = np.nan
     return out
 
 
