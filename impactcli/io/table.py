@@ -29,6 +29,7 @@ __all__ = [
     "RowError",
     "check_columns",
     "compute_frame",
+    "dask_csv_block",
     "dask_partition",
     "output_columns",
     "partition_errors",
@@ -59,7 +60,8 @@ QUANTITY_COLUMNS: dict[str, tuple[str, bool]] = {
 TEXT_COLUMNS: tuple[str, ...] = ("model", "material", "material1", "material2")
 REQUIRED_COLUMNS: tuple[str, ...] = ("d1", "d2", "v1", "v2")
 MODELS: tuple[str, ...] = ("elastic", "elastoplastic")
-#: Cells read as missing, in CSV input (both engines).
+#: Cells of the quantity and text columns read as missing (both engines); other columns
+#: are carried through as written.
 NULL_VALUES: tuple[str, ...] = ("", "NA", "N/A", "NaN", "nan", "NULL", "null", "None")
 #: Warnings printed for invalid rows before the count alone is reported.
 MAX_ROW_WARNINGS = 20
@@ -110,10 +112,10 @@ def check_columns(names: Sequence[str], model: str | None) -> None:
 
 
 def _quantity_column(series, kind: str, name: str, allow_inf: bool):
-    """SI floats of one column (NaN where empty) and each row's parse error (or "")."""
+    """SI floats of one column (NaN where missing) and each row's parse error (or "")."""
     import pandas as pd
 
-    from impactcli.units import parse_quantity
+    from impactcli.units import parse_quantities
 
     size = len(series)
     errors = np.full(size, "", dtype=object)
@@ -125,17 +127,11 @@ def _quantity_column(series, kind: str, name: str, allow_inf: bool):
         numbers = pd.to_numeric(series, errors="coerce")
         values = np.array(numbers.to_numpy(dtype=float, na_value=np.nan))
         text = np.flatnonzero(np.isnan(values) & series.notna().to_numpy())
-        if text.size:  # units: parse each distinct string once
-            cells = series.iloc[text].astype(str)
-            parsed: dict[str, tuple[float, str]] = {}
-            for cell in pd.unique(cells):
-                try:
-                    parsed[cell] = (parse_quantity(cell, kind, name, allow_inf), "")
-                except InputError as exc:
-                    parsed[cell] = (np.nan, str(exc))
-            found = [parsed[c] for c in cells.tolist()]
-            values[text] = [v for v, _ in found]
-            errors[text] = [e for _, e in found]
+        if text.size:  # units, and the spellings of "missing"
+            cells = series.iloc[text].astype(str).to_numpy(dtype=object)
+            missing = np.isin(np.char.strip(cells.astype(str)), NULL_VALUES)
+            cells[missing] = None
+            values[text], errors[text] = parse_quantities(cells, kind, name, allow_inf)
     if not allow_inf:
         inf = np.flatnonzero(np.isinf(values))
         errors[inf] = [f"{name}: must be finite, got {v:g}" for v in values[inf].tolist()]
@@ -144,17 +140,22 @@ def _quantity_column(series, kind: str, name: str, allow_inf: bool):
 
 
 def _text_column(frame, name: str, size: int, lower: bool = False) -> np.ndarray:
-    """A text column as an object array, None where empty (all None if absent)."""
+    """A text column as an object array, None where missing (all None if absent)."""
     if name not in frame.columns:
         return np.full(size, None, dtype=object)
     column = frame[name].astype("string").str.strip()
     if lower:
         column = column.str.lower()
-    return column.astype(object).where(column.notna() & (column != ""), None).to_numpy()
+    missing = column.isna() | column.isin(NULL_VALUES)
+    return column.astype(object).where(~missing, None).to_numpy()
 
 
 def compute_frame(
-    frame, n: int = 25, split: str = "mass", model: str | None = None
+    frame,
+    n: int = 25,
+    split: str = "mass",
+    model: str | None = None,
+    faults: np.ndarray | None = None,
 ) -> dict[str, np.ndarray]:
     """The result columns of a chunk of rows (a pandas DataFrame of input columns).
 
@@ -165,6 +166,8 @@ def compute_frame(
     n : FILM segments per stage
     split : ``mass`` or ``compliance`` share of the indentation between the spheres
     model : model of the rows whose ``model`` cell is empty (or of all, without the column)
+    faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
+        CSV line, :func:`impactcli.io.csvblocks.parse_block`): such a row's error, first
 
     Returns
     -------
@@ -193,6 +196,8 @@ def compute_frame(
 
     size = len(frame)
     errors = Problems(size)
+    if faults is not None:
+        errors.add_messages(np.asarray(faults, dtype=object))
 
     # Quantities, in column order: the first bad cell of a row is its error.
     q: dict[str, np.ndarray] = {}
@@ -260,13 +265,26 @@ def compute_frame(
 
 def dask_partition(
     part, n: int = 25, split: str = "mass", model: str | None = None, strict: bool = False,
-    partition_info: dict | None = None,
+    partition_info: dict | None = None, faults: np.ndarray | None = None,
 ):  # fmt: skip
-    """One Dask partition: its input columns followed by :func:`compute_frame`'s."""
+    """One Dask partition: its input columns followed by :func:`compute_frame`'s.
+
+    The used columns go through :func:`impactcli.io.readers.compute_input` as in the NumPy
+    engine (the same spellings of "missing", one line for a column that cannot hold a
+    quantity or a name)."""
     import pandas as pd
+    import pyarrow as pa
+
+    from impactcli.io.readers import compute_input
 
     used = [c for c in part.columns if c in QUANTITY_COLUMNS or c in TEXT_COLUMNS]
-    result = compute_frame(part[used], n=n, split=split, model=model)
+    try:
+        batch = pa.Table.from_pandas(part[used], preserve_index=False)
+    except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError) as exc:
+        raise InputError(f"a column cannot be read: {str(exc).splitlines()[0]}") from None
+    result = compute_frame(
+        compute_input(batch, used), n=n, split=split, model=model, faults=faults
+    )
     if strict:
         bad = np.flatnonzero(result["error"] != "")
         if bad.size:
@@ -275,6 +293,28 @@ def dask_partition(
     extra = {c: result[c] for c in output_columns()[:-1]}
     extra["error"] = pd.Series(result["error"], index=part.index, dtype="string")
     return pd.concat([part, pd.DataFrame(extra, index=part.index)], axis=1)
+
+
+def dask_csv_block(
+    block: bytes, names: list[str], header: bool, number: int, n: int = 25,
+    split: str = "mass", model: str | None = None, strict: bool = False,
+):  # fmt: skip
+    """One block of a CSV file (whole lines; the file's header first when ``header``) as
+    the Dask engine's partition ``number``: its rows read as by the NumPy engine
+    (:func:`impactcli.io.csvblocks.parse_block`: a malformed line is a row with its reason
+    in ``error``; a quoted line break across two blocks makes two such rows), then
+    :func:`dask_partition`."""
+    from impactcli.io.csvblocks import parse_block
+
+    if header:
+        block = block[block.find(b"\n") + 1 :] if b"\n" in block else b""
+    batch, faults, _ = parse_block(block, names, final=True)
+    part = batch.to_pandas()
+    part.columns = names
+    return dask_partition(
+        part, n=n, split=split, model=model, strict=strict,
+        partition_info={"number": number}, faults=faults,
+    )  # fmt: skip
 
 
 def partition_errors(part, partition_info: dict | None = None):
