@@ -180,7 +180,8 @@ def test_carried_cells_come_out_as_written(batch):
 
 
 def test_missing_spellings_in_quantity_columns_are_missing(batch):
-    code, out, _ = batch("-", stdin=b"d1,d2,v1,v2,model,material,m2\n20mm,40mm,1,0,elastic,steel,NA\n")
+    data = b"d1,d2,v1,v2,model,material,m2\n20mm,40mm,1,0,elastic,steel,NA\n"
+    code, out, _ = batch("-", stdin=data)
     assert code == 0 and _frame(out)["error"][0] == ""  # m2 = NA: from the density
     code, out, _ = batch("-", stdin=b"d1,d2,v1,v2,model,material\nNA,40mm,1,0,elastic,steel\n")
     assert _frame(out)["error"][0] == "d1 is missing or NaN"
@@ -235,8 +236,17 @@ def _parquet(tmp_path, column) -> str:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    table = pa.table({"id": column, "d1": ["20mm"] * 2, "d2": ["40mm"] * 2, "v1": [1.0, 2.0],
-                      "v2": [0.0, 0.0], "model": ["elastic"] * 2, "material": ["steel"] * 2})
+    table = pa.table(
+        {
+            "id": column,
+            "d1": ["20mm"] * 2,
+            "d2": ["40mm"] * 2,
+            "v1": [1.0, 2.0],
+            "v2": [0.0, 0.0],
+            "model": ["elastic"] * 2,
+            "material": ["steel"] * 2,
+        }
+    )
     path = tmp_path / "in.parquet"
     pq.write_table(table, path)
     return str(path)
@@ -262,8 +272,16 @@ def test_parquet_quantity_column_of_lists_is_one_line(batch, tmp_path):
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    table = pa.table({"d1": pa.array([[0.02], [0.02]]), "d2": [0.04] * 2, "v1": [1.0] * 2,
-                      "v2": [0.0] * 2, "model": ["elastic"] * 2, "material": ["steel"] * 2})
+    table = pa.table(
+        {
+            "d1": pa.array([[0.02], [0.02]]),
+            "d2": [0.04] * 2,
+            "v1": [1.0] * 2,
+            "v2": [0.0] * 2,
+            "model": ["elastic"] * 2,
+            "material": ["steel"] * 2,
+        }
+    )
     pq.write_table(table, tmp_path / "in.parquet")
     code, _, err = batch(str(tmp_path / "in.parquet"), "-o", str(tmp_path / "o.parquet"))
     assert code == 2 and err.strip() == (

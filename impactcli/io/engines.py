@@ -233,9 +233,7 @@ def _dask_csv(path: str, rows: int, options: dict, strict: bool):
     for blocks in files:
         for k, block in enumerate(blocks):
             parts.append(
-                dask.delayed(dask_csv_block)(
-                    block, names, k == 0, number, **options, strict=strict
-                )
+                dask.delayed(dask_csv_block)(block, names, k == 0, number, **options, strict=strict)
             )
             number += 1
     return dd.from_delayed(parts, meta=meta, verify_meta=False)

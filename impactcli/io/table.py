@@ -282,9 +282,7 @@ def dask_partition(
         batch = pa.Table.from_pandas(part[used], preserve_index=False)
     except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError) as exc:
         raise InputError(f"a column cannot be read: {str(exc).splitlines()[0]}") from None
-    result = compute_frame(
-        compute_input(batch, used), n=n, split=split, model=model, faults=faults
-    )
+    result = compute_frame(compute_input(batch, used), n=n, split=split, model=model, faults=faults)
     if strict:
         bad = np.flatnonzero(result["error"] != "")
         if bad.size:
