@@ -20,7 +20,7 @@ from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
 from impactcli.tables import normalised_contact_duration
 
 STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
-OUTPUT = (*BATCH_KEYS, "error")
+OUTPUT = (*BATCH_KEYS, "error", "warning")
 
 
 def reference(row: dict, split: str = "mass", n: int = 25) -> dict:
@@ -196,9 +196,10 @@ def _csv(rows: list[dict]) -> bytes:
 
 
 def _frame(data: bytes) -> pd.DataFrame:
-    """CSV output read back: empty cells NaN, except ``error`` ("" when valid)."""
+    """CSV output read back: empty cells NaN, except ``error`` and ``warning`` ("")."""
     frame = pd.read_csv(io.BytesIO(data), keep_default_na=False, na_values=[""])
-    frame["error"] = frame["error"].astype("string").fillna("").astype(str)
+    for column in ("error", "warning"):
+        frame[column] = frame[column].astype("string").fillna("").astype(str)
     return frame
 
 
@@ -367,8 +368,9 @@ def test_parquet_and_csv_round_trip(batch, tmp_path):
     code, out, _ = batch("-", "--format", "parquet", stdin=numeric.read_bytes())
     assert code == 0
     again = pd.read_parquet(io.BytesIO(out))
-    pd.testing.assert_frame_equal(again.drop(columns="error"), back.drop(columns="error"))
-    assert again["error"].tolist() == back["error"].tolist()
+    text = ["error", "warning"]
+    pd.testing.assert_frame_equal(again.drop(columns=text), back.drop(columns=text))
+    assert again[text].values.tolist() == back[text].values.tolist()
 
 
 def test_header_only_and_carried_columns(batch):

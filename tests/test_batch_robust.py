@@ -20,7 +20,7 @@ from impactcli.cli import main
 from impactcli.impact import Sphere, elastoplastic_impact
 from impactcli.validation import MIN_YIELD_INDENTATION_RATIO
 
-OUTPUT = (*BATCH_KEYS, "error")
+OUTPUT = (*BATCH_KEYS, "error", "warning")
 HEADER = b"id,d1,d2,v1,v2,model,material\n"
 GOOD = b"a,20mm,40mm,1,0,elastic,steel\n"
 
@@ -337,3 +337,44 @@ def test_dask_options_and_outputs_are_one_line(batch, tmp_path, dask_dataframe):
     code, _, err = batch(str(source), "--engine", "dask", "-o", str(tmp_path / "o.parquet"))
     assert code == 2 and "is a file" in err and len(err.splitlines()) == 1
     assert (tmp_path / "o.parquet").read_text() == "keep"
+
+
+# -- issue 13: the warning column and the closing line -------------------------------------
+
+
+def test_warning_column_says_what_the_single_impact_commands_say(batch):
+    from impactcli.validation import contact_radius_warning, first_yield_warning
+
+    rows = (
+        b"slow,20mm,40mm,1mm/s,0,elastic,steel\n"  # below first yield: no warning
+        b"yield,20mm,40mm,1,0,elastic,steel\n"  # above first yield (about 0.08 m/s)
+        b"plastic,20mm,40mm,1,0,elastoplastic,steel\n"  # the model that yields: none
+        b"fast,20mm,40mm,1500,0,elastic,steel\n"  # a / R > 0.1 too
+        b"bad,-1,40mm,1,0,elastic,steel\n"  # invalid: error, no warning
+    )
+    code, out, err = batch("-", stdin=HEADER + rows)
+    assert code == 0, err
+    frame = _frame(out)
+    num = {k: frame[k].replace("", "nan").astype(float) for k in
+           ("first_yield_velocity", "delta_max", "effective_radius")}  # fmt: skip
+    assert frame["warning"][0] == "" and frame["warning"][2] == "" and frame["warning"][4] == ""
+    assert frame["warning"][1] == first_yield_warning(1.0, num["first_yield_velocity"][1])
+    ratio = np.sqrt(num["delta_max"][3] / num["effective_radius"][3])
+    assert ratio > 0.1
+    assert frame["warning"][3] == "; ".join([
+        first_yield_warning(1500.0, num["first_yield_velocity"][3]),
+        contact_radius_warning(1500.0, num["delta_max"][3], num["effective_radius"][3]),
+    ])  # fmt: skip
+
+
+def test_closing_line_on_a_terminal(batch, monkeypatch):
+    from impactcli.cli.batch_cmd import _closing_line
+
+    assert _closing_line(12000, 3, 1.5) == "12,000 rows, 3 errors, 1.50 s (8,000 rows/s)"
+    assert _closing_line(1, 1, 0.25) == "1 row, 1 error, 0.25 s (4 rows/s)"
+    code, _, err = batch("-", stdin=HEADER + GOOD)
+    assert code == 0 and err == ""  # not a terminal: no closing line
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
+    code, _, err = batch("-", stdin=HEADER + GOOD + b"short\n")
+    lines = err.strip().splitlines()
+    assert lines[-1].startswith("impact: note: 2 rows, 1 error, ")

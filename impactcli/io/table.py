@@ -26,6 +26,7 @@ __all__ = [
     "QUANTITY_COLUMNS",
     "REQUIRED_COLUMNS",
     "TEXT_COLUMNS",
+    "TEXT_OUTPUTS",
     "RowError",
     "check_columns",
     "compute_frame",
@@ -33,6 +34,7 @@ __all__ = [
     "dask_partition",
     "output_columns",
     "partition_errors",
+    "row_warnings",
 ]
 
 #: Quantity columns: name -> (kind for :func:`impactcli.units.parse_quantity`, inf allowed).
@@ -75,11 +77,48 @@ class RowError(ValueError):
         self.row, self.reason, self.partition = row, reason, partition
 
 
+#: Text columns of the output, after the summary keys.
+TEXT_OUTPUTS: tuple[str, ...] = ("error", "warning")
+
+
 def output_columns() -> tuple[str, ...]:
-    """Columns added after the input ones: the summary keys (SI), then ``error``."""
+    """Columns added after the input ones: the summary keys (SI), then ``error`` and
+    ``warning`` (text)."""
     from impactcli.batch import BATCH_KEYS
 
-    return (*BATCH_KEYS, "error")
+    return (*BATCH_KEYS, *TEXT_OUTPUTS)
+
+
+def row_warnings(
+    impact_velocity: np.ndarray,
+    first_yield_velocity: np.ndarray,
+    delta_max: np.ndarray,
+    radius: np.ndarray,
+    elastic: np.ndarray,
+) -> np.ndarray:
+    """The ``warning`` of each row (``""`` where none), in the words of the single-impact
+    commands (:func:`impactcli.validation.first_yield_warning` on elastic rows above the
+    first-yield velocity, :func:`~impactcli.validation.contact_radius_warning` where the
+    contact radius exceeds 0.1 R), joined by ``"; "``. Velocities [m/s], lengths [m]."""
+    from impactcli.validation import (
+        SMALL_DEFORMATION_LIMIT,
+        contact_radius_warning,
+        first_yield_warning,
+    )
+
+    size = impact_velocity.size
+    out = np.full(size, "", dtype=object)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        yields = elastic & (impact_velocity > first_yield_velocity)
+        large = np.sqrt(delta_max / radius) > SMALL_DEFORMATION_LIMIT
+    for i in np.flatnonzero(yields | large).tolist():  # the warned rows only
+        words = []
+        if yields[i]:
+            words.append(first_yield_warning(impact_velocity[i], first_yield_velocity[i]))
+        if large[i]:
+            words.append(contact_radius_warning(impact_velocity[i], delta_max[i], radius[i]))
+        out[i] = "; ".join(w for w in words if w)
+    return out
 
 
 def check_columns(names: Sequence[str], model: str | None) -> None:
@@ -173,7 +212,8 @@ def compute_frame(
     -------
     dict
         :func:`output_columns` -> arrays: the summary keys (SI floats, NaN where not
-        applicable or the row is invalid) and ``error`` (object array, ``""`` when valid).
+        applicable or the row is invalid), ``error`` (object array, ``""`` when valid) and
+        ``warning`` (:func:`row_warnings`).
         Rows are independent: any chunking gives the same rows.
 
     Examples
@@ -260,6 +300,12 @@ def compute_frame(
         for k in BATCH_KEYS:
             result[k][errors.bad] = np.nan
     result["error"] = errors.messages
+    with np.errstate(invalid="ignore"):
+        v0 = q["v1"] + q["v2"]
+    result["warning"] = row_warnings(
+        v0, result["first_yield_velocity"], result["delta_max"], result["effective_radius"],
+        ~plastic & ~errors.bad,
+    )  # fmt: skip
     return result
 
 
@@ -288,8 +334,9 @@ def dask_partition(
         if bad.size:
             number = partition_info["number"] if partition_info else None
             raise RowError(int(bad[0]), str(result["error"][bad[0]]), number)
-    extra = {c: result[c] for c in output_columns()[:-1]}
-    extra["error"] = pd.Series(result["error"], index=part.index, dtype="string")
+    extra = {c: result[c] for c in output_columns() if c not in TEXT_OUTPUTS}
+    for c in TEXT_OUTPUTS:
+        extra[c] = pd.Series(result[c], index=part.index, dtype="string")
     return pd.concat([part, pd.DataFrame(extra, index=part.index)], axis=1)
 
 

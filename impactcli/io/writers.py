@@ -11,7 +11,7 @@ from typing import IO
 import numpy as np
 
 from impactcli.errors import InputError
-from impactcli.io.table import output_columns
+from impactcli.io.table import TEXT_OUTPUTS, output_columns
 
 __all__ = ["TableFormat", "TableSink", "check_writable", "output_schema", "result_batch"]
 
@@ -102,7 +102,7 @@ def result_batch(batch, result: dict[str, np.ndarray], schema):
 
     columns = list(batch.columns)
     for name in output_columns():
-        if name == "error":
+        if name in TEXT_OUTPUTS:
             columns.append(pa.array(result[name], type=pa.string()))
         else:
             columns.append(pa.array(result[name], type=pa.float64(), from_pandas=True))
@@ -113,8 +113,10 @@ def output_schema(schema):
     """The Arrow schema of the output: the input's fields, the results (float64), error."""
     import pyarrow as pa
 
-    fields = [*schema, *(pa.field(c, pa.float64()) for c in output_columns()[:-1])]
-    return pa.schema([*fields, pa.field("error", pa.string())])
+    fields = [
+        pa.field(c, pa.string() if c in TEXT_OUTPUTS else pa.float64()) for c in output_columns()
+    ]
+    return pa.schema([*schema, *fields])
 
 
 def check_writable(schema, fmt: TableFormat) -> None:
