@@ -28,14 +28,13 @@ from impactcli.io.readers import (
 )
 from impactcli.io.table import (
     MAX_ROW_WARNINGS,
-    QUANTITY_COLUMNS,
-    TEXT_COLUMNS,
     RowError,
     check_columns,
     compute_frame,
     dask_csv_block,
     dask_partition,
     partition_errors,
+    used_columns,
 )
 from impactcli.io.writers import (
     TableFormat,
@@ -110,7 +109,7 @@ def run_numpy(
     report = BatchReport(strict)
     try:
         source = open_source(path, stream, model, rows)
-        used = [c for c in source.schema.names if c in QUANTITY_COLUMNS or c in TEXT_COLUMNS]
+        used = used_columns(source.schema.names)
         schema = output_schema(source.schema)
         check_writable(schema, fmt)
         with (

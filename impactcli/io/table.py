@@ -32,9 +32,11 @@ __all__ = [
     "compute_frame",
     "dask_csv_block",
     "dask_partition",
+    "law_parameter_columns",
     "output_columns",
     "partition_errors",
     "row_warnings",
+    "used_columns",
 ]
 
 #: Quantity columns: name -> (kind for :func:`impactcli.units.parse_quantity`, inf allowed).
@@ -59,7 +61,23 @@ QUANTITY_COLUMNS: dict[str, tuple[str, bool]] = {
     "sy1": ("pressure", False),
     "sy2": ("pressure", False),
 }
-TEXT_COLUMNS: tuple[str, ...] = ("model", "material", "material1", "material2")
+TEXT_COLUMNS: tuple[str, ...] = ("model", "material", "material1", "material2", "law")
+
+
+def law_parameter_columns() -> dict[str, tuple[str, str]]:
+    """The law-parameter columns: name -> (kind, law names that take it), from the law
+    registry (:data:`impactcli.lawlib.LAWS`): ``p0_factor``, ``py``, ``k_load``,
+    ``k_unload``, ``curve``, ``unload_curves``, ``interpolation``."""
+    from impactcli.lawlib import LAWS
+
+    found: dict[str, tuple[str, str]] = {}
+    for spec in LAWS.values():
+        for p in spec.parameters:
+            kind, laws = found.get(p.name, (p.kind, ""))
+            found[p.name] = (kind, f"{laws}, {spec.name}" if laws else spec.name)
+    return found
+
+
 REQUIRED_COLUMNS: tuple[str, ...] = ("d1", "d2", "v1", "v2")
 MODELS: tuple[str, ...] = ("elastic", "elastoplastic")
 #: Cells of the quantity and text columns read as missing (both engines); other columns
@@ -121,6 +139,12 @@ def row_warnings(
     return out
 
 
+def used_columns(names: Sequence[str]) -> list[str]:
+    """The columns :func:`compute_frame` reads, in table order (the others are carried)."""
+    known = {*QUANTITY_COLUMNS, *TEXT_COLUMNS, *law_parameter_columns()}
+    return [c for c in names if c in known]
+
+
 def check_columns(names: Sequence[str], model: str | None) -> None:
     """Reject a table whose header cannot give any valid row (one line, exit 2)."""
     present = set(names)
@@ -133,8 +157,10 @@ def check_columns(names: Sequence[str], model: str | None) -> None:
             f"missing input column(s) {', '.join(missing)}; each row needs d1, d2, v1, v2, "
             "model, and material (or material1, material2) or E1, nu1, rho1, E2, nu2, rho2"
         )
-    if "model" not in present and model is None:
-        raise InputError("missing input column model (elastic or elastoplastic); or give --model")
+    if "model" not in present and "law" not in present and model is None:
+        raise InputError(
+            "missing input column model (elastic or elastoplastic) or law; or give --model"
+        )
     for i in (1, 2):
         if not present & {"material", f"material{i}", "E", f"E{i}"}:
             raise InputError(
@@ -266,12 +292,16 @@ def compute_frame(
         errors.add(np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), unknown_property(i, "rho"))
         spheres.append(sphere)
 
-    # The model of each row.
+    # The law of each row (a law cell wins over the model), its parameters.
+    laws, law_params, elastic_law = _row_laws(frame, size, errors)
+
+    # The model of each row without a law.
     key = _text_column(frame, "model", size, lower=True)
     if model is not None:
         key = np.where(np.equal(key, None), model, key)
-    errors.add(np.equal(key, None), "model is missing (elastic or elastoplastic)")
-    unknown = np.flatnonzero(~np.equal(key, None) & ~np.isin(key, MODELS))
+    key = np.where(np.equal(laws, None), key, "")
+    errors.add(np.equal(key, None), "model is missing (elastic or elastoplastic; or a law)")
+    unknown = np.flatnonzero(~np.equal(key, None) & (key != "") & ~np.isin(key, MODELS))
     if unknown.size:
         given = _text_column(frame, "model", size)
         message = np.full(size, "", dtype=object)
@@ -283,30 +313,138 @@ def compute_frame(
     s1, s2 = spheres  # the kernel checks the rest, the yield strength of plastic rows too
 
     # The physics, on the rows that parsed; the kernel adds its own checks.
-    ok = np.flatnonzero(~errors.bad)
+    args = (
+        q["d1"], q["d2"], q["v1"], q["v2"],
+        s1["E"], s1["nu"], s2["E"], s2["nu"],
+        s1["rho"], s2["rho"], s1["m"], s2["m"], s1["sy"], s2["sy"], plastic,
+    )  # fmt: skip
     result = {k: np.full(size, np.nan) for k in BATCH_KEYS}
-    if ok.size:
-        args = (
-            q["d1"], q["d2"], q["v1"], q["v2"],
-            s1["E"], s1["nu"], s2["E"], s2["nu"],
-            s1["rho"], s2["rho"], s1["m"], s2["m"], s1["sy"], s2["sy"], plastic,
-        )  # fmt: skip
+    kernel = np.full(size, "", dtype=object)
+    ok = np.flatnonzero(~errors.bad & np.equal(laws, None))
+    if ok.size:  # the model column's rows: Hertz or Du & Wang
         out = batch_impacts(*(a[ok] for a in args), n=n, split=split)
         for k in BATCH_KEYS:
             result[k][ok] = out[k]
-        kernel = np.full(size, "", dtype=object)
         kernel[ok] = out["error"]
-        errors.add_messages(kernel)
-        for k in BATCH_KEYS:
-            result[k][errors.bad] = np.nan
+    for rows, name, params in _law_groups(laws, law_params, ~errors.bad):
+        for part, out in _law_rows(rows, name, params, args, n, split):
+            for k in BATCH_KEYS:
+                result[k][part] = out[k]
+            kernel[part] = out["error"]
+    errors.add_messages(kernel)
+    for k in BATCH_KEYS:
+        result[k][errors.bad] = np.nan
     result["error"] = errors.messages
     with np.errstate(invalid="ignore"):
         v0 = q["v1"] + q["v2"]
     result["warning"] = row_warnings(
         v0, result["first_yield_velocity"], result["delta_max"], result["effective_radius"],
-        ~plastic & ~errors.bad,
+        np.where(np.equal(laws, None), ~plastic, elastic_law) & ~errors.bad,
     )  # fmt: skip
     return result
+
+
+def _row_laws(frame, size: int, errors: Problems):
+    """Each row's law name (None: by the model column), its parameters by column
+    (:func:`law_parameter_columns`: SI floats, NaN where empty; text for files and
+    choices) and whether the law is elastic. Faults of a row (an unknown law, a parameter
+    its law does not take, a value that is not a positive finite number) go to
+    ``errors``."""
+    from impactcli.lawlib import get_law
+    from impactcli.units import KINDS
+
+    given = _text_column(frame, "law", size)
+    laws = np.full(size, None, dtype=object)
+    elastic = np.zeros(size, dtype=bool)
+    message = np.full(size, "", dtype=object)
+    names = given[~np.equal(given, None)]
+    for name in set(names.tolist()):  # distinct law names only
+        rows = given == name
+        try:
+            spec = get_law(name)
+        except ValueError as exc:
+            message[rows] = str(exc)
+            continue
+        laws[rows] = spec.name
+        elastic[rows] = spec.kind == "elastic"
+    errors.add_messages(message)
+
+    params: dict[str, np.ndarray] = {}
+    for column, (kind, takers) in law_parameter_columns().items():
+        if column not in frame.columns:
+            continue
+        if kind in ("file", "choice"):
+            params[column] = _text_column(frame, column, size)
+            present = ~np.equal(params[column], None)
+        else:
+            unit_kind = kind if kind in KINDS else "dimensionless"  # e.g. stiffness: SI
+            params[column], bad = _quantity_column(frame[column], unit_kind, column, False)
+            errors.add_messages(bad)
+            values = params[column]
+            present = ~np.isnan(values)
+            with np.errstate(invalid="ignore"):
+                wrong = np.flatnonzero(present & ~(values > 0) & ~errors.bad)
+            message = np.full(size, "", dtype=object)
+            message[wrong] = [  # the refused rows only, each with its law's name
+                f"{column} of law {law!r} must be a positive, finite number, got {v:g}"
+                for law, v in zip(laws[wrong].tolist(), values[wrong].tolist())
+            ]
+            errors.add_messages(message)
+        foreign = present & ~np.isin(laws.astype(str), takers.split(", "))
+        errors.add(foreign, f"{column} is a parameter of the law(s) {takers} only")
+    return laws, params, elastic
+
+
+def _law_groups(laws: np.ndarray, params: dict[str, np.ndarray], valid: np.ndarray):
+    """(rows, law name, law_params) of each group of valid rows with one law and the same
+    files and choices (the tabulated curves): one kernel call per group."""
+    from impactcli.lawlib import get_law
+
+    chosen = np.flatnonzero(valid & ~np.equal(laws, None))
+    if chosen.size == 0:
+        return
+    for name in sorted(set(laws[chosen].tolist())):
+        spec = get_law(name)
+        accepted = {p.name: p.kind for p in spec.parameters}
+        rows = chosen[laws[chosen] == name]
+        text = [c for c in params if c in accepted and accepted[c] in ("file", "choice")]
+        keys = [tuple(params[c][r] for c in text) for r in rows.tolist()] if text else None
+        groups = {(): rows} if keys is None else {}
+        if keys is not None:
+            for r, k in zip(rows.tolist(), keys):
+                groups.setdefault(k, []).append(r)
+        for k, members in groups.items():
+            members = np.asarray(members, dtype=np.intp)
+            law_params = {c: params[c][members] for c in params if c in accepted and c not in text}
+            law_params.update({c: v for c, v in zip(text, k) if v is not None})
+            yield members, name, law_params
+
+
+def _law_rows(rows: np.ndarray, name: str, params: dict, args: tuple, n: int, split: str):
+    """(rows, kernel output) of one law group; a group the law refuses (ValueError: a bad
+    per-row parameter, an unreadable curve file) is halved until the refused rows stand
+    alone with the law's message as their error."""
+    from impactcli.batch import BATCH_KEYS, batch_impacts
+
+    per_row = {k: v for k, v in params.items() if isinstance(v, np.ndarray)}
+    fixed = {k: v for k, v in params.items() if k not in per_row}
+    pending = [np.arange(rows.size)]
+    while pending:
+        local = pending.pop()
+        chosen = {k: v[local] for k, v in per_row.items()}
+        try:
+            out = batch_impacts(
+                *(a[rows[local]] for a in args[:-1]), n=n, split=split, law=name,
+                law_params={**fixed, **chosen},
+            )  # fmt: skip
+        except (ValueError, OSError) as exc:
+            if local.size > 1:
+                half = local.size // 2
+                pending += [local[:half], local[half:]]
+                continue
+            out = {k: np.full(1, np.nan) for k in BATCH_KEYS}
+            out["error"] = np.array([str(exc).splitlines()[0]], dtype=object)
+        yield rows[local], out
 
 
 def dask_partition(
@@ -323,7 +461,7 @@ def dask_partition(
 
     from impactcli.io.readers import compute_input
 
-    used = [c for c in part.columns if c in QUANTITY_COLUMNS or c in TEXT_COLUMNS]
+    used = used_columns(list(part.columns))
     try:
         batch = pa.Table.from_pandas(part[used], preserve_index=False)
     except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError) as exc:

@@ -1,0 +1,125 @@
+"""``impact batch`` with a ``law`` column: rows of several laws in one table, each equal to
+the single-impact :func:`impactcli.impact.law_impact` of its law and parameters."""
+
+from __future__ import annotations
+
+import io
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from impactcli.cli import main
+from impactcli.impact import Sphere, law_impact
+from impactcli.materials import material
+
+STEEL = material("steel")
+KEYS = ("contact_time", "delta_max", "force_max", "restitution", "delta_res")
+
+
+@pytest.fixture
+def batch(capfdbinary, monkeypatch):
+    def run(*args: str, stdin: bytes = b""):
+        monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(io.BytesIO(stdin))))
+        try:
+            main(["batch", "--no-progress", *args])
+            code = 0
+        except SystemExit as exc:
+            code = exc.code
+        out, err = capfdbinary.readouterr()
+        frame = pd.read_csv(io.BytesIO(out), dtype=str, keep_default_na=False) if out else None
+        return code, frame, err.decode()
+
+    return run
+
+
+def _single(v1: float, law: str, params: dict) -> dict:
+    steel = (STEEL.youngs_modulus, STEEL.poisson_ratio, STEEL.density, None,
+             STEEL.yield_strength)  # fmt: skip
+    return law_impact(Sphere(0.02, *steel), Sphere(0.04, *steel), v1, 0.0, law, params).summary
+
+
+ROWS = [  # (v1, law cell, {column: cell}, the law's parameters in SI)
+    (1.0, "du-wang", {}, {}),
+    (2.0, "du-wang", {"p0_factor": "3"}, {"p0_factor": 3.0}),
+    (1.0, "thornton", {"py": "2GPa"}, {"py": 2e9}),
+    (0.5, "thornton", {}, {}),
+    (1.0, "Walton_Braun", {"k_load": "1e7", "k_unload": "2e7"},
+     {"k_load": 1e7, "k_unload": 2e7}),
+    (3.0, "walton-braun", {"k_load": "2e7", "k_unload": "2e8"},
+     {"k_load": 2e7, "k_unload": 2e8}),
+    (1.0, "hertz", {}, {}),
+]  # fmt: skip
+COLUMNS = ("p0_factor", "py", "k_load", "k_unload")
+
+
+def _table(rows) -> bytes:
+    lines = ["id,d1,d2,v1,v2,material,law," + ",".join(COLUMNS)]
+    for k, (v1, law, cells, _) in enumerate(rows):
+        params = ",".join(cells.get(c, "") for c in COLUMNS)
+        lines.append(f"r{k},20mm,40mm,{v1},0,steel,{law},{params}")
+    return ("\n".join(lines) + "\n").encode()
+
+
+def test_rows_of_several_laws_equal_their_single_impacts(batch):
+    code, frame, err = batch("-", stdin=_table(ROWS))
+    assert code == 0, err
+    assert (frame["error"] == "").all()
+    for k, (v1, law, _, params) in enumerate(ROWS):
+        ref = _single(v1, law.lower().replace("_", "-"), params)
+        for key in KEYS:
+            assert float(frame[key][k]) == pytest.approx(ref[key], rel=1e-9, abs=1e-300)
+
+
+def test_a_bad_parameter_is_its_rows_error_only(batch):
+    rows = [*ROWS[:4],
+            (1.0, "walton-braun", {"k_load": "-1e7", "k_unload": "2e7"}, None),
+            (1.0, "walton-braun", {"k_load": "3e7", "k_unload": "2e7"}, None),
+            (1.0, "walton-braun", {"k_unload": "2e7"}, None),
+            (1.0, "hertz", {"p0_factor": "2"}, None),
+            (1.0, "nonesuch", {}, None),
+            *ROWS[4:]]  # fmt: skip
+    code, frame, err = batch("-", stdin=_table(rows))
+    assert code == 0
+    errors = frame["error"].tolist()
+    assert errors[4] == "k_load of law 'walton-braun' must be a positive, finite number, got -1e+07"
+    assert "must be >= k_load" in errors[5]
+    assert "needs the parameter k_load" in errors[6]
+    assert errors[7] == "p0_factor is a parameter of the law(s) du-wang only"
+    assert errors[8].startswith("unknown law 'nonesuch'")
+    good = [k for k, r in enumerate(rows) if r[3] is not None]
+    assert all(errors[k] == "" for k in good)
+    for k in good:
+        v1, law, _, params = rows[k]
+        ref = _single(v1, law.lower().replace("_", "-"), params)
+        assert float(frame["restitution"][k]) == pytest.approx(ref["restitution"], rel=1e-9)
+
+
+def test_empty_law_cell_falls_back_to_the_model_column(batch):
+    data = (b"d1,d2,v1,v2,material,model,law\n20mm,40mm,1,0,steel,elastoplastic,\n"
+            b"20mm,40mm,1,0,steel,,du-wang\n20mm,40mm,1,0,steel,,\n")  # fmt: skip
+    code, frame, _ = batch("-", stdin=data)
+    assert code == 0
+    assert frame["restitution"][0] == frame["restitution"][1]
+    assert frame["error"][2].startswith("model is missing")
+
+
+def test_tabulated_rows_read_their_curve_file(batch, tmp_path):
+    # A loading curve sampled from Hertz for these spheres: the tabulated law is Hertz.
+    r = 0.02 * 0.04 / (2 * (0.02 + 0.04))
+    e_star = STEEL.youngs_modulus / (2 * (1 - STEEL.poisson_ratio**2))
+    delta = np.linspace(0.0, 60e-6, 400)
+    force = 4 / 3 * e_star * np.sqrt(r) * delta**1.5
+    curve = tmp_path / "hertz.csv"
+    pd.DataFrame({"delta": delta, "force": force}).to_csv(curve, index=False)
+    data = (f"d1,d2,v1,v2,material,law,curve\n20mm,40mm,1,0,steel,hertz,\n"
+            f"20mm,40mm,1,0,steel,tabulated,{curve}\n"
+            f"20mm,40mm,1,0,steel,tabulated,{tmp_path / 'missing.csv'}\n"
+            f"20mm,40mm,50,0,steel,tabulated,{curve}\n").encode()  # fmt: skip
+    code, frame, _ = batch("-", stdin=data)
+    assert code == 0
+    hertz, tab = (float(frame["contact_time"][k]) for k in (0, 1))
+    assert tab == pytest.approx(hertz, rel=1e-4)
+    assert "cannot read curve file" in frame["error"][2]
+    assert "beyond the loading curve" in frame["error"][3]
