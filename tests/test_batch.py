@@ -20,7 +20,7 @@ from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
 from impactcli.tables import normalised_contact_duration
 
 STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
-OUTPUT = (*BATCH_KEYS, "error", "warning")
+OUTPUT = (*BATCH_KEYS, "damping_alpha", "error", "warning")
 
 
 def reference(row: dict, split: str = "mass", n: int = 25) -> dict:

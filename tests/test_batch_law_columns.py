@@ -123,3 +123,73 @@ def test_tabulated_rows_read_their_curve_file(batch, tmp_path):
     assert tab == pytest.approx(hertz, rel=1e-4)
     assert "cannot read curve file" in frame["error"][2]
     assert "beyond the loading curve" in frame["error"][3]
+
+
+# -- damping columns (viscoelastic rows) -----------------------------------------------------
+
+
+def _ode(law_name: str, alpha: float, v0: float, separation: str = "overlap") -> dict:
+    """The damped impact of the steel pair by SciPy integration (independent of FILM)."""
+    from impactcli.damping import damped_impact_ode, make_damping_law
+
+    e_star = STEEL.youngs_modulus / (2 * (1 - STEEL.poisson_ratio**2))
+    r = 0.02 * 0.04 / (2 * (0.02 + 0.04))
+    m1, m2 = (STEEL.density * np.pi * d**3 / 6 for d in (0.02, 0.04))
+    m = m1 * m2 / (m1 + m2)
+    k = 4 / 3 * e_star * np.sqrt(r)
+    return damped_impact_ode(make_damping_law(law_name, k, m, alpha), v0, m, separation) | {
+        "mass": m
+    }
+
+
+def test_damped_rows_equal_scipy_integration_and_conserve_energy(batch):
+    data = (b"id,d1,d2,v1,v2,material,damping,alpha,e,separation\n"
+            b"t,20mm,40mm,1,0,steel,tsuji,0.3,,\n"
+            b"t2,20mm,40mm,0.1,0,steel,tsuji,0.3,,\n"
+            b"h,20mm,40mm,1,0,steel,hunt-crossley,0.05,,force\n"
+            b"target,20mm,40mm,1,0,steel,tsuji,,0.8,\n"
+            b"plain,20mm,40mm,1,0,steel,,,,\n")  # fmt: skip
+    code, frame, err = batch("-", "--model", "elastic", "--n", "400", stdin=data)
+    assert code == 0, err
+    assert (frame["error"] == "").all()
+    num = lambda key, k: float(frame[key][k])  # noqa: E731
+    for k, (name, alpha, v0, rule) in enumerate(
+        [("tsuji", 0.3, 1.0, "overlap"), ("tsuji", 0.3, 0.1, "overlap"),
+         ("hunt-crossley", 0.05, 1.0, "force")]
+    ):  # fmt: skip
+        ref = _ode(name, alpha, v0, rule)
+        assert num("restitution", k) == pytest.approx(ref["restitution"], rel=1e-5)
+        assert num("contact_time", k) == pytest.approx(ref["contact_time"], rel=1e-5)
+        assert num("energy_dissipated", k) == pytest.approx(ref["dissipated"], rel=1e-4)
+    # Tsuji's e does not depend on V0; overlap: dissipated = (1/2) m V0^2 (1 - e^2).
+    assert num("restitution", 0) == pytest.approx(num("restitution", 1), rel=1e-5)
+    m = _ode("tsuji", 0.3, 1.0)["mass"]
+    e = num("restitution", 0)
+    assert num("energy_dissipated", 0) == pytest.approx(0.5 * m * (1 - e**2), rel=1e-6)
+    # A target e: the alpha found gives it, and is printed.
+    assert num("restitution", 3) == pytest.approx(0.8, abs=1e-9)
+    alpha = num("damping_alpha", 3)
+    assert _ode("tsuji", alpha, 1.0)["restitution"] == pytest.approx(0.8, rel=1e-5)
+    assert frame["damping_alpha"][4] == "" and num("restitution", 4) == 1.0
+
+
+def test_damping_faults_are_row_errors(batch):
+    data = (b"d1,d2,v1,v2,material,model,damping,alpha,e\n"
+            b"20mm,40mm,1,0,steel,elastoplastic,tsuji,0.3,\n"
+            b"20mm,40mm,1,0,steel,elastic,,0.3,\n"
+            b"20mm,40mm,1,0,steel,elastic,viscous,0.3,\n"
+            b"20mm,40mm,1,0,steel,elastic,tsuji,,\n"
+            b"20mm,40mm,1,0,steel,elastic,tsuji,0.3,0.8\n"
+            b"20mm,40mm,1,0,steel,elastic,tsuji,,1.5\n"
+            b"20mm,40mm,1,0,steel,elastic,tsuji,0.3,\n")  # fmt: skip
+    code, frame, _ = batch("-", stdin=data)
+    assert code == 0
+    assert frame["error"].tolist() == [
+        "damping is for elastic rows (model elastic or law hertz)",
+        "alpha is for rows with a damping law",
+        "damping must be tsuji or hunt-crossley",
+        "damping tsuji needs alpha or a target e",
+        "give alpha or e for the damping, not both",
+        "e must lie in (0, 1], got 1.5",
+        "",
+    ]

@@ -20,7 +20,7 @@ from impactcli.cli import main
 from impactcli.impact import Sphere, elastoplastic_impact
 from impactcli.validation import MIN_YIELD_INDENTATION_RATIO
 
-OUTPUT = (*BATCH_KEYS, "error", "warning")
+OUTPUT = (*BATCH_KEYS, "damping_alpha", "error", "warning")
 HEADER = b"id,d1,d2,v1,v2,model,material\n"
 GOOD = b"a,20mm,40mm,1,0,elastic,steel\n"
 

@@ -20,6 +20,8 @@ from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
 from impactcli.validation import Problems
 
 __all__ = [
+    "DAMPING_COLUMNS",
+    "EXTRA_KEYS",
     "MAX_ROW_WARNINGS",
     "MODELS",
     "NULL_VALUES",
@@ -61,7 +63,13 @@ QUANTITY_COLUMNS: dict[str, tuple[str, bool]] = {
     "sy1": ("pressure", False),
     "sy2": ("pressure", False),
 }
-TEXT_COLUMNS: tuple[str, ...] = ("model", "material", "material1", "material2", "law")
+TEXT_COLUMNS: tuple[str, ...] = (
+    "model", "material", "material1", "material2", "law", "damping", "separation",
+)  # fmt: skip
+#: Damping columns (numbers): ``alpha`` of the row's damping law, or its target ``e``.
+DAMPING_COLUMNS: tuple[str, ...] = ("alpha", "e")
+#: Result columns after the summary keys: the damping parameter used.
+EXTRA_KEYS: tuple[str, ...] = ("damping_alpha",)
 
 
 def law_parameter_columns() -> dict[str, tuple[str, str]]:
@@ -104,7 +112,7 @@ def output_columns() -> tuple[str, ...]:
     ``warning`` (text)."""
     from impactcli.batch import BATCH_KEYS
 
-    return (*BATCH_KEYS, *TEXT_OUTPUTS)
+    return (*BATCH_KEYS, *EXTRA_KEYS, *TEXT_OUTPUTS)
 
 
 def row_warnings(
@@ -141,7 +149,7 @@ def row_warnings(
 
 def used_columns(names: Sequence[str]) -> list[str]:
     """The columns :func:`compute_frame` reads, in table order (the others are carried)."""
-    known = {*QUANTITY_COLUMNS, *TEXT_COLUMNS, *law_parameter_columns()}
+    known = {*QUANTITY_COLUMNS, *TEXT_COLUMNS, *DAMPING_COLUMNS, *law_parameter_columns()}
     return [c for c in names if c in known]
 
 
@@ -258,7 +266,12 @@ def compute_frame(
     >>> out["error"][1]
     'the elastoplastic model needs a yield strength: give sy, sy1/sy2 or a material that has one'
     """
-    from impactcli.batch import BATCH_KEYS, batch_impacts, material_properties
+    from impactcli.batch import (
+        BATCH_KEYS,
+        batch_damped_impacts,
+        batch_impacts,
+        material_properties,
+    )
 
     size = len(frame)
     errors = Problems(size)
@@ -300,6 +313,8 @@ def compute_frame(
     if model is not None:
         key = np.where(np.equal(key, None), model, key)
     key = np.where(np.equal(laws, None), key, "")
+    damped_rows = ~np.equal(_text_column(frame, "damping", size), None)
+    key = np.where(damped_rows & np.equal(key, None), "", key)  # damped: elastic anyway
     errors.add(np.equal(key, None), "model is missing (elastic or elastoplastic; or a law)")
     unknown = np.flatnonzero(~np.equal(key, None) & (key != "") & ~np.isin(key, MODELS))
     if unknown.size:
@@ -318,21 +333,32 @@ def compute_frame(
         s1["E"], s1["nu"], s2["E"], s2["nu"],
         s1["rho"], s2["rho"], s1["m"], s2["m"], s1["sy"], s2["sy"], plastic,
     )  # fmt: skip
-    result = {k: np.full(size, np.nan) for k in BATCH_KEYS}
+    damped, damping = _row_damping(frame, size, errors, laws, key)
+    result = {k: np.full(size, np.nan) for k in (*BATCH_KEYS, *EXTRA_KEYS)}
     kernel = np.full(size, "", dtype=object)
-    ok = np.flatnonzero(~errors.bad & np.equal(laws, None))
+    for rows, name, rule in _damping_groups(damped, damping, ~errors.bad):
+        out = batch_damped_impacts(
+            *(a[rows] for a in args[:-1]), damping=name, alpha=damping["alpha"][rows],
+            restitution=damping["e"][rows], n=n, split=split, separation=rule,
+        )  # fmt: skip
+        for k in BATCH_KEYS:
+            result[k][rows] = out[k]
+        result["damping_alpha"][rows] = out["alpha"]
+        kernel[rows] = out["error"]
+    undamped = np.equal(damped, None)  # damped rows are done
+    ok = np.flatnonzero(~errors.bad & np.equal(laws, None) & undamped)
     if ok.size:  # the model column's rows: Hertz or Du & Wang
         out = batch_impacts(*(a[ok] for a in args), n=n, split=split)
         for k in BATCH_KEYS:
             result[k][ok] = out[k]
         kernel[ok] = out["error"]
-    for rows, name, params in _law_groups(laws, law_params, ~errors.bad):
+    for rows, name, params in _law_groups(laws, law_params, ~errors.bad & undamped):
         for part, out in _law_rows(rows, name, params, args, n, split):
             for k in BATCH_KEYS:
                 result[k][part] = out[k]
             kernel[part] = out["error"]
     errors.add_messages(kernel)
-    for k in BATCH_KEYS:
+    for k in (*BATCH_KEYS, *EXTRA_KEYS):
         result[k][errors.bad] = np.nan
     result["error"] = errors.messages
     with np.errstate(invalid="ignore"):
@@ -393,6 +419,54 @@ def _row_laws(frame, size: int, errors: Problems):
         foreign = present & ~np.isin(laws.astype(str), takers.split(", "))
         errors.add(foreign, f"{column} is a parameter of the law(s) {takers} only")
     return laws, params, elastic
+
+
+def _row_damping(frame, size: int, errors: Problems, laws: np.ndarray, model: np.ndarray):
+    """Each row's damping law (None: undamped) and its ``alpha``, ``e`` (NaN where empty)
+    and ``separation`` (None: overlap). Damping is for elastic (Hertz) rows: a damping
+    with the elastoplastic model or another law, an unknown damping law or separation
+    rule, and alpha or e on an undamped row are the row's error."""
+    from impactcli.damping import DAMPING_LAWS, SEPARATIONS
+
+    damped = _text_column(frame, "damping", size, lower=True)
+    given = ~np.equal(damped, None)
+    values: dict[str, np.ndarray] = {"separation": _text_column(frame, "separation", size,
+                                                                 lower=True)}  # fmt: skip
+    for column in DAMPING_COLUMNS:
+        if column in frame.columns:
+            values[column], bad = _quantity_column(frame[column], "dimensionless", column, False)
+            errors.add_messages(bad)
+        else:
+            values[column] = np.full(size, np.nan)
+        errors.add(~given & ~np.isnan(values[column]), f"{column} is for rows with a damping law")
+    if not given.any():
+        return damped, values
+    errors.add(
+        given & ~np.isin(damped.astype(str), list(DAMPING_LAWS)),
+        f"damping must be {' or '.join(DAMPING_LAWS)}",
+    )
+    rule = values["separation"]
+    errors.add(
+        given & ~np.equal(rule, None) & ~np.isin(rule.astype(str), list(SEPARATIONS)),
+        f"separation must be {' or '.join(SEPARATIONS)}",
+    )
+    errors.add(
+        given & ((model == "elastoplastic") | (~np.equal(laws, None) & (laws != "hertz"))),
+        "damping is for elastic rows (model elastic or law hertz)",
+    )
+    return damped, values
+
+
+def _damping_groups(damped: np.ndarray, values: dict, valid: np.ndarray):
+    """(rows, damping law, separation rule) of the valid damped rows, one group each."""
+    chosen = np.flatnonzero(valid & ~np.equal(damped, None))
+    if chosen.size == 0:
+        return
+    rule = np.where(np.equal(values["separation"], None), "overlap", values["separation"])
+    keys = np.char.add(np.char.add(damped[chosen].astype(str), "|"), rule[chosen].astype(str))
+    for key in np.unique(keys).tolist():
+        name, separation = key.split("|")
+        yield chosen[keys == key], name, separation
 
 
 def _law_groups(laws: np.ndarray, params: dict[str, np.ndarray], valid: np.ndarray):
