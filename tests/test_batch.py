@@ -17,10 +17,11 @@ import pytest
 from impactcli.batch import BATCH_KEYS, batch_impacts, material_properties, normalised_times
 from impactcli.cli import main
 from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
+from impactcli.io.table import EXTRA_KEYS
 from impactcli.tables import normalised_contact_duration
 
 STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
-OUTPUT = (*BATCH_KEYS, "damping_alpha", "error", "warning")
+OUTPUT = (*BATCH_KEYS, *EXTRA_KEYS, "error", "warning")
 
 
 def reference(row: dict, split: str = "mass", n: int = 25) -> dict:

@@ -193,3 +193,89 @@ def test_damping_faults_are_row_errors(batch):
         "e must lie in (0, 1], got 1.5",
         "",
     ]
+
+
+# -- who yields: split yield, each sphere's dissipated energy and first-yield velocity ------
+
+
+def _split_rows(batch, *args):
+    data = (b"id,d1,d2,v1,v2,model,material1,material2,split,m2\n"
+            b"glass_steel,3mm,inf,5,0,elastoplastic,glass,steel,yield,inf\n"
+            b"al_steel,3mm,inf,5,0,elastoplastic,aluminium-alloy,steel,yield,inf\n"
+            b"steel_steel,20mm,40mm,1,0,elastoplastic,steel,steel,yield,\n"
+            b"glass_steel_mass,3mm,inf,5,0,elastoplastic,glass,steel,,inf\n"
+            b"elastic,20mm,40mm,0.01,0,elastic,steel,steel,yield,\n"
+            b"bad,20mm,40mm,1,0,elastic,steel,steel,volume,\n")  # fmt: skip
+    code, frame, err = batch("-", *args, stdin=data)
+    assert code == 0, err
+    return frame.set_index("id")
+
+
+def _f(frame, row: str, key: str) -> float:
+    return float(frame.loc[row, key])
+
+
+def test_split_yield_puts_the_dent_on_the_sphere_that_yields(batch):
+    frame = _split_rows(batch)
+    # Glass (no yield strength) on a steel wall: the dent is the steel's, energy too.
+    assert _f(frame, "glass_steel", "delta1_res") == 0.0
+    assert _f(frame, "glass_steel", "delta2_res") == _f(frame, "glass_steel", "delta_res") > 0
+    assert _f(frame, "glass_steel", "energy_dissipated1") == 0.0
+    assert "sphere 1 has no yield strength" in frame.loc["glass_steel", "warning"]
+    assert frame.loc["glass_steel", "first_yield_velocity1"] == "inf"
+    # Aluminium (276 MPa) on steel (1 GPa): the ball takes it.
+    assert _f(frame, "al_steel", "delta2_res") == 0.0
+    assert _f(frame, "al_steel", "delta1_res") == _f(frame, "al_steel", "delta_res") > 0
+    # The mass split on unlike spheres: the paper's convention, with a warning.
+    assert "split is mass" in frame.loc["glass_steel_mass", "warning"]
+    assert frame.loc["bad", "error"] == "split must be mass, compliance, yield"
+
+
+def test_split_yield_shares_add_up_and_follow_compliance(batch):
+    frame = _split_rows(batch)
+    glass, steel = material("glass"), material("steel")
+    for row, (a, b) in {"glass_steel": (glass, steel), "steel_steel": (steel, steel)}.items():
+        total = {k: _f(frame, row, k) for k in ("delta_max", "delta_res", "energy_dissipated")}
+        assert _f(frame, row, "delta1_max") + _f(frame, row, "delta2_max") == pytest.approx(
+            total["delta_max"], rel=1e-12
+        )
+        assert _f(frame, row, "delta1_res") + _f(frame, row, "delta2_res") == pytest.approx(
+            total["delta_res"], rel=1e-12
+        )
+        assert _f(frame, row, "energy_dissipated1") + _f(
+            frame, row, "energy_dissipated2"
+        ) == pytest.approx(total["energy_dissipated"], rel=1e-12)
+        # The recoverable part by compliance (1 - nu^2)/E.
+        c1 = (1 - a.poisson_ratio**2) / a.youngs_modulus
+        c2 = (1 - b.poisson_ratio**2) / b.youngs_modulus
+        rec1 = _f(frame, row, "delta1_max") - _f(frame, row, "delta1_res")
+        rec2 = _f(frame, row, "delta2_max") - _f(frame, row, "delta2_res")
+        assert rec1 / rec2 == pytest.approx(c1 / c2, rel=1e-9)
+    # Equal yield strengths: the permanent part by compliance too (here equal halves).
+    assert _f(frame, "steel_steel", "delta1_res") == pytest.approx(
+        _f(frame, "steel_steel", "delta2_res"), rel=1e-12
+    )
+
+
+def test_first_yield_velocity_of_each_sphere_is_the_hertz_closed_form(batch):
+    frame = _split_rows(batch)
+    for row, names in {"al_steel": ("aluminium-alloy", "steel"),
+                       "steel_steel": ("steel", "steel")}.items():  # fmt: skip
+        m = _f(frame, row, "effective_mass")
+        r = _f(frame, row, "effective_radius")
+        e_star = _f(frame, row, "effective_modulus")
+        k = 4 / 3 * e_star * np.sqrt(r)
+        for i, name in enumerate(names, start=1):
+            sy = material(name).yield_strength
+            delta_y = np.pi**2 * r * (1.6 * sy) ** 2 / (4 * e_star**2)
+            v_y = np.sqrt(2 / m * 0.4 * k * delta_y**2.5)
+            assert _f(frame, row, f"first_yield_velocity{i}") == pytest.approx(v_y, rel=1e-9)
+    assert _f(frame, "steel_steel", "first_yield_velocity1") == pytest.approx(
+        _f(frame, "steel_steel", "first_yield_velocity"), rel=1e-12
+    )
+
+
+def test_split_option_yield_applies_to_rows_without_a_split_cell(batch):
+    frame = _split_rows(batch, "--split", "yield")
+    assert _f(frame, "glass_steel_mass", "delta1_res") == 0.0
+    assert "split is mass" not in frame.loc["glass_steel_mass", "warning"]

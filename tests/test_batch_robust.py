@@ -18,9 +18,10 @@ import pytest
 from impactcli.batch import BATCH_KEYS, batch_impacts
 from impactcli.cli import main
 from impactcli.impact import Sphere, elastoplastic_impact
+from impactcli.io.table import EXTRA_KEYS
 from impactcli.validation import MIN_YIELD_INDENTATION_RATIO
 
-OUTPUT = (*BATCH_KEYS, "damping_alpha", "error", "warning")
+OUTPUT = (*BATCH_KEYS, *EXTRA_KEYS, "error", "warning")
 HEADER = b"id,d1,d2,v1,v2,model,material\n"
 GOOD = b"a,20mm,40mm,1,0,elastic,steel\n"
 

@@ -30,6 +30,7 @@ class Engine(enum.StrEnum):
 class SplitChoice(enum.StrEnum):
     mass = "mass"
     compliance = "compliance"
+    yield_ = "yield"
 
 
 class ModelChoice(enum.StrEnum):
@@ -109,8 +110,9 @@ def batch(
     split: SplitChoice = typer.Option(
         SplitChoice.mass,
         "--split",
-        help="Share of the indentation between the spheres: mass (the paper's contact plane) "
-        "or compliance (Hertz).",
+        help="Share of the indentation between the spheres, for rows without a split cell: "
+        "mass (the paper's contact plane), compliance (Hertz) or yield (recoverable part by "
+        "compliance, permanent part to the sphere with the lower yield strength).",
     ),
     model: Optional[ModelChoice] = typer.Option(
         None, "--model", help="Model of rows whose model cell is empty (or without the column)."

@@ -28,6 +28,7 @@ __all__ = [
     "QUANTITY_COLUMNS",
     "REQUIRED_COLUMNS",
     "TEXT_COLUMNS",
+    "SPLITS",
     "TEXT_OUTPUTS",
     "RowError",
     "check_columns",
@@ -64,12 +65,18 @@ QUANTITY_COLUMNS: dict[str, tuple[str, bool]] = {
     "sy2": ("pressure", False),
 }
 TEXT_COLUMNS: tuple[str, ...] = (
-    "model", "material", "material1", "material2", "law", "damping", "separation",
+    "model", "material", "material1", "material2", "law", "damping", "separation", "split",
 )  # fmt: skip
+#: Shares of the indentation between the spheres (``--split`` and the ``split`` column).
+SPLITS: tuple[str, ...] = ("mass", "compliance", "yield")
 #: Damping columns (numbers): ``alpha`` of the row's damping law, or its target ``e``.
 DAMPING_COLUMNS: tuple[str, ...] = ("alpha", "e")
-#: Result columns after the summary keys: the damping parameter used.
-EXTRA_KEYS: tuple[str, ...] = ("damping_alpha",)
+#: Result columns after the summary keys: the damping parameter used, each sphere's share
+#: of the dissipated energy [J] and its first-yield velocity [m/s] (inf: no yield strength).
+EXTRA_KEYS: tuple[str, ...] = (
+    "damping_alpha", "energy_dissipated1", "energy_dissipated2",
+    "first_yield_velocity1", "first_yield_velocity2",
+)  # fmt: skip
 
 
 def law_parameter_columns() -> dict[str, tuple[str, str]]:
@@ -237,7 +244,8 @@ def compute_frame(
     frame : the chunk; columns as :data:`QUANTITY_COLUMNS` (numbers in SI or strings with
         units) and :data:`TEXT_COLUMNS`; others are ignored
     n : FILM segments per stage
-    split : ``mass`` or ``compliance`` share of the indentation between the spheres
+    split : ``mass``, ``compliance`` or ``yield`` share of the indentation between the
+        spheres, for rows whose ``split`` cell is empty (:func:`_sphere_shares`)
     model : model of the rows whose ``model`` cell is empty (or of all, without the column)
     faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
         CSV line, :func:`impactcli.io.csvblocks.parse_block`): such a row's error, first
@@ -339,7 +347,7 @@ def compute_frame(
     for rows, name, rule in _damping_groups(damped, damping, ~errors.bad):
         out = batch_damped_impacts(
             *(a[rows] for a in args[:-1]), damping=name, alpha=damping["alpha"][rows],
-            restitution=damping["e"][rows], n=n, split=split, separation=rule,
+            restitution=damping["e"][rows], n=n, separation=rule,
         )  # fmt: skip
         for k in BATCH_KEYS:
             result[k][rows] = out[k]
@@ -348,16 +356,20 @@ def compute_frame(
     undamped = np.equal(damped, None)  # damped rows are done
     ok = np.flatnonzero(~errors.bad & np.equal(laws, None) & undamped)
     if ok.size:  # the model column's rows: Hertz or Du & Wang
-        out = batch_impacts(*(a[ok] for a in args), n=n, split=split)
+        out = batch_impacts(*(a[ok] for a in args), n=n)
         for k in BATCH_KEYS:
             result[k][ok] = out[k]
         kernel[ok] = out["error"]
     for rows, name, params in _law_groups(laws, law_params, ~errors.bad & undamped):
-        for part, out in _law_rows(rows, name, params, args, n, split):
+        for part, out in _law_rows(rows, name, params, args, n):
             for k in BATCH_KEYS:
                 result[k][part] = out[k]
             kernel[part] = out["error"]
     errors.add_messages(kernel)
+    splits = _text_column(frame, "split", size, lower=True)
+    splits = np.where(np.equal(splits, None), split, splits).astype(str)
+    errors.add(~np.isin(splits, SPLITS), f"split must be {', '.join(SPLITS)}")
+    notes = _sphere_shares(result, splits, s1, s2, q, ~errors.bad)
     for k in (*BATCH_KEYS, *EXTRA_KEYS):
         result[k][errors.bad] = np.nan
     result["error"] = errors.messages
@@ -367,6 +379,10 @@ def compute_frame(
         v0, result["first_yield_velocity"], result["delta_max"], result["effective_radius"],
         np.where(np.equal(laws, None), ~plastic, elastic_law) & ~errors.bad,
     )  # fmt: skip
+    noted = np.flatnonzero((notes != "") & ~errors.bad)
+    result["warning"][noted] = [
+        f"{w}; {x}" if w else x for w, x in zip(result["warning"][noted], notes[noted])
+    ]
     return result
 
 
@@ -419,6 +435,76 @@ def _row_laws(frame, size: int, errors: Problems):
         foreign = present & ~np.isin(laws.astype(str), takers.split(", "))
         errors.add(foreign, f"{column} is a parameter of the law(s) {takers} only")
     return laws, params, elastic
+
+
+def _sphere_shares(result: dict, splits, s1: dict, s2: dict, q: dict, valid) -> np.ndarray:
+    """Each sphere's share of the indentation (``delta1_max`` ... ``delta2_res``, by the
+    row's split), of the dissipated energy, and its first-yield velocity, written into
+    ``result``; returns each row's note on the split (``""`` where none).
+
+    ``mass`` and ``compliance``: delta_i = f_i delta (:func:`impactcli.impact.
+    split_fractions`). ``yield`` (:func:`impactcli.energy.sphere_shares`): the recoverable
+    part delta - delta_res by compliance, the permanent part delta_res to the sphere with
+    the lower yield strength (:func:`impactcli.energy.yield_shares`: a sphere without one is
+    brittle and does not yield; equal strengths share it by compliance). The dissipated
+    energy goes with the permanent part: energy_dissipated_i = p_i energy_dissipated
+    (docs/method.md §9). First-yield velocities: :func:`impactcli.design.
+    first_yield_velocities` (Hertz peak pressure 1.6 sigma_y,i)."""
+    from impactcli.contact import sphere_mass
+    from impactcli.design import first_yield_velocities
+    from impactcli.energy import yield_shares
+    from impactcli.impact import split_fractions
+
+    size = splits.size
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mass1 = np.where(np.isnan(s1["m"]), sphere_mass(q["d1"], s1["rho"]), s1["m"])
+        mass2 = np.where(np.isnan(s2["m"]), sphere_mass(q["d2"], s2["rho"]), s2["m"])
+        c1 = (1.0 - s1["nu"] ** 2) / s1["E"]
+        c2 = (1.0 - s2["nu"] ** 2) / s2["E"]
+        by_mass = split_fractions("mass", mass1, mass2, c1, c2)
+        by_compliance = split_fractions("compliance", mass1, mass2, c1, c2)
+    elastic = [np.where(splits == "mass", by_mass[i], by_compliance[i]) for i in (0, 1)]
+    permanent = [e.copy() for e in elastic]
+    notes = np.full(size, "", dtype=object)
+    sy1, sy2 = s1["sy"], s2["sy"]
+    chosen = np.flatnonzero(valid & (splits == "yield"))
+    if chosen.size:  # the rule of energy.yield_shares, once per distinct pair of strengths
+        pairs = np.stack([sy1[chosen], sy2[chosen]], axis=1)
+        unique, inverse = np.unique(pairs, axis=0, return_inverse=True)
+        shares = np.full((unique.shape[0], 2), np.nan)
+        for k, (a, b) in enumerate(unique.tolist()):
+            a, b = (None if np.isnan(a) else a), (None if np.isnan(b) else b)
+            if a is not None or b is not None:
+                shares[k] = yield_shares(a, b)
+        p = shares[inverse.reshape(-1)]
+        for i in (0, 1):
+            permanent[i][chosen] = np.where(np.isnan(p[:, i]), permanent[i][chosen], p[:, i])
+        for i, sy in ((1, sy1), (2, sy2)):
+            brittle = chosen[np.isnan(sy[chosen]) & (result["delta_res"][chosen] > 0)]
+            notes[brittle] = (
+                f"sphere {i} has no yield strength: taken as brittle, it does not yield "
+                "(fracture is outside the model)"
+            )
+    differ = valid & (splits == "mass") & ((s1["E"] != s2["E"]) | (s1["nu"] != s2["nu"]))
+    notes[differ & (notes == "")] = (
+        "the spheres' materials differ and split is mass, the paper's convention for like "
+        "spheres; split yield puts the permanent indentation on the sphere that yields"
+    )
+    delta_max, delta_res = result["delta_max"], result["delta_res"]
+    permanent_part = np.where(np.isnan(delta_res), 0.0, delta_res)
+    for i in (0, 1):
+        recoverable = elastic[i] * (delta_max - permanent_part)
+        result[f"delta{i + 1}_max"] = recoverable + permanent[i] * permanent_part
+        result[f"delta{i + 1}_res"] = permanent[i] * delta_res
+        result[f"energy_dissipated{i + 1}"] = permanent[i] * result["energy_dissipated"]
+    v1y, v2y = first_yield_velocities(
+        result["effective_mass"], result["effective_radius"], result["effective_modulus"],
+        sy1, sy2,
+    )  # fmt: skip
+    computed = ~np.isnan(result["contact_time"])
+    result["first_yield_velocity1"] = np.where(computed, v1y, np.nan)
+    result["first_yield_velocity2"] = np.where(computed, v2y, np.nan)
+    return notes
 
 
 def _row_damping(frame, size: int, errors: Problems, laws: np.ndarray, model: np.ndarray):
@@ -494,7 +580,7 @@ def _law_groups(laws: np.ndarray, params: dict[str, np.ndarray], valid: np.ndarr
             yield members, name, law_params
 
 
-def _law_rows(rows: np.ndarray, name: str, params: dict, args: tuple, n: int, split: str):
+def _law_rows(rows: np.ndarray, name: str, params: dict, args: tuple, n: int):
     """(rows, kernel output) of one law group; a group the law refuses (ValueError: a bad
     per-row parameter, an unreadable curve file) is halved until the refused rows stand
     alone with the law's message as their error."""
@@ -508,7 +594,7 @@ def _law_rows(rows: np.ndarray, name: str, params: dict, args: tuple, n: int, sp
         chosen = {k: v[local] for k, v in per_row.items()}
         try:
             out = batch_impacts(
-                *(a[rows[local]] for a in args[:-1]), n=n, split=split, law=name,
+                *(a[rows[local]] for a in args[:-1]), n=n, law=name,
                 law_params={**fixed, **chosen},
             )  # fmt: skip
         except (ValueError, OSError) as exc:
