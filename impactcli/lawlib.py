@@ -766,10 +766,9 @@ class LawSpec:
         if np.any(needed):
             sy = np.asarray(np.nan if yield_strength is None else yield_strength, dtype=float)
             if np.any(needed & ~(np.isfinite(sy) & (sy > 0))):
-                raise ValueError(
-                    f"law {self.name!r} needs a positive, finite yield strength: give sy, "
-                    "sy1/sy2 or a material that has one"
-                )
+                from impactcli.validation import YIELD_STRENGTH_NEEDED
+
+                raise ValueError(YIELD_STRENGTH_NEEDED)  # one message for one fault
         return self.build(radius, modulus, yield_strength, resolved)
 
     def used_parameters(
