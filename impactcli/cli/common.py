@@ -31,7 +31,14 @@ def resolve_format(requested: Format | None, output: str | None) -> Format:
 
 def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.console.Console
     """A Rich console on ``stream`` (stdout by default, or stderr). Imported on demand."""
-    from rich.console import Console
+    from rich.console import Console as RichConsole
+
+    from impactcli.output import StdoutClosed
+
+    class Console(RichConsole):
+        def on_broken_pipe(self) -> None:  # Rich's own exits with status 1
+            self.quiet = True
+            raise StdoutClosed()
 
     if stderr:
         return Console(stderr=True, highlight=False)
