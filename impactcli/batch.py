@@ -54,6 +54,7 @@ from impactcli.impact import (
     split_fractions,
 )
 from impactcli.laws import hertz_stiffness
+from impactcli.limits import MAX_SEGMENTS, check_size
 
 __all__ = [
     "BATCH_KEYS",
@@ -311,9 +312,7 @@ def batch_impacts(
     >>> (out["contact_time"] * 1e6).round(3), out["restitution"].round(5)
     (array([171.319,  75.988]), array([1.     , 0.85611]))
     """
-    n = int(n)
-    if n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
+    n = check_size("n", n, MAX_SEGMENTS)
     if not (np.isfinite(pressure_factor) and pressure_factor > 0):
         raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
     d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = _floats(

@@ -32,6 +32,8 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.limits import MAX_SEGMENTS, check_size
+
 __all__ = [
     "ContactLaw",
     "FilmStage",
@@ -190,9 +192,7 @@ def solve_stage(
     delta_r), C_rs = delta_r - F_r/K_rs, omega_rs = sqrt(K_rs/m) (eqs. 5-7). The segment ends
     at the next node, or at the oscillator's turning point when it turns first (eq. 8).
     """
-    n = int(n)
-    if n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
+    n = check_size("n", n, MAX_SEGMENTS)
     a = np.asarray(delta_start, dtype=float)[..., None]
     b = np.asarray(delta_end, dtype=float)[..., None]
     v_a = np.asarray(speed_start, dtype=float)[..., None]
@@ -313,9 +313,7 @@ def hertz_loading_time(
     k_r = n (xi_s^1.5 - xi_r^1.5), omega_rs = Omega sqrt(k_r), y0 = xi_r^1.5 / k_r, h = 1/n,
     and x0 = sqrt(A - (4/5) xi_r^2.5) / sqrt(k_r) from the energy balance (eq. 13e).
     """
-    n = int(n)
-    if n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
+    n = check_size("n", n, MAX_SEGMENTS)
     xi = np.arange(n + 1, dtype=float) / n
     force = xi * np.sqrt(xi)  # F / (K_h delta_end^1.5)
     slope = np.diff(force) * n  # k_r

@@ -36,6 +36,7 @@ from impactcli.contact import (
 )
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import hertz_stiffness
+from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 
 __all__ = [
     "HISTORY_COLUMNS",
@@ -210,7 +211,9 @@ class ImpactResult:
         return r2 * self.v1 - r1 * self.v2
 
     def times(self, points: int = 201) -> NDArray:
-        """``points`` evenly spaced times over the whole contact, [s]."""
+        """``points`` evenly spaced times over the whole contact, [s]
+        (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
+        points = check_size("points", points, MAX_POINTS, minimum=2)
         return np.linspace(0.0, self.film.end_time, points)
 
     # -- histories ---------------------------------------------------------------------
@@ -332,8 +335,7 @@ def _validate(
             f"the spheres do not approach: V1 + V2 = {v1 + v2:g} m/s must be > 0 "
             "(velocities are positive toward the other sphere)"
         )
-    if int(n) < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
+    check_size("n", n, MAX_SEGMENTS)
     if not np.isfinite(sphere1.total_mass) and not np.isfinite(sphere2.total_mass):
         raise ValueError("at most one sphere can have an infinite (fixed) mass")
     if not np.isfinite(sphere1.diameter) and not np.isfinite(sphere2.diameter):

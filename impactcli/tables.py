@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import Hertz
+from impactcli.limits import MAX_CONVERGENCE_RUNS, MAX_SEGMENTS, check_size
 
 __all__ = [
     "EXACT_CONTACT_DURATION",
@@ -143,6 +144,9 @@ def convergence(ns: list[int], carry_velocity: bool = False) -> list[Convergence
     The observed order between successive n is log(e_prev/e)/log(n/n_prev) on the absolute
     errors; ``ns`` is used in the order given.
     """
+    check_size("the number of segment counts", len(ns), MAX_CONVERGENCE_RUNS)
+    for n in ns:
+        check_size("n", n, MAX_SEGMENTS)
     rows: list[ConvergenceRow] = []
     for n in ns:
         loading, restitution = normalised_elastic(n, carry_velocity)

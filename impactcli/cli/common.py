@@ -80,14 +80,16 @@ OutputFile = Annotated[Optional[str], typer.Option("--output", "-o", help=OUTPUT
 PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
 
 
-def check_plot(path: str | None) -> None:
+def check_plot(path: str | None, output: str | None = None) -> None:
     """Fail before any work if ``--plot FILE`` cannot be drawn: a file type other than
-    .png/.svg/.pdf, no matplotlib, no such folder, a folder of that name, or a folder we
-    cannot write to. One-line :class:`InputError`, exit
-    status 2."""
+    .png/.svg/.pdf, no matplotlib, no such folder, a folder of that name, a folder we
+    cannot write to, or the same file as ``-o`` (``output``). One-line
+    :class:`InputError`, exit status 2."""
     if path is None:
         return
-    from impactcli.output import InputError
+    from impactcli.output import InputError, check_distinct_outputs
+
+    check_distinct_outputs(output, path)
     from impactcli.plots import figure_format, require_matplotlib
 
     try:

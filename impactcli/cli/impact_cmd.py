@@ -20,6 +20,7 @@ from impactcli.cli.common import (
     warn,
 )
 from impactcli.contact import DU_WANG_PRESSURE_FACTOR
+from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import InputError, atomic_output, write_csv, write_json
 
 UNITS_HELP = "A bare number is SI; units may be given, e.g. 20mm, 7.5mm/s, 210GPa, 7800kg/m^3."
@@ -71,9 +72,24 @@ M2 = Annotated[Optional[str], _opt("Mass of sphere 2 [kg]; 'inf' is a fixed targ
 SY = Annotated[Optional[str], _opt("Yield strength of both spheres [Pa].", "--sy")]
 SY1 = Annotated[Optional[str], _opt("Yield strength of sphere 1 [Pa].", "--sy1")]
 SY2 = Annotated[Optional[str], _opt("Yield strength of sphere 2 [Pa].", "--sy2")]
-N = Annotated[int, typer.Option("--n", "-n", min=1, help="FILM segments per stage (>= 1).")]
+N = Annotated[
+    int,
+    typer.Option(
+        "--n",
+        "-n",
+        min=1,
+        max=MAX_SEGMENTS,
+        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
+    ),
+]
 POINTS = Annotated[
-    int, typer.Option("--points", min=2, help="History points, evenly spaced in time (>= 2).")
+    int,
+    typer.Option(
+        "--points",
+        min=2,
+        max=MAX_POINTS,
+        help=f"History points, evenly spaced in time, 2 to {MAX_POINTS:,}.",
+    ),
 ]
 METHOD = Annotated[
     Method,
@@ -204,7 +220,7 @@ def _velocity(text: Optional[str], name: str) -> float:
 def _run(model: str, p: dict[str, Any], pressure_factor: float) -> None:
     from impactcli.impact import elastic_impact, elastoplastic_impact
 
-    check_plot(p["plot"])
+    check_plot(p["plot"], p["output"])
     s1 = _sphere(1, p)
     s2 = _sphere(2, p)
     v1, v2 = _velocity(p["v1"], "--v1"), _velocity(p["v2"], "--v2")
@@ -525,7 +541,16 @@ elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
-    count: Annotated[int, typer.Option("--count", min=1, help="Number of velocities.")] = 50,
+    count: Annotated[
+        int,
+        typer.Option(
+            "--count",
+            min=1,
+            max=MAX_COUNT,
+            help=f"Number of velocities, 1 to {MAX_COUNT:,} (and --count x --n at most "
+            f"{MAX_SWEEP_SEGMENTS:,}).",
+        ),
+    ] = 50,
     linear: Annotated[
         bool, typer.Option("--linear", help="Evenly spaced velocities (default: log-spaced).")
     ] = False,
@@ -571,7 +596,7 @@ def restitution(
     from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
 
     p = locals()
-    check_plot(plot)
+    check_plot(plot, output)
     lo, hi = _velocity(v_min, "--v-min"), _velocity(v_max, "--v-max")
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
