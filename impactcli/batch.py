@@ -30,7 +30,7 @@ computed.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import lru_cache, wraps
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -255,6 +255,19 @@ def validate(
     return errors
 
 
+def _without_float_warnings(function):
+    """Run ``function`` under ``np.errstate(all="ignore")``: an extreme row gives NaN or inf
+    in its own lanes (checked afterwards), not a NumPy RuntimeWarning for the whole chunk."""
+
+    @wraps(function)
+    def quiet(*args, **kwargs):
+        with np.errstate(all="ignore"):
+            return function(*args, **kwargs)
+
+    return quiet
+
+
+@_without_float_warnings
 def batch_impacts(
     d1: ArrayLike,
     d2: ArrayLike,

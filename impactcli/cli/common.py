@@ -47,14 +47,26 @@ def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.con
     return Console(file=stream, highlight=False, width=160, color_system=None)
 
 
+#: Warning and note lines of the running command, printed when it succeeds (a failed run
+#: prints its one error line alone); None outside :func:`impactcli.cli.runner.run`.
+pending_messages: list[str] | None = None
+
+
+def _say(line: str) -> None:
+    if pending_messages is not None:
+        pending_messages.append(line)
+    else:
+        print(line, file=sys.stderr)
+
+
 def warn(message: str) -> None:
-    """One warning line on stderr."""
-    print(f"impact: warning: {message}", file=sys.stderr)
+    """One warning line on stderr (at the end of a successful run)."""
+    _say(f"impact: warning: {message}")
 
 
 def note(message: str) -> None:
-    """One note line on stderr."""
-    print(f"impact: note: {message}", file=sys.stderr)
+    """One note line on stderr (at the end of a successful run)."""
+    _say(f"impact: note: {message}")
 
 
 PLOT_HELP = (

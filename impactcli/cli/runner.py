@@ -6,9 +6,9 @@ exit status:
 
 - 0: success; also stdout closed by its reader (``impact tables | head -1``).
 - 2: bad input or an output that cannot be written, as one line ``impact: error: ...``
-  (usage errors as ``impact CMD: error: ...``); NumPy RuntimeWarnings (overflow, invalid
-  value) of a run that fails are dropped and those of a run that succeeds become one
-  warning line each.
+  (usage errors as ``impact CMD: error: ...``). A NumPy RuntimeWarning (overflow, invalid
+  value) never reaches stderr: the run fails with one line naming it, its files are not
+  written.
 - 128 + signal number: SIGINT (130), SIGTERM (143), SIGHUP (129). Each raises
   :class:`Terminated` in the main thread, so the temporary output files are removed exactly
   as for Ctrl-C; the child processes the run started (Dask ``--scheduler processes``
@@ -170,13 +170,16 @@ def _error(message: str) -> None:
         print(" ".join(str(message).split()), file=sys.stderr)
 
 
-def _warning_lines(caught: list[warnings.WarningMessage]) -> list[str]:
-    lines: list[str] = []
-    for item in caught:
-        text = f"impact: warning: {' '.join(str(item.message).split())}"
-        if text not in lines:
-            lines.append(text)
-    return lines
+def _refuse_numeric_warnings(caught: list[warnings.WarningMessage]) -> None:
+    """A NumPy RuntimeWarning (overflow, division by zero, invalid value) means some input
+    is outside the range the model can compute: the run fails with one line (before its
+    files are committed) instead of writing infinities or NaN."""
+    numeric = [w for w in caught if _is_numeric(w)]
+    if numeric:
+        raise InputError(
+            f"the computation failed ({' '.join(str(numeric[0].message).split())}): an input "
+            "is too large or too small for the model; check the values and their units"
+        )
 
 
 def run(call: Callable[[], object], usage_error: Callable[[BaseException], int | None]) -> int:
@@ -185,8 +188,11 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
     ``usage_error`` handles the Typer/Click exceptions (it prints and returns a status, or
     returns None for an exception it does not know).
     """
+    from impactcli.cli import common
+
     _guard_stdio()
     status = 0
+    common.pending_messages = []
     caught: list[warnings.WarningMessage] = []
     try:
         with signal_handlers():
@@ -196,8 +202,9 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
                     with output_transaction():
                         result = call()
                         _flush_stdout()
+                        _refuse_numeric_warnings(caught)
                 status = result if isinstance(result, int) else 0
-                for line in _warning_lines([w for w in caught if _is_numeric(w)]):
+                for line in common.pending_messages:
                     _error(line)
                 for item in caught:
                     if not _is_numeric(item):
@@ -243,6 +250,8 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
     except Terminated as exc:  # a signal between the handlers' install and the try
         status = 128 + exc.signum
         end_children(kill=True)
+    finally:
+        common.pending_messages = None
     if status != 0:
         _quiet_stdout_if_broken()
     return status
