@@ -24,6 +24,8 @@ __all__ = [
     "atomic_output",
     "check_distinct_outputs",
     "output_transaction",
+    "remove_path",
+    "temporary_path",
     "to_jsonable",
     "write_csv",
     "write_json",
@@ -67,6 +69,7 @@ class _Transaction:
     def __init__(self) -> None:
         self.staged: list[tuple[str, str]] = []  # (temporary file, target)
         self.claimed: dict[str, str] = {}  # real target path -> the name it was given as
+        self.temporaries: list[str] = []  # removed at the end of the run, whatever happens
 
     def claim(self, target: str, given: str) -> None:
         if target in self.claimed:
@@ -91,11 +94,13 @@ class _Transaction:
             self.abort()
 
     def abort(self) -> None:
-        """Remove every staged file: no target is touched."""
+        """Remove every staged file and temporary path: no target is touched."""
         while self.staged:
             tmp, _ = self.staged.pop()
             with contextlib.suppress(OSError):
                 os.unlink(tmp)
+        while self.temporaries:
+            remove_path(self.temporaries.pop())
 
 
 _transaction: _Transaction | None = None
@@ -125,6 +130,34 @@ def output_transaction() -> Iterator[None]:
     finally:
         _transaction.abort()
         _transaction = None
+
+
+def remove_path(path: str) -> None:
+    """Remove a file or a folder tree if it exists (retried while writer threads may still
+    be adding files to it); errors are ignored."""
+    import shutil
+
+    for _ in range(5):
+        if os.path.isdir(path) and not os.path.islink(path):
+            shutil.rmtree(path, ignore_errors=True)
+        else:
+            with contextlib.suppress(OSError):
+                os.unlink(path)
+        if not os.path.lexists(path):
+            return
+
+
+def temporary_path(target: str, suffix: str = ".tmp") -> str:
+    """A fresh hidden name beside ``target`` for a writer that makes its own file or folder
+    (Dask's to_csv / to_parquet). Inside :func:`output_transaction` it is removed at the end
+    of the run whatever happens (a signal included) unless the writer has renamed it."""
+    name = os.path.join(
+        os.path.dirname(os.path.abspath(target)),
+        f"{TEMP_PREFIX}{os.urandom(6).hex()}{suffix}",
+    )
+    if _transaction is not None:
+        _transaction.temporaries.append(name)
+    return name
 
 
 def check_distinct_outputs(*paths: str | os.PathLike[str] | None) -> None:

@@ -23,7 +23,7 @@ import typer
 
 from impactcli.cli.common import OutputFile, warn
 from impactcli.limits import MAX_CHUNK_ROWS, MAX_SEGMENTS
-from impactcli.output import InputError, atomic_output
+from impactcli.output import InputError, atomic_output, remove_path, temporary_path
 
 #: Quantity columns: name -> (kind for :func:`impactcli.units.parse_quantity`, inf allowed).
 #: ``E``, ``nu``, ``rho``, ``sy`` apply to both spheres; ``E1``... to one, and win.
@@ -694,10 +694,8 @@ def _run_dask(
         local = False  # a device or a pipe (/dev/null): written in place, never replaced
     write_to = target
     if local:
-        import tempfile
-
         suffix = ".parquet" if fmt is TableFormat.parquet else ".csv"
-        write_to = tempfile.mktemp(prefix=".impact-", suffix=suffix, dir=os.path.dirname(target))
+        write_to = temporary_path(target, suffix)
     if fmt is TableFormat.parquet:
         write = out.to_parquet(write_to, write_index=False, compute=False)
     else:
@@ -711,9 +709,10 @@ def _run_dask(
         ]
     else:
         infos = [out.map_partitions(partition_errors, meta=partition_errors(meta.iloc[:0]))]
-    kwargs, client = _dask_scheduler(scheduler)
     report = _Report(strict=False)
+    client = None
     try:
+        kwargs, client = _dask_scheduler(scheduler)
         with _dask_progress(progress, client):
             _, *parts = dask.compute(write, *infos, **kwargs)
         info = pd.concat(parts, ignore_index=True)
@@ -735,10 +734,8 @@ def _run_dask(
             offset = int(lengths.compute(**kwargs).sum())
         raise InputError(f"row {offset + exc.row + 1}: {exc.reason}") from None
     finally:
-        if local and os.path.exists(write_to):
-            import shutil
-
-            shutil.rmtree(write_to) if os.path.isdir(write_to) else os.unlink(write_to)
+        if local:
+            remove_path(write_to)
         if client is not None:
             cluster = getattr(client, "cluster", None)
             client.close()

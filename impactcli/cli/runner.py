@@ -99,18 +99,21 @@ def _descendants(pid: int) -> list[int]:
 
 
 def end_children(kill: bool = True) -> None:
-    """Terminate (``kill=False``: SIGTERM) or kill (SIGKILL) every process this one
-    started, directly or through its children."""
+    """``kill=False``: terminate (SIGTERM) the worker processes this one started with
+    multiprocessing (Dask's process pool, a LocalCluster's nannies), so the run's cleanup
+    does not wait for their tasks. ``kill=True``: also kill (SIGKILL) every process left
+    below this one (grandchildren, multiprocessing's resource tracker), once the cleanup
+    is done."""
     import multiprocessing
 
-    sig = signal.SIGKILL if kill else signal.SIGTERM
     with contextlib.suppress(Exception):
         for child in multiprocessing.active_children():
             with contextlib.suppress(Exception):
                 child.kill() if kill else child.terminate()
-    for pid in _descendants(os.getpid()):
-        with contextlib.suppress(OSError):
-            os.kill(pid, sig)
+    if kill:
+        for pid in _descendants(os.getpid()):
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
 
 
 class _ClosedStdout:
