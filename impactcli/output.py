@@ -6,6 +6,7 @@ No physics here and no heavy imports: NumPy and the standard library only.
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import math
 import os
@@ -177,6 +178,19 @@ def check_distinct_outputs(*paths: str | os.PathLike[str] | None) -> None:
         seen[real] = given
 
 
+def _check_name(target: str, directory: str) -> None:
+    """A name the folder's file system cannot hold fails now, before anything is written
+    (and, in a transaction, before any file of the run is committed)."""
+    try:
+        longest = os.pathconf(directory, "PC_NAME_MAX")
+    except (OSError, ValueError):
+        longest = 255
+    if len(os.fsencode(os.path.basename(target))) > longest:
+        raise OutputError(
+            f"cannot write {target!r}: {os.strerror(errno.ENAMETOOLONG)} (at most {longest} bytes)"
+        )
+
+
 def _umask() -> int:
     mask = os.umask(0o022)
     os.umask(mask)
@@ -264,6 +278,7 @@ def atomic_output(path: str | os.PathLike[str] | None, binary: bool = False) -> 
             yield stream
         return
     directory = os.path.dirname(target)
+    _check_name(target, directory)
     mode = _new_file_mode(target)
     try:
         fd, tmp = tempfile.mkstemp(prefix=TEMP_PREFIX, suffix=".tmp", dir=directory)

@@ -181,6 +181,17 @@ def test_a_failing_plot_leaves_the_previous_data_file(tmp_path, monkeypatch, cap
     assert (tmp_path / "pre.csv").read_text() == "old\n"
 
 
+def test_a_plot_name_too_long_leaves_the_previous_data_file(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    (tmp_path / "pre.csv").write_text("old\n")
+    argv = ["convergence", "1", "2", "-o", str(tmp_path / "pre.csv")]
+    code, _, err = _main([*argv, "--plot", str(tmp_path / ("f" * 300 + ".png"))], capsys)
+    assert code == 2
+    _one_error_line(err)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pre.csv"]
+    assert (tmp_path / "pre.csv").read_text() == "old\n"
+
+
 def test_outputs_are_committed_together_or_not_at_all(tmp_path):
     a, b = tmp_path / "a.csv", tmp_path / "b.csv"
     with output_transaction():
