@@ -17,9 +17,11 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
+from impactcli.cli.impact_cmd import POINTS, N
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
+from impactcli.limits import MAX_COUNT
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
@@ -39,10 +41,8 @@ COLUMNS = {
 def compare_laws(
     spheres: SphereOptions,
     law: LawOptions = None,
-    n: Annotated[int, typer.Option("--n", "-n", min=1, help="FILM segments per stage.")] = 25,
-    points: Annotated[
-        int, typer.Option("--points", min=2, help="History points of each loop (--plot).")
-    ] = 401,
+    n: N = 25,
+    points: POINTS = 401,
     ratio_min: Annotated[
         float, typer.Option("--ratio-min", help="Lowest V0/V_y of the e panel (--plot).")
     ] = 0.5,
@@ -50,7 +50,10 @@ def compare_laws(
         float, typer.Option("--ratio-max", help="Highest V0/V_y of the e panel (--plot).")
     ] = 1000.0,
     count: Annotated[
-        int, typer.Option("--count", min=2, help="Velocities of the e panel (--plot).")
+        int,
+        typer.Option(
+            "--count", min=2, max=MAX_COUNT, help="Velocities of the e panel (--plot)."
+        ),
     ] = 80,
     fmt: OutputFormat = None,
     output: OutputFile = None,
@@ -81,7 +84,7 @@ def compare_laws(
     from impactcli.lawlib import comparison_laws
     from impactcli.spheres import spheres_from_options, velocities_from_options
 
-    check_plot(plot)
+    check_plot(plot, output)
     if not 0 < ratio_min < ratio_max:
         raise InputError(f"need 0 < --ratio-min < --ratio-max, got {ratio_min:g}, {ratio_max:g}")
     choices = resolve_laws(law, default=comparison_laws())
