@@ -20,6 +20,7 @@ from impactcli.cli.common import OutputFile, note, warn
 from impactcli.errors import InputError
 from impactcli.io.readers import PARQUET_SUFFIXES
 from impactcli.io.writers import TableFormat
+from impactcli.limits import MAX_CHUNK_ROWS, MAX_SEGMENTS
 
 
 class Engine(enum.StrEnum):
@@ -106,7 +107,14 @@ def batch(
         "-f",
         help="Output csv or parquet. Default: from OUT's extension (.parquet, .pq), else CSV.",
     ),
-    n: int = typer.Option(25, "--n", "-n", min=1, help="FILM segments per stage."),
+    n: int = typer.Option(
+        25,
+        "--n",
+        "-n",
+        min=1,
+        max=MAX_SEGMENTS,
+        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
+    ),
     split: SplitChoice = typer.Option(
         SplitChoice.mass,
         "--split",
@@ -124,8 +132,9 @@ def batch(
         100_000,
         "--chunk-size",
         min=1,
-        help="Rows per chunk (memory stays bounded by it; CSV blocks of at most 64 MiB, "
-        "lines of at most 1 MiB).",
+        max=MAX_CHUNK_ROWS,
+        help=f"Rows per chunk, 1 to {MAX_CHUNK_ROWS:,} (memory stays bounded by it; CSV "
+        "blocks of at most 64 MiB, lines of at most 1 MiB).",
     ),
     engine: Engine = typer.Option(
         Engine.numpy,
