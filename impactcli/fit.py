@@ -588,3 +588,82 @@ def prediction_band(
         "upper": e + t * se,
         "contact_time": np.asarray(centre["contact_time"], dtype=float),
     }
+
+
+def law_yield_velocity(sphere1, sphere2, law: str, params: Mapping[str, float]) -> float:
+    """V_y [m/s] of ``law`` with these parameters: above it an impact is plastic (Du & Wang,
+    Thornton: docs/method.md §7, §9); NaN for a law without a yield point (Hertz, the
+    damped laws) and 0 for Walton & Braun (plastic from the first touch)."""
+    from impactcli.sweep import sweep_yield_velocity
+
+    law = _check_law(law)
+    if law in ("hertz", *_DAMPED):
+        return math.nan
+    if law == "walton-braun":
+        return 0.0
+    extra = {k: params[k] for k in ("p0_factor", "py") if k in params}
+    return sweep_yield_velocity(
+        sphere1, sphere2, yield_strength=params.get("sy"), law=law, law_params=extra
+    )
+
+
+def fit_named_law(
+    sphere1,
+    sphere2,
+    law: str,
+    data: FitData,
+    names: Sequence[str] | None = None,
+    start: Mapping[str, float] | None = None,
+    bounds: Mapping[str, tuple[float, float]] | None = None,
+    fixed: Mapping[str, float] | None = None,
+    n: int | None = None,
+) -> tuple[FitResult, Model]:
+    """Fit a law of :data:`FIT_LAWS` to ``data`` for this pair of spheres.
+
+    :func:`law_model` with :func:`law_parameters`' starting values and bounds, overridden
+    by ``start`` (name -> value) and ``bounds`` (name -> (low, high)), then :func:`fit_law`.
+    Adds a warning when every point lies below the fitted law's yield velocity (the data
+    show no plastic impact: e = 1 whatever the plastic parameters).
+
+    Parameters
+    ----------
+    names : the parameters to fit; default :data:`DEFAULT_FIT` of the law
+    fixed : values of other parameters of the law, SI (held during the fit)
+    n : FILM segments per stage (:func:`law_model`)
+
+    Returns
+    -------
+    (FitResult, Model)
+        The fit and the model it used (with ``fixed`` built in), e.g. for
+        :func:`prediction_band`.
+    """
+    law = _check_law(law)
+    fixed = dict(fixed or {})
+    names = tuple(DEFAULT_FIT[law] if names is None else names)
+    available = law_parameters(sphere1, sphere2, law, float(np.median(data.impact_velocity)), fixed)
+    for name in (*names, *fixed, *(start or {}), *(bounds or {})):
+        if name not in available:
+            accepted = ", ".join(available) or "none"
+            raise ValueError(f"law {law!r} has no parameter {name!r} to fit (accepted: {accepted})")
+    both = [name for name in names if name in fixed]
+    if both:
+        raise ValueError(f"{both[0]} of law {law!r} is both fitted and held fixed")
+    parameters = []
+    for name in names:
+        p = available[name]
+        lo, hi = (bounds or {}).get(name, (p.lower, p.upper))
+        initial = (start or {}).get(name, min(max(p.initial, lo), hi))
+        parameters.append(FitParameter(name, p.unit, initial, lo, hi))
+    model = law_model(sphere1, sphere2, law, n, fixed)
+    result = fit_law(law, model, data, parameters, fixed)
+    fitted = {**fixed, **dict(zip(result.names, result.values.tolist()))}
+    v_y = law_yield_velocity(sphere1, sphere2, law, fitted)
+    if math.isfinite(v_y) and v_y > 0 and np.all(data.impact_velocity <= v_y):
+        extra = (
+            f"every point is below the yield velocity of the fitted {law} law, "
+            f"V_y = {v_y:.4g} m/s: the data show no plastic impact"
+        )
+        from dataclasses import replace
+
+        result = replace(result, warnings=(*result.warnings, extra))
+    return result, model
