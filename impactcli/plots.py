@@ -728,6 +728,7 @@ def fit_figure(
     *,
     error: ArrayLike | None = None,
     title: str = "Coefficient of restitution: measured and fitted",
+    log_velocity: bool | None = None,
 ) -> Figure:
     """Measured e(V0) with the fitted curve and confidence band of each law (top) and the
     residuals e - e_fit at the measured points (bottom, same V0 axis).
@@ -740,6 +741,7 @@ def fit_figure(
         ``residuals`` (e - e_fit at the data, [-]); the band is drawn where finite
     error : one standard deviation of each measured e, [-]: error bars (None: points only)
     title : names the case (spheres, law, band level)
+    log_velocity : logarithmic V0 axis; default when the data span a factor 3 or more
 
     Returns
     -------
@@ -778,8 +780,17 @@ def fit_figure(
     ax_r.axhline(0.0, color="0.5", linewidth=0.8)
     ax_r.set_ylabel(r"$e - e_{fit}$ (-)")
     ax_r.set_xlabel(f"impact velocity $V_0$ ({vs.unit})")
+    if log_velocity is None:
+        log_velocity = v0.size > 1 and bool(np.all(v0 > 0)) and v0.max() >= 3 * v0.min()
+    if log_velocity:
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+        ax_r.set_xscale("log")
+        ax_r.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax_r.xaxis.set_major_formatter(FuncFormatter(lambda value, _pos: f"{value:g}"))
+        ax_r.xaxis.set_minor_formatter(NullFormatter())
     for ax in (ax_e, ax_r):
-        ax.grid(True, linewidth=0.4, alpha=0.5)
+        ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
     fig.suptitle(title, fontsize="medium")
     return fig
 

@@ -303,6 +303,12 @@ def _print_tables(stream: IO[str] | None, measured, fits, ranked) -> None:
 
     out = console(stream)
     for result, _, held in fits:
+        if not result.names:
+            out.print(
+                f"{result.law}: no parameter to fit; reduced chi-square "
+                f"{result.reduced_chi_square:.4g}, AICc {result.aicc:.4g}"
+            )
+            continue
         table = Table(
             title=f"Fit of {result.law} to {measured.size} points"
             + (f" (held: {', '.join(f'{k} = {v:g}' for k, v in held.items())})" if held else "")
@@ -336,8 +342,8 @@ def _print_tables(stream: IO[str] | None, measured, fits, ranked) -> None:
     out.print(residuals)
     if len(fits) > 1:
         table = Table(title="Laws ranked by AICc (Burnham & Anderson 2002)")
+        table.add_column("law", no_wrap=True)
         for head in (
-            "law",
             "parameters",
             "reduced chi-square",
             "AICc",
