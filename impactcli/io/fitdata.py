@@ -99,6 +99,7 @@ def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
     line, header = rows[0]
     columns: list[str] = []
     factors: list[float] = []
+    header_units: list[str] = []
     where = f"{name} line {line}"
     for cell in header:
         match = _HEADER.match(cell)
@@ -111,7 +112,8 @@ def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
         if column in columns:
             raise InputError(f"{where}: column {column} is given twice")
         columns.append(column)
-        factors.append(_unit_factor(match.group(2) or "", column, where))
+        header_units.append(match.group(2) or "")
+        factors.append(_unit_factor(header_units[-1], column, where))
     missing = [c for c in _REQUIRED if c not in columns]
     if missing:
         raise InputError(f"{where}: no column {' or '.join(missing)}; the columns are {expected}")
@@ -125,7 +127,7 @@ def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
             raise InputError(f"{name} line {i}: {len(row)} fields, expected {len(columns)}")
     numbers = [i for i, _ in body]
     values: dict[str, np.ndarray] = {}
-    for j, (column, factor) in enumerate(zip(columns, factors)):
+    for j, (column, factor, unit) in enumerate(zip(columns, factors, header_units)):
         cells = [row[j].strip() for _, row in body]
         parsed, errors = parse_quantities(cells, FIT_COLUMNS[column], column)
         bad = np.flatnonzero(errors != "")
@@ -134,7 +136,7 @@ def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
         empty = np.flatnonzero(np.isnan(parsed))
         if empty.size:
             raise InputError(f"{name} line {numbers[empty[0]]}: {column} is empty")
-        if factor != 1.0:
+        if unit:
             with_unit = [k for k, cell in enumerate(cells) if not _plain_number(cell)]
             if with_unit:
                 k = with_unit[0]
