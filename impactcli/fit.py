@@ -39,7 +39,9 @@ __all__ = [
     "FitParameter",
     "FitResult",
     "fit_law",
+    "fit_named_law",
     "law_model",
+    "law_yield_velocity",
     "law_parameters",
     "prediction_band",
     "rank_fits",
@@ -607,6 +609,21 @@ def law_yield_velocity(sphere1, sphere2, law: str, params: Mapping[str, float]) 
     )
 
 
+def _data_starts(law: str, data: FitData) -> dict[str, float]:
+    """Starting values read off the data, where a closed form gives them: Tsuji's alpha
+    from the mean e by the exact inverse of its ``overlap`` e(alpha)
+    (:func:`impactcli.damping.tsuji_alpha_hertz_mindlin`), Hunt & Crossley's alpha =
+    (1 - e) / V0 (their estimate for e near 1), the median over the points."""
+    from impactcli.damping import tsuji_alpha_hertz_mindlin
+
+    e = np.clip(data.restitution, 1e-3, 1.0 - 1e-6)
+    if law == "tsuji":
+        return {"alpha": float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(e)), 1e-3, 2.0))}
+    if law == "hunt-crossley":
+        return {"alpha": float(np.clip(np.median((1.0 - e) / data.impact_velocity), 1e-5, 1e2))}
+    return {}
+
+
 def fit_named_law(
     sphere1,
     sphere2,
@@ -620,8 +637,9 @@ def fit_named_law(
 ) -> tuple[FitResult, Model]:
     """Fit a law of :data:`FIT_LAWS` to ``data`` for this pair of spheres.
 
-    :func:`law_model` with :func:`law_parameters`' starting values and bounds, overridden
-    by ``start`` (name -> value) and ``bounds`` (name -> (low, high)), then :func:`fit_law`.
+    :func:`law_model` with :func:`law_parameters`' starting values and bounds (the damped
+    laws' alpha read off the data, :func:`_data_starts`), overridden by ``start`` (name ->
+    value) and ``bounds`` (name -> (low, high)), then :func:`fit_law`.
     Adds a warning when every point lies below the fitted law's yield velocity (the data
     show no plastic impact: e = 1 whatever the plastic parameters).
 
@@ -648,6 +666,10 @@ def fit_named_law(
     both = [name for name in names if name in fixed]
     if both:
         raise ValueError(f"{both[0]} of law {law!r} is both fitted and held fixed")
+    for name, guess in _data_starts(law, data).items():
+        if name in available:
+            p = available[name]
+            available[name] = FitParameter(name, p.unit, guess, p.lower, p.upper)
     parameters = []
     for name in names:
         p = available[name]

@@ -772,9 +772,9 @@ def fit_figure(
     x0 = v0 / vs.factor
     if error is not None:
         ax_e.errorbar(x0, e, yerr=np.asarray(error, dtype=float), fmt="o", color="black",
-                      markersize=4, capsize=2, label="measured", gid="data", zorder=3)  # fmt: skip
+                      markersize=4, capsize=2, label="data", gid="data", zorder=3)  # fmt: skip
     else:
-        ax_e.plot(x0, e, "o", color="black", markersize=4, label="measured", gid="data", zorder=3)
+        ax_e.plot(x0, e, "o", color="black", markersize=4, label="data", gid="data", zorder=3)
     ax_e.set_ylabel("coefficient of restitution $e$ (-)")
     ax_e.legend(fontsize="small")
     ax_r.axhline(0.0, color="0.5", linewidth=0.8)
