@@ -200,3 +200,23 @@ def test_plot_draws_data_curves_bands_and_residuals(cli, tmp_path):
     svg = figure.read_text()
     for gid in ("data", "fit:du-wang", "band:du-wang", "residuals:tsuji"):
         assert f'id="{gid}' in svg, gid
+
+
+def test_the_committed_example_data_set_is_what_its_script_makes(tmp_path):
+    """docs/data/drop_tests_steel.csv is synthetic: its generator makes it byte for byte."""
+    import os
+    import subprocess
+    import sys
+
+    from tests.conftest import ROOT
+
+    (tmp_path / "docs" / "data").mkdir(parents=True)
+    env = {
+        **os.environ,
+        "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
+    }
+    subprocess.run([sys.executable, str(ROOT / "docs" / "data" / "make_drop_tests.py")],
+                   cwd=tmp_path, env=env, check=True, timeout=120)  # fmt: skip
+    made = (tmp_path / "docs" / "data" / "drop_tests_steel.csv").read_text()
+    assert made == (ROOT / "docs" / "data" / "drop_tests_steel.csv").read_text()
+    assert made.startswith("# SYNTHETIC")

@@ -110,8 +110,10 @@ def fit(
             "e.g. 2.5m/s, or in the header, e.g. 'v0 [m/s]'); '-' is stdin.",
         ),
     ],
-    law: Annotated[list[str], typer.Option("--law", help=LAW_HELP)],
-    param: Annotated[Optional[list[str]], typer.Option("--param", help=PARAM_HELP)] = None,
+    law: Annotated[list[str], typer.Option("--law", metavar="NAME", help=LAW_HELP)],
+    param: Annotated[
+        Optional[list[str]], typer.Option("--param", metavar="NAME", help=PARAM_HELP)
+    ] = None,
     start: Annotated[
         Optional[list[str]], typer.Option("--start", metavar="NAME=VALUE", help=START_HELP)
     ] = None,
