@@ -220,3 +220,15 @@ def test_the_committed_example_data_set_is_what_its_script_makes(tmp_path):
     made = (tmp_path / "docs" / "data" / "drop_tests_steel.csv").read_text()
     assert made == (ROOT / "docs" / "data" / "drop_tests_steel.csv").read_text()
     assert made.startswith("# SYNTHETIC")
+
+
+def test_alpha_is_read_in_the_unit_of_each_law(cli, tmp_path):
+    """One --start alpha serves tsuji ([-]) and hunt-crossley ([s/m]); a value for a
+    parameter no chosen law has is refused."""
+    path = write(tmp_path / "c.csv", "v0,e\n0.5,0.9\n1,0.85\n2,0.8\n4,0.74\n")
+    code, out, err = cli("fit", path, "--law", "hunt-crossley", *PAIR, "--start", "alpha=0.2",
+                         "-n", "20", "-f", "json")  # fmt: skip
+    assert code == 0, err
+    assert json.loads(out)["fits"][0]["parameters"]["alpha"]["unit"] == "s/m"
+    code, _, err = cli("fit", path, "--law", "du-wang", *PAIR, "--start", "alpha=0.2")
+    assert code == 2 and "--start alpha: not a parameter of --law du-wang" in err

@@ -86,18 +86,15 @@ def _value(text: str, unit: str, name: str) -> float:
     return value
 
 
-def _units() -> dict[str, str]:
-    """Parameter name -> unit over every fittable law (units agree where names repeat,
-    except alpha, whose unit the law decides)."""
-    from impactcli.fit import FIT_LAWS, law_parameters
-    from impactcli.impact import Sphere
-
-    probe = Sphere(0.01, 2e11, 0.3, 7800.0, yield_strength=1e9)
-    units: dict[str, str] = {}
-    for law in FIT_LAWS:
-        for name, p in law_parameters(probe, probe, law).items():
-            units.setdefault(name, p.unit)
-    return units
+def _bounds(text: str, unit: str, name: str) -> tuple[float, float]:
+    """``LO:HI`` of ``--bounds NAME=LO:HI``, SI."""
+    lo, sep, hi = text.partition(":")
+    if not sep:
+        raise InputError(f"--bounds {name}={text}: expected NAME=LO:HI")
+    low, high = _value(lo, unit, f"--bounds {name}"), _value(hi, unit, f"--bounds {name}")
+    if not low < high:
+        raise InputError(f"--bounds {name}={text}: need LO < HI")
+    return low, high
 
 
 @with_sphere_options(velocities=False)
@@ -141,7 +138,7 @@ def fit(
 
     Example: impact fit drops.csv --law du-wang --param sy --d1 20mm --d2 inf --material steel
     """
-    from impactcli.fit import DEFAULT_FIT, FIT_LAWS, fit_named_law, rank_fits
+    from impactcli.fit import DEFAULT_FIT, FIT_LAWS, fit_named_law, law_parameters, rank_fits
     from impactcli.io.fitdata import read_fit_data
     from impactcli.spheres import spheres_from_options
 
@@ -158,52 +155,46 @@ def fit(
         if key in laws:
             raise InputError(f"--law {key} is given twice")
         laws.append(key)
-    units = _units()
     names = [p.strip().replace("-", "_") for p in param or []]
-    starts, limits, fixed = (
-        _pairs(start, "--start"),
-        _pairs(bounds, "--bounds"),
-        _pairs(fix, "--fix"),
-    )
-    for option, given in (
-        ("--param", names),
-        ("--start", starts),
-        ("--bounds", limits),
-        ("--fix", fixed),
-    ):
-        for name in given:
-            if name not in units:
-                raise InputError(
-                    f"{option} {name}: no law fits such a parameter; accepted: {', '.join(units)}"
-                )
-    start_si = {k: _value(v, units[k], f"--start {k}") for k, v in starts.items()}
-    fixed_si = {k: _value(v, units[k], f"--fix {k}") for k, v in fixed.items()}
-    bounds_si: dict[str, tuple[float, float]] = {}
-    for k, text in limits.items():
-        lo, sep, hi = text.partition(":")
-        if not sep:
-            raise InputError(f"--bounds {k}={text}: expected NAME=LO:HI")
-        low, high = _value(lo, units[k], f"--bounds {k}"), _value(hi, units[k], f"--bounds {k}")
-        if not low < high:
-            raise InputError(f"--bounds {k}={text}: need LO < HI")
-        bounds_si[k] = (low, high)
+    given = {
+        "--start": _pairs(start, "--start"),
+        "--bounds": _pairs(bounds, "--bounds"),
+        "--fix": _pairs(fix, "--fix"),
+    }
     s1, s2 = spheres_from_options(spheres)
-
-    from impactcli.fit import law_parameters
-
-    plan: list[tuple[str, tuple[str, ...], dict[str, float]]] = []
+    owns = {key: law_parameters(s1, s2, key) for key in laws}
+    everywhere = {name for key in FIT_LAWS for name in law_parameters(s1, s2, key)}
+    for option, items in (("--param", names), *given.items()):
+        for name in items:
+            if name not in everywhere:
+                raise InputError(
+                    f"{option} {name}: no law fits such a parameter; accepted: "
+                    f"{', '.join(sorted(everywhere))}"
+                )
+    # each law: the parameters it fits, and the values given for its parameters, read in
+    # its units (alpha is [-] for tsuji, [s/m] for hunt-crossley)
+    plan: list[tuple[str, tuple[str, ...], dict, dict, dict]] = []
     for key in laws:
-        own = law_parameters(s1, s2, key)
+        own = owns[key]
         chosen = tuple(nm for nm in names if nm in own) or DEFAULT_FIT[key]
-        plan.append((key, chosen, {k: v for k, v in fixed_si.items() if k in own}))
-    unused = [nm for nm in names if not any(nm in chosen for _, chosen, _ in plan)]
+        mine = {
+            option: {k: v for k, v in items.items() if k in own} for option, items in given.items()
+        }
+        starts = {k: _value(v, own[k].unit, f"--start {k}") for k, v in mine["--start"].items()}
+        held = {k: _value(v, own[k].unit, f"--fix {k}") for k, v in mine["--fix"].items()}
+        limits = {k: _bounds(v, own[k].unit, k) for k, v in mine["--bounds"].items()}
+        plan.append((key, chosen, starts, limits, held))
+    unused = [nm for nm in names if not any(nm in p[1] for p in plan)]
     if unused:
         raise InputError(f"--param {unused[0]}: not a parameter of --law {', '.join(laws)}")
-    measured = read_fit_data(data, max(len(chosen) for _, chosen, _ in plan))
+    for option, items in given.items():
+        for name in items:
+            if not any(name in own for own in owns.values()):
+                raise InputError(f"{option} {name}: not a parameter of --law {', '.join(laws)}")
+    measured = read_fit_data(data, max(len(p[1]) for p in plan))
 
     fits = []
-    for key, chosen, held in plan:
-        own = law_parameters(s1, s2, key)
+    for key, chosen, starts, limits, held in plan:
         try:
             result, model = fit_named_law(
                 s1,
@@ -211,8 +202,8 @@ def fit(
                 key,
                 measured,
                 chosen,
-                start={k: v for k, v in start_si.items() if k in chosen},
-                bounds={k: v for k, v in bounds_si.items() if k in chosen},
+                start={k: v for k, v in starts.items() if k in chosen},
+                bounds={k: v for k, v in limits.items() if k in chosen},
                 fixed=held,
                 n=n,
             )
