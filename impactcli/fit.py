@@ -16,6 +16,14 @@ Akaike information criterion of a Gaussian least-squares fit, AIC = N ln(RSS/N) 
 its small-sample correction AICc = AIC + 2p(p+1)/(N-p-1) (Burnham & Anderson 2002, sec.
 2.2).
 
+The models (:func:`law_model`): every law of :mod:`impactcli.lawlib` with a numeric
+parameter through :func:`impactcli.sweep.restitution_sweep` (``du-wang``, ``thornton``,
+``walton-braun``, and ``hertz`` with none), and the damped laws ``tsuji`` and
+``hunt-crossley`` through :func:`impactcli.damping.solve_damped_impact`; their starting
+values and bounds come from the spheres (:func:`law_parameters`), :func:`fit_named_law`
+fits one, :func:`rank_fits` ranks several and :func:`prediction_band` gives the fitted
+curve's confidence band.
+
 References
 ----------
 K. P. Burnham and D. R. Anderson, *Model Selection and Multimodel Inference*, 2nd ed.,
