@@ -684,6 +684,10 @@ def fit_named_law(
         lo, hi = (bounds or {}).get(name, (p.lower, p.upper))
         initial = (start or {}).get(name, min(max(p.initial, lo), hi))
         parameters.append(FitParameter(name, p.unit, initial, lo, hi))
+    from impactcli.limits import MAX_SWEEP_SEGMENTS, check_size
+
+    segments = int(n) if n is not None else DEFAULT_SEGMENTS.get(law, 25)
+    check_size("the number of data points x n", data.size * segments, MAX_SWEEP_SEGMENTS)
     model = law_model(sphere1, sphere2, law, n, fixed)
     result = fit_law(law, model, data, parameters, fixed)
     fitted = {**fixed, **dict(zip(result.names, result.values.tolist()))}

@@ -22,6 +22,7 @@ from impactcli.cli.common import (
 )
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
+from impactcli.limits import MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_json
 from impactcli.spheres import SphereOptions
 
@@ -37,7 +38,10 @@ PARAM_HELP = (
 START_HELP = "Starting value NAME=VALUE (repeatable), e.g. sy=800MPa. Default from the material."
 BOUNDS_HELP = "Bounds NAME=LO:HI (repeatable), e.g. sy=100MPa:5GPa; both > 0."
 FIX_HELP = "Hold a law parameter at NAME=VALUE (repeatable), e.g. k_load=2e7 or p0_factor=3."
-N_HELP = "FILM segments per stage (default 25; 50 for tsuji and hunt-crossley)."
+N_HELP = (
+    f"FILM segments per stage, 1 to {MAX_SEGMENTS:,} (default 25; 50 for tsuji and "
+    f"hunt-crossley); data points x n at most {MAX_SWEEP_SEGMENTS:,}."
+)
 
 #: parameter unit -> kind for :func:`impactcli.units.parse_quantity`
 _KINDS = {"Pa": "pressure", "-": "dimensionless"}
@@ -121,7 +125,9 @@ def fit(
         Optional[list[str]], typer.Option("--fix", metavar="NAME=VALUE", help=FIX_HELP)
     ] = None,
     spheres: SphereOptions = None,
-    n: Annotated[Optional[int], typer.Option("--n", "-n", min=1, help=N_HELP)] = None,
+    n: Annotated[
+        Optional[int], typer.Option("--n", "-n", min=1, max=MAX_SEGMENTS, help=N_HELP)
+    ] = None,
     fmt: OutputFormat = None,
     output: OutputFile = None,
     plot: PlotFile = None,
@@ -136,13 +142,13 @@ def fit(
     predictions). --plot: data (error bars when weights are given), fitted curves with
     their 95 % bands, and the residuals.
 
-    Example: impact fit drops.csv --law du-wang --param sy --d1 20mm --d2 inf --material steel
+    Example: impact fit drops.csv --law du-wang --d1 20mm --d2 inf --m2 inf --material steel
     """
     from impactcli.fit import DEFAULT_FIT, FIT_LAWS, fit_named_law, law_parameters, rank_fits
     from impactcli.io.fitdata import read_fit_data
     from impactcli.spheres import spheres_from_options
 
-    check_plot(plot)
+    check_plot(plot, output)
     kind = resolve_format(fmt, output)
     laws: list[str] = []
     for name in law:
