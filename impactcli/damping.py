@@ -55,11 +55,13 @@ __all__ = [
     "DAMPING_LAWS",
     "SEPARATIONS",
     "DampedImpact",
+    "DampedOdeSolution",
     "HuntCrossleyDamping",
     "LawParameter",
     "TsujiDamping",
     "ViscoelasticLaw",
     "damped_impact_ode",
+    "damped_ode_solution",
     "damping_for_restitution",
     "hunt_crossley_alpha_published",
     "make_damping_law",
@@ -446,6 +448,11 @@ class DampedImpact:
     loading: DampedStage
     restitution_stage: DampedStage
 
+    @property
+    def end_time(self) -> Array:
+        """The time of separation, [s] (:attr:`contact_time`; the histories end there)."""
+        return self.contact_time
+
     def evaluate(self, t: ArrayLike, index: int = 0) -> tuple[Array, Array]:
         """Indentation [m] and rate [m/s] of collision ``index`` at times ``t`` [s].
 
@@ -797,6 +804,33 @@ def damping_for_restitution(
 # -- reference: SciPy integration of the same law ---------------------------------------------
 
 
+@dataclass(frozen=True)
+class DampedOdeSolution:
+    """SciPy integration of one damped impact (:func:`damped_ode_solution`).
+
+    Attributes
+    ----------
+    summary : restitution, contact_time, delta_separation, delta_max, t_max, force_max,
+        dissipated, stored (SI), as :func:`damped_impact_ode` returns them
+    end_time : the time of separation, [s]
+    """
+
+    summary: dict[str, float]
+    end_time: float
+    _dense: object
+
+    def evaluate(self, t: ArrayLike) -> tuple[Array, Array]:
+        """Indentation [m] and rate [m/s] at times ``t`` [s], clamped to [0, end_time]."""
+        tt = np.clip(np.asarray(t, dtype=float), 0.0, self.end_time)
+        y = np.asarray(self._dense(np.ravel(tt)))  # type: ignore[operator]
+        return y[0].reshape(tt.shape), y[1].reshape(tt.shape)
+
+    def dissipated(self, t: ArrayLike) -> Array:
+        """Energy dissipated by damping up to times ``t`` [s], [J]."""
+        tt = np.clip(np.asarray(t, dtype=float), 0.0, self.end_time)
+        return np.asarray(self._dense(np.ravel(tt)))[2].reshape(tt.shape)  # type: ignore
+
+
 def damped_impact_ode(
     law,
     impact_velocity: float,
@@ -812,8 +846,19 @@ def damped_impact_ode(
     is refined on the dense output with a bounded scalar search.
 
     Returns a dict with restitution, contact_time, delta_separation, delta_max, t_max,
-    force_max, dissipated, stored (SI).
+    force_max, dissipated, stored (SI); :func:`damped_ode_solution` also gives the histories.
     """
+    return damped_ode_solution(law, impact_velocity, mass, separation, rtol).summary
+
+
+def damped_ode_solution(
+    law,
+    impact_velocity: float,
+    mass: float,
+    separation: Separation = "overlap",
+    rtol: float = 1e-12,
+) -> DampedOdeSolution:
+    """:func:`damped_impact_ode` with its dense output: the summary and the histories."""
     from scipy.integrate import solve_ivp
     from scipy.optimize import minimize_scalar
 
@@ -870,7 +915,7 @@ def damped_impact_ode(
         options={"xatol": 1e-14 * t_max},
     )
     d_sep = max(float(y_c[0]), 0.0)
-    return {
+    summary = {
         "restitution": -float(y_c[1]) / v0,
         "contact_time": float(t_c),
         "delta_separation": d_sep,
@@ -880,6 +925,7 @@ def damped_impact_ode(
         "dissipated": float(y_c[2]),
         "stored": float(law.elastic_work(0.0, d_sep)),
     }
+    return DampedOdeSolution(summary, float(t_c), sol.sol)
 
 
 # -- published alpha(e) relations, for comparison with the exact model ------------------------

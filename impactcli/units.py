@@ -65,6 +65,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "angle": ("rad", "-30deg, 0.5 rad"),
     "time": ("s", "75us, 1e-4 s"),
     "dimensionless": ("", "0.3"),
+    "inverse velocity": ("s/m", "0.5 s/m, 0.5 ms/mm"),
 }
 
 #: The longest quantity text read [characters]; longer text is refused unread.
@@ -81,6 +82,7 @@ _DIMS: dict[str, Dims] = {
     "angle": (0, 0, 0, 1),
     "time": (0, 0, 1, 0),
     "dimensionless": (0, 0, 0, 0),
+    "inverse velocity": (-1, 0, 1, 0),
 }
 _DIMENSION_NAMES = ("length", "mass", "time", "angle")
 

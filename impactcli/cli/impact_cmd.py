@@ -22,6 +22,7 @@ from impactcli.cli.common import (
     save_plot,
     warn,
 )
+from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.contact import DU_WANG_PRESSURE_FACTOR
 from impactcli.errors import InputError
@@ -55,6 +56,17 @@ def _opt(help_text: str, *names: str, **kw: Any):
 
 
 N = Annotated[int, typer.Option("--n", "-n", min=1, help="FILM segments per stage (>= 1).")]
+#: --n of the commands that take --damping: its default depends on it.
+N_DAMPED = Annotated[
+    Optional[int],
+    typer.Option(
+        "--n",
+        "-n",
+        min=1,
+        help="FILM segments per stage (>= 1). Default 25; 400 with --damping (e and the "
+        "contact time within 1e-6 of SciPy integration of the same law).",
+    ),
+]
 POINTS = Annotated[
     int, typer.Option("--points", min=2, help="History points, evenly spaced in time (>= 2).")
 ]
@@ -122,6 +134,33 @@ SUMMARY_UNITS = {
     "energy_dissipated": ("J", "kinetic energy lost, (1/2) m V0^2 (1 - e^2)"),
 }
 
+#: Summary keys of a damped impact whose unit or meaning differ (or that are its own).
+DAMPED_SUMMARY_UNITS = {
+    "delta_separation": ("m", "total indentation at separation (0 for --separation overlap)"),
+    "alpha": ("", "damping parameter alpha (dimensionless for tsuji)"),
+    "energy_dissipated": ("J", "energy dissipated by damping, integral of c delta'^2 dt"),
+    "energy_stored": ("J", "elastic energy left in the contact at separation"),
+}
+
+
+def _summary_units(result) -> dict[str, tuple[str, str]]:
+    """Unit and meaning of each summary key of ``result``."""
+    if getattr(result, "law", None) is None:
+        return SUMMARY_UNITS
+    units = {**SUMMARY_UNITS, **DAMPED_SUMMARY_UNITS}
+    if result.law.name == "hunt-crossley":
+        units["alpha"] = ("s/m", "damping factor alpha of Hunt & Crossley")
+    return units
+
+
+def _model_title(result) -> str:
+    """'Elastic (Hertz)', 'Elastoplastic (Du & Wang)' or 'Hertz with Tsuji damping'."""
+    law = getattr(result, "law", None)
+    if law is not None:
+        name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}.get(law.name, law.name)
+        return f"Hertz with {name} damping ({result.separation} separation)"
+    return "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+
 
 def screen_value(value: float, unit: str, digits: int = 6) -> tuple[str, str]:
     """``value`` [SI ``unit``] as (number, unit) for the screen, with the SI prefix that puts
@@ -167,8 +206,9 @@ def _run(
     plot: str | None,
     summary: str | None = None,
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    damping: DampingOptions | None = None,
 ) -> None:
-    from impactcli.impact import elastic_impact, elastoplastic_impact
+    from impactcli.impact import damped_impact, elastic_impact, elastoplastic_impact
     from impactcli.spheres import spheres_from_options, velocities_from_options
     from impactcli.validation import (
         below_yield_note,
@@ -178,10 +218,15 @@ def _run(
 
     check_plot(plot)
     check_summary_file(summary, output)
+    law, alpha, target, separation = (damping or DampingOptions()).parse()
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
     try:
-        if model == "elastic":
+        if law is not None:
+            result = damped_impact(
+                s1, s2, v1, v2, law, alpha, target, n, separation, split.value, method.value
+            )
+        elif model == "elastic":
             result = elastic_impact(s1, s2, v1, v2, n, split.value, method.value)
         else:
             result = elastoplastic_impact(
@@ -199,6 +244,11 @@ def _run(
     if method is Method.table and result.model != "elastic":
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
     s, v0 = result.summary, result.impact_velocity
+    if target is not None:
+        note(
+            f"alpha = {s['alpha']:.10g}{' s/m' if law == 'hunt-crossley' else ''} gives "
+            f"e = {target:g} at V0 = {v0:g} m/s ({law}, {separation} separation, FILM n = {n})"
+        )
     if model == "elastic" and "first_yield_velocity" in s:
         message = first_yield_warning(v0, s["first_yield_velocity"])
         if message:
@@ -231,6 +281,8 @@ def _run(
     }
     if model == "elastoplastic":
         inputs["p0_factor"] = pressure_factor
+    if law is not None:
+        inputs.update(damping=law, alpha=s["alpha"], e_target=target, separation=separation)
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -334,13 +386,14 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         for col, diff in check.items():
             table.add_row(col, f"{diff:.2e}")
         out.print(table)
-    title = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    title = _model_title(result)
     how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
     summary = Table(title=f"{title} impact by {how}", caption=SIGN_HELP)
     for header in ("quantity", "value", "unit", "meaning"):
         summary.add_column(header, justify="right" if header == "value" else "left")
+    units = _summary_units(result)
     for key, value in result.summary.items():
-        unit, meaning = SUMMARY_UNITS.get(key, ("", ""))
+        unit, meaning = units.get(key, ("", ""))
         summary.add_row(key, *screen_value(value, unit), meaning)
     out.print(summary)
 
@@ -378,7 +431,10 @@ def _case_title(result, spheres: SphereOptions, method: Method) -> str:
     def q(value: float, unit: str) -> str:  # the inputs as given: 100.0125 m/s, not 100
         return format_quantity(value, unit, digits=12)
 
-    model = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    model = _model_title(result)
+    if getattr(result, "law", None) is not None:
+        unit = " s/m" if result.law.name == "hunt-crossley" else ""
+        model += f", alpha = {result.alpha:.6g}{unit}"
     how = {
         "film": f"by FILM, n = {result.n}",
         "table": f"by the normalised Tables A1/A2, n = {result.n}",
@@ -416,9 +472,11 @@ def _material_parts(p: SphereOptions, s1, s2) -> list[str]:
 
 
 @with_sphere_options()
+@with_damping_options()
 def elastic(
     spheres: SphereOptions,
-    n: N = 25,
+    damping: DampingOptions = None,  # type: ignore[assignment]
+    n: N_DAMPED = None,
     points: POINTS = 201,
     method: METHOD = Method.film,
     check: CHECK = False,
@@ -438,12 +496,18 @@ def elastic(
     serves the first-yield check: above that velocity a warning says to use
     'impact elastoplastic'.
 
+    --damping tsuji|hunt-crossley adds viscous damping to Hertz (docs/damping.md), with
+    --alpha or a target --e; the summary then adds delta_separation, alpha and the energy
+    dissipated, and the force-indentation curve is a loop.
+
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
     """
+    if n is None:
+        n = 400 if damping is not None and damping.given else 25
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
-        fmt=fmt, output=output, plot=plot, summary=summary,
+        fmt=fmt, output=output, plot=plot, summary=summary, damping=damping,
     )  # fmt: skip
 
 
