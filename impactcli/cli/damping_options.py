@@ -108,9 +108,7 @@ def _parameters() -> list[inspect.Parameter]:
         ],
     }
     return [
-        inspect.Parameter(
-            name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation
-        )
+        inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation)
         for name, annotation in kinds.items()
     ]
 
