@@ -53,12 +53,14 @@ __all__ = [
     "ELASTIC_SUMMARY_KEYS",
     "PLASTIC_SUMMARY_KEYS",
     "DAMPED_DEFAULT_N",
+    "DAMPED_SWEEP_COLUMNS",
     "DAMPED_SUMMARY_KEYS",
     "DampedImpactResult",
     "Sphere",
     "ImpactResult",
     "check_pair",
     "damped_impact",
+    "damped_restitution_sweep",
     "elastic_impact",
     "effective_properties",
     "elastoplastic_impact",
@@ -1006,3 +1008,72 @@ def damped_impact(
     if method == "ode":
         result.summary.update(_damped_summary(result, result.ode.summary, r, e))
     return result
+
+
+#: Columns of :func:`damped_restitution_sweep`: those of
+#: :data:`impactcli.sweep.SWEEP_COLUMNS` and the indentation at separation.
+DAMPED_SWEEP_COLUMNS: tuple[str, ...] = (
+    "impact_velocity",
+    "restitution",
+    "contact_time",
+    "delta_max",
+    "delta_res",
+    "delta1_res",
+    "delta2_res",
+    "energy_dissipated",
+    "plastic",
+    "delta_separation",
+)
+
+
+def damped_restitution_sweep(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    velocities: ArrayLike,
+    damping: str,
+    alpha: float,
+    n: int = DAMPED_DEFAULT_N,
+    separation: str = "overlap",
+    split: Split = "mass",
+) -> dict[str, NDArray]:
+    """Restitution, contact time and indentations against V0 under a damped law, one batch.
+
+    As :func:`impactcli.sweep.restitution_sweep` for Hertz with viscous damping
+    (:func:`damped_impact`; docs/damping.md): e does not depend on V0 for ``tsuji`` and
+    falls with alpha V0 for ``hunt-crossley``. There is no permanent indentation
+    (``delta_res`` and its shares are 0, ``plastic`` 0); ``energy_dissipated`` is the
+    damping's integral of c delta'^2 dt [J]; ``delta_separation`` the indentation at
+    separation [m] (0 for ``overlap``).
+    """
+    from impactcli.damping import DAMPING_LAWS, make_damping_law, solve_damped_impact
+
+    v0 = np.asarray(velocities, dtype=float)
+    if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
+        raise ValueError("impact velocities must be a non-empty list of positive numbers")
+    if damping not in DAMPING_LAWS:
+        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    if not (np.isfinite(alpha) and alpha >= 0.0):
+        raise ValueError(f"alpha must be a finite number >= 0, got {alpha:g}")
+    split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance
+    check_pair(sphere1, sphere2, v0, 0.0)
+    m, r, e = effective_properties(sphere1, sphere2)
+    law = make_damping_law(damping, float(hertz_stiffness(e, r)), m, float(alpha))
+    sol = solve_damped_impact(law, v0, m, n, separation)  # type: ignore[arg-type]
+    if not np.all(np.isfinite(sol.contact_time)):
+        raise ValueError(
+            f"alpha = {alpha:g}: the contact never ends (overdamped: the indentation creeps "
+            "back toward 0 without reaching it); give a smaller alpha"
+        )
+    zero = np.zeros_like(v0)
+    return {
+        "impact_velocity": v0,
+        "restitution": np.asarray(sol.restitution, dtype=float),
+        "contact_time": np.asarray(sol.contact_time, dtype=float),
+        "delta_max": np.asarray(sol.delta_max, dtype=float),
+        "delta_res": zero,
+        "delta1_res": zero.copy(),
+        "delta2_res": zero.copy(),
+        "energy_dissipated": np.asarray(sol.dissipated, dtype=float),
+        "plastic": zero.copy(),
+        "delta_separation": np.asarray(sol.delta_separation, dtype=float),
+    }

@@ -158,7 +158,11 @@ def _model_title(result) -> str:
     law = getattr(result, "law", None)
     if law is not None:
         name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}.get(law.name, law.name)
-        return f"Hertz with {name} damping ({result.separation} separation)"
+        unit = " s/m" if law.name == "hunt-crossley" else ""
+        return (
+            f"Hertz with {name} damping (alpha = {result.alpha:.6g}{unit}, "
+            f"{result.separation} separation)"
+        )
     return "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
 
 
@@ -432,9 +436,6 @@ def _case_title(result, spheres: SphereOptions, method: Method) -> str:
         return format_quantity(value, unit, digits=12)
 
     model = _model_title(result)
-    if getattr(result, "law", None) is not None:
-        unit = " s/m" if result.law.name == "hunt-crossley" else ""
-        model += f", alpha = {result.alpha:.6g}{unit}"
     how = {
         "film": f"by FILM, n = {result.n}",
         "table": f"by the normalised Tables A1/A2, n = {result.n}",
@@ -551,6 +552,7 @@ elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 
 
 @with_sphere_options(velocities=False)
+@with_damping_options()
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
@@ -559,8 +561,9 @@ def restitution(
         bool, typer.Option("--linear", help="Evenly spaced velocities (default: log-spaced).")
     ] = False,
     spheres: SphereOptions = None,
+    damping: DampingOptions = None,  # type: ignore[assignment]
     p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
-    n: N = 25,
+    n: N_DAMPED = None,
     split: SPLIT = Split.mass,
     fmt: FMT = None,
     output: OUT = None,
@@ -576,6 +579,12 @@ def restitution(
     --plot draws e, the contact time and the permanent indentation (total and of each
     sphere) against V0, with the yield velocity V_y marked.
 
+    --damping tsuji|hunt-crossley --alpha A sweeps Hertz with viscous damping instead
+    (docs/damping.md): e is the same at every V0 for tsuji and falls with alpha V0 for
+    hunt-crossley; delta_res is 0, energy_dissipated the damping's work, and a column
+    delta_separation is added; the plot's third panel shows the maximum indentation and
+    that at separation.
+
     Example: impact restitution --v-min 0.1m/s --v-max 10m/s --count 50 --d1 20mm --d2 40mm
     --material steel --plot restitution.png
     """
@@ -589,6 +598,26 @@ def restitution(
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
     _check_pressure_factor(p0_factor)
+    if damping is not None and damping.given:
+        if damping.e is not None:
+            raise InputError(
+                "impact restitution --damping sweeps V0 at one alpha: give --alpha (find the "
+                "alpha of a target e at one V0 with 'impact elastic --damping ... --e E')"
+            )
+        if p0_factor != DU_WANG_PRESSURE_FACTOR:
+            raise InputError(
+                "--p0-factor is for the elastoplastic (Du & Wang) sweep; --damping sweeps "
+                "Hertz with viscous damping"
+            )
+        velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
+        _damped_sweep(
+            damping, spheres, velocities, n=400 if n is None else n, split=split, fmt=fmt,
+            output=output, plot=plot, linear=linear,
+        )  # fmt: skip
+        return
+    if damping is not None:
+        damping.parse()  # refuses --alpha, --e or --separation without --damping
+    n = 25 if n is None else n
     s1, s2 = spheres_from_options(spheres)
     velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
     try:
@@ -648,6 +677,87 @@ def restitution(
             console(stream if output not in (None, "-") else None).print(table)
     if plot:
         _plot_sweep(plot, data, s1, s2, p0_factor, spheres, n=n, linear=linear)
+
+
+def _damped_sweep(
+    damping: DampingOptions,
+    spheres: SphereOptions,
+    velocities: np.ndarray,
+    *,
+    n: int,
+    split: Split,
+    fmt: Format | None,
+    output: str | None,
+    plot: str | None,
+    linear: bool,
+) -> None:
+    """``impact restitution --damping``: the damped sweep in every format, and its plot."""
+    from impactcli.contact import effective_radius
+    from impactcli.impact import DAMPED_SWEEP_COLUMNS, damped_restitution_sweep
+    from impactcli.spheres import spheres_from_options
+    from impactcli.validation import contact_radius_warning
+
+    law, alpha, _target, separation = damping.parse()
+    assert law is not None and alpha is not None
+    s1, s2 = spheres_from_options(spheres)
+    try:
+        data = damped_restitution_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    radius = effective_radius(s1.radius, s2.radius)
+    message = contact_radius_warning(velocities, data["delta_max"], radius)
+    if message:
+        warn(message)
+    unit = " s/m" if law == "hunt-crossley" else ""
+    name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}[law]
+    model = f"Hertz with {name} damping, alpha = {alpha:.6g}{unit}, {separation} separation"
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.csv:
+            matrix = np.column_stack([data[c] for c in DAMPED_SWEEP_COLUMNS])
+            write_csv(stream, DAMPED_SWEEP_COLUMNS, [((), matrix)])
+        elif kind is Format.json:
+            inputs = {"d1": s1.diameter, "d2": s2.diameter, "n": n, "split": split.value}
+            inputs.update(damping=law, alpha=alpha, separation=separation)
+            write_json(stream, {"inputs": inputs, "sweep": data})
+        else:
+            from rich.table import Table
+
+            table = Table(title=f"Restitution against impact velocity ({model}, FILM n = {n})")
+            heads = ("V0 (m/s)", "e", "t_c (us)", "delta_max (um)", "delta_sep (um)")
+            for h in heads + ("E_diss (mJ)",):
+                table.add_column(h, justify="right")
+            for i in range(velocities.size):
+                table.add_row(
+                    f"{data['impact_velocity'][i]:.4g}",
+                    f"{data['restitution'][i]:.6f}",
+                    f"{data['contact_time'][i] * 1e6:.4g}",
+                    f"{data['delta_max'][i] * 1e6:.4g}",
+                    f"{data['delta_separation'][i] * 1e6:.4g}",
+                    f"{data['energy_dissipated'][i] * 1e3:.4g}",
+                )
+            console(stream if output not in (None, "-") else None).print(table)
+    if plot:
+        from impactcli.formatting import format_quantity
+        from impactcli.plots import restitution_figure
+
+        parts = [
+            f"D1 = {format_quantity(s1.diameter, 'm')}",
+            f"D2 = {format_quantity(s2.diameter, 'm')}",
+            *_material_parts(spheres, s1, s2),
+        ]
+        fig = restitution_figure(
+            data["impact_velocity"],
+            data["restitution"],
+            data["contact_time"],
+            {"maximum": data["delta_max"], "at separation": data["delta_separation"]},
+            title=f"Restitution against impact velocity ({model}, FILM, n = {n}): "
+            + ", ".join(parts),
+            log_velocity=not linear,
+            indentation_title="(c) Indentation",
+            indentation_label=r"indentation $\delta$",
+        )
+        save_plot(fig, plot)
 
 
 def _plot_sweep(
