@@ -283,3 +283,44 @@ def test_help_names_the_default_separation(impact):
     result = impact("elastic", "--help")
     text = " ".join(result.stdout.split())
     assert "overlap (default)" in text and "--damping" in text
+
+
+# -- README ----------------------------------------------------------------------------------
+
+
+def _readme_section() -> str:
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    start = text.index("## Viscous damping")
+    return text[start : text.index("\n## ", start + 1)]
+
+
+@pytest.mark.slow
+def test_readme_tables_are_the_tools():
+    from impactcli.damping_tables import readme_tables
+
+    section = _readme_section()
+    block = section[section.index("<!-- damping-tables:start -->\n") :]
+    block = block[len("<!-- damping-tables:start -->\n") : block.index("<!-- damping-tables:end")]
+    assert block.strip() == readme_tables(400).strip()
+
+
+def test_readme_numbers_are_the_tools():
+    """The values quoted in the README's damping section, recomputed."""
+    section = " ".join(_readme_section().split())
+    overlap = damped_impact(S1, S2, V1, V2, "tsuji", alpha=0.3).summary
+    force = damped_impact(S1, S2, V1, V2, "tsuji", alpha=0.3, separation="force").summary
+    target = damped_impact(S1, S2, V1, V2, "tsuji", restitution=0.8).summary
+    quoted = [
+        f"e = {overlap['restitution']:.6f}",
+        f"t_c = {overlap['contact_time'] * 1e6:.3f} µs",
+        f"δm = {overlap['delta_max'] * 1e6:.5f} µm",
+        f"{overlap['energy_dissipated'] * 1e6:.4f} µJ dissipated",
+        f"e = {force['restitution']:.6f}",
+        f"t_c = {force['contact_time'] * 1e6:.3f} µs",
+        f"δ_sep = {force['delta_separation'] * 1e6:.5f} µm",
+        f"alpha = {target['alpha']:.10g} gives e = 0.8",
+    ]
+    for text in quoted:
+        assert text in section, text
