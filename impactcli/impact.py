@@ -37,6 +37,7 @@ from impactcli.contact import (
 )
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import hertz_stiffness
+from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     needs_yield_strength,
@@ -245,7 +246,9 @@ class ImpactResult:
 
     def times(self, points: int = 201, method: Method | None = None) -> NDArray:
         """``points`` evenly spaced times over the whole contact of ``method``, [s]: FILM's
-        (``film``, ``table``) or the integration's (``ode``) own contact duration."""
+        (``film``, ``table``) or the integration's (``ode``) own contact duration
+        (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
+        points = check_size("points", points, MAX_POINTS, minimum=2)
         method = self.method if method is None else method
         end = self.ode.end_time if method == "ode" else self.film.end_time
         return np.linspace(0.0, end, points)
@@ -381,6 +384,7 @@ def _validate(
         raise ValueError(f"split must be mass or compliance, got {split!r}")
     if int(n) < 1:
         raise ValueError(f"n must be an integer >= 1, got {n}")
+    check_size("n", n, MAX_SEGMENTS)
     check_pair(sphere1, sphere2, v1, v2)
 
 
@@ -836,7 +840,9 @@ class DampedImpactResult(ImpactResult):
         return damped_ode_solution(self.law, self.impact_velocity, mass, self.separation)
 
     def times(self, points: int = 201, method: Method | None = None) -> NDArray:
-        """``points`` evenly spaced times over the contact of ``method`` (film or ode), [s]."""
+        """``points`` evenly spaced times over the contact of ``method`` (film or ode), [s]
+        (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
+        points = check_size("points", points, MAX_POINTS, minimum=2)
         method = self.method if method is None else method
         end = self.ode.end_time if method == "ode" else float(self.film.end_time)
         return np.linspace(0.0, end, points)
@@ -1046,6 +1052,7 @@ def damped_restitution_sweep(
     separation [m] (0 for ``overlap``).
     """
     from impactcli.damping import DAMPING_LAWS, make_damping_law, solve_damped_impact
+    from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS
 
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
@@ -1054,6 +1061,8 @@ def damped_restitution_sweep(
         raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
     if not (np.isfinite(alpha) and alpha >= 0.0):
         raise ValueError(f"alpha must be a finite number >= 0, got {alpha:g}")
+    check_size("the number of velocities", v0.size, MAX_COUNT)
+    check_size("the number of velocities x n", v0.size * int(n), MAX_SWEEP_SEGMENTS)
     split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance
     check_pair(sphere1, sphere2, v0, 0.0)
     m, r, e = effective_properties(sphere1, sphere2)
