@@ -459,11 +459,8 @@ class DampedImpact:
         """The time of separation, [s] (:attr:`contact_time`; the histories end there)."""
         return self.contact_time
 
-    def evaluate(self, t: ArrayLike, index: int = 0) -> tuple[Array, Array]:
-        """Indentation [m] and rate [m/s] of collision ``index`` at times ``t`` [s].
-
-        From the segment closed forms, clamped to [0, contact_time].
-        """
+    def _segments(self, index: int) -> dict[str, Array]:
+        """The segments of collision ``index`` in time order (both stages), as arrays."""
         starts, ends, deltas, dirs, y0s, w0s, betas, om2s = [], [], [], [], [], [], [], []
         m = float(np.ravel(self.mass)[index] if np.size(self.mass) > 1 else self.mass)
         for st in (self.loading, self.restitution_stage):
@@ -479,16 +476,52 @@ class DampedImpact:
             w0s.append(np.abs(st.velocity[index, :k]))
             betas.append(st.damping[index, :k] / (2.0 * m))
             om2s.append(kk / m)
-        cat = np.concatenate
-        start, end, d0, s, y0, w0, beta, om2 = (
-            cat(v) for v in (starts, ends, deltas, dirs, y0s, w0s, betas, om2s)
-        )
+        keys = ("start", "end", "d0", "s", "y0", "w0", "beta", "om2")
+        out = {k: np.concatenate(v) for k, v in zip(keys, (starts, ends, deltas, dirs, y0s,
+                                                           w0s, betas, om2s))}  # fmt: skip
+        out["mass"] = np.full(out["start"].shape, m)
+        return out
+
+    def _locate(self, seg: dict[str, Array], t: ArrayLike) -> tuple[Array, Array]:
+        """Segment index and time into it of each time ``t``, clamped to the contact."""
+        start, end = seg["start"], seg["end"]
         finite_end = end[np.isfinite(end)]
         t = np.clip(np.asarray(t, dtype=float), 0.0, finite_end[-1] if finite_end.size else 0.0)
-        seg = np.clip(np.searchsorted(start, t, side="right") - 1, 0, start.size - 1)
-        tau = np.clip(t - start[seg], 0.0, end[seg] - start[seg])
-        dy, w = _propagate(tau, y0[seg], w0[seg], beta[seg], om2[seg])
-        return d0[seg] + s[seg] * dy, s[seg] * w
+        j = np.clip(np.searchsorted(start, t, side="right") - 1, 0, start.size - 1)
+        return j, np.clip(t - start[j], 0.0, end[j] - start[j])
+
+    def evaluate(self, t: ArrayLike, index: int = 0) -> tuple[Array, Array]:
+        """Indentation [m] and rate [m/s] of collision ``index`` at times ``t`` [s].
+
+        From the segment closed forms, clamped to [0, contact_time].
+        """
+        seg = self._segments(index)
+        j, tau = self._locate(seg, t)
+        dy, w = _propagate(tau, seg["y0"][j], seg["w0"][j], seg["beta"][j], seg["om2"][j])
+        return seg["d0"][j] + seg["s"][j] * dy, seg["s"][j] * w
+
+    def dissipated_at(self, t: ArrayLike, index: int = 0) -> Array:
+        """Energy dissipated by damping from the start to times ``t`` [s], [J].
+
+        On each segment the oscillator's own balance: (1/2) m (w0^2 - w^2) - (1/2) K_rs
+        (y^2 - y0^2), summed over the segments before (as :attr:`dissipated` is).
+        """
+        seg = self._segments(index)
+        y0, w0, beta, om2, m = (seg[k] for k in ("y0", "w0", "beta", "om2", "mass"))
+
+        def loss(tau: Array, sel) -> Array:
+            dy, w = _propagate(tau, y0[sel], w0[sel], beta[sel], om2[sel])
+            y = y0[sel] + dy
+            return 0.5 * m[sel] * (w0[sel] ** 2 - w * w) - 0.5 * m[sel] * om2[sel] * (
+                y * y - y0[sel] ** 2
+            )
+
+        every = np.arange(y0.size)
+        span = seg["end"] - seg["start"]
+        whole = loss(np.where(np.isfinite(span), span, 0.0), every)
+        before = np.concatenate([[0.0], np.cumsum(whole)[:-1]])
+        j, tau = self._locate(seg, t)
+        return before[j] + loss(tau, j)
 
 
 def _flatten_law(law, shape: tuple[int, ...]):

@@ -54,6 +54,7 @@ __all__ = [
     "ELASTIC_SUMMARY_KEYS",
     "PLASTIC_SUMMARY_KEYS",
     "DAMPED_DEFAULT_N",
+    "DAMPED_ENERGY_COLUMNS",
     "DAMPED_SWEEP_COLUMNS",
     "DAMPED_SUMMARY_KEYS",
     "DampedImpactResult",
@@ -809,6 +810,19 @@ DAMPED_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "energy_stored",
 )
 
+#: Columns of :meth:`DampedImpactResult.energy`.
+DAMPED_ENERGY_COLUMNS: tuple[str, ...] = (
+    "t",
+    "ke1",
+    "ke2",
+    "strain_energy",
+    "strain_energy1",
+    "strain_energy2",
+    "dissipated",
+    "dissipated1",
+    "dissipated2",
+)
+
 #: FILM segments per stage that :func:`damped_impact` uses by default: e and the contact
 #: time within 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
 DAMPED_DEFAULT_N = 400
@@ -860,6 +874,41 @@ class DampedImpactResult(ImpactResult):
         t = np.clip(t, 0.0, float(source.end_time))
         delta, delta_dot = source.evaluate(t)
         return self._columns(t, delta, delta_dot, self.law.force(delta, delta_dot))
+
+    def energy(
+        self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
+    ) -> dict[str, NDArray]:
+        """Energy partition over the contact (:data:`DAMPED_ENERGY_COLUMNS`, [J]; ``t`` [s]).
+
+        ke_i = (1/2) m_i d_i'^2 (:func:`impactcli.energy.kinetic_energy`, frame of the
+        inputs); ``strain_energy`` the elastic part, (2/5) K delta^2.5, the work of
+        K delta^1.5; ``dissipated`` the integral of c(delta) delta'^2 dt, from FILM's
+        segments (:meth:`impactcli.damping.DampedImpact.dissipated_at`) or the SciPy
+        integration. Each sphere's share of the strain and dissipated energy is its share of
+        the indentation (``split``). ke1 + ke2 + strain_energy + dissipated is the initial
+        kinetic energy, to O(1/n^2) for FILM (tests/test_damping_cli.py).
+        """
+        from impactcli.energy import kinetic_energy
+
+        method = self.method if method is None else method
+        h = self.history(t, points, method)
+        if method == "ode":
+            dissipated = self.ode.dissipated(h["t"])
+        else:
+            dissipated = self.film.dissipated_at(h["t"])  # type: ignore[attr-defined]
+        strain = self.law.elastic_work(0.0, h["delta"])
+        f1, f2 = self.split_fractions
+        return {
+            "t": h["t"],
+            "ke1": kinetic_energy(self.m1, h["v1"]),
+            "ke2": kinetic_energy(self.m2, h["v2"]),
+            "strain_energy": strain,
+            "strain_energy1": f1 * strain,
+            "strain_energy2": f2 * strain,
+            "dissipated": dissipated,
+            "dissipated1": f1 * dissipated,
+            "dissipated2": f2 * dissipated,
+        }
 
 
 def _damped_summary(
