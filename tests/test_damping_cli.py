@@ -180,6 +180,7 @@ def test_elastic_damping_table(impact):
         assert key in result.stdout
 
 
+@pytest.mark.slow
 def test_elastic_target_e(impact):
     """--e 0.8 gives e = 0.8 and prints alpha; that alpha given back gives 0.8 again."""
     result = impact("elastic", *PAPER, "--damping", "tsuji", "--e", "0.8", "-f", "json")
@@ -194,6 +195,7 @@ def test_elastic_target_e(impact):
     assert json.loads(again.stdout)["summary"]["restitution"] == pytest.approx(0.8, abs=1e-6)
 
 
+@pytest.mark.slow
 def test_elastic_damping_ode_and_check(impact):
     result = impact(
         "elastic", *PAPER, "--damping", "tsuji", "--alpha", "0.3", "--method", "ode",
@@ -206,6 +208,7 @@ def test_elastic_damping_ode_and_check(impact):
     assert doc["summary"]["contact_time"] == pytest.approx(film.summary["contact_time"], 1e-6)
 
 
+@pytest.mark.slow
 def test_elastic_damping_plot(impact, tmp_path):
     pytest.importorskip("matplotlib")
     path = tmp_path / "damped.png"
@@ -232,6 +235,7 @@ def test_force_panel_draws_the_loop():
     assert np.max(up.get_ydata()) > np.max(down.get_ydata()[1:]) * 0.99
 
 
+@pytest.mark.slow
 def test_restitution_damping_formats(impact, tmp_path):
     base = ["restitution", "--d1", "20mm", "--d2", "40mm", "--material", "steel"]
     base += ["--v-min", "1mm/s", "--v-max", "1m/s", "--count", "4"]
