@@ -270,7 +270,7 @@ def test_restitution_damping_formats(impact, tmp_path):
         (["elastic", "--damping", "maxwell", "--alpha", "0.3"], "--damping"),
         (["elastoplastic", "--damping", "tsuji", "--alpha", "0.3"], "--damping"),
         (["restitution", "--damping", "tsuji", "--e", "0.5"], "--alpha"),
-        (["restitution", "--damping", "tsuji", "--alpha", "0.3", "--p0-factor", "3"], "p0"),
+        (["restitution", "--damping", "tsuji", "--alpha", "0.3", "--p0-factor", "3"], "--law"),
     ],
 )
 def test_bad_input_one_line_exit_2(impact, tmp_path, args, words):
