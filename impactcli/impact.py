@@ -44,6 +44,7 @@ from impactcli.validation import (
     pair_problems,
     raise_first,
     sphere_problems,
+    yield_scale_problems,
 )
 
 if TYPE_CHECKING:
@@ -712,8 +713,11 @@ def elastoplastic_impact(
     m, r, e = effective_properties(sphere1, sphere2)
     contact = DuWangContact(r, e, sigma_y, pressure_factor)
     v0 = v1 + v2
-    plan = contact.plan(v0, m)
+    with np.errstate(all="ignore"):
+        plan = contact.plan(v0, m)
     elastic = len(plan.stages) == 2
+    if not elastic:
+        raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
     film = FilmSolution(solve_plan(plan, m, n))
     result = ImpactResult(
         sphere1,
