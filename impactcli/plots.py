@@ -237,7 +237,9 @@ def impact_figure(
     (c) momentum p1, p2 and p1 + p2 (constant: momentum is conserved). Bottom row, the
     contact: (d) indentations delta1, delta2 and their sum delta; (e) indentation rates;
     (f) force against total indentation: one curve traversed twice when elastic, a loop
-    ending at the permanent indentation when plastic.
+    ending at the permanent indentation when plastic, a loop through the origin (or ending
+    at ``delta_separation``) under viscous damping, the force F(delta, delta') of the
+    history being higher while loading than while unloading.
 
     Parameters
     ----------
@@ -482,6 +484,18 @@ def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float
             linestyle=":",
             label=rf"yield, $\delta_y$ = {dy / xs.factor:.4g} {xs.unit}",
         )
+    if force.size and np.nanmin(force) < 0.0:  # a damped contact that pulls before it ends
+        ax.axhline(0.0, color="0.5", linewidth=0.6)
+    if summary and summary.get("delta_separation", 0.0) > 0:
+        ds = summary["delta_separation"]
+        ax.plot(
+            [ds / xs.factor],
+            [0.0],
+            linestyle="none",
+            marker="s",
+            color="tab:green",
+            label=rf"separation, $\delta_{{sep}}$ = {ds / xs.factor:.4g} {xs.unit}",
+        )
     if summary and summary.get("delta_res", 0.0) > 0:
         dr = summary["delta_res"]
         ax.plot(
@@ -630,6 +644,8 @@ def restitution_figure(
     yield_velocity: float | None = None,
     first_yield_velocity: float | None = None,
     log_velocity: bool | None = None,
+    indentation_title: str = "(c) Permanent indentation",
+    indentation_label: str = r"permanent indentation $\delta_{res}$",
 ) -> Figure:
     """Three panels over a sweep of impact velocity V0: e, contact time, permanent indentation.
 
@@ -647,6 +663,8 @@ def restitution_figure(
         [m/s]; a dashed line (or a legend entry), as for ``yield_velocity``
     log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more.
         Ticks at 1, 2 and 5 of each decade, all labelled
+    indentation_title, indentation_label : title and axis label of the third panel (a
+        damped sweep draws the maximum indentation and that at separation there)
 
     Returns
     -------
@@ -683,8 +701,8 @@ def restitution_figure(
     rs = unit_scale([v for _label, v in residual.values()], "m")
     for gid, (label, values) in residual.items():
         ax_r.plot(x, values / rs.factor, marker=".", label=label, gid=gid)
-    ax_r.set_ylabel(rf"permanent indentation $\delta_{{res}}$ ({rs.unit})")
-    ax_r.set_title("(c) Permanent indentation", fontsize="medium")
+    ax_r.set_ylabel(f"{indentation_label} ({rs.unit})")
+    ax_r.set_title(indentation_title, fontsize="medium")
 
     marks = [
         (velocity, text, style)
