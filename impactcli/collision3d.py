@@ -91,7 +91,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -101,11 +101,12 @@ __all__ = [
     "Collision3D",
     "NormalHistory",
     "effective_shear_modulus",
+    "normal_restitution_and_history",
     "oblique_impact",
 ]
 
 if TYPE_CHECKING:
-    from impactcli.impact import ImpactResult
+    from impactcli.impact import ImpactResult, Sphere
 
 Array = NDArray[np.float64]
 
@@ -428,6 +429,105 @@ class Collision3D:
         normal = self.normal_share[sphere - 1] * self.energy_dissipated_normal
         friction = self.tangential_share[sphere - 1] * self.energy_dissipated_friction
         return {"normal": normal, "friction": friction, "total": normal + friction}
+
+
+def normal_restitution_and_history(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    u_n: float,
+    law: str = "hertz",
+    params: dict[str, Any] | None = None,
+    damping: str | None = None,
+    alpha: float | None = None,
+    points: int | None = None,
+    n: int = 25,
+) -> tuple[float, NormalHistory | None]:
+    r"""The normal law of an oblique impact: e and, if asked, the normal history.
+
+    The normal law is run as a head-on impact at the normal approach velocity u_n of the
+    contact (docs/collision3d.md): by FILM for a law of :mod:`impactcli.lawlib`
+    (:func:`impactcli.impact.law_impact`: ``hertz``, ``du-wang``, ``thornton``,
+    ``walton-braun``, ``tabulated``), or, with ``damping``, for Hertz elasticity plus viscous
+    damping (:func:`impactcli.damping.solve_damped_impact`: ``tsuji`` or ``hunt-crossley``,
+    damping parameter ``alpha``; the contact ends when delta returns to 0).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (:class:`impactcli.impact.Sphere`)
+    u_n : normal approach velocity (v1 - v2) . n_hat > 0, [m/s]
+    law : name of the normal law (``impact laws``); with ``damping`` only ``hertz``
+    params : the law's parameters by name (SI)
+    damping : None, ``tsuji`` or ``hunt-crossley``
+    alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
+    points : time points of the history (>= 3) for the ``mindlin`` model; None: no history
+    n : FILM segments per stage
+
+    Returns
+    -------
+    (e, history)
+        The coefficient of restitution [-] and the :class:`NormalHistory` of shape (1, K)
+        (None when ``points`` is None). A damped history is the FILM closed form evaluated
+        at ``points`` even times (:meth:`impactcli.damping.DampedImpact.evaluate`), its force
+        F_n = max(F, 0): where the damping force pulls near separation the Coulomb limit
+        mu F_n is 0 (the tangential model scales the impulse shares to J_n).
+
+    Raises
+    ------
+    ValueError
+        A bad law, parameter, damping law or alpha; a law other than ``hertz`` with damping;
+        a damped contact that never ends (e = 0) when a history is asked.
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> ball = Sphere(5e-3, 380e9, 0.23, 4000.0)
+    >>> plane = Sphere(np.inf, np.inf, 0.0, mass=np.inf)
+    >>> e, _ = normal_restitution_and_history(ball, plane, 3.0, damping="tsuji", alpha=0.2)
+    >>> round(e, 4)
+    0.7542
+    """
+    from impactcli.impact import effective_properties, law_impact
+
+    if points is not None and int(points) < 3:
+        raise ValueError(f"the normal history needs at least 3 time points, got {points}")
+    if not (np.isfinite(u_n) and u_n > 0.0):
+        raise ValueError(f"the normal approach velocity must be > 0, got {u_n:g} m/s")
+    if damping is None:
+        if alpha is not None:
+            raise ValueError("alpha is the parameter of a damping law: give damping too")
+        impact = law_impact(sphere1, sphere2, float(u_n), 0.0, law, params, n=n)
+        e = float(impact.summary["restitution"])
+        history = None if points is None else NormalHistory.from_impacts([impact], int(points))
+        return e, history
+
+    from impactcli.damping import make_damping_law, solve_damped_impact
+    from impactcli.lawlib import get_law
+    from impactcli.laws import hertz_stiffness
+
+    if get_law(law).name != "hertz" or params:
+        raise ValueError(
+            f"damping {damping!r} is viscous damping on Hertz elasticity: its law is hertz, "
+            f"got {law!r}" + (" with parameters" if params else "")
+        )
+    if alpha is None or not (np.isfinite(alpha) and alpha >= 0.0):
+        raise ValueError(f"damping {damping!r} needs a finite alpha >= 0, got {alpha}")
+    m, radius, modulus = effective_properties(sphere1, sphere2)
+    contact = make_damping_law(damping, float(hertz_stiffness(modulus, radius)), m, alpha)
+    solution = solve_damped_impact(contact, float(u_n), m)
+    e = float(solution.restitution)
+    if points is None:
+        return e, None
+    t_c = float(solution.contact_time)
+    if not (np.isfinite(t_c) and e > 0.0):
+        raise ValueError(
+            f"the damped contact never ends (alpha = {alpha:g}: overdamped), so it has no "
+            "normal history for the mindlin model"
+        )
+    t = np.linspace(0.0, t_c, int(points))
+    delta, delta_dot = solution.evaluate(t)
+    delta = np.maximum(delta, 0.0)
+    force = np.maximum(contact.force(delta, delta_dot), 0.0)
+    return e, NormalHistory(t[None], delta[None], delta_dot[None], force[None])
 
 
 def oblique_impact(
