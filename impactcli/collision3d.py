@@ -97,12 +97,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "SUMMARY_KEYS",
     "TANGENTIAL_MODELS",
     "Collision3D",
+    "collision_summary",
     "NormalHistory",
     "effective_shear_modulus",
     "normal_restitution_and_history",
     "oblique_impact",
+    "reference_tangent",
+    "velocity_from_angles",
 ]
 
 if TYPE_CHECKING:
@@ -431,6 +435,44 @@ class Collision3D:
         return {"normal": normal, "friction": friction, "total": normal + friction}
 
 
+def reference_tangent(normal: ArrayLike) -> Array:
+    """The unit tangent nearest +x in the plane normal to ``normal`` (nearest +y when the
+    normal is within 1e-6 of the x axis), [-]; the origin of the azimuth phi of
+    :func:`velocity_from_angles`."""
+    n = np.asarray(normal, dtype=float)
+    n = n / np.linalg.norm(n, axis=-1, keepdims=True)
+    along_x = np.abs(n[..., 0:1]) > 1.0 - 1e-6
+    axis = np.where(along_x, [0.0, 1.0, 0.0], [1.0, 0.0, 0.0])
+    t = axis - np.sum(axis * n, axis=-1, keepdims=True) * n
+    return t / np.linalg.norm(t, axis=-1, keepdims=True)
+
+
+def velocity_from_angles(
+    speed: ArrayLike, theta: ArrayLike, phi: ArrayLike, normal: ArrayLike
+) -> Array:
+    r"""A velocity from its speed and direction relative to the line of centres, [m/s].
+
+    .. math::
+
+        v = |v| (\cos\theta \, \hat n + \sin\theta (\cos\phi \, \hat t_0
+        + \sin\phi \, \hat n \times \hat t_0)),
+
+    theta [rad] from the normal n_hat (sphere 1 to sphere 2), phi [rad] about it from the
+    tangent t_0 of :func:`reference_tangent`. For a sphere on a plane below it (n = -z),
+    theta is the incident angle of Chung & Ooi (2011) and phi = 0 the +x direction.
+
+    >>> velocity_from_angles(3.9, np.radians(30.0), 0.0, (0.0, 0.0, -1.0)).round(4)
+    array([ 1.95  ,  0.    , -3.3775])
+    """
+    n = np.asarray(normal, dtype=float)
+    n = n / np.linalg.norm(n, axis=-1, keepdims=True)
+    t0 = reference_tangent(n)
+    b = np.cross(n, t0)
+    theta, phi = np.asarray(theta, dtype=float)[..., None], np.asarray(phi, dtype=float)[..., None]
+    direction = np.cos(theta) * n + np.sin(theta) * (np.cos(phi) * t0 + np.sin(phi) * b)
+    return np.asarray(speed, dtype=float)[..., None] * direction
+
+
 def normal_restitution_and_history(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -495,7 +537,9 @@ def normal_restitution_and_history(
     if damping is None:
         if alpha is not None:
             raise ValueError("alpha is the parameter of a damping law: give damping too")
-        impact = law_impact(sphere1, sphere2, float(u_n), 0.0, law, params, n=n)
+        # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
+        v1 = 0.0 if np.isinf(sphere1.total_mass) else float(u_n)
+        impact = law_impact(sphere1, sphere2, v1, float(u_n) - v1, law, params, n=n)
         e = float(impact.summary["restitution"])
         history = None if points is None else NormalHistory.from_impacts([impact], int(points))
         return e, history
@@ -872,3 +916,97 @@ def _where(bad: NDArray[np.bool_]) -> str:
     if np.ndim(bad) == 0:
         return ""
     return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
+
+
+def _vector_keys(name: str) -> tuple[str, ...]:
+    return tuple(f"{name}_{axis}" for axis in "xyz")
+
+
+#: The keys of :func:`collision_summary`, in order (SI; angles in degrees).
+SUMMARY_KEYS: tuple[str, ...] = (
+    *_vector_keys("v1_final"),
+    *_vector_keys("w1_final"),
+    *_vector_keys("v2_final"),
+    *_vector_keys("w2_final"),
+    "restitution",
+    "normal_restitution",
+    "tangential_restitution",
+    "incident_angle",
+    "rebound_angle",
+    "centre_rebound_angle",
+    "stuck",
+    "approach_velocity",
+    "slip_speed",
+    "slip_speed_final",
+    "normal_impulse",
+    "tangential_impulse",
+    *_vector_keys("normal"),
+    *_vector_keys("slip_direction"),
+    *_vector_keys("contact_point"),
+    *_vector_keys("momentum_before"),
+    *_vector_keys("momentum_after"),
+    *_vector_keys("angular_momentum1_contact_before"),
+    *_vector_keys("angular_momentum1_contact_after"),
+    *_vector_keys("angular_momentum2_contact_before"),
+    *_vector_keys("angular_momentum2_contact_after"),
+    *_vector_keys("angular_momentum_origin_before"),
+    *_vector_keys("angular_momentum_origin_after"),
+    "kinetic_energy_before",
+    "kinetic_energy_after",
+    "energy_dissipated_normal",
+    "energy_dissipated_friction",
+    "energy_dissipated1_normal",
+    "energy_dissipated1_friction",
+    "energy_dissipated2_normal",
+    "energy_dissipated2_friction",
+)
+
+
+def collision_summary(c: Collision3D) -> dict[str, Array]:
+    """The summary of collisions, :data:`SUMMARY_KEYS` -> arrays of the batch shape: SI,
+    angles in degrees, ``stuck`` as 1.0 or 0.0; vectors as their x, y, z components.
+    What ``impact collide3d`` prints and its ``--rows`` tables hold."""
+
+    def vec(name: str, value: ArrayLike) -> dict[str, Array]:
+        value = np.asarray(value, dtype=float)
+        return {key: value[..., k] for k, key in enumerate(_vector_keys(name))}
+
+    energy1, energy2 = c.energy_dissipated_by(1), c.energy_dissipated_by(2)
+    out: dict[str, ArrayLike] = {
+        **vec("v1_final", c.v1_final),
+        **vec("w1_final", c.w1_final),
+        **vec("v2_final", c.v2_final),
+        **vec("w2_final", c.w2_final),
+        "restitution": c.restitution,
+        "normal_restitution": c.normal_restitution,
+        "tangential_restitution": c.tangential_restitution,
+        "incident_angle": np.degrees(c.incident_angle),
+        "rebound_angle": np.degrees(c.rebound_angle),
+        "centre_rebound_angle": np.degrees(c.centre_rebound_angle),
+        "stuck": np.asarray(c.stuck, dtype=float),
+        "approach_velocity": c.approach_velocity,
+        "slip_speed": c.slip_speed,
+        "slip_speed_final": c.slip_speed_final,
+        "normal_impulse": c.normal_impulse,
+        "tangential_impulse": c.tangential_impulse,
+        **vec("normal", c.normal),
+        **vec("slip_direction", c.slip_direction),
+        **vec("contact_point", c.contact_point),
+        **vec("momentum_before", c.momentum_before),
+        **vec("momentum_after", c.momentum_after),
+        **vec("angular_momentum1_contact_before", c.angular_momentum_contact(1)),
+        **vec("angular_momentum1_contact_after", c.angular_momentum_contact(1, True)),
+        **vec("angular_momentum2_contact_before", c.angular_momentum_contact(2)),
+        **vec("angular_momentum2_contact_after", c.angular_momentum_contact(2, True)),
+        **vec("angular_momentum_origin_before", c.angular_momentum_origin()),
+        **vec("angular_momentum_origin_after", c.angular_momentum_origin(True)),
+        "kinetic_energy_before": c.kinetic_energy(1) + c.kinetic_energy(2),
+        "kinetic_energy_after": c.kinetic_energy(1, True) + c.kinetic_energy(2, True),
+        "energy_dissipated_normal": c.energy_dissipated_normal,
+        "energy_dissipated_friction": c.energy_dissipated_friction,
+        "energy_dissipated1_normal": energy1["normal"],
+        "energy_dissipated1_friction": energy1["friction"],
+        "energy_dissipated2_normal": energy2["normal"],
+        "energy_dissipated2_friction": energy2["friction"],
+    }
+    return {key: np.asarray(out[key], dtype=float) for key in SUMMARY_KEYS}
