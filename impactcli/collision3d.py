@@ -455,11 +455,12 @@ def velocity_from_angles(
     .. math::
 
         v = |v| (\cos\theta \, \hat n + \sin\theta (\cos\phi \, \hat t_0
-        + \sin\phi \, \hat n \times \hat t_0)),
+        + \sin\phi \, \hat t_0 \times \hat n)),
 
     theta [rad] from the normal n_hat (sphere 1 to sphere 2), phi [rad] about it from the
-    tangent t_0 of :func:`reference_tangent`. For a sphere on a plane below it (n = -z),
-    theta is the incident angle of Chung & Ooi (2011) and phi = 0 the +x direction.
+    tangent t_0 of :func:`reference_tangent`, counter-clockwise as seen from sphere 1
+    looking along n_hat. For a sphere on a plane below it (n = -z), theta is the incident
+    angle of Chung & Ooi (2011), phi = 0 the +x direction and phi = 90 deg +y.
 
     >>> velocity_from_angles(3.9, np.radians(30.0), 0.0, (0.0, 0.0, -1.0)).round(4)
     array([ 1.95  ,  0.    , -3.3775])
@@ -467,7 +468,7 @@ def velocity_from_angles(
     n = np.asarray(normal, dtype=float)
     n = n / np.linalg.norm(n, axis=-1, keepdims=True)
     t0 = reference_tangent(n)
-    b = np.cross(n, t0)
+    b = np.cross(t0, n)
     theta, phi = np.asarray(theta, dtype=float)[..., None], np.asarray(phi, dtype=float)[..., None]
     direction = np.cos(theta) * n + np.sin(theta) * (np.cos(phi) * t0 + np.sin(phi) * b)
     return np.asarray(speed, dtype=float)[..., None] * direction

@@ -46,7 +46,8 @@ class Damping(enum.StrEnum):
 VELOCITY_HELP = (
     "x,y,z in m/s (units per component: '3m/s,0,-1m/s'), or a speed and its direction "
     "SPEED@THETA[@PHI]: THETA from the normal n (the line of centres, sphere 1 to sphere 2), "
-    "PHI about n from the tangent nearest +x (+y when n is along x); bare angles in degrees, "
+    "PHI about n from the tangent nearest +x (+y when n is along x), counter-clockwise seen "
+    "from sphere 1 looking along n; bare angles in degrees, "
     "e.g. 3.9m/s@30deg."
 )
 

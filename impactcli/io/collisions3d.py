@@ -401,7 +401,8 @@ def run_collisions3d(
                     raise InputError(first_line(exc)) from None
                 report.add(result["error"], report.rows)
                 columns = list(batch.columns) + [
-                    pa.array(result[c], type=pa.float64()) for c in output_columns3d()[:-1]
+                    pa.array(result[c], type=pa.float64(), from_pandas=True)
+                    for c in output_columns3d()[:-1]
                 ] + [pa.array(result["error"], type=pa.string())]  # fmt: skip
                 sink.write(pa.RecordBatch.from_arrays(columns, schema=out_schema))
                 report.rows += batch.num_rows
