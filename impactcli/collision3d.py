@@ -314,6 +314,18 @@ class Collision3D:
             return np.where(self.slip_speed > 0.0, -self.slip_speed_final / self.slip_speed, np.nan)
 
     @property
+    def centre_tangential_restitution(self) -> Array:
+        """(v1' - v2') . t_hat / ((v1 - v2) . t_hat), [-]: the tangential coefficient of
+        restitution of the centres, as DEM benchmarks report it for a sphere on a plane
+        (Chung & Ooi 2011, test 4: v_t'/v_t); 1 - mu (1 + e)/tan(theta) in gross slip and
+        5/7 in stick for a solid sphere on a fixed plane. NaN where the centres have no
+        tangential velocity along t_hat."""
+        before = _dot(self.v1 - self.v2, self.slip_direction)
+        after = _dot(self.v1_final - self.v2_final, self.slip_direction)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(before != 0.0, after / np.where(before != 0.0, before, 1.0), np.nan)
+
+    @property
     def incident_angle(self) -> Array:
         """Angle of the contact-point velocity u to the normal before the impact,
         arctan(|u_t| / u_n), [rad]."""
@@ -932,6 +944,7 @@ SUMMARY_KEYS: tuple[str, ...] = (
     "restitution",
     "normal_restitution",
     "tangential_restitution",
+    "centre_tangential_restitution",
     "incident_angle",
     "rebound_angle",
     "centre_rebound_angle",
@@ -981,6 +994,7 @@ def collision_summary(c: Collision3D) -> dict[str, Array]:
         "restitution": c.restitution,
         "normal_restitution": c.normal_restitution,
         "tangential_restitution": c.tangential_restitution,
+        "centre_tangential_restitution": c.centre_tangential_restitution,
         "incident_angle": np.degrees(c.incident_angle),
         "rebound_angle": np.degrees(c.rebound_angle),
         "centre_rebound_angle": np.degrees(c.centre_rebound_angle),
