@@ -638,7 +638,8 @@ def oblique_impact(
     friction : Coulomb coefficient mu >= 0, [-]
     tangential : ``rigid`` or ``mindlin``
     inertia1, inertia2 : moments of inertia, [kg m^2]; default a solid sphere,
-        I = (2/5) m R^2 (then R^2/I = 5/(2 m) also for a flat or fixed body)
+        I = (2/5) m R^2 (R^2/I = 5/(2 m); 0 for a fixed body and for a flat one, which
+        does not turn)
     history : the normal history (``mindlin`` only), consistent with u_n and e to 1e-6
     shear_modulus : G* of :func:`effective_shear_modulus`, [Pa] (``mindlin`` only)
 
@@ -876,9 +877,10 @@ def _contact_velocity(v1, v2, w1, w2, r1, r2, normal) -> Array:
 
 
 def _rotation(m: Array, r: Array, inertia: ArrayLike | None, name: str) -> Array:
-    """R^2 / I, [1/kg]: 5/(2 m) for a solid sphere; 0 for an infinite mass or inertia."""
+    """R^2 / I, [1/kg]: 5/(2 m) for a solid sphere; 0 for an infinite mass or inertia and
+    for a flat body (R = inf), which does not turn (its w' = w)."""
     if inertia is None:
-        return 2.5 / m
+        return np.where(np.isinf(r), 0.0, 2.5 / m)
     inertia = np.asarray(inertia, dtype=float)
     bad = ~(inertia > 0.0)
     if np.any(bad):
