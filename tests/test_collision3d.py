@@ -547,3 +547,37 @@ def test_damped_history_is_the_damped_solution():
     with pytest.raises(ValueError, match="hertz"):
         normal_restitution_and_history(ball, PLANE, 2.0, law="du-wang", damping="tsuji",
                                        alpha=0.3)  # fmt: skip
+
+
+def _chung_ooi_script():
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "chung_ooi.py"
+    spec = importlib.util.spec_from_file_location("chung_ooi", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_chung_ooi_figure_curves_hold_the_closed_forms():
+    """The README's benchmark figure: its rigid curves are the closed forms (gross slip,
+    stick, v_t'/v_t = 5/7 below tan(theta) = 7 mu), for both tests and materials, and the
+    figure draws exactly those numbers."""
+    pytest.importorskip("matplotlib")
+    from impactcli.plots import oblique_impact_figure
+
+    script = _chung_ooi_script()
+    theta = np.radians([2.0, 20.0, 32.0, 33.5, 50.0, 80.0])
+    for v_n in (3.9 * np.cos(theta), np.full_like(theta, 5.0)):
+        closed = script.closed_form(theta, v_n)
+        assert np.all(closed["tangential_restitution"][:3] == 5.0 / 7.0)
+        for material in script.MATERIALS:
+            rigid = script.sweep(material, theta, v_n, "rigid")
+            for key in closed:
+                np.testing.assert_allclose(rigid[key], closed[key], rtol=1e-12, atol=1e-12)
+    curves = {"alumina, rigid": rigid}
+    fig = oblique_impact_figure(np.degrees(theta), curves, closed_form=closed)
+    lines = {line.get_gid(): line for ax in fig.axes for line in ax.lines}
+    np.testing.assert_array_equal(lines["alumina, rigid:spin"].get_ydata(), rigid["spin"])
+    np.testing.assert_array_equal(lines["closed:rebound_angle"].get_xdata(), np.degrees(theta))
