@@ -20,7 +20,8 @@ from impactcli.cli.common import (
 )
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
-from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.limits import MAX_POINTS, check_size
+from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
 
@@ -117,7 +118,9 @@ def collide3d(
         "Cummins & Cleary 2011).",
     ),
     points: int = typer.Option(
-        4001, "--points", help="Time points of the normal history for --tangential mindlin."
+        4001,
+        "--points",
+        help=f"Time points of the normal history for --tangential mindlin, 3 to {MAX_POINTS:,}.",
     ),
     rows: Optional[str] = typer.Option(
         None,
@@ -173,10 +176,10 @@ def collide3d(
     if e is not None and not 0.0 <= e <= 1.0:
         raise InputError(f"--e: the coefficient of restitution must be in [0, 1], got {e}")
     law_name, params = _normal_law(law, law_param, model, damping, alpha, e, tangential)
-    if points < 3:
-        raise InputError(f"--points: need at least 3 time points, got {points}")
-    check_plot(plot)
-    check_plot(plot_force)
+    check_size("--points", points, MAX_POINTS, minimum=3)
+    check_plot(plot, output)
+    check_plot(plot_force, output)
+    check_distinct_outputs(plot, plot_force)
     if plot_force is not None and tangential is not Tangential.mindlin:
         raise InputError("--plot-force draws the mindlin force history: add --tangential mindlin")
     check_options(spheres)  # every sphere option given is checked, used or not
