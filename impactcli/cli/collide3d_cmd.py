@@ -184,7 +184,14 @@ def collide3d(
         raise InputError("--plot-force draws the mindlin force history: add --tangential mindlin")
     check_options(spheres)  # every sphere option given is checked, used or not
     if rows is not None:
-        _rows(rows, output, fmt, locals())
+        single = [name for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2),
+                  ("--plot", plot), ("--plot-force", plot_force)) if value is not None]
+        single += [name for name, value in (("--v2", v2), ("--w1", w1), ("--w2", w2))
+                   if value != "0,0,0"]
+        single += [f"--{k}" for k, value in vars(spheres).items() if value is not None]
+        _rows(rows, output, fmt, single, law=law_name, params=params,
+              damping=damping and damping.value, alpha=alpha, restitution=e, mu=mu,
+              tangential=tangential.value, points=points)  # fmt: skip
         return
     for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2)):
         if value is None:
@@ -322,37 +329,28 @@ def _degrees(text: str, name: str) -> float:
         return parse_quantity(text, "angle", name)
 
 
-def _rows(path: str, output, fmt, options: dict[str, Any]) -> None:
-    """``--rows TABLE``: every row through impactcli.io.collisions3d, file to file."""
+def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
+    """``--rows TABLE``: every row through :func:`impactcli.io.collisions3d.run_collisions3d`,
+    file to file; ``single`` names the options of one collision that were given."""
     import os
 
     from impactcli.cli.common import warn
+    from impactcli.io.collisions3d import run_collisions3d
     from impactcli.io.readers import PARQUET_SUFFIXES
     from impactcli.io.writers import TableFormat
 
-    single = [f"--{k}" for k in ("v1", "p1", "p2", "plot", "plot_force") if options[k]]
-    single += [f"--{k}" for k in ("v2", "w1", "w2") if options[k] != "0,0,0"]
-    single += [f"--{k}" for k, v in vars(options["spheres"]).items() if v is not None]
     if single:
         raise InputError(
             f"--rows reads the collisions from the table: {', '.join(single)} belong in its "
             "columns (v1_x, ..., d1, material, ...)"
         )
-    if options["fmt"] not in (None, Format.csv):
+    if fmt not in (None, Format.csv):
         raise InputError("--rows writes a table: CSV, or Parquet with -o OUT.parquet")
     suffix = os.path.splitext(output or "")[1].lower()
+    if suffix not in ("", ".csv", *PARQUET_SUFFIXES):
+        raise InputError(f"-o {output}: --rows writes CSV (.csv) or Parquet (.parquet)")
     table = TableFormat.parquet if suffix in PARQUET_SUFFIXES else TableFormat.csv
-    from impactcli.io.collisions3d import run_collisions3d
-
-    law, params = _normal_law(
-        options["law"], options["law_param"], options["model"], options["damping"],
-        options["alpha"], options["e"], options["tangential"],
-    )  # fmt: skip
-    report = run_collisions3d(
-        path, output, table, mu=options["mu"], tangential=options["tangential"].value,
-        law=law, params=params, damping=options["damping"] and options["damping"].value,
-        alpha=options["alpha"], restitution=options["e"], points=options["points"],
-    )  # fmt: skip
+    report = run_collisions3d(path, output, table, **options)
     for line in report.lines:
         warn(line)
     if report.summary():
