@@ -66,6 +66,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "angle": ("rad", "-30deg, 0.5 rad"),
     "time": ("s", "75us, 1e-4 s"),
     "angular_velocity": ("rad/s", "100rad/s, 600rpm, 30deg/s"),
+    "stiffness": ("N/m", "2e7 N/m, 20 kN/mm"),
     "dimensionless": ("", "0.3"),
 }
 
@@ -83,6 +84,7 @@ _DIMS: dict[str, Dims] = {
     "angle": (0, 0, 0, 1),
     "time": (0, 0, 1, 0),
     "angular_velocity": (0, 0, -1, 1),
+    "stiffness": (0, 1, -2, 0),
     "dimensionless": (0, 0, 0, 0),
 }
 _DIMENSION_NAMES = ("length", "mass", "time", "angle")

@@ -138,6 +138,10 @@ def test_law_and_damping_give_the_head_on_restitution(impact):
     thornton = law_impact(ball, plane, 3.0, 0.0, "thornton").summary["restitution"]
     r = impact(*ALUMINA_ON_PLANE, "--sy2", "2GPa", "--v1=1,0,-3", "--law", "thornton",
                "-f", "json")  # fmt: skip
+    walton = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", "--law", "walton-braun", "--k-load",
+                    "1MN/m", "--k-unload", "4e6", "-f", "json")  # fmt: skip
+    assert walton.returncode == 0, walton.stderr
+    assert json.loads(walton.stdout)["summary"]["restitution"] == pytest.approx(0.5, rel=1e-12)
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["summary"]["restitution"] == pytest.approx(thornton, rel=1e-12)
     assert thornton < 1.0
@@ -161,8 +165,8 @@ def test_law_and_damping_give_the_head_on_restitution(impact):
         (["--law", "hertz", "--model", "elastic"], "one normal law"),
         (["--damping", "tsuji"], "--alpha"),
         (["--damping", "tsuji", "--alpha", "-1"], "--alpha"),
-        (["--law-param", "py=1GPa"], "--law NAME"),
-        (["--law", "thornton", "--law-param", "k=1"], "no parameter 'k'"),
+        (["--py", "1GPa"], "--py is a parameter of law thornton"),
+        (["--law", "thornton", "--k-load", "1e6"], "--k-load is a parameter of law walton-braun"),
         (["--v1", "3.9m/s@30deg@1@2"], "SPEED@THETA"),
         (["--v1", "-3m/s@30deg"], "speed must be >= 0"),
         (["--w1", "0,0,3Hz"], "angular velocity"),

@@ -29,6 +29,7 @@ from impactcli.cli import (  # noqa: E402
     batch_cmd,
     collide2d_cmd,
     collide3d_cmd,
+    compare_cmd,
     impact_cmd,
     laws_cmd,
     tables_cmd,
@@ -40,6 +41,7 @@ collide2d_cmd.register(app)
 collide3d_cmd.register(app)
 batch_cmd.register(app)
 laws_cmd.register(app)
+compare_cmd.register(app)
 
 
 def _usage_error(exc: BaseException) -> int | None:

@@ -18,6 +18,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
+from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.limits import MAX_POINTS, check_size
@@ -53,6 +54,7 @@ VELOCITY_HELP = (
 )
 
 
+@with_law_options()
 @with_sphere_options(velocities=False)
 def collide3d(
     v1: Optional[str] = typer.Option(
@@ -78,24 +80,12 @@ def collide3d(
         "the side of the plane, p2 - p1 giving the normal.",
     ),
     spheres: SphereOptions = None,  # type: ignore[assignment]  # the shared sphere options
-    law: Optional[str] = typer.Option(
-        None,
-        "--law",
-        help="Normal law giving e at the normal approach velocity (see impact laws): hertz, "
-        "du-wang, thornton, walton-braun, tabulated. Default hertz (elastic, e = 1).",
-    ),
-    law_param: Optional[list[str]] = typer.Option(
-        None,
-        "--law-param",
-        metavar="NAME=VALUE",
-        help="A parameter of --law, repeatable: --law-param py=1.2GPa, "
-        "--law-param k_load=1e6 (SI unless a unit is given; files for tabulated).",
-    ),
+    law: LawOptions = None,  # type: ignore[assignment]  # --law and the law parameters
     model: Optional[NormalModel] = typer.Option(
         None,
         "--model",
-        help="Shorthand for --law: elastic (hertz) or elastoplastic (du-wang; needs a yield "
-        "strength).",
+        help="Normal law when --law is not given: elastic (hertz, e = 1, the default) or "
+        "elastoplastic (du-wang; needs a yield strength).",
     ),
     damping: Optional[Damping] = typer.Option(
         None,
@@ -175,7 +165,7 @@ def collide3d(
         raise InputError(f"--mu: the friction coefficient must be finite and >= 0, got {mu}")
     if e is not None and not 0.0 <= e <= 1.0:
         raise InputError(f"--e: the coefficient of restitution must be in [0, 1], got {e}")
-    law_name, params = _normal_law(law, law_param, model, damping, alpha, e, tangential)
+    law_name, params = _normal_law(law, model, damping, alpha, e, tangential)
     check_size("--points", points, MAX_POINTS, minimum=3)
     check_plot(plot, output)
     check_plot(plot_force, output)
@@ -233,11 +223,12 @@ def collide3d(
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
 
 
-def _normal_law(law, law_param, model, damping, alpha, e, tangential):
-    """(law name, parameters) of the normal law from --law/--law-param, --model, --damping,
-    --alpha and --e, with one line for each clash."""
-    given = [name for name, value in (("--law", law), ("--model", model), ("--damping", damping),
-             ("--e", e)) if value is not None]  # fmt: skip
+def _normal_law(law: LawOptions, model, damping, alpha, e, tangential):
+    """(law name, parameters in SI) of the normal law from --law and its parameters
+    (:func:`impactcli.cli.law_options.resolve_laws`), --model, --damping, --alpha and --e,
+    with one line for each clash. Without --law: hertz, du-wang for --model elastoplastic."""
+    given = [name for name, value in (("--law", law.names or None), ("--model", model),
+             ("--damping", damping), ("--e", e)) if value is not None]  # fmt: skip
     if len(given) > 1:
         raise InputError(f"give one normal law: {' or '.join(given)}, not both")
     if e is not None and tangential is Tangential.mindlin:
@@ -249,43 +240,9 @@ def _normal_law(law, law_param, model, damping, alpha, e, tangential):
         raise InputError("--damping and --alpha go together (e.g. --damping tsuji --alpha 0.2)")
     if alpha is not None and not (math.isfinite(alpha) and alpha >= 0.0):
         raise InputError(f"--alpha: the damping parameter must be finite and >= 0, got {alpha}")
-    if law_param and law is None:
-        raise InputError("--law-param sets a parameter of --law: give --law NAME")
-    name = MODEL_LAWS[model] if model is not None else (law or "hertz")
-    from impactcli.lawlib import get_law
-
-    try:
-        spec = get_law(name)
-    except ValueError as exc:
-        raise InputError(f"--law: {exc}") from None
-    params: dict[str, Any] = {}
-    kinds = {p.name: p.kind for p in spec.parameters}
-    for item in law_param or []:
-        key, sep, value = item.partition("=")
-        key = key.strip().replace("-", "_")
-        if not sep or not key or not value.strip():
-            raise InputError(f"--law-param: expected NAME=VALUE, got {item!r}")
-        if key not in kinds:
-            accepted = ", ".join(kinds) or "none"
-            raise InputError(f"--law-param: law {spec.name!r} has no parameter {key!r} "
-                             f"(accepted: {accepted})")  # fmt: skip
-        params[key] = _law_value(value.strip(), kinds[key], f"--law-param {key}")
-    return spec.name, params
-
-
-def _law_value(text: str, kind: str, name: str) -> Any:
-    """A law parameter's value: a file or a choice as text, a quantity of a known kind with
-    its unit, else a number (SI)."""
-    from impactcli.units import KINDS, parse_quantity
-
-    if kind in ("file", "choice"):
-        return text
-    if kind in KINDS:
-        return parse_quantity(text, kind, name)
-    try:
-        return float(text)
-    except ValueError:
-        raise InputError(f"{name}: expected a number in SI, got {text!r}") from None
+    default = MODEL_LAWS[model] if model is not None else "hertz"
+    (choice,) = resolve_laws(law, default=(default,))
+    return choice.name, choice.params
 
 
 def _normal(p1, p2):
@@ -444,6 +401,11 @@ def _solve(s1, s2, vectors, law, params, damping, alpha, e, mu, tangential, poin
         "tangential_model": tangential.value,
         "mu": mu,
     }
+    if e is None and damping is None:
+        from impactcli.cli.law_options import LawChoice, law_inputs
+        from impactcli.impact import weaker_yield_strength
+
+        inputs.update(law_inputs(LawChoice(law, params), weaker_yield_strength(s1, s2)))
     return result, summary(result), inputs, force, limit
 
 
