@@ -91,21 +91,26 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "SUMMARY_KEYS",
     "TANGENTIAL_MODELS",
     "Collision3D",
+    "collision_summary",
     "NormalHistory",
     "effective_shear_modulus",
+    "normal_restitution_and_history",
     "oblique_impact",
+    "reference_tangent",
+    "velocity_from_angles",
 ]
 
 if TYPE_CHECKING:
-    from impactcli.impact import ImpactResult
+    from impactcli.impact import ImpactResult, Sphere
 
 Array = NDArray[np.float64]
 
@@ -309,6 +314,18 @@ class Collision3D:
             return np.where(self.slip_speed > 0.0, -self.slip_speed_final / self.slip_speed, np.nan)
 
     @property
+    def centre_tangential_restitution(self) -> Array:
+        """(v1' - v2') . t_hat / ((v1 - v2) . t_hat), [-]: the tangential coefficient of
+        restitution of the centres, as DEM benchmarks report it for a sphere on a plane
+        (Chung & Ooi 2011, test 4: v_t'/v_t); 1 - mu (1 + e)/tan(theta) in gross slip and
+        5/7 in stick for a solid sphere on a fixed plane. NaN where the centres have no
+        tangential velocity along t_hat."""
+        before = _dot(self.v1 - self.v2, self.slip_direction)
+        after = _dot(self.v1_final - self.v2_final, self.slip_direction)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(before != 0.0, after / np.where(before != 0.0, before, 1.0), np.nan)
+
+    @property
     def incident_angle(self) -> Array:
         """Angle of the contact-point velocity u to the normal before the impact,
         arctan(|u_t| / u_n), [rad]."""
@@ -430,6 +447,146 @@ class Collision3D:
         return {"normal": normal, "friction": friction, "total": normal + friction}
 
 
+def reference_tangent(normal: ArrayLike) -> Array:
+    """The unit tangent nearest +x in the plane normal to ``normal`` (nearest +y when the
+    normal is within 1e-6 of the x axis), [-]; the origin of the azimuth phi of
+    :func:`velocity_from_angles`."""
+    n = np.asarray(normal, dtype=float)
+    n = n / np.linalg.norm(n, axis=-1, keepdims=True)
+    along_x = np.abs(n[..., 0:1]) > 1.0 - 1e-6
+    axis = np.where(along_x, [0.0, 1.0, 0.0], [1.0, 0.0, 0.0])
+    t = axis - np.sum(axis * n, axis=-1, keepdims=True) * n
+    return t / np.linalg.norm(t, axis=-1, keepdims=True)
+
+
+def velocity_from_angles(
+    speed: ArrayLike, theta: ArrayLike, phi: ArrayLike, normal: ArrayLike
+) -> Array:
+    r"""A velocity from its speed and direction relative to the line of centres, [m/s].
+
+    .. math::
+
+        v = |v| (\cos\theta \, \hat n + \sin\theta (\cos\phi \, \hat t_0
+        + \sin\phi \, \hat t_0 \times \hat n)),
+
+    theta [rad] from the normal n_hat (sphere 1 to sphere 2), phi [rad] about it from the
+    tangent t_0 of :func:`reference_tangent`, counter-clockwise as seen from sphere 1
+    looking along n_hat. For a sphere on a plane below it (n = -z), theta is the incident
+    angle of Chung & Ooi (2011), phi = 0 the +x direction and phi = 90 deg +y.
+
+    >>> velocity_from_angles(3.9, np.radians(30.0), 0.0, (0.0, 0.0, -1.0)).round(4)
+    array([ 1.95  ,  0.    , -3.3775])
+    """
+    n = np.asarray(normal, dtype=float)
+    n = n / np.linalg.norm(n, axis=-1, keepdims=True)
+    t0 = reference_tangent(n)
+    b = np.cross(t0, n)
+    theta, phi = np.asarray(theta, dtype=float)[..., None], np.asarray(phi, dtype=float)[..., None]
+    direction = np.cos(theta) * n + np.sin(theta) * (np.cos(phi) * t0 + np.sin(phi) * b)
+    return np.asarray(speed, dtype=float)[..., None] * direction
+
+
+def normal_restitution_and_history(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    u_n: float,
+    law: str = "hertz",
+    params: dict[str, Any] | None = None,
+    damping: str | None = None,
+    alpha: float | None = None,
+    points: int | None = None,
+    n: int = 25,
+) -> tuple[float, NormalHistory | None]:
+    r"""The normal law of an oblique impact: e and, if asked, the normal history.
+
+    The normal law is run as a head-on impact at the normal approach velocity u_n of the
+    contact (docs/collision3d.md): by FILM for a law of :mod:`impactcli.lawlib`
+    (:func:`impactcli.impact.law_impact`: ``hertz``, ``du-wang``, ``thornton``,
+    ``walton-braun``, ``tabulated``), or, with ``damping``, for Hertz elasticity plus viscous
+    damping (:func:`impactcli.damping.solve_damped_impact`: ``tsuji`` or ``hunt-crossley``,
+    damping parameter ``alpha``; the contact ends when delta returns to 0).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (:class:`impactcli.impact.Sphere`)
+    u_n : normal approach velocity (v1 - v2) . n_hat > 0, [m/s]
+    law : name of the normal law (``impact laws``); with ``damping`` only ``hertz``
+    params : the law's parameters by name (SI)
+    damping : None, ``tsuji`` or ``hunt-crossley``
+    alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
+    points : time points of the history (>= 3) for the ``mindlin`` model; None: no history
+    n : FILM segments per stage
+
+    Returns
+    -------
+    (e, history)
+        The coefficient of restitution [-] and the :class:`NormalHistory` of shape (1, K)
+        (None when ``points`` is None). A damped history is the FILM closed form evaluated
+        at ``points`` even times (:meth:`impactcli.damping.DampedImpact.evaluate`), its force
+        F_n = max(F, 0): where the damping force pulls near separation the Coulomb limit
+        mu F_n is 0 (the tangential model scales the impulse shares to J_n).
+
+    Raises
+    ------
+    ValueError
+        A bad law, parameter, damping law or alpha; a law other than ``hertz`` with damping;
+        a damped contact that never ends (e = 0) when a history is asked.
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> ball = Sphere(5e-3, 380e9, 0.23, 4000.0)
+    >>> plane = Sphere(np.inf, np.inf, 0.0, mass=np.inf)
+    >>> e, _ = normal_restitution_and_history(ball, plane, 3.0, damping="tsuji", alpha=0.2)
+    >>> round(e, 4)
+    0.7542
+    """
+    from impactcli.impact import effective_properties, law_impact
+
+    if points is not None and int(points) < 3:
+        raise ValueError(f"the normal history needs at least 3 time points, got {points}")
+    if not (np.isfinite(u_n) and u_n > 0.0):
+        raise ValueError(f"the normal approach velocity must be > 0, got {u_n:g} m/s")
+    if damping is None:
+        if alpha is not None:
+            raise ValueError("alpha is the parameter of a damping law: give damping too")
+        # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
+        v1 = 0.0 if np.isinf(sphere1.total_mass) else float(u_n)
+        impact = law_impact(sphere1, sphere2, v1, float(u_n) - v1, law, params, n=n)
+        e = float(impact.summary["restitution"])
+        history = None if points is None else NormalHistory.from_impacts([impact], int(points))
+        return e, history
+
+    from impactcli.damping import make_damping_law, solve_damped_impact
+    from impactcli.lawlib import get_law
+    from impactcli.laws import hertz_stiffness
+
+    if get_law(law).name != "hertz" or params:
+        raise ValueError(
+            f"damping {damping!r} is viscous damping on Hertz elasticity: its law is hertz, "
+            f"got {law!r}" + (" with parameters" if params else "")
+        )
+    if alpha is None or not (np.isfinite(alpha) and alpha >= 0.0):
+        raise ValueError(f"damping {damping!r} needs a finite alpha >= 0, got {alpha}")
+    m, radius, modulus = effective_properties(sphere1, sphere2)
+    contact = make_damping_law(damping, float(hertz_stiffness(modulus, radius)), m, alpha)
+    solution = solve_damped_impact(contact, float(u_n), m)
+    e = float(solution.restitution)
+    if points is None:
+        return e, None
+    t_c = float(solution.contact_time)
+    if not (np.isfinite(t_c) and e > 0.0):
+        raise ValueError(
+            f"the damped contact never ends (alpha = {alpha:g}: overdamped), so it has no "
+            "normal history for the mindlin model"
+        )
+    t = np.linspace(0.0, t_c, int(points))
+    delta, delta_dot = solution.evaluate(t)
+    delta = np.maximum(delta, 0.0)
+    force = np.maximum(contact.force(delta, delta_dot), 0.0)
+    return e, NormalHistory(t[None], delta[None], delta_dot[None], force[None])
+
+
 def oblique_impact(
     m1: ArrayLike,
     m2: ArrayLike,
@@ -481,7 +638,8 @@ def oblique_impact(
     friction : Coulomb coefficient mu >= 0, [-]
     tangential : ``rigid`` or ``mindlin``
     inertia1, inertia2 : moments of inertia, [kg m^2]; default a solid sphere,
-        I = (2/5) m R^2 (then R^2/I = 5/(2 m) also for a flat or fixed body)
+        I = (2/5) m R^2 (R^2/I = 5/(2 m); 0 for a fixed body and for a flat one, which
+        does not turn)
     history : the normal history (``mindlin`` only), consistent with u_n and e to 1e-6
     shear_modulus : G* of :func:`effective_shear_modulus`, [Pa] (``mindlin`` only)
 
@@ -719,9 +877,10 @@ def _contact_velocity(v1, v2, w1, w2, r1, r2, normal) -> Array:
 
 
 def _rotation(m: Array, r: Array, inertia: ArrayLike | None, name: str) -> Array:
-    """R^2 / I, [1/kg]: 5/(2 m) for a solid sphere; 0 for an infinite mass or inertia."""
+    """R^2 / I, [1/kg]: 5/(2 m) for a solid sphere; 0 for an infinite mass or inertia and
+    for a flat body (R = inf), which does not turn (its w' = w)."""
     if inertia is None:
-        return 2.5 / m
+        return np.where(np.isinf(r), 0.0, 2.5 / m)
     inertia = np.asarray(inertia, dtype=float)
     bad = ~(inertia > 0.0)
     if np.any(bad):
@@ -772,3 +931,99 @@ def _where(bad: NDArray[np.bool_]) -> str:
     if np.ndim(bad) == 0:
         return ""
     return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
+
+
+def _vector_keys(name: str) -> tuple[str, ...]:
+    return tuple(f"{name}_{axis}" for axis in "xyz")
+
+
+#: The keys of :func:`collision_summary`, in order (SI; angles in degrees).
+SUMMARY_KEYS: tuple[str, ...] = (
+    *_vector_keys("v1_final"),
+    *_vector_keys("w1_final"),
+    *_vector_keys("v2_final"),
+    *_vector_keys("w2_final"),
+    "restitution",
+    "normal_restitution",
+    "tangential_restitution",
+    "centre_tangential_restitution",
+    "incident_angle",
+    "rebound_angle",
+    "centre_rebound_angle",
+    "stuck",
+    "approach_velocity",
+    "slip_speed",
+    "slip_speed_final",
+    "normal_impulse",
+    "tangential_impulse",
+    *_vector_keys("normal"),
+    *_vector_keys("slip_direction"),
+    *_vector_keys("contact_point"),
+    *_vector_keys("momentum_before"),
+    *_vector_keys("momentum_after"),
+    *_vector_keys("angular_momentum1_contact_before"),
+    *_vector_keys("angular_momentum1_contact_after"),
+    *_vector_keys("angular_momentum2_contact_before"),
+    *_vector_keys("angular_momentum2_contact_after"),
+    *_vector_keys("angular_momentum_origin_before"),
+    *_vector_keys("angular_momentum_origin_after"),
+    "kinetic_energy_before",
+    "kinetic_energy_after",
+    "energy_dissipated_normal",
+    "energy_dissipated_friction",
+    "energy_dissipated1_normal",
+    "energy_dissipated1_friction",
+    "energy_dissipated2_normal",
+    "energy_dissipated2_friction",
+)
+
+
+def collision_summary(c: Collision3D) -> dict[str, Array]:
+    """The summary of collisions, :data:`SUMMARY_KEYS` -> arrays of the batch shape: SI,
+    angles in degrees, ``stuck`` as 1.0 or 0.0; vectors as their x, y, z components.
+    What ``impact collide3d`` prints and its ``--rows`` tables hold."""
+
+    def vec(name: str, value: ArrayLike) -> dict[str, Array]:
+        value = np.asarray(value, dtype=float)
+        return {key: value[..., k] for k, key in enumerate(_vector_keys(name))}
+
+    energy1, energy2 = c.energy_dissipated_by(1), c.energy_dissipated_by(2)
+    out: dict[str, ArrayLike] = {
+        **vec("v1_final", c.v1_final),
+        **vec("w1_final", c.w1_final),
+        **vec("v2_final", c.v2_final),
+        **vec("w2_final", c.w2_final),
+        "restitution": c.restitution,
+        "normal_restitution": c.normal_restitution,
+        "tangential_restitution": c.tangential_restitution,
+        "centre_tangential_restitution": c.centre_tangential_restitution,
+        "incident_angle": np.degrees(c.incident_angle),
+        "rebound_angle": np.degrees(c.rebound_angle),
+        "centre_rebound_angle": np.degrees(c.centre_rebound_angle),
+        "stuck": np.asarray(c.stuck, dtype=float),
+        "approach_velocity": c.approach_velocity,
+        "slip_speed": c.slip_speed,
+        "slip_speed_final": c.slip_speed_final,
+        "normal_impulse": c.normal_impulse,
+        "tangential_impulse": c.tangential_impulse,
+        **vec("normal", c.normal),
+        **vec("slip_direction", c.slip_direction),
+        **vec("contact_point", c.contact_point),
+        **vec("momentum_before", c.momentum_before),
+        **vec("momentum_after", c.momentum_after),
+        **vec("angular_momentum1_contact_before", c.angular_momentum_contact(1)),
+        **vec("angular_momentum1_contact_after", c.angular_momentum_contact(1, True)),
+        **vec("angular_momentum2_contact_before", c.angular_momentum_contact(2)),
+        **vec("angular_momentum2_contact_after", c.angular_momentum_contact(2, True)),
+        **vec("angular_momentum_origin_before", c.angular_momentum_origin()),
+        **vec("angular_momentum_origin_after", c.angular_momentum_origin(True)),
+        "kinetic_energy_before": c.kinetic_energy(1) + c.kinetic_energy(2),
+        "kinetic_energy_after": c.kinetic_energy(1, True) + c.kinetic_energy(2, True),
+        "energy_dissipated_normal": c.energy_dissipated_normal,
+        "energy_dissipated_friction": c.energy_dissipated_friction,
+        "energy_dissipated1_normal": energy1["normal"],
+        "energy_dissipated1_friction": energy1["friction"],
+        "energy_dissipated2_normal": energy2["normal"],
+        "energy_dissipated2_friction": energy2["friction"],
+    }
+    return {key: np.asarray(out[key], dtype=float) for key in SUMMARY_KEYS}

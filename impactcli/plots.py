@@ -19,6 +19,8 @@ restitution_figure : a sweep over impact velocity: restitution, contact time, pe
 fit_figure : measured restitution with fitted laws, their confidence bands and the residuals
 collision2d_figure : the oblique 2-D collision: velocities before and after (sec. 4.5, Fig. 12)
 law_comparison_figure : force-indentation loops of several laws, and e against V0/V_y
+tangential_force_figure : the Mindlin tangential force history of an oblique 3-D impact
+oblique_impact_figure : tangential restitution, spin and rebound angle against incident angle
 save_figure : write a figure to .png, .svg or .pdf atomically
 """
 
@@ -47,6 +49,7 @@ __all__ = [
     "fit_figure",
     "impact_figure",
     "law_comparison_figure",
+    "oblique_impact_figure",
     "require_matplotlib",
     "restitution_figure",
     "save_figure",
@@ -1145,5 +1148,68 @@ def law_comparison_figure(
     ax_e.set_title("(b) Restitution against impact velocity", fontsize="medium")
     ax_e.grid(True, which="both", linewidth=0.4, alpha=0.5)
     ax_e.legend(fontsize="small", loc="lower left")
+    fig.suptitle(title, fontsize="large")
+    return fig
+
+
+#: The three panels of :func:`oblique_impact_figure`: key -> (axis label, panel title).
+OBLIQUE_PANELS: dict[str, tuple[str, str]] = {
+    "tangential_restitution": (
+        "tangential restitution $v_t'/v_t$ (-)",
+        "(a) Tangential restitution of the centre",
+    ),
+    "spin": (r"post-impact spin $\omega'$ (rad/s)", "(b) Post-impact spin"),
+    "rebound_angle": ("rebound angle at the contact patch (deg)", "(c) Rebound angle"),
+}
+
+
+def oblique_impact_figure(
+    incident_angle: ArrayLike,
+    curves: Mapping[str, Mapping[str, ArrayLike]],
+    *,
+    closed_form: Mapping[str, ArrayLike] | None = None,
+    closed_form_label: str = "rigid closed form",
+    title: str = "Oblique impact of a sphere on a rigid plane",
+) -> Figure:
+    """Three panels against the incident angle, as DEM benchmarks of oblique impacts show
+    them (Chung & Ooi 2011, tests 4 and 5): the centre's tangential restitution v_t'/v_t,
+    the post-impact spin and the rebound angle at the contact patch.
+
+    Parameters
+    ----------
+    incident_angle : angle of the contact-point velocity to the normal, [deg]
+    curves : label -> {"tangential_restitution" [-], "spin" [rad/s], "rebound_angle" [deg]}
+        (e.g. one per material and tangential model); curves in pairs share a colour, the
+        first of a pair solid, the second dashed (e.g. rigid and mindlin of one material)
+    closed_form : the same keys, drawn as a thin black dashed line (e.g. the rigid model's
+        gross slip and stick forms, which the rigid curves must lie on)
+    closed_form_label : its legend entry
+    title : names the case
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Lines have gids ``<label>:<key>`` and ``closed:<key>``.
+    """
+    x = np.asarray(incident_angle, dtype=float)
+    fig = _new_figure(15.0, 4.8)
+    axes = fig.subplots(1, 3)
+    styles = ("-", "--", "-.", ":")
+    colours = ("tab:blue", "tab:orange", "tab:green", "tab:red")
+    for ax, (key, (label, heading)) in zip(axes, OBLIQUE_PANELS.items()):
+        for k, (name, values) in enumerate(curves.items()):
+            ax.plot(x, np.asarray(values[key], dtype=float), color=colours[(k // 2) % 4],
+                    linestyle=styles[k % 2], linewidth=1.4, label=name,
+                    gid=f"{name}:{key}")  # fmt: skip
+        if closed_form is not None:
+            ax.plot(x, np.asarray(closed_form[key], dtype=float), color="black",
+                    linestyle=(0, (2, 2)), linewidth=0.8, label=closed_form_label,
+                    gid=f"closed:{key}")  # fmt: skip
+        ax.set_xlabel("incident angle (deg)")
+        ax.set_ylabel(label)
+        ax.set_title(heading, fontsize="medium")
+        ax.axhline(0.0, color="0.7", linewidth=0.6)
+        ax.grid(True, linewidth=0.4, alpha=0.5)
+    axes[0].legend(fontsize="small", loc="best")
     fig.suptitle(title, fontsize="large")
     return fig

@@ -16,11 +16,12 @@ that overflows to infinity or underflows to zero in SI although the number is fi
 non-zero.
 
 Common units (:data:`FAST_UNITS`: metre, gram, second, pascal, newton, radian and litre
-with any SI prefix, and ``in ft yd mi lb min h psi ksi bar cc deg °``) are converted here,
+with any SI prefix, and ``in ft yd mi lb min h psi ksi bar cc deg ° rpm``) are converted here,
 without importing pint (whose import and registry cost about 0.3 s of start-up); any other
 unit name (``inch``, ``mph``, ``arcmin``, ...) is looked up in pint. Both give the same SI
 value to rounding. Angles are a kind of their own here: ``30deg`` is not a dimensionless
-number and ``0.3`` for an angle is 0.3 rad.
+number and ``0.3`` for an angle is 0.3 rad. So are angular velocities (``100rad/s``,
+``600rpm``, ``30deg/s``; a bare number, ``100/s`` and ``100 1/s`` are rad/s).
 
 >>> parse_quantity("20mm", "length", "--d1")
 0.02
@@ -64,6 +65,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "density": ("kg/m^3", "7800 kg/m^3, 7.8 g/cm^3"),
     "angle": ("rad", "-30deg, 0.5 rad"),
     "time": ("s", "75us, 1e-4 s"),
+    "angular_velocity": ("rad/s", "100rad/s, 600rpm, 30deg/s"),
     "stiffness": ("N/m", "2e7 N/m, 20 kN/mm"),
     "dimensionless": ("", "0.3"),
     "inverse velocity": ("s/m", "0.5 s/m, 0.5 ms/mm"),
@@ -82,6 +84,7 @@ _DIMS: dict[str, Dims] = {
     "density": (-3, 1, 0, 0),
     "angle": (0, 0, 0, 1),
     "time": (0, 0, 1, 0),
+    "angular_velocity": (0, 0, -1, 1),
     "stiffness": (0, 1, -2, 0),
     "dimensionless": (0, 0, 0, 0),
     "inverse velocity": (-1, 0, 1, 0),
@@ -124,6 +127,8 @@ _PLAIN: dict[str, tuple[Fraction, Dims]] = {
     # pi/180 to double precision, as pint has it: an angle is exact only to rounding.
     "deg": (Fraction(math.pi / 180), (0, 0, 0, 1)),
     "°": (Fraction(math.pi / 180), (0, 0, 0, 1)),
+    # revolutions per minute, 2 pi rad / 60 s (pint's revolution is 2 pi radian)
+    "rpm": (Fraction(2.0 * math.pi / 60.0), (0, 0, -1, 1)),
 }
 
 
@@ -154,6 +159,8 @@ _NUMBER = (
 _QUANTITY = re.compile(rf"\s*(?P<number>{_NUMBER})?\s*(?P<unit>{_UNIT})?\s*")
 _FACTORS = re.compile(rf"(?P<op>\s*[*/·]\s*|\s+)?{_FACTOR}")
 _SUPERSCRIPTS = {"²": 2, "³": 3}
+# An angular velocity written per second without an angle unit: 100/s, 100 1/s.
+_PER_SECOND = re.compile(rf"^\s*(?P<number>{_NUMBER})\s*(?:1\s*)?/\s*s\s*$")
 
 
 class _Refusal(Exception):
@@ -220,6 +227,8 @@ def _parse(raw: str, kind: str) -> float:
     """SI value of ``raw`` if it is a quantity of ``kind``; raise _Refusal saying why not."""
     if len(raw) > MAX_LENGTH:
         raise _Refusal(f"longer than {MAX_LENGTH} characters")
+    if kind == "angular_velocity":  # 100/s and 100 1/s: radians per second
+        raw = _PER_SECOND.sub(r"\g<number> rad/s", raw)
     match = _QUANTITY.fullmatch(raw)
     if match is None:
         raise _Refusal(_not_a_quantity(raw))
@@ -325,7 +334,7 @@ def _unit_by_pint(text: str) -> tuple[tuple[float, bool], Dims | str]:
 
 def _article(kind: str) -> str:
     """'a length', 'an angle', 'a dimensionless number'."""
-    noun = "dimensionless number" if kind == "dimensionless" else kind
+    noun = "dimensionless number" if kind == "dimensionless" else kind.replace("_", " ")
     return f"{'an' if noun[0] in 'aeiou' else 'a'} {noun}"
 
 

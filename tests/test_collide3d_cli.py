@@ -102,3 +102,130 @@ def test_plots(impact, tmp_path):
     bad = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", "--plot-force", str(tmp_path / "x.png"))
     assert bad.returncode == 2 and "--tangential mindlin" in bad.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+def test_speed_and_angles_equal_components(impact):
+    # 3.9 m/s at 30 deg from n = -z toward +x (phi = 0), and at phi = 90 deg toward +y.
+    a = impact(*ALUMINA_ON_PLANE, "--v1", "3.9m/s@30deg", "-f", "json")
+    s, c = 3.9 * float(np.sin(np.radians(30.0))), 3.9 * float(np.cos(np.radians(30.0)))
+    b = impact(*ALUMINA_ON_PLANE, f"--v1={s!r},0,{-c!r}", "-f", "json")
+    d = impact(*ALUMINA_ON_PLANE, "--v1", "3.9@30@90", "-f", "json")
+    assert a.returncode == b.returncode == d.returncode == 0, a.stderr + d.stderr
+    va, vb = json.loads(a.stdout)["inputs"]["v1"], json.loads(b.stdout)["inputs"]["v1"]
+    assert va == pytest.approx(vb, rel=1e-15, abs=1e-15)
+    vd = json.loads(d.stdout)["inputs"]["v1"]
+    assert vd == pytest.approx([0.0, s, -c], rel=1e-15, abs=1e-15)
+
+
+def test_angular_velocity_units(impact):
+    # 600 rpm = 20 pi rad/s about the normal: the rigid model leaves that spin alone.
+    r = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", "--w1", "0,0,600rpm", "-f", "json")
+    q = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", "--w1", "100rad/s,0,0", "-f", "json")
+    assert r.returncode == 0 and q.returncode == 0, r.stderr + q.stderr
+    doc = json.loads(r.stdout)
+    assert doc["inputs"]["w1"][2] == pytest.approx(20 * np.pi, rel=1e-15)
+    assert doc["summary"]["w1_final_z"] == doc["inputs"]["w1"][2]
+    assert json.loads(q.stdout)["inputs"]["w1"] == [100.0, 0.0, 0.0]
+
+
+def test_law_and_damping_give_the_head_on_restitution(impact):
+    """e of collide3d is the head-on impact's at the normal approach velocity u_n."""
+    from impactcli.damping import TsujiDamping, solve_damped_impact
+    from impactcli.impact import Sphere, law_impact
+
+    ball = Sphere(5e-3, 380e9, 0.23, 4000.0)
+    plane = Sphere(np.inf, np.inf, 0.0, mass=np.inf, yield_strength=2e9)
+    thornton = law_impact(ball, plane, 3.0, 0.0, "thornton").summary["restitution"]
+    r = impact(*ALUMINA_ON_PLANE, "--sy2", "2GPa", "--v1=1,0,-3", "--law", "thornton",
+               "-f", "json")  # fmt: skip
+    walton = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", "--law", "walton-braun", "--k-load",
+                    "1MN/m", "--k-unload", "4e6", "-f", "json")  # fmt: skip
+    assert walton.returncode == 0, walton.stderr
+    assert json.loads(walton.stdout)["summary"]["restitution"] == pytest.approx(0.5, rel=1e-12)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["summary"]["restitution"] == pytest.approx(thornton, rel=1e-12)
+    assert thornton < 1.0
+    m = ball.total_mass
+    k = 4.0 / 3.0 * (380e9 / (1 - 0.23**2)) * np.sqrt(2.5e-3)
+    tsuji = float(solve_damped_impact(TsujiDamping(k, m, 0.2), 3.0, m).restitution)
+    for model in ("rigid", "mindlin"):
+        d = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", "--damping", "tsuji", "--alpha", "0.2",
+                   "--tangential", model, "--points", "801", "-f", "json")  # fmt: skip
+        assert d.returncode == 0, d.stderr
+        summary = json.loads(d.stdout)["summary"]
+        assert summary["restitution"] == pytest.approx(tsuji, rel=1e-12)
+        assert summary["normal_restitution"] == pytest.approx(tsuji, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--nu2", "0.7"], "sphere 2: Poisson's ratio"),  # checked, though unused
+        (["--law", "nope"], "unknown law"),
+        (["--law", "hertz", "--model", "elastic"], "one normal law"),
+        (["--damping", "tsuji"], "--alpha"),
+        (["--damping", "tsuji", "--alpha", "-1"], "--alpha"),
+        (["--py", "1GPa"], "--py is a parameter of law thornton"),
+        (["--law", "thornton", "--k-load", "1e6"], "--k-load is a parameter of law walton-braun"),
+        (["--v1", "3.9m/s@30deg@1@2"], "SPEED@THETA"),
+        (["--v1", "-3m/s@30deg"], "speed must be >= 0"),
+        (["--w1", "0,0,3Hz"], "angular velocity"),
+        (["--law", "du-wang"], "yield strength"),
+    ],
+)
+def test_more_bad_input_one_line(impact, args, message):
+    r = impact(*ALUMINA_ON_PLANE, *(args if "--v1" in args else ["--v1=1,0,-3", *args]))
+    assert r.returncode == 2, r.stdout
+    assert message in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+
+
+ROWS_HEADER = "p1_x,p1_y,p1_z,p2_x,p2_y,p2_z,v1_x,v1_y,v1_z,w1_x,w1_y,w1_z,d1,d2,m2,E1,nu1,rho1,E2"
+
+
+def _rows_table(angles) -> str:
+    lines = [ROWS_HEADER]
+    for deg in angles:
+        vt, vn = 3.9 * float(np.sin(np.radians(deg))), 3.9 * float(np.cos(np.radians(deg)))
+        lines.append(f"0,0,0,0,0,-1,{vt!r},0,{-vn!r},0,0,0,5mm,inf,inf,380GPa,0.23,4000,inf")
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("model", ["rigid", "mindlin"])
+def test_rows_equal_single_collisions(impact, tmp_path, model):
+    """Each row of --rows gives the numbers of the single command; a bad row gets its
+    reason in the error column, the others are computed."""
+    pytest.importorskip("pyarrow")
+    table = tmp_path / "in.csv"
+    table.write_text(_rows_table([10.0, 50.0]) + "0,0,0,0,0,-1,1,0,3,0,0,0,5mm,inf,inf,380GPa,"
+                     "0.23,4000,inf\n0,0,0,0,0,-1,1,0,-3,0,0,0,5mm,inf,inf,380GPa,0.23,4000,\n")
+    out = tmp_path / "out.csv"
+    r = impact("collide3d", "--rows", str(table), "-o", str(out), "--mu", "0.092",
+               "--tangential", model, "--points", "801")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    got = list(csv.DictReader(out.open()))
+    assert len(got) == 4
+    assert "not approaching" in got[2]["error"] and got[2]["v1_final_x"] == ""
+    assert "sphere 2: Young's modulus unknown" in got[3]["error"]
+    assert "row 3:" in r.stderr and "2 of 4 rows invalid" in r.stderr
+    for row, deg in zip(got[:2], (10.0, 50.0)):
+        assert row["error"] == ""
+        vt, vn = 3.9 * float(np.sin(np.radians(deg))), 3.9 * float(np.cos(np.radians(deg)))
+        one = impact(*ALUMINA_ON_PLANE, f"--v1={vt!r},0,{-vn!r}", "--tangential", model,
+                     "--points", "801", "-f", "csv")  # fmt: skip
+        single = rows(one.stdout)
+        for key in ("v1_final_x", "w1_final_y", "tangential_restitution", "rebound_angle"):
+            assert float(row[key]) == pytest.approx(single[key], rel=1e-10, abs=1e-12)  # 12 digits
+
+
+def test_rows_refuses_single_options_and_bad_headers(impact, tmp_path):
+    pytest.importorskip("pyarrow")
+    table = tmp_path / "in.csv"
+    table.write_text(_rows_table([10.0]))
+    r = impact("collide3d", "--rows", str(table), "--v1=1,0,-3")
+    assert r.returncode == 2 and "--v1" in r.stderr
+    bad = tmp_path / "bad.csv"
+    bad.write_text("p1_x,p1_y\n0,0\n")
+    r = impact("collide3d", "--rows", str(bad), "-o", str(tmp_path / "o.csv"))
+    assert r.returncode == 2 and "missing input column(s)" in r.stderr
+    assert not (tmp_path / "o.csv").exists()

@@ -19,6 +19,7 @@ from impactcli.collision2d import oblique_collision, velocity_from_polar
 from impactcli.collision3d import (
     NormalHistory,
     effective_shear_modulus,
+    normal_restitution_and_history,
     oblique_impact,
 )
 from impactcli.contact import effective_modulus
@@ -421,3 +422,162 @@ def test_history_must_match_the_approach_velocity():
             sphere.total_mass, np.inf, R, np.inf, ORIGIN, BELOW, (1.0, 0.0, -3.0), ORIGIN,
             friction=0.1, tangential="mindlin", history=history, shear_modulus=80e9,
         )  # fmt: skip
+
+
+# -- invariants with fixed and flat targets, both tangential models -------------------------
+
+TARGETS = {
+    "fixed sphere": dict(m2=np.inf, r2=4e-3, E2=210e9),  # cannot move or turn
+    "fixed plane": dict(m2=np.inf, r2=np.inf, E2=np.inf),
+    "free plate": dict(m2=2e-3, r2=np.inf, E2=70e9),  # moves, cannot spin
+}
+
+
+def _target_collision(target, v1, w1, v2, direction, e_or_law, mu, model):
+    """A 5 mm alumina sphere on a target of ``TARGETS``; the normal law's e and history from
+    :func:`normal_restitution_and_history` (hertz) unless ``e_or_law`` is a number."""
+    t = TARGETS[target]
+    n = direction / np.linalg.norm(direction)
+    p1 = np.array([0.3, -0.2, 0.1])
+    p2 = p1 + (R + (t["r2"] if np.isfinite(t["r2"]) else 1.0)) * n
+    v2 = np.zeros(3) if np.isinf(t["m2"]) else v2
+    ball = Sphere(2 * R, **ALUMINA)
+    target_sphere = Sphere(2 * t["r2"], t["E2"], 0.3 if np.isfinite(t["E2"]) else 0.0,
+                           mass=t["m2"])  # fmt: skip
+    u_n = float(np.dot(v1 - v2, n))
+    history = None
+    if isinstance(e_or_law, float):
+        e = e_or_law
+    else:
+        e, history = normal_restitution_and_history(
+            ball, target_sphere, u_n, points=401 if model == "mindlin" else None
+        )
+    g = effective_shear_modulus(380e9, 0.23, t["E2"], target_sphere.poisson_ratio)
+    return oblique_impact(
+        ball.total_mass, t["m2"], R, t["r2"], p1, p2, v1, v2, w1, (0.0, 0.0, 0.0), e, mu,
+        tangential=model, history=history, shear_modulus=g,
+    )  # fmt: skip
+
+
+def _assert_target_invariants(r, target):
+    """Momentum: sphere 1 changes by the impulse on it, -J, and with a free plate the total
+    is conserved; angular momentum of sphere 1 about the contact point is conserved; the
+    kinetic energy never grows and its loss is the normal plus the friction dissipation."""
+    n, t_hat = r.normal, r.slip_direction
+    impulse = r.normal_impulse[..., None] * n + r.tangential_impulse[..., None] * t_hat
+    p_scale = float(np.max(np.abs(r.m1[..., None] * r.v1))) + float(np.max(np.abs(impulse)))
+    np.testing.assert_allclose(r.m1[..., None] * (r.v1_final - r.v1), -impulse, rtol=0,
+                               atol=1e-13 * p_scale)  # fmt: skip
+    if np.isfinite(TARGETS[target]["m2"]):
+        np.testing.assert_allclose(r.momentum_after, r.momentum_before, rtol=0,
+                                   atol=1e-13 * p_scale)  # fmt: skip
+    else:
+        np.testing.assert_array_equal(r.v2_final, r.v2)
+    before, after = r.angular_momentum_contact(1), r.angular_momentum_contact(1, final=True)
+    scale = float(np.max(np.abs(before))) + p_scale * 10 * R
+    np.testing.assert_allclose(after, before, rtol=0, atol=1e-12 * scale)
+    np.testing.assert_array_equal(r.w2_final, r.w2)  # the target never turns
+    ke_before = r.kinetic_energy(1) + r.kinetic_energy(2)
+    ke_after = r.kinetic_energy(1, True) + r.kinetic_energy(2, True)
+    tol = 1e-11 * ke_before
+    assert np.all(ke_after <= ke_before + tol)
+    assert np.all(r.energy_dissipated_friction >= -tol)
+    assert np.all(np.abs(ke_before - ke_after - r.energy_dissipated) <= tol)
+    assert np.all(r.tangential_impulse <= r.friction * r.normal_impulse * (1 + 1e-12) + 1e-300)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    st.sampled_from(sorted(TARGETS)), vector, vector, vector, vector, st.floats(0.0, 1.0),
+    st.floats(0.0, 2.0),
+)  # fmt: skip
+def test_rigid_invariants_random_fixed_and_flat_targets(target, v1, w1, v2, direction, e, mu):
+    assume(np.linalg.norm(direction) > 1e-2)
+    n = direction / np.linalg.norm(direction)
+    v2 = np.zeros(3) if np.isinf(TARGETS[target]["m2"]) else v2
+    assume(np.dot(v1 - v2, n) > 1e-2)
+    r = _target_collision(target, v1, 300.0 * w1, v2, direction, float(e), mu, "rigid")
+    _assert_target_invariants(r, target)
+
+
+@settings(max_examples=12, deadline=None)
+@given(
+    st.sampled_from(sorted(TARGETS)), vector, vector, vector, vector, st.floats(0.0, 1.0),
+)  # fmt: skip
+def test_mindlin_invariants_random_fixed_and_flat_targets(target, v1, w1, v2, direction, mu):
+    """The mindlin model over the Hertz history of normal_restitution_and_history."""
+    assume(np.linalg.norm(direction) > 1e-2)
+    n = direction / np.linalg.norm(direction)
+    v2 = np.zeros(3) if np.isinf(TARGETS[target]["m2"]) else v2
+    assume(np.dot(v1 - v2, n) > 0.1)
+    r = _target_collision(target, v1, 300.0 * w1, v2, direction, "hertz", mu, "mindlin")
+    _assert_target_invariants(r, target)
+    e_t = r.tangential_restitution[~np.isnan(r.tangential_restitution)]
+    assert np.all(np.abs(e_t) <= 1.0 + 1e-12)
+
+
+def test_damped_history_is_the_damped_solution():
+    """normal_restitution_and_history with damping: e of solve_damped_impact, and the
+    history evaluate(t) gives, from u_n to -e u_n; the mindlin model over it separates at
+    e u_n and, sliding, comes close to the gross-slip closed form with that e."""
+    from impactcli.damping import TsujiDamping, solve_damped_impact
+
+    ball = Sphere(2 * R, **ALUMINA)
+    m = ball.total_mass
+    k = float(hertz_stiffness(effective_modulus(380e9, 0.23, np.inf, 0.0), R))
+    solution = solve_damped_impact(TsujiDamping(k, m, 0.3), 2.0, m)
+    e, history = normal_restitution_and_history(ball, PLANE, 2.0, damping="tsuji", alpha=0.3,
+                                                points=801)  # fmt: skip
+    assert e == float(solution.restitution) and 0.5 < e < 0.95
+    delta, rate = solution.evaluate(history.t[0])
+    np.testing.assert_array_equal(history.delta_dot[0], rate)
+    np.testing.assert_array_equal(history.delta[0], np.maximum(delta, 0.0))
+    assert history.delta_dot[0, 0] == pytest.approx(2.0, rel=1e-12)
+    assert history.delta_dot[0, -1] == pytest.approx(-e * 2.0, rel=1e-9)
+    v_t = 10.0  # gross slip
+    r = oblique_impact(m, np.inf, R, np.inf, ORIGIN, BELOW, (v_t, 0.0, -2.0), ORIGIN,
+                       restitution=e, friction=MU, tangential="mindlin", history=history,
+                       shear_modulus=effective_shear_modulus(380e9, 0.23, np.inf, 0.0))  # fmt: skip
+    assert float(r.v1_final[0, 2]) == pytest.approx(e * 2.0, rel=1e-12)
+    # The damping force rises as delta^(1/4) at first contact, faster than the spring's
+    # k_t ~ delta^(1/2): the spring starts below the Coulomb limit, so J_t is a little
+    # below mu J_n (the gross-slip closed form to 1e-4), never above it.
+    assert r.tangential_impulse[0] <= MU * r.normal_impulse[0]
+    assert float(r.v1_final[0, 0]) == pytest.approx(v_t - MU * (1 + e) * 2.0, rel=1e-4)
+    with pytest.raises(ValueError, match="hertz"):
+        normal_restitution_and_history(ball, PLANE, 2.0, law="du-wang", damping="tsuji",
+                                       alpha=0.3)  # fmt: skip
+
+
+def _chung_ooi_script():
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "chung_ooi.py"
+    spec = importlib.util.spec_from_file_location("chung_ooi", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_chung_ooi_figure_curves_hold_the_closed_forms():
+    """The README's benchmark figure: its rigid curves are the closed forms (gross slip,
+    stick, v_t'/v_t = 5/7 below tan(theta) = 7 mu), for both tests and materials, and the
+    figure draws exactly those numbers."""
+    pytest.importorskip("matplotlib")
+    from impactcli.plots import oblique_impact_figure
+
+    script = _chung_ooi_script()
+    theta = np.radians([2.0, 20.0, 32.0, 33.5, 50.0, 80.0])
+    for v_n in (3.9 * np.cos(theta), np.full_like(theta, 5.0)):
+        closed = script.closed_form(theta, v_n)
+        assert np.all(closed["tangential_restitution"][:3] == 5.0 / 7.0)
+        for material in script.MATERIALS:
+            rigid = script.sweep(material, theta, v_n, "rigid")
+            for key in closed:
+                np.testing.assert_allclose(rigid[key], closed[key], rtol=1e-12, atol=1e-12)
+    curves = {"alumina, rigid": rigid}
+    fig = oblique_impact_figure(np.degrees(theta), curves, closed_form=closed)
+    lines = {line.get_gid(): line for ax in fig.axes for line in ax.lines}
+    np.testing.assert_array_equal(lines["alumina, rigid:spin"].get_ydata(), rigid["spin"])
+    np.testing.assert_array_equal(lines["closed:rebound_angle"].get_xdata(), np.degrees(theta))

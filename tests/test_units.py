@@ -304,3 +304,20 @@ def test_cli_refuses_with_one_line(impact, value, fragment):
     assert len(lines) == 1 and "--d1: expected a length such as 20mm, 0.02 m" in lines[0]
     assert fragment in lines[0]
     assert "Traceback" not in result.stderr and "angle" not in result.stderr
+
+
+def test_angular_velocity_kind_agrees_with_pint(ureg):
+    """rad/s, rpm, deg/s and rev/min through the fast path or pint give pint's rad/s; a bare
+    number, 100/s and 100 1/s are rad/s; 1/s written as s^-1 or Hz is refused (Hz would be
+    read as 1 rad/s by pint, not 2 pi)."""
+    for text in ("100rad/s", "600rpm", "-30 deg/s", "2.5 krad/s", "120 revolution/min", "45°/s"):
+        expected = float(ureg.Quantity(text).to("rad/s").magnitude)
+        assert parse_quantity(text, "angular_velocity", "--w1") == pytest.approx(
+            expected, rel=1e-12
+        )
+    for text in ("100", "100/s", "100 1/s", " 100 / s "):
+        assert parse_quantity(text, "angular_velocity", "--w1") == 100.0
+    for text in ("3 s^-1", "3Hz", "3 m/s", "3deg"):
+        with pytest.raises(InputError, match=r"^--w1: expected an angular velocity such as"):
+            parse_quantity(text, "angular_velocity", "--w1")
+    assert units._unit_fast("rpm") is not None  # without pint

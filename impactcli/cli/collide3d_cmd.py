@@ -18,8 +18,12 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
+from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
+from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
+from impactcli.limits import MAX_POINTS, check_size
 from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
+from impactcli.spheres import SphereOptions
 
 
 class NormalModel(enum.StrEnum):
@@ -27,58 +31,73 @@ class NormalModel(enum.StrEnum):
     elastoplastic = "elastoplastic"
 
 
+#: --model -> the law of the library it names.
+MODEL_LAWS = {NormalModel.elastic: "hertz", NormalModel.elastoplastic: "du-wang"}
+
+
 class Tangential(enum.StrEnum):
     rigid = "rigid"
     mindlin = "mindlin"
 
 
+class Damping(enum.StrEnum):
+    tsuji = "tsuji"
+    hunt_crossley = "hunt-crossley"
+
+
+VELOCITY_HELP = (
+    "x,y,z in m/s (units per component: '3m/s,0,-1m/s'), or a speed and its direction "
+    "SPEED@THETA[@PHI]: THETA from the normal n (the line of centres, sphere 1 to sphere 2), "
+    "PHI about n from the tangent nearest +x (+y when n is along x), counter-clockwise seen "
+    "from sphere 1 looking along n; bare angles in degrees, "
+    "e.g. 3.9m/s@30deg."
+)
+
+
+@with_law_options()
+@with_sphere_options(velocities=False)
 def collide3d(
-    v1: str = typer.Option(
-        ..., "--v1", help="Velocity of sphere 1 before the impact, x,y,z (m/s, or '3m/s,0,-1m/s')."
+    v1: Optional[str] = typer.Option(
+        None, "--v1", help="Velocity of sphere 1 before the impact: " + VELOCITY_HELP
     ),
-    v2: str = typer.Option("0,0,0", "--v2", help="Velocity of sphere 2, x,y,z."),
-    w1: str = typer.Option("0,0,0", "--w1", help="Angular velocity of sphere 1, x,y,z [rad/s]."),
+    v2: str = typer.Option("0,0,0", "--v2", help="Velocity of sphere 2, as --v1."),
+    w1: str = typer.Option(
+        "0,0,0",
+        "--w1",
+        help="Angular velocity of sphere 1, x,y,z: rad/s (a bare number), rpm, deg/s, 1/s; "
+        "e.g. --w1 100rad/s,0,0 or --w1 0,0,600rpm.",
+    ),
     w2: str = typer.Option(
-        "0,0,0", "--w2", help="Angular velocity of sphere 2, x,y,z [rad/s] (0 for a flat target)."
+        "0,0,0", "--w2", help="Angular velocity of sphere 2, as --w1 (0 for a flat target)."
     ),
-    p1: str = typer.Option(
-        ..., "--p1", help="Centre of sphere 1 at contact, x,y,z (m). Write --p1=-1,0,0 when x < 0."
+    p1: Optional[str] = typer.Option(
+        None, "--p1", help="Centre of sphere 1 at contact, x,y,z (m). Write --p1=-1,0,0 when x < 0."
     ),
-    p2: str = typer.Option(
-        ...,
+    p2: Optional[str] = typer.Option(
+        None,
         "--p2",
         help="Centre of sphere 2 at contact, x,y,z; for a flat target (--d2 inf) a point on "
         "the side of the plane, p2 - p1 giving the normal.",
     ),
-    d1: str = typer.Option(..., "--d1", help="Diameter of sphere 1, e.g. 5mm."),
-    d2: str = typer.Option(..., "--d2", help="Diameter of sphere 2; inf for a flat target."),
-    material: Optional[str] = typer.Option(
-        None, "--material", help="Material of both spheres (see impact materials)."
-    ),
-    material1: Optional[str] = typer.Option(None, "--material1", help="Material of sphere 1."),
-    material2: Optional[str] = typer.Option(None, "--material2", help="Material of sphere 2."),
-    youngs: Optional[str] = typer.Option(None, "--E", help="Young's modulus of both [Pa]."),
-    youngs1: Optional[str] = typer.Option(None, "--E1", help="Young's modulus of sphere 1."),
-    youngs2: Optional[str] = typer.Option(
-        None, "--E2", help="Young's modulus of sphere 2 (inf: rigid)."
-    ),
-    nu: Optional[str] = typer.Option(None, "--nu", help="Poisson's ratio of both."),
-    nu1: Optional[str] = typer.Option(None, "--nu1", help="Poisson's ratio of sphere 1."),
-    nu2: Optional[str] = typer.Option(None, "--nu2", help="Poisson's ratio of sphere 2."),
-    rho: Optional[str] = typer.Option(None, "--rho", help="Density of both [kg/m^3]."),
-    rho1: Optional[str] = typer.Option(None, "--rho1", help="Density of sphere 1."),
-    rho2: Optional[str] = typer.Option(None, "--rho2", help="Density of sphere 2."),
-    m1: Optional[str] = typer.Option(None, "--m1", help="Mass of sphere 1 (default rho pi D^3/6)."),
-    m2: Optional[str] = typer.Option(None, "--m2", help="Mass of sphere 2; inf: a fixed target."),
-    sy: Optional[str] = typer.Option(None, "--sy", help="Yield strength [Pa] (elastoplastic)."),
-    model: NormalModel = typer.Option(
-        NormalModel.elastic,
+    spheres: SphereOptions = None,  # type: ignore[assignment]  # the shared sphere options
+    law: LawOptions = None,  # type: ignore[assignment]  # --law and the law parameters
+    model: Optional[NormalModel] = typer.Option(
+        None,
         "--model",
-        help="Normal law giving e at the normal approach velocity: elastic (Hertz, e = 1) or "
-        "elastoplastic (Du & Wang FILM; needs a yield strength).",
+        help="Normal law when --law is not given: elastic (hertz, e = 1, the default) or "
+        "elastoplastic (du-wang; needs a yield strength).",
+    ),
+    damping: Optional[Damping] = typer.Option(
+        None,
+        "--damping",
+        help="Viscous damping on Hertz elasticity instead of --law: tsuji (alpha [-]) or "
+        "hunt-crossley (alpha [s/m]); see docs/damping.md.",
+    ),
+    alpha: Optional[float] = typer.Option(
+        None, "--alpha", help="Damping parameter of --damping (>= 0)."
     ),
     e: Optional[float] = typer.Option(
-        None, "--e", help="Coefficient of restitution 0 <= e <= 1 instead of --model (rigid only)."
+        None, "--e", help="Coefficient of restitution 0 <= e <= 1 instead of a law (rigid only)."
     ),
     mu: float = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0."),
     tangential: Tangential = typer.Option(
@@ -89,7 +108,18 @@ def collide3d(
         "Cummins & Cleary 2011).",
     ),
     points: int = typer.Option(
-        4001, "--points", help="Time points of the normal history for --tangential mindlin."
+        4001,
+        "--points",
+        help=f"Time points of the normal history for --tangential mindlin, 3 to {MAX_POINTS:,}.",
+    ),
+    rows: Optional[str] = typer.Option(
+        None,
+        "--rows",
+        metavar="TABLE",
+        help="Many collisions: a CSV or Parquet table, one collision per row (columns p1_x, "
+        "p1_y, p1_z, p2_*, v1_*, optional v2_*, w1_*, w2_*, mu, e; the sphere columns of "
+        "impact batch); writes its columns and the results (-o OUT.csv or .parquet, else "
+        "stdout as CSV); a bad row gets its reason in the error column.",
     ),
     fmt: OutputFormat = None,
     output: OutputFile = None,
@@ -107,58 +137,72 @@ def collide3d(
     The centres at contact give the normal n = (p2 - p1)/|p2 - p1|; the contact point is
     at R1 from centre 1. The velocity of sphere 1 relative to sphere 2 at the contact point,
     u = v1 - v2 + (R1 w1 + R2 w2) x n, has the normal approach velocity u_n = u.n > 0 and
-    the slip u_t. The normal law (--model) is run at u_n and gives e and the normal impulse
-    J_n = (1+e) m u_n; the tangential model gives the friction impulse along -u_t:
+    the slip u_t. The normal law (--law, --model or --damping) is run as a head-on impact at
+    u_n and gives e and the normal impulse J_n = (1+e) m u_n; the tangential model gives the
+    friction impulse along -u_t:
 
     \b
       rigid:   J_t = min(m_t |u_t|, mu J_n),  1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
       mindlin: dF_t = 8 G* a u_t dt, |F_t| <= mu F_n, a = sqrt(R delta), over the contact
 
     Spheres are solid (I = 2/5 m R^2). A flat target: --d2 inf --m2 inf (--E2 inf for a
-    rigid one). Units: a bare number is SI, angular velocities in rad/s. Output is SI,
-    angles in degrees. mu = 0 gives the smooth collision of impact collide2d.
+    rigid one). Units: a bare number is SI, angular velocities in rad/s (or rpm, deg/s),
+    angles of SPEED@THETA@PHI in degrees. Output is SI, angles in degrees. mu = 0 gives the
+    smooth collision of impact collide2d.
 
     Example (Chung & Ooi 2011, test 4: alumina sphere on a rigid plane, 3.9 m/s at 30 deg):
     impact collide3d --d1 5mm --E1 380GPa --nu1 0.23 --rho1 4000 --d2 inf --m2 inf --E2 inf
-    --p1 0,0,0 --p2=0,0,-1 --v1=1.95,0,-3.3775 --mu 0.092 --tangential mindlin
+    --p1 0,0,0 --p2=0,0,-1 --v1 3.9m/s@30deg --mu 0.092 --tangential mindlin
 
     CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"} (with
     the tangential force history for mindlin). --plot draws the velocities before and after
     in the plane of the impact (horizontal: the initial slip direction t, vertical: n),
     projected on it; --plot-force the mindlin tangential force history.
     """
-    params: dict[str, Any] = dict(
-        d1=d1, d2=d2, material=material, material1=material1, material2=material2,
-        E=youngs, E1=youngs1, E2=youngs2, nu=nu, nu1=nu1, nu2=nu2, rho=rho, rho1=rho1,
-        rho2=rho2, m1=m1, m2=m2, sy=sy,
-    )  # fmt: skip
-    vectors = {
-        "--v1": _vector(v1, "velocity", "--v1"),
-        "--v2": _vector(v2, "velocity", "--v2"),
-        "--w1": _spin(w1, "--w1"),
-        "--w2": _spin(w2, "--w2"),
-        "--p1": _vector(p1, "length", "--p1"),
-        "--p2": _vector(p2, "length", "--p2"),
-    }
+    from impactcli.spheres import check_options, spheres_from_options
+
     if not (math.isfinite(mu) and mu >= 0.0):
         raise InputError(f"--mu: the friction coefficient must be finite and >= 0, got {mu}")
     if e is not None and not 0.0 <= e <= 1.0:
         raise InputError(f"--e: the coefficient of restitution must be in [0, 1], got {e}")
-    if e is not None and tangential is Tangential.mindlin:
-        raise InputError(
-            "--e cannot drive --tangential mindlin, which needs the normal force history: "
-            "use --model elastic or elastoplastic"
-        )
+    law_name, params = _normal_law(law, model, damping, alpha, e, tangential)
+    check_size("--points", points, MAX_POINTS, minimum=3)
     check_plot(plot, output)
     check_plot(plot_force, output)
     check_distinct_outputs(plot, plot_force)
     if plot_force is not None and tangential is not Tangential.mindlin:
         raise InputError("--plot-force draws the mindlin force history: add --tangential mindlin")
-    if points < 3:
-        raise InputError(f"--points: need at least 3 time points, got {points}")
-    s1, s2 = sphere_pair(params)
+    check_options(spheres)  # every sphere option given is checked, used or not
+    if rows is not None:
+        single = [name for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2),
+                  ("--plot", plot), ("--plot-force", plot_force)) if value is not None]
+        single += [name for name, value in (("--v2", v2), ("--w1", w1), ("--w2", w2))
+                   if value != "0,0,0"]
+        single += [f"--{k}" for k, value in vars(spheres).items() if value is not None]
+        _rows(rows, output, fmt, single, law=law_name, params=params,
+              damping=damping and damping.value, alpha=alpha, restitution=e, mu=mu,
+              tangential=tangential.value, points=points)  # fmt: skip
+        return
+    for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2)):
+        if value is None:
+            raise InputError(f"missing {name} (or give --rows TABLE for many collisions)")
+    from impactcli.units import parse_vector3
+
+    positions = {
+        "--p1": parse_vector3(p1, "length", "--p1"),
+        "--p2": parse_vector3(p2, "length", "--p2"),
+    }
+    normal = _normal(*positions.values())
+    vectors = {
+        "--v1": _velocity(v1, "--v1", normal),
+        "--v2": _velocity(v2, "--v2", normal),
+        "--w1": parse_vector3(w1, "angular_velocity", "--w1"),
+        "--w2": parse_vector3(w2, "angular_velocity", "--w2"),
+        **positions,
+    }
+    s1, s2 = spheres_from_options(spheres)
     result, summary, inputs, force, limit = _solve(
-        s1, s2, vectors, model, e, mu, tangential, points
+        s1, s2, vectors, law_name, params, damping, alpha, e, mu, tangential, points
     )
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
@@ -177,6 +221,97 @@ def collide3d(
         from impactcli.plots import tangential_force_figure
 
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
+
+
+def _normal_law(law: LawOptions, model, damping, alpha, e, tangential):
+    """(law name, parameters in SI) of the normal law from --law and its parameters
+    (:func:`impactcli.cli.law_options.resolve_laws`), --model, --damping, --alpha and --e,
+    with one line for each clash. Without --law: hertz, du-wang for --model elastoplastic."""
+    given = [name for name, value in (("--law", law.names or None), ("--model", model),
+             ("--damping", damping), ("--e", e)) if value is not None]  # fmt: skip
+    if len(given) > 1:
+        raise InputError(f"give one normal law: {' or '.join(given)}, not both")
+    if e is not None and tangential is Tangential.mindlin:
+        raise InputError(
+            "--e cannot drive --tangential mindlin, which needs the normal force history: "
+            "use --law, --model or --damping"
+        )
+    if (alpha is None) != (damping is None):
+        raise InputError("--damping and --alpha go together (e.g. --damping tsuji --alpha 0.2)")
+    if alpha is not None and not (math.isfinite(alpha) and alpha >= 0.0):
+        raise InputError(f"--alpha: the damping parameter must be finite and >= 0, got {alpha}")
+    default = MODEL_LAWS[model] if model is not None else "hertz"
+    (choice,) = resolve_laws(law, default=(default,))
+    return choice.name, choice.params
+
+
+def _normal(p1, p2):
+    """The unit normal from sphere 1 to sphere 2 (a one-line error when p1 = p2)."""
+    import numpy as np
+
+    d = np.subtract(p2, p1)
+    if not np.any(d != 0.0):
+        raise InputError("--p1 and --p2 coincide: the centres at contact must differ")
+    return d / np.linalg.norm(d)
+
+
+def _velocity(text: str, name: str, normal) -> tuple[float, float, float]:
+    """A velocity [m/s] from x,y,z or SPEED@THETA[@PHI] (THETA from n, PHI about n from the
+    tangent nearest +x; bare angles in degrees)."""
+    from impactcli.units import parse_quantity, parse_vector3
+
+    if "@" not in text:
+        return parse_vector3(text, "velocity", name)
+    parts = text.split("@", 3)
+    if len(parts) not in (2, 3) or not all(p.strip() for p in parts):
+        raise InputError(
+            f"{name}: expected x,y,z or SPEED@THETA[@PHI] (e.g. 3.9m/s@30deg), got {text!r}"
+        )
+    speed = parse_quantity(parts[0], "velocity", name)
+    if speed < 0.0:
+        raise InputError(f"{name}: a speed must be >= 0, got {speed:g} m/s")
+    theta, phi = (_degrees(p, name) for p in (parts[1:] + ["0"])[:2])
+    from impactcli.collision3d import velocity_from_angles
+
+    return tuple(float(x) for x in velocity_from_angles(speed, theta, phi, normal))
+
+
+def _degrees(text: str, name: str) -> float:
+    """An angle [rad]: a bare number is degrees, a unit is read by impactcli.units."""
+    from impactcli.units import parse_quantity
+
+    try:
+        return math.radians(float(text))
+    except ValueError:
+        return parse_quantity(text, "angle", name)
+
+
+def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
+    """``--rows TABLE``: every row through :func:`impactcli.io.collisions3d.run_collisions3d`,
+    file to file; ``single`` names the options of one collision that were given."""
+    import os
+
+    from impactcli.cli.common import warn
+    from impactcli.io.collisions3d import run_collisions3d
+    from impactcli.io.readers import PARQUET_SUFFIXES
+    from impactcli.io.writers import TableFormat
+
+    if single:
+        raise InputError(
+            f"--rows reads the collisions from the table: {', '.join(single)} belong in its "
+            "columns (v1_x, ..., d1, material, ...)"
+        )
+    if fmt not in (None, Format.csv):
+        raise InputError("--rows writes a table: CSV, or Parquet with -o OUT.parquet")
+    suffix = os.path.splitext(output or "")[1].lower()
+    if suffix not in ("", ".csv", *PARQUET_SUFFIXES):
+        raise InputError(f"-o {output}: --rows writes CSV (.csv) or Parquet (.parquet)")
+    table = TableFormat.parquet if suffix in PARQUET_SUFFIXES else TableFormat.csv
+    report = run_collisions3d(path, output, table, **options)
+    for line in report.lines:
+        warn(line)
+    if report.summary():
+        warn(report.summary())
 
 
 def _plot(path: str, c, inputs: dict) -> None:
@@ -209,24 +344,17 @@ def _plot(path: str, c, inputs: dict) -> None:
     save_plot(fig, path)
 
 
-def sphere_pair(params: dict[str, Any]):  # -> tuple[Sphere, Sphere]
-    """The two spheres from the sphere options (diameter, material, E, nu, rho, m, sy)."""
-    from impactcli.spheres import SphereOptions, spheres_from_options
-
-    return spheres_from_options(SphereOptions(**params))
-
-
-def _solve(s1, s2, vectors, model, e, mu, tangential, points):
+def _solve(s1, s2, vectors, law, params, damping, alpha, e, mu, tangential, points):
     import numpy as np
 
-    from impactcli.collision3d import NormalHistory, effective_shear_modulus, oblique_impact
-    from impactcli.impact import elastic_impact, elastoplastic_impact
+    from impactcli.collision3d import (
+        effective_shear_modulus,
+        normal_restitution_and_history,
+        oblique_impact,
+    )
 
     v1, v2, w1, w2, p1, p2 = (np.array(x) for x in vectors.values())
-    d = p2 - p1
-    if not np.any(d != 0.0):
-        raise InputError("--p1 and --p2 coincide: the centres at contact must differ")
-    n = d / np.linalg.norm(d)
+    n = _normal(p1, p2)
     u_n = float(np.dot(v1 - v2, n))
     if not u_n > 0.0:
         raise InputError(
@@ -234,23 +362,18 @@ def _solve(s1, s2, vectors, model, e, mu, tangential, points):
             f"{u_n:.6g} m/s with n = ({n[0]:.6g}, {n[1]:.6g}, {n[2]:.6g}) from sphere 1 to "
             "sphere 2 (an impact needs > 0)"
         )
-    impact = None
+    mindlin = tangential is Tangential.mindlin
+    history = shear = None
     try:
         if e is None:
-            if model is NormalModel.elastoplastic:
-                if s1.yield_strength is None and s2.yield_strength is None:
-                    raise InputError(
-                        "--model elastoplastic needs a yield strength: --sy or a material with one"
-                    )
-                impact = elastoplastic_impact(s1, s2, u_n, 0.0)
-            else:
-                impact = elastic_impact(s1, s2, u_n, 0.0)
-            restitution = float(impact.summary["restitution"])
+            restitution, history = normal_restitution_and_history(
+                s1, s2, u_n, law=law, params=params,
+                damping=damping.value if damping is not None else None, alpha=alpha,
+                points=points if mindlin else None,
+            )  # fmt: skip
         else:
             restitution = e
-        history = shear = None
-        if tangential is Tangential.mindlin:
-            history = NormalHistory.from_impacts([impact], points)
+        if mindlin:
             shear = effective_shear_modulus(
                 s1.youngs_modulus, s1.poisson_ratio, s2.youngs_modulus, s2.poisson_ratio
             )
@@ -260,23 +383,29 @@ def _solve(s1, s2, vectors, model, e, mu, tangential, points):
         )  # fmt: skip
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    limit = None
-    if tangential is Tangential.mindlin:
+    limit = force = None
+    if mindlin:
         result = _first(result)
         force = {"t": result.times.tolist(), "force": result.tangential_force.tolist()}
         limit = mu * history.force[0]
-    else:
-        force = None
+    normal_law = "given e" if e is not None else (
+        f"{damping.value} damping (alpha = {alpha:g})" if damping is not None else law
+    )  # fmt: skip
     inputs = {
         **{k.lstrip("-"): list(map(float, v)) for k, v in vectors.items()},
         "m1": s1.total_mass,
         "m2": s2.total_mass,
         "R1": s1.radius,
         "R2": s2.radius,
-        "normal_model": "given e" if e is not None else (impact.model if impact else model),
+        "normal_model": normal_law,
         "tangential_model": tangential.value,
         "mu": mu,
     }
+    if e is None and damping is None:
+        from impactcli.cli.law_options import LawChoice, law_inputs
+        from impactcli.impact import weaker_yield_strength
+
+        inputs.update(law_inputs(LawChoice(law, params), weaker_yield_strength(s1, s2)))
     return result, summary(result), inputs, force, limit
 
 
@@ -294,73 +423,11 @@ def _first(result):
 
 
 def summary(c) -> dict[str, float]:
-    """The summary of one collision: SI, angles in degrees. Its keys, in order, are the
-    CSV header and the JSON "summary"."""
-    import numpy as np
+    """The summary of one collision (:func:`impactcli.collision3d.collision_summary`) as
+    floats: its keys, in order, are the CSV header and the JSON "summary"."""
+    from impactcli.collision3d import collision_summary
 
-    def vec(name: str, value) -> dict[str, float]:
-        return {f"{name}_{axis}": float(x) for axis, x in zip("xyz", np.asarray(value))}
-
-    energy1, energy2 = c.energy_dissipated_by(1), c.energy_dissipated_by(2)
-    out: dict[str, float] = {
-        **vec("v1_final", c.v1_final),
-        **vec("w1_final", c.w1_final),
-        **vec("v2_final", c.v2_final),
-        **vec("w2_final", c.w2_final),
-        "restitution": float(c.restitution),
-        "normal_restitution": float(c.normal_restitution),
-        "tangential_restitution": float(c.tangential_restitution),
-        "incident_angle": math.degrees(float(c.incident_angle)),
-        "rebound_angle": math.degrees(float(c.rebound_angle)),
-        "centre_rebound_angle": math.degrees(float(c.centre_rebound_angle)),
-        "stuck": float(bool(c.stuck)),
-        "approach_velocity": float(c.approach_velocity),
-        "slip_speed": float(c.slip_speed),
-        "slip_speed_final": float(c.slip_speed_final),
-        "normal_impulse": float(c.normal_impulse),
-        "tangential_impulse": float(c.tangential_impulse),
-        **vec("normal", c.normal),
-        **vec("slip_direction", c.slip_direction),
-        **vec("contact_point", c.contact_point),
-        **vec("momentum_before", c.momentum_before),
-        **vec("momentum_after", c.momentum_after),
-        **vec("angular_momentum1_contact_before", c.angular_momentum_contact(1)),
-        **vec("angular_momentum1_contact_after", c.angular_momentum_contact(1, True)),
-        **vec("angular_momentum2_contact_before", c.angular_momentum_contact(2)),
-        **vec("angular_momentum2_contact_after", c.angular_momentum_contact(2, True)),
-        **vec("angular_momentum_origin_before", c.angular_momentum_origin()),
-        **vec("angular_momentum_origin_after", c.angular_momentum_origin(True)),
-        "kinetic_energy_before": float(c.kinetic_energy(1) + c.kinetic_energy(2)),
-        "kinetic_energy_after": float(c.kinetic_energy(1, True) + c.kinetic_energy(2, True)),
-        "energy_dissipated_normal": float(c.energy_dissipated_normal),
-        "energy_dissipated_friction": float(c.energy_dissipated_friction),
-        "energy_dissipated1_normal": float(energy1["normal"]),
-        "energy_dissipated1_friction": float(energy1["friction"]),
-        "energy_dissipated2_normal": float(energy2["normal"]),
-        "energy_dissipated2_friction": float(energy2["friction"]),
-    }
-    return out
-
-
-def _vector(text: str, kind: str, name: str) -> tuple[float, float, float]:
-    from impactcli.units import parse_quantity
-
-    parts = str(text).split(",")
-    if len(parts) != 3 or not all(p.strip() for p in parts):
-        raise InputError(f"{name}: expected three components 'x,y,z', got {text!r}")
-    x, y, z = (parse_quantity(p, kind, name) for p in parts)
-    return x, y, z
-
-
-def _spin(text: str, name: str) -> tuple[float, float, float]:
-    parts = str(text).split(",")
-    try:
-        values = [float(p) for p in parts]
-    except ValueError:
-        values = []
-    if len(values) != 3 or not all(math.isfinite(v) for v in values):
-        raise InputError(f"{name}: expected three finite numbers x,y,z in rad/s, got {text!r}")
-    return values[0], values[1], values[2]
+    return {key: float(value) for key, value in collision_summary(c).items()}
 
 
 def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> None:

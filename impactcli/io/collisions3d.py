@@ -1,0 +1,469 @@
+"""Tables of oblique 3-D collisions: ``impact collide3d --rows IN -o OUT``.
+
+One row per collision: vector columns ``p1_x, p1_y, p1_z`` (centres at contact, required),
+``v1_x...`` (required), ``v2_x...``, ``w1_x...``, ``w2_x...`` (default 0), the sphere columns
+of ``impact batch`` (:data:`impactcli.io.table.QUANTITY_COLUMNS` without ``v1``, ``v2``;
+``material``, ``material1``, ``material2``), and optionally ``mu`` and ``e`` per row (else
+the command's). Cells are SI numbers or text with units (:mod:`impactcli.units`; angular
+velocities in rad/s, rpm, deg/s). The result columns are
+:data:`impactcli.collision3d.SUMMARY_KEYS` and ``error``.
+
+:func:`compute_collisions3d` is the pure per-chunk function, vectorised over rows: the
+coefficient of restitution of every row at its normal approach velocity in one call of the
+batch kernel (:func:`impactcli.batch.batch_impacts`, any law of the library) or of
+:func:`impactcli.damping.solve_damped_impact` (damped Hertz), then one call of
+:func:`impactcli.collision3d.oblique_impact` for all rows. The ``mindlin`` model needs each
+row's normal history: those are built row by row
+(:func:`impactcli.collision3d.normal_restitution_and_history`, a FILM run each), and the
+tangential spring is then integrated for all rows at once. As in ``impact batch``, a bad
+row gets NaN results and its reason in ``error``; the others are computed.
+:func:`run_collisions3d` reads CSV or Parquet in chunks and writes the input columns and
+the results, whole or not at all (:mod:`impactcli.io.readers`, :mod:`impactcli.io.writers`).
+pyarrow is imported inside the functions.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from impactcli.errors import InputError
+
+__all__ = [
+    "INPUT_COLUMNS",
+    "REQUIRED_VECTORS",
+    "SCALAR_COLUMNS",
+    "VECTOR_COLUMNS",
+    "check_collision_columns",
+    "compute_collisions3d",
+    "output_columns3d",
+    "run_collisions3d",
+]
+
+#: Vector columns: name -> kind for :func:`impactcli.units.parse_quantity`, each as
+#: ``name_x``, ``name_y``, ``name_z``.
+VECTOR_COLUMNS: dict[str, str] = {
+    "p1": "length",
+    "p2": "length",
+    "v1": "velocity",
+    "v2": "velocity",
+    "w1": "angular_velocity",
+    "w2": "angular_velocity",
+}
+#: Vectors every row needs; the others default to 0.
+REQUIRED_VECTORS: tuple[str, ...] = ("p1", "p2", "v1")
+
+
+def _scalar_columns() -> dict[str, tuple[str, bool]]:
+    from impactcli.io.table import QUANTITY_COLUMNS
+
+    columns = {k: v for k, v in QUANTITY_COLUMNS.items() if k not in ("v1", "v2")}
+    columns.update({"mu": ("dimensionless", False), "e": ("dimensionless", False)})
+    return columns
+
+
+#: Scalar quantity columns: name -> (kind, inf allowed).
+SCALAR_COLUMNS: dict[str, tuple[str, bool]] = _scalar_columns()
+TEXT_COLUMNS: tuple[str, ...] = ("material", "material1", "material2")
+#: Every column read; others are carried to the output unread.
+INPUT_COLUMNS: tuple[str, ...] = (
+    *(f"{name}_{axis}" for name in VECTOR_COLUMNS for axis in "xyz"),
+    *SCALAR_COLUMNS,
+    *TEXT_COLUMNS,
+)
+
+
+def output_columns3d() -> tuple[str, ...]:
+    """Columns added after the input ones: the summary keys, then ``error``."""
+    from impactcli.collision3d import SUMMARY_KEYS
+
+    return (*SUMMARY_KEYS, "error")
+
+
+def check_collision_columns(names: Sequence[str]) -> None:
+    """Reject a header that cannot give any valid row (one line, exit status 2)."""
+    present = set(names)
+    if len(present) != len(names):
+        dup = sorted({c for c in names if list(names).count(c) > 1})
+        raise InputError(f"duplicate input column(s): {', '.join(dup)}")
+    missing = [
+        f"{v}_{a}" for v in REQUIRED_VECTORS for a in "xyz" if f"{v}_{a}" not in present
+    ] + [c for c in ("d1", "d2") if c not in present]
+    if missing:
+        raise InputError(
+            f"missing input column(s) {', '.join(missing)}; each row needs p1_x, p1_y, p1_z, "
+            "p2_x..., v1_x..., d1, d2 and the spheres' material (or E, nu, rho columns)"
+        )
+    for i in (1, 2):
+        if not present & {"material", f"material{i}", "E", f"E{i}"}:
+            raise InputError(
+                f"nothing gives sphere {i}'s material: add a column material, material{i}, "
+                f"or E{i}, nu{i}, rho{i}"
+            )
+    clash = [c for c in output_columns3d() if c in present]
+    if clash:
+        shown = ", ".join(clash[:3]) + (f" and {len(clash) - 3} more" if len(clash) > 3 else "")
+        raise InputError(
+            f"input column(s) {shown} clash with output columns: rename or drop them "
+            "(is this the output of impact collide3d --rows?)"
+        )
+
+
+def _cells(frame: Mapping[str, Any], name: str, size: int) -> list:
+    if name not in frame:
+        return [None] * size
+    column = frame[name]
+    return column.tolist() if hasattr(column, "tolist") else list(column)
+
+
+def _text(frame: Mapping[str, Any], name: str, size: int) -> np.ndarray:
+    cells = _cells(frame, name, size)
+    out = [c.strip() if isinstance(c, str) and c.strip() else None for c in cells]
+    return np.array(out, dtype=object)
+
+
+def compute_collisions3d(
+    frame: Mapping[str, Any],
+    mu: float = 0.0,
+    tangential: str = "rigid",
+    law: str = "hertz",
+    params: Mapping[str, Any] | None = None,
+    damping: str | None = None,
+    alpha: float | None = None,
+    restitution: float | None = None,
+    points: int = 4001,
+    n: int = 25,
+) -> dict[str, np.ndarray]:
+    """The result columns of a chunk of rows.
+
+    Parameters
+    ----------
+    frame : column name -> cells (a pandas DataFrame or a dict of lists/arrays): numbers in
+        SI or text with units; columns as the module docstring
+    mu : Coulomb friction of rows without a ``mu`` cell, [-]
+    tangential : ``rigid`` or ``mindlin``, every row
+    law, params : the normal law of every row and its parameters (SI)
+    damping, alpha : damped Hertz instead (``tsuji`` or ``hunt-crossley``) and its alpha
+    restitution : e of rows without an ``e`` cell instead of the law (``rigid`` only)
+    points : time points of each normal history (``mindlin``)
+    n : FILM segments per stage of the normal law
+
+    Returns
+    -------
+    dict
+        :func:`output_columns3d` -> arrays: floats (NaN where the row is invalid) and
+        ``error`` (``""`` when valid).
+
+    Examples
+    --------
+    An alumina sphere on a rigid plane at 3.9 m/s, 30 and 60 deg from the normal, and a
+    row that does not approach:
+
+    >>> rows = {"p1_x": [0, 0, 0], "p1_y": [0, 0, 0], "p1_z": [0, 0, 0],
+    ...         "p2_x": [0, 0, 0], "p2_y": [0, 0, 0], "p2_z": [-1, -1, -1],
+    ...         "v1_x": [1.95, 3.3775, 1], "v1_y": [0, 0, 0], "v1_z": ["-3.3775", -1.95, 2],
+    ...         "d1": ["5mm"] * 3, "d2": ["inf"] * 3, "m2": ["inf"] * 3, "E1": [380e9] * 3,
+    ...         "nu1": [0.23] * 3, "rho1": [4000] * 3, "E2": ["inf"] * 3}
+    >>> out = compute_collisions3d(rows, mu=0.092)
+    >>> out["stuck"][:2], (out["tangential_restitution"][:2] + 0.0).round(4)
+    (array([1., 0.]), array([ 0.    , -0.6282]))
+    >>> out["error"][2]
+    'the spheres are not approaching along the line of centres ((v1 - v2) . n_hat <= 0)'
+    """
+    from impactcli.batch import material_properties
+    from impactcli.collision3d import TANGENTIAL_MODELS, effective_shear_modulus, oblique_impact
+    from impactcli.contact import sphere_mass
+    from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
+    from impactcli.units import parse_quantities
+    from impactcli.validation import Problems, sphere_names, sphere_problems
+
+    if tangential not in TANGENTIAL_MODELS:
+        raise ValueError(f"the tangential model must be rigid or mindlin, got {tangential!r}")
+    size = len(_cells(frame, next(iter(frame)), 0)) if len(frame) else 0
+    if size == 0:
+        return {key: np.zeros(0) for key in output_columns3d()[:-1]} | {
+            "error": np.zeros(0, dtype=object)
+        }
+    errors = Problems(size)
+
+    vectors: dict[str, np.ndarray] = {}
+    for name, kind in VECTOR_COLUMNS.items():
+        parts = []
+        for axis in "xyz":
+            column = f"{name}_{axis}"
+            values, bad = parse_quantities(_cells(frame, column, size), kind, column)
+            errors.add_messages(bad)
+            if column in frame or name in REQUIRED_VECTORS:
+                errors.add(np.isnan(values) & (bad == ""), f"{column} is missing")
+            parts.append(np.where(np.isnan(values), 0.0, values) if column not in frame
+                         else values)  # fmt: skip
+        vectors[name] = np.stack(parts, axis=-1)
+
+    q: dict[str, np.ndarray] = {}
+    for name, (kind, allow_inf) in SCALAR_COLUMNS.items():
+        q[name], bad = parse_quantities(_cells(frame, name, size), kind, name, allow_inf)
+        errors.add_messages(bad)
+
+    shared = _text(frame, "material", size)
+    spheres = []
+    for i in (1, 2):
+        own = _text(frame, f"material{i}", size)
+        names = np.where(np.equal(own, None), shared, own)
+        *props, bad = material_properties(names)
+        errors.add_messages(bad)
+        sphere = {"m": q[f"m{i}"], "d": q[f"d{i}"]}
+        for key, from_material in zip(PROPERTIES, props):
+            sphere[key] = resolve_property(q[f"{key}{i}"], q[key], from_material)
+        sphere["nu"] = np.where(np.isinf(sphere["E"]) & np.isnan(sphere["nu"]), 0.0, sphere["nu"])
+        errors.add(np.isnan(sphere["E"]), unknown_property(i, "E"))
+        errors.add(np.isnan(sphere["nu"]), unknown_property(i, "nu"))
+        errors.add(np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), unknown_property(i, "rho"))
+        sphere_problems(sphere["d"], sphere["E"], sphere["nu"], sphere["rho"], sphere["m"],
+                        sphere["sy"], sphere_names(i), errors)  # fmt: skip
+        with np.errstate(invalid="ignore"):
+            sphere["mass"] = np.where(np.isnan(sphere["m"]), sphere_mass(sphere["d"],
+                                      sphere["rho"]), sphere["m"])  # fmt: skip
+        spheres.append(sphere)
+    s1, s2 = spheres
+
+    friction = np.where(np.isnan(q["mu"]), mu, q["mu"])
+    with np.errstate(invalid="ignore"):
+        errors.add(~(np.isfinite(friction) & (friction >= 0.0)), "mu must be finite and >= 0")
+        given_e = np.where(np.isnan(q["e"]), np.nan if restitution is None else restitution,
+                           q["e"])  # fmt: skip
+        errors.add(~np.isnan(given_e) & ~((given_e >= 0) & (given_e <= 1)),
+                   "e must be in [0, 1], got {:g}", given_e)  # fmt: skip
+        if tangential == "mindlin":
+            errors.add(~np.isnan(given_e), "a given e cannot drive the mindlin model, which "
+                       "needs the normal force history of a law")  # fmt: skip
+        for i, s in ((1, s1), (2, s2)):
+            errors.add(np.isinf(s["d"]) & np.any(vectors[f"w{i}"] != 0.0, axis=-1),
+                       f"a flat target cannot spin: w{i} must be 0")  # fmt: skip
+        for key, what in (("mass", "fixed (infinite mass)"), ("d", "flat (infinite diameter)")):
+            errors.add(np.isinf(s1[key]) & np.isinf(s2[key]), f"at most one sphere can be {what}")
+        errors.add(np.isinf(s1["E"]) & np.isinf(s2["E"]), "at most one sphere can be rigid")
+        d = vectors["p2"] - vectors["p1"]
+        distance = np.sqrt(np.sum(d * d, axis=-1))
+        errors.add(distance == 0.0, "the centres p1 and p2 coincide: no line of centres")
+        normal = d / np.where(distance > 0.0, distance, 1.0)[..., None]
+        u_n = np.sum((vectors["v1"] - vectors["v2"]) * normal, axis=-1)
+        errors.add(~(u_n > 0.0), "the spheres are not approaching along the line of centres "
+                   "((v1 - v2) . n_hat <= 0)")  # fmt: skip
+
+    result = {key: np.full(size, np.nan) for key in output_columns3d()[:-1]}
+    ok = np.flatnonzero(~errors.bad)
+    e = np.full(size, np.nan)
+    law_rows = ok[np.isnan(given_e[ok])]
+    e[ok] = given_e[ok]
+    if law_rows.size and tangential == "rigid":
+        e[law_rows], reasons = _restitutions(s1, s2, u_n, law_rows, law, params, damping, alpha, n)
+        errors.add_messages(_scatter(reasons, law_rows, size))
+    histories = None
+    if tangential == "mindlin":
+        ok = np.flatnonzero(~errors.bad)
+        e[ok], histories, reasons = _histories(s1, s2, u_n, ok, law, params, damping, alpha,
+                                               points, n)  # fmt: skip
+        errors.add_messages(_scatter(reasons, ok, size))
+    ok = np.flatnonzero(~errors.bad)
+    if ok.size:
+        shear = None
+        history = None
+        if tangential == "mindlin":
+            from impactcli.collision3d import NormalHistory
+
+            keep = np.isin(np.flatnonzero(~np.isnan(e)), ok)
+            history = NormalHistory(*(h[keep] for h in histories))
+            shear = effective_shear_modulus(s1["E"][ok], s1["nu"][ok], s2["E"][ok], s2["nu"][ok])
+        collision = oblique_impact(
+            s1["mass"][ok], s2["mass"][ok], 0.5 * s1["d"][ok], 0.5 * s2["d"][ok],
+            vectors["p1"][ok], vectors["p2"][ok], vectors["v1"][ok], vectors["v2"][ok],
+            vectors["w1"][ok], vectors["w2"][ok], e[ok], friction[ok], tangential,
+            history=history, shear_modulus=shear,
+        )  # fmt: skip
+        from impactcli.collision3d import collision_summary
+
+        for key, value in collision_summary(collision).items():
+            result[key][ok] = value
+    result["error"] = errors.messages
+    return result
+
+
+def _scatter(reasons: np.ndarray, rows: np.ndarray, size: int) -> np.ndarray:
+    out = np.full(size, "", dtype=object)
+    out[rows] = reasons
+    return out
+
+
+def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n):
+    """e of ``rows`` at u_n, vectorised: the batch kernel for a law of the library, the
+    damped FILM for damped Hertz. Returns (e, reasons)."""
+    from impactcli.batch import batch_impacts
+
+    if damping is None:
+        # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
+        v1 = np.where(np.isinf(s1["mass"][rows]), 0.0, u_n[rows])
+        out = batch_impacts(
+            s1["d"][rows], s2["d"][rows], v1, u_n[rows] - v1, s1["E"][rows], s1["nu"][rows],
+            s2["E"][rows], s2["nu"][rows], s1["rho"][rows], s2["rho"][rows], s1["m"][rows],
+            s2["m"][rows], s1["sy"][rows], s2["sy"][rows], n=n, law=law, law_params=params,
+        )  # fmt: skip
+        return out["restitution"], out["error"]
+    from impactcli.contact import effective_mass, effective_modulus, effective_radius
+    from impactcli.damping import make_damping_law, solve_damped_impact
+    from impactcli.laws import hertz_stiffness
+
+    m = effective_mass(s1["mass"][rows], s2["mass"][rows])
+    radius = effective_radius(0.5 * s1["d"][rows], 0.5 * s2["d"][rows])
+    modulus = effective_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows], s2["nu"][rows])
+    contact = make_damping_law(damping, hertz_stiffness(modulus, radius), m, alpha)
+    solution = solve_damped_impact(contact, u_n[rows], m)
+    return np.asarray(solution.restitution, dtype=float), np.full(rows.size, "", dtype=object)
+
+
+def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n):
+    """e and the normal history of each of ``rows`` (one FILM run per row). Returns (e,
+    (t, delta, delta_dot, force) of the rows that ran, shape (k, points)), reasons)."""
+    from impactcli.collision3d import normal_restitution_and_history
+    from impactcli.impact import Sphere
+
+    e = np.full(rows.size, np.nan)
+    reasons = np.full(rows.size, "", dtype=object)
+    stacks: list[list[np.ndarray]] = [[], [], [], []]
+
+    def given(x: float) -> float | None:
+        return None if np.isnan(x) else float(x)
+
+    for k, row in enumerate(rows.tolist()):
+        try:
+            pair = [
+                Sphere(float(s["d"][row]), float(s["E"][row]), float(s["nu"][row]),
+                       given(s["rho"][row]), given(s["m"][row]), given(s["sy"][row]))
+                for s in (s1, s2)
+            ]  # fmt: skip
+            e[k], history = normal_restitution_and_history(
+                *pair, float(u_n[row]), law=law, params=dict(params or {}), damping=damping,
+                alpha=alpha, points=points, n=n,
+            )  # fmt: skip
+        except (ValueError, InputError) as exc:
+            reasons[k] = str(exc).splitlines()[0]
+            continue
+        for stack, key in zip(stacks, ("t", "delta", "delta_dot", "force")):
+            stack.append(getattr(history, key)[0])
+    arrays = tuple(
+        np.stack(s) if s else np.zeros((0, max(int(points), 2))) for s in stacks
+    )
+    return e, arrays, reasons
+
+
+def run_collisions3d(
+    path: str,
+    output: str | None,
+    fmt: Any = None,
+    *,
+    strict: bool = False,
+    rows: int = 10_000,
+    **options: Any,
+):
+    """Compute every row of the table at ``path`` (CSV or Parquet by its magic bytes, ``-``
+    for stdin) and write the input columns with :func:`output_columns3d` to ``output``
+    (``None`` or ``-`` for stdout; Parquet with ``fmt`` parquet), ``rows`` rows at a time.
+    ``options`` go to :func:`compute_collisions3d`. Returns the
+    :class:`~impactcli.io.engines.BatchReport` of the invalid rows."""
+    import sys
+
+    import pyarrow as pa
+
+    from impactcli.io.engines import BatchReport
+    from impactcli.io.readers import first_line, open_stream
+    from impactcli.io.writers import TableFormat, TableSink
+    from impactcli.output import atomic_output
+
+    fmt = TableFormat.csv if fmt is None else TableFormat(fmt)
+    stream = open_stream(path)
+    report = BatchReport(strict)
+    try:
+        schema, batches = _open_table(path, stream, rows)
+        check_collision_columns(schema.names)
+        used = [c for c in schema.names if c in INPUT_COLUMNS]
+        out_schema = pa.schema(
+            [*schema, *(pa.field(c, pa.float64()) for c in output_columns3d()[:-1]),
+             pa.field("error", pa.string())]
+        )  # fmt: skip
+        with atomic_output(output, binary=True) as out:
+            sink = TableSink(out, out_schema, fmt)
+            for batch in batches:
+                frame = {c: batch.column(c).to_pylist() for c in used}
+                try:
+                    result = compute_collisions3d(frame, **options)
+                except ValueError as exc:
+                    raise InputError(first_line(exc)) from None
+                report.add(result["error"], report.rows)
+                columns = list(batch.columns) + [
+                    pa.array(result[c], type=pa.float64(), from_pandas=True)
+                    for c in output_columns3d()[:-1]
+                ] + [pa.array(result["error"], type=pa.string())]  # fmt: skip
+                sink.write(pa.RecordBatch.from_arrays(columns, schema=out_schema))
+                report.rows += batch.num_rows
+            sink.close()
+    finally:
+        if stream is not sys.stdin.buffer:
+            stream.close()
+    return report
+
+
+def _open_table(path: str, stream, rows: int):
+    """(schema, iterator of RecordBatches): Parquet by its magic bytes, else CSV read as
+    text (the cells are parsed by :func:`compute_collisions3d`)."""
+    import io
+
+    import pyarrow as pa
+    from pyarrow import csv as pa_csv
+    from pyarrow import parquet as pq
+
+    from impactcli.io.readers import first_line
+    from impactcli.io.table import NULL_VALUES
+
+    label = "stdin" if path == "-" else path
+    if stream.peek(4)[:4] == b"PAR1":
+        try:
+            handle = pq.ParquetFile(io.BytesIO(stream.read()) if path == "-" else stream)
+        except (pa.ArrowInvalid, OSError) as exc:
+            raise InputError(f"{label}: {first_line(exc)}") from None
+        return handle.schema_arrow, handle.iter_batches(batch_size=rows)
+    import csv
+
+    header = stream.readline()
+    if not header.strip():
+        raise InputError(f"{label}: empty input; expected a CSV header line")
+    names = [c.strip() for c in next(csv.reader([header.decode("utf-8-sig")]))]
+    check_collision_columns(names)
+    schema = pa.schema([(c, pa.string()) for c in names])
+    if not stream.peek(1 << 16).strip():
+        return schema, iter(())
+    try:
+        reader = pa_csv.open_csv(
+            stream,
+            read_options=pa_csv.ReadOptions(column_names=names, block_size=1 << 20),
+            convert_options=pa_csv.ConvertOptions(
+                column_types={c: pa.string() for c in names},
+                null_values=list(NULL_VALUES),
+                strings_can_be_null=True,
+            ),
+        )
+    except (pa.ArrowInvalid, StopIteration) as exc:
+        raise InputError(f"{label}: {first_line(exc)}") from None
+
+    def batches():
+        while True:
+            try:
+                batch = reader.read_next_batch()
+            except StopIteration:
+                return
+            except pa.ArrowInvalid as exc:
+                raise InputError(f"{label}: {first_line(exc)}") from None
+            if batch.num_rows:
+                yield batch
+
+    return reader.schema, batches()
