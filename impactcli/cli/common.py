@@ -4,6 +4,7 @@ the Rich console on demand, warnings and figure checks."""
 from __future__ import annotations
 
 import enum
+import inspect
 import os
 import sys
 from typing import IO, Annotated, Optional
@@ -84,6 +85,12 @@ def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.con
     return Console(file=stream, highlight=False, width=160, color_system=None)
 
 
+def append_help(command, *paragraphs: str) -> None:
+    """Add paragraphs to the end of a command's help (its docstring), keeping the
+    docstring's indentation out of the help text."""
+    command.__doc__ = "\n\n".join([inspect.cleandoc(command.__doc__ or ""), *paragraphs])
+
+
 def warn(message: str) -> None:
     """One warning line on stderr."""
     print(f"impact: warning: {message}", file=sys.stderr)
@@ -112,7 +119,9 @@ OUTPUT_HELP = (
 #: ``--format/-f``: table, csv or json.
 OutputFormat = Annotated[Optional[Format], typer.Option("--format", "-f", help=FORMAT_HELP)]
 #: ``--output/-o FILE``.
-OutputFile = Annotated[Optional[str], typer.Option("--output", "-o", help=OUTPUT_HELP)]
+OutputFile = Annotated[
+    Optional[str], typer.Option("--output", "-o", metavar="FILE", help=OUTPUT_HELP)
+]
 #: ``--plot FILE``.
 PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
 

@@ -12,8 +12,10 @@ import typer
 from impactcli.cli.common import (
     Format,
     OutputFile,
+    OutputFormat,
     PlotFile,
     SummaryFile,
+    append_help,
     check_plot,
     check_summary_file,
     console,
@@ -447,7 +449,7 @@ def elastic(
     )  # fmt: skip
 
 
-elastic.__doc__ = f"{elastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
+append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 
 @with_sphere_options()
@@ -483,7 +485,7 @@ def elastoplastic(
     )  # fmt: skip
 
 
-elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
+append_help(elastoplastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 
 @with_sphere_options(velocities=False)
@@ -625,7 +627,7 @@ def _plot_sweep(
     save_plot(fig, path)
 
 
-def materials(fmt: FMT = None, output: OUT = None) -> None:
+def materials(fmt: OutputFormat = None, output: OUT = None) -> None:
     """Built-in materials: Young's modulus, Poisson's ratio, density, yield strength, source."""
     from impactcli.materials import MATERIALS
 
