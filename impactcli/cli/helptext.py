@@ -134,7 +134,7 @@ def split_command(command: str, width: int) -> list[str]:
     """``command`` as shell lines of at most ``width`` characters where possible, broken
     before an option (never between an option and its value) with a trailing ``\\``.
 
-    >>> split_command("impact elastic --d1 20mm --d2 40mm --material steel", 30)
+    >>> split_command("impact elastic --d1 20mm --d2 40mm --material steel", 32)
     ['impact elastic --d1 20mm \\\\', '    --d2 40mm --material steel']
     """
     groups: list[str] = []
@@ -173,9 +173,10 @@ def _example(paragraph: str) -> tuple[str, list[str]] | None:
 
 
 def example_commands(help_text: str) -> list[str]:
-    """Every example command written in a rendered help screen, continuation lines joined.
+    """Every example command of a rendered help screen (a line indented by four spaces that
+    starts with ``impact``), its continuation lines joined.
 
-    >>> example_commands("Example:\\n  impact tables \\\\\\n      --n 5\\n\\nMore.")
+    >>> example_commands("  Example:\\n    impact tables \\\\\\n        --n 5\\n\\n  impact x")
     ['impact tables --n 5']
     """
     commands: list[str] = []
@@ -184,7 +185,7 @@ def example_commands(help_text: str) -> list[str]:
         text = line.strip()
         if pending:
             pending += " " + text.removesuffix("\\").strip()
-        elif text.startswith("impact ") and not line.startswith("Usage"):
+        elif line.startswith("    impact "):
             pending = text.removesuffix("\\").strip()
         else:
             continue
