@@ -206,7 +206,11 @@ def _run(
         if message:
             warn(message)
     if model == "elastoplastic" and result.model == "elastic":
-        note(below_yield_note(v0, s["yield_velocity"]))
+        note(
+            below_yield_note(
+                v0, s["yield_velocity"], s.get("first_yield_velocity"), pressure_factor
+            )
+        )
     message = contact_radius_warning(v0, s["delta_max"], s["effective_radius"])
     if message:
         warn(message)
