@@ -18,14 +18,13 @@ from collections.abc import Mapping
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.contact import DU_WANG_PRESSURE_FACTOR, FIRST_YIELD_PRESSURE_FACTOR
-
 __all__ = [
     "SMALL_DEFORMATION_LIMIT",
     "SPHERE_NAMES",
     "YIELD_STRENGTH_NEEDED",
     "Problems",
     "below_yield_note",
+    "check_vectors",
     "du_wang_yield_velocity",
     "contact_radius_warning",
     "first_yield_warning",
@@ -35,6 +34,7 @@ __all__ = [
     "raise_first",
     "sphere_names",
     "sphere_problems",
+    "where_first",
 ]
 
 #: The one message for an elastoplastic impact without a yield strength.
@@ -189,19 +189,31 @@ def raise_first(problems: Problems) -> None:
         raise ValueError(problems.messages[bad[0]])
 
 
-#: The two yield criteria the messages name: first yield of an elastic (Hertz) contact at the
-#: peak pressure 1.6 sigma_y (Johnson 1985, Contact Mechanics, sec. 4.2; docs/method.md §7.1),
-#: and Du & Wang's contact pressure p0 = 2.57 sigma_y, the end of their Hertz stage (Du & Wang
-#: 2009; the paper's eq. 16; docs/method.md §7).
-FIRST_YIELD_CRITERION = f"Hertz peak pressure {FIRST_YIELD_PRESSURE_FACTOR:g} sigma_y"
+# The two yield criteria the messages name: first yield of an elastic (Hertz) contact at the
+# peak pressure 1.6 sigma_y (Johnson 1985, Contact Mechanics, sec. 4.2; docs/method.md §7.1),
+# and Du & Wang's contact pressure p0 = 2.57 sigma_y, the end of their Hertz stage (Du & Wang
+# 2009; the paper's eq. 16; docs/method.md §7). The factors live in impactcli.contact,
+# imported on use so that the collision modules that import this one stay light.
 
 
-def _du_wang_criterion(pressure_factor: float) -> str:
-    return f"Du & Wang's p0 = {pressure_factor:g} sigma_y"
+def _first_yield_criterion() -> str:
+    from impactcli.contact import FIRST_YIELD_PRESSURE_FACTOR
+
+    return f"Hertz peak pressure {FIRST_YIELD_PRESSURE_FACTOR:g} sigma_y"
+
+
+def _du_wang_criterion(pressure_factor: float | None) -> str:
+    return f"Du & Wang's p0 = {_pressure_factor(pressure_factor):g} sigma_y"
+
+
+def _pressure_factor(pressure_factor: float | None) -> float:
+    from impactcli.contact import DU_WANG_PRESSURE_FACTOR
+
+    return DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
 
 
 def du_wang_yield_velocity(
-    first_yield_velocity: float, pressure_factor: float = DU_WANG_PRESSURE_FACTOR
+    first_yield_velocity: float, pressure_factor: float | None = None
 ) -> float:
     """Du & Wang's yield velocity V_y [m/s] from the first-yield velocity V_Y [m/s] of the same
     spheres: both are Hertz impacts up to delta ~ p^2 (docs/method.md §7, §7.1), and
@@ -210,14 +222,17 @@ def du_wang_yield_velocity(
     >>> round(du_wang_yield_velocity(0.078463), 4)  # the paper's sec. 4.3 / 4.4 spheres
     0.2566
     """
-    return first_yield_velocity * (pressure_factor / FIRST_YIELD_PRESSURE_FACTOR) ** 2.5
+    from impactcli.contact import FIRST_YIELD_PRESSURE_FACTOR
+
+    ratio = _pressure_factor(pressure_factor) / FIRST_YIELD_PRESSURE_FACTOR
+    return first_yield_velocity * ratio**2.5
 
 
 def first_yield_warning(
     impact_velocity: float,
     first_yield_velocity: float,
     yield_velocity: float | None = None,
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    pressure_factor: float | None = None,
 ) -> str | None:
     """The warning of an elastic impact above the first-yield velocity V_Y [m/s] (Hertz peak
     pressure 1.6 sigma_y), else None. Its advice agrees with :func:`below_yield_note`: it
@@ -230,7 +245,7 @@ def first_yield_warning(
         yield_velocity = du_wang_yield_velocity(first_yield_velocity, pressure_factor)
     head = (
         f"V0 = {impact_velocity:.4g} m/s exceeds the first-yield velocity "
-        f"{first_yield_velocity:.4g} m/s ({FIRST_YIELD_CRITERION}): the spheres begin to "
+        f"{first_yield_velocity:.4g} m/s ({_first_yield_criterion()}): the spheres begin to "
         "yield under the contact"
     )
     criterion = _du_wang_criterion(pressure_factor)
@@ -250,7 +265,7 @@ def below_yield_note(
     impact_velocity: float,
     yield_velocity: float,
     first_yield_velocity: float | None = None,
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    pressure_factor: float | None = None,
 ) -> str:
     """The note of an elastoplastic impact below Du & Wang's yield velocity V_y [m/s]
     (contact pressure p0 = ``pressure_factor`` sigma_y): the result is the Hertz one. When
@@ -264,10 +279,36 @@ def below_yield_note(
     if first_yield_velocity is not None and impact_velocity > first_yield_velocity:
         note += (
             f"; above the first-yield velocity {first_yield_velocity:.4g} m/s "
-            f"({FIRST_YIELD_CRITERION}) the spheres begin to yield under the contact, which "
+            f"({_first_yield_criterion()}) the spheres begin to yield under the contact, which "
             "neither model includes"
         )
     return note
+
+
+def where_first(bad: ArrayLike) -> str:
+    """'' for a single collision, else ' (first at index ...)' naming the first True entry of
+    ``bad`` for a batch: the suffix of the collision modules' messages.
+
+    >>> where_first(True), where_first([[False, False], [False, True]])
+    ('', ' (first at index (1, 1))')
+    """
+    if np.ndim(bad) == 0:
+        return ""
+    return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
+
+
+def check_vectors(components: int, **vectors: NDArray) -> None:
+    """ValueError unless each of ``vectors`` (name=array) has its ``components`` (2: x, y;
+    3: x, y, z) on the last axis and all of them finite."""
+    axes = ("x", "y", "z")[:components]
+    for name, vector in vectors.items():
+        if vector.ndim == 0 or vector.shape[-1] != components:
+            raise ValueError(
+                f"{name} must have its ({', '.join(axes)}) components on the last axis"
+            )
+        bad = ~np.all(np.isfinite(vector), axis=-1)
+        if np.any(bad):
+            raise ValueError(f"{name} must be finite" + where_first(bad))
 
 
 def contact_radius_warning(
