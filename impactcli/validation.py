@@ -192,7 +192,7 @@ def raise_first(problems: Problems) -> None:
 # The two yield criteria the messages name: first yield of an elastic (Hertz) contact at the
 # peak pressure 1.6 sigma_y (Johnson 1985, Contact Mechanics, sec. 4.2; docs/method.md §7.1),
 # and Du & Wang's contact pressure p0 = 2.57 sigma_y, the end of their Hertz stage (Du & Wang
-# 2009; the paper's eq. 16; docs/method.md §7). The factors live in impactcli.contact,
+# 2009; paper eq. 16; docs/method.md §7). The factors live in impactcli.contact,
 # imported on use so that the collision modules that import this one stay light.
 
 
