@@ -457,8 +457,9 @@ def elastic(
     force, d1, d2, v1, v2, delta1, delta2, delta1_dot, delta2_dot, p1, p2 in SI. d_i and v_i
     are the centre's displacement and velocity toward the other sphere; p1, p2 the momenta
     in the x-frame where sphere 1 moves +x. The yield strength (--sy or the material) only
-    serves the first-yield check: above that velocity a warning says to use
-    'impact elastoplastic'.
+    serves the yield checks: above the first-yield velocity (Hertz peak pressure 1.6 sigma_y)
+    a warning says so, and above Du & Wang's yield velocity V_y (p0 = 2.57 sigma_y) it says
+    to use 'impact elastoplastic'.
 
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
