@@ -16,7 +16,9 @@ Functions
 impact_figure : histories of one normal impact (paper Figs. 4-11) and its force-indentation loop
 convergence_figure : FILM indentation histories for several n (Fig. 3) and the contact-time error
 restitution_figure : a sweep over impact velocity: restitution, contact time, permanent indentation
+fit_figure : measured restitution with fitted laws, their confidence bands and the residuals
 collision2d_figure : the oblique 2-D collision: velocities before and after (sec. 4.5, Fig. 12)
+law_comparison_figure : force-indentation loops of several laws, and e against V0/V_y
 save_figure : write a figure to .png, .svg or .pdf atomically
 """
 
@@ -42,7 +44,9 @@ __all__ = [
     "collision2d_figure",
     "convergence_figure",
     "figure_format",
+    "fit_figure",
     "impact_figure",
+    "law_comparison_figure",
     "require_matplotlib",
     "restitution_figure",
     "save_figure",
@@ -233,7 +237,9 @@ def impact_figure(
     (c) momentum p1, p2 and p1 + p2 (constant: momentum is conserved). Bottom row, the
     contact: (d) indentations delta1, delta2 and their sum delta; (e) indentation rates;
     (f) force against total indentation: one curve traversed twice when elastic, a loop
-    ending at the permanent indentation when plastic.
+    ending at the permanent indentation when plastic, a loop through the origin (or ending
+    at ``delta_separation``) under viscous damping, the force F(delta, delta') of the
+    history being higher while loading than while unloading.
 
     Parameters
     ----------
@@ -478,6 +484,18 @@ def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float
             linestyle=":",
             label=rf"yield, $\delta_y$ = {dy / xs.factor:.4g} {xs.unit}",
         )
+    if force.size and np.nanmin(force) < 0.0:  # a damped contact that pulls before it ends
+        ax.axhline(0.0, color="0.5", linewidth=0.6)
+    if summary and summary.get("delta_separation", 0.0) > 0:
+        ds = summary["delta_separation"]
+        ax.plot(
+            [ds / xs.factor],
+            [0.0],
+            linestyle="none",
+            marker="s",
+            color="tab:green",
+            label=rf"separation, $\delta_{{sep}}$ = {ds / xs.factor:.4g} {xs.unit}",
+        )
     if summary and summary.get("delta_res", 0.0) > 0:
         dr = summary["delta_res"]
         ax.plot(
@@ -626,6 +644,8 @@ def restitution_figure(
     yield_velocity: float | None = None,
     first_yield_velocity: float | None = None,
     log_velocity: bool | None = None,
+    indentation_title: str = "(c) Permanent indentation",
+    indentation_label: str = r"permanent indentation $\delta_{res}$",
 ) -> Figure:
     """Three panels over a sweep of impact velocity V0: e, contact time, permanent indentation.
 
@@ -643,6 +663,8 @@ def restitution_figure(
         [m/s]; a dashed line (or a legend entry), as for ``yield_velocity``
     log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more.
         Ticks at 1, 2 and 5 of each decade, all labelled
+    indentation_title, indentation_label : title and axis label of the third panel (a
+        damped sweep draws the maximum indentation and that at separation there)
 
     Returns
     -------
@@ -679,8 +701,8 @@ def restitution_figure(
     rs = unit_scale([v for _label, v in residual.values()], "m")
     for gid, (label, values) in residual.items():
         ax_r.plot(x, values / rs.factor, marker=".", label=label, gid=gid)
-    ax_r.set_ylabel(rf"permanent indentation $\delta_{{res}}$ ({rs.unit})")
-    ax_r.set_title("(c) Permanent indentation", fontsize="medium")
+    ax_r.set_ylabel(f"{indentation_label} ({rs.unit})")
+    ax_r.set_title(indentation_title, fontsize="medium")
 
     marks = [
         (velocity, text, style)
@@ -713,6 +735,83 @@ def restitution_figure(
         if marks or ax is ax_r and len(residual) > 1:
             ax.legend(fontsize="small")
     fig.suptitle(title, fontsize="large")
+    return fig
+
+
+# -- calibration -------------------------------------------------------------------------
+
+
+def fit_figure(
+    impact_velocity: ArrayLike,
+    restitution: ArrayLike,
+    fits: Sequence[Mapping[str, object]],
+    *,
+    error: ArrayLike | None = None,
+    title: str = "Coefficient of restitution: measured and fitted",
+    log_velocity: bool | None = None,
+) -> Figure:
+    """Measured e(V0) with the fitted curve and confidence band of each law (top) and the
+    residuals e - e_fit at the measured points (bottom, same V0 axis).
+
+    Parameters
+    ----------
+    impact_velocity, restitution : the data: V0 [m/s] and e [-]
+    fits : one mapping per law: ``label`` (text), ``impact_velocity`` (a fine grid, [m/s]),
+        ``restitution``, ``lower``, ``upper`` (the curve and its band on the grid, [-]) and
+        ``residuals`` (e - e_fit at the data, [-]); the band is drawn where finite
+    error : one standard deviation of each measured e, [-]: error bars (None: points only)
+    title : names the case (spheres, law, band level)
+    log_velocity : logarithmic V0 axis; default when the data span a factor 3 or more
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        gids: ``data``, ``fit:<label>`` (curves), ``band:<label>`` (bands, PolyCollection),
+        ``residuals:<label>``.
+    """
+    v0 = np.asarray(impact_velocity, dtype=float)
+    e = np.asarray(restitution, dtype=float)
+    fig = _new_figure(8.0, 6.4)
+    ax_e, ax_r = fig.subplots(2, 1, sharex=True, height_ratios=(3, 1.3))
+    grids = [np.asarray(f["impact_velocity"], dtype=float) for f in fits]
+    vs = unit_scale([v0, *grids], "m/s")
+    colours = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
+    for k, f in enumerate(fits):
+        colour = colours[k % len(colours)]
+        label = str(f["label"])
+        x = grids[k] / vs.factor
+        lower = np.asarray(f["lower"], dtype=float)
+        upper = np.asarray(f["upper"], dtype=float)
+        if np.all(np.isfinite(lower) & np.isfinite(upper)):
+            band = ax_e.fill_between(x, lower, upper, color=colour, alpha=0.2, linewidth=0)
+            band.set_gid(f"band:{label}")
+        ax_e.plot(x, np.asarray(f["restitution"], dtype=float), color=colour, label=label,
+                  gid=f"fit:{label}")  # fmt: skip
+        ax_r.plot(v0 / vs.factor, np.asarray(f["residuals"], dtype=float), color=colour,
+                  marker="o", markersize=4, linestyle="none", gid=f"residuals:{label}")  # fmt: skip
+    x0 = v0 / vs.factor
+    if error is not None:
+        ax_e.errorbar(x0, e, yerr=np.asarray(error, dtype=float), fmt="o", color="black",
+                      markersize=4, capsize=2, label="data", gid="data", zorder=3)  # fmt: skip
+    else:
+        ax_e.plot(x0, e, "o", color="black", markersize=4, label="data", gid="data", zorder=3)
+    ax_e.set_ylabel("coefficient of restitution $e$ (-)")
+    ax_e.legend(fontsize="small")
+    ax_r.axhline(0.0, color="0.5", linewidth=0.8)
+    ax_r.set_ylabel(r"$e - e_{fit}$ (-)")
+    ax_r.set_xlabel(f"impact velocity $V_0$ ({vs.unit})")
+    if log_velocity is None:
+        log_velocity = v0.size > 1 and bool(np.all(v0 > 0)) and v0.max() >= 3 * v0.min()
+    if log_velocity:
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+        ax_r.set_xscale("log")
+        ax_r.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax_r.xaxis.set_major_formatter(FuncFormatter(lambda value, _pos: f"{value:g}"))
+        ax_r.xaxis.set_minor_formatter(NullFormatter())
+    for ax in (ax_e, ax_r):
+        ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
+    fig.suptitle(title, fontsize="medium")
     return fig
 
 
@@ -957,4 +1056,94 @@ def tangential_force_figure(
     ax.set_title(title)
     ax.legend(loc="best")
     ax.grid(True, linewidth=0.4, alpha=0.5)
+    return fig
+
+
+# -- several contact laws ---------------------------------------------------------------
+
+
+def law_comparison_figure(
+    loops: Mapping[str, tuple[ArrayLike, ArrayLike]],
+    velocity_ratio: ArrayLike,
+    restitution: Mapping[str, ArrayLike],
+    *,
+    title: str,
+    ratio_label: str = r"$V_0 / V_y$",
+    impact_ratio: float | None = None,
+    residual: Mapping[str, float] | None = None,
+    published: Mapping[str, tuple[ArrayLike, ArrayLike]] | None = None,
+) -> Figure:
+    """Two panels comparing contact laws: (a) the force-indentation loop of the same impact
+    under each law; (b) the coefficient of restitution against V0/V_y for the same laws.
+
+    Parameters
+    ----------
+    loops : law label -> (total indentation delta [m], force F [N]) over the impact
+    velocity_ratio : V0/V_y of the sweep, [-] (logarithmic axis)
+    restitution : law label -> e at each ratio, [-] (NaN where not computed)
+    title : names the case (spheres, material, impact velocity)
+    ratio_label : the x label of (b), naming V_y
+    impact_ratio : V0/V_y of the impact of panel (a); a dotted line on (b)
+    residual : law label -> permanent indentation delta_res [m], marked on (a) when > 0
+    published : label -> (ratios, e) of published results, drawn as open black markers on
+        (b) (circles, squares, diamonds, ...)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Lines have gids ``loop:<label>``, ``restitution:<label>`` and
+        ``published:<label>``; a law keeps its colour on both panels.
+    """
+    fig = _new_figure(13.0, 5.0)
+    ax_f, ax_e = fig.subplots(1, 2)
+    colours = {label: f"C{i % 10}" for i, label in enumerate(dict.fromkeys([*loops, *restitution]))}
+    deltas = [np.asarray(d, dtype=float) for d, _f in loops.values()]
+    forces = [np.asarray(f, dtype=float) for _d, f in loops.values()]
+    xs, fs = unit_scale(deltas, "m"), unit_scale(forces, "N")
+    for (label, _), d, f in zip(loops.items(), deltas, forces):
+        ax_f.plot(
+            d / xs.factor, f / fs.factor, color=colours[label], label=label, gid=f"loop:{label}"
+        )
+        dr = (residual or {}).get(label, 0.0)
+        if np.isfinite(dr) and dr > 0:
+            ax_f.plot([dr / xs.factor], [0.0], "o", color=colours[label], markersize=4)
+    ax_f.set_xlabel(rf"total indentation $\delta$ ({xs.unit})")
+    ax_f.set_ylabel(f"contact force $F$ ({fs.unit})")
+    ax_f.set_title("(a) Force against indentation, this impact", fontsize="medium")
+    ax_f.grid(True, linewidth=0.4, alpha=0.5)
+    ax_f.legend(fontsize="small", loc="upper left", title=r"law (● permanent $\delta_{res}$)")
+
+    ratio = np.asarray(velocity_ratio, dtype=float)
+    for label, values in restitution.items():
+        ax_e.plot(
+            ratio,
+            np.asarray(values, dtype=float),
+            color=colours[label],
+            label=label,
+            gid=f"restitution:{label}",
+        )
+    for k, (label, (x, y)) in enumerate((published or {}).items()):
+        ax_e.plot(
+            np.asarray(x, dtype=float),
+            np.asarray(y, dtype=float),
+            linestyle="none",
+            marker="osD^v"[k % 5],
+            markersize=5,
+            markerfacecolor="none",
+            color="black",
+            label=label,
+            gid=f"published:{label}",
+        )
+    if impact_ratio is not None and np.isfinite(impact_ratio):
+        ax_e.axvline(
+            impact_ratio, color="0.45", linestyle=":", label=f"panel (a): {impact_ratio:.3g}"
+        )
+    ax_e.set_xscale("log")
+    ax_e.set_xlabel(ratio_label)
+    ax_e.set_ylabel("coefficient of restitution $e$ (-)")
+    ax_e.set_ylim(0.0, 1.05)
+    ax_e.set_title("(b) Restitution against impact velocity", fontsize="medium")
+    ax_e.grid(True, which="both", linewidth=0.4, alpha=0.5)
+    ax_e.legend(fontsize="small", loc="lower left")
+    fig.suptitle(title, fontsize="large")
     return fig

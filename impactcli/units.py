@@ -64,7 +64,9 @@ KINDS: dict[str, tuple[str, str]] = {
     "density": ("kg/m^3", "7800 kg/m^3, 7.8 g/cm^3"),
     "angle": ("rad", "-30deg, 0.5 rad"),
     "time": ("s", "75us, 1e-4 s"),
+    "stiffness": ("N/m", "2e7 N/m, 20 kN/mm"),
     "dimensionless": ("", "0.3"),
+    "inverse velocity": ("s/m", "0.5 s/m, 0.5 ms/mm"),
 }
 
 #: The longest quantity text read [characters]; longer text is refused unread.
@@ -80,7 +82,9 @@ _DIMS: dict[str, Dims] = {
     "density": (-3, 1, 0, 0),
     "angle": (0, 0, 0, 1),
     "time": (0, 0, 1, 0),
+    "stiffness": (0, 1, -2, 0),
     "dimensionless": (0, 0, 0, 0),
+    "inverse velocity": (-1, 0, 1, 0),
 }
 _DIMENSION_NAMES = ("length", "mass", "time", "angle")
 

@@ -72,7 +72,8 @@ def test_help_wraps_to_the_terminal_up_to_its_limit():
 
 def test_command_list_gives_whole_first_sentences():
     text = " ".join(_help(columns=HELP_WIDTH).split())
-    assert "paper eq. 16): each sphere's motion" in text
+    assert "Elastoplastic impact (Du & Wang contact, paper eq. 16" in text
+    assert "each sphere's motion" in text
     assert not re.search(r"\w\.\.\.(\s|$)", text), "a description cut short"
     assert first_sentence("See eqs. 1a,b and Fig. 3. Then more.") == (
         "See eqs. 1a,b and Fig. 3."
@@ -112,9 +113,16 @@ def test_the_main_commands_have_examples():
 @pytest.mark.parametrize(("command", "example"), EXAMPLES, ids=[e for _, e in EXAMPLES])
 def test_each_example_runs_as_printed(command, example, tmp_path):
     """Copied from the help screen (at 80 or at 120 columns, continuation lines joined as a
-    shell would), the example runs and succeeds, in an empty folder."""
+    shell would), the example runs and succeeds, in an empty folder; an example that reads
+    the user's data file (DATA.csv) is checked to parse, with --help appended."""
     words = shlex.split(example)
     assert words[:2] == ["impact", command]
+    inputs = [w for w in words[2:] if re.fullmatch(r"[\w.-]+\.(csv|parquet|pq)", w)]
+    inputs = [w for w in inputs if words[words.index(w) - 1] not in ("-o", "--output")]
+    if inputs:  # it reads the user's data file: check that it parses, up to --help
+        result = run_impact(*words[1:], "--help", cwd=tmp_path)
+        assert result.returncode == 0 and "Usage:" in result.stdout, result.stderr
+        return
     result = run_impact(*words[1:], cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert "Traceback" not in result.stderr

@@ -59,6 +59,8 @@ from impactcli.cli import (  # noqa: E402
     batch_cmd,
     collide2d_cmd,
     collide3d_cmd,
+    compare_cmd,
+    fit_cmd,
     impact_cmd,
     laws_cmd,
     tables_cmd,
@@ -70,6 +72,8 @@ collide2d_cmd.register(app)
 collide3d_cmd.register(app)
 batch_cmd.register(app)
 laws_cmd.register(app)
+compare_cmd.register(app)
+fit_cmd.register(app)
 
 
 def _usage_error(exc: BaseException) -> int | None:

@@ -24,8 +24,9 @@ from impactcli.cli.common import (
     save_plot,
     warn,
 )
+from impactcli.cli.damping_options import DampingOptions, with_damping_options
+from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
-from impactcli.contact import DU_WANG_PRESSURE_FACTOR
 from impactcli.errors import InputError
 from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
@@ -67,6 +68,18 @@ N = Annotated[
         help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
     ),
 ]
+#: --n of the commands that take --damping: its default depends on it.
+N_DAMPED = Annotated[
+    Optional[int],
+    typer.Option(
+        "--n",
+        "-n",
+        min=1,
+        max=MAX_SEGMENTS,
+        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}. Default 25; 400 with --damping "
+        "(e and the contact time within 1e-6 of SciPy integration of the same law).",
+    ),
+]
 POINTS = Annotated[
     int,
     typer.Option(
@@ -100,17 +113,16 @@ FMT = Annotated[
 ]
 OUT = OutputFile
 PLOT = PlotFile
-P0_FACTOR = Annotated[
-    float,
+CURVE = Annotated[
+    Optional[str],
     typer.Option(
-        "--p0-factor", help="Mean plastic pressure p0 / sigma_y of Du & Wang (2.57), [-]."
+        "--curve",
+        metavar="FILE",
+        help="Your own loading curve instead of Hertz: CSV 'delta,force' in SI, or with "
+        "units in the header ('delta [um],force [N]'), run as an elastic, reversible law "
+        "(law tabulated, linear interpolation; see 'impact laws').",
     ),
 ]
-
-
-def _check_pressure_factor(value: float) -> None:
-    if not (np.isfinite(value) and value > 0):
-        raise InputError(f"--p0-factor must be a positive number, got {value}")
 
 
 #: Summary key -> (SI unit, meaning). The screen shows each value with the SI prefix that
@@ -139,6 +151,38 @@ SUMMARY_UNITS = {
     "delta2_res": ("m", "permanent indentation of sphere 2"),
     "energy_dissipated": ("J", "kinetic energy lost, (1/2) m V0^2 (1 - e^2)"),
 }
+
+#: Summary keys of a damped impact whose unit or meaning differ (or that are its own).
+DAMPED_SUMMARY_UNITS = {
+    "delta_separation": ("m", "total indentation at separation (0 for --separation overlap)"),
+    "alpha": ("", "damping parameter alpha (dimensionless for tsuji)"),
+    "energy_dissipated": ("J", "energy dissipated by damping, integral of c delta'^2 dt"),
+    "energy_stored": ("J", "elastic energy left in the contact at separation"),
+}
+
+
+def _summary_units(result) -> dict[str, tuple[str, str]]:
+    """Unit and meaning of each summary key of ``result``."""
+    if _damped_title(result) is None:
+        return SUMMARY_UNITS
+    units = {**SUMMARY_UNITS, **DAMPED_SUMMARY_UNITS}
+    if result.law.name == "hunt-crossley":
+        units["alpha"] = ("s/m", "damping factor alpha of Hunt & Crossley")
+    return units
+
+
+def _damped_title(result) -> str | None:
+    """'Hertz with Tsuji damping (alpha = 0.3, overlap separation)', or None when the
+    impact has no damping."""
+    law = getattr(result, "law", None)
+    if law is not None and hasattr(result, "separation"):
+        name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}.get(law.name, law.name)
+        unit = " s/m" if law.name == "hunt-crossley" else ""
+        return (
+            f"Hertz with {name} damping (alpha = {result.alpha:.6g}{unit}, "
+            f"{result.separation} separation)"
+        )
+    return None
 
 
 def screen_value(value: float, unit: str, digits: int = 6) -> tuple[str, str]:
@@ -184,9 +228,10 @@ def _run(
     output: str | None,
     plot: str | None,
     summary: str | None = None,
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    law: LawChoice | None = None,
+    damping: DampingOptions | None = None,
 ) -> None:
-    from impactcli.impact import elastic_impact, elastoplastic_impact
+    from impactcli.impact import ELASTIC_SUMMARY_KEYS, damped_impact, elastic_impact, law_impact
     from impactcli.spheres import spheres_from_options, velocities_from_options
     from impactcli.validation import (
         below_yield_note,
@@ -196,37 +241,43 @@ def _run(
 
     check_plot(plot, output)
     check_summary_file(summary, output)
+    damping_law, alpha, target, separation = (damping or DampingOptions()).parse()
+    if damping_law is not None and law is not None:
+        raise InputError("--damping adds damping to Hertz; it does not combine with --curve")
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
     try:
-        if model == "elastic":
+        if damping_law is not None:
+            result = damped_impact(
+                s1, s2, v1, v2, damping_law, alpha, target, n, separation, split.value,
+                method.value,
+            )  # fmt: skip
+        elif law is None:
             result = elastic_impact(s1, s2, v1, v2, n, split.value, method.value)
         else:
-            result = elastoplastic_impact(
-                s1,
-                s2,
-                v1,
-                v2,
-                n,
-                split.value,
-                pressure_factor=pressure_factor,
-                method=method.value,
+            result = law_impact(
+                s1, s2, v1, v2, law.name, law.params, n, split.value, method=method.value
             )
     except ValueError as exc:
         raise InputError(str(exc)) from None
+    if model == "elastic" and law is not None:  # a user's curve: the elastic summary keys
+        for key in [k for k in result.summary if k not in ELASTIC_SUMMARY_KEYS]:
+            del result.summary[key]
     if method is Method.table and result.model != "elastic":
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
     s, v0 = result.summary, result.impact_velocity
-    if model == "elastic" and "first_yield_velocity" in s:
+    if target is not None:
+        unit = " s/m" if damping_law == "hunt-crossley" else ""
+        note(
+            f"alpha = {s['alpha']:.10g}{unit} gives e = {target:g} at V0 = {v0:g} m/s "
+            f"({damping_law}, {separation} separation, FILM n = {n})"
+        )
+    if model == "elastic" and law is None and "first_yield_velocity" in s:
         message = first_yield_warning(v0, s["first_yield_velocity"])
         if message:
             warn(message)
-    if model == "elastoplastic" and result.model == "elastic":
-        note(
-            below_yield_note(
-                v0, s["yield_velocity"], s.get("first_yield_velocity"), pressure_factor
-            )
-        )
+    if model == "elastoplastic" and result.model == "elastic" and np.isfinite(s["yield_velocity"]):
+        note(below_yield_note(v0, s["yield_velocity"], s.get("first_yield_velocity")))
     message = contact_radius_warning(v0, s["delta_max"], s["effective_radius"])
     if message:
         warn(message)
@@ -251,8 +302,15 @@ def _run(
         "method": method.value,
         "split": split.value,
     }
-    if model == "elastoplastic":
-        inputs["p0_factor"] = pressure_factor
+    if law is not None:
+        from impactcli.cli.law_options import law_inputs
+        from impactcli.impact import weaker_yield_strength
+
+        inputs.update(law_inputs(law, weaker_yield_strength(s1, s2)))
+    if damping_law is not None:
+        inputs.update(
+            damping=damping_law, alpha=s["alpha"], e_target=target, separation=separation
+        )
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -267,11 +325,13 @@ def _run(
                 doc["check"] = differences
             write_json(stream, doc)
         else:
-            _print(stream if output not in (None, "-") else None, result, history, differences)
+            _print(
+                stream if output not in (None, "-") else None, result, history, differences, law
+            )
     if summary:
         _write_summary(summary, result)
     if plot:
-        _plot(plot, result, history, reference, spheres, method)
+        _plot(plot, result, history, reference, spheres, method, law)
 
 
 def _check(result, history: dict) -> tuple[dict[str, float], dict]:
@@ -314,7 +374,21 @@ HISTORY_UNITS = {
 HISTORY_KINDS = (("t",), ("delta", "d1", "d2"), ("force",), ("v1", "v2"))
 
 
-def _print(stream: IO[str] | None, result, history: dict, check) -> None:
+def _model_title(result, law: LawChoice | None) -> str:
+    """'Elastic (Hertz)', 'Elastoplastic (Du & Wang)', 'Elastic (tabulated curve)', ...,
+    'Hertz with Tsuji damping (...)'."""
+    damped = _damped_title(result)
+    if damped is not None:
+        return damped
+    if law is None:
+        return "Elastic (Hertz)"
+    kind = "Elastic" if result.model in ("elastic", "tabulated") else "Elastoplastic"
+    return f"{kind} ({law.title})"
+
+
+def _print(
+    stream: IO[str] | None, result, history: dict, check, law: LawChoice | None = None
+) -> None:
     """The compact history, the FILM-ODE check, then the summary last (so a terminal of
     80 columns and 24 lines still shows it without scrolling)."""
     from rich.table import Table
@@ -356,13 +430,14 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         for col, diff in check.items():
             table.add_row(col, f"{diff:.2e}")
         out.print(table)
-    title = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    title = _model_title(result, law)
     how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
     summary = Table(title=f"{title} impact by {how}", caption=SIGN_HELP)
     for header in ("quantity", "value", "unit", "meaning"):
         summary.add_column(header, justify="right" if header == "value" else "left")
+    units = _summary_units(result)
     for key, value in result.summary.items():
-        unit, meaning = SUMMARY_UNITS.get(key, ("", ""))
+        unit, meaning = units.get(key, ("", ""))
         summary.add_row(key, *screen_value(value, unit), meaning)
     out.print(summary)
 
@@ -375,7 +450,13 @@ def _write_summary(path: str, result) -> None:
 
 
 def _plot(
-    path: str, result, history: dict, reference, spheres: SphereOptions, method: Method
+    path: str,
+    result,
+    history: dict,
+    reference,
+    spheres: SphereOptions,
+    method: Method,
+    law: LawChoice | None = None,
 ) -> None:
     """The six panels of the paper's Figs. 4-11 for this impact, written to ``path``
     (with the --check reference history as markers)."""
@@ -384,7 +465,7 @@ def _plot(
     label = f"FILM, n = {result.n}" if result.method == "ode" else "SciPy solve_ivp"
     fig = impact_figure(
         history,
-        _case_title(result, spheres, method),
+        _case_title(result, spheres, method, law),
         model=result.model,
         summary=result.summary,
         reference=reference,
@@ -393,14 +474,16 @@ def _plot(
     save_plot(fig, path)
 
 
-def _case_title(result, spheres: SphereOptions, method: Method) -> str:
+def _case_title(
+    result, spheres: SphereOptions, method: Method, law: LawChoice | None = None
+) -> str:
     """E.g. 'Elastic (Hertz) impact by FILM, n = 25: D1 = 20 mm, ..., steel'."""
     from impactcli.formatting import format_quantity
 
     def q(value: float, unit: str) -> str:  # the inputs as given: 100.0125 m/s, not 100
         return format_quantity(value, unit, digits=12)
 
-    model = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    model = _model_title(result, law)
     how = {
         "film": f"by FILM, n = {result.n}",
         "table": f"by the normalised Tables A1/A2, n = {result.n}",
@@ -438,9 +521,11 @@ def _material_parts(p: SphereOptions, s1, s2) -> list[str]:
 
 
 @with_sphere_options()
+@with_damping_options()
 def elastic(
     spheres: SphereOptions,
-    n: N = 25,
+    damping: DampingOptions = None,  # type: ignore[assignment]
+    n: N_DAMPED = None,
     points: POINTS = 201,
     method: METHOD = Method.film,
     check: CHECK = False,
@@ -449,6 +534,7 @@ def elastic(
     output: OUT = None,
     plot: PLOT = None,
     summary: SummaryFile = None,
+    curve: CURVE = None,
 ) -> None:
     """Elastic (Hertz) impact of two spheres: each sphere's rigid-body motion and indentation.
 
@@ -461,12 +547,23 @@ def elastic(
     a warning says so, and above Du & Wang's yield velocity V_y (p0 = 2.57 sigma_y) it says
     to use 'impact elastoplastic'.
 
+    --damping tsuji|hunt-crossley adds viscous damping to Hertz (docs/damping.md), with
+    --alpha or a target --e; the summary then adds delta_separation, alpha and the energy
+    dissipated, and the force-indentation curve is a loop.
+
+    --curve FILE replaces Hertz by your own loading curve (force against indentation), run
+    as an elastic, reversible law; an impact beyond the curve is an error naming the largest
+    tabulated indentation and the one needed.
+
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
     """
+    if n is None:
+        n = 400 if damping is not None and damping.given else 25
+    own = None if curve is None else LawChoice("tabulated", {"curve": curve})
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
-        fmt=fmt, output=output, plot=plot, summary=summary,
+        fmt=fmt, output=output, plot=plot, summary=summary, law=own, damping=damping,
     )  # fmt: skip
 
 
@@ -474,9 +571,10 @@ append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 
 @with_sphere_options()
+@with_law_options()
 def elastoplastic(
     spheres: SphereOptions,
-    p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
+    law: LawOptions = None,
     n: N = 25,
     points: POINTS = 201,
     method: METHOD = Method.film,
@@ -487,22 +585,25 @@ def elastoplastic(
     plot: PLOT = None,
     summary: SummaryFile = None,
 ) -> None:
-    """Elastoplastic impact (Du & Wang contact, paper eq. 16): each sphere's motion, its
-    maximum and permanent indentation, and the coefficient of restitution.
+    """Elastoplastic impact (Du & Wang contact, paper eq. 16, or another --law): each
+    sphere's motion, its maximum and permanent indentation, and the coefficient of
+    restitution.
 
     Loading is Hertz up to the yield indentation delta_y = pi^2 R p0^2/(4 E*^2), p0 = 2.57
     sigma_y (sigma_y of the weaker sphere), then linear up to delta_max; unloading is Hertz
     about the residual indentation delta_res; separation is at delta = delta_res. Below the
     yield velocity the impact is elastic and the result says so.
 
+    --law thornton (--py), walton-braun (--k-load, --k-unload) or tabulated (--curve,
+    --unload-curves) runs another law (see 'impact laws'); the summary keys are the same.
+
     Example (paper sec. 4.4): impact elastoplastic --d1 20mm --d2 40mm --v1 0.25m/s
     --v2 0.75m/s --material steel
     """
-    _check_pressure_factor(p0_factor)
+    (choice,) = resolve_laws(law)
     _run(
         "elastoplastic", spheres, n=n, points=points, method=method, check=check,
-        split=split, fmt=fmt, output=output, plot=plot, summary=summary,
-        pressure_factor=p0_factor,
+        split=split, fmt=fmt, output=output, plot=plot, summary=summary, law=choice,
     )  # fmt: skip
 
 
@@ -510,6 +611,8 @@ append_help(elastoplastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 
 @with_sphere_options(velocities=False)
+@with_law_options()
+@with_damping_options()
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
@@ -527,15 +630,17 @@ def restitution(
         bool, typer.Option("--linear", help="Evenly spaced velocities (default: log-spaced).")
     ] = False,
     spheres: SphereOptions = None,
-    p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
-    n: N = 25,
+    law: LawOptions = None,
+    damping: DampingOptions = None,  # type: ignore[assignment]
+    n: N_DAMPED = None,
     split: SPLIT = Split.mass,
     fmt: FMT = None,
     output: OUT = None,
     plot: PLOT = None,
 ) -> None:
     """Coefficient of restitution, contact time and permanent indentation against impact
-    velocity (elastoplastic FILM, Du & Wang contact), for calibrating restitution.
+    velocity (elastoplastic FILM, Du & Wang contact or another --law), for calibrating
+    restitution.
 
     Columns (SI): impact_velocity, restitution, contact_time, delta_max, delta_res,
     delta1_res, delta2_res, energy_dissipated, plastic (1 above the yield velocity).
@@ -544,10 +649,18 @@ def restitution(
     --plot draws e, the contact time and the permanent indentation (total and of each
     sphere) against V0, with the yield velocity V_y marked.
 
+    --damping tsuji|hunt-crossley --alpha A sweeps Hertz with viscous damping instead
+    (docs/damping.md): e is the same at every V0 for tsuji and falls with alpha V0 for
+    hunt-crossley; delta_res is 0, energy_dissipated the damping's work, and a column
+    delta_separation is added; the plot's third panel shows the maximum indentation and
+    that at separation.
+
     Example: impact restitution --v-min 0.1m/s --v-max 10m/s --count 50 --d1 20mm --d2 40mm
     --material steel --plot restitution.png
     """
+    from impactcli.cli.law_options import law_inputs
     from impactcli.contact import effective_radius
+    from impactcli.impact import weaker_yield_strength
     from impactcli.spheres import spheres_from_options
     from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
     from impactcli.validation import contact_radius_warning
@@ -556,12 +669,32 @@ def restitution(
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
-    _check_pressure_factor(p0_factor)
+    if damping is not None and damping.given:
+        if damping.e is not None:
+            raise InputError(
+                "impact restitution --damping sweeps V0 at one alpha: give --alpha (find the "
+                "alpha of a target e at one V0 with 'impact elastic --damping ... --e E')"
+            )
+        if law is not None and (law.names or law.given):
+            raise InputError(
+                "--law and its parameters are for the elastoplastic sweep; --damping sweeps "
+                "Hertz with viscous damping"
+            )
+        velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
+        _damped_sweep(
+            damping, spheres, velocities, n=400 if n is None else n, split=split, fmt=fmt,
+            output=output, plot=plot, linear=linear,
+        )  # fmt: skip
+        return
+    if damping is not None:
+        damping.parse()  # refuses --alpha, --e or --separation without --damping
+    n = 25 if n is None else n
+    (choice,) = resolve_laws(law)
     s1, s2 = spheres_from_options(spheres)
     velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
     try:
         data = restitution_sweep(
-            s1, s2, velocities, n, pressure_factor=p0_factor, split=split.value
+            s1, s2, velocities, n, split=split.value, law=choice.name, law_params=choice.params
         )
     except ValueError as exc:
         raise InputError(str(exc)) from None
@@ -582,8 +715,8 @@ def restitution(
                         "d1": s1.diameter,
                         "d2": s2.diameter,
                         "n": n,
-                        "p0_factor": p0_factor,
                         "split": split.value,
+                        **law_inputs(choice, weaker_yield_strength(s1, s2)),
                     },
                     "sweep": data,
                 },
@@ -591,7 +724,7 @@ def restitution(
         else:
             from rich.table import Table
 
-            table = Table(title="Restitution against impact velocity (Du & Wang, FILM)")
+            table = Table(title=f"Restitution against impact velocity ({choice.title}, FILM)")
             heads = (
                 "V0 (m/s)",
                 "e",
@@ -615,7 +748,88 @@ def restitution(
                 )
             console(stream if output not in (None, "-") else None).print(table)
     if plot:
-        _plot_sweep(plot, data, s1, s2, p0_factor, spheres, n=n, linear=linear)
+        _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear)
+
+
+def _damped_sweep(
+    damping: DampingOptions,
+    spheres: SphereOptions,
+    velocities: np.ndarray,
+    *,
+    n: int,
+    split: Split,
+    fmt: Format | None,
+    output: str | None,
+    plot: str | None,
+    linear: bool,
+) -> None:
+    """``impact restitution --damping``: the damped sweep in every format, and its plot."""
+    from impactcli.contact import effective_radius
+    from impactcli.impact import DAMPED_SWEEP_COLUMNS, damped_restitution_sweep
+    from impactcli.spheres import spheres_from_options
+    from impactcli.validation import contact_radius_warning
+
+    law, alpha, _target, separation = damping.parse()
+    assert law is not None and alpha is not None
+    s1, s2 = spheres_from_options(spheres)
+    try:
+        data = damped_restitution_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    radius = effective_radius(s1.radius, s2.radius)
+    message = contact_radius_warning(velocities, data["delta_max"], radius)
+    if message:
+        warn(message)
+    unit = " s/m" if law == "hunt-crossley" else ""
+    name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}[law]
+    model = f"Hertz with {name} damping, alpha = {alpha:.6g}{unit}, {separation} separation"
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.csv:
+            matrix = np.column_stack([data[c] for c in DAMPED_SWEEP_COLUMNS])
+            write_csv(stream, DAMPED_SWEEP_COLUMNS, [((), matrix)])
+        elif kind is Format.json:
+            inputs = {"d1": s1.diameter, "d2": s2.diameter, "n": n, "split": split.value}
+            inputs.update(damping=law, alpha=alpha, separation=separation)
+            write_json(stream, {"inputs": inputs, "sweep": data})
+        else:
+            from rich.table import Table
+
+            table = Table(title=f"Restitution against impact velocity ({model}, FILM n = {n})")
+            heads = ("V0 (m/s)", "e", "t_c (us)", "delta_max (um)", "delta_sep (um)")
+            for h in heads + ("E_diss (mJ)",):
+                table.add_column(h, justify="right")
+            for i in range(velocities.size):
+                table.add_row(
+                    f"{data['impact_velocity'][i]:.4g}",
+                    f"{data['restitution'][i]:.6f}",
+                    f"{data['contact_time'][i] * 1e6:.4g}",
+                    f"{data['delta_max'][i] * 1e6:.4g}",
+                    f"{data['delta_separation'][i] * 1e6:.4g}",
+                    f"{data['energy_dissipated'][i] * 1e3:.4g}",
+                )
+            console(stream if output not in (None, "-") else None).print(table)
+    if plot:
+        from impactcli.formatting import format_quantity
+        from impactcli.plots import restitution_figure
+
+        parts = [
+            f"D1 = {format_quantity(s1.diameter, 'm')}",
+            f"D2 = {format_quantity(s2.diameter, 'm')}",
+            *_material_parts(spheres, s1, s2),
+        ]
+        fig = restitution_figure(
+            data["impact_velocity"],
+            data["restitution"],
+            data["contact_time"],
+            {"maximum": data["delta_max"], "at separation": data["delta_separation"]},
+            title=f"Restitution against impact velocity ({model}, FILM, n = {n}): "
+            + ", ".join(parts),
+            log_velocity=not linear,
+            indentation_title="(c) Indentation",
+            indentation_label=r"indentation $\delta$",
+        )
+        save_plot(fig, plot)
 
 
 def _plot_sweep(
@@ -623,7 +837,7 @@ def _plot_sweep(
     data: dict,
     s1,
     s2,
-    p0_factor: float,
+    law: LawChoice,
     spheres: SphereOptions,
     *,
     n: int,
@@ -639,6 +853,10 @@ def _plot_sweep(
         f"D2 = {format_quantity(s2.diameter, 'm')}",
         *_material_parts(spheres, s1, s2),
     ]
+    try:  # the Hertz first yield, when a yield strength is known
+        first_yield = sweep_first_yield_velocity(s1, s2)
+    except ValueError:
+        first_yield = None
     fig = restitution_figure(
         data["impact_velocity"],
         data["restitution"],
@@ -648,10 +866,15 @@ def _plot_sweep(
             "sphere 1": data["delta1_res"],
             "sphere 2": data["delta2_res"],
         },
-        title=f"Restitution against impact velocity (Du & Wang, FILM, n = {n}): "
+        title=f"Restitution against impact velocity ({law.title}, FILM, n = {n}): "
         + ", ".join(parts),
-        yield_velocity=sweep_yield_velocity(s1, s2, pressure_factor=p0_factor),
-        first_yield_velocity=sweep_first_yield_velocity(s1, s2),
+        # the figure labels V_y as Du & Wang's; other laws show the Hertz first yield only
+        yield_velocity=(
+            sweep_yield_velocity(s1, s2, law=law.name, law_params=law.params)
+            if law.name == "du-wang"
+            else None
+        ),
+        first_yield_velocity=first_yield,
         log_velocity=not linear,
     )
     save_plot(fig, path)
