@@ -47,6 +47,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.validation import check_vectors
+from impactcli.validation import where_first as _where
+
 __all__ = [
     "PAPER_ANGLE_SIGN",
     "ObliqueCollision",
@@ -122,7 +125,7 @@ def line_of_centres(p1: ArrayLike, p2: ArrayLike) -> Array:
     """
     p1 = np.asarray(p1, dtype=float)
     p2 = np.asarray(p2, dtype=float)
-    _check_vectors(p1=p1, p2=p2)
+    check_vectors(2, p1=p1, p2=p2)
     d = p2 - p1
     distance = np.hypot(d[..., 0], d[..., 1])
     coincident = distance == 0.0
@@ -186,7 +189,7 @@ def approach_velocity(v1: ArrayLike, v2: ArrayLike, p1: ArrayLike, p2: ArrayLike
     """
     v1 = np.asarray(v1, dtype=float)
     v2 = np.asarray(v2, dtype=float)
-    _check_vectors(v1=v1, v2=v2)
+    check_vectors(2, v1=v1, v2=v2)
     return np.sum((v1 - v2) * line_of_centres(p1, p2), axis=-1)
 
 
@@ -401,7 +404,7 @@ def oblique_collision(
     if np.any(bad):
         raise ValueError("the coefficient of restitution must be in [0, 1]" + _where(bad))
     normal = line_of_centres(p1, p2)
-    _check_vectors(v1=v1, v2=v2)
+    check_vectors(2, v1=v1, v2=v2)
     v_rel_n = np.sum((v1 - v2) * normal, axis=-1)
     bad = ~(v_rel_n > 0.0)
     if np.any(bad):
@@ -427,22 +430,6 @@ def oblique_collision(
         normal=np.broadcast_to(normal, shape + (2,)),
         restitution=e,
     )
-
-
-def _check_vectors(**vectors: Array) -> None:
-    for name, vector in vectors.items():
-        if vector.ndim == 0 or vector.shape[-1] != 2:
-            raise ValueError(f"{name} must have its (x, y) components on the last axis")
-        bad = ~np.all(np.isfinite(vector), axis=-1)
-        if np.any(bad):
-            raise ValueError(f"{name} must be finite" + _where(bad))
-
-
-def _where(bad: NDArray[np.bool_]) -> str:
-    """'' for a single collision, else ' (first at index ...)' for a batch."""
-    if np.ndim(bad) == 0:
-        return ""
-    return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
 
 
 def wrap_degrees(degrees: float) -> float:

@@ -96,6 +96,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.validation import check_vectors
+from impactcli.validation import where_first as _where
+
 __all__ = [
     "SUMMARY_KEYS",
     "TANGENTIAL_MODELS",
@@ -688,7 +691,7 @@ def oblique_impact(
         k: np.asarray(x, dtype=float)
         for k, x in dict(p1=p1, p2=p2, v1=v1, v2=v2, w1=w1, w2=w2).items()
     }
-    _check_vectors(**vectors)
+    check_vectors(3, **vectors)
     p1, p2, v1, v2, w1, w2 = vectors.values()
     for name, r, w in (("w1", r1, w1), ("w2", r2, w2)):
         bad = np.isinf(r) & np.any(w != 0.0, axis=-1)
@@ -916,21 +919,6 @@ def _momentum(m: Array, v: Array) -> Array:
     with np.errstate(invalid="ignore"):
         return m[..., None] * v
 
-
-def _check_vectors(**vectors: Array) -> None:
-    for name, vector in vectors.items():
-        if vector.ndim == 0 or vector.shape[-1] != 3:
-            raise ValueError(f"{name} must have its (x, y, z) components on the last axis")
-        bad = ~np.all(np.isfinite(vector), axis=-1)
-        if np.any(bad):
-            raise ValueError(f"{name} must be finite" + _where(bad))
-
-
-def _where(bad: NDArray[np.bool_]) -> str:
-    """'' for a single collision, else ' (first at index ...)' for a batch."""
-    if np.ndim(bad) == 0:
-        return ""
-    return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
 
 
 def _vector_keys(name: str) -> tuple[str, ...]:

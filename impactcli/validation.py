@@ -25,6 +25,8 @@ __all__ = [
     "YIELD_STRENGTH_NEEDED",
     "Problems",
     "below_yield_note",
+    "check_vectors",
+    "du_wang_yield_velocity",
     "contact_radius_warning",
     "first_yield_warning",
     "flat_floats",
@@ -33,6 +35,7 @@ __all__ = [
     "raise_first",
     "sphere_names",
     "sphere_problems",
+    "where_first",
     "yield_scale_problems",
 ]
 
@@ -217,24 +220,132 @@ def raise_first(problems: Problems) -> None:
         raise ValueError(problems.messages[bad[0]])
 
 
-def first_yield_warning(impact_velocity: float, first_yield_velocity: float) -> str | None:
-    """The warning of an elastic impact above the first-yield velocity [m/s] (Hertz peak
-    pressure 1.6 sigma_y), else None."""
+# The two yield criteria the messages name: first yield of an elastic (Hertz) contact at the
+# peak pressure 1.6 sigma_y (Johnson 1985, Contact Mechanics, sec. 4.2; docs/method.md §7.1),
+# and Du & Wang's contact pressure p0 = 2.57 sigma_y, the end of their Hertz stage (Du & Wang
+# 2009; paper eq. 16; docs/method.md §7). The factors live in impactcli.contact,
+# imported on use so that the collision modules that import this one stay light.
+
+
+def _first_yield_criterion() -> str:
+    from impactcli.contact import FIRST_YIELD_PRESSURE_FACTOR
+
+    return f"Hertz peak pressure {FIRST_YIELD_PRESSURE_FACTOR:g} sigma_y"
+
+
+def _du_wang_criterion(pressure_factor: float | None) -> str:
+    return f"Du & Wang's p0 = {_pressure_factor(pressure_factor):g} sigma_y"
+
+
+def _pressure_factor(pressure_factor: float | None) -> float:
+    from impactcli.contact import DU_WANG_PRESSURE_FACTOR
+
+    return DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
+
+
+def du_wang_yield_velocity(
+    first_yield_velocity: float, pressure_factor: float | None = None
+) -> float:
+    """Du & Wang's yield velocity V_y [m/s] from the first-yield velocity V_Y [m/s] of the same
+    spheres: both are Hertz impacts up to delta ~ p^2 (docs/method.md §7, §7.1), and
+    V ~ delta^(5/4), so V_y = V_Y (p0 / 1.6 sigma_y)^(5/2).
+
+    >>> round(du_wang_yield_velocity(0.078463), 4)  # the paper's sec. 4.3 / 4.4 spheres
+    0.2566
+    """
+    from impactcli.contact import FIRST_YIELD_PRESSURE_FACTOR
+
+    ratio = _pressure_factor(pressure_factor) / FIRST_YIELD_PRESSURE_FACTOR
+    return first_yield_velocity * ratio**2.5
+
+
+def first_yield_warning(
+    impact_velocity: float,
+    first_yield_velocity: float,
+    yield_velocity: float | None = None,
+    pressure_factor: float | None = None,
+) -> str | None:
+    """The warning of an elastic impact above the first-yield velocity V_Y [m/s] (Hertz peak
+    pressure 1.6 sigma_y), else None. Its advice agrees with :func:`below_yield_note`: it
+    says to use ``impact elastoplastic`` only above Du & Wang's yield velocity V_y [m/s]
+    (``yield_velocity``; by default from V_Y with :func:`du_wang_yield_velocity`); between
+    V_Y and V_y both commands give this Hertz result."""
     if not impact_velocity > first_yield_velocity:
         return None
-    return (
+    if yield_velocity is None:
+        yield_velocity = du_wang_yield_velocity(first_yield_velocity, pressure_factor)
+    head = (
         f"V0 = {impact_velocity:.4g} m/s exceeds the first-yield velocity "
-        f"{first_yield_velocity:.4g} m/s: the spheres yield and the elastic model no longer "
-        "holds; use 'impact elastoplastic'"
+        f"{first_yield_velocity:.4g} m/s ({_first_yield_criterion()}): the spheres begin to "
+        "yield under the contact"
     )
-
-
-def below_yield_note(impact_velocity: float, yield_velocity: float) -> str:
-    """The note of an elastoplastic impact below its yield velocity V_y [m/s]."""
+    criterion = _du_wang_criterion(pressure_factor)
+    if impact_velocity > yield_velocity:
+        return (
+            f"{head} and exceed the yield velocity V_y = {yield_velocity:.4g} m/s "
+            f"({criterion}), so the elastic model no longer holds; use 'impact elastoplastic'"
+        )
     return (
-        f"V0 = {impact_velocity:.4g} m/s is below the yield velocity {yield_velocity:.4g} m/s: "
-        "the impact is elastic (Hertz) and so is this result"
+        f"{head}, but stay below the yield velocity V_y = {yield_velocity:.4g} m/s "
+        f"({criterion}), up to which 'impact elastoplastic' gives this same Hertz result; "
+        "the local yield is in neither model"
     )
+
+
+def below_yield_note(
+    impact_velocity: float,
+    yield_velocity: float,
+    first_yield_velocity: float | None = None,
+    pressure_factor: float | None = None,
+) -> str:
+    """The note of an elastoplastic impact below Du & Wang's yield velocity V_y [m/s]
+    (contact pressure p0 = ``pressure_factor`` sigma_y): the result is the Hertz one. When
+    V0 exceeds the first-yield velocity [m/s] (Hertz peak pressure 1.6 sigma_y) it says so,
+    in the words of :func:`first_yield_warning`. Without ``pressure_factor`` it follows from
+    the two velocities (inverse of :func:`du_wang_yield_velocity`), else Du & Wang's 2.57."""
+    if pressure_factor is None and first_yield_velocity:
+        from impactcli.contact import FIRST_YIELD_PRESSURE_FACTOR
+
+        ratio = yield_velocity / first_yield_velocity
+        pressure_factor = float(f"{FIRST_YIELD_PRESSURE_FACTOR * ratio**0.4:.4g}")
+    note = (
+        f"V0 = {impact_velocity:.4g} m/s is below the yield velocity V_y = "
+        f"{yield_velocity:.4g} m/s ({_du_wang_criterion(pressure_factor)}): the contact "
+        "stays Hertz and this result is elastic, as 'impact elastic' gives it"
+    )
+    if first_yield_velocity is not None and impact_velocity > first_yield_velocity:
+        note += (
+            f"; above the first-yield velocity {first_yield_velocity:.4g} m/s "
+            f"({_first_yield_criterion()}) the spheres begin to yield under the contact, which "
+            "neither model includes"
+        )
+    return note
+
+
+def where_first(bad: ArrayLike) -> str:
+    """'' for a single collision, else ' (first at index ...)' naming the first True entry of
+    ``bad`` for a batch: the suffix of the collision modules' messages.
+
+    >>> where_first(True), where_first([[False, False], [False, True]])
+    ('', ' (first at index (1, 1))')
+    """
+    if np.ndim(bad) == 0:
+        return ""
+    return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
+
+
+def check_vectors(components: int, **vectors: NDArray) -> None:
+    """ValueError unless each of ``vectors`` (name=array) has its ``components`` (2: x, y;
+    3: x, y, z) on the last axis and all of them finite."""
+    axes = ("x", "y", "z")[:components]
+    for name, vector in vectors.items():
+        if vector.ndim == 0 or vector.shape[-1] != components:
+            raise ValueError(
+                f"{name} must have its ({', '.join(axes)}) components on the last axis"
+            )
+        bad = ~np.all(np.isfinite(vector), axis=-1)
+        if np.any(bad):
+            raise ValueError(f"{name} must be finite" + where_first(bad))
 
 
 def contact_radius_warning(

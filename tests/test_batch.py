@@ -476,6 +476,7 @@ def test_dask_strict_counts_rows_across_partitions(batch, tmp_path, dask_datafra
     assert not (tmp_path / "o.parquet").exists()
 
 
+@pytest.mark.slow
 def test_dask_engine_on_a_local_cluster(tmp_path, dask_dataframe):
     pytest.importorskip("distributed")
     source = tmp_path / "in.csv"

@@ -272,3 +272,35 @@ def test_bad_summary_target_one_line(impact, args, fragment):
     assert result.returncode == 2 and result.stdout == ""
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and fragment in lines[0]
+
+
+def test_yield_advice_is_consistent_between_the_two_criteria(impact):
+    """At 0.1 m/s the sec. 4.3 spheres are above first yield (Hertz peak pressure 1.6 sigma_y,
+    0.0785 m/s) but below Du & Wang's V_y (p0 = 2.57 sigma_y, 0.2566 m/s): 'elastic' does not
+    send the user to 'elastoplastic', which gives the same Hertz result, and each message
+    names its criterion."""
+    args = [*PAPER_4_3[:4], "--v1", "0.1m/s", "--v2", "0", "--material", "steel", "-f", "json"]
+    elastic, plastic = impact("elastic", *args), impact("elastoplastic", *args)
+    assert elastic.returncode == plastic.returncode == 0
+    for stderr in (elastic.stderr, plastic.stderr):
+        assert "1.6 sigma_y" in stderr and "2.57 sigma_y" in stderr
+        assert "0.07846 m/s" in stderr and "0.2566 m/s" in stderr
+    assert "use 'impact elastoplastic'" not in elastic.stderr
+    assert "same Hertz result" in elastic.stderr
+    assert "as 'impact elastic' gives it" in plastic.stderr
+    ours, theirs = (json.loads(r.stdout)["summary"] for r in (elastic, plastic))
+    assert theirs["contact_time"] == pytest.approx(ours["contact_time"], rel=1e-9)
+    above = impact("elastic", *[a if a != "0.1m/s" else "0.3m/s" for a in args])
+    assert "use 'impact elastoplastic'" in above.stderr
+
+
+def test_du_wang_yield_velocity_from_first_yield_matches_the_elastoplastic_summary():
+    from impactcli.impact import Sphere, elastoplastic_impact
+    from impactcli.validation import du_wang_yield_velocity
+
+    steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
+    s1, s2 = Sphere(0.02, yield_strength=2e9, **steel), Sphere(0.04, yield_strength=5e8, **steel)
+    summary = elastoplastic_impact(s1, s2, 0.01, 0.0).summary
+    assert du_wang_yield_velocity(summary["first_yield_velocity"]) == pytest.approx(
+        summary["yield_velocity"], rel=1e-12
+    )

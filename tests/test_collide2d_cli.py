@@ -6,8 +6,6 @@ import csv
 import io
 import json
 import re
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -247,23 +245,6 @@ def test_help_explains_units_and_angle_conventions(impact):
     ):
         assert phrase in text, phrase
     assert "collide2d" in impact("--help").stdout
-
-
-@pytest.mark.parametrize("args", [["--help"], ["collide2d", "--help"]])
-def test_help_imports_no_heavy_modules(args):
-    code = (
-        "import sys\n"
-        "from impactcli.cli import main\n"
-        "try:\n"
-        f"    main({args!r})\n"
-        "except SystemExit:\n"
-        "    pass\n"
-        "heavy = [m for m in ('pandas', 'scipy', 'pint', 'rich') if m in sys.modules]\n"
-        "sys.stderr.write('HEAVY=' + ','.join(heavy))\n"
-    )
-    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
-    assert "HEAVY=" in result.stderr
-    assert result.stderr.rsplit("HEAVY=", 1)[1].strip() == ""
 
 
 def test_model_elastoplastic_head_on_equals_the_paper_4_4(impact):

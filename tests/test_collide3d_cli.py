@@ -91,6 +91,7 @@ def test_bad_input_one_line(impact, args, message):
     assert "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_plots(impact, tmp_path):
     pytest.importorskip("matplotlib")
     diagram, force = tmp_path / "c3d.png", tmp_path / "force.svg"

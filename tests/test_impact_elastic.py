@@ -1,6 +1,6 @@
 """Elastic (Hertz) impact of two spheres, dimensional (issue 3; docs/method.md §1-§3, §6).
 
-Reference values come from docs/method.md (§5 and §6, reproduced independently of this code)
+Reference values come from docs/method.md §5 and §6 (reproduced independently of this code)
 or from closed forms computed here: the Beta-function contact time, conservation of momentum
 and energy, and the limits of a flat, fixed or rigid counterpart.
 """

@@ -148,7 +148,7 @@ def test_paper_example_4_4_elastoplastic():
 
 
 def test_paper_example_4_4_closed_forms():
-    # The same numbers from the formulas of §7 with SciPy root finding and quadrature.
+    # The same numbers from docs/method.md §7 with SciPy root finding and quadrature.
     s1, s2 = steel_pair()
     ref = DuWangReference(s1, s2, 1000e6)
     out = elastoplastic_impact(s1, s2, 0.25, 0.75).summary

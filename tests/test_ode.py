@@ -32,7 +32,7 @@ def steel_pair() -> tuple[Sphere, Sphere]:
 
 
 def hertz_exact(s1: Sphere, s2: Sphere, v0: float) -> tuple[float, float]:
-    """delta_m [m] and the exact contact duration [s] from the closed forms (§1, §3)."""
+    """delta_m [m] and the exact contact duration [s] (docs/method.md §1, §3)."""
     m = 1.0 / (1.0 / s1.total_mass + 1.0 / s2.total_mass)
     r = 1.0 / (1.0 / s1.radius + 1.0 / s2.radius)
     e_star = 1.0 / (2.0 * (1.0 - 0.3**2) / 210e9)

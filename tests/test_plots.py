@@ -26,7 +26,25 @@ from impactcli.plots import (
 )
 from tests.conftest import ROOT
 
-pytest.importorskip("matplotlib")
+#: The tests here that need no matplotlib: the number formatting, the file-type check, and
+#: what happens without it. Every other test is skipped on its own when matplotlib is missing.
+NO_MATPLOTLIB_NEEDED = {
+    "test_unit_scale",
+    "test_unit_scale_is_shared_by_ragged_series",
+    "test_format_quantity",
+    "test_figure_format_rejects_other_extensions",
+    "test_round_scale",
+    "test_bad_extension_is_one_line_exit_2_before_any_work",
+    "test_missing_matplotlib_says_how_to_install_it",
+    "test_plotting_function_without_matplotlib_raises_import_error",
+    "test_matplotlib_is_imported_only_to_plot",
+}
+
+
+@pytest.fixture(autouse=True)
+def _needs_matplotlib(request):
+    if request.function.__name__ not in NO_MATPLOTLIB_NEEDED:
+        pytest.importorskip("matplotlib")
 
 MAGIC = {"png": b"\x89PNG\r\n\x1a\n", "pdf": b"%PDF-", "svg": b"<?xml"}
 
@@ -143,6 +161,7 @@ def test_save_figure_is_atomic(tmp_path, monkeypatch):
 
 @pytest.fixture(scope="module")
 def plastic_4_4():
+    pytest.importorskip("matplotlib")  # a module fixture is built before _needs_matplotlib
     result = elastoplastic_impact(SPHERE1, SPHERE2, 0.25, 0.75)
     history = result.history(points=201)
     fig = impact_figure(

@@ -271,6 +271,7 @@ def test_a_new_file_respects_the_umask_and_a_replaced_file_keeps_its_mode(tmp_pa
 # -- 11. broken pipe ----------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "args",
     [

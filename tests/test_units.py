@@ -24,8 +24,6 @@ from impactcli.units import (
     parse_vector3,
 )
 
-pint = pytest.importorskip("pint")
-
 #: Numbers written as a user would: exponents, signs, leading and trailing points.
 NUMBERS = ("1", "20", "-2.5", "+2", ".5", "3.", "1e-3", "7.8E+3", "-4.25e2", "0")
 #: Between number and unit.
@@ -41,6 +39,9 @@ EXPRESSIONS = (
 
 @pytest.fixture(scope="module")
 def ureg():
+    """pint's registry, the reference the fast path is checked against (tests without it
+    skip one by one when pint is missing)."""
+    pint = pytest.importorskip("pint")
     return pint.UnitRegistry()
 
 

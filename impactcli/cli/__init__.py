@@ -10,7 +10,18 @@ import sys
 
 import typer
 
-app = typer.Typer(
+from impactcli.cli.helptext import HELP_WIDTH, HelpCommand
+
+
+class _ImpactTyper(typer.Typer):
+    """Typer whose commands are :class:`~impactcli.cli.helptext.HelpCommand` (quantity
+    metavars, copyable examples, whole first sentences) unless a command asks otherwise."""
+
+    def command(self, name: str | None = None, *, cls: type | None = None, **kwargs):
+        return super().command(name, cls=cls or HelpCommand, **kwargs)
+
+
+app = _ImpactTyper(
     name="impact",
     help=(
         "Impact of two deformable spheres by the Force-Indentation Linearisation Method "
@@ -22,8 +33,27 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
     rich_markup_mode=None,
-    context_settings={"help_option_names": ["-h", "--help"]},
+    context_settings={"help_option_names": ["-h", "--help"], "max_content_width": HELP_WIDTH},
 )
+
+
+def _print_version(value: bool) -> None:
+    if value:
+        from impactcli import __version__
+
+        print(f"impact {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(
+        False, "--version", is_eager=True, callback=_print_version,
+        help="Print the version of impactcli and exit.",
+    ),  # fmt: skip
+) -> None:
+    pass
+
 
 from impactcli.cli import (  # noqa: E402
     batch_cmd,

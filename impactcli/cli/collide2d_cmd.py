@@ -121,9 +121,10 @@ def collide2d(
     they follow the paper's Fig. 12: alpha_1 (--a1), theta_2 (final angle of sphere 2) and
     phi (line of centres) clockwise; alpha_2 (--a2) and theta_1 counter-clockwise.
 
-    The paper's example (sec. 4.5.3): impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s
-    --a1 30deg --v2 2m/s --a2 50deg --p1=-1,2 --p2=2,-2 --paper-angles gives
-    |v1'| = 2.374 m/s at 97.11 deg and |v2'| = 2.263 m/s at -6.26 deg (clockwise).
+    Example (the paper's sec. 4.5.3, which gives |v1'| = 2.374 m/s at 97.11 deg and
+    |v2'| = 2.263 m/s at -6.26 deg, clockwise):
+    impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s --a1 30deg --v2 2m/s --a2 50deg
+    --p1=-1,2 --p2=2,-2 --paper-angles
 
     CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"}.
     --plot draws the centres at contact with each sphere's velocity before and after (the

@@ -142,8 +142,10 @@ def collide3d(
     friction impulse along -u_t:
 
     \b
-      rigid:   J_t = min(m_t |u_t|, mu J_n),  1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
-      mindlin: dF_t = 8 G* a u_t dt, |F_t| <= mu F_n, a = sqrt(R delta), over the contact
+      rigid:   J_t = min(m_t |u_t|, mu J_n),
+               1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
+      mindlin: dF_t = 8 G* a u_t dt, |F_t| <= mu F_n, a = sqrt(R delta),
+               over the contact
 
     Spheres are solid (I = 2/5 m R^2). A flat target: --d2 inf --m2 inf (--E2 inf for a
     rigid one). Units: a bare number is SI, angular velocities in rad/s (or rpm, deg/s),

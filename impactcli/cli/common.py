@@ -4,6 +4,7 @@ the Rich console on demand, warnings and figure checks."""
 from __future__ import annotations
 
 import enum
+import inspect
 import os
 import sys
 from typing import IO, Annotated, Optional
@@ -91,6 +92,12 @@ def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.con
     return Console(file=stream, highlight=False, width=160, color_system=None)
 
 
+def append_help(command, *paragraphs: str) -> None:
+    """Add paragraphs to the end of a command's help (its docstring), keeping the
+    docstring's indentation out of the help text."""
+    command.__doc__ = "\n\n".join([inspect.cleandoc(command.__doc__ or ""), *paragraphs])
+
+
 #: Warning and note lines of the running command, printed when it succeeds (a failed run
 #: prints its one error line alone); None outside :func:`impactcli.cli.runner.run`.
 pending_messages: list[str] | None = None
@@ -131,7 +138,9 @@ OUTPUT_HELP = (
 #: ``--format/-f``: table, csv or json.
 OutputFormat = Annotated[Optional[Format], typer.Option("--format", "-f", help=FORMAT_HELP)]
 #: ``--output/-o FILE``.
-OutputFile = Annotated[Optional[str], typer.Option("--output", "-o", help=OUTPUT_HELP)]
+OutputFile = Annotated[
+    Optional[str], typer.Option("--output", "-o", metavar="FILE", help=OUTPUT_HELP)
+]
 #: ``--plot FILE``.
 PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
 

@@ -12,8 +12,10 @@ import typer
 from impactcli.cli.common import (
     Format,
     OutputFile,
+    OutputFormat,
     PlotFile,
     SummaryFile,
+    append_help,
     check_plot,
     check_summary_file,
     console,
@@ -275,7 +277,7 @@ def _run(
         if message:
             warn(message)
     if model == "elastoplastic" and result.model == "elastic" and np.isfinite(s["yield_velocity"]):
-        note(below_yield_note(v0, s["yield_velocity"]))
+        note(below_yield_note(v0, s["yield_velocity"], s.get("first_yield_velocity")))
     message = contact_radius_warning(v0, s["delta_max"], s["effective_radius"])
     if message:
         warn(message)
@@ -541,8 +543,9 @@ def elastic(
     force, d1, d2, v1, v2, delta1, delta2, delta1_dot, delta2_dot, p1, p2 in SI. d_i and v_i
     are the centre's displacement and velocity toward the other sphere; p1, p2 the momenta
     in the x-frame where sphere 1 moves +x. The yield strength (--sy or the material) only
-    serves the first-yield check: above that velocity a warning says to use
-    'impact elastoplastic'.
+    serves the yield checks: above the first-yield velocity (Hertz peak pressure 1.6 sigma_y)
+    a warning says so, and above Du & Wang's yield velocity V_y (p0 = 2.57 sigma_y) it says
+    to use 'impact elastoplastic'.
 
     --damping tsuji|hunt-crossley adds viscous damping to Hertz (docs/damping.md), with
     --alpha or a target --e; the summary then adds delta_separation, alpha and the energy
@@ -564,7 +567,7 @@ def elastic(
     )  # fmt: skip
 
 
-elastic.__doc__ = f"{elastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
+append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 
 @with_sphere_options()
@@ -604,7 +607,7 @@ def elastoplastic(
     )  # fmt: skip
 
 
-elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
+append_help(elastoplastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 
 @with_sphere_options(velocities=False)
@@ -877,7 +880,7 @@ def _plot_sweep(
     save_plot(fig, path)
 
 
-def materials(fmt: FMT = None, output: OUT = None) -> None:
+def materials(fmt: OutputFormat = None, output: OUT = None) -> None:
     """Built-in materials: Young's modulus, Poisson's ratio, density, yield strength, source."""
     from impactcli.materials import MATERIALS
 

@@ -19,7 +19,7 @@ import typer
 
 from impactcli.spheres import SphereOptions
 
-__all__ = ["SPHERE_OPTIONS", "with_sphere_options"]
+__all__ = ["SPHERE_METAVARS", "SPHERE_OPTIONS", "with_sphere_options"]
 
 #: Option name -> help text, in the order of ``--help``.
 SPHERE_OPTIONS: dict[str, str] = {
@@ -47,9 +47,21 @@ SPHERE_OPTIONS: dict[str, str] = {
 }
 assert tuple(SPHERE_OPTIONS) == SphereOptions.names(), "SPHERE_OPTIONS and SphereOptions differ"
 
+#: Option name -> the word ``--help`` shows for its value (``--d1 LENGTH``).
+SPHERE_METAVARS: dict[str, str] = {
+    **dict.fromkeys(("d1", "d2"), "LENGTH"),
+    **dict.fromkeys(("v1", "v2"), "VELOCITY"),
+    **dict.fromkeys(("material", "material1", "material2"), "NAME"),
+    **dict.fromkeys(("E", "E1", "E2", "sy", "sy1", "sy2"), "PRESSURE"),
+    **dict.fromkeys(("nu", "nu1", "nu2"), "NUMBER"),
+    **dict.fromkeys(("rho", "rho1", "rho2"), "DENSITY"),
+    **dict.fromkeys(("m1", "m2"), "MASS"),
+}
+
 
 def _parameter(name: str) -> inspect.Parameter:
-    annotation = Annotated[Optional[str], typer.Option(f"--{name}", help=SPHERE_OPTIONS[name])]
+    option = typer.Option(f"--{name}", metavar=SPHERE_METAVARS[name], help=SPHERE_OPTIONS[name])
+    annotation = Annotated[Optional[str], option]
     return inspect.Parameter(
         name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=None, annotation=annotation
     )

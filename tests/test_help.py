@@ -1,0 +1,162 @@
+"""The help screens of every command (issue 13): quantity metavars, no mangled spacing,
+examples that run as printed, whole first sentences, the width of the terminal, and a
+``--help`` that imports none of the heavy libraries."""
+
+from __future__ import annotations
+
+import re
+import shlex
+import subprocess
+import sys
+
+import pytest
+import typer.main
+
+from impactcli.cli import app
+from impactcli.cli.helptext import HELP_WIDTH, example_commands, first_sentence
+from tests.conftest import ROOT, run_impact
+
+COMMANDS = sorted(typer.main.get_command(app).commands)
+HEAVY = ("pandas", "scipy", "pint", "matplotlib")
+
+
+def _help(*words: str, columns: int = 80) -> str:
+    result = run_impact(*words, "--help", env={"COLUMNS": str(columns)})
+    assert result.returncode == 0, result.stderr
+    return result.stdout
+
+
+def _prose_lines(text: str) -> list[str]:
+    """The wrapped lines of a help screen: the description's paragraphs (indent 2; blocks
+    indented further are preformatted formulas and examples) and, in the Options, Arguments
+    and Commands sections, each row's description column and its continuation lines."""
+    lines, in_section = [], False
+    for line in text.splitlines():
+        if re.match(r"\S.*:$", line):
+            in_section = not line.startswith("Usage")
+        elif in_section and re.match(r"  \S", line):
+            row = re.match(r"  \S.*?( {2,})(\S.*)$", line)
+            if row:
+                lines.append(row[2])
+        elif in_section and line.strip():
+            lines.append(line.strip())
+        elif re.match(r"  \S", line) and not line.lstrip().startswith("impact "):
+            lines.append(line.strip())
+    return lines
+
+
+@pytest.mark.parametrize("columns", [80, 120])
+@pytest.mark.parametrize("command", ["", *COMMANDS])
+def test_help_names_each_value_and_has_no_mangled_spacing(command, columns):
+    text = _help(*([command] if command else []), columns=columns)
+    assert re.search(r"<\w[^>]*>", text) is None, "a typer <type> metavar is left"
+    assert "{" + "IN}" not in text
+    for line in _prose_lines(text):
+        assert re.search(r"\S {3,}\S", line) is None, line
+    assert max(len(line) for line in text.splitlines()) <= columns
+
+
+def test_sphere_options_say_what_quantity_they_take():
+    text = _help("elastic")
+    for option, metavar in [("--d1", "LENGTH"), ("--v2", "VELOCITY"), ("--E1", "PRESSURE"),
+                            ("--rho", "DENSITY"), ("--m2", "MASS"), ("--nu", "NUMBER"),
+                            ("--sy", "PRESSURE"), ("--material", "NAME"), ("--output", "FILE")]:
+        assert re.search(rf"{option} {metavar}\b", text), option  # fmt: skip
+
+
+def test_help_wraps_to_the_terminal_up_to_its_limit():
+    narrow, wide = _help("elastic", columns=80), _help("elastic", columns=HELP_WIDTH)
+    assert max(map(len, narrow.splitlines())) <= 80 < max(map(len, wide.splitlines()))
+    assert len(narrow.splitlines()) > len(wide.splitlines())
+
+
+def test_command_list_gives_whole_first_sentences():
+    text = " ".join(_help(columns=HELP_WIDTH).split())
+    assert "Elastoplastic impact (Du & Wang contact, paper eq. 16" in text
+    assert "each sphere's motion" in text
+    assert not re.search(r"\w\.\.\.(\s|$)", text), "a description cut short"
+    assert first_sentence("See eqs. 1a,b and Fig. 3. Then more.") == (
+        "See eqs. 1a,b and Fig. 3."
+    )
+
+
+def test_materials_format_help_says_what_it_writes():
+    text = " ".join(_help("materials").split())
+    assert "history" not in text
+
+
+def test_version():
+    from impactcli import __version__
+
+    result = run_impact("--version")
+    assert result.returncode == 0 and result.stdout.strip() == f"impact {__version__}"
+
+
+def _examples() -> list[tuple[str, str]]:
+    found = []
+    for command in COMMANDS:
+        for columns in (80, HELP_WIDTH):
+            for example in example_commands(_help(command, columns=columns)):
+                found.append((command, example))
+    return sorted(set(found))
+
+
+EXAMPLES = _examples()
+
+
+def test_the_main_commands_have_examples():
+    assert {"elastic", "elastoplastic", "restitution", "collide2d", "collide3d"} <= {
+        command for command, _ in EXAMPLES
+    }
+
+
+@pytest.mark.parametrize(("command", "example"), EXAMPLES, ids=[e for _, e in EXAMPLES])
+def test_each_example_runs_as_printed(command, example, tmp_path):
+    """Copied from the help screen (at 80 or at 120 columns, continuation lines joined as a
+    shell would), the example runs and succeeds, in an empty folder; an example that reads
+    the user's data file (DATA.csv) is checked to parse, with --help appended."""
+    words = shlex.split(example)
+    assert words[:2] == ["impact", command]
+    inputs = [w for w in words[2:] if re.fullmatch(r"[\w.-]+\.(csv|parquet|pq)", w)]
+    inputs = [w for w in inputs if words[words.index(w) - 1] not in ("-o", "--output")]
+    if inputs:  # it reads the user's data file: check that it parses, up to --help
+        result = run_impact(*words[1:], "--help", cwd=tmp_path)
+        assert result.returncode == 0 and "Usage:" in result.stdout, result.stderr
+        return
+    result = run_impact(*words[1:], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "Traceback" not in result.stderr
+
+
+LIGHT_RUNS = {
+    "tables": ["tables", "--n", "3", "-f", "csv"],
+    "convergence": ["convergence", "--n", "3", "-f", "csv"],
+    "materials": ["materials", "-f", "csv"],
+    "laws": ["laws", "-f", "csv"],
+    "elastic": ["elastic", "--d1", "20mm", "--d2", "40mm", "--v1", "5mm/s", "--v2", "7.5mm/s",
+                "--material", "steel", "--points", "3", "-f", "csv"],
+    "collide2d": ["collide2d", "--m1", "50g", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
+                  "--v2", "2m/s", "--a2", "50deg", "--p1=-1,2", "--p2=2,-2", "-f", "csv"],
+}  # fmt: skip
+START_UP = [["--help"], ["--version"], *([c, "--help"] for c in COMMANDS), *LIGHT_RUNS.values()]
+
+
+@pytest.mark.parametrize("args", START_UP, ids=[" ".join(a) for a in START_UP])
+def test_start_up_imports_no_heavy_library(args):
+    """``--help`` of every command, and the light commands, in a fresh process: none of
+    pandas, SciPy, pint, matplotlib is imported."""
+    code = (
+        "import sys\n"
+        "from impactcli.cli import main\n"
+        "try:\n"
+        "    main(sys.argv[1:])\n"
+        "except SystemExit as exc:\n"
+        "    code = exc.code\n"
+        f"print('HEAVY=' + ','.join(m for m in {HEAVY!r} if m in sys.modules), file=sys.stderr)\n"
+        "sys.exit(code)\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code, *args], capture_output=True, text=True, cwd=ROOT, timeout=120
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.rsplit("HEAVY=", 1)[1].strip() == ""
