@@ -214,7 +214,7 @@ def test_restitution_with_two_rigid_spheres_says_so_like_elastic(cli):
 @pytest.mark.parametrize("split", ["Mass", "bogus", ""])
 def test_sweep_refuses_an_unknown_split(split):
     steel = Sphere(0.02, **STEEL)
-    with pytest.raises(ValueError, match="split must be mass or compliance"):
+    with pytest.raises(ValueError, match="split must be mass, compliance or yield"):
         restitution_sweep(steel, steel, [0.5, 1.0], split=split)
 
 
