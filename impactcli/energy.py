@@ -112,6 +112,8 @@ def permanent_fractions(
 
     >>> [float(x) for x in permanent_fractions(np.nan, 1e9, 1.0, 3.0)]
     [0.0, 1.0]
+    >>> [float(x) for x in permanent_fractions(276e6, 1e9, 1.0, 3.0)]
+    [1.0, 0.0]
     >>> [float(x) for x in permanent_fractions(1e9, 1.01e9, 1.0, 3.0)]
     [0.25, 0.75]
     """
@@ -121,7 +123,8 @@ def permanent_fractions(
     by_compliance = c1 / (c1 + c2)
     low, high = np.fmin(s1, s2), np.fmax(s1, s2)
     with np.errstate(invalid="ignore"):
-        tie = (high <= low * (1.0 + tolerance)) | (np.isnan(s1) & np.isnan(s2))
+        both = ~np.isnan(s1) & ~np.isnan(s2)
+        tie = (both & (high <= low * (1.0 + tolerance))) | (np.isnan(s1) & np.isnan(s2))
         first = np.where(np.isnan(s2) | (s1 < s2), 1.0, 0.0)
     p1 = np.where(tie, by_compliance, first)
     return p1, 1.0 - p1

@@ -35,7 +35,10 @@ SIGN_HELP = (
 )
 SPLIT_HELP = (
     "How the total indentation is shared: 'mass' (the paper's contact plane moving at V_cp: "
-    "delta_i = (m/m_i) delta) or 'compliance' (Hertz: delta_i proportional to (1-nu_i^2)/E_i)."
+    "delta_i = (m/m_i) delta; its convention for like spheres), 'compliance' (Hertz: "
+    "delta_i proportional to (1-nu_i^2)/E_i) or 'yield' (the recoverable part by compliance, "
+    "the permanent part to the sphere that yields: the lower yield strength; a sphere "
+    "without one, e.g. glass, does not yield)."
 )
 
 
@@ -48,6 +51,7 @@ class Method(enum.StrEnum):
 class Split(enum.StrEnum):
     mass = "mass"
     compliance = "compliance"
+    yield_ = "yield"
 
 
 def _opt(help_text: str, *names: str, **kw: Any):
@@ -82,6 +86,14 @@ FMT = Annotated[
 ]
 OUT = OutputFile
 PLOT = PlotFile
+ENERGY_PLOT = Annotated[
+    Optional[str],
+    typer.Option(
+        "--energy-plot",
+        help="Also draw the energy partition (each sphere's kinetic, stored and dissipated "
+        "energy against t) into this .png, .svg or .pdf file.",
+    ),
+]
 P0_FACTOR = Annotated[
     float,
     typer.Option(
@@ -167,6 +179,7 @@ def _run(
     plot: str | None,
     summary: str | None = None,
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    energy_plot: str | None = None,
 ) -> None:
     from impactcli.impact import elastic_impact, elastoplastic_impact
     from impactcli.spheres import spheres_from_options, velocities_from_options
@@ -177,6 +190,7 @@ def _run(
     )
 
     check_plot(plot)
+    check_plot(energy_plot)
     check_summary_file(summary, output)
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
@@ -208,6 +222,7 @@ def _run(
     message = contact_radius_warning(v0, s["delta_max"], s["effective_radius"])
     if message:
         warn(message)
+    _split_messages(split, s1, s2)
 
     history = result.history(points=points)
     differences, reference = _check(result, history) if check else (None, None)
@@ -250,6 +265,25 @@ def _run(
         _write_summary(summary, result)
     if plot:
         _plot(plot, result, history, reference, spheres, method)
+    if energy_plot:
+        from impactcli.plots import energy_figure
+
+        title = f"Energy partition, split {split.value}: " + _case_title(result, spheres, method)
+        save_plot(energy_figure(history, title, summary=result.summary), energy_plot)
+
+
+def _split_messages(split: Split, s1, s2) -> None:
+    """The warning of a mass split between different materials, and the notes of the
+    yield split (a sphere without a yield strength does not yield; ties)."""
+    from impactcli.validation import brittle_notes, mass_split_warning
+
+    message = mass_split_warning(
+        split.value, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
+    )
+    if message:
+        warn(message)
+    for text in brittle_notes(split.value, s1.yield_strength, s2.yield_strength):
+        note(text)
 
 
 def _check(result, history: dict) -> tuple[dict[str, float], dict]:
@@ -427,6 +461,7 @@ def elastic(
     output: OUT = None,
     plot: PLOT = None,
     summary: SummaryFile = None,
+    energy_plot: ENERGY_PLOT = None,
 ) -> None:
     """Elastic (Hertz) impact of two spheres: each sphere's rigid-body motion and indentation.
 
@@ -443,7 +478,7 @@ def elastic(
     """
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
-        fmt=fmt, output=output, plot=plot, summary=summary,
+        fmt=fmt, output=output, plot=plot, summary=summary, energy_plot=energy_plot,
     )  # fmt: skip
 
 
@@ -463,6 +498,7 @@ def elastoplastic(
     output: OUT = None,
     plot: PLOT = None,
     summary: SummaryFile = None,
+    energy_plot: ENERGY_PLOT = None,
 ) -> None:
     """Elastoplastic impact (Du & Wang contact, paper eq. 16): each sphere's motion, its
     maximum and permanent indentation, and the coefficient of restitution.
@@ -479,7 +515,7 @@ def elastoplastic(
     _run(
         "elastoplastic", spheres, n=n, points=points, method=method, check=check,
         split=split, fmt=fmt, output=output, plot=plot, summary=summary,
-        pressure_factor=p0_factor,
+        pressure_factor=p0_factor, energy_plot=energy_plot,
     )  # fmt: skip
 
 
@@ -505,9 +541,11 @@ def restitution(
     """Coefficient of restitution, contact time and permanent indentation against impact
     velocity (elastoplastic FILM, Du & Wang contact), for calibrating restitution.
 
-    Columns (SI): impact_velocity, restitution, contact_time, delta_max, delta_res,
-    delta1_res, delta2_res, energy_dissipated, plastic (1 above the yield velocity).
-    Only V0 = V1 + V2 matters for these quantities.
+    Columns (SI): impact_velocity, restitution, contact_time, delta_max, force_max,
+    delta_res, delta1_res, delta2_res, energy_dissipated, plastic (1 above the yield
+    velocity). Only V0 = V1 + V2 matters for these quantities. Without a yield strength
+    (e.g. glass on glass) the sweep is of the elastic Hertz impact: contact time, maximum
+    indentation and force against V0 (e = 1).
 
     --plot draws e, the contact time and the permanent indentation (total and of each
     sphere) against V0, with the yield velocity V_y marked.
@@ -537,6 +575,10 @@ def restitution(
     message = contact_radius_warning(velocities, data["delta_max"], radius)
     if message:
         warn(message)
+    _split_messages(split, s1, s2)
+    elastic_only = s1.yield_strength is None and s2.yield_strength is None
+    if elastic_only:
+        note("no yield strength given: the sweep is of the elastic (Hertz) impact, e = 1")
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -556,6 +598,8 @@ def restitution(
                     "sweep": data,
                 },
             )
+        elif elastic_only:
+            _print_elastic_sweep(stream if output not in (None, "-") else None, data)
         else:
             from rich.table import Table
 
@@ -586,6 +630,23 @@ def restitution(
         _plot_sweep(plot, data, s1, s2, p0_factor, spheres, n=n, linear=linear)
 
 
+def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
+    """The elastic sweep on screen: V0, contact time, delta_max, force_max."""
+    from rich.table import Table
+
+    table = Table(title="Elastic (Hertz) impact against impact velocity (FILM)")
+    for head in ("V0 (m/s)", "t_c (us)", "delta_max (um)", "force_max (N)"):
+        table.add_column(head, justify="right")
+    for i in range(data["impact_velocity"].size):
+        table.add_row(
+            f"{data['impact_velocity'][i]:.4g}",
+            f"{data['contact_time'][i] * 1e6:.4g}",
+            f"{data['delta_max'][i] * 1e6:.4g}",
+            f"{data['force_max'][i]:.4g}",
+        )
+    console(stream).print(table)
+
+
 def _plot_sweep(
     path: str,
     data: dict,
@@ -607,6 +668,20 @@ def _plot_sweep(
         f"D2 = {format_quantity(s2.diameter, 'm')}",
         *_material_parts(spheres, s1, s2),
     ]
+    if s1.yield_strength is None and s2.yield_strength is None:
+        from impactcli.plots import elastic_sweep_figure
+
+        fig = elastic_sweep_figure(
+            data["impact_velocity"],
+            data["contact_time"],
+            data["delta_max"],
+            data["force_max"],
+            title=f"Elastic (Hertz) impact against impact velocity (FILM, n = {n}): "
+            + ", ".join(parts),
+            log_velocity=not linear,
+        )
+        save_plot(fig, path)
+        return
     fig = restitution_figure(
         data["impact_velocity"],
         data["restitution"],
