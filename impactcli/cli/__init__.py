@@ -31,6 +31,7 @@ from impactcli.cli import (  # noqa: E402
     batch_cmd,
     collide2d_cmd,
     collide3d_cmd,
+    design_cmd,
     impact_cmd,
     laws_cmd,
     tables_cmd,
@@ -42,6 +43,7 @@ collide2d_cmd.register(app)
 collide3d_cmd.register(app)
 batch_cmd.register(app)
 laws_cmd.register(app)
+design_cmd.register(app)
 
 
 def main(argv: list[str] | None = None) -> None:
