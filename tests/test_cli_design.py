@@ -55,7 +55,8 @@ def test_glass_beads_on_a_steel_wall(cli):
 
 def test_aluminium_ball_on_a_steel_plate(cli):
     code, out, _ = cli("elastoplastic", "--d1", "20mm", "--v1", "1m/s", "--v2", "0",
-                       "--material1", "aluminium", *STEEL_WALL, "--split", "yield", "-f", "json")  # fmt: skip
+                       "--material1", "aluminium", *STEEL_WALL, "--split", "yield",
+                       "-f", "json")  # fmt: skip
     s = json.loads(out)["summary"]
     assert code == 0 and s["delta1_res"] == s["delta_res"] > 0 and s["delta2_res"] == 0
 
@@ -149,7 +150,8 @@ def test_timestep_csv_and_a_wall(cli):
 
 def test_restitution_without_a_yield_strength_sweeps_the_elastic_impact(cli):
     code, out, err = cli("restitution", "--d1", "3mm", "--d2", "3mm", "--material", "glass",
-                         "--v-min", "0.1", "--v-max", "10", "--count", "5", "-f", "csv")  # fmt: skip
+                         "--v-min", "0.1", "--v-max", "10", "--count", "5",
+                         "-f", "csv")  # fmt: skip
     rows = list(csv.DictReader(io.StringIO(out)))
     assert code == 0 and "elastic (Hertz)" in err
     v0 = np.array([float(r["impact_velocity"]) for r in rows])
