@@ -1,7 +1,7 @@
 """Each sphere's share: kinetic energy, stored (recoverable) strain energy and dissipated
 energy during an impact, and how the indentation splits between the spheres.
 
-Pure functions on SI arrays. The energy balance they express (docs/method.md §9):
+Pure functions on SI arrays. The energy balance they express (docs/method.md §12):
 
     ke1 + ke2 + strain_energy + dissipated = ke1(0) + ke2(0)     at every time,
 

@@ -410,6 +410,7 @@ def energy_figure(
     title: str,
     *,
     summary: Mapping[str, float] | None = None,
+    relative_energy: float | None = None,
 ) -> Figure:
     """The energy partition of one impact (docs/method.md §12), two panels against time.
 
@@ -426,6 +427,8 @@ def energy_figure(
         ``dissipated2`` [J] (:data:`impactcli.impact.ENERGY_COLUMNS`)
     title : names the case
     summary : optional :attr:`impactcli.impact.ImpactResult.summary`, shown under the title
+    relative_energy : (1/2) m V0^2 [J], the scale of panel (b); default the largest
+        stored plus dissipated energy of the history (the same at maximum compression)
 
     Returns
     -------
@@ -460,6 +463,8 @@ def energy_figure(
 
     contact = h["strain_energy"] + h["dissipated"]
     relative = float(np.max(contact)) if contact.size else 1.0
+    if relative_energy is not None:
+        relative = float(relative_energy)
     relative = relative if relative > 0 else 1.0  # (1/2) m V0^2: all of it at delta_max
     for gid, label, colour, style in (
         ("strain_energy1", "stored, sphere 1", c1, "-"),

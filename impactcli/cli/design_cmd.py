@@ -225,13 +225,13 @@ def _meaning(key: str, velocity: float) -> str:
     from impactcli.formatting import format_quantity
 
     if key.startswith("rayleigh_") and key.endswith("pct"):
-        return f"{key[9:-3]} % of the smallest Rayleigh time step"
+        return f"{key[9:-3]} % of the smallest T_R"
     if key.startswith("contact_time_over_"):
         return f"t_c / {key[18:]}: {key[18:]} steps per collision"
     return {
-        "rayleigh_time_step1": "Rayleigh time step of sphere 1",
-        "rayleigh_time_step2": "Rayleigh time step of sphere 2",
-        "rayleigh_time_step": "the smaller (of the particles)",
+        "rayleigh_time_step1": "Rayleigh time step T_R of sphere 1",
+        "rayleigh_time_step2": "Rayleigh time step T_R of sphere 2",
+        "rayleigh_time_step": "smallest T_R of the particles",
         "contact_time": f"Hertz contact time t_c at V0 = {format_quantity(velocity, 'm/s')}",
     }.get(key, "")
 

@@ -269,7 +269,9 @@ def _run(
         from impactcli.plots import energy_figure
 
         title = f"Energy partition, split {split.value}: " + _case_title(result, spheres, method)
-        save_plot(energy_figure(history, title, summary=result.summary), energy_plot)
+        relative = 0.5 * result.summary["effective_mass"] * result.impact_velocity**2
+        fig = energy_figure(history, title, summary=result.summary, relative_energy=relative)
+        save_plot(fig, energy_plot)
 
 
 def _split_messages(split: Split, s1, s2) -> None:
