@@ -17,7 +17,10 @@ elastic and plastic groups whose plans FILM solves as batches.
 
 Every contact model has the interface of :class:`~impactcli.contact.DuWangContact`:
 ``yield_indentation`` (delta_y [m], NaN where the law has no yield point),
-``yield_velocity(m)`` (V_y [m/s]), ``yields(V0, m)`` (plastic impacts) and ``plan(V0, m)``.
+``yield_velocity(m)`` (V_y [m/s]), ``yields(V0, m)`` (plastic impacts), ``plan(V0, m)``,
+and for the energy partition (docs/method.md §12) ``residual_indentation(delta_max)``
+(delta_res [m]) and ``recoverable_work(delta)`` (what unloading from delta, taken as the
+maximum, gives back [J]).
 So the summary keys (``delta_y``, ``yield_velocity``, ``delta_res``, ``restitution``, ...)
 are the same whatever the law (:func:`impactcli.impact.plastic_summary`).
 

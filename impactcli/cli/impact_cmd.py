@@ -132,6 +132,18 @@ SUMMARY_UNITS = {
     "delta1_res": ("m", "permanent indentation of sphere 1"),
     "delta2_res": ("m", "permanent indentation of sphere 2"),
     "energy_dissipated": ("J", "kinetic energy lost, (1/2) m V0^2 (1 - e^2)"),
+    "kinetic_energy1_initial": ("J", "kinetic energy, sphere 1, before"),
+    "kinetic_energy2_initial": ("J", "kinetic energy, sphere 2, before"),
+    "kinetic_energy1_final": ("J", "kinetic energy, sphere 1, after"),
+    "kinetic_energy2_final": ("J", "kinetic energy, sphere 2, after"),
+    "energy_dissipated1": ("J", "dissipated in sphere 1"),
+    "energy_dissipated2": ("J", "dissipated in sphere 2"),
+    "stored_share1": ("", "stored in sphere 1 at delta_max *"),
+    "stored_share2": ("", "stored in sphere 2 at delta_max *"),
+    "absorbed_share1": ("", "absorbed by sphere 1 at delta_max *"),
+    "absorbed_share2": ("", "absorbed by sphere 2 at delta_max *"),
+    "first_yield_velocity1": ("m/s", "first yield of sphere 1 (inf: none)"),
+    "first_yield_velocity2": ("m/s", "first yield of sphere 2 (inf: none)"),
 }
 
 
@@ -372,7 +384,8 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         out.print(table)
     title = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
     how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
-    summary = Table(title=f"{title} impact by {how}", caption=SIGN_HELP)
+    caption = SIGN_HELP + " * share of (1/2) m V0^2."
+    summary = Table(title=f"{title} impact by {how}", caption=caption)
     for header in ("quantity", "value", "unit", "meaning"):
         summary.add_column(header, justify="right" if header == "value" else "left")
     for key, value in result.summary.items():
