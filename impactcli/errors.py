@@ -7,8 +7,19 @@ options of a sphere); the command line prints it on stderr and exits with status
 
 from __future__ import annotations
 
-__all__ = ["InputError"]
+__all__ = ["InputError", "OutputError", "StdoutClosed"]
 
 
 class InputError(ValueError):
     """Bad user input: reported as one line on stderr with exit status 2."""
+
+
+class OutputError(InputError):
+    """An output could not be written (disk full, name too long, stdout closed, a character
+    the output encoding lacks): one line on stderr with exit status 2, like bad input."""
+
+
+class StdoutClosed(Exception):  # noqa: N818 (an event, not a failure)
+    """stdout's reader stopped reading (``impact tables | head -1``): the run ends quietly
+    with exit status 0. Raised instead of BrokenPipeError, which Click would turn into
+    exit status 1."""

@@ -32,6 +32,8 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.limits import MAX_SEGMENTS, check_size
+
 __all__ = [
     "ContactLaw",
     "FilmStage",
@@ -204,9 +206,7 @@ def solve_stage(
     >>> float(restitution.end_time)
     2.9432487
     """
-    n = int(n)
-    if n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
+    n = check_size("n", n, MAX_SEGMENTS)
     a = np.asarray(delta_start, dtype=float)[..., None]
     b = np.asarray(delta_end, dtype=float)[..., None]
     v_a = np.asarray(speed_start, dtype=float)[..., None]
@@ -337,9 +337,7 @@ def hertz_loading_time(
     >>> float(solve_stage(Hertz(1.25), 0.0, 1.0, 1.2, 1.0, 25).end_time)
     0.96176108
     """
-    n = int(n)
-    if n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
+    n = check_size("n", n, MAX_SEGMENTS)
     xi = np.arange(n + 1, dtype=float) / n
     force = xi * np.sqrt(xi)  # F / (K_h delta_end^1.5)
     slope = np.diff(force) * n  # k_r

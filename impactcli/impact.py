@@ -47,6 +47,7 @@ from impactcli.contact import (
 )
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import hertz_stiffness
+from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     needs_yield_strength,
@@ -300,7 +301,9 @@ class ImpactResult:
 
     def times(self, points: int = 201, method: Method | None = None) -> NDArray:
         """``points`` evenly spaced times over the whole contact of ``method``, [s]: FILM's
-        (``film``, ``table``) or the integration's (``ode``) own contact duration."""
+        (``film``, ``table``) or the integration's (``ode``) own contact duration
+        (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
+        points = check_size("points", points, MAX_POINTS, minimum=2)
         method = self.method if method is None else method
         end = self.ode.end_time if method == "ode" else self.film.end_time
         return np.linspace(0.0, end, points)
@@ -532,6 +535,7 @@ def _validate(
         raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
     if int(n) < 1:
         raise ValueError(f"n must be an integer >= 1, got {n}")
+    check_size("n", n, MAX_SEGMENTS)
     check_pair(sphere1, sphere2, v1, v2)
 
 

@@ -23,6 +23,7 @@ from impactcli.impact import (
     split_fractions,
     weaker_yield_strength,
 )
+from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
@@ -71,6 +72,8 @@ def restitution_sweep(
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
+    check_size("the number of velocities", v0.size, MAX_COUNT)
+    check_size("the number of velocities x n", v0.size * int(n), MAX_SWEEP_SEGMENTS)
     split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass, compliance, yield
     check_pair(sphere1, sphere2, v0, 0.0)
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)

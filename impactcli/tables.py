@@ -28,6 +28,7 @@ from numpy.typing import NDArray
 
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import Hertz
+from impactcli.limits import MAX_CONVERGENCE_RUNS, MAX_SEGMENTS, check_size
 
 __all__ = [
     "EXACT_CONTACT_DURATION",
@@ -198,6 +199,9 @@ def convergence(ns: list[int], carry_velocity: bool = False) -> list[Convergence
     >>> [(r.n, round(r.contact_duration, 7), round(r.order, 1)) for r in convergence([50, 100])]
     [(50, 2.9432705, nan), (100, 2.9432744, 2.5)]
     """
+    check_size("the number of segment counts", len(ns), MAX_CONVERGENCE_RUNS)
+    for n in ns:
+        check_size("n", n, MAX_SEGMENTS)
     rows: list[ConvergenceRow] = []
     for n in ns:
         loading, restitution = normalised_elastic(n, carry_velocity)

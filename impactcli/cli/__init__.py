@@ -10,8 +10,6 @@ import sys
 
 import typer
 
-from impactcli.errors import InputError
-
 app = typer.Typer(
     name="impact",
     help=(
@@ -46,29 +44,28 @@ laws_cmd.register(app)
 design_cmd.register(app)
 
 
-def main(argv: list[str] | None = None) -> None:
-    """Entry point of the ``impact`` script: bad input is one line on stderr and exit 2."""
-    try:
-        result = app(args=argv, prog_name="impact", standalone_mode=False)
-    except typer.TyperException as exc:  # usage errors: bad option values, unknown options
-        ctx = getattr(exc, "ctx", None)
-        if type(exc).__name__ == "NoArgsIsHelpError":
-            print(ctx.get_help() if ctx else exc)
-            sys.exit(0)
-        where = ctx.command_path if ctx is not None else "impact"
-        message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
-        print(f"{where}: error: {' '.join(message.split())}", file=sys.stderr)
-        sys.exit(2)
-    except InputError as exc:
-        print(f"impact: error: {exc}", file=sys.stderr)
-        sys.exit(2)
-    except (typer.Abort, KeyboardInterrupt):
-        sys.exit(130)
-    except BrokenPipeError:
-        # Output piped into a command that stopped reading (e.g. head): not an error.
-        import os
+def _usage_error(exc: BaseException) -> int | None:
+    """Typer/Click usage errors (bad option values, unknown options) as one line, exit 2;
+    ``impact`` alone prints the help, exit 0. None for any other exception."""
+    if isinstance(exc, typer.Abort):
+        return 130
+    if not isinstance(exc, typer.TyperException):
+        return None
+    ctx = getattr(exc, "ctx", None)
+    if type(exc).__name__ == "NoArgsIsHelpError":
+        print(ctx.get_help() if ctx else exc)
+        return 0
+    where = ctx.command_path if ctx is not None else "impact"
+    message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
+    print(f"{where}: error: {' '.join(message.split())}", file=sys.stderr)
+    return 2
 
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        sys.exit(0)
-    sys.exit(result if isinstance(result, int) else 0)
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point of the ``impact`` script: bad input or an unwritable output is one line
+    on stderr and exit 2; a signal exits 128 + its number with no temporary file or child
+    process left (:func:`impactcli.cli.runner.run`)."""
+    from impactcli.cli.runner import run
+
+    status = run(lambda: app(args=argv, prog_name="impact", standalone_mode=False), _usage_error)
+    sys.exit(status)

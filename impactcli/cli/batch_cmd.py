@@ -19,6 +19,7 @@ from impactcli.cli.common import OutputFile, warn
 from impactcli.errors import InputError
 from impactcli.io.readers import PARQUET_SUFFIXES
 from impactcli.io.writers import TableFormat
+from impactcli.limits import MAX_CHUNK_ROWS, MAX_SEGMENTS
 
 
 class Engine(enum.StrEnum):
@@ -100,7 +101,14 @@ def batch(
         "-f",
         help="Output csv or parquet. Default: from OUT's extension (.parquet, .pq), else CSV.",
     ),
-    n: int = typer.Option(25, "--n", "-n", min=1, help="FILM segments per stage."),
+    n: int = typer.Option(
+        25,
+        "--n",
+        "-n",
+        min=1,
+        max=MAX_SEGMENTS,
+        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
+    ),
     split: SplitChoice = typer.Option(
         SplitChoice.mass,
         "--split",
@@ -114,7 +122,11 @@ def batch(
         False, "--strict", help="Stop at the first invalid row (one line, exit 2)."
     ),
     chunk_size: int = typer.Option(
-        100_000, "--chunk-size", min=1, help="Rows per chunk (memory stays bounded by it)."
+        100_000,
+        "--chunk-size",
+        min=1,
+        max=MAX_CHUNK_ROWS,
+        help=f"Rows per chunk, 1 to {MAX_CHUNK_ROWS:,} (memory stays bounded by it).",
     ),
     engine: Engine = typer.Option(
         Engine.numpy,

@@ -139,7 +139,7 @@ def collide2d(
     from impactcli.spheres import SphereOptions, check_options, spheres_from_options
     from impactcli.units import parse_vector
 
-    check_plot(plot)
+    check_plot(plot, output)
     sign = PAPER_ANGLE_SIGN if paper_angles else dict.fromkeys(PAPER_ANGLE_SIGN, 1.0)
     mass1 = _mass(m1, "--m1")
     mass2 = _mass(m2, "--m2")

@@ -19,7 +19,7 @@ from impactcli.cli.common import (
     save_plot,
 )
 from impactcli.errors import InputError
-from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
 
 
 class NormalModel(enum.StrEnum):
@@ -149,8 +149,9 @@ def collide3d(
             "--e cannot drive --tangential mindlin, which needs the normal force history: "
             "use --model elastic or elastoplastic"
         )
-    check_plot(plot)
-    check_plot(plot_force)
+    check_plot(plot, output)
+    check_plot(plot_force, output)
+    check_distinct_outputs(plot, plot_force)
     if plot_force is not None and tangential is not Tangential.mindlin:
         raise InputError("--plot-force draws the mindlin force history: add --tangential mindlin")
     if points < 3:

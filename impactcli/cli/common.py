@@ -32,14 +32,14 @@ OUTPUT_EXTENSIONS: dict[str, Format] = {
 def resolve_format(requested: Format | None, output: str | None) -> Format:
     """The format to write: as requested; else from the ``-o`` file's extension (.csv or
     none -> csv, .json -> json, .txt -> the table as text; another extension is a one-line
-    :class:`~impactcli.output.InputError`); else a Rich table on a terminal and CSV when
+    :class:`~impactcli.errors.InputError`); else a Rich table on a terminal and CSV when
     piped ('-' is stdout)."""
     if requested is not None:
         return requested
     if output is not None and output != "-":
         extension = os.path.splitext(output)[1].lower()
         if extension not in OUTPUT_EXTENSIONS:
-            from impactcli.output import InputError
+            from impactcli.errors import InputError
 
             raise InputError(
                 f"-o {output}: unknown file type {extension!r}: use .csv, .json or .txt (the "
@@ -62,7 +62,7 @@ def check_summary_file(path: str | None, output: str | None) -> None:
     would share stdout with the history."""
     if path is None:
         return
-    from impactcli.output import InputError
+    from impactcli.errors import InputError
 
     if path == "-":
         if output in (None, "-"):
@@ -75,7 +75,14 @@ def check_summary_file(path: str | None, output: str | None) -> None:
 
 def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.console.Console
     """A Rich console on ``stream`` (stdout by default, or stderr). Imported on demand."""
-    from rich.console import Console
+    from rich.console import Console as RichConsole
+
+    from impactcli.errors import StdoutClosed
+
+    class Console(RichConsole):
+        def on_broken_pipe(self) -> None:  # Rich's own exits with status 1
+            self.quiet = True
+            raise StdoutClosed()
 
     if stderr:
         return Console(stderr=True, highlight=False)
@@ -84,14 +91,26 @@ def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.con
     return Console(file=stream, highlight=False, width=160, color_system=None)
 
 
+#: Warning and note lines of the running command, printed when it succeeds (a failed run
+#: prints its one error line alone); None outside :func:`impactcli.cli.runner.run`.
+pending_messages: list[str] | None = None
+
+
+def _say(line: str) -> None:
+    if pending_messages is not None:
+        pending_messages.append(line)
+    else:
+        print(line, file=sys.stderr)
+
+
 def warn(message: str) -> None:
-    """One warning line on stderr."""
-    print(f"impact: warning: {message}", file=sys.stderr)
+    """One warning line on stderr (at the end of a successful run)."""
+    _say(f"impact: warning: {message}")
 
 
 def note(message: str) -> None:
-    """One note line on stderr."""
-    print(f"impact: note: {message}", file=sys.stderr)
+    """One note line on stderr (at the end of a successful run)."""
+    _say(f"impact: note: {message}")
 
 
 PLOT_HELP = (
@@ -117,14 +136,17 @@ OutputFile = Annotated[Optional[str], typer.Option("--output", "-o", help=OUTPUT
 PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
 
 
-def check_plot(path: str | None) -> None:
+def check_plot(path: str | None, output: str | None = None) -> None:
     """Fail before any work if ``--plot FILE`` cannot be drawn: a file type other than
-    .png/.svg/.pdf, no matplotlib, no such folder, a folder of that name, or a folder we
-    cannot write to. One-line :class:`InputError`, exit
-    status 2."""
+    .png/.svg/.pdf, no matplotlib, no such folder, a folder of that name, a folder we
+    cannot write to, or the same file as ``-o`` (``output``). One-line
+    :class:`InputError`, exit status 2."""
     if path is None:
         return
     from impactcli.errors import InputError
+    from impactcli.output import check_distinct_outputs
+
+    check_distinct_outputs(output, path)
     from impactcli.plots import figure_format, require_matplotlib
 
     try:

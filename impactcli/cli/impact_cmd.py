@@ -25,6 +25,7 @@ from impactcli.cli.common import (
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.contact import DU_WANG_PRESSURE_FACTOR
 from impactcli.errors import InputError
+from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
@@ -58,9 +59,24 @@ def _opt(help_text: str, *names: str, **kw: Any):
     return typer.Option(*names, help=help_text, **kw)
 
 
-N = Annotated[int, typer.Option("--n", "-n", min=1, help="FILM segments per stage (>= 1).")]
+N = Annotated[
+    int,
+    typer.Option(
+        "--n",
+        "-n",
+        min=1,
+        max=MAX_SEGMENTS,
+        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
+    ),
+]
 POINTS = Annotated[
-    int, typer.Option("--points", min=2, help="History points, evenly spaced in time (>= 2).")
+    int,
+    typer.Option(
+        "--points",
+        min=2,
+        max=MAX_POINTS,
+        help=f"History points, evenly spaced in time, 2 to {MAX_POINTS:,}.",
+    ),
 ]
 METHOD = Annotated[
     Method,
@@ -201,8 +217,12 @@ def _run(
         first_yield_warning,
     )
 
-    check_plot(plot)
-    check_plot(energy_plot)
+    check_plot(plot, output)
+    check_plot(energy_plot, output)
+    if energy_plot is not None:
+        from impactcli.output import check_distinct_outputs
+
+        check_distinct_outputs(output, summary, plot, energy_plot)
     check_summary_file(summary, output)
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
@@ -541,7 +561,16 @@ elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
-    count: Annotated[int, typer.Option("--count", min=1, help="Number of velocities.")] = 50,
+    count: Annotated[
+        int,
+        typer.Option(
+            "--count",
+            min=1,
+            max=MAX_COUNT,
+            help=f"Number of velocities, 1 to {MAX_COUNT:,} (and --count x --n at most "
+            f"{MAX_SWEEP_SEGMENTS:,}).",
+        ),
+    ] = 50,
     linear: Annotated[
         bool, typer.Option("--linear", help="Evenly spaced velocities (default: log-spaced).")
     ] = False,
@@ -573,7 +602,7 @@ def restitution(
     from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
     from impactcli.validation import contact_radius_warning
 
-    check_plot(plot)
+    check_plot(plot, output)
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")

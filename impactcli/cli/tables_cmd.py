@@ -18,6 +18,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
+from impactcli.limits import MAX_CONVERGENCE_RUNS, MAX_SEGMENTS, check_size
 from impactcli.output import atomic_output, write_csv, write_json
 
 TABLE_TITLES = {
@@ -76,7 +77,12 @@ class StageChoice(enum.StrEnum):
 
 def tables(
     n: int = typer.Option(
-        25, "--n", "-n", min=1, help="Segments per stage (any integer >= 1; the paper used 25)."
+        25,
+        "--n",
+        "-n",
+        min=1,
+        max=MAX_SEGMENTS,
+        help=f"Segments per stage, 1 to {MAX_SEGMENTS:,} (the paper used 25).",
     ),
     stage: StageChoice = typer.Option(
         StageChoice.both, "--stage", help="Table A1 (loading), A2 (restitution) or both."
@@ -158,7 +164,9 @@ def convergence(
         "--n",
         "-n",
         min=1,
-        help="Segments per stage; repeat or list several. Default: 1 2 3 5 10 25 100 1000 10000.",
+        max=MAX_SEGMENTS,
+        help=f"Segments per stage, 1 to {MAX_SEGMENTS:,}; repeat or list several (at most "
+        f"{MAX_CONVERGENCE_RUNS:,}). Default: 1 2 3 5 10 25 100 1000 10000.",
     ),
     carry_velocity: bool = typer.Option(
         False,
@@ -177,14 +185,15 @@ def convergence(
     --plot draws the paper's Fig. 3, the indentation history δ/δm against t·V0/δm for
     several n (all of them if six or fewer, else the five smallest and the largest), and
     the contact-time error against n on log-log axes."""
-    from impactcli.errors import InputError
     from impactcli.tables import EXACT_CONTACT_DURATION
     from impactcli.tables import convergence as run
 
     values = list(n_option or []) + list(ns or [])
-    if any(v < 1 for v in values):
-        raise InputError(f"every n must be an integer >= 1, got {min(values)}")
-    check_plot(plot)
+    for value in values:
+        check_size("n", value, MAX_SEGMENTS)
+    if values:
+        check_size("the number of segment counts", len(values), MAX_CONVERGENCE_RUNS)
+    check_plot(plot, output)
     if not values:
         values = [1, 2, 3, 5, 10, 25, 100, 1000, 10000]
     rows = run(values, carry_velocity=carry_velocity)

@@ -247,9 +247,10 @@ def run_dask(
         ]
     else:
         infos = [out.map_partitions(partition_errors, meta=partition_errors(meta.iloc[:0]))]
-    kwargs, client = _dask_scheduler(scheduler)
     report = BatchReport(strict=False)
-    try:
+    client = None
+    try:  # the scheduler starts inside: a signal while a cluster starts still cleans up
+        kwargs, client = _dask_scheduler(scheduler)
         bar = progress() if progress is not None and client is None else nullcontext()
         with bar:
             _, *parts = dask.compute(write, *infos, **kwargs)
