@@ -36,7 +36,7 @@ PAPER := --d1 20mm --d2 40mm --material steel
 
 ## run: set up, print the paper's Tables A1 and A2 (n = 25), and draw the figures of its
 ##      sections 4.1, 4.3, 4.4 and 4.5 and a restitution sweep into figures/ (with each
-##      figure's data as CSV)
+##      figure's data as CSV), and the contact-law comparison of the README into docs/figures/
 run: $(VENV)/.run-installed
 	$(BIN)/impact tables --n 25 --format table
 	@mkdir -p figures
@@ -53,6 +53,9 @@ run: $(VENV)/.run-installed
 	$(BIN)/impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s --a1 30deg --v2 2m/s \
 		--a2 50deg --p1=-1,2 --p2=2,-2 --paper-angles \
 		-o figures/collide2d_4_5.csv --plot figures/collide2d_4_5.png
+	$(BIN)/impact compare-laws $(PAPER) --v1 0.25m/s --v2 0.75m/s --law du-wang \
+		--law thornton --law walton-braun --k-load 20MN/m --k-unload 80MN/m --law hertz \
+		-o figures/compare_laws.csv --plot docs/figures/compare_laws.png
 	@echo "Figures (paper sec. 4.1, 4.3, 4.4, 4.5) and their data: figures/"
 	@echo "Run the command as .venv/bin/impact, or after: source .venv/bin/activate"
 

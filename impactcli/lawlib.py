@@ -49,6 +49,7 @@ from impactcli.errors import InputError
 from impactcli.laws import Hertz, hertz_stiffness
 
 __all__ = [
+    "DEFAULT_LAW",
     "LAWS",
     "ContactModel",
     "HertzLawContact",
@@ -62,8 +63,10 @@ __all__ = [
     "UnloadingCurves",
     "UnloadingLaw",
     "WaltonBraunContact",
+    "comparison_laws",
     "get_law",
     "law_names",
+    "parameter_laws",
     "plan_groups",
     "thornton_restitution",
 ]
@@ -732,6 +735,11 @@ class Parameter:
     description: str
     required: bool = False
 
+    @property
+    def option(self) -> str:
+        """The command-line option of the parameter, e.g. ``--p0-factor``, ``--k-load``."""
+        return "--" + self.name.replace("_", "-")
+
 
 @dataclass(frozen=True)
 class Reference:
@@ -792,13 +800,14 @@ class LawSpec:
                 if not np.all(np.isfinite(rest) & (rest > 0)):
                     raise ValueError(
                         f"{p.name} of law {self.name!r} must be a positive, finite number "
-                        f"[{p.unit}], got {value}"
+                        f"[{p.unit}] (option {p.option}), got {value}"
                     )
                 if value is not None:
                     value = arr if arr.ndim else float(arr)
             if value is None and p.required:
                 raise ValueError(
-                    f"law {self.name!r} needs the parameter {p.name} [{p.unit}]: {p.description}"
+                    f"law {self.name!r} needs the parameter {p.name} [{p.unit}] (option "
+                    f"{p.option}): {p.description}"
                 )
             out[p.name] = value
         return out
@@ -824,8 +833,30 @@ class LawSpec:
         if np.any(needed):
             sy = np.asarray(np.nan if yield_strength is None else yield_strength, dtype=float)
             if np.any(needed & ~(np.isfinite(sy) & (sy > 0))):
-                raise ValueError(f"law {self.name!r} needs a positive, finite yield strength")
+                from impactcli.validation import YIELD_STRENGTH_NEEDED
+
+                raise ValueError(YIELD_STRENGTH_NEEDED)  # one message for one fault
         return self.build(radius, modulus, yield_strength, resolved)
+
+    def used_parameters(
+        self, params: Mapping[str, Any] | None = None, yield_strength: float | None = None
+    ) -> dict[str, dict[str, Any]]:
+        """The parameters one impact runs with, ``{name: {"value": ..., "unit": ...}}``:
+        defaults filled in and derived ones computed (Thornton's p_y = 1.6 sigma_y when not
+        given); a file parameter's value is its path (or None). For the ``inputs`` of a
+        command's JSON output."""
+        resolved = self.resolve(params)
+        if self.name == "thornton" and resolved.get("py") is None and yield_strength is not None:
+            resolved["py"] = FIRST_YIELD_PRESSURE_FACTOR * float(yield_strength)
+        out = {}
+        for p in self.parameters:
+            value = resolved.get(p.name)
+            if isinstance(value, np.ndarray):
+                value = value.tolist()
+            elif value is not None and p.kind == "file":
+                value = str(value)
+            out[p.name] = {"value": value, "unit": p.unit}
+        return out
 
     def describe(self) -> dict[str, Any]:
         """JSON-ready description: name, kind, parameters, reference, validity."""
@@ -1039,6 +1070,32 @@ LAWS: dict[str, LawSpec] = {
         ),
     )
 }
+
+
+#: The law of ``impact elastoplastic``, ``restitution`` and ``collide2d --model
+#: elastoplastic`` when none is named: Du & Wang, the paper's (eq. 16a-c).
+DEFAULT_LAW = "du-wang"
+
+
+def comparison_laws() -> tuple[str, ...]:
+    """The elastoplastic laws that run on the spheres' properties alone (no required
+    parameter): what ``impact compare-laws`` compares when no law is named."""
+    return tuple(
+        spec.name
+        for spec in LAWS.values()
+        if spec.kind == "elastoplastic" and not any(p.required for p in spec.parameters)
+    )
+
+
+def parameter_laws() -> dict[str, tuple[Parameter, tuple[str, ...]]]:
+    """Every parameter name of the library -> (its :class:`Parameter`, the laws taking it),
+    in listing order (the first law's declaration gives unit and kind)."""
+    out: dict[str, tuple[Parameter, tuple[str, ...]]] = {}
+    for spec in LAWS.values():
+        for p in spec.parameters:
+            first, names = out.get(p.name, (p, ()))
+            out[p.name] = (first, (*names, spec.name))
+    return out
 
 
 def law_names() -> tuple[str, ...]:

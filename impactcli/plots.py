@@ -19,6 +19,7 @@ restitution_figure : a sweep over impact velocity: restitution, contact time, pe
 elastic_sweep_figure : a sweep of the elastic impact: contact time, maximum indentation and force
 energy_figure : the energy partition of one impact: kinetic, stored and dissipated, per sphere
 collision2d_figure : the oblique 2-D collision: velocities before and after (sec. 4.5, Fig. 12)
+law_comparison_figure : force-indentation loops of several laws, and e against V0/V_y
 save_figure : write a figure to .png, .svg or .pdf atomically
 """
 
@@ -47,6 +48,7 @@ __all__ = [
     "energy_figure",
     "figure_format",
     "impact_figure",
+    "law_comparison_figure",
     "require_matplotlib",
     "restitution_figure",
     "save_figure",
@@ -1123,4 +1125,94 @@ def tangential_force_figure(
     ax.set_title(title)
     ax.legend(loc="best")
     ax.grid(True, linewidth=0.4, alpha=0.5)
+    return fig
+
+
+# -- several contact laws ---------------------------------------------------------------
+
+
+def law_comparison_figure(
+    loops: Mapping[str, tuple[ArrayLike, ArrayLike]],
+    velocity_ratio: ArrayLike,
+    restitution: Mapping[str, ArrayLike],
+    *,
+    title: str,
+    ratio_label: str = r"$V_0 / V_y$",
+    impact_ratio: float | None = None,
+    residual: Mapping[str, float] | None = None,
+    published: Mapping[str, tuple[ArrayLike, ArrayLike]] | None = None,
+) -> Figure:
+    """Two panels comparing contact laws: (a) the force-indentation loop of the same impact
+    under each law; (b) the coefficient of restitution against V0/V_y for the same laws.
+
+    Parameters
+    ----------
+    loops : law label -> (total indentation delta [m], force F [N]) over the impact
+    velocity_ratio : V0/V_y of the sweep, [-] (logarithmic axis)
+    restitution : law label -> e at each ratio, [-] (NaN where not computed)
+    title : names the case (spheres, material, impact velocity)
+    ratio_label : the x label of (b), naming V_y
+    impact_ratio : V0/V_y of the impact of panel (a); a dotted line on (b)
+    residual : law label -> permanent indentation delta_res [m], marked on (a) when > 0
+    published : label -> (ratios, e) of published results, drawn as open black markers on
+        (b) (circles, squares, diamonds, ...)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Lines have gids ``loop:<label>``, ``restitution:<label>`` and
+        ``published:<label>``; a law keeps its colour on both panels.
+    """
+    fig = _new_figure(13.0, 5.0)
+    ax_f, ax_e = fig.subplots(1, 2)
+    colours = {label: f"C{i % 10}" for i, label in enumerate(dict.fromkeys([*loops, *restitution]))}
+    deltas = [np.asarray(d, dtype=float) for d, _f in loops.values()]
+    forces = [np.asarray(f, dtype=float) for _d, f in loops.values()]
+    xs, fs = unit_scale(deltas, "m"), unit_scale(forces, "N")
+    for (label, _), d, f in zip(loops.items(), deltas, forces):
+        ax_f.plot(
+            d / xs.factor, f / fs.factor, color=colours[label], label=label, gid=f"loop:{label}"
+        )
+        dr = (residual or {}).get(label, 0.0)
+        if np.isfinite(dr) and dr > 0:
+            ax_f.plot([dr / xs.factor], [0.0], "o", color=colours[label], markersize=4)
+    ax_f.set_xlabel(rf"total indentation $\delta$ ({xs.unit})")
+    ax_f.set_ylabel(f"contact force $F$ ({fs.unit})")
+    ax_f.set_title("(a) Force against indentation, this impact", fontsize="medium")
+    ax_f.grid(True, linewidth=0.4, alpha=0.5)
+    ax_f.legend(fontsize="small", loc="upper left", title=r"law (● permanent $\delta_{res}$)")
+
+    ratio = np.asarray(velocity_ratio, dtype=float)
+    for label, values in restitution.items():
+        ax_e.plot(
+            ratio,
+            np.asarray(values, dtype=float),
+            color=colours[label],
+            label=label,
+            gid=f"restitution:{label}",
+        )
+    for k, (label, (x, y)) in enumerate((published or {}).items()):
+        ax_e.plot(
+            np.asarray(x, dtype=float),
+            np.asarray(y, dtype=float),
+            linestyle="none",
+            marker="osD^v"[k % 5],
+            markersize=5,
+            markerfacecolor="none",
+            color="black",
+            label=label,
+            gid=f"published:{label}",
+        )
+    if impact_ratio is not None and np.isfinite(impact_ratio):
+        ax_e.axvline(
+            impact_ratio, color="0.45", linestyle=":", label=f"panel (a): {impact_ratio:.3g}"
+        )
+    ax_e.set_xscale("log")
+    ax_e.set_xlabel(ratio_label)
+    ax_e.set_ylabel("coefficient of restitution $e$ (-)")
+    ax_e.set_ylim(0.0, 1.05)
+    ax_e.set_title("(b) Restitution against impact velocity", fontsize="medium")
+    ax_e.grid(True, which="both", linewidth=0.4, alpha=0.5)
+    ax_e.legend(fontsize="small", loc="lower left")
+    fig.suptitle(title, fontsize="large")
     return fig

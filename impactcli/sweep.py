@@ -23,6 +23,7 @@ from impactcli.impact import (
     split_fractions,
     weaker_yield_strength,
 )
+from impactcli.lawlib import get_law
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
@@ -158,13 +159,11 @@ def _contact(
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
-    if law is not None:
-        from impactcli.lawlib import get_law
-
+    if law is not None and not (sigma_y is None and get_law(law).name == "du-wang"):
         m, r, e = effective_properties(sphere1, sphere2)
         return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     m, r, e = effective_properties(sphere1, sphere2)
-    if sigma_y is None:  # nothing can yield: the elastic Hertz impact
+    if sigma_y is None:  # Du & Wang, nothing can yield: the elastic Hertz impact
         from impactcli.lawlib import HertzLawContact
 
         return HertzLawContact(r, e), m

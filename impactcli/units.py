@@ -64,6 +64,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "density": ("kg/m^3", "7800 kg/m^3, 7.8 g/cm^3"),
     "angle": ("rad", "-30deg, 0.5 rad"),
     "time": ("s", "75us, 1e-4 s"),
+    "stiffness": ("N/m", "2e7 N/m, 20 kN/mm"),
     "dimensionless": ("", "0.3"),
 }
 
@@ -80,6 +81,7 @@ _DIMS: dict[str, Dims] = {
     "density": (-3, 1, 0, 0),
     "angle": (0, 0, 0, 1),
     "time": (0, 0, 1, 0),
+    "stiffness": (0, 1, -2, 0),
     "dimensionless": (0, 0, 0, 0),
 }
 _DIMENSION_NAMES = ("length", "mass", "time", "angle")

@@ -29,6 +29,7 @@ from impactcli.cli import (  # noqa: E402
     batch_cmd,
     collide2d_cmd,
     collide3d_cmd,
+    compare_cmd,
     design_cmd,
     impact_cmd,
     laws_cmd,
@@ -41,6 +42,7 @@ collide2d_cmd.register(app)
 collide3d_cmd.register(app)
 batch_cmd.register(app)
 laws_cmd.register(app)
+compare_cmd.register(app)
 design_cmd.register(app)
 
 

@@ -18,6 +18,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
+from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.errors import InputError
 from impactcli.output import atomic_output, write_csv, write_json
 
@@ -33,6 +34,7 @@ class Model(enum.StrEnum):
     elastoplastic = "elastoplastic"
 
 
+@with_law_options()
 def collide2d(
     m1: str = typer.Option(..., "--m1", help="Mass of sphere 1, e.g. 50g or 0.05 (kg)."),
     m2: str = typer.Option(..., "--m2", help="Mass of sphere 2, e.g. 0.15kg."),
@@ -70,9 +72,11 @@ def collide2d(
         None,
         "--model",
         help="Contact model giving the coefficient of restitution: elastic (e = 1), or "
-        "elastoplastic (e from the Du & Wang FILM run at the normal impact velocity; needs "
-        "--d1, --d2, a material and a yield strength). Default: elastic, unless --e is given.",
+        "elastoplastic (e from the FILM run of --law, Du & Wang by default, at the normal "
+        "impact velocity; needs --d1, --d2, a material and what the law needs). Default: "
+        "elastic, unless --e is given.",
     ),
+    law: LawOptions = None,
     d1: Optional[str] = typer.Option(
         None, "--d1", help="Diameter of sphere 1 [m] (elastoplastic)."
     ),
@@ -133,7 +137,6 @@ def collide2d(
         approach_velocity,
         check_contact_distance,
         collision_summary,
-        elastoplastic_restitution,
         oblique_collision,
     )
     from impactcli.spheres import SphereOptions, check_options, spheres_from_options
@@ -165,6 +168,12 @@ def collide2d(
             raise InputError(f"--p1, --p2, --d1, --d2: {exc}") from None
     if e is not None and model is not None:
         raise InputError("give either --model or --e, not both")
+    chosen = None
+    if law.names or law.given:
+        if model is not Model.elastoplastic:
+            raise InputError("--law and its parameters go with --model elastoplastic")
+    if model is Model.elastoplastic:
+        (chosen,) = resolve_laws(law)
     if e is not None:
         if not 0.0 <= e <= 1.0:
             raise InputError(f"--e: the coefficient of restitution must be in [0, 1], got {e}")
@@ -178,7 +187,7 @@ def collide2d(
                 "--model elastoplastic needs --d1, --d2 and --material (or --material1/--material2)"
             )
         try:
-            restitution = elastoplastic_restitution(v_rel_n, *spheres_from_options(spheres))
+            restitution = _law_restitution(v_rel_n, chosen, *spheres_from_options(spheres))
         except ValueError as exc:
             raise InputError(str(exc)) from None
     try:  # the spheres must approach along the line of centres
@@ -205,6 +214,11 @@ def collide2d(
         "restitution": restitution,
         "angle_convention": CONVENTIONS[paper_angles],
     }
+    if chosen is not None:
+        from impactcli.cli.law_options import law_inputs
+        from impactcli.impact import weaker_yield_strength
+
+        inputs.update(law_inputs(chosen, weaker_yield_strength(*spheres_from_options(spheres))))
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -217,6 +231,16 @@ def collide2d(
             )
     if plot:
         _plot(plot, result, vel1, vel2, pos1, pos2, radii, model_name, restitution)
+
+
+def _law_restitution(normal_velocity: float, law, sphere1, sphere2) -> float:
+    """e of the normal impact at the approach velocity (v1 - v2).n [m/s] under ``law`` (a
+    :class:`~impactcli.cli.law_options.LawChoice`): the FILM run, sphere 2 at rest (for
+    Du & Wang, :func:`impactcli.collision2d.elastoplastic_restitution`)."""
+    from impactcli.impact import law_impact
+
+    impact = law_impact(sphere1, sphere2, normal_velocity, 0.0, law.name, law.params)
+    return float(impact.summary["restitution"])
 
 
 def _radii(spheres) -> tuple[float, float] | None:

@@ -22,8 +22,8 @@ from impactcli.cli.common import (
     save_plot,
     warn,
 )
+from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
-from impactcli.contact import DU_WANG_PRESSURE_FACTOR
 from impactcli.errors import InputError
 from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
@@ -110,17 +110,16 @@ ENERGY_PLOT = Annotated[
         "energy against t) into this .png, .svg or .pdf file.",
     ),
 ]
-P0_FACTOR = Annotated[
-    float,
+CURVE = Annotated[
+    Optional[str],
     typer.Option(
-        "--p0-factor", help="Mean plastic pressure p0 / sigma_y of Du & Wang (2.57), [-]."
+        "--curve",
+        metavar="FILE",
+        help="Your own loading curve instead of Hertz: CSV 'delta,force' in SI, or with "
+        "units in the header ('delta [um],force [N]'), run as an elastic, reversible law "
+        "(law tabulated, linear interpolation; see 'impact laws').",
     ),
 ]
-
-
-def _check_pressure_factor(value: float) -> None:
-    if not (np.isfinite(value) and value > 0):
-        raise InputError(f"--p0-factor must be a positive number, got {value}")
 
 
 #: Summary key -> (SI unit, meaning). The screen shows each value with the SI prefix that
@@ -206,10 +205,15 @@ def _run(
     output: str | None,
     plot: str | None,
     summary: str | None = None,
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    law: LawChoice | None = None,
     energy_plot: str | None = None,
 ) -> None:
-    from impactcli.impact import elastic_impact, elastoplastic_impact
+    from impactcli.impact import (
+        ELASTIC_SUMMARY_KEYS,
+        ENERGY_SUMMARY_KEYS,
+        elastic_impact,
+        law_impact,
+    )
     from impactcli.spheres import spheres_from_options, velocities_from_options
     from impactcli.validation import (
         below_yield_note,
@@ -227,29 +231,26 @@ def _run(
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
     try:
-        if model == "elastic":
+        if law is None:
             result = elastic_impact(s1, s2, v1, v2, n, split.value, method.value)
         else:
-            result = elastoplastic_impact(
-                s1,
-                s2,
-                v1,
-                v2,
-                n,
-                split.value,
-                pressure_factor=pressure_factor,
-                method=method.value,
+            result = law_impact(
+                s1, s2, v1, v2, law.name, law.params, n, split.value, method=method.value
             )
     except ValueError as exc:
         raise InputError(str(exc)) from None
+    if model == "elastic" and law is not None:  # a user's curve: the elastic summary keys
+        kept = ELASTIC_SUMMARY_KEYS + ENERGY_SUMMARY_KEYS
+        for key in [k for k in result.summary if k not in kept]:
+            del result.summary[key]
     if method is Method.table and result.model != "elastic":
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
     s, v0 = result.summary, result.impact_velocity
-    if model == "elastic" and "first_yield_velocity" in s:
+    if model == "elastic" and law is None and "first_yield_velocity" in s:
         message = first_yield_warning(v0, s["first_yield_velocity"])
         if message:
             warn(message)
-    if model == "elastoplastic" and result.model == "elastic":
+    if model == "elastoplastic" and result.model == "elastic" and np.isfinite(s["yield_velocity"]):
         note(below_yield_note(v0, s["yield_velocity"]))
     message = contact_radius_warning(v0, s["delta_max"], s["effective_radius"])
     if message:
@@ -276,8 +277,11 @@ def _run(
         "method": method.value,
         "split": split.value,
     }
-    if model == "elastoplastic":
-        inputs["p0_factor"] = pressure_factor
+    if law is not None:
+        from impactcli.cli.law_options import law_inputs
+        from impactcli.impact import weaker_yield_strength
+
+        inputs.update(law_inputs(law, weaker_yield_strength(s1, s2)))
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -292,15 +296,19 @@ def _run(
                 doc["check"] = differences
             write_json(stream, doc)
         else:
-            _print(stream if output not in (None, "-") else None, result, history, differences)
+            _print(
+                stream if output not in (None, "-") else None, result, history, differences, law
+            )
     if summary:
         _write_summary(summary, result)
     if plot:
-        _plot(plot, result, history, reference, spheres, method)
+        _plot(plot, result, history, reference, spheres, method, law)
     if energy_plot:
         from impactcli.plots import energy_figure
 
-        title = f"Energy partition, split {split.value}: " + _case_title(result, spheres, method)
+        title = f"Energy partition, split {split.value}: " + _case_title(
+            result, spheres, method, law
+        )
         relative = 0.5 * result.summary["effective_mass"] * result.impact_velocity**2
         fig = energy_figure(history, title, summary=result.summary, relative_energy=relative)
         save_plot(fig, energy_plot)
@@ -360,7 +368,17 @@ HISTORY_UNITS = {
 HISTORY_KINDS = (("t",), ("delta", "d1", "d2"), ("force",), ("v1", "v2"))
 
 
-def _print(stream: IO[str] | None, result, history: dict, check) -> None:
+def _model_title(result, law: LawChoice | None) -> str:
+    """'Elastic (Hertz)', 'Elastoplastic (Du & Wang)', 'Elastic (tabulated curve)', ..."""
+    if law is None:
+        return "Elastic (Hertz)"
+    kind = "Elastic" if result.model in ("elastic", "tabulated") else "Elastoplastic"
+    return f"{kind} ({law.title})"
+
+
+def _print(
+    stream: IO[str] | None, result, history: dict, check, law: LawChoice | None = None
+) -> None:
     """The compact history, the FILM-ODE check, then the summary last (so a terminal of
     80 columns and 24 lines still shows it without scrolling)."""
     from rich.table import Table
@@ -402,7 +420,7 @@ def _print(stream: IO[str] | None, result, history: dict, check) -> None:
         for col, diff in check.items():
             table.add_row(col, f"{diff:.2e}")
         out.print(table)
-    title = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    title = _model_title(result, law)
     how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
     caption = SIGN_HELP + " * share of (1/2) m V0^2."
     summary = Table(title=f"{title} impact by {how}", caption=caption)
@@ -422,7 +440,13 @@ def _write_summary(path: str, result) -> None:
 
 
 def _plot(
-    path: str, result, history: dict, reference, spheres: SphereOptions, method: Method
+    path: str,
+    result,
+    history: dict,
+    reference,
+    spheres: SphereOptions,
+    method: Method,
+    law: LawChoice | None = None,
 ) -> None:
     """The six panels of the paper's Figs. 4-11 for this impact, written to ``path``
     (with the --check reference history as markers)."""
@@ -431,7 +455,7 @@ def _plot(
     label = f"FILM, n = {result.n}" if result.method == "ode" else "SciPy solve_ivp"
     fig = impact_figure(
         history,
-        _case_title(result, spheres, method),
+        _case_title(result, spheres, method, law),
         model=result.model,
         summary=result.summary,
         reference=reference,
@@ -440,14 +464,16 @@ def _plot(
     save_plot(fig, path)
 
 
-def _case_title(result, spheres: SphereOptions, method: Method) -> str:
+def _case_title(
+    result, spheres: SphereOptions, method: Method, law: LawChoice | None = None
+) -> str:
     """E.g. 'Elastic (Hertz) impact by FILM, n = 25: D1 = 20 mm, ..., steel'."""
     from impactcli.formatting import format_quantity
 
     def q(value: float, unit: str) -> str:  # the inputs as given: 100.0125 m/s, not 100
         return format_quantity(value, unit, digits=12)
 
-    model = "Elastic (Hertz)" if result.model == "elastic" else "Elastoplastic (Du & Wang)"
+    model = _model_title(result, law)
     how = {
         "film": f"by FILM, n = {result.n}",
         "table": f"by the normalised Tables A1/A2, n = {result.n}",
@@ -496,6 +522,7 @@ def elastic(
     output: OUT = None,
     plot: PLOT = None,
     summary: SummaryFile = None,
+    curve: CURVE = None,
     energy_plot: ENERGY_PLOT = None,
 ) -> None:
     """Elastic (Hertz) impact of two spheres: each sphere's rigid-body motion and indentation.
@@ -508,12 +535,18 @@ def elastic(
     serves the first-yield check: above that velocity a warning says to use
     'impact elastoplastic'.
 
+    --curve FILE replaces Hertz by your own loading curve (force against indentation), run
+    as an elastic, reversible law; an impact beyond the curve is an error naming the largest
+    tabulated indentation and the one needed.
+
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
     """
+    own = None if curve is None else LawChoice("tabulated", {"curve": curve})
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
-        fmt=fmt, output=output, plot=plot, summary=summary, energy_plot=energy_plot,
+        fmt=fmt, output=output, plot=plot, summary=summary, law=own,
+        energy_plot=energy_plot,
     )  # fmt: skip
 
 
@@ -521,9 +554,10 @@ elastic.__doc__ = f"{elastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 
 
 @with_sphere_options()
+@with_law_options()
 def elastoplastic(
     spheres: SphereOptions,
-    p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
+    law: LawOptions = None,
     n: N = 25,
     points: POINTS = 201,
     method: METHOD = Method.film,
@@ -535,22 +569,26 @@ def elastoplastic(
     summary: SummaryFile = None,
     energy_plot: ENERGY_PLOT = None,
 ) -> None:
-    """Elastoplastic impact (Du & Wang contact, paper eq. 16): each sphere's motion, its
-    maximum and permanent indentation, and the coefficient of restitution.
+    """Elastoplastic impact (Du & Wang contact, paper eq. 16, or another --law): each
+    sphere's motion, its maximum and permanent indentation, and the coefficient of
+    restitution.
 
     Loading is Hertz up to the yield indentation delta_y = pi^2 R p0^2/(4 E*^2), p0 = 2.57
     sigma_y (sigma_y of the weaker sphere), then linear up to delta_max; unloading is Hertz
     about the residual indentation delta_res; separation is at delta = delta_res. Below the
     yield velocity the impact is elastic and the result says so.
 
+    --law thornton (--py), walton-braun (--k-load, --k-unload) or tabulated (--curve,
+    --unload-curves) runs another law (see 'impact laws'); the summary keys are the same.
+
     Example (paper sec. 4.4): impact elastoplastic --d1 20mm --d2 40mm --v1 0.25m/s
     --v2 0.75m/s --material steel
     """
-    _check_pressure_factor(p0_factor)
+    (choice,) = resolve_laws(law)
     _run(
         "elastoplastic", spheres, n=n, points=points, method=method, check=check,
-        split=split, fmt=fmt, output=output, plot=plot, summary=summary,
-        pressure_factor=p0_factor, energy_plot=energy_plot,
+        split=split, fmt=fmt, output=output, plot=plot, summary=summary, law=choice,
+        energy_plot=energy_plot,
     )  # fmt: skip
 
 
@@ -558,6 +596,7 @@ elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 
 
 @with_sphere_options(velocities=False)
+@with_law_options()
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
@@ -575,7 +614,7 @@ def restitution(
         bool, typer.Option("--linear", help="Evenly spaced velocities (default: log-spaced).")
     ] = False,
     spheres: SphereOptions = None,
-    p0_factor: P0_FACTOR = DU_WANG_PRESSURE_FACTOR,
+    law: LawOptions = None,
     n: N = 25,
     split: SPLIT = Split.mass,
     fmt: FMT = None,
@@ -583,7 +622,8 @@ def restitution(
     plot: PLOT = None,
 ) -> None:
     """Coefficient of restitution, contact time and permanent indentation against impact
-    velocity (elastoplastic FILM, Du & Wang contact), for calibrating restitution.
+    velocity (elastoplastic FILM, Du & Wang contact or another --law), for calibrating
+    restitution.
 
     Columns (SI): impact_velocity, restitution, contact_time, delta_max, force_max,
     delta_res, delta1_res, delta2_res, energy_dissipated, plastic (1 above the yield
@@ -597,7 +637,9 @@ def restitution(
     Example: impact restitution --v-min 0.1m/s --v-max 10m/s --count 50 --d1 20mm --d2 40mm
     --material steel --plot restitution.png
     """
+    from impactcli.cli.law_options import law_inputs
     from impactcli.contact import effective_radius
+    from impactcli.impact import weaker_yield_strength
     from impactcli.spheres import spheres_from_options
     from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
     from impactcli.validation import contact_radius_warning
@@ -606,12 +648,12 @@ def restitution(
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
-    _check_pressure_factor(p0_factor)
+    (choice,) = resolve_laws(law)
     s1, s2 = spheres_from_options(spheres)
     velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
     try:
         data = restitution_sweep(
-            s1, s2, velocities, n, pressure_factor=p0_factor, split=split.value
+            s1, s2, velocities, n, split=split.value, law=choice.name, law_params=choice.params
         )
     except ValueError as exc:
         raise InputError(str(exc)) from None
@@ -620,7 +662,7 @@ def restitution(
     if message:
         warn(message)
     _split_messages(split, s1, s2)
-    elastic_only = s1.yield_strength is None and s2.yield_strength is None
+    elastic_only = _elastic_sweep(choice, s1, s2)
     if elastic_only:
         note("no yield strength given: the sweep is of the elastic (Hertz) impact, e = 1")
     kind = resolve_format(fmt, output)
@@ -636,8 +678,8 @@ def restitution(
                         "d1": s1.diameter,
                         "d2": s2.diameter,
                         "n": n,
-                        "p0_factor": p0_factor,
                         "split": split.value,
+                        **law_inputs(choice, weaker_yield_strength(s1, s2)),
                     },
                     "sweep": data,
                 },
@@ -647,7 +689,7 @@ def restitution(
         else:
             from rich.table import Table
 
-            table = Table(title="Restitution against impact velocity (Du & Wang, FILM)")
+            table = Table(title=f"Restitution against impact velocity ({choice.title}, FILM)")
             heads = (
                 "V0 (m/s)",
                 "e",
@@ -671,7 +713,13 @@ def restitution(
                 )
             console(stream if output not in (None, "-") else None).print(table)
     if plot:
-        _plot_sweep(plot, data, s1, s2, p0_factor, spheres, n=n, linear=linear)
+        _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear)
+
+
+def _elastic_sweep(law: LawChoice, s1, s2) -> bool:
+    """Du & Wang (the default law) without any yield strength: the elastic Hertz sweep
+    (:func:`impactcli.sweep.restitution_sweep`)."""
+    return law.name == "du-wang" and s1.yield_strength is None and s2.yield_strength is None
 
 
 def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
@@ -696,7 +744,7 @@ def _plot_sweep(
     data: dict,
     s1,
     s2,
-    p0_factor: float,
+    law: LawChoice,
     spheres: SphereOptions,
     *,
     n: int,
@@ -712,7 +760,7 @@ def _plot_sweep(
         f"D2 = {format_quantity(s2.diameter, 'm')}",
         *_material_parts(spheres, s1, s2),
     ]
-    if s1.yield_strength is None and s2.yield_strength is None:
+    if _elastic_sweep(law, s1, s2):
         from impactcli.plots import elastic_sweep_figure
 
         fig = elastic_sweep_figure(
@@ -726,6 +774,10 @@ def _plot_sweep(
         )
         save_plot(fig, path)
         return
+    try:  # the Hertz first yield, when a yield strength is known
+        first_yield = sweep_first_yield_velocity(s1, s2)
+    except ValueError:
+        first_yield = None
     fig = restitution_figure(
         data["impact_velocity"],
         data["restitution"],
@@ -735,10 +787,15 @@ def _plot_sweep(
             "sphere 1": data["delta1_res"],
             "sphere 2": data["delta2_res"],
         },
-        title=f"Restitution against impact velocity (Du & Wang, FILM, n = {n}): "
+        title=f"Restitution against impact velocity ({law.title}, FILM, n = {n}): "
         + ", ".join(parts),
-        yield_velocity=sweep_yield_velocity(s1, s2, pressure_factor=p0_factor),
-        first_yield_velocity=sweep_first_yield_velocity(s1, s2),
+        # the figure labels V_y as Du & Wang's; other laws show the Hertz first yield only
+        yield_velocity=(
+            sweep_yield_velocity(s1, s2, law=law.name, law_params=law.params)
+            if law.name == "du-wang"
+            else None
+        ),
+        first_yield_velocity=first_yield,
         log_velocity=not linear,
     )
     save_plot(fig, path)

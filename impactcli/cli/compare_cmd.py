@@ -1,0 +1,235 @@
+"""``impact compare-laws``: the same impact under several contact laws, side by side."""
+
+from __future__ import annotations
+
+from typing import IO, Annotated
+
+import numpy as np
+import typer
+
+from impactcli.cli.common import (
+    Format,
+    OutputFile,
+    OutputFormat,
+    PlotFile,
+    check_plot,
+    console,
+    resolve_format,
+    save_plot,
+)
+from impactcli.cli.impact_cmd import POINTS, N
+from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
+from impactcli.cli.sphere_options import with_sphere_options
+from impactcli.errors import InputError
+from impactcli.limits import MAX_COUNT
+from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.spheres import SphereOptions
+
+#: Comparison key -> (SI unit, header on screen); CSV and JSON have every key.
+COLUMNS = {
+    "restitution": ("", "e"),
+    "contact_time": ("s", "t_c"),
+    "delta_max": ("m", "δ_max"),
+    "force_max": ("N", "F_max"),
+    "delta_res": ("m", "δ_res"),
+    "yield_velocity": ("m/s", "V_y"),
+}
+
+
+@with_sphere_options()
+@with_law_options(multiple=True)
+def compare_laws(
+    spheres: SphereOptions,
+    law: LawOptions = None,
+    n: N = 25,
+    points: POINTS = 401,
+    ratio_min: Annotated[
+        float, typer.Option("--ratio-min", help="Lowest V0/V_y of the e panel (--plot).")
+    ] = 0.5,
+    ratio_max: Annotated[
+        float, typer.Option("--ratio-max", help="Highest V0/V_y of the e panel (--plot).")
+    ] = 1000.0,
+    count: Annotated[
+        int,
+        typer.Option(
+            "--count", min=2, max=MAX_COUNT, help="Velocities of the e panel (--plot)."
+        ),
+    ] = 80,
+    fmt: OutputFormat = None,
+    output: OutputFile = None,
+    plot: PlotFile = None,
+) -> None:
+    """The same impact under several contact laws: e, contact time, maximum and permanent
+    indentation of each, and (--plot) their force-indentation loops on one figure with e
+    against V0/V_y for the same laws.
+
+    --law is given once per law (default: every elastoplastic law that needs no more than
+    the spheres' properties: du-wang and thornton); each law's parameters as on 'impact
+    elastoplastic' (--py, --k-load, --k-unload, --curve, ...).
+
+    V_y of the e panel is one velocity for all laws: the first-yield velocity of the pair,
+    where the Hertz peak pressure reaches 1.6 sigma_y (Thornton's V_y with his default p_y;
+    Du & Wang's own V_y is 3.27 times larger). Without a yield strength, V0/V_y is V0 over
+    this impact's V0. Open circles mark published closed forms (Thornton 1997's e(V_y/V0),
+    Walton & Braun's sqrt(k_load/k_unload)).
+
+    Output: one row per law, columns law, restitution, contact_time, delta_max, force_max,
+    delta_res, energy_dissipated, delta_y, yield_velocity (SI); JSON {"inputs", "laws"}.
+
+    Example: impact compare-laws --d1 20mm --d2 40mm --v1 0.25m/s --v2 0.75m/s --material
+    steel --law du-wang --law thornton --law walton-braun --k-load 2e7 --k-unload 8e7
+    --plot laws.png
+    """
+    from impactcli.compare import COMPARISON_KEYS, compare_impacts
+    from impactcli.lawlib import comparison_laws
+    from impactcli.spheres import spheres_from_options, velocities_from_options
+
+    check_plot(plot, output)
+    if not 0 < ratio_min < ratio_max:
+        raise InputError(f"need 0 < --ratio-min < --ratio-max, got {ratio_min:g}, {ratio_max:g}")
+    choices = resolve_laws(law, default=comparison_laws())
+    s1, s2 = spheres_from_options(spheres)
+    v1, v2 = velocities_from_options(spheres)
+    laws = [(c.name, c.params) for c in choices]
+    try:
+        results = compare_impacts(s1, s2, v1, v2, laws, n)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    table = {name: {k: r.summary[k] for k in COMPARISON_KEYS} for name, r in results.items()}
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.csv:
+            write_csv(
+                stream,
+                ("law", *COMPARISON_KEYS),
+                [((name,), np.array([list(row.values())])) for name, row in table.items()],
+            )
+        elif kind is Format.json:
+            write_json(
+                stream,
+                {"inputs": _inputs(s1, s2, v1, v2, n, choices), "laws": table},
+            )
+        else:
+            _print(stream if output not in (None, "-") else None, table, v1 + v2, n)
+    if plot:
+        _plot(plot, results, choices, spheres, s1, s2, n, points, ratio_min, ratio_max, count)
+
+
+def _inputs(s1, s2, v1: float, v2: float, n: int, choices: list[LawChoice]) -> dict:
+    from impactcli.cli.law_options import law_inputs
+    from impactcli.impact import weaker_yield_strength
+
+    sigma_y = weaker_yield_strength(s1, s2)
+    return {
+        "d1": s1.diameter,
+        "d2": s2.diameter,
+        "v1": v1,
+        "v2": v2,
+        "m1": s1.total_mass,
+        "m2": s2.total_mass,
+        "E1": s1.youngs_modulus,
+        "E2": s2.youngs_modulus,
+        "nu1": s1.poisson_ratio,
+        "nu2": s2.poisson_ratio,
+        "sy1": s1.yield_strength,
+        "sy2": s2.yield_strength,
+        "n": n,
+        "laws": [law_inputs(c, sigma_y) for c in choices],
+    }
+
+
+def _print(stream: IO[str] | None, table: dict, v0: float, n: int) -> None:
+    from rich import box
+    from rich.table import Table
+
+    from impactcli.formatting import format_quantity, unit_scale
+
+    out = Table(
+        title=f"Contact laws compared at V0 = {format_quantity(v0, 'm/s')} (FILM, n = {n})",
+        caption="V_y: the law's own yield velocity (nan: none); -f csv for all keys",
+        box=box.SIMPLE_HEAD,
+        collapse_padding=True,
+        pad_edge=False,
+    )
+    out.add_column("law", no_wrap=True)
+    columns = []
+    for key, (unit, header) in COLUMNS.items():  # one SI prefix per column
+        values = [row[key] for row in table.values()]
+        scale = unit_scale(values, unit) if unit else None
+        out.add_column(
+            header if scale is None else f"{header} ({scale.unit})", justify="right", no_wrap=True
+        )
+        columns.append([f"{v / (scale.factor if scale else 1.0):.5g}" for v in values])
+    for i, name in enumerate(table):
+        out.add_row(name, *(column[i] for column in columns))
+    console(stream).print(out)
+
+
+def _plot(
+    path: str,
+    results: dict,
+    choices: list[LawChoice],
+    spheres: SphereOptions,
+    s1,
+    s2,
+    n: int,
+    points: int,
+    ratio_min: float,
+    ratio_max: float,
+    count: int,
+) -> None:
+    """Loops of this impact and e against V0/V_y for the same laws, written to ``path``."""
+    from impactcli.cli.impact_cmd import _material_parts
+    from impactcli.compare import (
+        published_restitution,
+        reference_yield_velocity,
+        restitution_curves,
+    )
+    from impactcli.formatting import format_quantity
+    from impactcli.plots import law_comparison_figure
+
+    titles = {c.name: f"{c.name} ({c.title})" for c in choices}
+    v0 = next(iter(results.values())).impact_velocity
+    loops = {}
+    for name, result in results.items():
+        history = result.history(points=points)
+        loops[titles[name]] = (history["delta"], history["force"])
+    reference = reference_yield_velocity(s1, s2)
+    if np.isfinite(reference):
+        label = (
+            rf"$V_0 / V_y$, $V_y$ = {format_quantity(reference, 'm/s')} "
+            r"(first yield: Hertz peak pressure 1.6 $\sigma_y$)"
+        )
+    else:
+        reference = v0
+        label = rf"$V_0 / V_{{ref}}$, $V_{{ref}}$ = {format_quantity(v0, 'm/s')} (this impact)"
+    ratio = np.geomspace(ratio_min, ratio_max, count)
+    laws = [(c.name, c.params) for c in choices]
+    try:
+        curves = restitution_curves(s1, s2, ratio * reference, laws, n)
+        published = published_restitution(s1, s2, ratio[:: max(1, count // 16)] * reference, laws)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    parts = [
+        f"D1 = {format_quantity(s1.diameter, 'm')}",
+        f"D2 = {format_quantity(s2.diameter, 'm')}",
+        *_material_parts(spheres, s1, s2),
+        f"V0 = {format_quantity(v0, 'm/s')}",
+    ]
+    fig = law_comparison_figure(
+        loops,
+        ratio,
+        {titles[name]: e for name, e in curves.items()},
+        title=f"Contact laws compared (FILM, n = {n}): " + ", ".join(parts),
+        ratio_label=label,
+        impact_ratio=v0 / reference,
+        residual={titles[name]: r.summary["delta_res"] for name, r in results.items()},
+        published={
+            label: (velocities / reference, e) for label, (velocities, e) in published.items()
+        },
+    )
+    save_plot(fig, path)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("compare-laws")(compare_laws)

@@ -1,0 +1,219 @@
+"""The contact-law options, declared once: ``--law`` and every law parameter of the library.
+
+:func:`with_law_options` adds ``--law NAME`` (or, with ``multiple=True``, ``--law`` given
+several times) and one option per parameter of :data:`impactcli.lawlib.LAWS`
+(``--p0-factor`` of du-wang, ``--py`` of thornton, ``--k-load`` and ``--k-unload`` of
+walton-braun, ``--curve``, ``--unload-curves``, ``--interpolation`` of tabulated) to a
+command's signature in place of its ``law`` parameter, and calls the command with them
+gathered in one :class:`LawOptions` of the raw text. The options come from the registry, so
+a new law's parameters appear on every command that runs laws. Which law needs what and
+the defaults are the library's (:meth:`impactcli.lawlib.LawSpec.resolve`);
+:func:`resolve_laws` only parses units and says which option belongs to which law.
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Annotated, Any, Optional
+
+import typer
+
+from impactcli.errors import InputError
+
+__all__ = ["LawChoice", "LawOptions", "law_inputs", "resolve_laws", "with_law_options"]
+
+#: The law options' names in the command's signature: parameter ``name`` -> ``law_<name>``
+#: (so that e.g. ``curve`` cannot clash with a command's own option).
+_PREFIX = "law_"
+
+#: Parameter kinds of the library read as quantities (:func:`impactcli.units.parse_quantity`).
+_QUANTITY_KINDS = ("pressure", "stiffness", "dimensionless")
+
+
+@dataclass(frozen=True)
+class LawOptions:
+    """The law options as typed: the names given to ``--law`` (maybe none) and the raw
+    text of each law parameter given, by parameter name (``p0_factor``, ``py``, ...)."""
+
+    names: tuple[str, ...] = ()
+    given: dict[str, str] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class LawChoice:
+    """A law to run: its name and parameters in SI (files as paths), as
+    :meth:`impactcli.lawlib.LawSpec.contact` and :func:`impactcli.impact.law_impact` take
+    them."""
+
+    name: str
+    params: dict[str, Any]
+
+    @property
+    def title(self) -> str:
+        """How figures and tables name the law: 'Du & Wang', 'Thornton', ..."""
+        return LAW_TITLES.get(self.name, self.name)
+
+
+#: Law name -> the name it goes by in titles.
+LAW_TITLES = {
+    "hertz": "Hertz",
+    "du-wang": "Du & Wang",
+    "thornton": "Thornton",
+    "walton-braun": "Walton & Braun",
+    "tabulated": "tabulated curve",
+}
+
+
+def _law_help(multiple: bool) -> str:
+    from impactcli.lawlib import DEFAULT_LAW, LAWS
+
+    parts = []
+    for spec in LAWS.values():
+        options = ", ".join(p.option for p in spec.parameters)
+        parts.append(f"{spec.name}" + (f" ({options})" if options else ""))
+    again = " Give it several times to compare laws." if multiple else ""
+    return (
+        f"Contact law (details: 'impact laws'): {'; '.join(parts)}. Default: "
+        f"{DEFAULT_LAW}.{again}"
+    )
+
+
+def _parameter_help(param, owners: tuple[str, ...]) -> str:
+    unit = "" if param.unit in ("-", "file") else f" [{param.unit}]"
+    default = ""
+    if param.default is not None:
+        default = f" Default {param.default:g}." if isinstance(param.default, float) else (
+            f" Default {param.default}."
+        )
+    required = " Required by that law." if param.required else ""
+    return f"Law {', '.join(owners)}: {param.description}{unit}.{default}{required}"
+
+
+def _parameters(multiple: bool) -> list[inspect.Parameter]:
+    from impactcli.lawlib import parameter_laws
+
+    law_type = Optional[list[str]] if multiple else Optional[str]
+    out = [
+        inspect.Parameter(
+            f"{_PREFIX}name",
+            inspect.Parameter.POSITIONAL_OR_KEYWORD,
+            default=None,
+            annotation=Annotated[
+                law_type, typer.Option("--law", metavar="NAME", help=_law_help(multiple))
+            ],
+        )
+    ]
+    for name, (param, owners) in parameter_laws().items():
+        metavar = "FILE" if param.kind == "file" else "TEXT" if param.kind == "choice" else "VALUE"
+        out.append(
+            inspect.Parameter(
+                f"{_PREFIX}{name}",
+                inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                default=None,
+                annotation=Annotated[
+                    Optional[str],
+                    typer.Option(
+                        param.option, metavar=metavar, help=_parameter_help(param, owners)
+                    ),
+                ],
+            )
+        )
+    return out
+
+
+def with_law_options(multiple: bool = False) -> Callable[[Callable], Callable]:
+    """Decorate a command whose signature has a ``law`` parameter: ``--law`` (repeatable
+    when ``multiple``) and the parameters of every law take its place, and the command
+    receives them as ``law=LawOptions(...)``."""
+
+    def decorate(command: Callable) -> Callable:
+        signature = inspect.signature(command, eval_str=True)
+        params = list(signature.parameters.values())
+        where = [p.name for p in params].index("law")
+        added = _parameters(multiple)
+        params[where : where + 1] = added
+        names = [p.name for p in added]
+
+        @functools.wraps(command)
+        def wrapper(**kwargs: Any) -> Any:
+            raw = {n: kwargs.pop(n) for n in names}
+            given_names = raw.pop(f"{_PREFIX}name")
+            if isinstance(given_names, str):
+                given_names = [given_names]
+            options = LawOptions(
+                tuple(given_names or ()),
+                {k[len(_PREFIX) :]: v for k, v in raw.items() if v is not None},
+            )
+            return command(law=options, **kwargs)
+
+        wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
+        wrapper.__annotations__ = {p.name: p.annotation for p in params}
+        return wrapper
+
+    return decorate
+
+
+def resolve_laws(
+    options: LawOptions, default: tuple[str, ...] | None = None
+) -> list[LawChoice]:
+    """The laws named by ``--law`` (else ``default``, else the library's default law), each
+    with the parameters given that belong to it, parsed into SI and checked by the library.
+
+    Raises
+    ------
+    InputError
+        An unknown law; a parameter that none of the chosen laws takes (naming the laws
+        that do); a value that is not a quantity of the parameter's kind; a missing required
+        parameter or a value out of range (the library's message).
+    """
+    from impactcli.lawlib import DEFAULT_LAW, get_law, parameter_laws
+    from impactcli.units import parse_quantity
+
+    names = options.names or default or (DEFAULT_LAW,)
+    specs = []
+    for name in names:
+        try:
+            spec = get_law(name)
+        except ValueError as exc:
+            raise InputError(f"--law: {exc}") from None
+        if spec not in specs:
+            specs.append(spec)
+    chosen = [s.name for s in specs]
+    declared = parameter_laws()
+    values: dict[str, Any] = {}
+    for key, text in options.given.items():
+        param, owners = declared[key]
+        if not any(owner in chosen for owner in owners):
+            law_list = " or ".join(owners)
+            raise InputError(
+                f"{param.option} is a parameter of law {law_list}, not of {', '.join(chosen)}: "
+                f"add --law {owners[0]} (see 'impact laws')"
+            )
+        if param.kind in _QUANTITY_KINDS:
+            values[key] = parse_quantity(text, param.kind, param.option)
+        else:
+            values[key] = text
+    out = []
+    for spec in specs:
+        own = {p.name: values[p.name] for p in spec.parameters if p.name in values}
+        try:
+            spec.resolve(own)
+        except ValueError as exc:
+            raise InputError(str(exc)) from None
+        out.append(LawChoice(spec.name, own))
+    return out
+
+
+def law_inputs(choice: LawChoice, yield_strength: float | None) -> dict[str, Any]:
+    """The ``inputs`` entries naming the law and the parameters it ran with, with units:
+    ``{"law": "thornton", "law_parameters": {"py": {"value": 1.6e9, "unit": "Pa"}}}``."""
+    from impactcli.lawlib import get_law
+
+    spec = get_law(choice.name)
+    return {
+        "law": spec.name,
+        "law_parameters": spec.used_parameters(choice.params, yield_strength),
+    }

@@ -1,0 +1,166 @@
+"""Several contact laws on the same spheres: one impact under each, and e against V0/V_y.
+
+Researchers compare contact models on one case; DEM users pick the law whose restitution
+matches their data. :func:`compare_impacts` runs one impact of the pair under each law
+(:func:`impactcli.impact.law_impact`, FILM); :func:`restitution_curves` gives each law's
+coefficient of restitution over a range of impact velocities, expressed as V0/V_y with one
+velocity V_y for all laws: the pair's first-yield velocity (the Hertz peak pressure reaches
+1.6 sigma_y, docs/method.md §7.1; Johnson 1985). It is Thornton's (1997) V_y with his
+default p_y = 1.6 sigma_y, so his closed form e(V_y/V0) applies on this axis as published,
+while Du & Wang's law (p0 = 2.57 sigma_y) stays elastic up to V0/V_y = 3.27.
+
+Pure functions on SI values; no printing, no files (besides a tabulated law's curves).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.impact import ImpactResult, Sphere, effective_properties, weaker_yield_strength
+
+__all__ = [
+    "COMPARISON_KEYS",
+    "compare_impacts",
+    "published_restitution",
+    "reference_yield_velocity",
+    "restitution_curves",
+]
+
+#: Summary keys of one impact reported for each law, in order (SI).
+COMPARISON_KEYS: tuple[str, ...] = (
+    "restitution",
+    "contact_time",
+    "delta_max",
+    "force_max",
+    "delta_res",
+    "energy_dissipated",
+    "delta_y",
+    "yield_velocity",
+)
+
+Law = tuple[str, Mapping[str, Any]]
+
+
+def compare_impacts(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    laws: Sequence[Law],
+    n: int = 25,
+    split: str = "mass",
+) -> dict[str, ImpactResult]:
+    """The same impact under each law: law name -> :class:`~impactcli.impact.ImpactResult`
+    (FILM with n segments per stage; summary keys the same whatever the law).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]
+    laws : (name, parameters) of each law, parameters in SI (files for ``tabulated``)
+    n : FILM segments per stage
+
+    Raises
+    ------
+    ValueError
+        Bad input of a law, or an impact beyond a tabulated curve (one line each).
+    """
+    from impactcli.impact import law_impact
+
+    return {
+        name: law_impact(sphere1, sphere2, v1, v2, name, dict(params), n, split)
+        for name, params in laws
+    }
+
+
+def reference_yield_velocity(
+    sphere1: Sphere, sphere2: Sphere, yield_strength: float | None = None
+) -> float:
+    """V_y of the comparison: the impact velocity at which a Hertz impact of the pair first
+    yields (peak pressure 1.6 sigma_y, :func:`impactcli.contact.first_yield_velocity`),
+    [m/s]; NaN without a yield strength (0.0785 m/s for the paper's sec. 4.4 spheres)."""
+    from impactcli.contact import first_yield_velocity
+
+    sigma_y = (
+        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
+    )
+    if sigma_y is None:
+        return float("nan")
+    m, r, e = effective_properties(sphere1, sphere2)
+    return float(first_yield_velocity(m, r, e, sigma_y))
+
+
+def restitution_curves(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    velocities: ArrayLike,
+    laws: Sequence[Law],
+    n: int = 25,
+) -> dict[str, NDArray]:
+    """e [-] of each law at each impact velocity V0 [m/s]: law name -> array.
+
+    One FILM sweep per law (:func:`impactcli.sweep.restitution_sweep`, vectorised over V0).
+    Velocities a tabulated law's curves cannot take (the impact goes beyond them) get NaN.
+    """
+    from impactcli.lawlib import get_law
+    from impactcli.sweep import restitution_sweep
+
+    v0 = np.asarray(velocities, dtype=float)
+    m, r, e = effective_properties(sphere1, sphere2)
+    sigma_y = weaker_yield_strength(sphere1, sphere2)
+    out: dict[str, NDArray] = {}
+    for name, params in laws:
+        contact = get_law(name).contact(r, e, sigma_y, **dict(params))
+        within = np.ones(v0.shape, dtype=bool)
+        reach = getattr(contact, "reach_errors", None)  # tabulated curves end somewhere
+        if reach is not None:
+            within = reach(v0, m) == ""
+        values = np.full(v0.shape, np.nan)
+        if np.any(within):
+            values[within] = restitution_sweep(
+                sphere1, sphere2, v0[within], n, law=name, law_params=dict(params)
+            )["restitution"]
+        out[name] = values
+    return out
+
+
+def published_restitution(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    velocities: ArrayLike,
+    laws: Sequence[Law],
+) -> dict[str, tuple[NDArray, NDArray]]:
+    """Published closed forms of e for those of ``laws`` that have one, at impact
+    velocities V0 [m/s]: label -> (V0 [m/s], e [-]).
+
+    - ``thornton``: Thornton (1997), J. Appl. Mech. 64:383-386, doi:10.1115/1.2787319,
+      e(V_y/V0) (:func:`impactcli.lawlib.thornton_restitution`) with the law's own V_y;
+    - ``walton-braun``: Walton & Braun (1986), J. Rheol. 30:949-980, doi:10.1122/1.549893,
+      e = sqrt(k_load / k_unload) at every V0.
+
+    Du & Wang (2009) give no closed form for e; their law is checked against the paper's
+    sec. 4.4 value instead (e = 0.85611 at V0 = 1 m/s for its steel spheres).
+    """
+    from impactcli.lawlib import get_law, thornton_restitution
+
+    v0 = np.asarray(velocities, dtype=float)
+    m, r, e = effective_properties(sphere1, sphere2)
+    sigma_y = weaker_yield_strength(sphere1, sphere2)
+    out: dict[str, tuple[NDArray, NDArray]] = {}
+    for name, params in laws:
+        spec = get_law(name)
+        if name == "thornton":
+            own = spec.contact(r, e, sigma_y, **dict(params)).yield_velocity(m)
+            out["Thornton (1997) closed form"] = (v0, thornton_restitution(own / v0))
+        elif name == "walton-braun":
+            p = spec.resolve(params)
+            ratio = np.sqrt(p["k_load"] / p["k_unload"])
+            out[r"Walton & Braun (1986): $\sqrt{k_{load}/k_{unload}}$"] = (
+                v0,
+                np.full(v0.shape, ratio),
+            )
+    return out
