@@ -36,7 +36,8 @@ PAPER := --d1 20mm --d2 40mm --material steel
 
 ## run: set up, print the paper's Tables A1 and A2 (n = 25), and draw the figures of its
 ##      sections 4.1, 4.3, 4.4 and 4.5 and a restitution sweep into figures/ (with each
-##      figure's data as CSV), and the contact-law comparison of the README into docs/figures/
+##      figure's data as CSV), and the contact-law comparison and the calibration example of
+##      the README into docs/figures/
 run: $(VENV)/.run-installed
 	$(BIN)/impact tables --n 25 --format table
 	@mkdir -p figures
@@ -56,6 +57,7 @@ run: $(VENV)/.run-installed
 	$(BIN)/impact compare-laws $(PAPER) --v1 0.25m/s --v2 0.75m/s --law du-wang \
 		--law thornton --law walton-braun --k-load 20MN/m --k-unload 80MN/m --law hertz \
 		-o figures/compare_laws.csv --plot docs/figures/compare_laws.png
+	$(BIN)/impact fit docs/data/drop_tests_steel.csv --law du-wang --law thornton --law tsuji --d1 20mm --d2 inf --m2 inf --material steel -f table --plot docs/figures/fit_drop_tests.png
 	@echo "Figures (paper sec. 4.1, 4.3, 4.4, 4.5) and their data: figures/"
 	@echo "Run the command as .venv/bin/impact, or after: source .venv/bin/activate"
 

@@ -15,9 +15,13 @@
 (c) ``impact tables --n 1000000`` to a CSV file.
 (d) Start-up of every command without ``--plot`` (with units, as typed), each against
     ``python -c "import numpy"`` in the same run; the target is 2.5x.
+(e) Damped FILM (docs/damping.md), the paper's spheres with Tsuji damping alpha = 0.3 at the
+    default n = 400 of ``impact elastic --damping``: one impact by Newton on the chain of
+    segments against the segment-by-segment march and against SciPy ``solve_ivp`` (DOP853,
+    rtol 1e-12); the alpha of a target e; the march per impact in a batch.
 
-Usage: ``python benchmarks/bench.py [--quick] [--start-up] [--readme README.md]``.
-``--start-up`` runs (d) alone. ``--readme`` replaces the table between the
+Usage: ``python benchmarks/bench.py [--quick] [--start-up] [--damping] [--readme README.md]``.
+``--start-up`` runs (d) alone, ``--damping`` (e) alone. ``--readme`` replaces the table between the
 ``<!-- bench:start -->`` and ``<!-- bench:end -->`` markers. Timings are medians of
 repeats (best of repeats for the sub-millisecond FILM calls).
 """
@@ -428,6 +432,74 @@ def bench_start_up(rows: list, quick: bool) -> None:
         )
 
 
+def _faster(ratio: float) -> str:
+    """'3.9x faster' or '4.4x slower'."""
+    return f"{ratio:,.1f}x faster" if ratio >= 1.0 else f"{1.0 / ratio:,.1f}x slower"
+
+
+# -- (e) damped FILM -------------------------------------------------------------------------
+
+
+def bench_damping(rows: list, quick: bool) -> None:
+    """One damped impact: chain against march against solve_ivp; the inverse problem."""
+    import impactcli.damping as damping
+    from impactcli.damping import (
+        TsujiDamping,
+        damped_impact_ode,
+        damping_for_restitution,
+        solve_damped_impact,
+    )
+    from impactcli.impact import DAMPED_DEFAULT_N as n
+
+    stiffness = float(DuWangContact(RADIUS, MODULUS, 1.0).stiffness)
+    law = TsujiDamping(stiffness, MASS, 0.3)
+    repeat = 3 if quick else 5
+    chain = best_time(lambda: solve_damped_impact(law, V0, MASS, n), 1, repeat)
+    limit = damping._CHAIN_MAX_COLLISIONS
+    damping._CHAIN_MAX_COLLISIONS = 0  # the march alone
+    try:
+        march = best_time(lambda: solve_damped_impact(law, V0, MASS, n), 1, repeat)
+    finally:
+        damping._CHAIN_MAX_COLLISIONS = limit
+    ode = best_time(lambda: damped_impact_ode(law, V0, MASS), 1, repeat)
+    film = solve_damped_impact(law, V0, MASS, n)
+    reference = damped_impact_ode(law, V0, MASS)
+    error = max(
+        abs(float(film.restitution) - reference["restitution"]),
+        abs(float(film.contact_time) / reference["contact_time"] - 1.0),
+    )
+    inverse = best_time(
+        lambda: damping_for_restitution("tsuji", 0.8, V0, stiffness, MASS, n), 1, repeat
+    )
+    size = 1024 if quick else 4096
+    many = TsujiDamping(stiffness, MASS, np.full(size, 0.3))
+    batch = best_time(lambda: solve_damped_impact(many, V0, MASS, 100), 1, 2) / size
+    label = f"(e) damped impact, Tsuji alpha = 0.3, n = {n} (e, t_c within {error:.0e} of SciPy)"
+    rows += [
+        (f"{label}: solve_ivp DOP853 rtol 1e-12", f"{ode * 1e3:,.1f} ms", "1 (reference)"),
+        (
+            f"{label}: FILM, segment-by-segment march",
+            f"{march * 1e3:,.1f} ms",
+            _faster(ode / march),
+        ),
+        (
+            f"{label}: FILM, Newton on the chain of segments (impact elastic --damping)",
+            f"{chain * 1e3:,.1f} ms",
+            f"{_faster(ode / chain)}; {march / chain:,.1f}x faster than the march",
+        ),
+        (
+            f"(e) alpha for e = 0.8 at n = {n} (impact elastic --damping tsuji --e 0.8)",
+            f"{inverse * 1e3:,.0f} ms",
+            f"{inverse / chain:,.1f} impacts' time",
+        ),
+        (
+            f"(e) damped impacts in a batch of {size:,}, n = 100, march, per impact",
+            f"{batch * 1e6:,.0f} us",
+            f"{chain / batch:,.0f} of them in the time of one impact alone",
+        ),
+    ]
+
+
 # -- report --------------------------------------------------------------------------------
 
 
@@ -459,10 +531,14 @@ def main() -> None:
     parser.add_argument(
         "--start-up", action="store_true", help="only (d), the start-up of each command"
     )
+    parser.add_argument("--damping", action="store_true", help="only (e), damped FILM")
     args = parser.parse_args()
     rows: list[tuple[str, str, str]] = []
-    if args.start_up:
-        bench_start_up(rows, args.quick)
+    if args.start_up or args.damping:
+        if args.start_up:
+            bench_start_up(rows, args.quick)
+        if args.damping:
+            bench_damping(rows, args.quick)
         print(table(rows))
         return
     default_rates = default_allocator_rates()
@@ -472,6 +548,7 @@ def main() -> None:
         lambda: bench_batch(rows, args.quick, default_rates),
         lambda: bench_tables(rows),
         lambda: bench_start_up(rows, args.quick),
+        lambda: bench_damping(rows, args.quick),
     ):
         step()
         print(rows[-1][0], "...", file=sys.stderr, flush=True)

@@ -70,11 +70,13 @@ from impactcli.validation import (
     pair_problems,
     sphere_names,
     sphere_problems,
+    yield_scale_problems,
 )
 
 __all__ = [
     "BATCH_KEYS",
     "FILM_BLOCK",
+    "batch_damped_impacts",
     "batch_impacts",
     "law_stage_times",
     "material_properties",
@@ -334,7 +336,9 @@ def batch_impacts(
     contact = DuWangContact(radius, modulus, sigma_y, pressure_factor)
     with np.errstate(invalid="ignore"):
         above = plastic & contact.yields(v0, m)
-    delta_max, force_max, delta_res, restitution, t_max, t_c = (np.empty_like(v0) for _ in range(6))
+    delta_max, force_max, delta_res, restitution, t_max, t_c = (
+        np.full_like(v0, np.nan) for _ in range(6)
+    )
 
     # Hertz rows: one normalised FILM solution scaled by delta_m / V0 (docs/method.md §3).
     hertz = np.flatnonzero(~above)
@@ -352,7 +356,16 @@ def batch_impacts(
     for start in range(0, yielding.size, block_rows):
         rows = yielding[start : start + block_rows]
         block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
-        plan = block.plan(v0[rows], m[rows])
+        with np.errstate(all="ignore"):
+            plan = block.plan(v0[rows], m[rows])
+        scale = yield_scale_problems(plan.stages[0].delta_end, plan.delta_max)
+        if scale.bad.any():  # out of double precision: the row's error, not a NaN
+            out["error"][ok[rows[scale.bad]]] = scale.messages[scale.bad]
+            rows = rows[~scale.bad]
+            if rows.size == 0:
+                continue
+            block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
+            plan = block.plan(v0[rows], m[rows])
         delta_max[rows], force_max[rows] = plan.delta_max, plan.force_max
         delta_res[rows], restitution[rows] = plan.delta_res, plan.restitution
         t_max[rows], t_c[rows] = plastic_stage_times(plan, m[rows], v0[rows], n)
@@ -377,6 +390,9 @@ def batch_impacts(
         )
         for key, value in extra.items():
             out[key][ok[rows]] = value
+    refused = out["error"] != ""  # rows out of range (yield_scale_problems): no numbers
+    for key in BATCH_KEYS:
+        out[key][refused] = np.nan
     return out
 
 
@@ -500,3 +516,117 @@ def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray
 
     for local, plan in plan_groups(contact, v0, m, lambda r: contact_of(chunk[r])):
         yield chunk[local], plan
+
+
+@_without_float_warnings
+def batch_damped_impacts(
+    d1: ArrayLike,
+    d2: ArrayLike,
+    v1: ArrayLike,
+    v2: ArrayLike,
+    E1: ArrayLike,
+    nu1: ArrayLike,
+    E2: ArrayLike,
+    nu2: ArrayLike,
+    rho1: ArrayLike = np.nan,
+    rho2: ArrayLike = np.nan,
+    m1: ArrayLike = np.nan,
+    m2: ArrayLike = np.nan,
+    sy1: ArrayLike = np.nan,
+    sy2: ArrayLike = np.nan,
+    *,
+    damping: str,
+    alpha: ArrayLike = np.nan,
+    restitution: ArrayLike = np.nan,
+    n: int = 25,
+    split: Split = "mass",
+    separation: str = "overlap",
+) -> dict[str, NDArray]:
+    """Summaries of many damped elastic impacts (Hertz plus viscous damping), one per row.
+
+    The law ``damping`` of :mod:`impactcli.damping` (``tsuji``: Tsuji, Tanaka & Ishida
+    1992, Powder Technol. 71:239-250, doi:10.1016/0032-5910(92)88030-L, alpha [-];
+    ``hunt-crossley``: Hunt & Crossley 1975, J. Appl. Mech. 42:440-445,
+    doi:10.1115/1.3423596, alpha [s/m]) with each row's ``alpha``, or the alpha that gives
+    each row's target ``restitution`` at its V0 (:func:`impactcli.damping.
+    damping_for_restitution`; give one of the two per row). FILM with n segments per stage,
+    :func:`impactcli.damping.solve_damped_impact`, vectorised over the rows; the summary by
+    :func:`impactcli.impact.impact_summary` with the indentation at separation in place of
+    delta_res (0 for ``overlap``). Arguments otherwise as :func:`batch_impacts`.
+
+    Returns
+    -------
+    dict
+        :data:`BATCH_KEYS` (the plastic keys NaN; ``energy_dissipated`` the viscous
+        dissipation [J]), ``alpha`` (the damping parameter used) and ``error``.
+    """
+    from impactcli.damping import (
+        DAMPING_LAWS,
+        SEPARATIONS,
+        damping_for_restitution,
+        make_damping_law,
+        solve_damped_impact,
+    )
+
+    n = check_size("n", n, MAX_SEGMENTS)
+    if damping not in DAMPING_LAWS:
+        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    if separation not in SEPARATIONS:
+        raise ValueError(f"separation must be {' or '.join(SEPARATIONS)}, got {separation!r}")
+    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, alpha, e_target = flat_floats(
+        d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, alpha, restitution
+    )
+    errors = validate(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, False)
+    problems = Problems(d1.size)
+    problems.add_messages(errors)
+    has_alpha, has_e = ~np.isnan(alpha), ~np.isnan(e_target)
+    problems.add(~has_alpha & ~has_e, f"damping {damping} needs alpha or a target e")
+    problems.add(has_alpha & has_e, "give alpha or e for the damping, not both")
+    with np.errstate(invalid="ignore"):
+        problems.add(
+            has_alpha & ~(np.isfinite(alpha) & (alpha >= 0)),
+            "alpha must be a finite number >= 0, got {:g}",
+            alpha,
+        )
+        problems.add(
+            has_e & ~((e_target > 0) & (e_target <= 1)), "e must lie in (0, 1], got {:g}", e_target
+        )
+    out = {key: np.full(d1.shape, np.nan) for key in BATCH_KEYS}
+    out["alpha"] = np.full(d1.shape, np.nan)
+    ok = np.flatnonzero(~problems.bad)
+    if ok.size:
+        d1, d2, v1, v2, E1, nu1, E2, nu2 = (x[ok] for x in (d1, d2, v1, v2, E1, nu1, E2, nu2))
+        rho1, rho2, m1, m2, sy1, sy2 = (x[ok] for x in (rho1, rho2, m1, m2, sy1, sy2))
+        mass1 = np.where(np.isnan(m1), sphere_mass(d1, rho1), m1)
+        mass2 = np.where(np.isnan(m2), sphere_mass(d2, rho2), m2)
+        m = effective_mass(mass1, mass2)
+        radius = effective_radius(0.5 * d1, 0.5 * d2)
+        modulus = effective_modulus(E1, nu1, E2, nu2)
+        stiffness = hertz_stiffness(modulus, radius)
+        v0 = v1 + v2
+        a = alpha[ok].copy()
+        solve = np.flatnonzero(np.isnan(a))
+        if solve.size:  # the alpha of the target e, exactly by the model (FILM, n)
+            a[solve] = damping_for_restitution(
+                damping, e_target[ok][solve], v0[solve], stiffness[solve], m[solve], n=n,
+                separation=separation,
+            )  # fmt: skip
+        law = make_damping_law(damping, stiffness, m, a)
+        with np.errstate(all="ignore"):
+            sol = solve_damped_impact(law, v0, m, n=n, separation=separation)
+        ends = np.isfinite(sol.contact_time) & (sol.restitution > 0)
+        plan = ImpactPlan((), sol.delta_max, sol.force_max, sol.delta_separation, sol.restitution)
+        fractions = split_fractions(split, mass1, mass2, (1.0 - nu1**2) / E1, (1.0 - nu2**2) / E2)
+        summary = impact_summary(
+            v1, v2, mass1, mass2, radius, modulus, plan, sol.t_max, sol.contact_time,
+            fractions, np.fmin(sy1, sy2),
+        )  # fmt: skip
+        summary["energy_dissipated"] = sol.dissipated
+        for key, value in summary.items():
+            out[key][ok] = np.where(ends, value, np.nan)
+        out["alpha"][ok] = a
+        never = np.zeros(problems.bad.size, dtype=bool)
+        never[ok[~ends]] = True
+        problems.add(never, "the contact never ends (overdamped: the spheres stay together)")
+    out["error"] = problems.messages
+    return out

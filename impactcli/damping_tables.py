@@ -1,6 +1,7 @@
 """Tables of restitution against damping for the Tsuji and Hunt-Crossley laws (docs/damping.md).
 
-``python -m impactcli.damping_tables [n]`` prints Markdown tables: e(alpha) of the exact model
+``python -m impactcli.damping_tables [n]`` prints Markdown tables (``--readme [n]``: the two
+of the README): e(alpha) of the exact model
 (FILM, both separation rules) and, for target restitutions, the alpha of the exact model
 against the published alpha(e) relations, with the e each relation actually gives. The
 numbers come from :mod:`impactcli.damping`; this module only formats them.
@@ -81,11 +82,9 @@ def _markdown(header: list[str], rows: list[list[float]], digits: int = 4) -> st
     return "\n".join(lines)
 
 
-def main(argv: list[str] | None = None) -> None:
-    args = sys.argv[1:] if argv is None else argv
-    n = int(args[0]) if args else 400
+def tsuji_table(n: int = 400) -> str:
+    """Markdown: e, contact time and separation indentation of the Tsuji law against alpha."""
     t = tsuji_e_of_alpha(n)
-    print(f"### Tsuji: e against alpha (FILM, n = {n})\n")
     keys = ["alpha", "e_overlap", "tc_overlap", "e_force", "tc_force", "dsep_force"]
     header = [
         "alpha",
@@ -95,9 +94,12 @@ def main(argv: list[str] | None = None) -> None:
         "tc V0/dmH (force)",
         "delta_sep/dmH (force)",
     ]
-    print(_markdown(header, [list(r) for r in zip(*(t[k] for k in keys))]))
+    return _markdown(header, [list(r) for r in zip(*(t[k] for k in keys))])
+
+
+def tsuji_relations_table(n: int = 400) -> str:
+    """Markdown: alpha for target e, exact against the published Tsuji relations."""
     r = tsuji_relations(n)
-    print("\n### Tsuji: alpha for a target e, exact against published relations\n")
     keys = [
         "e",
         "alpha_overlap",
@@ -120,9 +122,12 @@ def main(argv: list[str] | None = None) -> None:
         "e of it (overlap)",
         "e of it (force)",
     ]
-    print(_markdown(header, [list(x) for x in zip(*(r[k] for k in keys))]))
+    return _markdown(header, [list(x) for x in zip(*(r[k] for k in keys))])
+
+
+def hunt_crossley_table(n: int = 400) -> str:
+    """Markdown: alpha V0 for target e, exact against the published Hunt-Crossley relations."""
     h = hunt_crossley_relations(n)
-    print("\n### Hunt-Crossley: alpha V0 for a target e (both rules agree)\n")
     keys = [
         "e",
         "alpha_exact",
@@ -143,7 +148,30 @@ def main(argv: list[str] | None = None) -> None:
         "Flores 16(1-e)/(15e)",
         "e of it",
     ]
-    print(_markdown(header, [list(x) for x in zip(*(h[k] for k in keys))]))
+    return _markdown(header, [list(x) for x in zip(*(h[k] for k in keys))])
+
+
+def readme_tables(n: int = 400) -> str:
+    """The README's two tables: Tsuji e(alpha) and the Hunt-Crossley comparison."""
+    return (
+        f"Tsuji: e against alpha (FILM, n = {n}; every V0)\n\n{tsuji_table(n)}\n\n"
+        f"Hunt-Crossley: alpha V0 for a target e, exact (FILM, n = {n}) against the "
+        f"published relations, and the e each of them gives\n\n{hunt_crossley_table(n)}"
+    )
+
+
+def main(argv: list[str] | None = None) -> None:
+    args = sys.argv[1:] if argv is None else argv
+    if args and args[0] == "--readme":
+        print(readme_tables(int(args[1]) if len(args) > 1 else 400))
+        return
+    n = int(args[0]) if args else 400
+    print(f"### Tsuji: e against alpha (FILM, n = {n})\n")
+    print(tsuji_table(n))
+    print("\n### Tsuji: alpha for a target e, exact against published relations\n")
+    print(tsuji_relations_table(n))
+    print("\n### Hunt-Crossley: alpha V0 for a target e (both rules agree)\n")
+    print(hunt_crossley_table(n))
 
 
 if __name__ == "__main__":

@@ -16,6 +16,14 @@ Akaike information criterion of a Gaussian least-squares fit, AIC = N ln(RSS/N) 
 its small-sample correction AICc = AIC + 2p(p+1)/(N-p-1) (Burnham & Anderson 2002, sec.
 2.2).
 
+The models (:func:`law_model`): every law of :mod:`impactcli.lawlib` with a numeric
+parameter through :func:`impactcli.sweep.restitution_sweep` (``du-wang``, ``thornton``,
+``walton-braun``, and ``hertz`` with none), and the damped laws ``tsuji`` and
+``hunt-crossley`` through :func:`impactcli.damping.solve_damped_impact`; their starting
+values and bounds come from the spheres (:func:`law_parameters`), :func:`fit_named_law`
+fits one, :func:`rank_fits` ranks several and :func:`prediction_band` gives the fitted
+curve's confidence band.
+
 References
 ----------
 K. P. Burnham and D. R. Anderson, *Model Selection and Multimodel Inference*, 2nd ed.,
@@ -32,11 +40,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "DEFAULT_FIT",
+    "FIT_LAWS",
     "MAX_FIT_POINTS",
     "FitData",
     "FitParameter",
     "FitResult",
     "fit_law",
+    "fit_named_law",
+    "law_model",
+    "law_yield_velocity",
+    "law_parameters",
+    "prediction_band",
     "rank_fits",
     "validate_fit_data",
 ]
@@ -112,6 +127,8 @@ class FitResult:
     points: int
     correlation: NDArray
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    #: covariance of the log-parameters ln(value), [-]; NaN where not determined
+    covariance: NDArray | None = None
 
     def as_dict(self) -> dict[str, object]:
         """Plain values for JSON: parameters with errors and intervals, and the statistics."""
@@ -142,13 +159,17 @@ def validate_fit_data(
     contact_time: ArrayLike | None = None,
     weight: ArrayLike | None = None,
     parameters: int = 1,
+    rows: Sequence[str] | None = None,
 ) -> FitData:
     """Check measured data and return it as :class:`FitData`.
+
+    ``rows`` names each row in messages (e.g. ``"line 3"`` of a file); default ``"row i"``
+    (1-based).
 
     Raises
     ------
     ValueError
-        One sentence naming the first bad row (1-based) and what is accepted: V0 > 0 and
+        One sentence naming the first bad row and what is accepted: V0 > 0 and
         finite, 0 < e <= 1, contact time > 0, weight > 0, and more points than fitted
         parameters.
     """
@@ -179,7 +200,8 @@ def validate_fit_data(
     for name, values, bad, accepted in checks:
         if np.any(bad):
             row = int(np.argmax(bad))
-            raise ValueError(f"row {row + 1}: {name} = {values[row]:g} is not {accepted}")
+            where = f"row {row + 1}" if rows is None else rows[row]
+            raise ValueError(f"{where}: {name} = {values[row]:g} is not {accepted}")
     if v0.size <= parameters:
         raise ValueError(
             f"{v0.size} data points cannot fit {parameters} parameter"
@@ -243,25 +265,29 @@ def fit_law(
     def fun(q: NDArray) -> NDArray:
         return _residuals(model, data, fixed, names, q)[0]
 
-    solution = least_squares(
-        fun,
-        q0,
-        bounds=(lower, upper),
-        method="trf",
-        x_scale=1.0,
-        diff_step=1e-7,
-        xtol=1e-15,
-        ftol=1e-15,
-        gtol=1e-15,
-        max_nfev=200 * (len(names) + 1),
-    )
-    q = solution.x
+    if names:
+        solution = least_squares(
+            fun,
+            q0,
+            bounds=(lower, upper),
+            method="trf",
+            x_scale=1.0,
+            diff_step=1e-7,
+            xtol=1e-15,
+            ftol=1e-15,
+            gtol=1e-15,
+            max_nfev=200 * (len(names) + 1),
+        )
+        q, jac = solution.x, solution.jac
+    else:  # nothing to fit (e.g. Hertz): the model's own statistics, for ranking
+        q = np.zeros(0)
     residuals, predicted = _residuals(model, data, fixed, names, q)
     points, p = residuals.size, len(names)
+    if not names:
+        jac = np.zeros((points, 0))
     dof = points - p
     rss = float(residuals @ residuals)
     reduced = rss / dof if dof > 0 else math.nan
-    jac = solution.jac
     values = np.exp(q)
     warnings: list[str] = []
     scale = np.linalg.norm(jac, axis=0)
@@ -273,7 +299,7 @@ def fit_law(
                 "the measured velocities (for example, every point is below the yield velocity)"
             )
     cov_q = np.full((p, p), np.nan)
-    if not np.any(flat):
+    if p and not np.any(flat):
         # Columns of J scaled to unit length: a smallest singular value near zero means
         # some combination of the parameters leaves the model unchanged.
         singular = np.linalg.svd(jac / scale, compute_uv=False)
@@ -313,6 +339,7 @@ def fit_law(
         points=points,
         correlation=correlation,
         warnings=tuple(warnings),
+        covariance=cov_q,
     )
 
 
@@ -329,3 +356,348 @@ def rank_fits(results: Sequence[FitResult]) -> list[tuple[FitResult, float, floa
         total = weights.sum()
         weights = weights / total if total > 0 else weights
     return [(results[i], float(delta[i]), float(weights[i])) for i in order]
+
+
+# -- the models of the library's laws ------------------------------------------------------
+
+#: The laws a fit can take: those of :mod:`impactcli.lawlib` with numeric parameters (and
+#: Hertz, with none) and the damped laws of :mod:`impactcli.damping`.
+#: The parameters fitted when none is named: law -> names.
+DEFAULT_FIT: dict[str, tuple[str, ...]] = {
+    "hertz": (),
+    "du-wang": ("sy",),
+    "thornton": ("py",),
+    "walton-braun": ("k_unload",),
+    "tsuji": ("alpha",),
+    "hunt-crossley": ("alpha",),
+}
+FIT_LAWS: tuple[str, ...] = tuple(DEFAULT_FIT)
+
+#: FILM segments per stage by default: the elastoplastic sweep, and the damped laws (whose
+#: e is second order in 1/n, docs/damping.md).
+DEFAULT_SEGMENTS: dict[str, int] = {"tsuji": 50, "hunt-crossley": 50}
+
+_DAMPED = ("tsuji", "hunt-crossley")
+
+
+def _check_law(law: str) -> str:
+    key = str(law).strip().lower().replace("_", "-")
+    if key not in FIT_LAWS:
+        extra = " (it has no numeric parameter)" if key == "tabulated" else ""
+        raise ValueError(f"cannot fit law {law!r}{extra}; accepted: {', '.join(FIT_LAWS)}")
+    return key
+
+
+def _pair(sphere1, sphere2) -> tuple[float, float, float, float]:
+    """m [kg], R [m], E* [Pa] of the pair and the weaker sphere's sigma_y [Pa] (NaN if
+    unknown)."""
+    from impactcli.impact import effective_properties, weaker_yield_strength
+
+    m, r, e = effective_properties(sphere1, sphere2)
+    sy = weaker_yield_strength(sphere1, sphere2)
+    return m, r, e, math.nan if sy is None else float(sy)
+
+
+def law_parameters(
+    sphere1,
+    sphere2,
+    law: str,
+    reference_velocity: float = 1.0,
+    fixed: Mapping[str, float] | None = None,
+) -> dict[str, FitParameter]:
+    """Every parameter of ``law`` a fit can take, with a starting value and bounds (SI).
+
+    Starting values come from the spheres where they can: sigma_y of the weaker sphere
+    (1 GPa if unknown) for Du & Wang's ``sy`` (bounds x/1000 to x*1000), Thornton's p_y =
+    1.6 sigma_y (the Hertz peak pressure at first yield, Johnson 1985), and for Walton &
+    Braun the linear stiffness storing the Hertz energy at ``reference_velocity`` V_ref
+    [m/s]: k = 0.8 K_h sqrt(delta_m), delta_m = (5 m V_ref^2 / (4 K_h))^0.4, with
+    ``k_unload`` = k_load / 0.8^2 (e = 0.8); Tsuji's alpha from 0.3 [-] (below sqrt(5),
+    where e reaches 0, docs/damping.md) and Hunt & Crossley's alpha = (1 - 0.8) / V_ref
+    [s/m] (their e near 1 estimate). ``fixed`` values (e.g. ``k_load``) move the starts that
+    depend on them.
+
+    Parameters
+    ----------
+    sphere1, sphere2 : :class:`impactcli.impact.Sphere`
+    law : a name of :data:`FIT_LAWS`
+    reference_velocity : a typical impact velocity of the data, [m/s]
+    fixed : values of the law's other parameters, SI
+
+    Returns
+    -------
+    dict
+        name -> :class:`FitParameter`
+    """
+    from impactcli.contact import DU_WANG_PRESSURE_FACTOR, FIRST_YIELD_PRESSURE_FACTOR
+    from impactcli.laws import hertz_stiffness
+
+    law = _check_law(law)
+    fixed = dict(fixed or {})
+    m, r, e_star, sy = _pair(sphere1, sphere2)
+    sy = fixed.get("sy", sy if math.isfinite(sy) else 1e9)
+    v_ref = float(reference_velocity)
+    if law == "du-wang":
+        return {
+            "sy": FitParameter("sy", "Pa", sy, sy / 1e3, sy * 1e3),
+            "p0_factor": FitParameter("p0_factor", "-", DU_WANG_PRESSURE_FACTOR, 0.1, 100.0),
+        }
+    if law == "thornton":
+        py = FIRST_YIELD_PRESSURE_FACTOR * sy
+        return {
+            "py": FitParameter("py", "Pa", py, py / 1e3, py * 1e3),
+            "sy": FitParameter("sy", "Pa", sy, sy / 1e3, sy * 1e3),
+        }
+    if law == "walton-braun":
+        k_h = float(hertz_stiffness(e_star, r))
+        delta_m = (5.0 * m * v_ref**2 / (4.0 * k_h)) ** 0.4
+        k_ref = 0.8 * k_h * math.sqrt(delta_m)
+        k1 = fixed.get("k_load", k_ref)
+        return {
+            "k_load": FitParameter("k_load", "N/m", k1, k_ref / 1e4, k_ref * 1e4),
+            "k_unload": FitParameter("k_unload", "N/m", k1 / 0.64, k_ref / 1e4, k_ref * 1e6),
+        }
+    if law == "tsuji":
+        return {"alpha": FitParameter("alpha", "-", 0.3, 1e-4, 2.2)}
+    if law == "hunt-crossley":
+        return {"alpha": FitParameter("alpha", "s/m", 0.2 / v_ref, 1e-6, 1e3)}
+    return {}  # hertz
+
+
+def law_model(
+    sphere1,
+    sphere2,
+    law: str,
+    n: int | None = None,
+    fixed: Mapping[str, float] | None = None,
+) -> Model:
+    """The :data:`Model` of ``law`` for this pair of spheres: (parameters, V0 [m/s]) ->
+    ``restitution`` [-] and ``contact_time`` [s], vectorised over V0.
+
+    The laws of :mod:`impactcli.lawlib` run through
+    :func:`impactcli.sweep.restitution_sweep` (elastoplastic FILM, docs/method.md §7, §9):
+    ``du-wang`` (``sy`` [Pa], ``p0_factor`` [-]), ``thornton`` (``py`` [Pa], or ``sy``
+    [Pa] for p_y = 1.6 sigma_y), ``walton-braun`` (``k_load``, ``k_unload`` [N/m]; a
+    ``k_unload`` below ``k_load`` is taken equal to it, e = 1) and ``hertz`` (none; e = 1).
+    The damped laws run through :func:`impactcli.damping.solve_damped_impact` (FILM for
+    rate-dependent laws, ``overlap`` separation): ``tsuji`` (``alpha`` [-]; e does not
+    depend on V0, Tsuji et al. 1992) and ``hunt-crossley`` (``alpha`` [s/m]; e depends on
+    alpha V0, Hunt & Crossley 1975).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : :class:`impactcli.impact.Sphere`
+    law : a name of :data:`FIT_LAWS`
+    n : FILM segments per stage (default 25; 50 for the damped laws)
+    fixed : values of parameters not fitted, SI; the rest default as the law does (sigma_y
+        of the weaker sphere, p0_factor 2.57, and :func:`law_parameters`' starting values
+        of Walton & Braun's stiffnesses)
+
+    Returns
+    -------
+    Model
+        A callable ``model(params, v0)``; ``params`` override ``fixed``.
+    """
+    law = _check_law(law)
+    segments = int(n) if n is not None else DEFAULT_SEGMENTS.get(law, 25)
+    if segments < 1:
+        raise ValueError(f"n must be an integer >= 1, got {n}")
+    m, r, e_star, sy = _pair(sphere1, sphere2)
+    base: dict[str, float] = {}
+    if law in ("walton-braun", *_DAMPED):
+        starts = law_parameters(sphere1, sphere2, law, fixed=fixed)
+        base = {name: p.initial for name, p in starts.items()}
+    base.update(fixed or {})
+    known = set(law_parameters(sphere1, sphere2, law))
+
+    def model(params: Mapping[str, float], v0: NDArray) -> dict[str, NDArray]:
+        p = {**base, **params}
+        unknown = set(p) - known
+        if unknown:
+            accepted = ", ".join(sorted(known)) or "none"
+            raise ValueError(
+                f"law {law!r} has no parameter {sorted(unknown)[0]!r} (accepted: {accepted})"
+            )
+        v = np.asarray(v0, dtype=float)
+        if law in _DAMPED:
+            from impactcli.damping import make_damping_law, solve_damped_impact
+            from impactcli.laws import hertz_stiffness
+
+            damped = make_damping_law(law, hertz_stiffness(e_star, r), m, p["alpha"])
+            out = solve_damped_impact(damped, v, m, segments)
+            return {"restitution": out.restitution, "contact_time": out.contact_time}
+        from impactcli.sweep import restitution_sweep
+
+        law_params: dict[str, float] = {}
+        if law == "du-wang" and "p0_factor" in p:
+            law_params["p0_factor"] = p["p0_factor"]
+        elif law == "thornton" and "py" in p:
+            law_params["py"] = p["py"]
+        elif law == "walton-braun":
+            law_params = {"k_load": p["k_load"], "k_unload": max(p["k_unload"], p["k_load"])}
+        sweep = restitution_sweep(
+            sphere1, sphere2, v, segments, yield_strength=p.get("sy"), law=law,
+            law_params=law_params,
+        )  # fmt: skip
+        return {"restitution": sweep["restitution"], "contact_time": sweep["contact_time"]}
+
+    return model
+
+
+def prediction_band(
+    result: FitResult,
+    model: Model,
+    impact_velocity: ArrayLike,
+    fixed: Mapping[str, float] | None = None,
+    level: float = 0.95,
+) -> dict[str, NDArray]:
+    """The fitted curve e(V0) and its confidence band from the parameter covariance.
+
+    Delta method in log-parameters q: var e = g^T C g, g = de/dq by central differences
+    (step 1e-5), C = :attr:`FitResult.covariance`; the band is e -+ t se with Student's t
+    for N - p degrees of freedom (Seber & Wild 1989, Nonlinear Regression, sec. 5.1). NaN
+    where the parameters are not determined.
+
+    Returns
+    -------
+    dict
+        ``impact_velocity`` [m/s], ``restitution``, ``lower``, ``upper`` [-] and
+        ``contact_time`` [s]
+    """
+    from scipy.stats import t as student_t
+
+    v0 = np.asarray(impact_velocity, dtype=float).reshape(-1)
+    fixed = dict(fixed or {})
+    q = np.log(result.values)
+    names = result.names
+
+    def evaluate(qq: NDArray) -> Mapping[str, NDArray]:
+        return model({**fixed, **dict(zip(names, np.exp(qq).tolist()))}, v0)
+
+    centre = evaluate(q)
+    e = np.asarray(centre["restitution"], dtype=float)
+    p = len(names)
+    se = np.zeros_like(e)
+    if p:
+        cov = result.covariance if result.covariance is not None else np.full((p, p), np.nan)
+        step = 1e-5
+        grad = np.empty((p, e.size))
+        for j in range(p):  # p model runs each way, vectorised over V0
+            dq = np.zeros(p)
+            dq[j] = step
+            up = np.asarray(evaluate(q + dq)["restitution"], dtype=float)
+            down = np.asarray(evaluate(q - dq)["restitution"], dtype=float)
+            grad[j] = (up - down) / (2 * step)
+        se = np.sqrt(np.maximum(np.einsum("iv,ij,jv->v", grad, cov, grad), 0.0))
+    dof = result.points - p
+    t = float(student_t.ppf(0.5 + level / 2, dof)) if dof > 0 else math.nan
+    return {
+        "impact_velocity": v0,
+        "restitution": e,
+        "lower": e - t * se,
+        "upper": e + t * se,
+        "contact_time": np.asarray(centre["contact_time"], dtype=float),
+    }
+
+
+def law_yield_velocity(sphere1, sphere2, law: str, params: Mapping[str, float]) -> float:
+    """V_y [m/s] of ``law`` with these parameters: above it an impact is plastic (Du & Wang,
+    Thornton: docs/method.md §7, §9); NaN for a law without a yield point (Hertz, the
+    damped laws) and 0 for Walton & Braun (plastic from the first touch)."""
+    from impactcli.sweep import sweep_yield_velocity
+
+    law = _check_law(law)
+    if law in ("hertz", *_DAMPED):
+        return math.nan
+    if law == "walton-braun":
+        return 0.0
+    extra = {k: params[k] for k in ("p0_factor", "py") if k in params}
+    return sweep_yield_velocity(
+        sphere1, sphere2, yield_strength=params.get("sy"), law=law, law_params=extra
+    )
+
+
+def _data_starts(law: str, data: FitData) -> dict[str, float]:
+    """Starting values read off the data, where a closed form gives them: Tsuji's alpha
+    from the mean e by the exact inverse of its ``overlap`` e(alpha)
+    (:func:`impactcli.damping.tsuji_alpha_hertz_mindlin`), Hunt & Crossley's alpha =
+    (1 - e) / V0 (their estimate for e near 1), the median over the points."""
+    from impactcli.damping import tsuji_alpha_hertz_mindlin
+
+    e = np.clip(data.restitution, 1e-3, 1.0 - 1e-6)
+    if law == "tsuji":
+        return {"alpha": float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(e)), 1e-3, 2.0))}
+    if law == "hunt-crossley":
+        return {"alpha": float(np.clip(np.median((1.0 - e) / data.impact_velocity), 1e-5, 1e2))}
+    return {}
+
+
+def fit_named_law(
+    sphere1,
+    sphere2,
+    law: str,
+    data: FitData,
+    names: Sequence[str] | None = None,
+    start: Mapping[str, float] | None = None,
+    bounds: Mapping[str, tuple[float, float]] | None = None,
+    fixed: Mapping[str, float] | None = None,
+    n: int | None = None,
+) -> tuple[FitResult, Model]:
+    """Fit a law of :data:`FIT_LAWS` to ``data`` for this pair of spheres.
+
+    :func:`law_model` with :func:`law_parameters`' starting values and bounds (the damped
+    laws' alpha read off the data, :func:`_data_starts`), overridden by ``start`` (name ->
+    value) and ``bounds`` (name -> (low, high)), then :func:`fit_law`.
+    Adds a warning when every point lies below the fitted law's yield velocity (the data
+    show no plastic impact: e = 1 whatever the plastic parameters).
+
+    Parameters
+    ----------
+    names : the parameters to fit; default :data:`DEFAULT_FIT` of the law
+    fixed : values of other parameters of the law, SI (held during the fit)
+    n : FILM segments per stage (:func:`law_model`)
+
+    Returns
+    -------
+    (FitResult, Model)
+        The fit and the model it used (with ``fixed`` built in), e.g. for
+        :func:`prediction_band`.
+    """
+    law = _check_law(law)
+    fixed = dict(fixed or {})
+    names = tuple(DEFAULT_FIT[law] if names is None else names)
+    available = law_parameters(sphere1, sphere2, law, float(np.median(data.impact_velocity)), fixed)
+    for name in (*names, *fixed, *(start or {}), *(bounds or {})):
+        if name not in available:
+            accepted = ", ".join(available) or "none"
+            raise ValueError(f"law {law!r} has no parameter {name!r} to fit (accepted: {accepted})")
+    both = [name for name in names if name in fixed]
+    if both:
+        raise ValueError(f"{both[0]} of law {law!r} is both fitted and held fixed")
+    for name, guess in _data_starts(law, data).items():
+        if name in available:
+            p = available[name]
+            available[name] = FitParameter(name, p.unit, guess, p.lower, p.upper)
+    parameters = []
+    for name in names:
+        p = available[name]
+        lo, hi = (bounds or {}).get(name, (p.lower, p.upper))
+        initial = (start or {}).get(name, min(max(p.initial, lo), hi))
+        parameters.append(FitParameter(name, p.unit, initial, lo, hi))
+    from impactcli.limits import MAX_SWEEP_SEGMENTS, check_size
+
+    segments = int(n) if n is not None else DEFAULT_SEGMENTS.get(law, 25)
+    check_size("the number of data points x n", data.size * segments, MAX_SWEEP_SEGMENTS)
+    model = law_model(sphere1, sphere2, law, n, fixed)
+    result = fit_law(law, model, data, parameters, fixed)
+    fitted = {**fixed, **dict(zip(result.names, result.values.tolist()))}
+    v_y = law_yield_velocity(sphere1, sphere2, law, fitted)
+    if math.isfinite(v_y) and v_y > 0 and np.all(data.impact_velocity <= v_y):
+        extra = (
+            f"every point is below the yield velocity of the fitted {law} law, "
+            f"V_y = {v_y:.4g} m/s: the data show no plastic impact"
+        )
+        from dataclasses import replace
+
+        result = replace(result, warnings=(*result.warnings, extra))
+    return result, model

@@ -54,6 +54,7 @@ from impactcli.validation import (
     pair_problems,
     raise_first,
     sphere_problems,
+    yield_scale_problems,
 )
 
 if TYPE_CHECKING:
@@ -66,9 +67,16 @@ __all__ = [
     "ENERGY_SUMMARY_KEYS",
     "SPLITS",
     "PLASTIC_SUMMARY_KEYS",
+    "DAMPED_DEFAULT_N",
+    "DAMPED_ENERGY_COLUMNS",
+    "DAMPED_SWEEP_COLUMNS",
+    "DAMPED_SUMMARY_KEYS",
+    "DampedImpactResult",
     "Sphere",
     "ImpactResult",
     "check_pair",
+    "damped_impact",
+    "damped_restitution_sweep",
     "elastic_impact",
     "effective_properties",
     "elastoplastic_impact",
@@ -405,7 +413,7 @@ class ImpactResult:
         laws = [stage.law for stage in self.plan.stages]
         return film_contact_work(self.film.stages, laws, t)
 
-    def energy(
+    def energy_columns(
         self, t: NDArray, delta: NDArray, v1: NDArray, v2: NDArray, method: str
     ) -> dict[str, NDArray]:
         """The energy columns (:data:`ENERGY_COLUMNS`, [J]) at times ``t`` [s] where the
@@ -435,7 +443,12 @@ class ImpactResult:
         return columns
 
     def _columns(
-        self, t: NDArray, delta: NDArray, delta_dot: NDArray, force: NDArray, method: str
+        self,
+        t: NDArray,
+        delta: NDArray,
+        delta_dot: NDArray,
+        force: NDArray,
+        method: str | None = None,
     ) -> dict[str, NDArray]:
         """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4."""
         v0 = self.impact_velocity
@@ -473,7 +486,8 @@ class ImpactResult:
             "delta2_dot": delta2_dot,
             "p1": p1,
             "p2": p2,
-            **self.energy(t, delta, v1, v2, method),
+            # a damped impact (no plan) has its own energy() (DampedImpactResult)
+            **({} if method is None else self.energy_columns(t, delta, v1, v2, method)),
         }
 
     def _table_state(self, t: NDArray) -> tuple[NDArray, NDArray]:
@@ -960,8 +974,11 @@ def elastoplastic_impact(
     m, r, e = effective_properties(sphere1, sphere2)
     contact = DuWangContact(r, e, sigma_y, pressure_factor)
     v0 = v1 + v2
-    plan = contact.plan(v0, m)
+    with np.errstate(all="ignore"):
+        plan = contact.plan(v0, m)
     elastic = len(plan.stages) == 2
+    if not elastic:
+        raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
     film = FilmSolution(solve_plan(plan, m, n))
     result = ImpactResult(
         sphere1,
@@ -1051,3 +1068,338 @@ def law_impact(
     extra = plastic_summary(contact, m, v0, plan, result.permanent_fractions)
     summary.update({key: float(value) for key, value in extra.items()})
     return _finish(result, summary)
+
+
+#: Summary keys of :func:`damped_impact`: the elastic ones and the damping's.
+DAMPED_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
+    "delta_separation",
+    "alpha",
+    "energy_dissipated",
+    "energy_stored",
+)
+
+#: Columns of :meth:`DampedImpactResult.energy`.
+DAMPED_ENERGY_COLUMNS: tuple[str, ...] = (
+    "t",
+    "ke1",
+    "ke2",
+    "strain_energy",
+    "strain_energy1",
+    "strain_energy2",
+    "dissipated",
+    "dissipated1",
+    "dissipated2",
+)
+
+#: FILM segments per stage that :func:`damped_impact` uses by default: e and the contact
+#: time within 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
+DAMPED_DEFAULT_N = 400
+
+
+@dataclass(frozen=True)
+class DampedImpactResult(ImpactResult):
+    """One impact under a viscoelastic law (:func:`damped_impact`).
+
+    As :class:`ImpactResult`, with ``film`` the :class:`~impactcli.damping.DampedImpact`
+    and ``plan`` ``None``; ``law`` is the damped law, ``alpha`` its parameter ([-] for
+    ``tsuji``, [s/m] for ``hunt-crossley``), ``separation`` the separation rule. Histories
+    by ``film`` or ``ode`` (there are no normalised tables for damped laws); the force
+    column is the total force F(delta, delta'), which may pull (F < 0) at the end of an
+    ``overlap`` contact: the force-indentation curve is a loop.
+    """
+
+    law: Any = None
+    alpha: float = 0.0
+    separation: str = "overlap"
+
+    @cached_property
+    def ode(self):  # -> impactcli.damping.DampedOdeSolution
+        """SciPy integration of the same law (:func:`impactcli.damping.damped_ode_solution`),
+        computed once, on first use."""
+        from impactcli.damping import damped_ode_solution
+
+        mass = float(effective_mass(self.m1, self.m2))
+        return damped_ode_solution(self.law, self.impact_velocity, mass, self.separation)
+
+    def times(self, points: int = 201, method: Method | None = None) -> NDArray:
+        """``points`` evenly spaced times over the contact of ``method`` (film or ode), [s]
+        (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
+        points = check_size("points", points, MAX_POINTS, minimum=2)
+        method = self.method if method is None else method
+        end = self.ode.end_time if method == "ode" else float(self.film.end_time)
+        return np.linspace(0.0, end, points)
+
+    def history(
+        self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
+    ) -> dict[str, NDArray]:
+        """Histories over the contact (:data:`HISTORY_COLUMNS`, SI), by ``film`` (the
+        segments' closed forms) or ``ode`` (SciPy integration); times clamped to [0, t_c]."""
+        method = self.method if method is None else method
+        if method not in ("film", "ode"):
+            raise ValueError(f"method must be film or ode for a damped impact, got {method!r}")
+        t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
+        source = self.ode if method == "ode" else self.film
+        t = np.clip(t, 0.0, float(source.end_time))
+        delta, delta_dot = source.evaluate(t)
+        return self._columns(t, delta, delta_dot, self.law.force(delta, delta_dot))
+
+    def energy(
+        self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
+    ) -> dict[str, NDArray]:
+        """Energy partition over the contact (:data:`DAMPED_ENERGY_COLUMNS`, [J]; ``t`` [s]).
+
+        ke_i = (1/2) m_i d_i'^2 (:func:`impactcli.energy.kinetic_energy`, frame of the
+        inputs); ``strain_energy`` the elastic part, (2/5) K delta^2.5, the work of
+        K delta^1.5; ``dissipated`` the integral of c(delta) delta'^2 dt, from FILM's
+        segments (:meth:`impactcli.damping.DampedImpact.dissipated_at`) or the SciPy
+        integration. Each sphere's share of the strain and dissipated energy is its share of
+        the indentation (``split``). ke1 + ke2 + strain_energy + dissipated is the initial
+        kinetic energy, to O(1/n^2) for FILM (tests/test_damping_cli.py).
+        """
+        from impactcli.energy import kinetic_energy
+
+        method = self.method if method is None else method
+        h = self.history(t, points, method)
+        if method == "ode":
+            dissipated = self.ode.dissipated(h["t"])
+        else:
+            dissipated = self.film.dissipated_at(h["t"])  # type: ignore[attr-defined]
+        strain = self.law.elastic_work(0.0, h["delta"])
+        f1, f2 = self.split_fractions
+        return {
+            "t": h["t"],
+            "ke1": kinetic_energy(self.m1, h["v1"]),
+            "ke2": kinetic_energy(self.m2, h["v2"]),
+            "strain_energy": strain,
+            "strain_energy1": f1 * strain,
+            "strain_energy2": f2 * strain,
+            "dissipated": dissipated,
+            "dissipated1": f1 * dissipated,
+            "dissipated2": f2 * dissipated,
+        }
+
+
+def _damped_summary(
+    result: DampedImpactResult, values: dict[str, float], r: float, e: float
+) -> dict[str, float]:
+    """:data:`DAMPED_SUMMARY_KEYS` from the FILM or SciPy values of one damped impact."""
+    from types import SimpleNamespace
+
+    plan = SimpleNamespace(
+        delta_max=values["delta_max"],
+        force_max=values["force_max"],
+        delta_res=values["delta_separation"],
+        restitution=values["restitution"],
+    )
+    summary = impact_summary(
+        result.v1,
+        result.v2,
+        result.m1,
+        result.m2,
+        r,
+        e,
+        plan,  # type: ignore[arg-type]
+        values["t_max"],
+        values["contact_time"],
+        result.split_fractions,
+        weaker_yield_strength(result.sphere1, result.sphere2),
+    )
+    out = {key: float(value) for key, value in summary.items()}
+    out.update(
+        delta_separation=float(values["delta_separation"]),
+        alpha=float(result.alpha),
+        energy_dissipated=float(values["dissipated"]),
+        energy_stored=float(values["stored"]),
+    )
+    return out
+
+
+def damped_impact(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    damping: str,
+    alpha: float | None = None,
+    restitution: float | None = None,
+    n: int = DAMPED_DEFAULT_N,
+    separation: str = "overlap",
+    split: Split = "mass",
+    method: Method = "film",
+) -> DampedImpactResult:
+    """Impact of two spheres under Hertz elasticity with viscous damping (docs/damping.md).
+
+    The contact law is F = K delta^1.5 + c(delta) delta' with K = (4/3) E* sqrt(R)
+    (:mod:`impactcli.damping`); FILM on each segment solves the damped linear oscillator in
+    closed form. Each sphere's motion follows from delta(t) by the rigid-body relations of
+    eq. 12 (docs/method.md §2), unchanged.
+
+    Parameters
+    ----------
+    damping : ``tsuji`` (Tsuji, Tanaka & Ishida 1992, alpha [-]) or ``hunt-crossley``
+        (Hunt & Crossley 1975, alpha [s/m])
+    alpha : the damping parameter, >= 0; or
+    restitution : the coefficient of restitution e in (0, 1] to reach at this V0: alpha is
+        solved for by the model (:func:`impactcli.damping.damping_for_restitution`, FILM
+        with the same n and separation rule). Give exactly one of the two.
+    n : FILM segments per stage (default :data:`DAMPED_DEFAULT_N`)
+    separation : ``overlap`` (contact ends when delta returns to 0; the damping force may
+        pull, as in DEM codes) or ``force`` (when the total force returns to 0)
+    split, method : as for :func:`elastic_impact` (``method`` film or ode)
+
+    Returns
+    -------
+    DampedImpactResult
+        ``summary`` holds :data:`DAMPED_SUMMARY_KEYS`: the elastic keys, the indentation at
+        separation ``delta_separation`` [m], ``alpha``, the energy dissipated by damping
+        (integral of c delta'^2 dt) [J] and the elastic energy left in the contact at
+        separation ``energy_stored`` [J] (``force`` rule; 0 for ``overlap``).
+
+    Examples
+    --------
+    >>> steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
+    >>> r = damped_impact(Sphere(0.02, **steel), Sphere(0.04, **steel), 0.25, 0.75,
+    ...                   "tsuji", alpha=0.3)
+    >>> round(r.summary["restitution"], 6)
+    0.653551
+    """
+    from impactcli.damping import (
+        DAMPING_LAWS,
+        SEPARATIONS,
+        damping_for_restitution,
+        make_damping_law,
+        solve_damped_impact,
+    )
+
+    if damping not in DAMPING_LAWS:
+        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    if separation not in SEPARATIONS:
+        raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}, got {separation!r}")
+    if method not in ("film", "ode"):
+        raise ValueError(
+            "method must be film or ode for a damped impact (the normalised tables are "
+            f"for Hertz without damping), got {method!r}"
+        )
+    if (alpha is None) == (restitution is None):
+        raise ValueError("give the damping as alpha or as a coefficient of restitution e, not both")
+    if alpha is not None and not (np.isfinite(alpha) and alpha >= 0.0):
+        raise ValueError(f"alpha must be a finite number >= 0, got {alpha:g}")
+    if restitution is not None and not (0.0 < restitution <= 1.0):
+        raise ValueError(
+            f"the coefficient of restitution e must lie in (0, 1], got {restitution:g}"
+        )
+    _validate(sphere1, sphere2, v1, v2, n, split, "film")
+    m, r, e = effective_properties(sphere1, sphere2)
+    k = float(hertz_stiffness(e, r))
+    v0 = v1 + v2
+    if alpha is None:
+        alpha = float(damping_for_restitution(damping, restitution, v0, k, m, n, separation))
+    law = make_damping_law(damping, k, m, float(alpha))
+    film = solve_damped_impact(law, v0, m, n, separation)  # type: ignore[arg-type]
+    if not np.isfinite(float(film.contact_time)):
+        raise ValueError(
+            f"alpha = {alpha:g}: the contact never ends (overdamped: the indentation creeps "
+            "back toward 0 without reaching it); give a smaller alpha"
+        )
+    result = DampedImpactResult(
+        sphere1,
+        sphere2,
+        v1,
+        v2,
+        None,  # type: ignore[arg-type]
+        film,  # type: ignore[arg-type]
+        int(n),
+        split,
+        f"damped-{damping}",
+        method=method,
+        law=law,
+        alpha=float(alpha),
+        separation=separation,
+    )
+    values = {
+        "restitution": film.restitution,
+        "contact_time": film.contact_time,
+        "delta_separation": film.delta_separation,
+        "delta_max": film.delta_max,
+        "t_max": film.t_max,
+        "force_max": film.force_max,
+        "dissipated": film.dissipated,
+        "stored": film.stored,
+    }
+    values = {key: float(value) for key, value in values.items()}
+    result.summary.update(_damped_summary(result, values, r, e))
+    if method == "ode":
+        result.summary.update(_damped_summary(result, result.ode.summary, r, e))
+    return result
+
+
+#: Columns of :func:`damped_restitution_sweep`: those of
+#: :data:`impactcli.sweep.SWEEP_COLUMNS` and the indentation at separation.
+DAMPED_SWEEP_COLUMNS: tuple[str, ...] = (
+    "impact_velocity",
+    "restitution",
+    "contact_time",
+    "delta_max",
+    "delta_res",
+    "delta1_res",
+    "delta2_res",
+    "energy_dissipated",
+    "plastic",
+    "delta_separation",
+)
+
+
+def damped_restitution_sweep(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    velocities: ArrayLike,
+    damping: str,
+    alpha: float,
+    n: int = DAMPED_DEFAULT_N,
+    separation: str = "overlap",
+    split: Split = "mass",
+) -> dict[str, NDArray]:
+    """Restitution, contact time and indentations against V0 under a damped law, one batch.
+
+    As :func:`impactcli.sweep.restitution_sweep` for Hertz with viscous damping
+    (:func:`damped_impact`; docs/damping.md): e does not depend on V0 for ``tsuji`` and
+    falls with alpha V0 for ``hunt-crossley``. There is no permanent indentation
+    (``delta_res`` and its shares are 0, ``plastic`` 0); ``energy_dissipated`` is the
+    damping's integral of c delta'^2 dt [J]; ``delta_separation`` the indentation at
+    separation [m] (0 for ``overlap``).
+    """
+    from impactcli.damping import DAMPING_LAWS, make_damping_law, solve_damped_impact
+    from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS
+
+    v0 = np.asarray(velocities, dtype=float)
+    if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
+        raise ValueError("impact velocities must be a non-empty list of positive numbers")
+    if damping not in DAMPING_LAWS:
+        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    if not (np.isfinite(alpha) and alpha >= 0.0):
+        raise ValueError(f"alpha must be a finite number >= 0, got {alpha:g}")
+    check_size("the number of velocities", v0.size, MAX_COUNT)
+    check_size("the number of velocities x n", v0.size * int(n), MAX_SWEEP_SEGMENTS)
+    split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance
+    check_pair(sphere1, sphere2, v0, 0.0)
+    m, r, e = effective_properties(sphere1, sphere2)
+    law = make_damping_law(damping, float(hertz_stiffness(e, r)), m, float(alpha))
+    sol = solve_damped_impact(law, v0, m, n, separation)  # type: ignore[arg-type]
+    if not np.all(np.isfinite(sol.contact_time)):
+        raise ValueError(
+            f"alpha = {alpha:g}: the contact never ends (overdamped: the indentation creeps "
+            "back toward 0 without reaching it); give a smaller alpha"
+        )
+    zero = np.zeros_like(v0)
+    return {
+        "impact_velocity": v0,
+        "restitution": np.asarray(sol.restitution, dtype=float),
+        "contact_time": np.asarray(sol.contact_time, dtype=float),
+        "delta_max": np.asarray(sol.delta_max, dtype=float),
+        "delta_res": zero,
+        "delta1_res": zero.copy(),
+        "delta2_res": zero.copy(),
+        "energy_dissipated": np.asarray(sol.dissipated, dtype=float),
+        "plastic": zero.copy(),
+        "delta_separation": np.asarray(sol.delta_separation, dtype=float),
+    }

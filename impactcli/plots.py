@@ -16,6 +16,7 @@ Functions
 impact_figure : histories of one normal impact (paper Figs. 4-11) and its force-indentation loop
 convergence_figure : FILM indentation histories for several n (Fig. 3) and the contact-time error
 restitution_figure : a sweep over impact velocity: restitution, contact time, permanent indentation
+fit_figure : measured restitution with fitted laws, their confidence bands and the residuals
 elastic_sweep_figure : a sweep of the elastic impact: contact time, maximum indentation and force
 energy_figure : the energy partition of one impact: kinetic, stored and dissipated, per sphere
 collision2d_figure : the oblique 2-D collision: velocities before and after (sec. 4.5, Fig. 12)
@@ -47,6 +48,7 @@ __all__ = [
     "elastic_sweep_figure",
     "energy_figure",
     "figure_format",
+    "fit_figure",
     "impact_figure",
     "law_comparison_figure",
     "require_matplotlib",
@@ -239,7 +241,9 @@ def impact_figure(
     (c) momentum p1, p2 and p1 + p2 (constant: momentum is conserved). Bottom row, the
     contact: (d) indentations delta1, delta2 and their sum delta; (e) indentation rates;
     (f) force against total indentation: one curve traversed twice when elastic, a loop
-    ending at the permanent indentation when plastic.
+    ending at the permanent indentation when plastic, a loop through the origin (or ending
+    at ``delta_separation``) under viscous damping, the force F(delta, delta') of the
+    history being higher while loading than while unloading.
 
     Parameters
     ----------
@@ -597,6 +601,18 @@ def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float
             linestyle=":",
             label=rf"yield, $\delta_y$ = {dy / xs.factor:.4g} {xs.unit}",
         )
+    if force.size and np.nanmin(force) < 0.0:  # a damped contact that pulls before it ends
+        ax.axhline(0.0, color="0.5", linewidth=0.6)
+    if summary and summary.get("delta_separation", 0.0) > 0:
+        ds = summary["delta_separation"]
+        ax.plot(
+            [ds / xs.factor],
+            [0.0],
+            linestyle="none",
+            marker="s",
+            color="tab:green",
+            label=rf"separation, $\delta_{{sep}}$ = {ds / xs.factor:.4g} {xs.unit}",
+        )
     if summary and summary.get("delta_res", 0.0) > 0:
         dr = summary["delta_res"]
         ax.plot(
@@ -745,6 +761,8 @@ def restitution_figure(
     yield_velocity: float | None = None,
     first_yield_velocity: float | None = None,
     log_velocity: bool | None = None,
+    indentation_title: str = "(c) Permanent indentation",
+    indentation_label: str = r"permanent indentation $\delta_{res}$",
 ) -> Figure:
     """Three panels over a sweep of impact velocity V0: e, contact time, permanent indentation.
 
@@ -762,6 +780,8 @@ def restitution_figure(
         [m/s]; a dashed line (or a legend entry), as for ``yield_velocity``
     log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more.
         Ticks at 1, 2 and 5 of each decade, all labelled
+    indentation_title, indentation_label : title and axis label of the third panel (a
+        damped sweep draws the maximum indentation and that at separation there)
 
     Returns
     -------
@@ -798,8 +818,8 @@ def restitution_figure(
     rs = unit_scale([v for _label, v in residual.values()], "m")
     for gid, (label, values) in residual.items():
         ax_r.plot(x, values / rs.factor, marker=".", label=label, gid=gid)
-    ax_r.set_ylabel(rf"permanent indentation $\delta_{{res}}$ ({rs.unit})")
-    ax_r.set_title("(c) Permanent indentation", fontsize="medium")
+    ax_r.set_ylabel(f"{indentation_label} ({rs.unit})")
+    ax_r.set_title(indentation_title, fontsize="medium")
 
     marks = [
         (velocity, text, style)
@@ -832,6 +852,83 @@ def restitution_figure(
         if marks or ax is ax_r and len(residual) > 1:
             ax.legend(fontsize="small")
     fig.suptitle(title, fontsize="large")
+    return fig
+
+
+# -- calibration -------------------------------------------------------------------------
+
+
+def fit_figure(
+    impact_velocity: ArrayLike,
+    restitution: ArrayLike,
+    fits: Sequence[Mapping[str, object]],
+    *,
+    error: ArrayLike | None = None,
+    title: str = "Coefficient of restitution: measured and fitted",
+    log_velocity: bool | None = None,
+) -> Figure:
+    """Measured e(V0) with the fitted curve and confidence band of each law (top) and the
+    residuals e - e_fit at the measured points (bottom, same V0 axis).
+
+    Parameters
+    ----------
+    impact_velocity, restitution : the data: V0 [m/s] and e [-]
+    fits : one mapping per law: ``label`` (text), ``impact_velocity`` (a fine grid, [m/s]),
+        ``restitution``, ``lower``, ``upper`` (the curve and its band on the grid, [-]) and
+        ``residuals`` (e - e_fit at the data, [-]); the band is drawn where finite
+    error : one standard deviation of each measured e, [-]: error bars (None: points only)
+    title : names the case (spheres, law, band level)
+    log_velocity : logarithmic V0 axis; default when the data span a factor 3 or more
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        gids: ``data``, ``fit:<label>`` (curves), ``band:<label>`` (bands, PolyCollection),
+        ``residuals:<label>``.
+    """
+    v0 = np.asarray(impact_velocity, dtype=float)
+    e = np.asarray(restitution, dtype=float)
+    fig = _new_figure(8.0, 6.4)
+    ax_e, ax_r = fig.subplots(2, 1, sharex=True, height_ratios=(3, 1.3))
+    grids = [np.asarray(f["impact_velocity"], dtype=float) for f in fits]
+    vs = unit_scale([v0, *grids], "m/s")
+    colours = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
+    for k, f in enumerate(fits):
+        colour = colours[k % len(colours)]
+        label = str(f["label"])
+        x = grids[k] / vs.factor
+        lower = np.asarray(f["lower"], dtype=float)
+        upper = np.asarray(f["upper"], dtype=float)
+        if np.all(np.isfinite(lower) & np.isfinite(upper)):
+            band = ax_e.fill_between(x, lower, upper, color=colour, alpha=0.2, linewidth=0)
+            band.set_gid(f"band:{label}")
+        ax_e.plot(x, np.asarray(f["restitution"], dtype=float), color=colour, label=label,
+                  gid=f"fit:{label}")  # fmt: skip
+        ax_r.plot(v0 / vs.factor, np.asarray(f["residuals"], dtype=float), color=colour,
+                  marker="o", markersize=4, linestyle="none", gid=f"residuals:{label}")  # fmt: skip
+    x0 = v0 / vs.factor
+    if error is not None:
+        ax_e.errorbar(x0, e, yerr=np.asarray(error, dtype=float), fmt="o", color="black",
+                      markersize=4, capsize=2, label="data", gid="data", zorder=3)  # fmt: skip
+    else:
+        ax_e.plot(x0, e, "o", color="black", markersize=4, label="data", gid="data", zorder=3)
+    ax_e.set_ylabel("coefficient of restitution $e$ (-)")
+    ax_e.legend(fontsize="small")
+    ax_r.axhline(0.0, color="0.5", linewidth=0.8)
+    ax_r.set_ylabel(r"$e - e_{fit}$ (-)")
+    ax_r.set_xlabel(f"impact velocity $V_0$ ({vs.unit})")
+    if log_velocity is None:
+        log_velocity = v0.size > 1 and bool(np.all(v0 > 0)) and v0.max() >= 3 * v0.min()
+    if log_velocity:
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+        ax_r.set_xscale("log")
+        ax_r.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax_r.xaxis.set_major_formatter(FuncFormatter(lambda value, _pos: f"{value:g}"))
+        ax_r.xaxis.set_minor_formatter(NullFormatter())
+    for ax in (ax_e, ax_r):
+        ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
+    fig.suptitle(title, fontsize="medium")
     return fig
 
 

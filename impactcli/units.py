@@ -66,6 +66,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "time": ("s", "75us, 1e-4 s"),
     "stiffness": ("N/m", "2e7 N/m, 20 kN/mm"),
     "dimensionless": ("", "0.3"),
+    "inverse velocity": ("s/m", "0.5 s/m, 0.5 ms/mm"),
 }
 
 #: The longest quantity text read [characters]; longer text is refused unread.
@@ -83,6 +84,7 @@ _DIMS: dict[str, Dims] = {
     "time": (0, 0, 1, 0),
     "stiffness": (0, 1, -2, 0),
     "dimensionless": (0, 0, 0, 0),
+    "inverse velocity": (-1, 0, 1, 0),
 }
 _DIMENSION_NAMES = ("length", "mass", "time", "angle")
 

@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "MIN_YIELD_INDENTATION_RATIO",
     "SMALL_DEFORMATION_LIMIT",
     "SPHERE_NAMES",
     "YIELD_STRENGTH_NEEDED",
@@ -34,6 +35,7 @@ __all__ = [
     "raise_first",
     "sphere_names",
     "sphere_problems",
+    "yield_scale_problems",
 ]
 
 #: The one message for an elastoplastic impact without a yield strength.
@@ -179,6 +181,35 @@ def needs_yield_strength(sy1: ArrayLike, sy2: ArrayLike) -> NDArray[np.bool_]:
     sigma_y = np.fmin(np.asarray(sy1, dtype=float), np.asarray(sy2, dtype=float))
     with np.errstate(invalid="ignore"):
         return ~(np.isfinite(sigma_y) & (sigma_y > 0))
+
+
+#: Smallest delta_y / delta_max of an elastoplastic impact that is computed: below it the
+#: elastic loading stage is lost in the rounding of delta_max (double precision, eps 2.2e-16,
+#: squared by the Hertz force), and the stages give e = 0 or NaN times. Reached only by
+#: physically meaningless inputs (sigma_y of a few kPa against E = 210 GPa, E >= 1e40 Pa,
+#: rho >= 1e100 kg/m^3).
+MIN_YIELD_INDENTATION_RATIO = 1e-12
+
+
+def yield_scale_problems(
+    delta_y: ArrayLike, delta_max: ArrayLike, problems: Problems | None = None
+) -> Problems:
+    """The check of an elastoplastic impact above its yield velocity: the yield indentation
+    delta_y [m] must be at least :data:`MIN_YIELD_INDENTATION_RATIO` of the maximum
+    indentation delta_max [m] (docs/method.md §7), for the stages to be resolved in double
+    precision."""
+    dy, dm = flat_floats(delta_y, delta_max)
+    p = Problems(dy.size) if problems is None else problems
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        ratio = dy / dm
+    p.add(
+        ~(ratio >= MIN_YIELD_INDENTATION_RATIO),
+        "out of range: the yield indentation is {:.3g} of the maximum indentation, below "
+        f"{MIN_YIELD_INDENTATION_RATIO:g} (the yield strength is too small, or E, rho or V0 "
+        "too large, for the elastoplastic model in double precision)",
+        ratio,
+    )
+    return p
 
 
 def raise_first(problems: Problems) -> None:

@@ -39,6 +39,21 @@ LIBRARY = (
     "impactcli.formatting",
     "impactcli.io.table",
     "impactcli.io.engines",
+    "impactcli.io.csvblocks",
+    "impactcli.io.fitdata",
+    "impactcli.io.readers",
+    "impactcli.io.writers",
+    "impactcli.ode",
+    "impactcli.lawlib",
+    "impactcli.curves",
+    "impactcli.damping",
+    "impactcli.collision3d",
+    "impactcli.compare",
+    "impactcli.energy",
+    "impactcli.design",
+    "impactcli.fit",
+    "impactcli.limits",
+    "impactcli.units",
 )
 FORBIDDEN = ("typer", "rich", "pint", "pandas", "impactcli.cli")
 

@@ -4,7 +4,8 @@ Each command of a ```sh block runs in bash, in order, in one scratch directory w
 starts with an ``impact`` that is this interpreter's ``python -m impactcli`` (with this
 checkout importable), as after ``make run`` and ``source .venv/bin/activate``; the scratch
 directory also holds ``.venv/bin/impact`` and ``.venv/bin/activate`` doing the same, and the
-README's example ``collisions.csv`` (its ```csv block) with a Parquet copy. Commands that set
+README's example ``collisions.csv`` (its ```csv block) with a Parquet copy, and
+``docs/data/`` (the calibration data) with an empty ``docs/figures/``. Commands that set
 up the machine are checked, not run: ``make TARGET`` must be a target of the Makefile (``make
 -n``), ``pip install '.[extras]'`` must name extras of pyproject.toml. A command carrying the
 comment ``# placeholder`` stands for the reader's own (a program, a cluster) and is skipped.
@@ -96,6 +97,8 @@ def workdir(tmp_path_factory) -> Path:
     csv_blocks = [body for lang, _, body in code_blocks(TEXT) if lang == "csv"]
     assert csv_blocks, "the README shows an example input table in a ```csv block"
     (work / "collisions.csv").write_text("\n".join(csv_blocks[0]) + "\n")
+    shutil.copytree(ROOT / "docs" / "data", work / "docs" / "data")  # the calibration example
+    (work / "docs" / "figures").mkdir()
     if _has("pyarrow"):
         import pandas as pd
 

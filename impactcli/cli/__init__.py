@@ -31,6 +31,7 @@ from impactcli.cli import (  # noqa: E402
     collide3d_cmd,
     compare_cmd,
     design_cmd,
+    fit_cmd,
     impact_cmd,
     laws_cmd,
     tables_cmd,
@@ -43,6 +44,7 @@ collide3d_cmd.register(app)
 batch_cmd.register(app)
 laws_cmd.register(app)
 compare_cmd.register(app)
+fit_cmd.register(app)
 design_cmd.register(app)
 
 

@@ -22,6 +22,7 @@ from impactcli.cli.common import (
     save_plot,
     warn,
 )
+from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
@@ -67,6 +68,18 @@ N = Annotated[
         min=1,
         max=MAX_SEGMENTS,
         help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
+    ),
+]
+#: --n of the commands that take --damping: its default depends on it.
+N_DAMPED = Annotated[
+    Optional[int],
+    typer.Option(
+        "--n",
+        "-n",
+        min=1,
+        max=MAX_SEGMENTS,
+        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}. Default 25; 400 with --damping "
+        "(e and the contact time within 1e-6 of SciPy integration of the same law).",
     ),
 ]
 POINTS = Annotated[
@@ -161,6 +174,38 @@ SUMMARY_UNITS = {
     "first_yield_velocity2": ("m/s", "first yield of sphere 2 (inf: none)"),
 }
 
+#: Summary keys of a damped impact whose unit or meaning differ (or that are its own).
+DAMPED_SUMMARY_UNITS = {
+    "delta_separation": ("m", "total indentation at separation (0 for --separation overlap)"),
+    "alpha": ("", "damping parameter alpha (dimensionless for tsuji)"),
+    "energy_dissipated": ("J", "energy dissipated by damping, integral of c delta'^2 dt"),
+    "energy_stored": ("J", "elastic energy left in the contact at separation"),
+}
+
+
+def _summary_units(result) -> dict[str, tuple[str, str]]:
+    """Unit and meaning of each summary key of ``result``."""
+    if _damped_title(result) is None:
+        return SUMMARY_UNITS
+    units = {**SUMMARY_UNITS, **DAMPED_SUMMARY_UNITS}
+    if result.law.name == "hunt-crossley":
+        units["alpha"] = ("s/m", "damping factor alpha of Hunt & Crossley")
+    return units
+
+
+def _damped_title(result) -> str | None:
+    """'Hertz with Tsuji damping (alpha = 0.3, overlap separation)', or None when the
+    impact has no damping."""
+    law = getattr(result, "law", None)
+    if law is not None and hasattr(result, "separation"):
+        name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}.get(law.name, law.name)
+        unit = " s/m" if law.name == "hunt-crossley" else ""
+        return (
+            f"Hertz with {name} damping (alpha = {result.alpha:.6g}{unit}, "
+            f"{result.separation} separation)"
+        )
+    return None
+
 
 def screen_value(value: float, unit: str, digits: int = 6) -> tuple[str, str]:
     """``value`` [SI ``unit``] as (number, unit) for the screen, with the SI prefix that puts
@@ -207,10 +252,12 @@ def _run(
     summary: str | None = None,
     law: LawChoice | None = None,
     energy_plot: str | None = None,
+    damping: DampingOptions | None = None,
 ) -> None:
     from impactcli.impact import (
         ELASTIC_SUMMARY_KEYS,
         ENERGY_SUMMARY_KEYS,
+        damped_impact,
         elastic_impact,
         law_impact,
     )
@@ -228,10 +275,18 @@ def _run(
 
         check_distinct_outputs(output, summary, plot, energy_plot)
     check_summary_file(summary, output)
+    damping_law, alpha, target, separation = (damping or DampingOptions()).parse()
+    if damping_law is not None and law is not None:
+        raise InputError("--damping adds damping to Hertz; it does not combine with --curve")
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
     try:
-        if law is None:
+        if damping_law is not None:
+            result = damped_impact(
+                s1, s2, v1, v2, damping_law, alpha, target, n, separation, split.value,
+                method.value,
+            )  # fmt: skip
+        elif law is None:
             result = elastic_impact(s1, s2, v1, v2, n, split.value, method.value)
         else:
             result = law_impact(
@@ -246,6 +301,12 @@ def _run(
     if method is Method.table and result.model != "elastic":
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
     s, v0 = result.summary, result.impact_velocity
+    if target is not None:
+        unit = " s/m" if damping_law == "hunt-crossley" else ""
+        note(
+            f"alpha = {s['alpha']:.10g}{unit} gives e = {target:g} at V0 = {v0:g} m/s "
+            f"({damping_law}, {separation} separation, FILM n = {n})"
+        )
     if model == "elastic" and law is None and "first_yield_velocity" in s:
         message = first_yield_warning(v0, s["first_yield_velocity"])
         if message:
@@ -282,6 +343,10 @@ def _run(
         from impactcli.impact import weaker_yield_strength
 
         inputs.update(law_inputs(law, weaker_yield_strength(s1, s2)))
+    if damping_law is not None:
+        inputs.update(
+            damping=damping_law, alpha=s["alpha"], e_target=target, separation=separation
+        )
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -369,7 +434,11 @@ HISTORY_KINDS = (("t",), ("delta", "d1", "d2"), ("force",), ("v1", "v2"))
 
 
 def _model_title(result, law: LawChoice | None) -> str:
-    """'Elastic (Hertz)', 'Elastoplastic (Du & Wang)', 'Elastic (tabulated curve)', ..."""
+    """'Elastic (Hertz)', 'Elastoplastic (Du & Wang)', 'Elastic (tabulated curve)', ...,
+    'Hertz with Tsuji damping (...)'."""
+    damped = _damped_title(result)
+    if damped is not None:
+        return damped
     if law is None:
         return "Elastic (Hertz)"
     kind = "Elastic" if result.model in ("elastic", "tabulated") else "Elastoplastic"
@@ -426,8 +495,9 @@ def _print(
     summary = Table(title=f"{title} impact by {how}", caption=caption)
     for header in ("quantity", "value", "unit", "meaning"):
         summary.add_column(header, justify="right" if header == "value" else "left")
+    units = _summary_units(result)
     for key, value in result.summary.items():
-        unit, meaning = SUMMARY_UNITS.get(key, ("", ""))
+        unit, meaning = units.get(key, ("", ""))
         summary.add_row(key, *screen_value(value, unit), meaning)
     out.print(summary)
 
@@ -511,9 +581,11 @@ def _material_parts(p: SphereOptions, s1, s2) -> list[str]:
 
 
 @with_sphere_options()
+@with_damping_options()
 def elastic(
     spheres: SphereOptions,
-    n: N = 25,
+    damping: DampingOptions = None,  # type: ignore[assignment]
+    n: N_DAMPED = None,
     points: POINTS = 201,
     method: METHOD = Method.film,
     check: CHECK = False,
@@ -535,6 +607,10 @@ def elastic(
     serves the first-yield check: above that velocity a warning says to use
     'impact elastoplastic'.
 
+    --damping tsuji|hunt-crossley adds viscous damping to Hertz (docs/damping.md), with
+    --alpha or a target --e; the summary then adds delta_separation, alpha and the energy
+    dissipated, and the force-indentation curve is a loop.
+
     --curve FILE replaces Hertz by your own loading curve (force against indentation), run
     as an elastic, reversible law; an impact beyond the curve is an error naming the largest
     tabulated indentation and the one needed.
@@ -542,10 +618,12 @@ def elastic(
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
     """
+    if n is None:
+        n = 400 if damping is not None and damping.given else 25
     own = None if curve is None else LawChoice("tabulated", {"curve": curve})
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
-        fmt=fmt, output=output, plot=plot, summary=summary, law=own,
+        fmt=fmt, output=output, plot=plot, summary=summary, law=own, damping=damping,
         energy_plot=energy_plot,
     )  # fmt: skip
 
@@ -597,6 +675,7 @@ elastoplastic.__doc__ = f"{elastoplastic.__doc__}\n\n{UNITS_HELP} {SIGN_HELP}"
 
 @with_sphere_options(velocities=False)
 @with_law_options()
+@with_damping_options()
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
@@ -615,7 +694,8 @@ def restitution(
     ] = False,
     spheres: SphereOptions = None,
     law: LawOptions = None,
-    n: N = 25,
+    damping: DampingOptions = None,  # type: ignore[assignment]
+    n: N_DAMPED = None,
     split: SPLIT = Split.mass,
     fmt: FMT = None,
     output: OUT = None,
@@ -634,6 +714,12 @@ def restitution(
     --plot draws e, the contact time and the permanent indentation (total and of each
     sphere) against V0, with the yield velocity V_y marked.
 
+    --damping tsuji|hunt-crossley --alpha A sweeps Hertz with viscous damping instead
+    (docs/damping.md): e is the same at every V0 for tsuji and falls with alpha V0 for
+    hunt-crossley; delta_res is 0, energy_dissipated the damping's work, and a column
+    delta_separation is added; the plot's third panel shows the maximum indentation and
+    that at separation.
+
     Example: impact restitution --v-min 0.1m/s --v-max 10m/s --count 50 --d1 20mm --d2 40mm
     --material steel --plot restitution.png
     """
@@ -648,6 +734,26 @@ def restitution(
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
+    if damping is not None and damping.given:
+        if damping.e is not None:
+            raise InputError(
+                "impact restitution --damping sweeps V0 at one alpha: give --alpha (find the "
+                "alpha of a target e at one V0 with 'impact elastic --damping ... --e E')"
+            )
+        if law is not None and (law.names or law.given):
+            raise InputError(
+                "--law and its parameters are for the elastoplastic sweep; --damping sweeps "
+                "Hertz with viscous damping"
+            )
+        velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
+        _damped_sweep(
+            damping, spheres, velocities, n=400 if n is None else n, split=split, fmt=fmt,
+            output=output, plot=plot, linear=linear,
+        )  # fmt: skip
+        return
+    if damping is not None:
+        damping.parse()  # refuses --alpha, --e or --separation without --damping
+    n = 25 if n is None else n
     (choice,) = resolve_laws(law)
     s1, s2 = spheres_from_options(spheres)
     velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
@@ -737,6 +843,87 @@ def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
             f"{data['force_max'][i]:.4g}",
         )
     console(stream).print(table)
+
+
+def _damped_sweep(
+    damping: DampingOptions,
+    spheres: SphereOptions,
+    velocities: np.ndarray,
+    *,
+    n: int,
+    split: Split,
+    fmt: Format | None,
+    output: str | None,
+    plot: str | None,
+    linear: bool,
+) -> None:
+    """``impact restitution --damping``: the damped sweep in every format, and its plot."""
+    from impactcli.contact import effective_radius
+    from impactcli.impact import DAMPED_SWEEP_COLUMNS, damped_restitution_sweep
+    from impactcli.spheres import spheres_from_options
+    from impactcli.validation import contact_radius_warning
+
+    law, alpha, _target, separation = damping.parse()
+    assert law is not None and alpha is not None
+    s1, s2 = spheres_from_options(spheres)
+    try:
+        data = damped_restitution_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    radius = effective_radius(s1.radius, s2.radius)
+    message = contact_radius_warning(velocities, data["delta_max"], radius)
+    if message:
+        warn(message)
+    unit = " s/m" if law == "hunt-crossley" else ""
+    name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}[law]
+    model = f"Hertz with {name} damping, alpha = {alpha:.6g}{unit}, {separation} separation"
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.csv:
+            matrix = np.column_stack([data[c] for c in DAMPED_SWEEP_COLUMNS])
+            write_csv(stream, DAMPED_SWEEP_COLUMNS, [((), matrix)])
+        elif kind is Format.json:
+            inputs = {"d1": s1.diameter, "d2": s2.diameter, "n": n, "split": split.value}
+            inputs.update(damping=law, alpha=alpha, separation=separation)
+            write_json(stream, {"inputs": inputs, "sweep": data})
+        else:
+            from rich.table import Table
+
+            table = Table(title=f"Restitution against impact velocity ({model}, FILM n = {n})")
+            heads = ("V0 (m/s)", "e", "t_c (us)", "delta_max (um)", "delta_sep (um)")
+            for h in heads + ("E_diss (mJ)",):
+                table.add_column(h, justify="right")
+            for i in range(velocities.size):
+                table.add_row(
+                    f"{data['impact_velocity'][i]:.4g}",
+                    f"{data['restitution'][i]:.6f}",
+                    f"{data['contact_time'][i] * 1e6:.4g}",
+                    f"{data['delta_max'][i] * 1e6:.4g}",
+                    f"{data['delta_separation'][i] * 1e6:.4g}",
+                    f"{data['energy_dissipated'][i] * 1e3:.4g}",
+                )
+            console(stream if output not in (None, "-") else None).print(table)
+    if plot:
+        from impactcli.formatting import format_quantity
+        from impactcli.plots import restitution_figure
+
+        parts = [
+            f"D1 = {format_quantity(s1.diameter, 'm')}",
+            f"D2 = {format_quantity(s2.diameter, 'm')}",
+            *_material_parts(spheres, s1, s2),
+        ]
+        fig = restitution_figure(
+            data["impact_velocity"],
+            data["restitution"],
+            data["contact_time"],
+            {"maximum": data["delta_max"], "at separation": data["delta_separation"]},
+            title=f"Restitution against impact velocity ({model}, FILM, n = {n}): "
+            + ", ".join(parts),
+            log_velocity=not linear,
+            indentation_title="(c) Indentation",
+            indentation_label=r"indentation $\delta$",
+        )
+        save_plot(fig, plot)
 
 
 def _plot_sweep(

@@ -9,6 +9,7 @@ the invalid rows; printing it, and any progress bar, is the caller's.
 
 from __future__ import annotations
 
+import io
 import os
 import sys
 from collections.abc import Callable
@@ -27,16 +28,21 @@ from impactcli.io.readers import (
 )
 from impactcli.io.table import (
     MAX_ROW_WARNINGS,
-    NULL_VALUES,
-    QUANTITY_COLUMNS,
-    TEXT_COLUMNS,
     RowError,
     check_columns,
     compute_frame,
+    dask_csv_block,
     dask_partition,
     partition_errors,
+    used_columns,
 )
-from impactcli.io.writers import TableFormat, TableSink, output_schema, result_batch
+from impactcli.io.writers import (
+    TableFormat,
+    TableSink,
+    check_writable,
+    output_schema,
+    result_batch,
+)
 from impactcli.output import atomic_output
 
 __all__ = ["BatchReport", "run_dask", "run_numpy"]
@@ -103,8 +109,9 @@ def run_numpy(
     report = BatchReport(strict)
     try:
         source = open_source(path, stream, model, rows)
-        used = [c for c in source.schema.names if c in QUANTITY_COLUMNS or c in TEXT_COLUMNS]
+        used = used_columns(source.schema.names)
         schema = output_schema(source.schema)
+        check_writable(schema, fmt)
         with (
             atomic_output(output, binary=True) as out,
             ThreadPoolExecutor(max_workers=1) as writer,
@@ -112,26 +119,42 @@ def run_numpy(
             if progress:
                 progress(0, source.rows)
             sink = TableSink(out, schema, fmt)
-            # One chunk is written (pyarrow, without the GIL) while the next is computed.
-            writing = None
-            for batch in source.batches:
-                result = compute_frame(compute_input(batch, used), n=n, split=split, model=model)
-                report.add(result["error"], report.rows)
+            try:
+                # One chunk is written (pyarrow, without the GIL) while the next is computed.
+                writing = None
+                for batch, faults in source.batches:
+                    result = compute_frame(
+                        compute_input(batch, used), n=n, split=split, model=model, faults=faults
+                    )
+                    report.add(result["error"], report.rows)
+                    if writing is not None:
+                        writing.result()
+                    writing = writer.submit(sink.write, result_batch(batch, result, schema))
+                    report.rows += batch.num_rows
+                    if progress:
+                        progress(report.rows, source.rows and max(source.rows, report.rows + 1))
                 if writing is not None:
                     writing.result()
-                writing = writer.submit(sink.write, result_batch(batch, result, schema))
-                report.rows += batch.num_rows
-                if progress:
-                    progress(report.rows, source.rows and max(source.rows, report.rows + 1))
-            if writing is not None:
-                writing.result()
-            sink.close()
+                sink.close()
+            except BaseException:
+                if writing is not None:
+                    writing.cancel() or _wait(writing)
+                sink.abandon()
+                raise
             if progress:
                 progress(report.rows, report.rows)
     finally:
         if stream is not sys.stdin.buffer:
             stream.close()
     return report
+
+
+def _wait(future) -> None:
+    """Let a chunk being written finish (its error, if any, is not the run's)."""
+    try:
+        future.result()
+    except BaseException:  # noqa: BLE001
+        pass
 
 
 # -- the Dask engine ----------------------------------------------------------------------
@@ -146,21 +169,73 @@ def _dask_scheduler(scheduler: str | None):
     LocalCluster, an address (tcp://host:8786) for a running distributed cluster."""
     if scheduler in (None, "threads", "synchronous", "processes"):
         return {"scheduler": scheduler or "threads"}, None
+    if scheduler != "local" and "://" not in scheduler:
+        raise InputError(
+            "--scheduler must be threads, processes, synchronous, local or the address of a "
+            f"distributed scheduler such as tcp://host:8786, got {scheduler!r}"
+        )
     try:
         from distributed import Client, LocalCluster
     except ImportError:
         raise InputError(
             f"--scheduler {scheduler}: needs dask.distributed: pip install 'impactcli[dask]'"
         ) from None
-    if scheduler == "local":
-        cluster = LocalCluster(
-            n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=None
-        )
-        return {}, Client(cluster)
     try:
+        if scheduler == "local":
+            cluster = LocalCluster(
+                n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=None
+            )
+            return {}, Client(cluster)
         return {}, Client(scheduler, timeout="10s")
-    except OSError as exc:
+    except (OSError, ValueError, TypeError, RuntimeError) as exc:
         raise InputError(f"--scheduler {scheduler}: {first_line(exc)}") from None
+
+
+def _output_schema_of(path: str):
+    """The Arrow schema of the Parquet output of a Parquet input at ``path`` (its columns,
+    lists, structs and bytes too, then the results), or ``"infer"`` when the input's
+    schema cannot be read here (a URL: the writer infers it from the partitions)."""
+    import pyarrow as pa
+
+    try:
+        import pyarrow.dataset as ds
+
+        schema = ds.dataset(path, format="parquet").schema
+    except (OSError, ValueError, TypeError, pa.ArrowException):
+        return "infer"
+    schema = pa.schema([f.with_name(f.name.strip()) for f in schema]).remove_metadata()
+    return output_schema(schema)
+
+
+def _dask_csv(path: str, rows: int, options: dict, strict: bool):
+    """A CSV file (or glob, URL) as a Dask DataFrame of result partitions: blocks of whole
+    lines (:func:`dask.bytes.read_bytes`), each read and computed by
+    :func:`~impactcli.io.table.dask_csv_block`."""
+    import dask
+    import dask.dataframe as dd
+    from dask.bytes import read_bytes
+
+    from impactcli.io.csvblocks import MAX_LINE_BYTES, read_header, sniff
+
+    try:
+        sample, files = read_bytes(
+            path, delimiter=b"\n", blocksize=max(rows * 100, 1 << 16),
+            sample=MAX_LINE_BYTES + 1,
+        )  # fmt: skip
+    except (OSError, ValueError) as exc:
+        raise InputError(f"{path}: {first_line(exc)}") from None
+    sniff(sample[: 1 << 16], path)
+    names, _ = read_header(io.BytesIO(sample), path)
+    check_columns(names, options["model"])
+    meta = dask_csv_block(b"", names, False, 0, **options)
+    parts, number = [], 0
+    for blocks in files:
+        for k, block in enumerate(blocks):
+            parts.append(
+                dask.delayed(dask_csv_block)(block, names, k == 0, number, **options, strict=strict)
+            )
+            number += 1
+    return dd.from_delayed(parts, meta=meta, verify_meta=False)
 
 
 def run_dask(
@@ -200,24 +275,18 @@ def run_dask(
     if not parquet and not _is_url(path) and os.path.isfile(path):
         with open(path, "rb") as handle:
             parquet = handle.read(4) == b"PAR1"
-    try:
-        if parquet:
-            ddf = dd.read_parquet(path)
-        else:
-            ddf = dd.read_csv(
-                path,
-                dtype=str,
-                na_values=list(NULL_VALUES),
-                keep_default_na=False,
-                blocksize=max(rows * 100, 1 << 20),
-            )
-    except (OSError, ValueError) as exc:
-        raise InputError(f"{path}: {first_line(exc)}") from None
-    ddf = ddf.rename(columns={c: c.strip() for c in ddf.columns})
-    check_columns(list(ddf.columns), model)
     options = {"n": n, "split": split, "model": model}
-    meta = dask_partition(ddf._meta, **options)
-    out = ddf.map_partitions(dask_partition, **options, strict=strict, meta=meta)
+    if parquet:
+        try:
+            ddf = dd.read_parquet(path)
+        except (OSError, ValueError, TypeError) as exc:
+            raise InputError(f"{path}: {first_line(exc)}") from None
+        ddf = ddf.rename(columns={c: c.strip() for c in ddf.columns})
+        check_columns(list(ddf.columns), model)
+        meta = dask_partition(ddf._meta, **options)
+        out = ddf.map_partitions(dask_partition, **options, strict=strict, meta=meta)
+    else:
+        out = _dask_csv(path, rows, options, strict)
 
     local = not _is_url(output)
     target = os.path.realpath(output) if local else output
@@ -225,6 +294,11 @@ def run_dask(
         raise InputError(f"{output!r} is a directory: remove it or choose another OUT")
     if local and os.path.exists(target) and not os.path.isfile(target):
         local = False  # a device or a pipe (/dev/null): written in place, never replaced
+    if local and fmt is TableFormat.parquet and os.path.isfile(target):
+        raise InputError(
+            f"{output!r} is a file; --engine dask writes Parquet as a folder of part files: "
+            "remove it or choose another OUT"
+        )
     write_to, stage = target, None
     if local:  # a new private folder beside the target (mkdtemp: no name race)
         import tempfile
@@ -235,7 +309,11 @@ def run_dask(
             raise InputError(f"cannot write {output!r}: {exc.strerror or exc}") from None
         write_to = os.path.join(stage, os.path.basename(target))
     if fmt is TableFormat.parquet:
-        write = out.to_parquet(write_to, write_index=False, compute=False)
+        schema = _output_schema_of(path) if parquet else "infer"
+        try:
+            write = out.to_parquet(write_to, write_index=False, compute=False, schema=schema)
+        except (ValueError, TypeError, OSError) as exc:  # pyarrow's ArrowInvalid included
+            raise InputError(f"cannot write {output!r}: {first_line(exc)}") from None
     else:
         write = out.to_csv(write_to, single_file=True, index=False, compute=False)
     # The error summary reuses the partitions the writer computes (the same graph keys):
@@ -246,7 +324,7 @@ def run_dask(
             for i, part in enumerate(out.to_delayed())
         ]
     else:
-        infos = [out.map_partitions(partition_errors, meta=partition_errors(meta.iloc[:0]))]
+        infos = [out.map_partitions(partition_errors, meta=partition_errors(out._meta))]
     report = BatchReport(strict=False)
     client = None
     try:  # the scheduler starts inside: a signal while a cluster starts still cleans up
@@ -269,7 +347,7 @@ def run_dask(
     except RowError as exc:
         offset = 0
         if exc.partition:  # the rows of the partitions before it
-            lengths = ddf.partitions[: exc.partition].map_partitions(len)
+            lengths = out.partitions[: exc.partition].map_partitions(len)
             offset = int(lengths.compute(**kwargs).sum())
         raise InputError(f"row {offset + exc.row + 1}: {exc.reason}") from None
     finally:

@@ -26,7 +26,9 @@ PARQUET_SUFFIXES: tuple[str, ...] = (".parquet", ".pq", ".parq")
 
 
 class TableSource:
-    """A table read in chunks of rows (pyarrow RecordBatches), with its progress."""
+    """A table read in chunks of rows, with its progress: ``batches`` yields
+    ``(RecordBatch, errors)``, errors being the reason of each malformed row (an object
+    array, ``""`` where good) or None when every row of the chunk is good."""
 
     def __init__(self, schema, batches: Iterator, rows: int | None = None):
         self.schema = schema
@@ -52,45 +54,27 @@ def open_source(path: str, stream: io.BufferedReader, model: str | None, rows: i
 
 
 def _csv_source(path: str, stream: io.BufferedReader, model: str | None, rows: int) -> TableSource:
-    import csv
-
     import pyarrow as pa
-    from pyarrow import csv as pa_csv
 
-    header = stream.readline()
-    if not header.strip():
-        raise InputError(f"{_label(path)}: empty input; expected a CSV header line")
-    names = [c.strip() for c in next(csv.reader([header.decode("utf-8-sig")]))]
+    from impactcli.io.csvblocks import parse_block, read_header, record_blocks, sniff
+
+    label = _label(path)
+    sniff(stream.peek(1 << 16)[: 1 << 16], label)
+    names, _ = read_header(stream, label)
     check_columns(names, model)
-    sample = stream.peek(1 << 16)
-    if not sample.strip():  # a header and no rows
-        schema = pa.schema([(c, pa.string()) for c in names])
-        return TableSource(schema, iter(()))
+    schema = pa.schema([(c, pa.string()) for c in names])
+    sample = stream.peek(1 << 16)[: 1 << 16]
     row_bytes = max(len(sample) / max(sample.count(b"\n"), 1), 8.0)
-    block = int(min(max(rows * row_bytes, 1 << 16), 1 << 30))
-    try:
-        reader = pa_csv.open_csv(
-            stream,
-            read_options=pa_csv.ReadOptions(column_names=names, block_size=block),
-            convert_options=pa_csv.ConvertOptions(
-                column_types={c: pa.string() for c in names},
-                null_values=list(NULL_VALUES),
-                strings_can_be_null=True,
-            ),
-        )
-    except (pa.ArrowInvalid, StopIteration) as exc:
-        raise InputError(f"{_label(path)}: {first_line(exc)}") from None
 
     def batches():
-        while True:
-            try:
-                batch = reader.read_next_batch()
-            except StopIteration:
-                return
-            except pa.ArrowInvalid as exc:
-                raise InputError(f"{_label(path)}: {first_line(exc)}") from None
+        blocks = record_blocks(stream, int(rows * row_bytes), label)
+        block, rest = next(blocks, None), b""
+        while block is not None:
+            following = next(blocks, None)
+            batch, faults, rest = parse_block(rest + block, names, final=following is None)
             if batch.num_rows:
-                yield batch
+                yield batch, faults
+            block = following
 
     estimate = None
     if path != "-":  # for the progress bar: the file's size over the sample's bytes per row
@@ -98,7 +82,7 @@ def _csv_source(path: str, stream: io.BufferedReader, model: str | None, rows: i
             estimate = int(os.fstat(stream.fileno()).st_size / row_bytes)
         except OSError:
             estimate = None
-    return TableSource(reader.schema, batches(), estimate)
+    return TableSource(schema, batches(), estimate)
 
 
 def _parquet_source(path: str, stream: io.BufferedReader, model: str | None, rows: int):
@@ -111,7 +95,8 @@ def _parquet_source(path: str, stream: io.BufferedReader, model: str | None, row
         raise InputError(f"{_label(path)}: {first_line(exc)}") from None
     schema = handle.schema_arrow
     check_columns(schema.names, model)
-    return TableSource(schema, handle.iter_batches(batch_size=rows), handle.metadata.num_rows)
+    batches = ((batch, None) for batch in handle.iter_batches(batch_size=rows))
+    return TableSource(schema, batches, handle.metadata.num_rows)
 
 
 def _label(path: str) -> str:
@@ -125,19 +110,52 @@ def first_line(exc: BaseException) -> str:
 
 
 def compute_input(batch, used: list[str]):
-    """The columns of a RecordBatch that :func:`~impactcli.io.table.compute_frame` reads,
-    as pandas; text columns that are all numbers become floats here by one Arrow cast, and
-    only the others go through its slower path (numbers, then units)."""
+    """The columns of a RecordBatch (or Table) that :func:`~impactcli.io.table.compute_frame` reads,
+    as pandas: the spellings of "missing" (:data:`~impactcli.io.table.NULL_VALUES`) become
+    null, and text columns that are then all numbers become floats by one Arrow cast; only
+    the others go through its slower path (numbers, then units). A column that cannot hold
+    a quantity or a name (a list, a struct, bytes that are not UTF-8) is one line."""
     import pyarrow as pa
     import pyarrow.compute as pc
 
+    nulls = pa.array(NULL_VALUES, pa.string())
     columns = []
     for name in used:
-        column = batch.column(name)
-        if name in QUANTITY_COLUMNS and pa.types.is_string(column.type):
-            try:
-                column = pc.cast(column, pa.float64())
-            except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
-                pass
+        column = _as_text_or_number(batch.column(name), name)
+        if pa.types.is_string(column.type):
+            column = pc.if_else(
+                pc.is_in(column, value_set=nulls), pa.scalar(None, pa.string()), column
+            )
+            if name in QUANTITY_COLUMNS:
+                try:
+                    column = pc.cast(column, pa.float64())
+                except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+                    pass
         columns.append(column)
-    return pa.RecordBatch.from_arrays(columns, names=used).to_pandas()
+    return pa.table(columns, names=used).to_pandas()
+
+
+def _as_text_or_number(column, name: str):
+    """A used column as strings, numbers, booleans or nulls; one line if it cannot be."""
+    import pyarrow as pa
+
+    kind = column.type
+    if pa.types.is_dictionary(kind):
+        column, kind = column.cast(kind.value_type), kind.value_type
+    if pa.types.is_large_string(kind) or pa.types.is_string_view(kind):
+        return column.cast(pa.string())
+    if pa.types.is_binary(kind) or pa.types.is_large_binary(kind):
+        try:
+            return column.cast(pa.string())
+        except pa.ArrowInvalid:
+            raise InputError(f"column {name}: bytes that are not UTF-8 text") from None
+    if (
+        pa.types.is_string(kind)
+        or pa.types.is_integer(kind)
+        or pa.types.is_floating(kind)
+        or pa.types.is_boolean(kind)
+        or pa.types.is_null(kind)
+        or pa.types.is_decimal(kind)
+    ):
+        return column.cast(pa.float64()) if pa.types.is_decimal(kind) else column
+    raise InputError(f"column {name} holds {kind}; expected numbers or text")

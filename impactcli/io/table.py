@@ -12,6 +12,7 @@ physics, never the command line. pandas is imported inside the functions.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import wraps
 
 import numpy as np
 
@@ -20,18 +21,26 @@ from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
 from impactcli.validation import Problems
 
 __all__ = [
+    "DAMPING_COLUMNS",
+    "EXTRA_KEYS",
     "MAX_ROW_WARNINGS",
     "MODELS",
     "NULL_VALUES",
     "QUANTITY_COLUMNS",
     "REQUIRED_COLUMNS",
     "TEXT_COLUMNS",
+    "SPLITS",
+    "TEXT_OUTPUTS",
     "RowError",
     "check_columns",
     "compute_frame",
+    "dask_csv_block",
     "dask_partition",
+    "law_parameter_columns",
     "output_columns",
     "partition_errors",
+    "row_warnings",
+    "used_columns",
 ]
 
 #: Quantity columns: name -> (kind for :func:`impactcli.units.parse_quantity`, inf allowed).
@@ -56,10 +65,39 @@ QUANTITY_COLUMNS: dict[str, tuple[str, bool]] = {
     "sy1": ("pressure", False),
     "sy2": ("pressure", False),
 }
-TEXT_COLUMNS: tuple[str, ...] = ("model", "material", "material1", "material2")
+TEXT_COLUMNS: tuple[str, ...] = (
+    "model", "material", "material1", "material2", "law", "damping", "separation", "split",
+)  # fmt: skip
+#: Shares of the indentation between the spheres (``--split`` and the ``split`` column).
+SPLITS: tuple[str, ...] = ("mass", "compliance", "yield")
+#: Damping columns (numbers): ``alpha`` of the row's damping law, or its target ``e``.
+DAMPING_COLUMNS: tuple[str, ...] = ("alpha", "e")
+#: Result columns after the summary keys: the damping parameter used, each sphere's share
+#: of the dissipated energy [J] and its first-yield velocity [m/s] (inf: no yield strength).
+EXTRA_KEYS: tuple[str, ...] = (
+    "damping_alpha", "energy_dissipated1", "energy_dissipated2",
+    "first_yield_velocity1", "first_yield_velocity2",
+)  # fmt: skip
+
+
+def law_parameter_columns() -> dict[str, tuple[str, str]]:
+    """The law-parameter columns: name -> (kind, law names that take it), from the law
+    registry (:data:`impactcli.lawlib.LAWS`): ``p0_factor``, ``py``, ``k_load``,
+    ``k_unload``, ``curve``, ``unload_curves``, ``interpolation``."""
+    from impactcli.lawlib import LAWS
+
+    found: dict[str, tuple[str, str]] = {}
+    for spec in LAWS.values():
+        for p in spec.parameters:
+            kind, laws = found.get(p.name, (p.kind, ""))
+            found[p.name] = (kind, f"{laws}, {spec.name}" if laws else spec.name)
+    return found
+
+
 REQUIRED_COLUMNS: tuple[str, ...] = ("d1", "d2", "v1", "v2")
 MODELS: tuple[str, ...] = ("elastic", "elastoplastic")
-#: Cells read as missing, in CSV input (both engines).
+#: Cells of the quantity and text columns read as missing (both engines); other columns
+#: are carried through as written.
 NULL_VALUES: tuple[str, ...] = ("", "NA", "N/A", "NaN", "nan", "NULL", "null", "None")
 #: Warnings printed for invalid rows before the count alone is reported.
 MAX_ROW_WARNINGS = 20
@@ -73,11 +111,54 @@ class RowError(ValueError):
         self.row, self.reason, self.partition = row, reason, partition
 
 
+#: Text columns of the output, after the summary keys.
+TEXT_OUTPUTS: tuple[str, ...] = ("error", "warning")
+
+
 def output_columns() -> tuple[str, ...]:
-    """Columns added after the input ones: the summary keys (SI), then ``error``."""
+    """Columns added after the input ones: the summary keys (SI), then ``error`` and
+    ``warning`` (text)."""
     from impactcli.batch import BATCH_KEYS
 
-    return (*BATCH_KEYS, "error")
+    return (*BATCH_KEYS, *EXTRA_KEYS, *TEXT_OUTPUTS)
+
+
+def row_warnings(
+    impact_velocity: np.ndarray,
+    first_yield_velocity: np.ndarray,
+    delta_max: np.ndarray,
+    radius: np.ndarray,
+    elastic: np.ndarray,
+) -> np.ndarray:
+    """The ``warning`` of each row (``""`` where none), in the words of the single-impact
+    commands (:func:`impactcli.validation.first_yield_warning` on elastic rows above the
+    first-yield velocity, :func:`~impactcli.validation.contact_radius_warning` where the
+    contact radius exceeds 0.1 R), joined by ``"; "``. Velocities [m/s], lengths [m]."""
+    from impactcli.validation import (
+        SMALL_DEFORMATION_LIMIT,
+        contact_radius_warning,
+        first_yield_warning,
+    )
+
+    size = impact_velocity.size
+    out = np.full(size, "", dtype=object)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        yields = elastic & (impact_velocity > first_yield_velocity)
+        large = np.sqrt(delta_max / radius) > SMALL_DEFORMATION_LIMIT
+    for i in np.flatnonzero(yields | large).tolist():  # the warned rows only
+        words = []
+        if yields[i]:
+            words.append(first_yield_warning(impact_velocity[i], first_yield_velocity[i]))
+        if large[i]:
+            words.append(contact_radius_warning(impact_velocity[i], delta_max[i], radius[i]))
+        out[i] = "; ".join(w for w in words if w)
+    return out
+
+
+def used_columns(names: Sequence[str]) -> list[str]:
+    """The columns :func:`compute_frame` reads, in table order (the others are carried)."""
+    known = {*QUANTITY_COLUMNS, *TEXT_COLUMNS, *DAMPING_COLUMNS, *law_parameter_columns()}
+    return [c for c in names if c in known]
 
 
 def check_columns(names: Sequence[str], model: str | None) -> None:
@@ -92,8 +173,10 @@ def check_columns(names: Sequence[str], model: str | None) -> None:
             f"missing input column(s) {', '.join(missing)}; each row needs d1, d2, v1, v2, "
             "model, and material (or material1, material2) or E1, nu1, rho1, E2, nu2, rho2"
         )
-    if "model" not in present and model is None:
-        raise InputError("missing input column model (elastic or elastoplastic); or give --model")
+    if "model" not in present and "law" not in present and model is None:
+        raise InputError(
+            "missing input column model (elastic or elastoplastic) or law; or give --model"
+        )
     for i in (1, 2):
         if not present & {"material", f"material{i}", "E", f"E{i}"}:
             raise InputError(
@@ -110,10 +193,10 @@ def check_columns(names: Sequence[str], model: str | None) -> None:
 
 
 def _quantity_column(series, kind: str, name: str, allow_inf: bool):
-    """SI floats of one column (NaN where empty) and each row's parse error (or "")."""
+    """SI floats of one column (NaN where missing) and each row's parse error (or "")."""
     import pandas as pd
 
-    from impactcli.units import parse_quantity
+    from impactcli.units import parse_quantities
 
     size = len(series)
     errors = np.full(size, "", dtype=object)
@@ -125,17 +208,11 @@ def _quantity_column(series, kind: str, name: str, allow_inf: bool):
         numbers = pd.to_numeric(series, errors="coerce")
         values = np.array(numbers.to_numpy(dtype=float, na_value=np.nan))
         text = np.flatnonzero(np.isnan(values) & series.notna().to_numpy())
-        if text.size:  # units: parse each distinct string once
-            cells = series.iloc[text].astype(str)
-            parsed: dict[str, tuple[float, str]] = {}
-            for cell in pd.unique(cells):
-                try:
-                    parsed[cell] = (parse_quantity(cell, kind, name, allow_inf), "")
-                except InputError as exc:
-                    parsed[cell] = (np.nan, str(exc))
-            found = [parsed[c] for c in cells.tolist()]
-            values[text] = [v for v, _ in found]
-            errors[text] = [e for _, e in found]
+        if text.size:  # units, and the spellings of "missing"
+            cells = series.iloc[text].astype(str).to_numpy(dtype=object)
+            missing = np.isin(np.char.strip(cells.astype(str)), NULL_VALUES)
+            cells[missing] = None
+            values[text], errors[text] = parse_quantities(cells, kind, name, allow_inf)
     if not allow_inf:
         inf = np.flatnonzero(np.isinf(values))
         errors[inf] = [f"{name}: must be finite, got {v:g}" for v in values[inf].tolist()]
@@ -144,17 +221,35 @@ def _quantity_column(series, kind: str, name: str, allow_inf: bool):
 
 
 def _text_column(frame, name: str, size: int, lower: bool = False) -> np.ndarray:
-    """A text column as an object array, None where empty (all None if absent)."""
+    """A text column as an object array, None where missing (all None if absent)."""
     if name not in frame.columns:
         return np.full(size, None, dtype=object)
     column = frame[name].astype("string").str.strip()
     if lower:
         column = column.str.lower()
-    return column.astype(object).where(column.notna() & (column != ""), None).to_numpy()
+    missing = column.isna() | column.isin(NULL_VALUES)
+    return column.astype(object).where(~missing, None).to_numpy()
 
 
+def _quiet(function):
+    """Run ``function`` with NumPy's floating-point warnings off: an extreme row gives NaN
+    or inf in its own lanes, and its error, not a warning for the whole chunk."""
+
+    @wraps(function)
+    def quiet(*args, **kwargs):
+        with np.errstate(all="ignore"):
+            return function(*args, **kwargs)
+
+    return quiet
+
+
+@_quiet
 def compute_frame(
-    frame, n: int = 25, split: str = "mass", model: str | None = None
+    frame,
+    n: int = 25,
+    split: str = "mass",
+    model: str | None = None,
+    faults: np.ndarray | None = None,
 ) -> dict[str, np.ndarray]:
     """The result columns of a chunk of rows (a pandas DataFrame of input columns).
 
@@ -163,14 +258,18 @@ def compute_frame(
     frame : the chunk; columns as :data:`QUANTITY_COLUMNS` (numbers in SI or strings with
         units) and :data:`TEXT_COLUMNS`; others are ignored
     n : FILM segments per stage
-    split : ``mass`` or ``compliance`` share of the indentation between the spheres
+    split : ``mass``, ``compliance`` or ``yield`` share of the indentation between the
+        spheres, for rows whose ``split`` cell is empty (:func:`_sphere_shares`)
     model : model of the rows whose ``model`` cell is empty (or of all, without the column)
+    faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
+        CSV line, :func:`impactcli.io.csvblocks.parse_block`): such a row's error, first
 
     Returns
     -------
     dict
         :func:`output_columns` -> arrays: the summary keys (SI floats, NaN where not
-        applicable or the row is invalid) and ``error`` (object array, ``""`` when valid).
+        applicable or the row is invalid), ``error`` (object array, ``""`` when valid) and
+        ``warning`` (:func:`row_warnings`).
         Rows are independent: any chunking gives the same rows.
 
     Examples
@@ -189,10 +288,17 @@ def compute_frame(
     >>> out["error"][1]
     'the elastoplastic model needs a yield strength: give sy, sy1/sy2 or a material that has one'
     """
-    from impactcli.batch import BATCH_KEYS, batch_impacts, material_properties
+    from impactcli.batch import (
+        BATCH_KEYS,
+        batch_damped_impacts,
+        batch_impacts,
+        material_properties,
+    )
 
     size = len(frame)
     errors = Problems(size)
+    if faults is not None:
+        errors.add_messages(np.asarray(faults, dtype=object))
 
     # Quantities, in column order: the first bad cell of a row is its error.
     q: dict[str, np.ndarray] = {}
@@ -221,12 +327,18 @@ def compute_frame(
         errors.add(np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), unknown_property(i, "rho"))
         spheres.append(sphere)
 
-    # The model of each row.
+    # The law of each row (a law cell wins over the model), its parameters.
+    laws, law_params, elastic_law = _row_laws(frame, size, errors)
+
+    # The model of each row without a law.
     key = _text_column(frame, "model", size, lower=True)
     if model is not None:
         key = np.where(np.equal(key, None), model, key)
-    errors.add(np.equal(key, None), "model is missing (elastic or elastoplastic)")
-    unknown = np.flatnonzero(~np.equal(key, None) & ~np.isin(key, MODELS))
+    key = np.where(np.equal(laws, None), key, "")
+    damped_rows = ~np.equal(_text_column(frame, "damping", size), None)
+    key = np.where(damped_rows & np.equal(key, None), "", key)  # damped: elastic anyway
+    errors.add(np.equal(key, None), "model is missing (elastic or elastoplastic; or a law)")
+    unknown = np.flatnonzero(~np.equal(key, None) & (key != "") & ~np.isin(key, MODELS))
     if unknown.size:
         given = _text_column(frame, "model", size)
         message = np.full(size, "", dtype=object)
@@ -238,43 +350,328 @@ def compute_frame(
     s1, s2 = spheres  # the kernel checks the rest, the yield strength of plastic rows too
 
     # The physics, on the rows that parsed; the kernel adds its own checks.
-    ok = np.flatnonzero(~errors.bad)
-    result = {k: np.full(size, np.nan) for k in BATCH_KEYS}
-    if ok.size:
-        args = (
-            q["d1"], q["d2"], q["v1"], q["v2"],
-            s1["E"], s1["nu"], s2["E"], s2["nu"],
-            s1["rho"], s2["rho"], s1["m"], s2["m"], s1["sy"], s2["sy"], plastic,
+    args = (
+        q["d1"], q["d2"], q["v1"], q["v2"],
+        s1["E"], s1["nu"], s2["E"], s2["nu"],
+        s1["rho"], s2["rho"], s1["m"], s2["m"], s1["sy"], s2["sy"], plastic,
+    )  # fmt: skip
+    damped, damping = _row_damping(frame, size, errors, laws, key)
+    result = {k: np.full(size, np.nan) for k in (*BATCH_KEYS, *EXTRA_KEYS)}
+    kernel = np.full(size, "", dtype=object)
+    for rows, name, rule in _damping_groups(damped, damping, ~errors.bad):
+        out = batch_damped_impacts(
+            *(a[rows] for a in args[:-1]), damping=name, alpha=damping["alpha"][rows],
+            restitution=damping["e"][rows], n=n, separation=rule,
         )  # fmt: skip
-        out = batch_impacts(*(a[ok] for a in args), n=n, split=split)
+        for k in BATCH_KEYS:
+            result[k][rows] = out[k]
+        result["damping_alpha"][rows] = out["alpha"]
+        kernel[rows] = out["error"]
+    undamped = np.equal(damped, None)  # damped rows are done
+    ok = np.flatnonzero(~errors.bad & np.equal(laws, None) & undamped)
+    if ok.size:  # the model column's rows: Hertz or Du & Wang
+        out = batch_impacts(*(a[ok] for a in args), n=n)
         for k in BATCH_KEYS:
             result[k][ok] = out[k]
-        kernel = np.full(size, "", dtype=object)
         kernel[ok] = out["error"]
-        errors.add_messages(kernel)
-        for k in BATCH_KEYS:
-            result[k][errors.bad] = np.nan
+    for rows, name, params in _law_groups(laws, law_params, ~errors.bad & undamped):
+        for part, out in _law_rows(rows, name, params, args, n):
+            for k in BATCH_KEYS:
+                result[k][part] = out[k]
+            kernel[part] = out["error"]
+    errors.add_messages(kernel)
+    splits = _text_column(frame, "split", size, lower=True)
+    splits = np.where(np.equal(splits, None), split, splits).astype(str)
+    errors.add(~np.isin(splits, SPLITS), f"split must be {', '.join(SPLITS)}")
+    notes = _sphere_shares(result, splits, s1, s2, q, ~errors.bad)
+    for k in (*BATCH_KEYS, *EXTRA_KEYS):
+        result[k][errors.bad] = np.nan
     result["error"] = errors.messages
+    with np.errstate(invalid="ignore"):
+        v0 = q["v1"] + q["v2"]
+    result["warning"] = row_warnings(
+        v0, result["first_yield_velocity"], result["delta_max"], result["effective_radius"],
+        np.where(np.equal(laws, None), ~plastic, elastic_law) & ~errors.bad,
+    )  # fmt: skip
+    noted = np.flatnonzero((notes != "") & ~errors.bad)
+    result["warning"][noted] = [
+        f"{w}; {x}" if w else x for w, x in zip(result["warning"][noted], notes[noted])
+    ]
     return result
+
+
+def _row_laws(frame, size: int, errors: Problems):
+    """Each row's law name (None: by the model column), its parameters by column
+    (:func:`law_parameter_columns`: SI floats, NaN where empty; text for files and
+    choices) and whether the law is elastic. Faults of a row (an unknown law, a parameter
+    its law does not take, a value that is not a positive finite number) go to
+    ``errors``."""
+    from impactcli.lawlib import get_law
+    from impactcli.units import KINDS
+
+    given = _text_column(frame, "law", size)
+    laws = np.full(size, None, dtype=object)
+    elastic = np.zeros(size, dtype=bool)
+    message = np.full(size, "", dtype=object)
+    names = given[~np.equal(given, None)]
+    for name in set(names.tolist()):  # distinct law names only
+        rows = given == name
+        try:
+            spec = get_law(name)
+        except ValueError as exc:
+            message[rows] = str(exc)
+            continue
+        laws[rows] = spec.name
+        elastic[rows] = spec.kind == "elastic"
+    errors.add_messages(message)
+
+    params: dict[str, np.ndarray] = {}
+    for column, (kind, takers) in law_parameter_columns().items():
+        if column not in frame.columns:
+            continue
+        if kind in ("file", "choice"):
+            params[column] = _text_column(frame, column, size)
+            present = ~np.equal(params[column], None)
+        else:
+            unit_kind = kind if kind in KINDS else "dimensionless"  # e.g. stiffness: SI
+            params[column], bad = _quantity_column(frame[column], unit_kind, column, False)
+            errors.add_messages(bad)
+            values = params[column]
+            present = ~np.isnan(values)
+            with np.errstate(invalid="ignore"):
+                wrong = np.flatnonzero(present & ~(values > 0) & ~errors.bad)
+            message = np.full(size, "", dtype=object)
+            message[wrong] = [  # the refused rows only, each with its law's name
+                f"{column} of law {law!r} must be a positive, finite number, got {v:g}"
+                for law, v in zip(laws[wrong].tolist(), values[wrong].tolist())
+            ]
+            errors.add_messages(message)
+        foreign = present & ~np.isin(laws.astype(str), takers.split(", "))
+        errors.add(foreign, f"{column} is a parameter of the law(s) {takers} only")
+    return laws, params, elastic
+
+
+def _sphere_shares(result: dict, splits, s1: dict, s2: dict, q: dict, valid) -> np.ndarray:
+    """Each sphere's share of the indentation (``delta1_max`` ... ``delta2_res``, by the
+    row's split), of the dissipated energy, and its first-yield velocity, written into
+    ``result``; returns each row's note on the split (``""`` where none).
+
+    ``mass`` and ``compliance``: delta_i = f_i delta (:func:`impactcli.impact.
+    split_fractions`). ``yield`` (:func:`impactcli.energy.sphere_shares`): the recoverable
+    part delta - delta_res by compliance, the permanent part delta_res to the sphere with
+    the lower yield strength (:func:`impactcli.energy.yield_shares`: a sphere without one is
+    brittle and does not yield; equal strengths share it by compliance). The dissipated
+    energy goes with the permanent part: energy_dissipated_i = p_i energy_dissipated
+    (docs/method.md §9). First-yield velocities: :func:`impactcli.design.
+    first_yield_velocities` (Hertz peak pressure 1.6 sigma_y,i)."""
+    from impactcli.contact import sphere_mass
+    from impactcli.design import first_yield_velocities
+    from impactcli.energy import yield_shares
+    from impactcli.impact import split_fractions
+
+    size = splits.size
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mass1 = np.where(np.isnan(s1["m"]), sphere_mass(q["d1"], s1["rho"]), s1["m"])
+        mass2 = np.where(np.isnan(s2["m"]), sphere_mass(q["d2"], s2["rho"]), s2["m"])
+        c1 = (1.0 - s1["nu"] ** 2) / s1["E"]
+        c2 = (1.0 - s2["nu"] ** 2) / s2["E"]
+        by_mass = split_fractions("mass", mass1, mass2, c1, c2)
+        by_compliance = split_fractions("compliance", mass1, mass2, c1, c2)
+    elastic = [np.where(splits == "mass", by_mass[i], by_compliance[i]) for i in (0, 1)]
+    permanent = [e.copy() for e in elastic]
+    notes = np.full(size, "", dtype=object)
+    sy1, sy2 = s1["sy"], s2["sy"]
+    chosen = np.flatnonzero(valid & (splits == "yield"))
+    if chosen.size:  # the rule of energy.yield_shares, once per distinct pair of strengths
+        pairs = np.stack([sy1[chosen], sy2[chosen]], axis=1)
+        unique, inverse = np.unique(pairs, axis=0, return_inverse=True)
+        shares = np.full((unique.shape[0], 2), np.nan)
+        for k, (a, b) in enumerate(unique.tolist()):
+            a, b = (None if np.isnan(a) else a), (None if np.isnan(b) else b)
+            if a is not None or b is not None:
+                shares[k] = yield_shares(a, b)
+        p = shares[inverse.reshape(-1)]
+        for i in (0, 1):
+            permanent[i][chosen] = np.where(np.isnan(p[:, i]), permanent[i][chosen], p[:, i])
+        for i, sy in ((1, sy1), (2, sy2)):
+            brittle = chosen[np.isnan(sy[chosen]) & (result["delta_res"][chosen] > 0)]
+            notes[brittle] = (
+                f"sphere {i} has no yield strength: taken as brittle, it does not yield "
+                "(fracture is outside the model)"
+            )
+    differ = valid & (splits == "mass") & ((s1["E"] != s2["E"]) | (s1["nu"] != s2["nu"]))
+    notes[differ & (notes == "")] = (
+        "the spheres' materials differ and split is mass, the paper's convention for like "
+        "spheres; split yield puts the permanent indentation on the sphere that yields"
+    )
+    delta_max, delta_res = result["delta_max"], result["delta_res"]
+    permanent_part = np.where(np.isnan(delta_res), 0.0, delta_res)
+    for i in (0, 1):
+        recoverable = elastic[i] * (delta_max - permanent_part)
+        result[f"delta{i + 1}_max"] = recoverable + permanent[i] * permanent_part
+        result[f"delta{i + 1}_res"] = permanent[i] * delta_res
+        result[f"energy_dissipated{i + 1}"] = permanent[i] * result["energy_dissipated"]
+    v1y, v2y = first_yield_velocities(
+        result["effective_mass"], result["effective_radius"], result["effective_modulus"],
+        sy1, sy2,
+    )  # fmt: skip
+    computed = ~np.isnan(result["contact_time"])
+    result["first_yield_velocity1"] = np.where(computed, v1y, np.nan)
+    result["first_yield_velocity2"] = np.where(computed, v2y, np.nan)
+    return notes
+
+
+def _row_damping(frame, size: int, errors: Problems, laws: np.ndarray, model: np.ndarray):
+    """Each row's damping law (None: undamped) and its ``alpha``, ``e`` (NaN where empty)
+    and ``separation`` (None: overlap). Damping is for elastic (Hertz) rows: a damping
+    with the elastoplastic model or another law, an unknown damping law or separation
+    rule, and alpha or e on an undamped row are the row's error."""
+    from impactcli.damping import DAMPING_LAWS, SEPARATIONS
+
+    damped = _text_column(frame, "damping", size, lower=True)
+    given = ~np.equal(damped, None)
+    values: dict[str, np.ndarray] = {"separation": _text_column(frame, "separation", size,
+                                                                 lower=True)}  # fmt: skip
+    for column in DAMPING_COLUMNS:
+        if column in frame.columns:
+            values[column], bad = _quantity_column(frame[column], "dimensionless", column, False)
+            errors.add_messages(bad)
+        else:
+            values[column] = np.full(size, np.nan)
+        errors.add(~given & ~np.isnan(values[column]), f"{column} is for rows with a damping law")
+    if not given.any():
+        return damped, values
+    errors.add(
+        given & ~np.isin(damped.astype(str), list(DAMPING_LAWS)),
+        f"damping must be {' or '.join(DAMPING_LAWS)}",
+    )
+    rule = values["separation"]
+    errors.add(
+        given & ~np.equal(rule, None) & ~np.isin(rule.astype(str), list(SEPARATIONS)),
+        f"separation must be {' or '.join(SEPARATIONS)}",
+    )
+    errors.add(
+        given & ((model == "elastoplastic") | (~np.equal(laws, None) & (laws != "hertz"))),
+        "damping is for elastic rows (model elastic or law hertz)",
+    )
+    return damped, values
+
+
+def _damping_groups(damped: np.ndarray, values: dict, valid: np.ndarray):
+    """(rows, damping law, separation rule) of the valid damped rows, one group each."""
+    chosen = np.flatnonzero(valid & ~np.equal(damped, None))
+    if chosen.size == 0:
+        return
+    rule = np.where(np.equal(values["separation"], None), "overlap", values["separation"])
+    keys = np.char.add(np.char.add(damped[chosen].astype(str), "|"), rule[chosen].astype(str))
+    for key in np.unique(keys).tolist():
+        name, separation = key.split("|")
+        yield chosen[keys == key], name, separation
+
+
+def _law_groups(laws: np.ndarray, params: dict[str, np.ndarray], valid: np.ndarray):
+    """(rows, law name, law_params) of each group of valid rows with one law and the same
+    files and choices (the tabulated curves): one kernel call per group."""
+    from impactcli.lawlib import get_law
+
+    chosen = np.flatnonzero(valid & ~np.equal(laws, None))
+    if chosen.size == 0:
+        return
+    for name in sorted(set(laws[chosen].tolist())):
+        spec = get_law(name)
+        accepted = {p.name: p.kind for p in spec.parameters}
+        rows = chosen[laws[chosen] == name]
+        text = [c for c in params if c in accepted and accepted[c] in ("file", "choice")]
+        keys = [tuple(params[c][r] for c in text) for r in rows.tolist()] if text else None
+        groups = {(): rows} if keys is None else {}
+        if keys is not None:
+            for r, k in zip(rows.tolist(), keys):
+                groups.setdefault(k, []).append(r)
+        for k, members in groups.items():
+            members = np.asarray(members, dtype=np.intp)
+            law_params = {c: params[c][members] for c in params if c in accepted and c not in text}
+            law_params.update({c: v for c, v in zip(text, k) if v is not None})
+            yield members, name, law_params
+
+
+def _law_rows(rows: np.ndarray, name: str, params: dict, args: tuple, n: int):
+    """(rows, kernel output) of one law group; a group the law refuses (ValueError: a bad
+    per-row parameter, an unreadable curve file) is halved until the refused rows stand
+    alone with the law's message as their error."""
+    from impactcli.batch import BATCH_KEYS, batch_impacts
+
+    per_row = {k: v for k, v in params.items() if isinstance(v, np.ndarray)}
+    fixed = {k: v for k, v in params.items() if k not in per_row}
+    pending = [np.arange(rows.size)]
+    while pending:
+        local = pending.pop()
+        chosen = {k: v[local] for k, v in per_row.items()}
+        try:
+            out = batch_impacts(
+                *(a[rows[local]] for a in args[:-1]), n=n, law=name,
+                law_params={**fixed, **chosen},
+            )  # fmt: skip
+        except (ValueError, OSError) as exc:
+            if local.size > 1:
+                half = local.size // 2
+                pending += [local[:half], local[half:]]
+                continue
+            out = {k: np.full(1, np.nan) for k in BATCH_KEYS}
+            out["error"] = np.array([str(exc).splitlines()[0]], dtype=object)
+        yield rows[local], out
 
 
 def dask_partition(
     part, n: int = 25, split: str = "mass", model: str | None = None, strict: bool = False,
-    partition_info: dict | None = None,
+    partition_info: dict | None = None, faults: np.ndarray | None = None,
 ):  # fmt: skip
-    """One Dask partition: its input columns followed by :func:`compute_frame`'s."""
-    import pandas as pd
+    """One Dask partition: its input columns followed by :func:`compute_frame`'s.
 
-    used = [c for c in part.columns if c in QUANTITY_COLUMNS or c in TEXT_COLUMNS]
-    result = compute_frame(part[used], n=n, split=split, model=model)
+    The used columns go through :func:`impactcli.io.readers.compute_input` as in the NumPy
+    engine (the same spellings of "missing", one line for a column that cannot hold a
+    quantity or a name)."""
+    import pandas as pd
+    import pyarrow as pa
+
+    from impactcli.io.readers import compute_input
+
+    used = used_columns(list(part.columns))
+    try:
+        batch = pa.Table.from_pandas(part[used], preserve_index=False)
+    except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError) as exc:
+        raise InputError(f"a column cannot be read: {str(exc).splitlines()[0]}") from None
+    result = compute_frame(compute_input(batch, used), n=n, split=split, model=model, faults=faults)
     if strict:
         bad = np.flatnonzero(result["error"] != "")
         if bad.size:
             number = partition_info["number"] if partition_info else None
             raise RowError(int(bad[0]), str(result["error"][bad[0]]), number)
-    extra = {c: result[c] for c in output_columns()[:-1]}
-    extra["error"] = pd.Series(result["error"], index=part.index, dtype="string")
+    extra = {c: result[c] for c in output_columns() if c not in TEXT_OUTPUTS}
+    for c in TEXT_OUTPUTS:
+        extra[c] = pd.Series(result[c], index=part.index, dtype="string")
     return pd.concat([part, pd.DataFrame(extra, index=part.index)], axis=1)
+
+
+def dask_csv_block(
+    block: bytes, names: list[str], header: bool, number: int, n: int = 25,
+    split: str = "mass", model: str | None = None, strict: bool = False,
+):  # fmt: skip
+    """One block of a CSV file (whole lines; the file's header first when ``header``) as
+    the Dask engine's partition ``number``: its rows read as by the NumPy engine
+    (:func:`impactcli.io.csvblocks.parse_block`: a malformed line is a row with its reason
+    in ``error``; a quoted line break across two blocks makes two such rows), then
+    :func:`dask_partition`."""
+    from impactcli.io.csvblocks import parse_block
+
+    if header:
+        block = block[block.find(b"\n") + 1 :] if b"\n" in block else b""
+    batch, faults, _ = parse_block(block, names, final=True)
+    part = batch.to_pandas()
+    part.columns = names
+    return dask_partition(
+        part, n=n, split=split, model=model, strict=strict,
+        partition_info={"number": number}, faults=faults,
+    )  # fmt: skip
 
 
 def partition_errors(part, partition_info: dict | None = None):

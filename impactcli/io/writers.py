@@ -10,9 +10,10 @@ from typing import IO
 
 import numpy as np
 
-from impactcli.io.table import output_columns
+from impactcli.errors import InputError
+from impactcli.io.table import TEXT_OUTPUTS, output_columns
 
-__all__ = ["TableFormat", "TableSink", "output_schema", "result_batch"]
+__all__ = ["TableFormat", "TableSink", "check_writable", "output_schema", "result_batch"]
 
 
 class TableFormat(enum.StrEnum):
@@ -33,15 +34,33 @@ class TableSink:
             self.writer = pq.ParquetWriter(stream, schema)
         else:
             self.writer = None
-            stream.write((",".join(_csv_field(c) for c in schema.names) + "\n").encode())
+        self.header = fmt is TableFormat.csv  # written with the first rows (or at close)
+
+    def _write_header(self) -> None:
+        if self.header:
+            self.header = False
+            names = ",".join(_csv_field(c) for c in self.schema.names)
+            self.stream.write((names + "\n").encode())
 
     def write(self, batch) -> None:
         if self.writer is not None:
             self.writer.write_batch(batch)
             return
+        self._write_header()
         import pyarrow as pa
         import pyarrow.compute as pc
         from pyarrow import csv as pa_csv
+
+        for k, field in enumerate(batch.schema):  # bytes carried through: as UTF-8 text
+            if pa.types.is_binary(field.type) or pa.types.is_large_binary(field.type):
+                try:
+                    column = batch.column(k).cast(pa.string())
+                except pa.ArrowInvalid:
+                    raise InputError(
+                        f"column {field.name}: bytes that are not UTF-8 text cannot be "
+                        "written to CSV; write Parquet (-f parquet)"
+                    ) from None
+                batch = batch.set_column(k, field.name, column)
 
         # Quote strings only when a chunk has a string that needs it (a comma, a quote).
         needs = any(
@@ -55,8 +74,20 @@ class TableSink:
         pa_csv.write_csv(batch, self.stream, options)
 
     def close(self) -> None:
+        self._write_header()
         if self.writer is not None:
             self.writer.close()
+
+    def abandon(self) -> None:
+        """Forget a run that failed: the Parquet writer closed now, quietly, not by the
+        garbage collector after its stream is gone (pyarrow's message on stderr)."""
+        writer, self.writer, self.header = self.writer, None, False
+        if writer is not None:
+            try:
+                writer.close()
+            except Exception:  # noqa: BLE001 (the run's own error is the one reported)
+                pass
+            writer.is_open = False
 
 
 def _csv_field(text: str) -> str:
@@ -71,7 +102,7 @@ def result_batch(batch, result: dict[str, np.ndarray], schema):
 
     columns = list(batch.columns)
     for name in output_columns():
-        if name == "error":
+        if name in TEXT_OUTPUTS:
             columns.append(pa.array(result[name], type=pa.string()))
         else:
             columns.append(pa.array(result[name], type=pa.float64(), from_pandas=True))
@@ -82,5 +113,22 @@ def output_schema(schema):
     """The Arrow schema of the output: the input's fields, the results (float64), error."""
     import pyarrow as pa
 
-    fields = [*schema, *(pa.field(c, pa.float64()) for c in output_columns()[:-1])]
-    return pa.schema([*fields, pa.field("error", pa.string())])
+    fields = [
+        pa.field(c, pa.string() if c in TEXT_OUTPUTS else pa.float64()) for c in output_columns()
+    ]
+    return pa.schema([*schema, *fields])
+
+
+def check_writable(schema, fmt: TableFormat) -> None:
+    """Refuse up front, in one line, an input column that the output format cannot hold
+    (lists, structs, maps in CSV)."""
+    import pyarrow as pa
+
+    if fmt is not TableFormat.csv:
+        return
+    for field in schema:
+        if pa.types.is_nested(field.type):
+            raise InputError(
+                f"column {field.name} holds {field.type}, which CSV cannot hold; write "
+                "Parquet (-f parquet or -o OUT.parquet)"
+            )

@@ -1,0 +1,144 @@
+"""The viscous-damping options, declared once for every command that takes them.
+
+:func:`with_damping_options` adds --damping, --alpha, --e and --separation to a command's
+signature in place of its ``damping`` parameter and calls the command with them gathered in
+one :class:`DampingOptions` (raw text; :meth:`DampingOptions.parse` reads --alpha in the
+law's unit). The rules on the values (alpha >= 0, e in (0, 1], one of the two) live in
+:func:`impactcli.impact.damped_impact` and :mod:`impactcli.damping`.
+"""
+
+from __future__ import annotations
+
+import enum
+import functools
+import inspect
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Annotated, Any, Optional
+
+import typer
+
+from impactcli.errors import InputError
+
+__all__ = ["DAMPING_HELP", "DampingOptions", "with_damping_options"]
+
+
+class DampingLaw(enum.StrEnum):
+    tsuji = "tsuji"
+    hunt_crossley = "hunt-crossley"
+
+
+class Separation(enum.StrEnum):
+    overlap = "overlap"
+    force = "force"
+
+
+#: --alpha: the unit kind of :func:`impactcli.units.parse_quantity` for each law.
+ALPHA_KINDS = {"tsuji": "dimensionless", "hunt-crossley": "inverse velocity"}
+
+DAMPING_HELP = {
+    "damping": "Viscous damping added to Hertz (docs/damping.md): tsuji, F = K delta^1.5 + "
+    "alpha sqrt(m K) delta^(1/4) delta' (Tsuji et al. 1992; e depends on alpha only), or "
+    "hunt-crossley, F = K delta^1.5 (1 + 1.5 alpha delta') (Hunt & Crossley 1975; e depends "
+    "on alpha V0). Give --alpha or --e with it.",
+    "alpha": "Damping parameter alpha >= 0: dimensionless for tsuji, in s/m for hunt-crossley "
+    "(units accepted: 0.5s/m, 0.5ms/mm).",
+    "e": "Coefficient of restitution in (0, 1] to reach at this V0 instead of --alpha: alpha "
+    "is solved for exactly by the model (FILM, same n and separation) and printed.",
+    "separation": "When the contact ends. overlap (default): when the indentation returns to "
+    "0; the damping force may then pull, as DEM codes integrate it and as the published "
+    "Tsuji alpha(e) relations assume. force: when the total force returns to 0 (no "
+    "tension); the spheres part at an indentation delta_separation > 0.",
+}
+
+
+@dataclass(frozen=True)
+class DampingOptions:
+    """The damping options of one command as typed (``None`` where not given)."""
+
+    damping: str | None = None
+    alpha: str | None = None
+    e: float | None = None
+    separation: str | None = None
+
+    @property
+    def given(self) -> bool:
+        """--damping was given."""
+        return self.damping is not None
+
+    def parse(self) -> tuple[str | None, float | None, float | None, str]:
+        """(law, alpha in SI or None, e or None, separation rule); one-line InputError for
+        damping options without --damping and for --alpha text that is not a quantity of
+        the law's unit."""
+        if self.damping is None:
+            extra = [
+                f"--{name}"
+                for name, value in (("alpha", self.alpha), ("e", self.e))
+                if value is not None
+            ] + (["--separation"] if self.separation is not None else [])
+            if extra:
+                verb = "needs" if len(extra) == 1 else "need"
+                raise InputError(
+                    f"{', '.join(extra)} {verb} --damping tsuji or --damping hunt-crossley"
+                )
+            return None, None, None, "overlap"
+        from impactcli.units import parse_quantity
+
+        alpha = None
+        if self.alpha is not None:
+            alpha = parse_quantity(self.alpha, ALPHA_KINDS[self.damping], "--alpha")
+        if (alpha is None) == (self.e is None):
+            raise InputError(
+                f"--damping {self.damping}: give the damping as --alpha A or as a coefficient "
+                "of restitution --e E, exactly one of them"
+            )
+        return self.damping, alpha, self.e, self.separation or "overlap"
+
+
+def _parameters() -> list[inspect.Parameter]:
+    kinds: dict[str, Any] = {
+        "damping": Annotated[
+            Optional[DampingLaw], typer.Option("--damping", help=DAMPING_HELP["damping"])
+        ],
+        "alpha": Annotated[Optional[str], typer.Option("--alpha", help=DAMPING_HELP["alpha"])],
+        "e": Annotated[Optional[float], typer.Option("--e", help=DAMPING_HELP["e"])],
+        "separation": Annotated[
+            Optional[Separation],
+            typer.Option("--separation", help=DAMPING_HELP["separation"]),
+        ],
+    }
+    return [
+        inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation)
+        for name, annotation in kinds.items()
+    ]
+
+
+def with_damping_options() -> Callable[[Callable], Callable]:
+    """Decorate a command whose signature has a ``damping`` parameter: --damping, --alpha,
+    --e and --separation take its place, and the command receives them as
+    ``damping=DampingOptions(...)``."""
+    names = ("damping", "alpha", "e", "separation")
+
+    def decorate(command: Callable) -> Callable:
+        signature = inspect.signature(command, eval_str=True)
+        params = list(signature.parameters.values())
+        where = [p.name for p in params].index("damping")
+        new = [p.replace(kind=params[where].kind) for p in _parameters()]
+        params[where : where + 1] = new
+
+        @functools.wraps(command)
+        def wrapper(*args: Any, **kwargs: Any) -> Any:
+            raw = {n: kwargs.pop(n, None) for n in names}
+            options = DampingOptions(
+                damping=None if raw["damping"] is None else str(raw["damping"]),
+                alpha=raw["alpha"],
+                e=raw["e"],
+                separation=None if raw["separation"] is None else str(raw["separation"]),
+            )
+            return command(*args, damping=options, **kwargs)
+
+        wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
+        wrapper.__annotations__ = {p.name: p.annotation for p in params}
+        return wrapper
+
+    return decorate

@@ -1,0 +1,399 @@
+"""``impact fit``: calibrate a contact law's parameters to measured restitution, and rank laws."""
+
+from __future__ import annotations
+
+import csv
+import math
+from typing import IO, Annotated, Optional
+
+import numpy as np
+import typer
+
+from impactcli.cli.common import (
+    Format,
+    OutputFile,
+    OutputFormat,
+    PlotFile,
+    check_plot,
+    console,
+    resolve_format,
+    save_plot,
+    warn,
+)
+from impactcli.cli.sphere_options import with_sphere_options
+from impactcli.errors import InputError
+from impactcli.limits import MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
+from impactcli.output import atomic_output, write_json
+from impactcli.spheres import SphereOptions
+
+LAW_HELP = (
+    "Law to fit: hertz, du-wang, thornton, walton-braun, tsuji, hunt-crossley. Give it "
+    "several times to rank the laws by AICc with Akaike weights."
+)
+PARAM_HELP = (
+    "Parameter to fit (repeatable); each law fits the named ones it has, else its default: "
+    "du-wang sy (or p0_factor), thornton py (or sy), walton-braun k_unload (and k_load), "
+    "tsuji alpha [-], hunt-crossley alpha [s/m]."
+)
+START_HELP = "Starting value NAME=VALUE (repeatable), e.g. sy=800MPa. Default from the material."
+BOUNDS_HELP = "Bounds NAME=LO:HI (repeatable), e.g. sy=100MPa:5GPa; both > 0."
+FIX_HELP = "Hold a law parameter at NAME=VALUE (repeatable), e.g. k_load=2e7 or p0_factor=3."
+N_HELP = (
+    f"FILM segments per stage, 1 to {MAX_SEGMENTS:,} (default 25; 50 for tsuji and "
+    f"hunt-crossley); data points x n at most {MAX_SWEEP_SEGMENTS:,}."
+)
+
+#: parameter unit -> kind for :func:`impactcli.units.parse_quantity`
+_KINDS = {"Pa": "pressure", "-": "dimensionless"}
+
+CSV_COLUMNS = (
+    "law",
+    "parameter",
+    "unit",
+    "value",
+    "std_error",
+    "ci95_low",
+    "ci95_high",
+    "points",
+    "reduced_chi_square",
+    "aicc",
+    "delta_aicc",
+    "akaike_weight",
+)
+
+
+def _pairs(items: list[str] | None, option: str) -> dict[str, str]:
+    out: dict[str, str] = {}
+    for item in items or []:
+        name, sep, value = item.partition("=")
+        name = name.strip().replace("-", "_")
+        if not sep or not name or not value.strip():
+            raise InputError(f"{option} {item!r}: expected NAME=VALUE")
+        out[name] = value.strip()
+    return out
+
+
+def _value(text: str, unit: str, name: str) -> float:
+    """A parameter value: a quantity for Pa and dimensionless, else a number in ``unit``."""
+    kind = _KINDS.get(unit)
+    if kind is not None:
+        from impactcli.units import parse_quantity
+
+        value = parse_quantity(text, kind, name)
+    else:
+        try:
+            value = float(text)
+        except ValueError:
+            raise InputError(f"{name}: expected a number in {unit}, got {text!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise InputError(f"{name}: must be a positive, finite number [{unit}], got {text!r}")
+    return value
+
+
+def _bounds(text: str, unit: str, name: str) -> tuple[float, float]:
+    """``LO:HI`` of ``--bounds NAME=LO:HI``, SI."""
+    lo, sep, hi = text.partition(":")
+    if not sep:
+        raise InputError(f"--bounds {name}={text}: expected NAME=LO:HI")
+    low, high = _value(lo, unit, f"--bounds {name}"), _value(hi, unit, f"--bounds {name}")
+    if not low < high:
+        raise InputError(f"--bounds {name}={text}: need LO < HI")
+    return low, high
+
+
+@with_sphere_options(velocities=False)
+def fit(
+    data: Annotated[
+        str,
+        typer.Argument(
+            metavar="DATA",
+            help="CSV with columns v0,e and optionally contact_time, weight (units in cells, "
+            "e.g. 2.5m/s, or in the header, e.g. 'v0 [m/s]'); '-' is stdin.",
+        ),
+    ],
+    law: Annotated[list[str], typer.Option("--law", metavar="NAME", help=LAW_HELP)],
+    param: Annotated[
+        Optional[list[str]], typer.Option("--param", metavar="NAME", help=PARAM_HELP)
+    ] = None,
+    start: Annotated[
+        Optional[list[str]], typer.Option("--start", metavar="NAME=VALUE", help=START_HELP)
+    ] = None,
+    bounds: Annotated[
+        Optional[list[str]], typer.Option("--bounds", metavar="NAME=LO:HI", help=BOUNDS_HELP)
+    ] = None,
+    fix: Annotated[
+        Optional[list[str]], typer.Option("--fix", metavar="NAME=VALUE", help=FIX_HELP)
+    ] = None,
+    spheres: SphereOptions = None,
+    n: Annotated[
+        Optional[int], typer.Option("--n", "-n", min=1, max=MAX_SEGMENTS, help=N_HELP)
+    ] = None,
+    fmt: OutputFormat = None,
+    output: OutputFile = None,
+    plot: PlotFile = None,
+) -> None:
+    """Fit a contact law's parameters to measured restitution e(V0) (and contact time) by
+    weighted least squares on the FILM model, and rank several laws.
+
+    Prints each fitted parameter with its standard error and 95 % interval, the reduced
+    chi-square, AICc, and the residuals; warnings name a parameter the data cannot constrain
+    (e.g. every point below the yield velocity). Several --law: a ranking by AICc with
+    Akaike weights. CSV: one row per law and parameter (JSON adds residuals and
+    predictions). --plot: data (error bars when weights are given), fitted curves with
+    their 95 % bands, and the residuals.
+
+    Example: impact fit drops.csv --law du-wang --d1 20mm --d2 inf --m2 inf --material steel
+    """
+    from impactcli.fit import DEFAULT_FIT, FIT_LAWS, fit_named_law, law_parameters, rank_fits
+    from impactcli.io.fitdata import read_fit_data
+    from impactcli.spheres import spheres_from_options
+
+    check_plot(plot, output)
+    kind = resolve_format(fmt, output)
+    laws: list[str] = []
+    for name in law:
+        key = name.strip().lower().replace("_", "-")
+        if key not in FIT_LAWS:
+            extra = " (it has no numeric parameter)" if key == "tabulated" else ""
+            raise InputError(
+                f"--law {name}: cannot fit this law{extra}; accepted: {', '.join(FIT_LAWS)}"
+            )
+        if key in laws:
+            raise InputError(f"--law {key} is given twice")
+        laws.append(key)
+    names = [p.strip().replace("-", "_") for p in param or []]
+    given = {
+        "--start": _pairs(start, "--start"),
+        "--bounds": _pairs(bounds, "--bounds"),
+        "--fix": _pairs(fix, "--fix"),
+    }
+    s1, s2 = spheres_from_options(spheres)
+    owns = {key: law_parameters(s1, s2, key) for key in laws}
+    everywhere = {name for key in FIT_LAWS for name in law_parameters(s1, s2, key)}
+    for option, items in (("--param", names), *given.items()):
+        for name in items:
+            if name not in everywhere:
+                raise InputError(
+                    f"{option} {name}: no law fits such a parameter; accepted: "
+                    f"{', '.join(sorted(everywhere))}"
+                )
+    # each law: the parameters it fits, and the values given for its parameters, read in
+    # its units (alpha is [-] for tsuji, [s/m] for hunt-crossley)
+    plan: list[tuple[str, tuple[str, ...], dict, dict, dict]] = []
+    for key in laws:
+        own = owns[key]
+        chosen = tuple(nm for nm in names if nm in own) or DEFAULT_FIT[key]
+        mine = {
+            option: {k: v for k, v in items.items() if k in own} for option, items in given.items()
+        }
+        starts = {k: _value(v, own[k].unit, f"--start {k}") for k, v in mine["--start"].items()}
+        held = {k: _value(v, own[k].unit, f"--fix {k}") for k, v in mine["--fix"].items()}
+        limits = {k: _bounds(v, own[k].unit, k) for k, v in mine["--bounds"].items()}
+        plan.append((key, chosen, starts, limits, held))
+    unused = [nm for nm in names if not any(nm in p[1] for p in plan)]
+    if unused:
+        raise InputError(f"--param {unused[0]}: not a parameter of --law {', '.join(laws)}")
+    for option, items in given.items():
+        for name in items:
+            if not any(name in own for own in owns.values()):
+                raise InputError(f"{option} {name}: not a parameter of --law {', '.join(laws)}")
+    measured = read_fit_data(data, max(len(p[1]) for p in plan))
+
+    fits = []
+    for key, chosen, starts, limits, held in plan:
+        try:
+            result, model = fit_named_law(
+                s1,
+                s2,
+                key,
+                measured,
+                chosen,
+                start={k: v for k, v in starts.items() if k in chosen},
+                bounds={k: v for k, v in limits.items() if k in chosen},
+                fixed=held,
+                n=n,
+            )
+        except ValueError as exc:
+            raise InputError(f"--law {key}: {exc}") from None
+        fits.append((result, model, held))
+    ranked = rank_fits([r for r, _, _ in fits])
+    rank = {r.law: (delta, weight) for r, delta, weight in ranked}
+    for result, _, _ in fits:
+        for message in result.warnings:
+            warn(f"{result.law}: {message}")
+
+    with atomic_output(output) as stream:
+        if kind is Format.json:
+            write_json(stream, _document(measured, fits, rank, data))
+        elif kind is Format.csv:
+            _write_csv(stream, fits, rank)
+        else:
+            _print_tables(stream if output not in (None, "-") else None, measured, fits, ranked)
+    if plot:
+        _plot(plot, measured, fits, ranked, s1, s2)
+
+
+def _document(measured, fits, rank, source: str) -> dict:
+    best = min(rank, key=lambda k: rank[k][0])
+    out = {"data": {"file": source, "points": measured.size}, "best": best, "fits": []}
+    for result, _, held in fits:
+        entry = result.as_dict()
+        delta, weight = rank[result.law]
+        entry.update(
+            {
+                "delta_aicc": delta,
+                "akaike_weight": weight,
+                "fixed": held,
+                "impact_velocity": measured.impact_velocity,
+                "restitution_measured": measured.restitution,
+                "restitution_fitted": result.predicted["restitution"],
+                "weighted_residuals": result.residuals,
+            }
+        )
+        if measured.contact_time is not None:
+            entry["contact_time_measured"] = measured.contact_time
+            entry["contact_time_fitted"] = result.predicted["contact_time"]
+        out["fits"].append(entry)
+    return out
+
+
+def _write_csv(stream: IO[str], fits, rank) -> None:
+    writer = csv.writer(stream, lineterminator="\n")
+    writer.writerow(CSV_COLUMNS)
+    for result, _, _ in fits:
+        delta, weight = rank[result.law]
+        stats = (result.points, result.reduced_chi_square, result.aicc, delta, weight)
+        rows = zip(result.names, result.units, result.values, result.std_errors, result.interval)
+        empty = True
+        for name, unit, value, se, (lo, hi) in rows:
+            writer.writerow(
+                (
+                    result.law,
+                    name,
+                    unit,
+                    repr(float(value)),
+                    repr(float(se)),
+                    repr(float(lo)),
+                    repr(float(hi)),
+                    *map(_num, stats),
+                )
+            )
+            empty = False
+        if empty:
+            writer.writerow((result.law, "", "", "", "", "", "", *map(_num, stats)))
+
+
+def _num(x) -> str:
+    return str(x) if isinstance(x, int) else repr(float(x))
+
+
+def _shown(value: float, unit: str) -> str:
+    from impactcli.formatting import format_quantity
+
+    if unit in ("-", ""):
+        return f"{value:.5g}"
+    if unit == "Pa":
+        return format_quantity(value, unit, 5)
+    return f"{value:.5g} {unit}"
+
+
+def _print_tables(stream: IO[str] | None, measured, fits, ranked) -> None:
+    from rich.table import Table
+
+    out = console(stream)
+    for result, _, held in fits:
+        if not result.names:
+            out.print(
+                f"{result.law}: no parameter to fit; reduced chi-square "
+                f"{result.reduced_chi_square:.4g}, AICc {result.aicc:.4g}"
+            )
+            continue
+        table = Table(
+            title=f"Fit of {result.law} to {measured.size} points"
+            + (f" (held: {', '.join(f'{k} = {v:g}' for k, v in held.items())})" if held else "")
+        )
+        for head in ("parameter", "value", "std error", "95 % interval"):
+            table.add_column(head, justify="right")
+        for name, unit, value, se, (lo, hi) in zip(
+            result.names, result.units, result.values, result.std_errors, result.interval
+        ):
+            table.add_row(
+                name,
+                _shown(value, unit),
+                _shown(se, unit),
+                f"{_shown(lo, unit)} .. {_shown(hi, unit)}",
+            )
+        table.caption = (
+            f"reduced chi-square {result.reduced_chi_square:.4g}, AIC {result.aic:.4g}, "
+            f"AICc {result.aicc:.4g}"
+        )
+        out.print(table)
+    residuals = Table(title="Residuals e - e_fit")
+    residuals.add_column("V0 (m/s)", justify="right")
+    residuals.add_column("e", justify="right")
+    for result, _, _ in fits:
+        residuals.add_column(f"{result.law}", justify="right")
+    for i in range(measured.size):
+        cells = [f"{measured.restitution[i] - f[0].predicted['restitution'][i]:+.4f}" for f in fits]
+        residuals.add_row(
+            f"{measured.impact_velocity[i]:.4g}", f"{measured.restitution[i]:.4f}", *cells
+        )
+    out.print(residuals)
+    if len(fits) > 1:
+        table = Table(title="Laws ranked by AICc (Burnham & Anderson 2002)")
+        table.add_column("law", no_wrap=True)
+        for head in (
+            "parameters",
+            "reduced chi-square",
+            "AICc",
+            "delta AICc",
+            "Akaike weight",
+        ):
+            table.add_column(head, justify="right")
+        for result, delta, weight in ranked:
+            table.add_row(
+                result.law,
+                ", ".join(result.names) or "(none)",
+                f"{result.reduced_chi_square:.4g}",
+                f"{result.aicc:.4g}",
+                f"{delta:.3g}",
+                f"{weight:.3g}",
+            )
+        out.print(table)
+
+
+def _plot(path: str, measured, fits, ranked, s1, s2) -> None:
+    from impactcli.fit import prediction_band
+    from impactcli.formatting import format_quantity
+    from impactcli.plots import fit_figure
+
+    v0 = measured.impact_velocity
+    lo, hi = float(v0.min()), float(v0.max())
+    grid = np.geomspace(lo, hi, 80) if hi > 3 * lo else np.linspace(lo, hi, 80)
+    grid = np.unique(np.concatenate([grid, v0]))
+    curves = []
+    for result, model, held in fits:
+        band = prediction_band(result, model, grid, held)
+        values = ", ".join(
+            f"{nm} = {_shown(v, u)}" for nm, u, v in zip(result.names, result.units, result.values)
+        )
+        curves.append(
+            {
+                "label": f"{result.law}" + (f" ({values})" if values else ""),
+                **band,
+                "residuals": measured.restitution - result.predicted["restitution"],
+            }
+        )
+    error = None
+    if measured.weight is not None:  # sigma_i = s / sqrt(w_i), s^2 of the best law
+        error = np.sqrt(ranked[0][0].reduced_chi_square / measured.weight)
+    d2 = "flat" if not np.isfinite(s2.diameter) else format_quantity(s2.diameter, "m")
+    title = (
+        f"Fit to {measured.size} points, D1 = {format_quantity(s1.diameter, 'm')}, "
+        f"D2 = {d2}; bands: 95 % (delta method)"
+    )
+    save_plot(fit_figure(v0, measured.restitution, curves, error=error, title=title), path)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("fit")(fit)
