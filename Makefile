@@ -47,7 +47,8 @@ run: $(VENV)/.run-installed
 	$(BIN)/impact elastic $(PAPER) --v1 100.0125m/s --v2=-100m/s \
 		-o figures/elastic_4_3_moving.csv --plot figures/elastic_4_3_moving.png
 	$(BIN)/impact elastoplastic $(PAPER) --v1 0.25m/s --v2 0.75m/s \
-		-o figures/elastoplastic_4_4.csv --plot figures/elastoplastic_4_4.png
+		-o figures/elastoplastic_4_4.csv --plot figures/elastoplastic_4_4.png \
+		--energy-plot docs/figures/energy_4_4.png
 	$(BIN)/impact convergence -o figures/convergence.csv --plot figures/convergence.png
 	$(BIN)/impact restitution $(PAPER) --v-min 0.05m/s --v-max 2.5m/s --count 40 \
 		-o figures/restitution.csv --plot figures/restitution.png

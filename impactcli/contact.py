@@ -259,6 +259,13 @@ class DuWangContact:
         term = np.pi * np.sqrt(r) * self.mean_pressure / e * (0.75 * dm - 0.25 * dy)
         return np.where(dm > dy, dm - np.cbrt(term) ** 2, 0.0)
 
+    def recoverable_work(self, delta: ArrayLike) -> NDArray:
+        """Work that unloading from ``delta`` (taken as the maximum) gives back, [J]:
+        0.4 K_h (delta - delta_res(delta))^2.5 (the Hertz unloading of eq. 16c)."""
+        d = np.asarray(delta, dtype=float)
+        rest = np.maximum(d - self.residual_indentation(d), 0.0)
+        return 0.4 * self.stiffness * rest**2.5
+
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Hertz 0 -> delta_y, linear delta_y -> delta_m, unloading delta_m -> delta_res.
 

@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
+    DU_WANG_PRESSURE_FACTOR,
     FIRST_YIELD_PRESSURE_FACTOR,
     effective_mass,
     effective_modulus,
@@ -45,8 +46,15 @@ __all__ = [
     "hertz_contact_time",
     "rayleigh_time_step",
     "first_yield_velocities",
+    "law_pressure_factor",
+    "timestep_table",
     "yield_limit_diameter",
+    "YIELD_LIMIT_LAWS",
 ]
+
+#: Laws whose onset of yield :func:`law_pressure_factor` knows: the Hertz peak pressure at
+#: which the sphere starts to yield, as a multiple of its sigma_y.
+YIELD_LIMIT_LAWS: tuple[str, ...] = ("hertz", "thornton", "du-wang")
 
 #: t_c V0 / delta_m = 2 (2/5) B(2/5, 1/2) for Hertz contact (docs/method.md §3), [-].
 HERTZ_CONTACT_TIME_FACTOR = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
@@ -224,3 +232,75 @@ def yield_limit_diameter(
         if hi - lo < 1e-14:
             break
     return float(math.exp(lo))
+
+
+def law_pressure_factor(law: str, p0_factor: float = DU_WANG_PRESSURE_FACTOR) -> float:
+    """The pressure at which a law's contact stops being elastic, / sigma_y, [-].
+
+    ``hertz``: first yield, Hertz peak pressure 1.6 sigma_y (Johnson 1985, sec. 6.2);
+    ``thornton``: its default limiting pressure p_y = 1.6 sigma_y (the same onset);
+    ``du-wang``: its V_y, where the mean pressure reaches p0 = ``p0_factor`` sigma_y
+    (paper eq. 16, docs/method.md §7). Laws without a yield point set by sigma_y
+    (walton-braun: plastic from the first touch; tabulated: the data's) are refused.
+
+    >>> law_pressure_factor("hertz"), law_pressure_factor("du-wang")
+    (1.6, 2.57)
+    """
+    key = str(law).strip().lower().replace("_", "-")
+    if key in ("hertz", "thornton"):
+        return FIRST_YIELD_PRESSURE_FACTOR
+    if key == "du-wang":
+        if not (math.isfinite(p0_factor) and p0_factor > 0):
+            raise ValueError(f"the pressure factor must be positive, got {p0_factor}")
+        return float(p0_factor)
+    raise ValueError(
+        f"law {law!r} has no yield onset set by a yield strength (accepted: "
+        f"{', '.join(YIELD_LIMIT_LAWS)})"
+    )
+
+
+def timestep_table(
+    radii: tuple[float, float],
+    youngs_moduli: tuple[float, float],
+    poisson_ratios: tuple[float, float],
+    densities: tuple[float, float],
+    mass: float,
+    radius: float,
+    modulus: float,
+    impact_velocity: float,
+) -> dict[str, float]:
+    """The numbers a DEM time step is chosen from, SI.
+
+    ``rayleigh_time_step1``, ``rayleigh_time_step2`` and their minimum ``rayleigh_time_step``
+    [s] (:func:`rayleigh_time_step`; NaN for a sphere without a density, e.g. a fixed
+    wall given by its mass, ``inf`` for a flat one and 0 for a rigid one: the minimum is
+    over the particles, the finite positive ones), ``rayleigh_<p>pct`` for each of
+    :data:`RAYLEIGH_FRACTIONS`, the Hertz contact time ``contact_time`` at
+    ``impact_velocity`` [s] (:func:`hertz_contact_time`) and ``contact_time_over_<k>`` for
+    each of :data:`CONTACT_TIME_DIVISORS`.
+
+    Parameters
+    ----------
+    radii, youngs_moduli, poisson_ratios, densities : of each sphere, [m], [Pa], [-],
+        [kg/m^3] (NaN density: not known)
+    mass, radius, modulus : effective m [kg], R [m], E* [Pa] of the pair
+    impact_velocity : V0 > 0, [m/s]
+    """
+    steps = [
+        float(rayleigh_time_step(r, e, nu, rho)) if math.isfinite(rho) else math.nan
+        for r, e, nu, rho in zip(radii, youngs_moduli, poisson_ratios, densities)
+    ]
+    known = [x for x in steps if math.isfinite(x) and x > 0]  # particles, not walls
+    smallest = min(known) if known else math.nan
+    out = {
+        "rayleigh_time_step1": steps[0],
+        "rayleigh_time_step2": steps[1],
+        "rayleigh_time_step": smallest,
+    }
+    for fraction in RAYLEIGH_FRACTIONS:
+        out[f"rayleigh_{round(fraction * 100)}pct"] = fraction * smallest
+    t_c = float(hertz_contact_time(mass, radius, modulus, impact_velocity))
+    out["contact_time"] = t_c
+    for divisor in CONTACT_TIME_DIVISORS:
+        out[f"contact_time_over_{divisor}"] = t_c / divisor
+    return out

@@ -1,7 +1,7 @@
 """Each sphere's share: kinetic energy, stored (recoverable) strain energy and dissipated
 energy during an impact, and how the indentation splits between the spheres.
 
-Pure functions on SI arrays. The energy balance they express (docs/method.md §9):
+Pure functions on SI arrays. The energy balance they express (docs/method.md §12):
 
     ke1 + ke2 + strain_energy + dissipated = ke1(0) + ke2(0)     at every time,
 
@@ -31,7 +31,11 @@ from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "YIELD_TIE_TOLERANCE",
+    "energy_history",
+    "film_contact_work",
     "kinetic_energy",
+    "loading_work",
+    "permanent_fractions",
     "sphere_shares",
     "yield_shares",
 ]
@@ -90,6 +94,40 @@ def yield_shares(
     if high <= low * (1.0 + tolerance):
         return float("nan"), float("nan")
     return (1.0, 0.0) if yield_strength1 < yield_strength2 else (0.0, 1.0)
+
+
+def permanent_fractions(
+    yield_strength1: ArrayLike,
+    yield_strength2: ArrayLike,
+    compliance1: ArrayLike,
+    compliance2: ArrayLike,
+    tolerance: float = YIELD_TIE_TOLERANCE,
+) -> tuple[NDArray, NDArray]:
+    """Share of the permanent indentation taken by each sphere, [-]: the rule of
+    :func:`yield_shares`, vectorised (arrays broadcast; NaN for "no yield strength").
+
+    The weaker sphere takes it all; a sphere without a yield strength takes none; yield
+    strengths within ``tolerance`` of each other, or none known (nothing can yield, so
+    there is no permanent part to share), share it by compliance (1 - nu_i^2)/E_i, [1/Pa].
+
+    >>> [float(x) for x in permanent_fractions(np.nan, 1e9, 1.0, 3.0)]
+    [0.0, 1.0]
+    >>> [float(x) for x in permanent_fractions(276e6, 1e9, 1.0, 3.0)]
+    [1.0, 0.0]
+    >>> [float(x) for x in permanent_fractions(1e9, 1.01e9, 1.0, 3.0)]
+    [0.25, 0.75]
+    """
+    s1 = np.asarray(yield_strength1, dtype=float)
+    s2 = np.asarray(yield_strength2, dtype=float)
+    c1, c2 = np.asarray(compliance1, dtype=float), np.asarray(compliance2, dtype=float)
+    by_compliance = c1 / (c1 + c2)
+    low, high = np.fmin(s1, s2), np.fmax(s1, s2)
+    with np.errstate(invalid="ignore"):
+        both = ~np.isnan(s1) & ~np.isnan(s2)
+        tie = (both & (high <= low * (1.0 + tolerance))) | (np.isnan(s1) & np.isnan(s2))
+        first = np.where(np.isnan(s2) | (s1 < s2), 1.0, 0.0)
+    p1 = np.where(tie, by_compliance, first)
+    return p1, 1.0 - p1
 
 
 def sphere_shares(
@@ -237,7 +275,8 @@ def energy_history(
     w = np.asarray(contact_work, dtype=float)
     during = np.asarray(loading, dtype=float) - np.asarray(recoverable, dtype=float)
     dissipated = np.where(t <= t_max, during, loading_max - recoverable_max)
-    dissipated = np.maximum(dissipated, 0.0)
+    # rounding of loading - recoverable (an elastic law) is not dissipation
+    dissipated = np.where(dissipated > 1e-12 * abs(loading_max), dissipated, 0.0)
     strain = w - dissipated
     (e1, e2), (p1, p2) = shares
     return {

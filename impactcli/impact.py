@@ -12,7 +12,17 @@ other sphere; V0 = V1 + V2 > 0. Rigid-body motion of each centre (eq. 12, docs/m
 
 Indentation of each sphere: the paper's contact plane moving at V_cp splits delta by mass,
 delta_i = (m/m_i) delta (``split="mass"``); Hertz theory splits it by compliance,
-delta_i proportional to (1 - nu_i^2)/E_i (``split="compliance"``).
+delta_i proportional to (1 - nu_i^2)/E_i (``split="compliance"``); ``split="yield"`` shares
+the recoverable part delta - delta_p by compliance and gives the permanent part delta_p to
+the sphere that yields (:func:`impactcli.energy.permanent_fractions`, docs/method.md §12):
+
+    delta_i = e_i (delta - delta_p) + p_i delta_p,
+
+delta_p(t) being the residual indentation of the largest indentation reached so far.
+
+Energy (docs/method.md §12): the histories carry each sphere's kinetic energy, the stored
+(recoverable) strain energy and the dissipated energy, whose sum is the initial kinetic
+energy at every time (:mod:`impactcli.energy`).
 """
 
 from __future__ import annotations
@@ -53,6 +63,9 @@ if TYPE_CHECKING:
 __all__ = [
     "HISTORY_COLUMNS",
     "ELASTIC_SUMMARY_KEYS",
+    "ENERGY_COLUMNS",
+    "ENERGY_SUMMARY_KEYS",
+    "SPLITS",
     "PLASTIC_SUMMARY_KEYS",
     "DAMPED_DEFAULT_N",
     "DAMPED_ENERGY_COLUMNS",
@@ -67,6 +80,7 @@ __all__ = [
     "elastic_impact",
     "effective_properties",
     "elastoplastic_impact",
+    "energy_summary",
     "impact_summary",
     "integrate_impact",
     "law_impact",
@@ -91,6 +105,33 @@ HISTORY_COLUMNS: tuple[str, ...] = (
     "delta2_dot",
     "p1",
     "p2",
+    "ke1",
+    "ke2",
+    "strain_energy",
+    "strain_energy1",
+    "strain_energy2",
+    "dissipated",
+    "dissipated1",
+    "dissipated2",
+)
+
+#: The energy columns of :data:`HISTORY_COLUMNS`, [J].
+ENERGY_COLUMNS: tuple[str, ...] = HISTORY_COLUMNS[14:]
+
+#: Summary keys of the energy partition and of who yields (every model).
+ENERGY_SUMMARY_KEYS: tuple[str, ...] = (
+    "kinetic_energy1_initial",
+    "kinetic_energy2_initial",
+    "kinetic_energy1_final",
+    "kinetic_energy2_final",
+    "energy_dissipated1",
+    "energy_dissipated2",
+    "stored_share1",
+    "stored_share2",
+    "absorbed_share1",
+    "absorbed_share2",
+    "first_yield_velocity1",
+    "first_yield_velocity2",
 )
 
 ELASTIC_SUMMARY_KEYS: tuple[str, ...] = (
@@ -121,7 +162,8 @@ PLASTIC_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "energy_dissipated",
 )
 
-Split = Literal["mass", "compliance"]
+Split = Literal["mass", "compliance", "yield"]
+SPLITS: tuple[str, ...] = ("mass", "compliance", "yield")
 Method = Literal["film", "table", "ode"]
 
 
@@ -202,6 +244,7 @@ class ImpactResult:
     model: str
     summary: dict[str, float] = field(default_factory=dict)
     method: Method = "film"
+    contact: Any = None
 
     # -- derived constants -------------------------------------------------------------
     @property
@@ -225,9 +268,27 @@ class ImpactResult:
 
     @property
     def split_fractions(self) -> tuple[float, float]:
-        """delta_i / delta for each sphere, [-]: by mass or by compliance."""
+        """delta_i / delta for each sphere, [-]: by mass or by compliance; for ``yield``
+        the shares e_i of the recoverable part delta - delta_p (:attr:`permanent_fractions`
+        gives those of delta_p)."""
         f1, f2 = split_fractions(
             self.split, self.m1, self.m2, self.sphere1.compliance, self.sphere2.compliance
+        )
+        return float(f1), float(f2)
+
+    @property
+    def permanent_fractions(self) -> tuple[float, float]:
+        """Shares p_i of the permanent indentation delta_p, [-] (equal to
+        :attr:`split_fractions` for ``mass`` and ``compliance``)."""
+        f1, f2 = split_fractions(
+            self.split,
+            self.m1,
+            self.m2,
+            self.sphere1.compliance,
+            self.sphere2.compliance,
+            _nan(self.sphere1.yield_strength),
+            _nan(self.sphere2.yield_strength),
+            permanent=True,
         )
         return float(f1), float(f2)
 
@@ -277,14 +338,14 @@ class ImpactResult:
         if method == "table":
             t = np.clip(t, 0.0, self.film.end_time)
             delta, delta_dot = self._table_state(t)
-            return self._columns(t, delta, delta_dot, self.force(t, delta))
+            return self._columns(t, delta, delta_dot, self.force(t, delta), method)
         if method == "ode":
             t = np.clip(t, 0.0, self.ode.end_time)
             delta, delta_dot = self.ode.evaluate(t)
-            return self._columns(t, delta, delta_dot, self.ode.force(t, delta))
+            return self._columns(t, delta, delta_dot, self.ode.force(t, delta), method)
         t = np.clip(t, 0.0, self.film.end_time)  # d_i must match the clamped delta(t)
         delta, delta_dot = self.film.evaluate(t)
-        return self._columns(t, delta, delta_dot, self.force(t, delta))
+        return self._columns(t, delta, delta_dot, self.force(t, delta), method)
 
     def dataframe(
         self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
@@ -306,13 +367,94 @@ class ImpactResult:
                 force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
         return force
 
+    # -- energy and the permanent part ------------------------------------------------
+    @property
+    def contact_model(self) -> Any:
+        """The contact model of this impact (residual indentation, recoverable work)."""
+        if self.contact is not None:
+            return self.contact
+        from impactcli.lawlib import HertzLawContact
+
+        _, r, e = effective_properties(self.sphere1, self.sphere2)
+        return HertzLawContact(r, e)
+
+    def _turning_point(self, method: str) -> tuple[float, float]:
+        """Time [s] and value [m] of the maximum indentation of ``method``."""
+        if method == "ode":
+            return self.ode.t_max, self.ode.delta_max
+        return float(self.film.stages[-2].end_time), float(np.reshape(self.plan.delta_max, -1)[0])
+
+    def permanent_indentation(self, t: NDArray, delta: NDArray, method: str) -> NDArray:
+        """delta_p(t): the residual indentation of the largest indentation reached by time
+        ``t`` [s] (delta [m] while loading, delta_max after), [m]."""
+        t_max, delta_max = self._turning_point(method)
+        reached = np.where(t <= t_max, delta, delta_max)
+        return np.reshape(self.contact_model.residual_indentation(reached), np.shape(t))
+
+    def _permanent_rate(self, t: NDArray, delta: NDArray, delta_dot: NDArray, method: str):
+        """d(delta_p)/dt, [m/s]: (d delta_res / d delta_m) delta' while loading (a central
+        difference of the contact's residual_indentation), zero while unloading."""
+        t_max, delta_max = self._turning_point(method)
+        h = 1e-7 * delta_max
+        model = self.contact_model
+        up = np.reshape(model.residual_indentation(delta + h), np.shape(delta))
+        down = np.reshape(model.residual_indentation(np.maximum(delta - h, 0.0)), np.shape(delta))
+        slope = (up - down) / (delta + h - np.maximum(delta - h, 0.0))
+        return np.where(t <= t_max, slope * delta_dot, 0.0)
+
+    def contact_work(self, t: NDArray, method: str) -> NDArray:
+        """W(t): work of the contact force up to time ``t``, [J]. FILM's (and the table
+        method's) is :func:`impactcli.energy.film_contact_work`; the integration's is the
+        exact work of each stage's law along the integrated path."""
+        if method == "ode":
+            return self.ode.contact_work(t)
+        from impactcli.energy import film_contact_work
+
+        laws = [stage.law for stage in self.plan.stages]
+        return film_contact_work(self.film.stages, laws, t)
+
+    def energy_columns(
+        self, t: NDArray, delta: NDArray, v1: NDArray, v2: NDArray, method: str
+    ) -> dict[str, NDArray]:
+        """The energy columns (:data:`ENERGY_COLUMNS`, [J]) at times ``t`` [s] where the
+        indentation is ``delta`` [m] and the spheres move at ``v1``, ``v2`` [m/s]."""
+        from impactcli.energy import energy_history, loading_work
+
+        t_max, delta_max = self._turning_point(method)
+        stages = self.plan.stages[:-1]  # the loading stages; the last one unloads
+        laws = [stage.law for stage in stages]
+        bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
+        model = self.contact_model
+        shares = (self.split_fractions, self.permanent_fractions)
+        columns = energy_history(
+            t,
+            delta,
+            self.contact_work(t, method),
+            t_max,
+            delta_max,
+            loading_work(laws, bounds, delta),
+            np.reshape(model.recoverable_work(delta), np.shape(delta)),
+            _first(model.recoverable_work(np.array([delta_max]))),
+            _first(loading_work(laws, bounds, np.array([delta_max]))),
+            (self.m1, self.m2),
+            (v1, v2),
+            shares,
+        )
+        return columns
+
     def _columns(
-        self, t: NDArray, delta: NDArray, delta_dot: NDArray, force: NDArray
+        self,
+        t: NDArray,
+        delta: NDArray,
+        delta_dot: NDArray,
+        force: NDArray,
+        method: str | None = None,
     ) -> dict[str, NDArray]:
         """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4."""
         v0 = self.impact_velocity
         r1, r2 = self.mass_ratios
-        f1, f2 = self.split_fractions
+        e1, e2 = self.split_fractions
+        p1_, p2_ = self.permanent_fractions
         d1 = self.v1 * t - r1 * (v0 * t - delta)
         d2 = self.v2 * t - r2 * (v0 * t - delta)
         v1 = self.v1 - r1 * (v0 - delta_dot)
@@ -320,6 +462,15 @@ class ImpactResult:
         with np.errstate(invalid="ignore"):
             p1 = self.m1 * v1
             p2 = -self.m2 * v2
+        if (e1, e2) == (p1_, p2_):
+            delta1, delta2 = e1 * delta, e2 * delta
+            delta1_dot, delta2_dot = e1 * delta_dot, e2 * delta_dot
+        else:  # split yield: delta_i = e_i (delta - delta_p) + p_i delta_p
+            dp = self.permanent_indentation(t, delta, method)
+            dp_dot = self._permanent_rate(t, delta, delta_dot, method)
+            delta1, delta2 = e1 * (delta - dp) + p1_ * dp, e2 * (delta - dp) + p2_ * dp
+            delta1_dot = e1 * (delta_dot - dp_dot) + p1_ * dp_dot
+            delta2_dot = e2 * (delta_dot - dp_dot) + p2_ * dp_dot
         return {
             "t": t,
             "delta": delta,
@@ -329,12 +480,14 @@ class ImpactResult:
             "d2": d2,
             "v1": v1,
             "v2": v2,
-            "delta1": f1 * delta,
-            "delta2": f2 * delta,
-            "delta1_dot": f1 * delta_dot,
-            "delta2_dot": f2 * delta_dot,
+            "delta1": delta1,
+            "delta2": delta2,
+            "delta1_dot": delta1_dot,
+            "delta2_dot": delta2_dot,
             "p1": p1,
             "p2": p2,
+            # a damped impact (no plan) has its own energy() (DampedImpactResult)
+            **({} if method is None else self.energy_columns(t, delta, v1, v2, method)),
         }
 
     def _table_state(self, t: NDArray) -> tuple[NDArray, NDArray]:
@@ -347,6 +500,16 @@ class ImpactResult:
         v0, delta_m = self.impact_velocity, float(self.plan.delta_max)
         d_bar, v_bar = FilmSolution(normalised_elastic(self.n)).evaluate(t * v0 / delta_m)
         return d_bar * delta_m, v_bar * v0
+
+
+def _nan(value: float | None) -> float:
+    """A yield strength as a float, NaN for "not given"."""
+    return np.nan if value is None else float(value)
+
+
+def _first(value: ArrayLike) -> float:
+    """The one value of a scalar or shape-(1,) array."""
+    return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
 
 
 def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:
@@ -382,8 +545,8 @@ def _validate(
     ``method``."""
     if method not in ("film", "table", "ode"):
         raise ValueError(f"method must be film, table or ode, got {method!r}")
-    if split not in ("mass", "compliance"):
-        raise ValueError(f"split must be mass or compliance, got {split!r}")
+    if split not in SPLITS:
+        raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
     if int(n) < 1:
         raise ValueError(f"n must be an integer >= 1, got {n}")
     check_size("n", n, MAX_SEGMENTS)
@@ -435,20 +598,34 @@ def split_fractions(
     m2: ArrayLike,
     compliance1: ArrayLike,
     compliance2: ArrayLike,
+    yield_strength1: ArrayLike = np.nan,
+    yield_strength2: ArrayLike = np.nan,
+    permanent: bool = False,
 ) -> tuple[NDArray, NDArray]:
     """delta_i / delta for each sphere, [-]; arrays broadcast.
 
     ``mass``: the paper's contact plane, delta_i = (m/m_i) delta (eq. 4, docs/method.md §2);
-    ``compliance``: Hertz, delta_i proportional to (1 - nu_i^2)/E_i, [1/Pa].
+    ``compliance``: Hertz, delta_i proportional to (1 - nu_i^2)/E_i, [1/Pa];
+    ``yield``: the recoverable part delta - delta_p by compliance, the permanent part
+    delta_p to the sphere that yields, delta_i = e_i (delta - delta_p) + p_i delta_p
+    (docs/method.md §12). With ``permanent=False`` the shares e_i of the recoverable part
+    are returned, with ``permanent=True`` the shares p_i of delta_p
+    (:func:`impactcli.energy.permanent_fractions`: the weaker sphere; none to a sphere
+    without a yield strength, NaN; by compliance within 2 %). For ``mass`` and
+    ``compliance`` both are the same.
     """
     if split == "mass":
         m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
         m = effective_mass(m1, m2)
         return m / m1, m / m2
-    if split == "compliance":
-        c1, c2 = np.asarray(compliance1, dtype=float), np.asarray(compliance2, dtype=float)
+    c1, c2 = np.asarray(compliance1, dtype=float), np.asarray(compliance2, dtype=float)
+    if split == "compliance" or (split == "yield" and not permanent):
         return c1 / (c1 + c2), c2 / (c1 + c2)
-    raise ValueError(f"split must be mass or compliance, got {split!r}")
+    if split == "yield":
+        from impactcli.energy import permanent_fractions
+
+        return permanent_fractions(yield_strength1, yield_strength2, c1, c2)
+    raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
 
 
 def impact_summary(
@@ -463,6 +640,7 @@ def impact_summary(
     contact_time: ArrayLike,
     fractions: tuple[ArrayLike, ArrayLike],
     yield_strength: ArrayLike | None = None,
+    permanent: tuple[ArrayLike, ArrayLike] | None = None,
 ) -> dict[str, NDArray]:
     """The summary of impacts (:data:`ELASTIC_SUMMARY_KEYS`), SI, from their plans and times.
 
@@ -481,6 +659,9 @@ def impact_summary(
     fractions : delta_i / delta of each sphere (:func:`split_fractions`), [-]
     yield_strength : sigma_y for the first-yield velocity, [Pa] (NaN where unknown); the key
         is left out when ``None``
+    permanent : shares p_i of the permanent indentation (``split="yield"``); default
+        ``fractions``: then delta_i_max = f_i delta_max, else
+        e_i (delta_max - delta_res) + p_i delta_res
 
     Notes
     -----
@@ -514,6 +695,10 @@ def impact_summary(
         "effective_radius": np.asarray(radius, dtype=float),
         "effective_modulus": np.asarray(modulus, dtype=float),
     }
+    if permanent is not None:
+        p1, p2 = permanent
+        summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
+        summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
     if yield_strength is not None:
         summary["first_yield_velocity"] = first_yield_velocity(m, radius, modulus, yield_strength)
     return summary
@@ -559,6 +744,7 @@ def _summarise(result: ImpactResult, r: float, e: float) -> dict[str, float]:
         result.film.end_time,
         result.split_fractions,
         weaker_yield_strength(result.sphere1, result.sphere2),
+        result.permanent_fractions,
     )
     return {key: float(value) for key, value in summary.items()}
 
@@ -601,10 +787,12 @@ def integrate_impact(result: ImpactResult) -> dict[str, float]:
         ode.end_time,
         result.split_fractions,
         weaker_yield_strength(result.sphere1, result.sphere2),
+        result.permanent_fractions,
     )
     out = {key: float(value) for key, value in summary.items()}
+    out.update(energy_summary(result, "ode"))
     if "delta_res" in result.summary:  # elastoplastic keys (PLASTIC_SUMMARY_KEYS)
-        f1, f2 = result.split_fractions
+        f1, f2 = result.permanent_fractions
         out.update(
             delta_y=result.summary["delta_y"],
             yield_velocity=result.summary["yield_velocity"],
@@ -616,9 +804,70 @@ def integrate_impact(result: ImpactResult) -> dict[str, float]:
     return {key: out[key] for key in result.summary if key in out}
 
 
+def energy_summary(result: ImpactResult, method: str = "film") -> dict[str, float]:
+    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact, SI (docs/method.md §12).
+
+    Kinetic energy of each sphere before and at separation [J]; the energy dissipated in
+    each sphere, p_i (1/2) m V0^2 (1 - e^2) [J]; the share of the initial relative kinetic
+    energy (1/2) m V0^2 that each sphere holds at maximum compression, as recoverable strain
+    energy (``stored_share``: e_i W_r(delta_max) / ((1/2) m V0^2); both add up to e^2) and
+    in all (``absorbed_share``: stored plus dissipated; both add up to 1) [-]; and the
+    impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
+    without a yield strength: :func:`impactcli.design.first_yield_velocities`).
+    """
+    from impactcli.design import first_yield_velocities
+    from impactcli.energy import kinetic_energy
+
+    m, r, e_star = effective_properties(result.sphere1, result.sphere2)
+    v0 = result.impact_velocity
+    relative = 0.5 * m * v0 * v0
+    if method == "ode":
+        restitution, delta_max = result.ode.restitution, result.ode.delta_max
+    else:
+        restitution, delta_max = _first(result.plan.restitution), _first(result.plan.delta_max)
+    e1, e2 = result.split_fractions
+    p1, p2 = result.permanent_fractions
+    r1, r2 = result.mass_ratios
+    stored = min(_first(result.contact_model.recoverable_work(np.array([delta_max]))), relative)
+    lost = relative * (1.0 - restitution**2)
+    v1_final = result.v1 - r1 * (1.0 + restitution) * v0
+    v2_final = result.v2 - r2 * (1.0 + restitution) * v0
+    fy1, fy2 = first_yield_velocities(
+        m, r, e_star, result.sphere1.yield_strength, result.sphere2.yield_strength
+    )
+    return {
+        "kinetic_energy1_initial": float(kinetic_energy(result.m1, result.v1)),
+        "kinetic_energy2_initial": float(kinetic_energy(result.m2, result.v2)),
+        "kinetic_energy1_final": float(kinetic_energy(result.m1, v1_final)),
+        "kinetic_energy2_final": float(kinetic_energy(result.m2, v2_final)),
+        "energy_dissipated1": p1 * lost,
+        "energy_dissipated2": p2 * lost,
+        "stored_share1": e1 * stored / relative,
+        "stored_share2": e2 * stored / relative,
+        "absorbed_share1": (e1 * stored + p1 * (relative - stored)) / relative,
+        "absorbed_share2": (e2 * stored + p2 * (relative - stored)) / relative,
+        "first_yield_velocity1": float(fy1),
+        "first_yield_velocity2": float(fy2),
+    }
+
+
+def _check_yield_split(result: ImpactResult) -> None:
+    """``split="yield"`` on an impact that leaves a permanent indentation needs a sphere
+    that can yield (:func:`impactcli.energy.yield_shares`)."""
+    if result.split != "yield" or not _first(result.plan.delta_res) > 0.0:
+        return
+    if result.sphere1.yield_strength is None and result.sphere2.yield_strength is None:
+        raise ValueError(
+            "split 'yield' gives the permanent indentation to the sphere that yields, but "
+            "neither sphere has a yield strength: give sy1 or sy2 (or a material with one)"
+        )
+
+
 def _finish(result: ImpactResult, summary: dict[str, float]) -> ImpactResult:
     """Fill ``result.summary``: FILM's, or the integration's for ``method="ode"``."""
+    _check_yield_split(result)
     result.summary.update(summary)
+    result.summary.update(energy_summary(result, "film"))
     if result.method == "ode":
         result.summary.update(integrate_impact(result))
     return result
@@ -661,10 +910,22 @@ def elastic_impact(
     """
     _validate(sphere1, sphere2, v1, v2, n, split, method)
     m, r, e = effective_properties(sphere1, sphere2)
+    from impactcli.lawlib import HertzLawContact
+
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
     film = FilmSolution(solve_plan(plan, m, n))
     result = ImpactResult(
-        sphere1, sphere2, v1, v2, plan, film, int(n), split, "elastic", method=method
+        sphere1,
+        sphere2,
+        v1,
+        v2,
+        plan,
+        film,
+        int(n),
+        split,
+        "elastic",
+        method=method,
+        contact=HertzLawContact(r, e),
     )
     return _finish(result, _summarise(result, r, e))
 
@@ -730,9 +991,10 @@ def elastoplastic_impact(
         split,
         "elastic" if elastic else "elastoplastic",
         method=method,
+        contact=contact,
     )
     summary = _summarise(result, r, e)
-    extra = plastic_summary(contact, m, v0, plan, result.split_fractions)
+    extra = plastic_summary(contact, m, v0, plan, result.permanent_fractions)
     summary.update({key: float(value) for key, value in extra.items()})
     return _finish(result, summary)
 
@@ -799,9 +1061,11 @@ def law_impact(
         model = "elastoplastic"
     else:
         model = spec.name
-    result = ImpactResult(sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method)
+    result = ImpactResult(
+        sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method, contact=contact
+    )
     summary = _summarise(result, r, e)
-    extra = plastic_summary(contact, m, v0, plan, result.split_fractions)
+    extra = plastic_summary(contact, m, v0, plan, result.permanent_fractions)
     summary.update({key: float(value) for key, value in extra.items()})
     return _finish(result, summary)
 

@@ -17,7 +17,10 @@ elastic and plastic groups whose plans FILM solves as batches.
 
 Every contact model has the interface of :class:`~impactcli.contact.DuWangContact`:
 ``yield_indentation`` (delta_y [m], NaN where the law has no yield point),
-``yield_velocity(m)`` (V_y [m/s]), ``yields(V0, m)`` (plastic impacts) and ``plan(V0, m)``.
+``yield_velocity(m)`` (V_y [m/s]), ``yields(V0, m)`` (plastic impacts), ``plan(V0, m)``,
+and for the energy partition (docs/method.md §12) ``residual_indentation(delta_max)``
+(delta_res [m]) and ``recoverable_work(delta)`` (what unloading from delta, taken as the
+maximum, gives back [J]).
 So the summary keys (``delta_y``, ``yield_velocity``, ``delta_res``, ``restitution``, ...)
 are the same whatever the law (:func:`impactcli.impact.plastic_summary`).
 
@@ -101,6 +104,14 @@ class ContactModel(Protocol):
         """FILM stages and closed-form quantities; a batch all elastic or all plastic."""
         ...
 
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """delta_res: the permanent indentation after unloading from delta_max, [m]."""
+        ...
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """Work that unloading from ``delta`` (taken as the maximum) gives back, [J]."""
+        ...
+
 
 # --------------------------------------------------------------------------------------
 # Hertz (elastic) behind the common interface
@@ -139,6 +150,14 @@ class HertzLawContact:
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         return HertzContact(self.stiffness).plan(impact_velocity, mass)
+
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """Zero: an elastic contact leaves no permanent indentation, [m]."""
+        return np.zeros(np.broadcast(np.asarray(delta_max), self.stiffness).shape)
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """All the loading work, (2/5) K_h delta^2.5, [J]."""
+        return 0.4 * self.stiffness * np.asarray(delta, dtype=float) ** 2.5
 
 
 # --------------------------------------------------------------------------------------
@@ -238,6 +257,24 @@ class ThorntonContact:
         rp = 4.0 * e * am2 * np.sqrt(am2) / (3.0 * fm)
         return fm, rp, dm - am2 / rp
 
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """delta_res = delta_m - a_m^2 / R_p past delta_y, else 0, [m]."""
+        dm = np.asarray(delta_max, dtype=float)
+        plastic = dm > self.yield_indentation
+        with np.errstate(invalid="ignore", divide="ignore"):
+            dres = self.unloading(np.where(plastic, dm, 2.0 * self.yield_indentation))[2]
+        return np.where(plastic, dres, 0.0)
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """(2/5) F_m (delta_m - delta_res) (Hertzian unloading with R_p) past delta_y,
+        (2/5) K_h delta^2.5 below it, [J]."""
+        dm = np.asarray(delta, dtype=float)
+        plastic = dm > self.yield_indentation
+        with np.errstate(invalid="ignore", divide="ignore"):
+            fm, _, dres = self.unloading(np.where(plastic, dm, 2.0 * self.yield_indentation))
+        elastic = 0.4 * self.stiffness * dm**2.5
+        return np.where(plastic, 0.4 * fm * (dm - dres), elastic)
+
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Hertz 0 -> delta_y, linear delta_y -> delta_m, Hertz(R_p) delta_m -> delta_res.
 
@@ -328,6 +365,16 @@ class WaltonBraunContact:
     def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
         v0 = np.asarray(impact_velocity, dtype=float)
         return np.broadcast_to(v0 > 0.0, np.broadcast(v0, self.yield_velocity(mass)).shape)
+
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """delta_res = delta_m (1 - K1/K2), [m]."""
+        k1, k2 = np.asarray(self.k_load, dtype=float), np.asarray(self.k_unload, dtype=float)
+        return np.asarray(delta_max, dtype=float) * (1.0 - k1 / k2)
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """(1/2) K2 (delta_m - delta_res)^2 = (1/2) K1^2 delta_m^2 / K2, [J]."""
+        k1, k2 = np.asarray(self.k_load, dtype=float), np.asarray(self.k_unload, dtype=float)
+        return 0.5 * k1 * k1 * np.asarray(delta, dtype=float) ** 2 / k2
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Linear loading 0 -> delta_m from V0, linear unloading delta_m -> delta_res."""
@@ -606,6 +653,26 @@ class TabulatedContact:
                 f"delta_max of the unloading curves, {self.unloading.delta_max[-1]:.6g} m"
             )
         return dm
+
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """delta_res of the interpolated unloading curve (:class:`UnloadingCurves`); zero
+        without unloading curves, [m]."""
+        dm = np.asarray(delta_max, dtype=float)
+        if self.unloading is None:
+            return np.zeros_like(dm)
+        return self.unloading.residual_indentation(dm)
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """Work of the unloading curve interpolated for delta_m = ``delta`` (the loading
+        curve's own work without unloading curves), [J]."""
+        dm = np.asarray(delta, dtype=float)
+        if self.unloading is None:
+            return self.loading.work(0.0, dm)
+        top = np.where(dm > 0.0, dm, self.loading.delta[-1])  # no contact: no zero span
+        dres = self.unloading.residual_indentation(top)
+        law = UnloadingLaw(self.unloading, top, dres, self.loading.force(top))
+        returned = law.work(_col(dres), _col(top))[..., 0]
+        return np.where(dm > 0.0, returned, 0.0)
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Loading 0 -> delta_m from V0; then back to 0 on the same curve (elastic), or

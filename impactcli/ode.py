@@ -98,6 +98,34 @@ class OdeSolution:
         end = t >= self.end_time
         return np.where(end, self.delta_end, delta), np.where(end, self.delta_dot_end, delta_dot)
 
+    def stage_bounds(self) -> list[tuple[float, float]]:
+        """Indentation [m] at the start and end of each stage along the integrated path:
+        a loading stage that ends at rest ends at the integrator's delta_max, every other
+        stage at its plan's ``delta_end`` (where its event put it)."""
+        bounds, start = [], _scalar(self.plan.stages[0].delta_start)
+        for stage in self.plan.stages:
+            end = self.delta_max if stage.end_at_rest else _scalar(stage.delta_end)
+            bounds.append((start, end))
+            start = end
+        return bounds
+
+    def contact_work(self, t: ArrayLike) -> NDArray:
+        """Work of the contact force up to times ``t`` [s] along the integrated path, [J]:
+        the exact work of each finished stage's law plus that of the current stage from its
+        start to delta(t). (1/2) m delta'^2 + W(t) = (1/2) m V0^2 to the integration's
+        tolerance (docs/method.md §12)."""
+        t = np.asarray(t, dtype=float)
+        delta, _ = self.evaluate(t)
+        k = np.reshape(self.stage_index(t), np.shape(delta))
+        work = np.zeros_like(delta)
+        done = 0.0
+        for index, (stage, (a, b)) in enumerate(zip(self.plan.stages, self.stage_bounds())):
+            mask = k == index
+            if np.any(mask):
+                work[mask] = done + np.reshape(stage.law.work(a, delta[mask]), -1)
+            done += _scalar(stage.law.work(a, b))
+        return work
+
     def force(self, t: ArrayLike, delta: ArrayLike) -> NDArray:
         """Contact force [N] at times ``t`` [s] and indentations ``delta`` [m]: the law of
         the stage each time falls in."""

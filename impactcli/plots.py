@@ -17,6 +17,8 @@ impact_figure : histories of one normal impact (paper Figs. 4-11) and its force-
 convergence_figure : FILM indentation histories for several n (Fig. 3) and the contact-time error
 restitution_figure : a sweep over impact velocity: restitution, contact time, permanent indentation
 fit_figure : measured restitution with fitted laws, their confidence bands and the residuals
+elastic_sweep_figure : a sweep of the elastic impact: contact time, maximum indentation and force
+energy_figure : the energy partition of one impact: kinetic, stored and dissipated, per sphere
 collision2d_figure : the oblique 2-D collision: velocities before and after (sec. 4.5, Fig. 12)
 law_comparison_figure : force-indentation loops of several laws, and e against V0/V_y
 tangential_force_figure : the Mindlin tangential force history of an oblique 3-D impact
@@ -45,6 +47,8 @@ __all__ = [
     "MISSING_MATPLOTLIB",
     "collision2d_figure",
     "convergence_figure",
+    "elastic_sweep_figure",
+    "energy_figure",
     "figure_format",
     "fit_figure",
     "impact_figure",
@@ -269,8 +273,16 @@ def impact_figure(
     h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
     ref = None if reference is None else {k: np.asarray(v, float) for k, v in reference.items()}
     figs = _PAPER_FIGURES.get(model, _PAPER_FIGURES["elastic"])
-    fig = _new_figure(15.0, 8.8)
-    (ax_d, ax_v, ax_p), (ax_i, ax_r, ax_f) = fig.subplots(2, 3)
+    energy = "ke1" in h
+    if energy:  # a third row: the energy partition against time
+        fig = _new_figure(15.0, 12.0)
+        axes = fig.subplot_mosaic(
+            [["d", "v", "p"], ["i", "r", "f"], ["g", "g", "g"]], height_ratios=(1, 1, 0.8)
+        )
+        ax_d, ax_v, ax_p, ax_i, ax_r, ax_f = (axes[k] for k in "dvpirf")
+    else:
+        fig = _new_figure(15.0, 8.8)
+        (ax_d, ax_v, ax_p), (ax_i, ax_r, ax_f) = fig.subplots(2, 3)
     t = h["t"]
     ts = unit_scale(t, "s")
     c1, c2 = SPHERE_COLOURS
@@ -361,6 +373,13 @@ def impact_figure(
 
     _force_panel(ax_f, h, summary)
     ax_f.set_title("(f) Force against indentation", fontsize="medium")
+    if energy:
+        _energy_panel(axes["g"], t, ts, h)
+        axes["g"].set_title(
+            "(g) Energy: kinetic energy of each sphere, stored (recoverable) strain energy, "
+            "dissipated; their sum is constant",
+            fontsize="medium",
+        )
 
     fig.suptitle(title + _summary_text(summary), fontsize="large")
     note = (
@@ -371,6 +390,104 @@ def impact_figure(
         note += f" Lines: FILM; circles: {reference_label}."
     fig.text(0.5, 0.0, note, ha="center", va="bottom", fontsize="small", color="0.3")
     fig.get_layout_engine().set(rect=(0.0, 0.025, 1.0, 0.975))
+    return fig
+
+
+def _energy_panel(ax: Axes, t: NDArray, ts: UnitScale, h: Mapping[str, NDArray]) -> None:
+    """ke1, ke2, strain energy, dissipated energy and their sum against time."""
+    c1, c2 = SPHERE_COLOURS
+    total = h["ke1"] + h["ke2"] + h["strain_energy"] + h["dissipated"]
+    _series(
+        ax,
+        t,
+        ts,
+        [
+            ("ke1", "kinetic, sphere 1", h["ke1"], {"color": c1}),
+            ("ke2", "kinetic, sphere 2", h["ke2"], {"color": c2}),
+            ("strain_energy", "stored (strain)", h["strain_energy"], {"color": "tab:green"}),
+            ("dissipated", "dissipated", h["dissipated"], {"color": "tab:red"}),
+            ("energy_total", "sum", total, {"color": TOTAL_COLOUR, "linestyle": "--"}),
+        ],
+        "energy",
+        "J",
+    )
+    ax.legend(fontsize="small", loc="center left", bbox_to_anchor=(1.0, 0.5))
+
+
+def energy_figure(
+    history: Mapping[str, ArrayLike],
+    title: str,
+    *,
+    summary: Mapping[str, float] | None = None,
+    relative_energy: float | None = None,
+) -> Figure:
+    """The energy partition of one impact (docs/method.md §12), two panels against time.
+
+    (a) The initial kinetic energy and where it goes: each sphere's kinetic energy, the
+    stored (recoverable) strain energy and the dissipated energy, stacked, so the top edge
+    is their sum (constant). (b) Each sphere's part of the contact energy: its strain
+    energy and its dissipated energy (the split of the history: ``mass``, ``compliance``
+    or ``yield``), as a share of the initial relative kinetic energy (1/2) m V0^2.
+
+    Parameters
+    ----------
+    history : ``t`` [s] and the energy columns ``ke1``, ``ke2``, ``strain_energy``,
+        ``strain_energy1``, ``strain_energy2``, ``dissipated``, ``dissipated1``,
+        ``dissipated2`` [J] (:data:`impactcli.impact.ENERGY_COLUMNS`)
+    title : names the case
+    summary : optional :attr:`impactcli.impact.ImpactResult.summary`, shown under the title
+    relative_energy : (1/2) m V0^2 [J], the scale of panel (b); default the largest
+        stored plus dissipated energy of the history (the same at maximum compression)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Areas and lines have gids named after the columns.
+    """
+    h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
+    t = h["t"]
+    ts = unit_scale(t, "s")
+    x = t / ts.factor
+    fig = _new_figure(13.0, 5.0)
+    ax_a, ax_b = fig.subplots(1, 2)
+    c1, c2 = SPHERE_COLOURS
+    layers = [
+        ("ke1", "kinetic, sphere 1", c1),
+        ("ke2", "kinetic, sphere 2", c2),
+        ("strain_energy", "stored (recoverable strain)", "tab:green"),
+        ("dissipated", "dissipated (plastic work)", "tab:red"),
+    ]
+    es = unit_scale([h["ke1"] + h["ke2"] + h["strain_energy"] + h["dissipated"]], "J")
+    stack = ax_a.stackplot(
+        x, *[h[k] / es.factor for k, _, _ in layers], labels=[lb for _, lb, _ in layers],
+        colors=[c for _, _, c in layers], alpha=0.8,
+    )  # fmt: skip
+    for area, (gid, _, _) in zip(stack, layers):
+        area.set_gid(gid)
+    ax_a.set_ylabel(f"energy ({es.unit})")
+    ax_a.set_xlabel(f"time $t$ ({ts.unit})")
+    ax_a.set_title("(a) Where the initial kinetic energy goes", fontsize="medium")
+    ax_a.legend(fontsize="small", loc="lower right")
+    ax_a.grid(True, linewidth=0.4, alpha=0.5)
+
+    contact = h["strain_energy"] + h["dissipated"]
+    relative = float(np.max(contact)) if contact.size else 1.0
+    if relative_energy is not None:
+        relative = float(relative_energy)
+    relative = relative if relative > 0 else 1.0  # (1/2) m V0^2: all of it at delta_max
+    for gid, label, colour, style in (
+        ("strain_energy1", "stored, sphere 1", c1, "-"),
+        ("strain_energy2", "stored, sphere 2", c2, "-"),
+        ("dissipated1", "dissipated, sphere 1", c1, "--"),
+        ("dissipated2", "dissipated, sphere 2", c2, "--"),
+    ):
+        ax_b.plot(x, h[gid] / relative, label=label, color=colour, linestyle=style, gid=gid)
+    ax_b.set_ylabel(r"share of $\frac{1}{2} m V_0^2$ (-)")
+    ax_b.set_xlabel(f"time $t$ ({ts.unit})")
+    ax_b.set_title("(b) Each sphere's strain and dissipated energy", fontsize="medium")
+    ax_b.legend(fontsize="small")
+    ax_b.grid(True, linewidth=0.4, alpha=0.5)
+    fig.suptitle(title + _summary_text(summary), fontsize="large")
     return fig
 
 
@@ -815,6 +932,55 @@ def fit_figure(
     for ax in (ax_e, ax_r):
         ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
     fig.suptitle(title, fontsize="medium")
+    return fig
+
+
+def elastic_sweep_figure(
+    impact_velocity: ArrayLike,
+    contact_time: ArrayLike,
+    delta_max: ArrayLike,
+    force_max: ArrayLike,
+    *,
+    title: str = "Elastic (Hertz) impact against impact velocity",
+    log_velocity: bool | None = None,
+) -> Figure:
+    """Three panels over a sweep of the elastic impact: contact time t_c ~ V0^(-1/5),
+    maximum indentation delta_m ~ V0^(4/5), maximum force F_m ~ V0^(6/5) (docs/method.md §3).
+
+    Parameters
+    ----------
+    impact_velocity : V0 of each impact, [m/s]
+    contact_time, delta_max, force_max : t_c [s], delta_m [m], F_m [N]
+    log_velocity : logarithmic axes; default when V0 spans two decades or more
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Lines have gids ``contact_time``, ``delta_max`` and ``force_max``.
+    """
+    v0 = np.asarray(impact_velocity, dtype=float)
+    if log_velocity is None:
+        log_velocity = v0.size > 1 and bool(np.all(v0 > 0)) and v0.max() >= 100 * v0.min()
+    fig = _new_figure(15.0, 4.8)
+    axes = fig.subplots(1, 3)
+    vs = unit_scale(v0, "m/s")
+    panels = (
+        ("contact_time", contact_time, "s", "contact time $t_c$", "(a) Contact time"),
+        ("delta_max", delta_max, "m", r"maximum indentation $\delta_m$", "(b) Indentation"),
+        ("force_max", force_max, "N", "maximum force $F_m$", "(c) Force"),
+    )
+    for ax, (gid, values, unit, quantity, heading) in zip(axes, panels):
+        y = np.asarray(values, dtype=float)
+        scale = unit_scale(y, unit)
+        ax.plot(v0 / vs.factor, y / scale.factor, marker=".", gid=gid)
+        ax.set_ylabel(f"{quantity} ({scale.unit})")
+        ax.set_xlabel(f"impact velocity $V_0$ ({vs.unit})")
+        ax.set_title(heading, fontsize="medium")
+        if log_velocity:
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+        ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
+    fig.suptitle(title, fontsize="large")
     return fig
 
 

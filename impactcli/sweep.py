@@ -3,7 +3,8 @@
 One elastoplastic FILM run (Du & Wang contact, docs/method.md §7) per impact velocity, vectorised
 over the velocities: the elastic ones (below the yield velocity) and the plastic ones are
 each solved as one batch. People calibrate the coefficient of restitution of DEM contact
-models this way.
+models this way. Without a yield strength (and without a law) the sweep is of the elastic
+Hertz impact: contact time, maximum indentation and force against V0 (e = 1).
 """
 
 from __future__ import annotations
@@ -22,8 +23,8 @@ from impactcli.impact import (
     split_fractions,
     weaker_yield_strength,
 )
+from impactcli.lawlib import get_law
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
-from impactcli.validation import YIELD_STRENGTH_NEEDED
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
@@ -32,6 +33,7 @@ SWEEP_COLUMNS: tuple[str, ...] = (
     "restitution",
     "contact_time",
     "delta_max",
+    "force_max",
     "delta_res",
     "delta1_res",
     "delta2_res",
@@ -55,13 +57,17 @@ def restitution_sweep(
 
     ``law``: any law of :mod:`impactcli.lawlib` with its ``law_params`` instead of Du & Wang
     (``pressure_factor`` is then ignored); ``plastic`` is 1 past the law's yield point.
+    Without ``law`` and without any yield strength (neither ``yield_strength`` nor the
+    spheres'), the impacts are elastic (Hertz): e = 1, no permanent indentation.
+    ``split``: ``mass``, ``compliance`` or ``yield`` (the permanent indentation to the
+    sphere that yields, :func:`impactcli.impact.split_fractions`).
 
     Returns
     -------
     dict
         :data:`SWEEP_COLUMNS` -> arrays: restitution e [-], contact time [s], maximum and
-        residual indentation (total and of each sphere, split by ``mass`` or
-        ``compliance``) [m], energy dissipated (1/2) m V0^2 (1 - e^2) [J], and ``plastic``
+        residual indentation (total and of each sphere) [m], maximum force [N], energy
+        dissipated (1/2) m V0^2 (1 - e^2) [J], and ``plastic``
         (1 above the yield velocity, else 0).
     """
     v0 = np.asarray(velocities, dtype=float)
@@ -69,7 +75,7 @@ def restitution_sweep(
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
     check_size("the number of velocities", v0.size, MAX_COUNT)
     check_size("the number of velocities x n", v0.size * int(n), MAX_SWEEP_SEGMENTS)
-    split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance
+    split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass, compliance, yield
     check_pair(sphere1, sphere2, v0, 0.0)
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)
     plastic = np.broadcast_to(contact.yields(v0, m), v0.shape)
@@ -82,9 +88,23 @@ def restitution_sweep(
         out["restitution"][mask] = plan.restitution
         out["contact_time"][mask] = stages[-1].end_time
         out["delta_max"][mask] = plan.delta_max
+        out["force_max"][mask] = plan.force_max
         out["delta_res"][mask] = plan.delta_res
+    if split == "yield" and np.any(out["delta_res"] > 0.0):
+        if sphere1.yield_strength is None and sphere2.yield_strength is None:
+            raise ValueError(
+                "split 'yield' gives the permanent indentation to the sphere that yields, but "
+                "neither sphere has a yield strength: give sy1 or sy2 (or a material with one)"
+            )
     f1, f2 = split_fractions(
-        split, sphere1.total_mass, sphere2.total_mass, sphere1.compliance, sphere2.compliance
+        split,
+        sphere1.total_mass,
+        sphere2.total_mass,
+        sphere1.compliance,
+        sphere2.compliance,
+        _nan(sphere1.yield_strength),
+        _nan(sphere2.yield_strength),
+        permanent=True,
     )
     out["impact_velocity"] = v0
     out["delta1_res"] = f1 * out["delta_res"]
@@ -104,7 +124,7 @@ def sweep_yield_velocity(
 ) -> float:
     """The impact velocity V_y [m/s] above which :func:`restitution_sweep` is plastic (the
     Du & Wang contact's yield velocity, docs/method.md §7, or that of ``law``; NaN for a
-    law without a yield point)."""
+    law without a yield point, or without a yield strength)."""
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)
     return float(contact.yield_velocity(m))
 
@@ -139,12 +159,16 @@ def _contact(
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
-    if law is not None:
-        from impactcli.lawlib import get_law
-
+    if law is not None and not (sigma_y is None and get_law(law).name == "du-wang"):
         m, r, e = effective_properties(sphere1, sphere2)
         return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
-    if sigma_y is None:
-        raise ValueError(YIELD_STRENGTH_NEEDED)
     m, r, e = effective_properties(sphere1, sphere2)
+    if sigma_y is None:  # Du & Wang, nothing can yield: the elastic Hertz impact
+        from impactcli.lawlib import HertzLawContact
+
+        return HertzLawContact(r, e), m
     return DuWangContact(r, e, sigma_y, pressure_factor), m
+
+
+def _nan(value: float | None) -> float:
+    return np.nan if value is None else float(value)

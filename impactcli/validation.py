@@ -25,10 +25,12 @@ __all__ = [
     "YIELD_STRENGTH_NEEDED",
     "Problems",
     "below_yield_note",
+    "brittle_notes",
     "check_vectors",
     "du_wang_yield_velocity",
     "contact_radius_warning",
     "first_yield_warning",
+    "mass_split_warning",
     "flat_floats",
     "needs_yield_strength",
     "pair_problems",
@@ -368,3 +370,56 @@ def contact_radius_warning(
         f"{v0[k]:.4g} m/s: beyond the small-deformation contact models used here (Hertz, "
         "Du & Wang); treat the result as indicative only"
     )
+
+
+def _differ(a: float | None, b: float | None) -> bool:
+    """Two property values differ (None: not given) beyond rounding."""
+    if a is None or b is None:
+        return (a is None) != (b is None)
+    return not abs(a - b) <= 1e-9 * max(abs(a), abs(b))
+
+
+def mass_split_warning(
+    split: str,
+    compliance1: float,
+    compliance2: float,
+    yield_strength1: float | None,
+    yield_strength2: float | None,
+) -> str | None:
+    """The warning when the spheres' materials differ (compliance (1 - nu^2)/E [1/Pa] or
+    yield strength [Pa]) and the indentation is split by mass, else None."""
+    if split != "mass" or not (
+        _differ(compliance1, compliance2) or _differ(yield_strength1, yield_strength2)
+    ):
+        return None
+    return (
+        "the spheres' materials differ but --split mass shares the indentation by mass, the "
+        "paper's convention for like spheres; --split yield gives the permanent indentation "
+        "to the sphere that yields and the rest by compliance (--split compliance: Hertz)"
+    )
+
+
+def brittle_notes(
+    split: str, yield_strength1: float | None, yield_strength2: float | None
+) -> list[str]:
+    """With ``split == "yield"``: one note per sphere without a yield strength (taken not to
+    yield: brittle, fracture is outside the model), and who takes the permanent
+    indentation when the yield strengths are within 2 % (by compliance)."""
+    if split != "yield":
+        return []
+    notes = [
+        f"sphere {i} has no yield strength: it is taken not to yield (a brittle material "
+        "such as glass or a ceramic; its fracture is outside this model)"
+        for i, sy in ((1, yield_strength1), (2, yield_strength2))
+        if sy is None
+    ]
+    if yield_strength1 is not None and yield_strength2 is not None:
+        from impactcli.energy import YIELD_TIE_TOLERANCE
+
+        low, high = sorted((yield_strength1, yield_strength2))
+        if high <= low * (1.0 + YIELD_TIE_TOLERANCE):
+            notes.append(
+                "the yield strengths are within 2 %: both spheres yield, and the permanent "
+                "indentation is shared by compliance like the recoverable one"
+            )
+    return notes

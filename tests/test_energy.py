@@ -13,7 +13,7 @@ from impactcli.energy import (
     sphere_shares,
     yield_shares,
 )
-from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
+from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact, law_impact
 
 STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
 
@@ -102,3 +102,170 @@ def test_yield_split_gives_the_dent_to_the_weaker_sphere():
     assert permanent == elastic == (0.5, 0.5)
     with pytest.raises(ValueError, match="split must be mass, compliance or yield"):
         sphere_shares("Mass", (0.5, 0.5), (1.0, 1.0))
+
+
+# -- the energy columns of every law and method (ImpactResult.history) ----------------------
+
+GLASS = dict(youngs_modulus=72e9, poisson_ratio=0.23, density=2500.0)
+ALUMINIUM = dict(youngs_modulus=68.9e9, poisson_ratio=0.33, density=2700.0, yield_strength=276e6)
+
+
+def _tabulated_params(plastic: bool):
+    """A Hertz-like loading curve (steel pair of sec. 4.4) and, for ``plastic``, unloading
+    curves from three maxima with a residual indentation of 20 % of each."""
+    k_h = 4.0 / 3.0 * 210e9 / (2 * (1 - 0.3**2)) * np.sqrt(1 / 150)
+    d = np.linspace(0.0, 60e-6, 400)
+    params = {"curve": (d, k_h * d**1.5)}
+    if plastic:
+        rows = []
+        for top in (10e-6, 30e-6, 60e-6):
+            u = np.linspace(0.2 * top, top, 50)
+            rows += [(top, x, k_h * top**1.5 * ((x - 0.2 * top) / (0.8 * top)) ** 1.5) for x in u]
+        dm, du, fu = (np.array(c) for c in zip(*rows))
+        params["unload_curves"] = (dm, du, fu)
+    return params
+
+
+LAW_CASES = [
+    ("hertz", {}),
+    ("du-wang", {}),
+    ("thornton", {}),
+    ("walton-braun", {"k_load": 1e7, "k_unload": 3e7}),
+    ("tabulated", "elastic"),
+    ("tabulated", "plastic"),
+]
+
+
+def _law_result(law, params, method):
+    if law == "tabulated":
+        params = _tabulated_params(params == "plastic")
+    s1, s2 = Sphere(0.02, **STEEL), Sphere(0.04, **STEEL)
+    return law_impact(s1, s2, 0.25, 0.75, law, params, n=25, method=method)
+
+
+@pytest.mark.parametrize("method", ["film", "ode"])
+@pytest.mark.parametrize("law, params", LAW_CASES)
+def test_energy_columns_add_up_to_the_initial_kinetic_energy(law, params, method):
+    """ke1 + ke2 + strain_energy + dissipated = initial kinetic energy at every time: to
+    rounding for FILM (1e-13 of the kinetic energy, which carries the centre-of-mass part,
+    plus 1e-12 of (1/2) m V0^2), to the integration's tolerance for the ODE (rtol 1e-12 per
+    step; 1e-8 of (1/2) m V0^2 over the impact, the kinks of a piecewise-linear tabulated
+    curve costing most)."""
+    r = _law_result(law, params, method)
+    h = r.history(points=1001)
+    s = r.summary
+    initial = s["kinetic_energy1_initial"] + s["kinetic_energy2_initial"]
+    assert initial == pytest.approx(0.5 * r.m1 * 0.25**2 + 0.5 * r.m2 * 0.75**2, rel=1e-15)
+    relative = 0.5 * s["effective_mass"] * 1.0**2
+    total = h["ke1"] + h["ke2"] + h["strain_energy"] + h["dissipated"]
+    tol = 1e-13 * initial + 1e-12 * relative if method == "film" else 1e-8 * relative
+    assert np.max(np.abs(total - initial)) <= tol
+    # each sphere's share adds up to the total
+    assert np.allclose(h["strain_energy1"] + h["strain_energy2"], h["strain_energy"], 0, 1e-15)
+    assert np.allclose(h["dissipated1"] + h["dissipated2"], h["dissipated"], rtol=1e-15, atol=0)
+    # at separation: nothing stored, (1/2) m V0^2 (1 - e^2) dissipated, never given back
+    e = s["restitution"]
+    assert h["strain_energy"][-1] == pytest.approx(0.0, abs=1e-9 * relative)
+    assert h["dissipated"][-1] == pytest.approx(relative * (1 - e**2), abs=1e-9 * relative)
+    assert np.all(np.diff(h["dissipated"]) >= -1e-12 * relative)
+    assert s["energy_dissipated1"] + s["energy_dissipated2"] == pytest.approx(
+        relative * (1 - e**2), abs=1e-12 * relative
+    )
+    # kinetic energy at separation: the initial one less what was dissipated
+    final = s["kinetic_energy1_final"] + s["kinetic_energy2_final"]
+    assert final == pytest.approx(initial - relative * (1 - e**2), rel=1e-9)
+    assert h["ke1"][-1] + h["ke2"][-1] == pytest.approx(final, rel=1e-9)
+
+
+def test_table_method_energy_is_film_to_rounding():
+    r = elastic_impact(Sphere(0.02, **STEEL), Sphere(0.04, **STEEL), 5e-3, 7.5e-3, n=25)
+    h = r.history(points=501, method="table")
+    initial = r.summary["kinetic_energy1_initial"] + r.summary["kinetic_energy2_initial"]
+    relative = 0.5 * r.summary["effective_mass"] * 12.5e-3**2
+    total = h["ke1"] + h["ke2"] + h["strain_energy"] + h["dissipated"]
+    assert np.max(np.abs(total - initial)) <= 1e-13 * initial + 1e-11 * relative
+    assert not np.any(h["dissipated"])
+
+
+@pytest.mark.parametrize("law, params", LAW_CASES)
+def test_recoverable_work_is_what_unloading_gives_back(law, params):
+    """For every law: residual_indentation(delta_max) is the plan's delta_res, and the work
+    unloading from delta_max gives back is (1/2) m (e V0)^2 (the restitution energy)."""
+    r = _law_result(law, params, "film")
+    model, plan = r.contact_model, r.plan
+    dm = np.array([float(np.reshape(plan.delta_max, -1)[0])])
+    assert float(model.residual_indentation(dm)[0]) == pytest.approx(
+        float(np.reshape(plan.delta_res, -1)[0]), rel=1e-12, abs=1e-20
+    )
+    e = r.summary["restitution"]
+    back = float(np.reshape(model.recoverable_work(dm), -1)[0])
+    assert back == pytest.approx(0.5 * r.summary["effective_mass"] * e**2, rel=1e-10)
+    assert r.summary["stored_share1"] + r.summary["stored_share2"] == pytest.approx(e**2)
+    assert r.summary["absorbed_share1"] + r.summary["absorbed_share2"] == pytest.approx(1.0)
+
+
+def test_paper_4_4_dissipation_by_the_history():
+    """Sec. 4.4 (steel, D1 = 20 mm, D2 = 40 mm, V0 = 1 m/s, e = 0.85611): the dissipated
+    energy at separation is (1/2) m V0^2 (1 - e^2) = 0.2671 (1/2) m V0^2, 3.878 mJ."""
+    r = elastoplastic_impact(Sphere(0.02, **STEEL), Sphere(0.04, **STEEL), 0.25, 0.75)
+    h = r.history(points=301)
+    m = r.summary["effective_mass"]
+    assert h["dissipated"][-1] == pytest.approx(0.5 * m * (1 - 0.85611**2), rel=1e-4)
+    assert h["dissipated"][-1] == pytest.approx(r.summary["energy_dissipated"], rel=1e-12)
+    # the paper's mass split: the smaller sphere takes m/m1 = 8/9 of it
+    assert r.summary["energy_dissipated1"] == pytest.approx(8 / 9 * h["dissipated"][-1])
+
+
+# -- who yields ------------------------------------------------------------------------------
+
+
+def test_glass_bead_on_a_steel_wall_dents_the_steel():
+    bead, wall = Sphere(0.003, **GLASS), Sphere(np.inf, 210e9, 0.3, mass=np.inf, yield_strength=1e9)
+    r = elastoplastic_impact(bead, wall, 5.0, 0.0, split="yield")
+    s = r.summary
+    assert s["delta_res"] > 0 and s["delta1_res"] == 0.0 and s["delta2_res"] == s["delta_res"]
+    assert s["energy_dissipated1"] == 0.0 and s["energy_dissipated2"] > 0
+    assert np.isinf(s["first_yield_velocity1"]) and np.isfinite(s["first_yield_velocity2"])
+    mass = elastoplastic_impact(bead, wall, 5.0, 0.0, split="mass").summary
+    assert mass["delta1_res"] == mass["delta_res"]  # the paper's split: all on the bead
+
+
+def test_aluminium_ball_on_a_steel_plate_dents_the_ball():
+    ball = Sphere(0.02, **ALUMINIUM)
+    plate = Sphere(np.inf, 210e9, 0.3, mass=np.inf, yield_strength=1e9)
+    r = elastoplastic_impact(ball, plate, 1.0, 0.0, split="yield")
+    s = r.summary
+    assert s["delta1_res"] == s["delta_res"] > 0 and s["delta2_res"] == 0.0
+    assert s["first_yield_velocity1"] < s["first_yield_velocity2"]
+    # maximum indentation: the recoverable part by compliance, the permanent part to the ball
+    c1, c2 = ball.compliance, plate.compliance
+    elastic = s["delta_max"] - s["delta_res"]
+    assert s["delta2_max"] == pytest.approx(c2 / (c1 + c2) * elastic, rel=1e-12)
+    assert s["delta1_max"] + s["delta2_max"] == pytest.approx(s["delta_max"], rel=1e-14)
+
+
+@pytest.mark.parametrize("method", ["film", "ode"])
+def test_yield_split_histories(method):
+    """delta_i = e_i (delta - delta_p) + p_i delta_p: the two add up to delta, the wall
+    (which does not yield) recovers fully, the ball keeps delta_res; delta_i' is the time
+    derivative of delta_i."""
+    ball = Sphere(0.02, **ALUMINIUM)
+    plate = Sphere(np.inf, 210e9, 0.3, mass=np.inf, yield_strength=1e9)
+    r = elastoplastic_impact(ball, plate, 1.0, 0.0, split="yield", method=method)
+    t = np.linspace(0.0, r.times(2, method)[-1], 20001)
+    h = r.history(t=t)
+    assert np.allclose(h["delta1"] + h["delta2"], h["delta"], rtol=0, atol=1e-15 * h["delta"].max())
+    assert h["delta2"][-1] == pytest.approx(0.0, abs=1e-9 * h["delta"].max())
+    assert h["delta1"][-1] == pytest.approx(r.summary["delta_res"], rel=1e-9)
+    rate = np.gradient(h["delta1"], t)
+    inner = slice(5, -5)
+    scale = np.max(np.abs(h["delta1_dot"]))
+    assert np.max(np.abs(rate[inner] - h["delta1_dot"][inner])) < 2e-3 * scale
+
+
+def test_yield_split_without_any_yield_strength():
+    glass = Sphere(0.003, **GLASS)
+    r = elastic_impact(glass, glass, 1.0, 0.0, split="yield")  # elastic: nothing permanent
+    assert r.permanent_fractions == r.split_fractions == (0.5, 0.5)
+    with pytest.raises(ValueError, match="neither sphere has a yield strength"):
+        elastoplastic_impact(glass, glass, 30.0, 0.0, split="yield", yield_strength=1e9)

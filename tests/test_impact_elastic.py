@@ -361,6 +361,8 @@ def test_film_agrees_with_ode_integration(n, tolerance):
     film = res.history(t, method="film")
     ode = res.history(t, method="ode")
     for column in HISTORY_COLUMNS:
+        if not (np.any(film[column]) or np.any(ode[column])):
+            continue  # dissipated: zero in both (elastic)
         assert column_error(film, ode, column) < tolerance, column
 
 

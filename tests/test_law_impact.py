@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from impactcli.impact import (
+    ENERGY_SUMMARY_KEYS,
     PLASTIC_SUMMARY_KEYS,
     Sphere,
     elastic_impact,
@@ -29,7 +30,7 @@ def test_hertz_law_is_elastic_impact_with_the_plastic_keys():
     old = elastic_impact(S1, S2, 5e-3, 7.5e-3)
     new = law_impact(S1, S2, 5e-3, 7.5e-3, "hertz")
     assert all(new.summary[k] == v for k, v in old.summary.items())
-    assert set(new.summary) == set(PLASTIC_SUMMARY_KEYS)
+    assert set(new.summary) == set(PLASTIC_SUMMARY_KEYS + ENERGY_SUMMARY_KEYS)
     assert np.isnan(new.summary["delta_y"]) and new.summary["delta_res"] == 0.0
     assert new.model == "elastic"  # the normalised tables apply
     assert new.history(method="table")["t"].size > 0
@@ -45,7 +46,7 @@ def test_hertz_law_is_elastic_impact_with_the_plastic_keys():
 )
 def test_law_impact_matches_scipy_and_keys(law, params):
     result = law_impact(S1, S2, 0.25, 0.75, law, params, n=100)
-    assert set(result.summary) == set(PLASTIC_SUMMARY_KEYS)
+    assert set(result.summary) == set(PLASTIC_SUMMARY_KEYS + ENERGY_SUMMARY_KEYS)
     ref = integrate_impact(result)
     s = result.summary
     assert s["contact_time"] == pytest.approx(ref["contact_time"], rel=1e-5)

@@ -769,3 +769,34 @@ def test_title_names_an_overridden_modulus(monkeypatch, tmp_path):
         [*SWEEP, "--plot", "r.png", "-o", str(tmp_path / "r.csv")],
     )
     assert fig.get_suptitle().endswith("D1 = 20 mm, D2 = 40 mm, steel")
+
+
+# -- energy ---------------------------------------------------------------------------------
+
+
+def test_energy_panel_and_figure_draw_the_history(plastic_4_4):
+    from impactcli.plots import energy_figure
+
+    result, history, fig = plastic_4_4
+    line = lines(fig, "energy_total")  # panel (g): the sum, constant
+    scale = float(np.max(history["ke1"] + history["ke2"])) / float(
+        np.max(lines(fig, "ke2").get_ydata())
+    )
+    assert np.ptp(line.get_ydata()) * scale <= 1e-12 * float(np.max(history["ke2"]))
+    m = result.summary["effective_mass"]
+    energy = energy_figure(history, "sec. 4.4", summary=result.summary, relative_energy=0.5 * m)
+    dissipated = lines(energy, "dissipated1").get_ydata()
+    assert dissipated[-1] == pytest.approx(history["dissipated1"][-1] / (0.5 * m), rel=1e-12)
+    # the paper's mass split: sphere 1 takes 8/9 of (1 - e^2)
+    assert dissipated[-1] == pytest.approx(8 / 9 * (1 - 0.85611**2), rel=1e-4)
+    gids = {c.get_gid() for ax in energy.axes for c in ax.collections}
+    assert {"ke1", "ke2", "strain_energy", "dissipated"} <= gids
+
+
+def test_elastic_sweep_figure_axes():
+    from impactcli.plots import elastic_sweep_figure
+
+    v0 = np.geomspace(0.1, 10.0, 5)
+    fig = elastic_sweep_figure(v0, 1e-5 * v0**-0.2, 1e-6 * v0**0.8, 10 * v0**1.2)
+    assert lines(fig, "force_max").axes.get_yscale() == "log"
+    assert np.allclose(lines(fig, "force_max").get_ydata(), 10 * v0**1.2)

@@ -60,6 +60,7 @@ from impactcli.cli import (  # noqa: E402
     collide2d_cmd,
     collide3d_cmd,
     compare_cmd,
+    design_cmd,
     fit_cmd,
     impact_cmd,
     laws_cmd,
@@ -74,6 +75,7 @@ batch_cmd.register(app)
 laws_cmd.register(app)
 compare_cmd.register(app)
 fit_cmd.register(app)
+design_cmd.register(app)
 
 
 def _usage_error(exc: BaseException) -> int | None:

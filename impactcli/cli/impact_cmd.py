@@ -39,7 +39,10 @@ SIGN_HELP = (
 )
 SPLIT_HELP = (
     "How the total indentation is shared: 'mass' (the paper's contact plane moving at V_cp: "
-    "delta_i = (m/m_i) delta) or 'compliance' (Hertz: delta_i proportional to (1-nu_i^2)/E_i)."
+    "delta_i = (m/m_i) delta; its convention for like spheres), 'compliance' (Hertz: "
+    "delta_i proportional to (1-nu_i^2)/E_i) or 'yield' (the recoverable part by compliance, "
+    "the permanent part to the sphere that yields: the lower yield strength; a sphere "
+    "without one, e.g. glass, does not yield)."
 )
 
 
@@ -52,6 +55,7 @@ class Method(enum.StrEnum):
 class Split(enum.StrEnum):
     mass = "mass"
     compliance = "compliance"
+    yield_ = "yield"
 
 
 def _opt(help_text: str, *names: str, **kw: Any):
@@ -113,6 +117,14 @@ FMT = Annotated[
 ]
 OUT = OutputFile
 PLOT = PlotFile
+ENERGY_PLOT = Annotated[
+    Optional[str],
+    typer.Option(
+        "--energy-plot",
+        help="Also draw the energy partition (each sphere's kinetic, stored and dissipated "
+        "energy against t) into this .png, .svg or .pdf file.",
+    ),
+]
 CURVE = Annotated[
     Optional[str],
     typer.Option(
@@ -150,6 +162,18 @@ SUMMARY_UNITS = {
     "delta1_res": ("m", "permanent indentation of sphere 1"),
     "delta2_res": ("m", "permanent indentation of sphere 2"),
     "energy_dissipated": ("J", "kinetic energy lost, (1/2) m V0^2 (1 - e^2)"),
+    "kinetic_energy1_initial": ("J", "kinetic energy, sphere 1, before"),
+    "kinetic_energy2_initial": ("J", "kinetic energy, sphere 2, before"),
+    "kinetic_energy1_final": ("J", "kinetic energy, sphere 1, after"),
+    "kinetic_energy2_final": ("J", "kinetic energy, sphere 2, after"),
+    "energy_dissipated1": ("J", "dissipated in sphere 1"),
+    "energy_dissipated2": ("J", "dissipated in sphere 2"),
+    "stored_share1": ("", "stored in sphere 1 at delta_max *"),
+    "stored_share2": ("", "stored in sphere 2 at delta_max *"),
+    "absorbed_share1": ("", "absorbed by sphere 1 at delta_max *"),
+    "absorbed_share2": ("", "absorbed by sphere 2 at delta_max *"),
+    "first_yield_velocity1": ("m/s", "first yield of sphere 1 (inf: none)"),
+    "first_yield_velocity2": ("m/s", "first yield of sphere 2 (inf: none)"),
 }
 
 #: Summary keys of a damped impact whose unit or meaning differ (or that are its own).
@@ -229,9 +253,16 @@ def _run(
     plot: str | None,
     summary: str | None = None,
     law: LawChoice | None = None,
+    energy_plot: str | None = None,
     damping: DampingOptions | None = None,
 ) -> None:
-    from impactcli.impact import ELASTIC_SUMMARY_KEYS, damped_impact, elastic_impact, law_impact
+    from impactcli.impact import (
+        ELASTIC_SUMMARY_KEYS,
+        ENERGY_SUMMARY_KEYS,
+        damped_impact,
+        elastic_impact,
+        law_impact,
+    )
     from impactcli.spheres import spheres_from_options, velocities_from_options
     from impactcli.validation import (
         below_yield_note,
@@ -240,6 +271,11 @@ def _run(
     )
 
     check_plot(plot, output)
+    check_plot(energy_plot, output)
+    if energy_plot is not None:
+        from impactcli.output import check_distinct_outputs
+
+        check_distinct_outputs(output, summary, plot, energy_plot)
     check_summary_file(summary, output)
     damping_law, alpha, target, separation = (damping or DampingOptions()).parse()
     if damping_law is not None and law is not None:
@@ -261,7 +297,8 @@ def _run(
     except ValueError as exc:
         raise InputError(str(exc)) from None
     if model == "elastic" and law is not None:  # a user's curve: the elastic summary keys
-        for key in [k for k in result.summary if k not in ELASTIC_SUMMARY_KEYS]:
+        kept = ELASTIC_SUMMARY_KEYS + ENERGY_SUMMARY_KEYS
+        for key in [k for k in result.summary if k not in kept]:
             del result.summary[key]
     if method is Method.table and result.model != "elastic":
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
@@ -281,6 +318,7 @@ def _run(
     message = contact_radius_warning(v0, s["delta_max"], s["effective_radius"])
     if message:
         warn(message)
+    _split_messages(split, s1, s2)
 
     history = result.history(points=points)
     differences, reference = _check(result, history) if check else (None, None)
@@ -332,6 +370,29 @@ def _run(
         _write_summary(summary, result)
     if plot:
         _plot(plot, result, history, reference, spheres, method, law)
+    if energy_plot:
+        from impactcli.plots import energy_figure
+
+        title = f"Energy partition, split {split.value}: " + _case_title(
+            result, spheres, method, law
+        )
+        relative = 0.5 * result.summary["effective_mass"] * result.impact_velocity**2
+        fig = energy_figure(history, title, summary=result.summary, relative_energy=relative)
+        save_plot(fig, energy_plot)
+
+
+def _split_messages(split: Split, s1, s2) -> None:
+    """The warning of a mass split between different materials, and the notes of the
+    yield split (a sphere without a yield strength does not yield; ties)."""
+    from impactcli.validation import brittle_notes, mass_split_warning
+
+    message = mass_split_warning(
+        split.value, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
+    )
+    if message:
+        warn(message)
+    for text in brittle_notes(split.value, s1.yield_strength, s2.yield_strength):
+        note(text)
 
 
 def _check(result, history: dict) -> tuple[dict[str, float], dict]:
@@ -432,7 +493,8 @@ def _print(
         out.print(table)
     title = _model_title(result, law)
     how = "SciPy solve_ivp" if result.method == "ode" else f"FILM, n = {result.n}"
-    summary = Table(title=f"{title} impact by {how}", caption=SIGN_HELP)
+    caption = SIGN_HELP + " * share of (1/2) m V0^2."
+    summary = Table(title=f"{title} impact by {how}", caption=caption)
     for header in ("quantity", "value", "unit", "meaning"):
         summary.add_column(header, justify="right" if header == "value" else "left")
     units = _summary_units(result)
@@ -535,6 +597,7 @@ def elastic(
     plot: PLOT = None,
     summary: SummaryFile = None,
     curve: CURVE = None,
+    energy_plot: ENERGY_PLOT = None,
 ) -> None:
     """Elastic (Hertz) impact of two spheres: each sphere's rigid-body motion and indentation.
 
@@ -564,6 +627,7 @@ def elastic(
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
         fmt=fmt, output=output, plot=plot, summary=summary, law=own, damping=damping,
+        energy_plot=energy_plot,
     )  # fmt: skip
 
 
@@ -584,6 +648,7 @@ def elastoplastic(
     output: OUT = None,
     plot: PLOT = None,
     summary: SummaryFile = None,
+    energy_plot: ENERGY_PLOT = None,
 ) -> None:
     """Elastoplastic impact (Du & Wang contact, paper eq. 16, or another --law): each
     sphere's motion, its maximum and permanent indentation, and the coefficient of
@@ -604,6 +669,7 @@ def elastoplastic(
     _run(
         "elastoplastic", spheres, n=n, points=points, method=method, check=check,
         split=split, fmt=fmt, output=output, plot=plot, summary=summary, law=choice,
+        energy_plot=energy_plot,
     )  # fmt: skip
 
 
@@ -642,9 +708,11 @@ def restitution(
     velocity (elastoplastic FILM, Du & Wang contact or another --law), for calibrating
     restitution.
 
-    Columns (SI): impact_velocity, restitution, contact_time, delta_max, delta_res,
-    delta1_res, delta2_res, energy_dissipated, plastic (1 above the yield velocity).
-    Only V0 = V1 + V2 matters for these quantities.
+    Columns (SI): impact_velocity, restitution, contact_time, delta_max, force_max,
+    delta_res, delta1_res, delta2_res, energy_dissipated, plastic (1 above the yield
+    velocity). Only V0 = V1 + V2 matters for these quantities. Without a yield strength
+    (e.g. glass on glass) the sweep is of the elastic Hertz impact: contact time, maximum
+    indentation and force against V0 (e = 1).
 
     --plot draws e, the contact time and the permanent indentation (total and of each
     sphere) against V0, with the yield velocity V_y marked.
@@ -702,6 +770,10 @@ def restitution(
     message = contact_radius_warning(velocities, data["delta_max"], radius)
     if message:
         warn(message)
+    _split_messages(split, s1, s2)
+    elastic_only = _elastic_sweep(choice, s1, s2)
+    if elastic_only:
+        note("no yield strength given: the sweep is of the elastic (Hertz) impact, e = 1")
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -721,6 +793,8 @@ def restitution(
                     "sweep": data,
                 },
             )
+        elif elastic_only:
+            _print_elastic_sweep(stream if output not in (None, "-") else None, data)
         else:
             from rich.table import Table
 
@@ -749,6 +823,29 @@ def restitution(
             console(stream if output not in (None, "-") else None).print(table)
     if plot:
         _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear)
+
+
+def _elastic_sweep(law: LawChoice, s1, s2) -> bool:
+    """Du & Wang (the default law) without any yield strength: the elastic Hertz sweep
+    (:func:`impactcli.sweep.restitution_sweep`)."""
+    return law.name == "du-wang" and s1.yield_strength is None and s2.yield_strength is None
+
+
+def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
+    """The elastic sweep on screen: V0, contact time, delta_max, force_max."""
+    from rich.table import Table
+
+    table = Table(title="Elastic (Hertz) impact against impact velocity (FILM)")
+    for head in ("V0 (m/s)", "t_c (us)", "delta_max (um)", "force_max (N)"):
+        table.add_column(head, justify="right")
+    for i in range(data["impact_velocity"].size):
+        table.add_row(
+            f"{data['impact_velocity'][i]:.4g}",
+            f"{data['contact_time'][i] * 1e6:.4g}",
+            f"{data['delta_max'][i] * 1e6:.4g}",
+            f"{data['force_max'][i]:.4g}",
+        )
+    console(stream).print(table)
 
 
 def _damped_sweep(
@@ -853,6 +950,20 @@ def _plot_sweep(
         f"D2 = {format_quantity(s2.diameter, 'm')}",
         *_material_parts(spheres, s1, s2),
     ]
+    if _elastic_sweep(law, s1, s2):
+        from impactcli.plots import elastic_sweep_figure
+
+        fig = elastic_sweep_figure(
+            data["impact_velocity"],
+            data["contact_time"],
+            data["delta_max"],
+            data["force_max"],
+            title=f"Elastic (Hertz) impact against impact velocity (FILM, n = {n}): "
+            + ", ".join(parts),
+            log_velocity=not linear,
+        )
+        save_plot(fig, path)
+        return
     try:  # the Hertz first yield, when a yield strength is known
         first_yield = sweep_first_yield_velocity(s1, s2)
     except ValueError:

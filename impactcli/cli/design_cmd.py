@@ -1,0 +1,254 @@
+"""``impact yield-limit`` and ``impact timestep``: design questions before an experiment or a
+DEM simulation."""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+from typing import Annotated, Optional
+
+import typer
+
+from impactcli.cli.common import Format, OutputFile, console, resolve_format
+from impactcli.cli.sphere_options import with_sphere_options
+from impactcli.contact import DU_WANG_PRESSURE_FACTOR
+from impactcli.errors import InputError
+from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.spheres import SphereOptions
+
+
+class YieldLaw(enum.StrEnum):
+    hertz = "hertz"
+    thornton = "thornton"
+    du_wang = "du-wang"
+
+
+class LineFormat(enum.StrEnum):
+    text = "text"
+    json = "json"
+
+
+def _speed(text: str, name: str) -> float:
+    from impactcli.units import parse_quantity
+
+    return parse_quantity(text, "velocity", name)
+
+
+@with_sphere_options(velocities=False)
+def yield_limit(
+    spheres: SphereOptions = None,
+    sphere: Annotated[
+        int, typer.Option("--sphere", min=1, max=2, help="The sphere that must stay elastic.")
+    ] = 1,
+    v0: Annotated[
+        Optional[str],
+        typer.Option(
+            "--v0",
+            help="Impact velocity V0 [m/s]: then the largest diameter of the sphere of "
+            "--resize (default --sphere) at which --sphere stays elastic; its --d option may "
+            "be left out.",
+        ),
+    ] = None,
+    resize: Annotated[
+        Optional[int],
+        typer.Option("--resize", min=1, max=2, help="With --v0: the sphere whose size is sought."),
+    ] = None,
+    law: Annotated[
+        YieldLaw,
+        typer.Option(
+            "--law",
+            help="hertz: first yield, Hertz peak pressure 1.6 sigma_y (Johnson 1985); "
+            "thornton: its default p_y = 1.6 sigma_y (the same); du-wang: its yield "
+            "velocity V_y, mean pressure p0 = --p0-factor sigma_y.",
+        ),
+    ] = YieldLaw.hertz,
+    p0_factor: Annotated[
+        float, typer.Option("--p0-factor", help="p0 / sigma_y of --law du-wang (2.57).")
+    ] = DU_WANG_PRESSURE_FACTOR,
+    fmt: Annotated[
+        LineFormat, typer.Option("--format", "-f", help="text (one line) or json.")
+    ] = LineFormat.text,
+) -> None:
+    """The largest impact velocity at which a chosen sphere stays elastic; or, given --v0,
+    the largest diameter of one sphere (Kharaz & Gorham 2000: design an experiment in which
+    one body stays elastic).
+
+    Both spheres carry the same contact pressure, so each has its own first-yield velocity
+    through its own yield strength (--sy1, --sy2 or the material's). A sphere without a
+    yield strength (glass, ceramics) is brittle: it does not yield in these models.
+
+    Example: impact yield-limit --d1 3mm --d2 inf --m2 inf --material1 aluminium
+    --material2 steel --sphere 1
+    """
+    from impactcli.design import first_yield_velocities, law_pressure_factor
+    from impactcli.formatting import format_quantity
+    from impactcli.impact import effective_properties
+    from impactcli.spheres import spheres_from_options
+
+    try:
+        factor = law_pressure_factor(law.value, p0_factor)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    resized = sphere if resize is None else resize
+    velocity = None if v0 is None else _speed(v0, "--v0")
+    if velocity is not None and not velocity > 0:
+        raise InputError(f"--v0 must be a positive impact velocity, got {velocity:g} m/s")
+    options = spheres
+    if velocity is not None and options.get(f"d{resized}") is None:
+        options = dataclasses.replace(options, **{f"d{resized}": "1"})  # stand-in: sought
+    s1, s2 = spheres_from_options(options)
+    target = (s1, s2)[sphere - 1]
+    if target.yield_strength is None:
+        raise InputError(
+            f"sphere {sphere} has no yield strength: it does not yield in these models (a "
+            f"brittle material such as glass: its fracture is outside them); give --sy{sphere}"
+        )
+    how = {
+        "hertz": "first yield, Hertz peak pressure 1.6 sigma_y",
+        "thornton": "Thornton, p_y = 1.6 sigma_y",
+        "du-wang": f"Du & Wang V_y, p0 = {factor:g} sigma_y",
+    }[law.value]
+    sigma = target.yield_strength
+    doc: dict[str, object] = {
+        "sphere": sphere,
+        "law": law.value,
+        "pressure_factor": factor,
+        "yield_strength": sigma,
+    }
+    if velocity is None:
+        m, r, e = effective_properties(s1, s2)
+        sy = [s1.yield_strength, s2.yield_strength]
+        limit = float(first_yield_velocities(m, r, e, *sy, pressure_factor=factor)[sphere - 1])
+        doc.update(quantity="impact_velocity", value=limit, unit="m/s")
+        line = (
+            f"sphere {sphere} stays elastic up to V0 = {format_quantity(limit, 'm/s')} "
+            f"({how}, sigma_y = {format_quantity(sigma, 'Pa')})"
+        )
+    else:
+        from impactcli.design import yield_limit_diameter
+
+        try:
+            limit = yield_limit_diameter(
+                velocity,
+                sphere,
+                resized,
+                (s1.diameter, s2.diameter),
+                (s1.youngs_modulus, s2.youngs_modulus),
+                (s1.poisson_ratio, s2.poisson_ratio),
+                (s1.density, s2.density),
+                (s1.mass, s2.mass),
+                sigma,
+                factor,
+            )
+        except ValueError as exc:
+            raise InputError(str(exc)) from None
+        doc.update(quantity=f"diameter{resized}", value=limit, unit="m", impact_velocity=velocity)
+        at = f"at V0 = {format_quantity(velocity, 'm/s')}"
+        if math.isinf(limit):
+            size = f"whatever D{resized}"
+        elif limit == 0.0:
+            size = f"for no D{resized}: it yields at every size"
+        else:
+            size = f"for D{resized} up to {format_quantity(limit, 'm')}"
+        line = f"sphere {sphere} stays elastic {at} {size} ({how})"
+    with atomic_output(None) as stream:
+        if fmt is LineFormat.json:
+            write_json(stream, doc)
+        else:
+            stream.write(line + "\n")
+
+
+@with_sphere_options(velocities=False)
+def timestep(
+    spheres: SphereOptions = None,
+    v0: Annotated[
+        str, typer.Option("--v0", help="Impact velocity V0 for the Hertz contact time [m/s].")
+    ] = "1",
+    fmt: Annotated[
+        Optional[Format], typer.Option("--format", "-f", help="table, csv or json.")
+    ] = None,
+    output: OutputFile = None,
+) -> None:
+    """The Rayleigh time step of the particles and the Hertz contact time at V0, with the
+    fractions DEM codes commonly take as their time step.
+
+    T_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766) (Thornton & Randall 1988; Li, Xu &
+    Thornton 2005); DEM codes take 10 % to 40 % of the smallest T_R. The contact time of
+    the elastic Hertz impact t_c = 2.943 delta_m / V0; a collision is resolved with 20 to
+    50 steps (t_c/20, t_c/50). Without any sphere-2 option, sphere 2 is a copy of sphere 1
+    (a pair of identical particles).
+
+    Example: impact timestep --d1 2mm --material glass --v0 1m/s
+    """
+    from impactcli.design import timestep_table
+    from impactcli.impact import effective_properties
+    from impactcli.spheres import spheres_from_options
+
+    velocity = _speed(v0, "--v0")
+    if not velocity > 0:
+        raise InputError(f"--v0 must be a positive impact velocity, got {velocity:g} m/s")
+    options = spheres
+    second = ("d2", "material2", "E2", "nu2", "rho2", "m2", "sy2")
+    if all(options.get(k) is None for k in second):
+        options = dataclasses.replace(options, **{k: options.get(k[:-1] + "1") for k in second})
+    s1, s2 = spheres_from_options(options)
+    m, r, e = effective_properties(s1, s2)
+
+    def density(s) -> float:
+        return math.nan if s.density is None else s.density
+
+    table = timestep_table(
+        (s1.radius, s2.radius),
+        (s1.youngs_modulus, s2.youngs_modulus),
+        (s1.poisson_ratio, s2.poisson_ratio),
+        (density(s1), density(s2)),
+        m,
+        r,
+        e,
+        velocity,
+    )
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.json:
+            write_json(stream, {"inputs": {"v0": velocity}, "timestep": table})
+        elif kind is Format.csv:
+            import numpy as np
+
+            keys = list(table)
+            write_csv(stream, keys, [((), np.array([[table[k] for k in keys]]))])
+        else:
+            _print_timestep(stream if output not in (None, "-") else None, table, velocity)
+
+
+def _meaning(key: str, velocity: float) -> str:
+    from impactcli.formatting import format_quantity
+
+    if key.startswith("rayleigh_") and key.endswith("pct"):
+        return f"{key[9:-3]} % of the smallest T_R"
+    if key.startswith("contact_time_over_"):
+        return f"t_c / {key[18:]}: {key[18:]} steps per collision"
+    return {
+        "rayleigh_time_step1": "Rayleigh time step T_R of sphere 1",
+        "rayleigh_time_step2": "Rayleigh time step T_R of sphere 2",
+        "rayleigh_time_step": "smallest T_R of the particles",
+        "contact_time": f"Hertz contact time t_c at V0 = {format_quantity(velocity, 'm/s')}",
+    }.get(key, "")
+
+
+def _print_timestep(stream, table: dict[str, float], velocity: float) -> None:
+    from rich.table import Table
+
+    from impactcli.cli.impact_cmd import screen_value
+
+    out = Table(title="DEM time step: Rayleigh time step and Hertz contact time")
+    for head in ("quantity", "value", "unit", "meaning"):
+        out.add_column(head, justify="right" if head == "value" else "left")
+    for key, value in table.items():
+        out.add_row(key, *screen_value(value, "s"), _meaning(key, velocity))
+    console(stream).print(out)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("yield-limit")(yield_limit)
+    app.command("timestep")(timestep)
