@@ -66,7 +66,7 @@ run: $(VENV)/.run-installed
 ## test: set up, then lint and run the whole test suite
 test: $(VENV)/.test-installed
 	$(BIN)/ruff check impactcli tests
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n auto
 
 ## tables: regenerate the committed normalised tables in tables/
 tables: $(VENV)/.run-installed
