@@ -1141,7 +1141,30 @@ class DampedImpactResult(ImpactResult):
         source = self.ode if method == "ode" else self.film
         t = np.clip(t, 0.0, float(source.end_time))
         delta, delta_dot = source.evaluate(t)
-        return self._columns(t, delta, delta_dot, self.law.force(delta, delta_dot))
+        columns = self._columns(t, delta, delta_dot, self.law.force(delta, delta_dot))
+        columns.update(self._energy_columns(columns, method))
+        return columns
+
+    def _energy_columns(self, h: dict[str, NDArray], method: str) -> dict[str, NDArray]:
+        """The energy columns of :data:`ENERGY_COLUMNS` for the history ``h`` (:meth:`energy`)."""
+        from impactcli.energy import kinetic_energy
+
+        if method == "ode":
+            dissipated = self.ode.dissipated(h["t"])
+        else:
+            dissipated = self.film.dissipated_at(h["t"])  # type: ignore[attr-defined]
+        strain = self.law.elastic_work(0.0, h["delta"])
+        f1, f2 = self.split_fractions
+        return {
+            "ke1": kinetic_energy(self.m1, h["v1"]),
+            "ke2": kinetic_energy(self.m2, h["v2"]),
+            "strain_energy": strain,
+            "strain_energy1": f1 * strain,
+            "strain_energy2": f2 * strain,
+            "dissipated": dissipated,
+            "dissipated1": f1 * dissipated,
+            "dissipated2": f2 * dissipated,
+        }
 
     def energy(
         self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
@@ -1156,27 +1179,8 @@ class DampedImpactResult(ImpactResult):
         the indentation (``split``). ke1 + ke2 + strain_energy + dissipated is the initial
         kinetic energy, to O(1/n^2) for FILM (tests/test_damping_cli.py).
         """
-        from impactcli.energy import kinetic_energy
-
-        method = self.method if method is None else method
         h = self.history(t, points, method)
-        if method == "ode":
-            dissipated = self.ode.dissipated(h["t"])
-        else:
-            dissipated = self.film.dissipated_at(h["t"])  # type: ignore[attr-defined]
-        strain = self.law.elastic_work(0.0, h["delta"])
-        f1, f2 = self.split_fractions
-        return {
-            "t": h["t"],
-            "ke1": kinetic_energy(self.m1, h["v1"]),
-            "ke2": kinetic_energy(self.m2, h["v2"]),
-            "strain_energy": strain,
-            "strain_energy1": f1 * strain,
-            "strain_energy2": f2 * strain,
-            "dissipated": dissipated,
-            "dissipated1": f1 * dissipated,
-            "dissipated2": f2 * dissipated,
-        }
+        return {name: h[name] for name in DAMPED_ENERGY_COLUMNS}
 
 
 def _damped_summary(

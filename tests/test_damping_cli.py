@@ -22,7 +22,6 @@ from impactcli.impact import (
     DAMPED_DEFAULT_N,
     DAMPED_SUMMARY_KEYS,
     DAMPED_SWEEP_COLUMNS,
-    ENERGY_COLUMNS,
     HISTORY_COLUMNS,
     Sphere,
     damped_impact,
@@ -153,8 +152,12 @@ def test_elastic_damping_json(impact):
     assert result.returncode == 0, result.stderr
     doc = json.loads(result.stdout)
     assert list(doc["summary"]) == list(DAMPED_SUMMARY_KEYS)
-    # the motion columns; a damped impact's energy partition is DampedImpactResult.energy()
-    assert list(doc["history"]) == [c for c in HISTORY_COLUMNS if c not in ENERGY_COLUMNS]
+    # the motion columns and the energy partition, viscous dissipation included
+    assert list(doc["history"]) == list(HISTORY_COLUMNS)
+    h = {k: np.asarray(v) for k, v in doc["history"].items()}
+    total = h["ke1"] + h["ke2"] + h["strain_energy"] + h["dissipated"]
+    assert np.max(np.abs(total - total[0])) < 2e-6 * total[0]  # FILM, n = 400: O(1/n^2)
+    assert h["dissipated"][-1] == pytest.approx(doc["summary"]["energy_dissipated"], rel=1e-6)
     assert doc["inputs"]["damping"] == "tsuji" and doc["inputs"]["n"] == DAMPED_DEFAULT_N
     lib = damped_impact(S1, S2, V1, V2, "tsuji", alpha=0.3)
     assert doc["summary"]["restitution"] == pytest.approx(lib.summary["restitution"], 1e-12)
@@ -166,7 +169,7 @@ def test_elastic_damping_csv_history(impact):
     )
     assert result.returncode == 0, result.stderr
     rows = list(csv.reader(io.StringIO(result.stdout)))
-    assert rows[0] == [c for c in HISTORY_COLUMNS if c not in ENERGY_COLUMNS] and len(rows) == 22
+    assert rows[0] == list(HISTORY_COLUMNS) and len(rows) == 22
     lib = damped_impact(S1, S2, V1, V2, "hunt-crossley", alpha=20.0)
     assert float(rows[-1][0]) == pytest.approx(lib.summary["contact_time"], rel=1e-12)
 
