@@ -63,7 +63,7 @@ def test_output_file_written_atomically(impact, tmp_path):
     [
         (["--n", "0"], "--n"),
         (["--n", "-3"], "--n"),
-        (["--n", "abc"], "valid integer"),
+        (["--n", "abc"], "not a valid int"),
         (["--format", "xml"], "'table', 'csv', 'json'"),
         (["--stage", "both-ish"], "--stage"),
     ],
