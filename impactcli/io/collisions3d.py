@@ -84,6 +84,8 @@ def output_columns3d() -> tuple[str, ...]:
 
 def check_collision_columns(names: Sequence[str]) -> None:
     """Reject a header that cannot give any valid row (one line, exit status 2)."""
+    from impactcli.io.table import check_output_clash, check_sphere_sources
+
     present = set(names)
     if len(present) != len(names):
         dup = sorted({c for c in names if list(names).count(c) > 1})
@@ -96,19 +98,8 @@ def check_collision_columns(names: Sequence[str]) -> None:
             f"missing input column(s) {', '.join(missing)}; each row needs p1_x, p1_y, p1_z, "
             "p2_x..., v1_x..., d1, d2 and the spheres' material (or E, nu, rho columns)"
         )
-    for i in (1, 2):
-        if not present & {"material", f"material{i}", "E", f"E{i}"}:
-            raise InputError(
-                f"nothing gives sphere {i}'s material: add a column material, material{i}, "
-                f"or E{i}, nu{i}, rho{i}"
-            )
-    clash = [c for c in output_columns3d() if c in present]
-    if clash:
-        shown = ", ".join(clash[:3]) + (f" and {len(clash) - 3} more" if len(clash) > 3 else "")
-        raise InputError(
-            f"input column(s) {shown} clash with output columns: rename or drop them "
-            "(is this the output of impact collide3d --rows?)"
-        )
+    check_sphere_sources(present)
+    check_output_clash(present, output_columns3d(), "impact collide3d --rows")
 
 
 def _cells(frame: Mapping[str, Any], name: str, size: int) -> list:

@@ -177,19 +177,8 @@ def check_columns(names: Sequence[str], model: str | None) -> None:
         raise InputError(
             "missing input column model (elastic or elastoplastic) or law; or give --model"
         )
-    for i in (1, 2):
-        if not present & {"material", f"material{i}", "E", f"E{i}"}:
-            raise InputError(
-                f"nothing gives sphere {i}'s material: add a column material, material{i}, "
-                f"or E{i}, nu{i}, rho{i}"
-            )
-    clash = [c for c in output_columns() if c in present]
-    if clash:
-        shown = ", ".join(clash[:3]) + (f" and {len(clash) - 3} more" if len(clash) > 3 else "")
-        raise InputError(
-            f"input column(s) {shown} clash with output columns: rename or drop them "
-            "(is this the output of impact batch?)"
-        )
+    check_sphere_sources(present)
+    check_output_clash(present, output_columns(), "impact batch")
 
 
 def _quantity_column(series, kind: str, name: str, allow_inf: bool):
@@ -694,3 +683,24 @@ def partition_errors(part, partition_info: dict | None = None):
             ),
         }
     )
+
+
+def check_sphere_sources(present: set[str]) -> None:
+    """Refuse a table whose columns give no material (or E) for a sphere: one line."""
+    for i in (1, 2):
+        if not present & {"material", f"material{i}", "E", f"E{i}"}:
+            raise InputError(
+                f"nothing gives sphere {i}'s material: add a column material, material{i}, "
+                f"or E{i}, nu{i}, rho{i}"
+            )
+
+
+def check_output_clash(present: set[str], outputs: Sequence[str], command: str) -> None:
+    """Refuse input columns named like the output columns of ``command``: one line."""
+    clash = [c for c in outputs if c in present]
+    if clash:
+        shown = ", ".join(clash[:3]) + (f" and {len(clash) - 3} more" if len(clash) > 3 else "")
+        raise InputError(
+            f"input column(s) {shown} clash with output columns: rename or drop them "
+            f"(is this the output of {command}?)"
+        )
