@@ -83,15 +83,11 @@ def reference_yield_velocity(
     """V_y of the comparison: the impact velocity at which a Hertz impact of the pair first
     yields (peak pressure 1.6 sigma_y, :func:`impactcli.contact.first_yield_velocity`),
     [m/s]; NaN without a yield strength (0.0785 m/s for the paper's sec. 4.4 spheres)."""
-    from impactcli.contact import first_yield_velocity
+    from impactcli.sweep import sweep_first_yield_velocity
 
-    sigma_y = (
-        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
-    )
-    if sigma_y is None:
+    if yield_strength is None and weaker_yield_strength(sphere1, sphere2) is None:
         return float("nan")
-    m, r, e = effective_properties(sphere1, sphere2)
-    return float(first_yield_velocity(m, r, e, sigma_y))
+    return sweep_first_yield_velocity(sphere1, sphere2, yield_strength)
 
 
 def restitution_curves(
