@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.errors import InputError
+from impactcli.units import unit_factor
 
 __all__ = [
     "check_loading_curve",
@@ -39,11 +40,11 @@ __all__ = [
     "read_unloading_curves",
 ]
 
-#: column -> (SI unit, what it is)
+#: column -> (SI unit, kind of quantity)
 _COLUMNS: dict[str, tuple[str, str]] = {
-    "delta": ("m", "a length"),
-    "delta_max": ("m", "a length"),
-    "force": ("N", "a force"),
+    "delta": ("m", "length"),
+    "delta_max": ("m", "length"),
+    "force": ("N", "force"),
 }
 
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
@@ -51,18 +52,15 @@ _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 def _unit_factor(unit: str, column: str, where: str) -> float:
     """Factor from ``unit`` to the column's SI unit; InputError for a wrong kind."""
-    si, what = _COLUMNS[column]
+    si, kind = _COLUMNS[column]
     if unit in ("", si):
         return 1.0
-    import pint
-
-    registry = pint.UnitRegistry()
     try:
-        return float(registry.Quantity(1.0, unit).to(si).magnitude)
-    except (pint.errors.DimensionalityError, pint.errors.UndefinedUnitError, ValueError) as exc:
+        return unit_factor(unit, kind)
+    except ValueError as exc:
         raise InputError(
-            f"{where}: unit [{unit}] of column {column} is not {what} "
-            f"({type(exc).__name__}); use e.g. [{si}]"
+            f"{where}: unit [{unit}] of column {column} is not a {kind} ({exc}); "
+            f"use e.g. [{si}]"
         ) from None
 
 

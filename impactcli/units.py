@@ -54,6 +54,7 @@ __all__ = [
     "parse_quantity",
     "parse_vector",
     "parse_vector3",
+    "unit_factor",
 ]
 
 #: kind -> (SI unit to convert to, examples for the error message)
@@ -67,6 +68,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "time": ("s", "75us, 1e-4 s"),
     "angular_velocity": ("rad/s", "100rad/s, 600rpm, 30deg/s"),
     "stiffness": ("N/m", "2e7 N/m, 20 kN/mm"),
+    "force": ("N", "150 N, 2 kN"),
     "dimensionless": ("", "0.3"),
     "inverse velocity": ("s/m", "0.5 s/m, 0.5 ms/mm"),
 }
@@ -86,6 +88,7 @@ _DIMS: dict[str, Dims] = {
     "time": (0, 0, 1, 0),
     "angular_velocity": (0, 0, -1, 1),
     "stiffness": (0, 1, -2, 0),
+    "force": (1, 1, -2, 0),
     "dimensionless": (0, 0, 0, 0),
     "inverse velocity": (-1, 0, 1, 0),
 }
@@ -216,6 +219,20 @@ def parse_quantity(text: str | float, kind: str, name: str, allow_inf: bool = Fa
     if math.isinf(value) and not allow_inf:
         raise InputError(f"{name}: must be finite, got {_shown(raw.strip())}")
     return value
+
+
+def unit_factor(unit: str, kind: str) -> float:
+    """SI value of one ``unit`` of ``kind`` (a column header's unit, say), by the same
+    grammar and the same fast path as :func:`parse_quantity`; ValueError saying what the
+    unit is instead ("a mass", "unknown unit 'furlong'") when it is not of that kind.
+
+    >>> unit_factor("um", "length"), unit_factor("kN", "force")
+    (1e-06, 1000.0)
+    """
+    try:
+        return _parse(f"1 {unit}", kind)
+    except _Refusal as exc:
+        raise ValueError(str(exc)) from None
 
 
 def _shown(raw: str) -> str:
