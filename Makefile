@@ -6,7 +6,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check
 
-.PHONY: run test tables bench lint clean venv
+.PHONY: run test test-slow tables bench lint clean venv
 
 $(BIN)/python:
 	@echo "== creating $(VENV) with $(PYTHON)"
@@ -63,10 +63,15 @@ run: $(VENV)/.run-installed
 	@echo "Figures (paper sec. 4.1, 4.3, 4.4, 4.5) and their data: figures/"
 	@echo "Run the command as .venv/bin/impact, or after: source .venv/bin/activate"
 
-## test: set up, then lint and run the whole test suite
+## test: set up, then lint and run the tests, all but those marked slow (on every core)
 test: $(VENV)/.test-installed
 	$(BIN)/ruff check impactcli tests
-	$(BIN)/python -m pytest -q -n auto
+	$(BIN)/python -m pytest -q -n auto -m "not slow"
+
+## test-slow: the tests marked slow: new interpreters (start-up, signals, pipes), Dask,
+##            rendered figures, the README run verbatim, the fuzz; CI runs test, then this
+test-slow: $(VENV)/.test-installed
+	$(BIN)/python -m pytest -q -n auto -m slow
 
 ## tables: regenerate the committed normalised tables in tables/
 tables: $(VENV)/.run-installed

@@ -77,3 +77,20 @@ def impact():
 def impact_subprocess():
     """``impact_subprocess(*args, stdin=None, env=None)`` -> CompletedProcess, a new process."""
     return run_impact_subprocess
+
+
+#: Fixtures whose tests are slow by nature (a new interpreter, a Dask graph): marked ``slow``.
+SLOW_FIXTURES = {"impact_subprocess", "dask_dataframe"}
+
+
+def pytest_collection_modifyitems(items):
+    """Mark ``slow`` every test that uses a fixture of :data:`SLOW_FIXTURES`."""
+    for item in items:
+        if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)
+
+
+@pytest.fixture
+def dask_dataframe():
+    """``dask.dataframe``; skips the test (only it, not its module) without the dask extra."""
+    return pytest.importorskip("dask.dataframe")

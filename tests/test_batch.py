@@ -436,11 +436,6 @@ def test_progress_bar_does_not_touch_the_data(batch):
 # -- the Dask engine ----------------------------------------------------------------------
 
 
-@pytest.fixture
-def dask_dataframe():
-    """Skip the test (only it, not the module) when the dask extra is not installed."""
-    return pytest.importorskip("dask.dataframe")
-
 
 @pytest.mark.parametrize("fmt", ["csv", "parquet"])
 def test_dask_engine_gives_the_same_rows(batch, tmp_path, fmt, dask_dataframe):
@@ -501,6 +496,7 @@ def test_dask_needs_files(batch, dask_dataframe):
 # -- start-up -------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_batch_help_and_no_heavy_imports_at_start_up():
     code = (
         "import sys\n"

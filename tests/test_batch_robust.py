@@ -293,10 +293,6 @@ def test_parquet_quantity_column_of_lists_is_one_line(batch, tmp_path):
 # -- the Dask engine: the same rows, the same faults -----------------------------------------
 
 
-@pytest.fixture
-def dask_dataframe():
-    return pytest.importorskip("dask.dataframe")
-
 
 def test_dask_engine_reads_malformed_lines_as_the_numpy_engine(batch, tmp_path, dask_dataframe):
     rows = [b"g%d,20mm,40mm,1,0,elastic,steel\n" % k for k in range(6000)]

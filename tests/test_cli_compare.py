@@ -195,6 +195,7 @@ def test_compare_laws_default_laws_and_json_inputs(impact):
     assert doc["laws"]["du-wang"]["restitution"] == pytest.approx(0.85611, abs=5e-6)
 
 
+@pytest.mark.slow
 def test_compare_laws_plot(impact, tmp_path):
     pytest.importorskip("matplotlib")
     figure = tmp_path / "laws.svg"

@@ -187,6 +187,7 @@ def test_bad_data_through_the_command_is_one_line_and_exit_2(impact, tmp_path):
     assert result.stderr.count("\n") == 1 and result.stdout == ""
 
 
+@pytest.mark.slow
 def test_plot_draws_data_curves_bands_and_residuals(cli, tmp_path):
     pytest.importorskip("matplotlib")
     e = law_model(S1, S2, "du-wang")({"sy": 1.2e9}, V0)["restitution"]

@@ -111,7 +111,12 @@ def test_the_main_commands_have_examples():
     }
 
 
-@pytest.mark.parametrize(("command", "example"), EXAMPLES, ids=[e for _, e in EXAMPLES])
+@pytest.mark.parametrize(
+    ("command", "example"),
+    # an example that draws a figure is slow: matplotlib renders it
+    [pytest.param(c, e, id=e, marks=[pytest.mark.slow] if "--plot" in e else [])
+     for c, e in EXAMPLES],  # fmt: skip
+)
 def test_each_example_runs_as_printed(command, example, tmp_path):
     """Copied from the help screen (at 80 or at 120 columns, continuation lines joined as a
     shell would), the example runs and succeeds, in an empty folder; an example that reads

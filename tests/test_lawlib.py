@@ -4,6 +4,8 @@ curves sampled from Hertz and Du & Wang, and energy never created."""
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -194,6 +196,7 @@ def _du_wang_tables(p0: float, tops: np.ndarray, points: int = 300):
     return loading, (table[:, 0], table[:, 1], table[:, 2])
 
 
+@functools.cache
 def _cases():
     p0 = 2.57 * SIGMA_Y
     py = 1.6 * SIGMA_Y

@@ -252,6 +252,7 @@ def test_cli_method_ode_summary_and_history_are_the_integration(capsys):
     assert h["force"][-1] == 0.0
 
 
+@pytest.mark.slow
 def test_cli_check_with_plot_integrates_once(capsys, monkeypatch, tmp_path):
     import impactcli.cli.impact_cmd as cmd
     import impactcli.ode

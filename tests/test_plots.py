@@ -124,6 +124,7 @@ def test_format_quantity():
 # -- files ------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", ["png", "svg", "pdf"])
 def test_save_figure_writes_a_valid_image(tmp_path, fmt):
     fig = restitution_figure([0.1, 0.2], [0.9, 0.8], [1e-4, 9e-5], [1e-6, 2e-6])
@@ -385,6 +386,7 @@ def test_collision2d_figure_scales_units_and_rejects_no_line_of_centres():
 # -- the commands -----------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("args", "fmt"),
     [
@@ -651,6 +653,7 @@ WITHOUT_MATPLOTLIB = (
 )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "args",
     [ELASTIC_4_3, ["convergence", "--n", "3"], SWEEP, COLLIDE_4_5],
@@ -698,6 +701,7 @@ IMPORTS_AFTER = (
 )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "args",
     [["--help"], ["elastic", "--help"], [*ELASTIC_4_3, "--points", "3", "-f", "csv"]],

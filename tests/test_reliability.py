@@ -86,6 +86,7 @@ def _start_and_signal(args, folder: Path, signum: int, wait_children: bool = Fal
 # -- 1. signals ------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP, signal.SIGINT])
 def test_signal_removes_the_temporary_file_and_keeps_the_old_output(tmp_path, signum):
     (tmp_path / "t.csv").write_text("old\n")
@@ -237,6 +238,7 @@ def test_one_file_as_data_and_plot_is_refused_before_any_work(tmp_path, capsys, 
 # -- 4. write failures ----------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "shell",
     [
