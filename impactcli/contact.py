@@ -154,6 +154,20 @@ class ImpactPlan:
     delta_res: NDArray
     restitution: NDArray
 
+    def force(self, stage: ArrayLike, delta: ArrayLike) -> NDArray:
+        """Contact force [N] at indentations ``delta`` [m], each by the law of its stage:
+        ``stage`` holds the index into :attr:`stages` of each indentation (broadcast to
+        the shape of ``delta``). One impact's plan; each stage's law takes only the
+        indentations that fall in it."""
+        delta = np.asarray(delta, dtype=float)
+        k = np.broadcast_to(stage, delta.shape)
+        force = np.zeros_like(delta)
+        for index, plan in enumerate(self.stages):  # a few stages, not rows
+            mask = k == index
+            if np.any(mask):
+                force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
+        return force
+
 
 def _col(x: ArrayLike) -> NDArray:
     """Parameters of a law broadcast against node arrays: one trailing axis."""

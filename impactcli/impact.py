@@ -360,12 +360,7 @@ class ImpactResult:
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
         ends = [float(stage.end_time) for stage in self.film.stages]
         stage = np.minimum(np.searchsorted(ends, t, side="left"), len(ends) - 1)
-        force = np.zeros_like(delta)
-        for k, plan in enumerate(self.plan.stages):
-            mask = stage == k
-            if np.any(mask):
-                force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
-        return force
+        return self.plan.force(stage, delta)
 
     # -- energy and the permanent part ------------------------------------------------
     @property
