@@ -868,6 +868,35 @@ def _finish(result: ImpactResult, summary: dict[str, float]) -> ImpactResult:
     return result
 
 
+def _film_impact(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    n: int,
+    split: Split,
+    method: Method,
+    plan: ImpactPlan,
+    contact: Any,
+    model: str,
+    plastic: bool = False,
+) -> ImpactResult:
+    """The impact of ``plan`` by FILM with n segments per stage: the result of ``model``
+    and its summary (:func:`_summarise`; with ``plastic`` also :func:`plastic_summary` of
+    ``contact``), finished by :func:`_finish`. The last step of :func:`elastic_impact`,
+    :func:`elastoplastic_impact` and :func:`law_impact`."""
+    m, r, e = effective_properties(sphere1, sphere2)
+    film = FilmSolution(solve_plan(plan, m, n))
+    result = ImpactResult(
+        sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method, contact=contact
+    )
+    summary = _summarise(result, r, e)
+    if plastic:
+        extra = plastic_summary(contact, m, v1 + v2, plan, result.permanent_fractions)
+        summary.update({key: float(value) for key, value in extra.items()})
+    return _finish(result, summary)
+
+
 def elastic_impact(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -908,21 +937,8 @@ def elastic_impact(
     from impactcli.lawlib import HertzLawContact
 
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
-    film = FilmSolution(solve_plan(plan, m, n))
-    result = ImpactResult(
-        sphere1,
-        sphere2,
-        v1,
-        v2,
-        plan,
-        film,
-        int(n),
-        split,
-        "elastic",
-        method=method,
-        contact=HertzLawContact(r, e),
-    )
-    return _finish(result, _summarise(result, r, e))
+    contact = HertzLawContact(r, e)
+    return _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, "elastic")
 
 
 def elastoplastic_impact(
@@ -974,24 +990,10 @@ def elastoplastic_impact(
     elastic = len(plan.stages) == 2
     if not elastic:
         raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
-    film = FilmSolution(solve_plan(plan, m, n))
-    result = ImpactResult(
-        sphere1,
-        sphere2,
-        v1,
-        v2,
-        plan,
-        film,
-        int(n),
-        split,
-        "elastic" if elastic else "elastoplastic",
-        method=method,
-        contact=contact,
+    model = "elastic" if elastic else "elastoplastic"
+    return _film_impact(
+        sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, plastic=True
     )
-    summary = _summarise(result, r, e)
-    extra = plastic_summary(contact, m, v0, plan, result.permanent_fractions)
-    summary.update({key: float(value) for key, value in extra.items()})
-    return _finish(result, summary)
 
 
 def law_impact(
@@ -1048,7 +1050,6 @@ def law_impact(
     contact = spec.contact(r, e, sigma_y, **(params or {}))
     v0 = v1 + v2
     plan = contact.plan(v0, m)
-    film = FilmSolution(solve_plan(plan, m, n))
     hertz = len(plan.stages) == 2 and all(type(s.law) is Hertz for s in plan.stages)
     if hertz and float(plan.delta_res) == 0.0:
         model = "elastic"
@@ -1056,13 +1057,9 @@ def law_impact(
         model = "elastoplastic"
     else:
         model = spec.name
-    result = ImpactResult(
-        sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method, contact=contact
+    return _film_impact(
+        sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, plastic=True
     )
-    summary = _summarise(result, r, e)
-    extra = plastic_summary(contact, m, v0, plan, result.permanent_fractions)
-    summary.update({key: float(value) for key, value in extra.items()})
-    return _finish(result, summary)
 
 
 #: Summary keys of :func:`damped_impact`: the elastic ones and the damping's.
@@ -1073,18 +1070,8 @@ DAMPED_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "energy_stored",
 )
 
-#: Columns of :meth:`DampedImpactResult.energy`.
-DAMPED_ENERGY_COLUMNS: tuple[str, ...] = (
-    "t",
-    "ke1",
-    "ke2",
-    "strain_energy",
-    "strain_energy1",
-    "strain_energy2",
-    "dissipated",
-    "dissipated1",
-    "dissipated2",
-)
+#: Columns of :meth:`DampedImpactResult.energy`: the time and :data:`ENERGY_COLUMNS`.
+DAMPED_ENERGY_COLUMNS: tuple[str, ...] = ("t", *ENERGY_COLUMNS)
 
 #: FILM segments per stage that :func:`damped_impact` uses by default: e and the contact
 #: time within 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
