@@ -43,6 +43,7 @@ from impactcli.contact import (
     effective_modulus,
     effective_radius,
     first_yield_velocity,
+    sphere_compliance,
     sphere_mass,
 )
 from impactcli.film import FilmSolution, FilmStage, solve_stage
@@ -219,8 +220,8 @@ class Sphere:
 
     @property
     def compliance(self) -> float:
-        """(1 - nu^2)/E, [1/Pa] (zero for a rigid body)."""
-        return (1.0 - self.poisson_ratio**2) / self.youngs_modulus
+        """(1 - nu^2)/E, [1/Pa]; zero for a rigid body (:func:`.sphere_compliance`)."""
+        return float(sphere_compliance(self.youngs_modulus, self.poisson_ratio))
 
 
 @dataclass(frozen=True)

@@ -165,7 +165,7 @@ def compute_collisions3d(
     """
     from impactcli.batch import material_properties
     from impactcli.collision3d import TANGENTIAL_MODELS, effective_shear_modulus, oblique_impact
-    from impactcli.contact import sphere_mass
+    from impactcli.contact import total_mass
     from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
     from impactcli.units import parse_quantities
     from impactcli.validation import Problems, sphere_names, sphere_problems
@@ -213,9 +213,7 @@ def compute_collisions3d(
         errors.add(np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), unknown_property(i, "rho"))
         sphere_problems(sphere["d"], sphere["E"], sphere["nu"], sphere["rho"], sphere["m"],
                         sphere["sy"], sphere_names(i), errors)  # fmt: skip
-        with np.errstate(invalid="ignore"):
-            sphere["mass"] = np.where(np.isnan(sphere["m"]), sphere_mass(sphere["d"],
-                                      sphere["rho"]), sphere["m"])  # fmt: skip
+        sphere["mass"] = total_mass(sphere["d"], sphere["rho"], sphere["m"])
         spheres.append(sphere)
     s1, s2 = spheres
 
