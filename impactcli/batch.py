@@ -37,7 +37,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from functools import lru_cache, wraps
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -72,6 +72,7 @@ from impactcli.validation import (
     pair_problems,
     sphere_names,
     sphere_problems,
+    without_float_warnings,
     yield_scale_problems,
 )
 
@@ -289,19 +290,7 @@ class _Pairs:
         )  # fmt: skip
 
 
-def _without_float_warnings(function):
-    """Run ``function`` under ``np.errstate(all="ignore")``: an extreme row gives NaN or inf
-    in its own lanes (checked afterwards), not a NumPy RuntimeWarning for the whole chunk."""
-
-    @wraps(function)
-    def quiet(*args, **kwargs):
-        with np.errstate(all="ignore"):
-            return function(*args, **kwargs)
-
-    return quiet
-
-
-@_without_float_warnings
+@without_float_warnings
 def batch_impacts(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -545,7 +534,7 @@ def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray
         yield chunk[local], plan
 
 
-@_without_float_warnings
+@without_float_warnings
 def batch_damped_impacts(
     d1: ArrayLike,
     d2: ArrayLike,

@@ -12,13 +12,12 @@ physics, never the command line. pandas is imported inside the functions.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import wraps
 
 import numpy as np
 
 from impactcli.errors import InputError
 from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
-from impactcli.validation import Problems
+from impactcli.validation import Problems, without_float_warnings
 
 __all__ = [
     "DAMPING_COLUMNS",
@@ -220,19 +219,7 @@ def _text_column(frame, name: str, size: int, lower: bool = False) -> np.ndarray
     return column.astype(object).where(~missing, None).to_numpy()
 
 
-def _quiet(function):
-    """Run ``function`` with NumPy's floating-point warnings off: an extreme row gives NaN
-    or inf in its own lanes, and its error, not a warning for the whole chunk."""
-
-    @wraps(function)
-    def quiet(*args, **kwargs):
-        with np.errstate(all="ignore"):
-            return function(*args, **kwargs)
-
-    return quiet
-
-
-@_quiet
+@without_float_warnings
 def compute_frame(
     frame,
     n: int = 25,
