@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from impactcli.errors import InputError
-from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
+from impactcli.spheres import missing_properties, resolve_properties
 from impactcli.validation import Problems, without_float_warnings
 
 __all__ = [
@@ -293,14 +293,9 @@ def compute_frame(
         names = np.where(np.equal(own, None), shared, own)
         *props, bad = material_properties(names)
         errors.add_messages(bad)
-        sphere = {"m": q[f"m{i}"]}
-        for key, from_material in zip(PROPERTIES, props):
-            sphere[key] = resolve_property(q[f"{key}{i}"], q[key], from_material)
-        # A rigid body's Poisson's ratio does not enter E*.
-        sphere["nu"] = np.where(np.isinf(sphere["E"]) & np.isnan(sphere["nu"]), 0.0, sphere["nu"])
-        errors.add(np.isnan(sphere["E"]), unknown_property(i, "E"))
-        errors.add(np.isnan(sphere["nu"]), unknown_property(i, "nu"))
-        errors.add(np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), unknown_property(i, "rho"))
+        sphere = {"m": q[f"m{i}"], **resolve_properties(i, q, props)}
+        for unknown, message in missing_properties(i, sphere):
+            errors.add(unknown, message)
         spheres.append(sphere)
 
     # The law of each row (a law cell wins over the model), its parameters.
