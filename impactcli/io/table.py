@@ -435,17 +435,16 @@ def _sphere_shares(result: dict, splits, s1: dict, s2: dict, q: dict, valid) -> 
     energy goes with the permanent part: energy_dissipated_i = p_i energy_dissipated
     (docs/method.md §9). First-yield velocities: :func:`impactcli.design.
     first_yield_velocities` (Hertz peak pressure 1.6 sigma_y,i)."""
-    from impactcli.contact import sphere_mass
+    from impactcli.contact import sphere_compliance, total_mass
     from impactcli.design import first_yield_velocities
     from impactcli.energy import yield_shares
     from impactcli.impact import split_fractions
 
     size = splits.size
     with np.errstate(invalid="ignore", divide="ignore"):
-        mass1 = np.where(np.isnan(s1["m"]), sphere_mass(q["d1"], s1["rho"]), s1["m"])
-        mass2 = np.where(np.isnan(s2["m"]), sphere_mass(q["d2"], s2["rho"]), s2["m"])
-        c1 = (1.0 - s1["nu"] ** 2) / s1["E"]
-        c2 = (1.0 - s2["nu"] ** 2) / s2["E"]
+        mass1 = total_mass(q["d1"], s1["rho"], s1["m"])
+        mass2 = total_mass(q["d2"], s2["rho"], s2["m"])
+        c1, c2 = sphere_compliance(s1["E"], s1["nu"]), sphere_compliance(s2["E"], s2["nu"])
         by_mass = split_fractions("mass", mass1, mass2, c1, c2)
         by_compliance = split_fractions("compliance", mass1, mass2, c1, c2)
     elastic = [np.where(splits == "mass", by_mass[i], by_compliance[i]) for i in (0, 1)]
