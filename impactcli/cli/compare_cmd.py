@@ -12,12 +12,13 @@ from impactcli.cli.common import (
     OutputFile,
     OutputFormat,
     PlotFile,
+    Segments,
     check_plot,
     console,
     resolve_format,
     save_plot,
 )
-from impactcli.cli.impact_cmd import POINTS, N
+from impactcli.cli.impact_cmd import POINTS
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
@@ -41,7 +42,7 @@ COLUMNS = {
 def compare_laws(
     spheres: SphereOptions,
     law: LawOptions = None,
-    n: N = 25,
+    n: Segments = 25,
     points: POINTS = 401,
     ratio_min: Annotated[
         float, typer.Option("--ratio-min", help="Lowest V0/V_y of the e panel (--plot).")

@@ -14,6 +14,8 @@ from impactcli.cli.common import (
     OutputFile,
     OutputFormat,
     PlotFile,
+    Segments,
+    Split,
     SummaryFile,
     append_help,
     check_plot,
@@ -22,13 +24,14 @@ from impactcli.cli.common import (
     note,
     resolve_format,
     save_plot,
+    segments_option,
     warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
-from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
+from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
@@ -52,36 +55,16 @@ class Method(enum.StrEnum):
     ode = "ode"
 
 
-class Split(enum.StrEnum):
-    mass = "mass"
-    compliance = "compliance"
-    yield_ = "yield"
-
-
 def _opt(help_text: str, *names: str, **kw: Any):
     return typer.Option(*names, help=help_text, **kw)
 
 
-N = Annotated[
-    int,
-    typer.Option(
-        "--n",
-        "-n",
-        min=1,
-        max=MAX_SEGMENTS,
-        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
-    ),
-]
 #: --n of the commands that take --damping: its default depends on it.
 N_DAMPED = Annotated[
     Optional[int],
-    typer.Option(
-        "--n",
-        "-n",
-        min=1,
-        max=MAX_SEGMENTS,
-        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}. Default 25; 400 with --damping "
-        "(e and the contact time within 1e-6 of SciPy integration of the same law).",
+    segments_option(
+        "Default 25; 400 with --damping (e and the contact time within 1e-6 of SciPy "
+        "integration of the same law)."
     ),
 ]
 POINTS = Annotated[
@@ -639,7 +622,7 @@ append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
 def elastoplastic(
     spheres: SphereOptions,
     law: LawOptions = None,
-    n: N = 25,
+    n: Segments = 25,
     points: POINTS = 201,
     method: METHOD = Method.film,
     check: CHECK = False,
