@@ -20,7 +20,7 @@ from impactcli.cli.common import (
 )
 from impactcli.cli.impact_cmd import POINTS
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
-from impactcli.cli.sphere_options import with_sphere_options
+from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
 from impactcli.limits import MAX_COUNT
 from impactcli.output import atomic_output, write_csv, write_json
@@ -122,18 +122,7 @@ def _inputs(s1, s2, v1: float, v2: float, n: int, choices: list[LawChoice]) -> d
 
     sigma_y = weaker_yield_strength(s1, s2)
     return {
-        "d1": s1.diameter,
-        "d2": s2.diameter,
-        "v1": v1,
-        "v2": v2,
-        "m1": s1.total_mass,
-        "m2": s2.total_mass,
-        "E1": s1.youngs_modulus,
-        "E2": s2.youngs_modulus,
-        "nu1": s1.poisson_ratio,
-        "nu2": s2.poisson_ratio,
-        "sy1": s1.yield_strength,
-        "sy2": s2.yield_strength,
+        **pair_inputs(s1, s2, v1, v2),
         "n": n,
         "laws": [law_inputs(c, sigma_y) for c in choices],
     }

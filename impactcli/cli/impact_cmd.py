@@ -29,7 +29,7 @@ from impactcli.cli.common import (
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
-from impactcli.cli.sphere_options import with_sphere_options
+from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
 from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
@@ -307,18 +307,7 @@ def _run(
     differences, reference = _check(result, history) if check else (None, None)
     inputs = {
         "model": model,
-        "d1": s1.diameter,
-        "d2": s2.diameter,
-        "v1": v1,
-        "v2": v2,
-        "m1": result.m1,
-        "m2": result.m2,
-        "E1": s1.youngs_modulus,
-        "E2": s2.youngs_modulus,
-        "nu1": s1.poisson_ratio,
-        "nu2": s2.poisson_ratio,
-        "sy1": s1.yield_strength,
-        "sy2": s2.yield_strength,
+        **pair_inputs(s1, s2, v1, v2),
         "n": n,
         "method": method.value,
         "split": split.value,
