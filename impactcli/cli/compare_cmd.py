@@ -18,7 +18,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
-from impactcli.cli.impact_cmd import POINTS
+from impactcli.cli.impact_cmd import POINTS, SUMMARY_UNITS
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
@@ -26,14 +26,15 @@ from impactcli.limits import MAX_COUNT
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
-#: Comparison key -> (SI unit, header on screen); CSV and JSON have every key.
+#: Comparison key -> header on screen (SI units: :data:`~impactcli.cli.impact_cmd.
+#: SUMMARY_UNITS`); CSV and JSON have every key.
 COLUMNS = {
-    "restitution": ("", "e"),
-    "contact_time": ("s", "t_c"),
-    "delta_max": ("m", "δ_max"),
-    "force_max": ("N", "F_max"),
-    "delta_res": ("m", "δ_res"),
-    "yield_velocity": ("m/s", "V_y"),
+    "restitution": "e",
+    "contact_time": "t_c",
+    "delta_max": "δ_max",
+    "force_max": "F_max",
+    "delta_res": "δ_res",
+    "yield_velocity": "V_y",
 }
 
 
@@ -143,7 +144,8 @@ def _print(stream: IO[str] | None, table: dict, v0: float, n: int) -> None:
     )
     out.add_column("law", no_wrap=True)
     columns = []
-    for key, (unit, header) in COLUMNS.items():  # one SI prefix per column
+    for key, header in COLUMNS.items():  # one SI prefix per column
+        unit = SUMMARY_UNITS[key][0]
         values = [row[key] for row in table.values()]
         scale = unit_scale(values, unit) if unit else None
         out.add_column(
