@@ -577,18 +577,14 @@ def batch_damped_impacts(
         dissipation [J]), ``alpha`` (the damping parameter used) and ``error``.
     """
     from impactcli.damping import (
-        DAMPING_LAWS,
-        SEPARATIONS,
+        check_damping,
         damping_for_restitution,
         make_damping_law,
         solve_damped_impact,
     )
 
     n = check_size("n", n, MAX_SEGMENTS)
-    if damping not in DAMPING_LAWS:
-        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
-    if separation not in SEPARATIONS:
-        raise ValueError(f"separation must be {' or '.join(SEPARATIONS)}, got {separation!r}")
+    check_damping(damping, separation)
     *columns, alpha, e_target = flat_floats(
         d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, alpha, restitution
     )

@@ -1251,17 +1251,13 @@ def damped_impact(
     0.653551
     """
     from impactcli.damping import (
-        DAMPING_LAWS,
-        SEPARATIONS,
+        check_damping,
         damping_for_restitution,
         make_damping_law,
         solve_damped_impact,
     )
 
-    if damping not in DAMPING_LAWS:
-        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
-    if separation not in SEPARATIONS:
-        raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}, got {separation!r}")
+    check_damping(damping, separation)
     if method not in ("film", "ode"):
         raise ValueError(
             "method must be film or ode for a damped impact (the normalised tables are "
@@ -1355,14 +1351,13 @@ def damped_restitution_sweep(
     damping's integral of c delta'^2 dt [J]; ``delta_separation`` the indentation at
     separation [m] (0 for ``overlap``).
     """
-    from impactcli.damping import DAMPING_LAWS, make_damping_law, solve_damped_impact
+    from impactcli.damping import check_damping, make_damping_law, solve_damped_impact
     from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS
 
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
-    if damping not in DAMPING_LAWS:
-        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    check_damping(damping)
     if not (np.isfinite(alpha) and alpha >= 0.0):
         raise ValueError(f"alpha must be a finite number >= 0, got {alpha:g}")
     check_size("the number of velocities", v0.size, MAX_COUNT)
