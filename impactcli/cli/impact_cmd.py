@@ -699,11 +699,9 @@ def restitution(
     --material steel --plot restitution.png
     """
     from impactcli.cli.law_options import law_inputs
-    from impactcli.contact import effective_radius
     from impactcli.impact import weaker_yield_strength
     from impactcli.spheres import spheres_from_options
     from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
-    from impactcli.validation import contact_radius_warning
 
     check_plot(plot, output)
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
@@ -738,10 +736,7 @@ def restitution(
         )
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    radius = effective_radius(s1.radius, s2.radius)
-    message = contact_radius_warning(velocities, data["delta_max"], radius)
-    if message:
-        warn(message)
+    _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
     _split_messages(split, s1, s2)
     elastic_only = _elastic_sweep(choice, s1, s2)
     if elastic_only:
@@ -820,6 +815,17 @@ def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
     console(stream).print(table)
 
 
+def _sweep_contact_warning(s1, s2, velocities: np.ndarray, delta_max: np.ndarray) -> None:
+    """The warning of a sweep whose contact radius leaves the small-deformation range
+    (:func:`impactcli.validation.contact_radius_warning`), if any."""
+    from impactcli.contact import effective_radius
+    from impactcli.validation import contact_radius_warning
+
+    message = contact_radius_warning(velocities, delta_max, effective_radius(s1.radius, s2.radius))
+    if message:
+        warn(message)
+
+
 def _damped_sweep(
     damping: DampingOptions,
     spheres: SphereOptions,
@@ -833,10 +839,8 @@ def _damped_sweep(
     linear: bool,
 ) -> None:
     """``impact restitution --damping``: the damped sweep in every format, and its plot."""
-    from impactcli.contact import effective_radius
     from impactcli.impact import DAMPED_SWEEP_COLUMNS, damped_restitution_sweep
     from impactcli.spheres import spheres_from_options
-    from impactcli.validation import contact_radius_warning
 
     law, alpha, _target, separation = damping.parse()
     assert law is not None and alpha is not None
@@ -845,10 +849,7 @@ def _damped_sweep(
         data = damped_restitution_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    radius = effective_radius(s1.radius, s2.radius)
-    message = contact_radius_warning(velocities, data["delta_max"], radius)
-    if message:
-        warn(message)
+    _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
     unit = " s/m" if law == "hunt-crossley" else ""
     name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}[law]
     model = f"Hertz with {name} damping, alpha = {alpha:.6g}{unit}, {separation} separation"
