@@ -726,8 +726,19 @@ def plastic_summary(
     }
 
 
-def _summarise(result: ImpactResult, r: float, e: float) -> dict[str, float]:
-    """:func:`impact_summary` of one impact, as floats."""
+def _summarise(
+    result: ImpactResult,
+    r: float,
+    e: float,
+    plan: ImpactPlan,
+    t_max: float,
+    contact_time: float,
+    permanent: bool = True,
+) -> dict[str, float]:
+    """:func:`impact_summary` of one impact, as floats: from ``plan``'s delta_max,
+    force_max, delta_res and e and the times t_max, t_c [s] of FILM or of the integration;
+    delta_res shared by :attr:`ImpactResult.permanent_fractions` if ``permanent``, else as
+    delta."""
     summary = impact_summary(
         result.v1,
         result.v2,
@@ -735,12 +746,12 @@ def _summarise(result: ImpactResult, r: float, e: float) -> dict[str, float]:
         result.m2,
         r,
         e,
-        result.plan,
-        result.film.stages[-2].end_time,
-        result.film.end_time,
+        plan,
+        t_max,
+        contact_time,
         result.split_fractions,
         weaker_yield_strength(result.sphere1, result.sphere2),
-        result.permanent_fractions,
+        result.permanent_fractions if permanent else None,
     )
     return {key: float(value) for key, value in summary.items()}
 
@@ -771,21 +782,7 @@ def integrate_impact(result: ImpactResult) -> dict[str, float]:
         restitution=np.asarray(ode.restitution),
     )
     m, r, e = effective_properties(result.sphere1, result.sphere2)
-    summary = impact_summary(
-        result.v1,
-        result.v2,
-        result.m1,
-        result.m2,
-        r,
-        e,
-        plan,
-        ode.t_max,
-        ode.end_time,
-        result.split_fractions,
-        weaker_yield_strength(result.sphere1, result.sphere2),
-        result.permanent_fractions,
-    )
-    out = {key: float(value) for key, value in summary.items()}
+    out = _summarise(result, r, e, plan, ode.t_max, ode.end_time)
     out.update(energy_summary(result, "ode"))
     if "delta_res" in result.summary:  # elastoplastic keys (PLASTIC_SUMMARY_KEYS)
         f1, f2 = result.permanent_fractions
@@ -891,7 +888,7 @@ def _film_impact(
     result = ImpactResult(
         sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method, contact=contact
     )
-    summary = _summarise(result, r, e)
+    summary = _summarise(result, r, e, plan, film.stages[-2].end_time, film.end_time)
     if plastic:
         extra = plastic_summary(contact, m, v1 + v2, plan, result.permanent_fractions)
         summary.update({key: float(value) for key, value in extra.items()})
@@ -1178,20 +1175,8 @@ def _damped_summary(
         delta_res=values["delta_separation"],
         restitution=values["restitution"],
     )
-    summary = impact_summary(
-        result.v1,
-        result.v2,
-        result.m1,
-        result.m2,
-        r,
-        e,
-        plan,  # type: ignore[arg-type]
-        values["t_max"],
-        values["contact_time"],
-        result.split_fractions,
-        weaker_yield_strength(result.sphere1, result.sphere2),
-    )
-    out = {key: float(value) for key, value in summary.items()}
+    times = values["t_max"], values["contact_time"]
+    out = _summarise(result, r, e, plan, *times, permanent=False)  # type: ignore[arg-type]
     out.update(
         delta_separation=float(values["delta_separation"]),
         alpha=float(result.alpha),
