@@ -35,8 +35,9 @@ computed.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from functools import lru_cache, wraps
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -50,7 +51,8 @@ from impactcli.contact import (
     effective_mass,
     effective_modulus,
     effective_radius,
-    sphere_mass,
+    sphere_compliance,
+    total_mass,
 )
 from impactcli.film import hertz_loading_time, solve_stage
 from impactcli.impact import (
@@ -70,6 +72,7 @@ from impactcli.validation import (
     pair_problems,
     sphere_names,
     sphere_problems,
+    without_float_warnings,
     yield_scale_problems,
 )
 
@@ -216,28 +219,78 @@ def validate(
     problems = Problems(d1.size)
     sphere_problems(d1, E1, nu1, rho1, m1, sy1, sphere_names(1), problems)
     sphere_problems(d2, E2, nu2, rho2, m2, sy2, sphere_names(2), problems)
-    with np.errstate(invalid="ignore"):
-        mass1 = np.where(np.isnan(m1), sphere_mass(d1, rho1), m1)
-        mass2 = np.where(np.isnan(m2), sphere_mass(d2, rho2), m2)
+    mass1, mass2 = total_mass(d1, rho1, m1), total_mass(d2, rho2, m2)
     pair_problems(v1, v2, mass1, mass2, d1, d2, E1, E2, problems)
     problems.add(plastic & needs_yield_strength(sy1, sy2), YIELD_STRENGTH_NEEDED)
     errors = problems.messages
     return errors
 
 
-def _without_float_warnings(function):
-    """Run ``function`` under ``np.errstate(all="ignore")``: an extreme row gives NaN or inf
-    in its own lanes (checked afterwards), not a NumPy RuntimeWarning for the whole chunk."""
+@dataclass(frozen=True)
+class _Pairs:
+    """The per-collision constants of the valid rows of a batch (docs/method.md §1), SI."""
 
-    @wraps(function)
-    def quiet(*args, **kwargs):
-        with np.errstate(all="ignore"):
-            return function(*args, **kwargs)
+    v1: NDArray
+    v2: NDArray
+    mass1: NDArray
+    mass2: NDArray
+    compliance1: NDArray
+    compliance2: NDArray
+    m: NDArray
+    radius: NDArray
+    modulus: NDArray
+    sigma_y: NDArray
 
-    return quiet
+    @classmethod
+    def of(cls, columns: Sequence[NDArray], ok: NDArray[np.intp]) -> _Pairs:
+        """The rows ``ok`` of the flat columns d1, d2, v1, v2, E1, nu1, E2, nu2, rho1,
+        rho2, m1, m2, sy1, sy2 (the arguments of :func:`validate`, in that order)."""
+        d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = (
+            x[ok] for x in columns
+        )
+        mass1, mass2 = total_mass(d1, rho1, m1), total_mass(d2, rho2, m2)
+        return cls(
+            v1,
+            v2,
+            mass1,
+            mass2,
+            sphere_compliance(E1, nu1),
+            sphere_compliance(E2, nu2),
+            effective_mass(mass1, mass2),
+            effective_radius(0.5 * d1, 0.5 * d2),
+            effective_modulus(E1, nu1, E2, nu2),
+            np.fmin(sy1, sy2),
+        )
+
+    @property
+    def v0(self) -> NDArray:
+        """Impact velocity V0 = V1 + V2, [m/s]."""
+        return self.v1 + self.v2
+
+    @property
+    def stiffness(self) -> NDArray:
+        """Hertz stiffness K_h, [N/m^1.5]."""
+        return hertz_stiffness(self.modulus, self.radius)
+
+    def fractions(self, split: Split) -> tuple[NDArray, NDArray]:
+        """Each sphere's share of the indentation (:func:`impactcli.impact.split_fractions`)."""
+        return split_fractions(split, self.mass1, self.mass2, self.compliance1, self.compliance2)
+
+    def summary(
+        self,
+        plan: ImpactPlan,
+        t_max: NDArray,
+        t_c: NDArray,
+        fractions: tuple[NDArray, NDArray],
+    ) -> dict[str, NDArray]:
+        """:func:`impactcli.impact.impact_summary` of these impacts."""
+        return impact_summary(
+            self.v1, self.v2, self.mass1, self.mass2, self.radius, self.modulus, plan,
+            t_max, t_c, fractions, self.sigma_y,
+        )  # fmt: skip
 
 
-@_without_float_warnings
+@without_float_warnings
 def batch_impacts(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -304,34 +357,25 @@ def batch_impacts(
     n = check_size("n", n, MAX_SEGMENTS)
     if not (np.isfinite(pressure_factor) and pressure_factor > 0):
         raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
-    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = flat_floats(
-        d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2
-    )
-    plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), d1.shape).reshape(-1)
+    columns = flat_floats(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2)
+    shape = columns[0].shape
+    plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), shape).reshape(-1)
     if law is not None:  # the law's own need of a yield strength
-        plastic = np.broadcast_to(_needs_yield_strength(law, law_params or {}), d1.shape)
-    errors = validate(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, plastic)
-    out = {key: np.full(d1.shape, np.nan) for key in BATCH_KEYS}
+        plastic = np.broadcast_to(_needs_yield_strength(law, law_params or {}), shape)
+    errors = validate(*columns, plastic)
+    out = {key: np.full(shape, np.nan) for key in BATCH_KEYS}
     out["error"] = errors
     ok = np.flatnonzero(errors == "")
     if ok.size == 0:
         return out
 
     # Valid rows only from here: the per-collision constants (docs/method.md §1).
-    d1, d2, v1, v2, E1, nu1, E2, nu2 = (x[ok] for x in (d1, d2, v1, v2, E1, nu1, E2, nu2))
-    rho1, rho2, m1, m2, sy1, sy2 = (x[ok] for x in (rho1, rho2, m1, m2, sy1, sy2))
-    plastic = plastic[ok]
-    mass1 = np.where(np.isnan(m1), sphere_mass(d1, rho1), m1)
-    mass2 = np.where(np.isnan(m2), sphere_mass(d2, rho2), m2)
-    m = effective_mass(mass1, mass2)
-    radius = effective_radius(0.5 * d1, 0.5 * d2)
-    modulus = effective_modulus(E1, nu1, E2, nu2)
-    stiffness = hertz_stiffness(modulus, radius)
-    sigma_y = np.fmin(sy1, sy2)
-    v0 = v1 + v2
+    pairs = _Pairs.of(columns, ok)
     if law is not None:
-        args = (v1, v2, mass1, mass2, nu1, nu2, E1, E2, m, radius, modulus, sigma_y, n, split)
-        return _batch_law(out, ok, law, law_params or {}, *args)
+        return _batch_law(out, ok, law, law_params or {}, pairs, n, split)
+    plastic = plastic[ok]
+    m, radius, modulus, sigma_y, v0 = pairs.m, pairs.radius, pairs.modulus, pairs.sigma_y, pairs.v0
+    stiffness = pairs.stiffness
 
     contact = DuWangContact(radius, modulus, sigma_y, pressure_factor)
     with np.errstate(invalid="ignore"):
@@ -371,12 +415,8 @@ def batch_impacts(
         t_max[rows], t_c[rows] = plastic_stage_times(plan, m[rows], v0[rows], n)
 
     plan = ImpactPlan((), delta_max, force_max, delta_res, restitution)
-    compliance1 = (1.0 - nu1**2) / E1
-    compliance2 = (1.0 - nu2**2) / E2
-    fractions = split_fractions(split, mass1, mass2, compliance1, compliance2)
-    summary = impact_summary(
-        v1, v2, mass1, mass2, radius, modulus, plan, t_max, t_c, fractions, sigma_y
-    )
+    fractions = pairs.fractions(split)
+    summary = pairs.summary(plan, t_max, t_c, fractions)
     for key, value in summary.items():
         out[key][ok] = value
     rows = np.flatnonzero(plastic)
@@ -438,26 +478,16 @@ def _batch_law(
     ok: NDArray[np.intp],
     law: str,
     params: Mapping[str, Any],
-    v1: NDArray,
-    v2: NDArray,
-    mass1: NDArray,
-    mass2: NDArray,
-    nu1: NDArray,
-    nu2: NDArray,
-    E1: NDArray,
-    E2: NDArray,
-    m: NDArray,
-    radius: NDArray,
-    modulus: NDArray,
-    sigma_y: NDArray,
+    pairs: _Pairs,
     n: int,
     split: Split,
 ) -> dict[str, NDArray]:
-    """The rows ``ok`` (valid) of :func:`batch_impacts` under one law of the library."""
+    """The rows ``ok`` (valid; their constants ``pairs``) of :func:`batch_impacts` under one
+    law of the library."""
     from impactcli.lawlib import get_law
 
     spec = get_law(law)
-    v0 = v1 + v2
+    m, radius, modulus, sigma_y, v0 = pairs.m, pairs.radius, pairs.modulus, pairs.sigma_y, pairs.v0
     per_row = {
         k: v for k, v in params.items() if np.ndim(v) == 1 and np.size(v) == out["error"].size
     }
@@ -485,22 +515,8 @@ def _batch_law(
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
     plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"])
-    compliance1 = (1.0 - nu1**2) / E1
-    compliance2 = (1.0 - nu2**2) / E2
-    fractions = split_fractions(split, mass1, mass2, compliance1, compliance2)
-    summary = impact_summary(
-        v1,
-        v2,
-        mass1,
-        mass2,
-        radius,
-        modulus,
-        plan,
-        values["tmax"],
-        values["tc"],
-        fractions,
-        sigma_y,
-    )
+    fractions = pairs.fractions(split)
+    summary = pairs.summary(plan, values["tmax"], values["tc"], fractions)
     summary.update(plastic_summary(contact, m, v0, plan, fractions))
     for key, value in summary.items():
         column = np.broadcast_to(np.asarray(value, dtype=float), v0.shape).copy()
@@ -518,7 +534,7 @@ def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray
         yield chunk[local], plan
 
 
-@_without_float_warnings
+@without_float_warnings
 def batch_damped_impacts(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -561,23 +577,19 @@ def batch_damped_impacts(
         dissipation [J]), ``alpha`` (the damping parameter used) and ``error``.
     """
     from impactcli.damping import (
-        DAMPING_LAWS,
-        SEPARATIONS,
+        check_damping,
         damping_for_restitution,
         make_damping_law,
         solve_damped_impact,
     )
 
     n = check_size("n", n, MAX_SEGMENTS)
-    if damping not in DAMPING_LAWS:
-        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
-    if separation not in SEPARATIONS:
-        raise ValueError(f"separation must be {' or '.join(SEPARATIONS)}, got {separation!r}")
-    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, alpha, e_target = flat_floats(
+    check_damping(damping, separation)
+    *columns, alpha, e_target = flat_floats(
         d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, alpha, restitution
     )
-    errors = validate(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, False)
-    problems = Problems(d1.size)
+    errors = validate(*columns, False)
+    problems = Problems(alpha.size)
     problems.add_messages(errors)
     has_alpha, has_e = ~np.isnan(alpha), ~np.isnan(e_target)
     problems.add(~has_alpha & ~has_e, f"damping {damping} needs alpha or a target e")
@@ -591,19 +603,12 @@ def batch_damped_impacts(
         problems.add(
             has_e & ~((e_target > 0) & (e_target <= 1)), "e must lie in (0, 1], got {:g}", e_target
         )
-    out = {key: np.full(d1.shape, np.nan) for key in BATCH_KEYS}
-    out["alpha"] = np.full(d1.shape, np.nan)
+    out = {key: np.full(alpha.shape, np.nan) for key in BATCH_KEYS}
+    out["alpha"] = np.full(alpha.shape, np.nan)
     ok = np.flatnonzero(~problems.bad)
     if ok.size:
-        d1, d2, v1, v2, E1, nu1, E2, nu2 = (x[ok] for x in (d1, d2, v1, v2, E1, nu1, E2, nu2))
-        rho1, rho2, m1, m2, sy1, sy2 = (x[ok] for x in (rho1, rho2, m1, m2, sy1, sy2))
-        mass1 = np.where(np.isnan(m1), sphere_mass(d1, rho1), m1)
-        mass2 = np.where(np.isnan(m2), sphere_mass(d2, rho2), m2)
-        m = effective_mass(mass1, mass2)
-        radius = effective_radius(0.5 * d1, 0.5 * d2)
-        modulus = effective_modulus(E1, nu1, E2, nu2)
-        stiffness = hertz_stiffness(modulus, radius)
-        v0 = v1 + v2
+        pairs = _Pairs.of(columns, ok)
+        m, stiffness, v0 = pairs.m, pairs.stiffness, pairs.v0
         a = alpha[ok].copy()
         solve = np.flatnonzero(np.isnan(a))
         if solve.size:  # the alpha of the target e, exactly by the model (FILM, n)
@@ -616,11 +621,7 @@ def batch_damped_impacts(
             sol = solve_damped_impact(law, v0, m, n=n, separation=separation)
         ends = np.isfinite(sol.contact_time) & (sol.restitution > 0)
         plan = ImpactPlan((), sol.delta_max, sol.force_max, sol.delta_separation, sol.restitution)
-        fractions = split_fractions(split, mass1, mass2, (1.0 - nu1**2) / E1, (1.0 - nu2**2) / E2)
-        summary = impact_summary(
-            v1, v2, mass1, mass2, radius, modulus, plan, sol.t_max, sol.contact_time,
-            fractions, np.fmin(sy1, sy2),
-        )  # fmt: skip
+        summary = pairs.summary(plan, sol.t_max, sol.contact_time, pairs.fractions(split))
         summary["energy_dissipated"] = sol.dissipated
         for key, value in summary.items():
             out[key][ok] = np.where(ends, value, np.nan)

@@ -33,7 +33,9 @@ __all__ = [
     "effective_radius",
     "first_yield_velocity",
     "hertz_maximum_indentation",
+    "sphere_compliance",
     "sphere_mass",
+    "total_mass",
 ]
 
 #: p0 = 2.57 sigma_y: mean contact pressure of fully plastic contact (Du & Wang 2009, eq. 16).
@@ -55,6 +57,26 @@ def sphere_mass(diameter: ArrayLike, density: ArrayLike) -> NDArray:
     0.0326726
     """
     return np.asarray(density, dtype=float) * np.pi * np.asarray(diameter, dtype=float) ** 3 / 6.0
+
+
+def total_mass(diameter: ArrayLike, density: ArrayLike, mass: ArrayLike) -> NDArray:
+    """Mass of each sphere, [kg]: ``mass`` where given (not NaN), else the solid sphere's
+    rho pi D^3 / 6 (:func:`sphere_mass`; docs/method.md §1).
+
+    >>> total_mass([0.02, 0.02], 7800.0, [float("nan"), 0.5]).round(7)
+    array([0.0326726, 0.5      ])
+    """
+    mass = np.asarray(mass, dtype=float)
+    with np.errstate(invalid="ignore"):
+        return np.where(np.isnan(mass), sphere_mass(diameter, density), mass)
+
+
+def sphere_compliance(youngs_modulus: ArrayLike, poisson_ratio: ArrayLike) -> NDArray:
+    """Compliance c = (1 - nu^2)/E of a sphere, [1/Pa]: zero for a rigid one (E = inf).
+    Each sphere's share of the elastic indentation is proportional to it (Hertz,
+    ``split="compliance"``; docs/method.md §2.1)."""
+    nu = np.asarray(poisson_ratio, dtype=float)
+    return (1.0 - nu**2) / np.asarray(youngs_modulus, dtype=float)
 
 
 def effective_mass(m1: ArrayLike, m2: ArrayLike) -> NDArray:
@@ -153,6 +175,20 @@ class ImpactPlan:
     force_max: NDArray
     delta_res: NDArray
     restitution: NDArray
+
+    def force(self, stage: ArrayLike, delta: ArrayLike) -> NDArray:
+        """Contact force [N] at indentations ``delta`` [m], each by the law of its stage:
+        ``stage`` holds the index into :attr:`stages` of each indentation (broadcast to
+        the shape of ``delta``). One impact's plan; each stage's law takes only the
+        indentations that fall in it."""
+        delta = np.asarray(delta, dtype=float)
+        k = np.broadcast_to(stage, delta.shape)
+        force = np.zeros_like(delta)
+        for index, plan in enumerate(self.stages):  # a few stages, not rows
+            mask = k == index
+            if np.any(mask):
+                force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
+        return force
 
 
 def _col(x: ArrayLike) -> NDArray:

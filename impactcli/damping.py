@@ -60,6 +60,7 @@ __all__ = [
     "LawParameter",
     "TsujiDamping",
     "ViscoelasticLaw",
+    "check_damping",
     "damped_impact_ode",
     "damped_ode_solution",
     "damping_for_restitution",
@@ -257,15 +258,23 @@ DAMPING_LAWS: dict[str, type] = {
 }
 
 
+def check_damping(name: str | None = None, separation: str | None = None) -> None:
+    """Raise ValueError unless ``name`` is a law of :data:`DAMPING_LAWS` and ``separation``
+    a rule of :data:`SEPARATIONS` (None: not checked)."""
+    if name is not None and name not in DAMPING_LAWS:
+        raise ValueError(f"unknown damping law {name!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    if separation is not None and separation not in SEPARATIONS:
+        raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}, got {separation!r}")
+
+
 def make_damping_law(
     name: str, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike
 ) -> TsujiDamping | HuntCrossleyDamping:
     """The law called ``name`` (a key of :data:`DAMPING_LAWS`) with K [N/m^1.5], m [kg], alpha."""
+    check_damping(name)
     if name == TsujiDamping.name:
         return TsujiDamping(stiffness, mass, alpha)
-    if name == HuntCrossleyDamping.name:
-        return HuntCrossleyDamping(stiffness, alpha)
-    raise ValueError(f"unknown damping law {name!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    return HuntCrossleyDamping(stiffness, alpha)
 
 
 # -- the damped linear oscillator of one segment ----------------------------------------------
@@ -814,8 +823,7 @@ def solve_damped_impact(
     n = int(n)
     if n < 1:
         raise ValueError(f"n must be an integer >= 1, got {n}")
-    if separation not in SEPARATIONS:
-        raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}, got {separation!r}")
+    check_damping(separation=separation)
     v0 = np.asarray(impact_velocity, dtype=float)
     m = np.asarray(mass, dtype=float)
     param_shapes = [np.shape(getattr(law, f.name)) for f in fields(law)]
@@ -947,8 +955,7 @@ def damping_for_restitution(
     -------
     alpha, in the broadcast shape of the inputs ([-] or [s/m]).
     """
-    if name not in DAMPING_LAWS:
-        raise ValueError(f"unknown damping law {name!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    check_damping(name)
     e_t, v0, k, m = np.broadcast_arrays(
         *(np.asarray(x, dtype=float) for x in (restitution, impact_velocity, stiffness, mass))
     )

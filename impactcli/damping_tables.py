@@ -10,6 +10,7 @@ numbers come from :mod:`impactcli.damping`; this module only formats them.
 from __future__ import annotations
 
 import sys
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -75,80 +76,57 @@ def hunt_crossley_relations(n: int = 400) -> dict[str, np.ndarray]:
     return out
 
 
-def _markdown(header: list[str], rows: list[list[float]], digits: int = 4) -> str:
+def _markdown(data: Mapping[str, np.ndarray], columns: Mapping[str, str], digits: int = 4) -> str:
+    """A Markdown table of the ``columns`` (key of ``data`` -> header) of ``data``."""
+    header = list(columns.values())
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    for row in rows:
+    for row in zip(*(data[key] for key in columns)):
         lines.append("| " + " | ".join(f"{x:.{digits}f}" for x in row) + " |")
     return "\n".join(lines)
 
 
 def tsuji_table(n: int = 400) -> str:
     """Markdown: e, contact time and separation indentation of the Tsuji law against alpha."""
-    t = tsuji_e_of_alpha(n)
-    keys = ["alpha", "e_overlap", "tc_overlap", "e_force", "tc_force", "dsep_force"]
-    header = [
-        "alpha",
-        "e (overlap)",
-        "tc V0/dmH (overlap)",
-        "e (force)",
-        "tc V0/dmH (force)",
-        "delta_sep/dmH (force)",
-    ]
-    return _markdown(header, [list(r) for r in zip(*(t[k] for k in keys))])
+    columns = {
+        "alpha": "alpha",
+        "e_overlap": "e (overlap)",
+        "tc_overlap": "tc V0/dmH (overlap)",
+        "e_force": "e (force)",
+        "tc_force": "tc V0/dmH (force)",
+        "dsep_force": "delta_sep/dmH (force)",
+    }
+    return _markdown(tsuji_e_of_alpha(n), columns)
 
 
 def tsuji_relations_table(n: int = 400) -> str:
     """Markdown: alpha for target e, exact against the published Tsuji relations."""
-    r = tsuji_relations(n)
-    keys = [
-        "e",
-        "alpha_overlap",
-        "alpha_force",
-        "alpha_dem",
-        "e_dem_overlap",
-        "e_dem_unscaled_overlap",
-        "alpha_hm",
-        "e_hm_overlap",
-        "e_hm_force",
-    ]
-    header = [
-        "e target",
-        "alpha exact (overlap)",
-        "alpha exact (force)",
-        "alpha DEM poly x sqrt2",
-        "e of it (overlap)",
-        "e of poly without sqrt2 (overlap)",
-        "alpha Hertz-Mindlin",
-        "e of it (overlap)",
-        "e of it (force)",
-    ]
-    return _markdown(header, [list(x) for x in zip(*(r[k] for k in keys))])
+    columns = {
+        "e": "e target",
+        "alpha_overlap": "alpha exact (overlap)",
+        "alpha_force": "alpha exact (force)",
+        "alpha_dem": "alpha DEM poly x sqrt2",
+        "e_dem_overlap": "e of it (overlap)",
+        "e_dem_unscaled_overlap": "e of poly without sqrt2 (overlap)",
+        "alpha_hm": "alpha Hertz-Mindlin",
+        "e_hm_overlap": "e of it (overlap)",
+        "e_hm_force": "e of it (force)",
+    }
+    return _markdown(tsuji_relations(n), columns)
 
 
 def hunt_crossley_table(n: int = 400) -> str:
     """Markdown: alpha V0 for target e, exact against the published Hunt-Crossley relations."""
-    h = hunt_crossley_relations(n)
-    keys = [
-        "e",
-        "alpha_exact",
-        "alpha_hunt-crossley",
-        "e_hunt-crossley",
-        "alpha_lankarani-nikravesh",
-        "e_lankarani-nikravesh",
-        "alpha_flores",
-        "e_flores",
-    ]
-    header = [
-        "e target",
-        "alpha V0 exact",
-        "HC (1-e)",
-        "e of it",
-        "LN (1-e^2)/2",
-        "e of it",
-        "Flores 16(1-e)/(15e)",
-        "e of it",
-    ]
-    return _markdown(header, [list(x) for x in zip(*(h[k] for k in keys))])
+    columns = {
+        "e": "e target",
+        "alpha_exact": "alpha V0 exact",
+        "alpha_hunt-crossley": "HC (1-e)",
+        "e_hunt-crossley": "e of it",
+        "alpha_lankarani-nikravesh": "LN (1-e^2)/2",
+        "e_lankarani-nikravesh": "e of it",
+        "alpha_flores": "Flores 16(1-e)/(15e)",
+        "e_flores": "e of it",
+    }
+    return _markdown(hunt_crossley_relations(n), columns)
 
 
 def readme_tables(n: int = 400) -> str:

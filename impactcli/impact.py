@@ -43,6 +43,7 @@ from impactcli.contact import (
     effective_modulus,
     effective_radius,
     first_yield_velocity,
+    sphere_compliance,
     sphere_mass,
 )
 from impactcli.film import FilmSolution, FilmStage, solve_stage
@@ -219,8 +220,8 @@ class Sphere:
 
     @property
     def compliance(self) -> float:
-        """(1 - nu^2)/E, [1/Pa] (zero for a rigid body)."""
-        return (1.0 - self.poisson_ratio**2) / self.youngs_modulus
+        """(1 - nu^2)/E, [1/Pa]; zero for a rigid body (:func:`.sphere_compliance`)."""
+        return float(sphere_compliance(self.youngs_modulus, self.poisson_ratio))
 
 
 @dataclass(frozen=True)
@@ -360,12 +361,7 @@ class ImpactResult:
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
         ends = [float(stage.end_time) for stage in self.film.stages]
         stage = np.minimum(np.searchsorted(ends, t, side="left"), len(ends) - 1)
-        force = np.zeros_like(delta)
-        for k, plan in enumerate(self.plan.stages):
-            mask = stage == k
-            if np.any(mask):
-                force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
-        return force
+        return self.plan.force(stage, delta)
 
     # -- energy and the permanent part ------------------------------------------------
     @property
@@ -730,8 +726,19 @@ def plastic_summary(
     }
 
 
-def _summarise(result: ImpactResult, r: float, e: float) -> dict[str, float]:
-    """:func:`impact_summary` of one impact, as floats."""
+def _summarise(
+    result: ImpactResult,
+    r: float,
+    e: float,
+    plan: ImpactPlan,
+    t_max: float,
+    contact_time: float,
+    permanent: bool = True,
+) -> dict[str, float]:
+    """:func:`impact_summary` of one impact, as floats: from ``plan``'s delta_max,
+    force_max, delta_res and e and the times t_max, t_c [s] of FILM or of the integration;
+    delta_res shared by :attr:`ImpactResult.permanent_fractions` if ``permanent``, else as
+    delta."""
     summary = impact_summary(
         result.v1,
         result.v2,
@@ -739,12 +746,12 @@ def _summarise(result: ImpactResult, r: float, e: float) -> dict[str, float]:
         result.m2,
         r,
         e,
-        result.plan,
-        result.film.stages[-2].end_time,
-        result.film.end_time,
+        plan,
+        t_max,
+        contact_time,
         result.split_fractions,
         weaker_yield_strength(result.sphere1, result.sphere2),
-        result.permanent_fractions,
+        result.permanent_fractions if permanent else None,
     )
     return {key: float(value) for key, value in summary.items()}
 
@@ -775,21 +782,7 @@ def integrate_impact(result: ImpactResult) -> dict[str, float]:
         restitution=np.asarray(ode.restitution),
     )
     m, r, e = effective_properties(result.sphere1, result.sphere2)
-    summary = impact_summary(
-        result.v1,
-        result.v2,
-        result.m1,
-        result.m2,
-        r,
-        e,
-        plan,
-        ode.t_max,
-        ode.end_time,
-        result.split_fractions,
-        weaker_yield_strength(result.sphere1, result.sphere2),
-        result.permanent_fractions,
-    )
-    out = {key: float(value) for key, value in summary.items()}
+    out = _summarise(result, r, e, plan, ode.t_max, ode.end_time)
     out.update(energy_summary(result, "ode"))
     if "delta_res" in result.summary:  # elastoplastic keys (PLASTIC_SUMMARY_KEYS)
         f1, f2 = result.permanent_fractions
@@ -873,6 +866,35 @@ def _finish(result: ImpactResult, summary: dict[str, float]) -> ImpactResult:
     return result
 
 
+def _film_impact(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    n: int,
+    split: Split,
+    method: Method,
+    plan: ImpactPlan,
+    contact: Any,
+    model: str,
+    plastic: bool = False,
+) -> ImpactResult:
+    """The impact of ``plan`` by FILM with n segments per stage: the result of ``model``
+    and its summary (:func:`_summarise`; with ``plastic`` also :func:`plastic_summary` of
+    ``contact``), finished by :func:`_finish`. The last step of :func:`elastic_impact`,
+    :func:`elastoplastic_impact` and :func:`law_impact`."""
+    m, r, e = effective_properties(sphere1, sphere2)
+    film = FilmSolution(solve_plan(plan, m, n))
+    result = ImpactResult(
+        sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method, contact=contact
+    )
+    summary = _summarise(result, r, e, plan, film.stages[-2].end_time, film.end_time)
+    if plastic:
+        extra = plastic_summary(contact, m, v1 + v2, plan, result.permanent_fractions)
+        summary.update({key: float(value) for key, value in extra.items()})
+    return _finish(result, summary)
+
+
 def elastic_impact(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -913,21 +935,8 @@ def elastic_impact(
     from impactcli.lawlib import HertzLawContact
 
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
-    film = FilmSolution(solve_plan(plan, m, n))
-    result = ImpactResult(
-        sphere1,
-        sphere2,
-        v1,
-        v2,
-        plan,
-        film,
-        int(n),
-        split,
-        "elastic",
-        method=method,
-        contact=HertzLawContact(r, e),
-    )
-    return _finish(result, _summarise(result, r, e))
+    contact = HertzLawContact(r, e)
+    return _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, "elastic")
 
 
 def elastoplastic_impact(
@@ -979,24 +988,10 @@ def elastoplastic_impact(
     elastic = len(plan.stages) == 2
     if not elastic:
         raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
-    film = FilmSolution(solve_plan(plan, m, n))
-    result = ImpactResult(
-        sphere1,
-        sphere2,
-        v1,
-        v2,
-        plan,
-        film,
-        int(n),
-        split,
-        "elastic" if elastic else "elastoplastic",
-        method=method,
-        contact=contact,
+    model = "elastic" if elastic else "elastoplastic"
+    return _film_impact(
+        sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, plastic=True
     )
-    summary = _summarise(result, r, e)
-    extra = plastic_summary(contact, m, v0, plan, result.permanent_fractions)
-    summary.update({key: float(value) for key, value in extra.items()})
-    return _finish(result, summary)
 
 
 def law_impact(
@@ -1053,7 +1048,6 @@ def law_impact(
     contact = spec.contact(r, e, sigma_y, **(params or {}))
     v0 = v1 + v2
     plan = contact.plan(v0, m)
-    film = FilmSolution(solve_plan(plan, m, n))
     hertz = len(plan.stages) == 2 and all(type(s.law) is Hertz for s in plan.stages)
     if hertz and float(plan.delta_res) == 0.0:
         model = "elastic"
@@ -1061,13 +1055,9 @@ def law_impact(
         model = "elastoplastic"
     else:
         model = spec.name
-    result = ImpactResult(
-        sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method, contact=contact
+    return _film_impact(
+        sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, plastic=True
     )
-    summary = _summarise(result, r, e)
-    extra = plastic_summary(contact, m, v0, plan, result.permanent_fractions)
-    summary.update({key: float(value) for key, value in extra.items()})
-    return _finish(result, summary)
 
 
 #: Summary keys of :func:`damped_impact`: the elastic ones and the damping's.
@@ -1078,18 +1068,8 @@ DAMPED_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "energy_stored",
 )
 
-#: Columns of :meth:`DampedImpactResult.energy`.
-DAMPED_ENERGY_COLUMNS: tuple[str, ...] = (
-    "t",
-    "ke1",
-    "ke2",
-    "strain_energy",
-    "strain_energy1",
-    "strain_energy2",
-    "dissipated",
-    "dissipated1",
-    "dissipated2",
-)
+#: Columns of :meth:`DampedImpactResult.energy`: the time and :data:`ENERGY_COLUMNS`.
+DAMPED_ENERGY_COLUMNS: tuple[str, ...] = ("t", *ENERGY_COLUMNS)
 
 #: FILM segments per stage that :func:`damped_impact` uses by default: e and the contact
 #: time within 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
@@ -1195,20 +1175,8 @@ def _damped_summary(
         delta_res=values["delta_separation"],
         restitution=values["restitution"],
     )
-    summary = impact_summary(
-        result.v1,
-        result.v2,
-        result.m1,
-        result.m2,
-        r,
-        e,
-        plan,  # type: ignore[arg-type]
-        values["t_max"],
-        values["contact_time"],
-        result.split_fractions,
-        weaker_yield_strength(result.sphere1, result.sphere2),
-    )
-    out = {key: float(value) for key, value in summary.items()}
+    times = values["t_max"], values["contact_time"]
+    out = _summarise(result, r, e, plan, *times, permanent=False)  # type: ignore[arg-type]
     out.update(
         delta_separation=float(values["delta_separation"]),
         alpha=float(result.alpha),
@@ -1268,17 +1236,13 @@ def damped_impact(
     0.653551
     """
     from impactcli.damping import (
-        DAMPING_LAWS,
-        SEPARATIONS,
+        check_damping,
         damping_for_restitution,
         make_damping_law,
         solve_damped_impact,
     )
 
-    if damping not in DAMPING_LAWS:
-        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
-    if separation not in SEPARATIONS:
-        raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}, got {separation!r}")
+    check_damping(damping, separation)
     if method not in ("film", "ode"):
         raise ValueError(
             "method must be film or ode for a damped impact (the normalised tables are "
@@ -1372,14 +1336,13 @@ def damped_restitution_sweep(
     damping's integral of c delta'^2 dt [J]; ``delta_separation`` the indentation at
     separation [m] (0 for ``overlap``).
     """
-    from impactcli.damping import DAMPING_LAWS, make_damping_law, solve_damped_impact
+    from impactcli.damping import check_damping, make_damping_law, solve_damped_impact
     from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS
 
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
-    if damping not in DAMPING_LAWS:
-        raise ValueError(f"unknown damping law {damping!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    check_damping(damping)
     if not (np.isfinite(alpha) and alpha >= 0.0):
         raise ValueError(f"alpha must be a finite number >= 0, got {alpha:g}")
     check_size("the number of velocities", v0.size, MAX_COUNT)

@@ -129,14 +129,7 @@ class OdeSolution:
     def force(self, t: ArrayLike, delta: ArrayLike) -> NDArray:
         """Contact force [N] at times ``t`` [s] and indentations ``delta`` [m]: the law of
         the stage each time falls in."""
-        delta = np.asarray(delta, dtype=float)
-        k = np.broadcast_to(self.stage_index(t), delta.shape)
-        force = np.zeros_like(delta)
-        for index, stage in enumerate(self.plan.stages):
-            mask = k == index
-            if np.any(mask):
-                force[mask] = np.reshape(stage.law.force(delta[mask]), -1)
-        return force
+        return self.plan.force(self.stage_index(t), delta)
 
 
 def _event(fun, direction: float):

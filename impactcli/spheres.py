@@ -2,16 +2,18 @@
 
 One rule for every command and for Python callers: a sphere's property comes from its own
 option (``E1``), else from the shared one (``E``), else from its material (``material1``,
-else ``material``) (:func:`resolve_property`, vectorised, also used row by row by
-:func:`impactcli.io.table.compute_frame`). :class:`SphereOptions` holds the 21 options of
-a pair (d1, d2, v1, v2, material, material1, material2, E, E1, E2, nu, nu1, nu2, rho, rho1,
-rho2, m1, m2, sy, sy1, sy2); :func:`spheres_from_options` turns them into two
-:class:`~impactcli.impact.Sphere`. Units are read by :mod:`impactcli.units` (pint only for
+else ``material``) (:func:`resolve_properties`, vectorised, also used row by row by
+:func:`impactcli.io.table.compute_frame` and ``impact collide3d --rows``;
+:func:`missing_properties` says what none of them gives). :class:`SphereOptions` holds the
+21 options of a pair (d1, d2, v1, v2, material, material1, material2, E, E1, E2, nu, nu1,
+nu2, rho, rho1, rho2, m1, m2, sy, sy1, sy2); :func:`spheres_from_options` turns them into
+two :class:`~impactcli.impact.Sphere`. Units are read by :mod:`impactcli.units` (pint only for
 text with a unit, imported on demand).
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -23,6 +25,8 @@ __all__ = [
     "PROPERTIES",
     "SphereOptions",
     "check_options",
+    "missing_properties",
+    "resolve_properties",
     "resolve_property",
     "sphere_from_options",
     "spheres_from_options",
@@ -50,6 +54,36 @@ def resolve_property(own: ArrayLike, shared: ArrayLike, from_material: ArrayLike
     own, shared = np.asarray(own, dtype=float), np.asarray(shared, dtype=float)
     value = np.where(np.isnan(own), shared, own)
     return np.where(np.isnan(value), np.asarray(from_material, dtype=float), value)
+
+
+def resolve_properties(
+    i: int, given: Mapping[str, ArrayLike], from_material: Sequence[ArrayLike]
+) -> dict[str, NDArray]:
+    """Sphere i's E, nu, rho and sy, SI, arrays broadcast (one entry per collision): each by
+    :func:`resolve_property` from its own value (``given["E1"]``...), the shared one
+    (``given["E"]``...) and its material's (``from_material``, in the order of
+    :data:`PROPERTIES`); NaN where none is given. A rigid sphere (E = inf) without a
+    Poisson's ratio gets 0: it does not enter E*."""
+    values = {
+        key: resolve_property(given[f"{key}{i}"], given[key], material)
+        for key, material in zip(PROPERTIES, from_material)
+    }
+    values["nu"] = np.where(np.isinf(values["E"]) & np.isnan(values["nu"]), 0.0, values["nu"])
+    return values
+
+
+def missing_properties(
+    i: int, sphere: Mapping[str, ArrayLike], prefix: str = ""
+) -> list[tuple[NDArray, str]]:
+    """Where sphere i has no Young's modulus, no Poisson's ratio, or neither a density nor a
+    mass (``sphere`` holds E, nu, rho and m, NaN where unknown), each with its message
+    (:func:`unknown_property`), in that order."""
+    e, nu, rho, m = (np.asarray(sphere[key], dtype=float) for key in ("E", "nu", "rho", "m"))
+    return [
+        (np.isnan(e), unknown_property(i, "E", prefix)),
+        (np.isnan(nu), unknown_property(i, "nu", prefix)),
+        (np.isnan(rho) & np.isnan(m), unknown_property(i, "rho", prefix)),
+    ]
 
 
 def unknown_property(i: int, key: str, prefix: str = "") -> str:
@@ -124,16 +158,16 @@ def _material(options: SphereOptions, i: int, prefix: str):
 def _properties(options: SphereOptions, i: int, prefix: str) -> dict[str, float]:
     """Sphere i's E, nu, rho, sy (:func:`resolve_property`), d and m: SI, NaN if not given."""
     mat = _material(options, i, prefix)
-    values: dict[str, float] = {}
+    given: dict[str, float] = {}
+    from_material: list[float] = []
     for key, (kind, allow_inf, attr, _name) in PROPERTIES.items():
-        own = _quantity(options.get(f"{key}{i}"), kind, f"{prefix}{key}{i}", allow_inf)
-        shared = _quantity(options.get(key), kind, f"{prefix}{key}", allow_inf)
+        for name in (f"{key}{i}", key):  # its own option, then the shared one
+            given[name] = _quantity(options.get(name), kind, f"{prefix}{name}", allow_inf)
         known = getattr(mat, attr) if mat is not None else None
-        values[key] = float(resolve_property(own, shared, np.nan if known is None else known))
+        from_material.append(np.nan if known is None else known)
+    values = {key: float(x) for key, x in resolve_properties(i, given, from_material).items()}
     values["d"] = _quantity(options.get(f"d{i}"), "length", f"{prefix}d{i}", allow_inf=(i == 2))
     values["m"] = _quantity(options.get(f"m{i}"), "mass", f"{prefix}m{i}", allow_inf=(i == 2))
-    if np.isinf(values["E"]) and np.isnan(values["nu"]):
-        values["nu"] = 0.0  # a rigid body: its Poisson's ratio does not enter E*
     return values
 
 
@@ -170,11 +204,9 @@ def sphere_from_options(options: SphereOptions, i: int, prefix: str = "--"):
         raise InputError(
             f"missing {prefix}d{i}: the diameter of sphere {i} (e.g. {prefix}d{i} 20mm)"
         )
-    for key in ("E", "nu"):
-        if np.isnan(values[key]):
-            raise InputError(unknown_property(i, key, prefix))
-    if np.isnan(values["rho"]) and np.isnan(mass):
-        raise InputError(unknown_property(i, "rho", prefix))
+    for unknown, message in missing_properties(i, values, prefix):
+        if unknown:
+            raise InputError(message)
 
     def given(x: float) -> float | None:
         return None if np.isnan(x) else x

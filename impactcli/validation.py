@@ -13,7 +13,9 @@ warnings and notes are returned as text for the caller to show.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from functools import wraps
+from typing import TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -38,6 +40,7 @@ __all__ = [
     "sphere_names",
     "sphere_problems",
     "where_first",
+    "without_float_warnings",
     "yield_scale_problems",
 ]
 
@@ -93,6 +96,22 @@ class Problems:
     def add_messages(self, messages: NDArray) -> None:
         """Entries with a non-empty message in ``messages`` get it if still valid."""
         self.add(messages != "", messages)
+
+
+_F = TypeVar("_F", bound=Callable)
+
+
+def without_float_warnings(function: _F) -> _F:
+    """Run ``function`` under ``np.errstate(all="ignore")``: an extreme row of a batch gives
+    NaN or inf in its own lanes (checked afterwards, as that row's error), not a NumPy
+    RuntimeWarning for the whole chunk."""
+
+    @wraps(function)
+    def quiet(*args, **kwargs):
+        with np.errstate(all="ignore"):
+            return function(*args, **kwargs)
+
+    return quiet  # type: ignore[return-value]
 
 
 def flat_floats(*values: ArrayLike) -> list[NDArray]:

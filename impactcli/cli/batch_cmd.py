@@ -16,27 +16,16 @@ from typing import Optional
 
 import typer
 
-from impactcli.cli.common import OutputFile, note, warn
+from impactcli.cli.common import Model, OutputFile, Segments, Split, note, warn
 from impactcli.errors import InputError
 from impactcli.io.readers import PARQUET_SUFFIXES
 from impactcli.io.writers import TableFormat
-from impactcli.limits import MAX_CHUNK_ROWS, MAX_SEGMENTS
+from impactcli.limits import MAX_CHUNK_ROWS
 
 
 class Engine(enum.StrEnum):
     numpy = "numpy"
     dask = "dask"
-
-
-class SplitChoice(enum.StrEnum):
-    mass = "mass"
-    compliance = "compliance"
-    yield_ = "yield"
-
-
-class ModelChoice(enum.StrEnum):
-    elastic = "elastic"
-    elastoplastic = "elastoplastic"
 
 
 def _show_progress(enabled: bool | None) -> bool:
@@ -107,22 +96,15 @@ def batch(
         "-f",
         help="Output csv or parquet. Default: from OUT's extension (.parquet, .pq), else CSV.",
     ),
-    n: int = typer.Option(
-        25,
-        "--n",
-        "-n",
-        min=1,
-        max=MAX_SEGMENTS,
-        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
-    ),
-    split: SplitChoice = typer.Option(
-        SplitChoice.mass,
+    n: Segments = 25,
+    split: Split = typer.Option(
+        Split.mass,
         "--split",
         help="Share of the indentation between the spheres, for rows without a split cell: "
         "mass (the paper's contact plane), compliance (Hertz) or yield (recoverable part by "
         "compliance, permanent part to the sphere with the lower yield strength).",
     ),
-    model: Optional[ModelChoice] = typer.Option(
+    model: Optional[Model] = typer.Option(
         None, "--model", help="Model of rows whose model cell is empty (or without the column)."
     ),
     strict: bool = typer.Option(

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import enum
 import math
 from typing import IO, Optional
 
@@ -10,6 +9,7 @@ import typer
 
 from impactcli.cli.common import (
     Format,
+    Model,
     OutputFile,
     OutputFormat,
     PlotFile,
@@ -27,11 +27,6 @@ CONVENTIONS = {
     True: "paper's angles (sec. 4.5): alpha_1, theta_2 and phi clockwise from +x; "
     "alpha_2 and theta_1 counter-clockwise",
 }
-
-
-class Model(enum.StrEnum):
-    elastic = "elastic"
-    elastoplastic = "elastoplastic"
 
 
 @with_law_options()

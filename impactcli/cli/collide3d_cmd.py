@@ -10,6 +10,7 @@ import typer
 
 from impactcli.cli.common import (
     Format,
+    Model,
     OutputFile,
     OutputFormat,
     PlotFile,
@@ -18,6 +19,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
+from impactcli.cli.damping_options import DampingLaw
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
@@ -25,24 +27,13 @@ from impactcli.limits import MAX_POINTS, check_size
 from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
-
-class NormalModel(enum.StrEnum):
-    elastic = "elastic"
-    elastoplastic = "elastoplastic"
-
-
 #: --model -> the law of the library it names.
-MODEL_LAWS = {NormalModel.elastic: "hertz", NormalModel.elastoplastic: "du-wang"}
+MODEL_LAWS = {Model.elastic: "hertz", Model.elastoplastic: "du-wang"}
 
 
 class Tangential(enum.StrEnum):
     rigid = "rigid"
     mindlin = "mindlin"
-
-
-class Damping(enum.StrEnum):
-    tsuji = "tsuji"
-    hunt_crossley = "hunt-crossley"
 
 
 VELOCITY_HELP = (
@@ -81,13 +72,13 @@ def collide3d(
     ),
     spheres: SphereOptions = None,  # type: ignore[assignment]  # the shared sphere options
     law: LawOptions = None,  # type: ignore[assignment]  # --law and the law parameters
-    model: Optional[NormalModel] = typer.Option(
+    model: Optional[Model] = typer.Option(
         None,
         "--model",
         help="Normal law when --law is not given: elastic (hertz, e = 1, the default) or "
         "elastoplastic (du-wang; needs a yield strength).",
     ),
-    damping: Optional[Damping] = typer.Option(
+    damping: Optional[DampingLaw] = typer.Option(
         None,
         "--damping",
         help="Viscous damping on Hertz elasticity instead of --law: tsuji (alpha [-]) or "

@@ -11,6 +11,8 @@ from typing import IO, Annotated, Optional
 
 import typer
 
+from impactcli.limits import MAX_SEGMENTS
+
 
 class Format(enum.StrEnum):
     """Output format of a command."""
@@ -18,6 +20,22 @@ class Format(enum.StrEnum):
     table = "table"
     csv = "csv"
     json = "json"
+
+
+class Split(enum.StrEnum):
+    """``--split``: how the indentation is shared between the spheres
+    (:data:`impactcli.impact.SPLITS`)."""
+
+    mass = "mass"
+    compliance = "compliance"
+    yield_ = "yield"
+
+
+class Model(enum.StrEnum):
+    """``--model``: elastic (Hertz) or elastoplastic (Du & Wang)."""
+
+    elastic = "elastic"
+    elastoplastic = "elastoplastic"
 
 
 #: ``-o FILE`` extension -> the format written when --format is not given (no extension:
@@ -143,6 +161,19 @@ OutputFile = Annotated[
 ]
 #: ``--plot FILE``.
 PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
+
+SEGMENTS_HELP = f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}."
+
+
+def segments_option(more: str = ""):  # -> typer.models.OptionInfo
+    """``--n/-n``: FILM segments per stage, 1 to :data:`impactcli.limits.MAX_SEGMENTS`;
+    ``more`` is added to the help (what the command's default depends on)."""
+    help_text = f"{SEGMENTS_HELP} {more}" if more else SEGMENTS_HELP
+    return typer.Option("--n", "-n", min=1, max=MAX_SEGMENTS, help=help_text)
+
+
+#: ``--n/-n``: FILM segments per stage (the command gives the default).
+Segments = Annotated[int, segments_option()]
 
 
 def check_plot(path: str | None, output: str | None = None) -> None:

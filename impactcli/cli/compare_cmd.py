@@ -12,27 +12,29 @@ from impactcli.cli.common import (
     OutputFile,
     OutputFormat,
     PlotFile,
+    Segments,
     check_plot,
     console,
     resolve_format,
     save_plot,
 )
-from impactcli.cli.impact_cmd import POINTS, N
+from impactcli.cli.impact_cmd import POINTS, SUMMARY_UNITS
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
-from impactcli.cli.sphere_options import with_sphere_options
+from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
 from impactcli.limits import MAX_COUNT
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
-#: Comparison key -> (SI unit, header on screen); CSV and JSON have every key.
+#: Comparison key -> header on screen (SI units: :data:`~impactcli.cli.impact_cmd.
+#: SUMMARY_UNITS`); CSV and JSON have every key.
 COLUMNS = {
-    "restitution": ("", "e"),
-    "contact_time": ("s", "t_c"),
-    "delta_max": ("m", "δ_max"),
-    "force_max": ("N", "F_max"),
-    "delta_res": ("m", "δ_res"),
-    "yield_velocity": ("m/s", "V_y"),
+    "restitution": "e",
+    "contact_time": "t_c",
+    "delta_max": "δ_max",
+    "force_max": "F_max",
+    "delta_res": "δ_res",
+    "yield_velocity": "V_y",
 }
 
 
@@ -41,7 +43,7 @@ COLUMNS = {
 def compare_laws(
     spheres: SphereOptions,
     law: LawOptions = None,
-    n: N = 25,
+    n: Segments = 25,
     points: POINTS = 401,
     ratio_min: Annotated[
         float, typer.Option("--ratio-min", help="Lowest V0/V_y of the e panel (--plot).")
@@ -121,18 +123,7 @@ def _inputs(s1, s2, v1: float, v2: float, n: int, choices: list[LawChoice]) -> d
 
     sigma_y = weaker_yield_strength(s1, s2)
     return {
-        "d1": s1.diameter,
-        "d2": s2.diameter,
-        "v1": v1,
-        "v2": v2,
-        "m1": s1.total_mass,
-        "m2": s2.total_mass,
-        "E1": s1.youngs_modulus,
-        "E2": s2.youngs_modulus,
-        "nu1": s1.poisson_ratio,
-        "nu2": s2.poisson_ratio,
-        "sy1": s1.yield_strength,
-        "sy2": s2.yield_strength,
+        **pair_inputs(s1, s2, v1, v2),
         "n": n,
         "laws": [law_inputs(c, sigma_y) for c in choices],
     }
@@ -153,7 +144,8 @@ def _print(stream: IO[str] | None, table: dict, v0: float, n: int) -> None:
     )
     out.add_column("law", no_wrap=True)
     columns = []
-    for key, (unit, header) in COLUMNS.items():  # one SI prefix per column
+    for key, header in COLUMNS.items():  # one SI prefix per column
+        unit = SUMMARY_UNITS[key][0]
         values = [row[key] for row in table.values()]
         scale = unit_scale(values, unit) if unit else None
         out.add_column(

@@ -18,11 +18,12 @@ from impactcli.cli.common import (
     console,
     resolve_format,
     save_plot,
+    segments_option,
     warn,
 )
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
-from impactcli.limits import MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
+from impactcli.limits import MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_json
 from impactcli.spheres import SphereOptions
 
@@ -39,8 +40,8 @@ START_HELP = "Starting value NAME=VALUE (repeatable), e.g. sy=800MPa. Default fr
 BOUNDS_HELP = "Bounds NAME=LO:HI (repeatable), e.g. sy=100MPa:5GPa; both > 0."
 FIX_HELP = "Hold a law parameter at NAME=VALUE (repeatable), e.g. k_load=2e7 or p0_factor=3."
 N_HELP = (
-    f"FILM segments per stage, 1 to {MAX_SEGMENTS:,} (default 25; 50 for tsuji and "
-    f"hunt-crossley); data points x n at most {MAX_SWEEP_SEGMENTS:,}."
+    "Default 25; 50 for tsuji and hunt-crossley. Data points x n at most "
+    f"{MAX_SWEEP_SEGMENTS:,}."
 )
 
 #: parameter unit -> kind for :func:`impactcli.units.parse_quantity`
@@ -125,9 +126,7 @@ def fit(
         Optional[list[str]], typer.Option("--fix", metavar="NAME=VALUE", help=FIX_HELP)
     ] = None,
     spheres: SphereOptions = None,
-    n: Annotated[
-        Optional[int], typer.Option("--n", "-n", min=1, max=MAX_SEGMENTS, help=N_HELP)
-    ] = None,
+    n: Annotated[Optional[int], segments_option(N_HELP)] = None,
     fmt: OutputFormat = None,
     output: OutputFile = None,
     plot: PlotFile = None,

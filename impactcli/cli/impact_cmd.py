@@ -14,6 +14,8 @@ from impactcli.cli.common import (
     OutputFile,
     OutputFormat,
     PlotFile,
+    Segments,
+    Split,
     SummaryFile,
     append_help,
     check_plot,
@@ -22,13 +24,14 @@ from impactcli.cli.common import (
     note,
     resolve_format,
     save_plot,
+    segments_option,
     warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
-from impactcli.cli.sphere_options import with_sphere_options
+from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
-from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SEGMENTS, MAX_SWEEP_SEGMENTS
+from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
@@ -52,36 +55,16 @@ class Method(enum.StrEnum):
     ode = "ode"
 
 
-class Split(enum.StrEnum):
-    mass = "mass"
-    compliance = "compliance"
-    yield_ = "yield"
-
-
 def _opt(help_text: str, *names: str, **kw: Any):
     return typer.Option(*names, help=help_text, **kw)
 
 
-N = Annotated[
-    int,
-    typer.Option(
-        "--n",
-        "-n",
-        min=1,
-        max=MAX_SEGMENTS,
-        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}.",
-    ),
-]
 #: --n of the commands that take --damping: its default depends on it.
 N_DAMPED = Annotated[
     Optional[int],
-    typer.Option(
-        "--n",
-        "-n",
-        min=1,
-        max=MAX_SEGMENTS,
-        help=f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}. Default 25; 400 with --damping "
-        "(e and the contact time within 1e-6 of SciPy integration of the same law).",
+    segments_option(
+        "Default 25; 400 with --damping (e and the contact time within 1e-6 of SciPy "
+        "integration of the same law)."
     ),
 ]
 POINTS = Annotated[
@@ -324,18 +307,7 @@ def _run(
     differences, reference = _check(result, history) if check else (None, None)
     inputs = {
         "model": model,
-        "d1": s1.diameter,
-        "d2": s2.diameter,
-        "v1": v1,
-        "v2": v2,
-        "m1": result.m1,
-        "m2": result.m2,
-        "E1": s1.youngs_modulus,
-        "E2": s2.youngs_modulus,
-        "nu1": s1.poisson_ratio,
-        "nu2": s2.poisson_ratio,
-        "sy1": s1.yield_strength,
-        "sy2": s2.yield_strength,
+        **pair_inputs(s1, s2, v1, v2),
         "n": n,
         "method": method.value,
         "split": split.value,
@@ -639,7 +611,7 @@ append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
 def elastoplastic(
     spheres: SphereOptions,
     law: LawOptions = None,
-    n: N = 25,
+    n: Segments = 25,
     points: POINTS = 201,
     method: METHOD = Method.film,
     check: CHECK = False,
@@ -727,11 +699,9 @@ def restitution(
     --material steel --plot restitution.png
     """
     from impactcli.cli.law_options import law_inputs
-    from impactcli.contact import effective_radius
     from impactcli.impact import weaker_yield_strength
     from impactcli.spheres import spheres_from_options
     from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
-    from impactcli.validation import contact_radius_warning
 
     check_plot(plot, output)
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
@@ -766,10 +736,7 @@ def restitution(
         )
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    radius = effective_radius(s1.radius, s2.radius)
-    message = contact_radius_warning(velocities, data["delta_max"], radius)
-    if message:
-        warn(message)
+    _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
     _split_messages(split, s1, s2)
     elastic_only = _elastic_sweep(choice, s1, s2)
     if elastic_only:
@@ -848,6 +815,17 @@ def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
     console(stream).print(table)
 
 
+def _sweep_contact_warning(s1, s2, velocities: np.ndarray, delta_max: np.ndarray) -> None:
+    """The warning of a sweep whose contact radius leaves the small-deformation range
+    (:func:`impactcli.validation.contact_radius_warning`), if any."""
+    from impactcli.contact import effective_radius
+    from impactcli.validation import contact_radius_warning
+
+    message = contact_radius_warning(velocities, delta_max, effective_radius(s1.radius, s2.radius))
+    if message:
+        warn(message)
+
+
 def _damped_sweep(
     damping: DampingOptions,
     spheres: SphereOptions,
@@ -861,10 +839,8 @@ def _damped_sweep(
     linear: bool,
 ) -> None:
     """``impact restitution --damping``: the damped sweep in every format, and its plot."""
-    from impactcli.contact import effective_radius
     from impactcli.impact import DAMPED_SWEEP_COLUMNS, damped_restitution_sweep
     from impactcli.spheres import spheres_from_options
-    from impactcli.validation import contact_radius_warning
 
     law, alpha, _target, separation = damping.parse()
     assert law is not None and alpha is not None
@@ -873,10 +849,7 @@ def _damped_sweep(
         data = damped_restitution_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    radius = effective_radius(s1.radius, s2.radius)
-    message = contact_radius_warning(velocities, data["delta_max"], radius)
-    if message:
-        warn(message)
+    _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
     unit = " s/m" if law == "hunt-crossley" else ""
     name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}[law]
     model = f"Hertz with {name} damping, alpha = {alpha:.6g}{unit}, {separation} separation"

@@ -19,7 +19,7 @@ import typer
 
 from impactcli.spheres import SphereOptions
 
-__all__ = ["SPHERE_METAVARS", "SPHERE_OPTIONS", "with_sphere_options"]
+__all__ = ["SPHERE_METAVARS", "SPHERE_OPTIONS", "pair_inputs", "with_sphere_options"]
 
 #: Option name -> help text, in the order of ``--help``.
 SPHERE_OPTIONS: dict[str, str] = {
@@ -89,3 +89,23 @@ def with_sphere_options(velocities: bool = True) -> Callable[[Callable], Callabl
         return wrapper
 
     return decorate
+
+
+def pair_inputs(sphere1, sphere2, v1: float, v2: float) -> dict[str, float | None]:
+    """The pair as computed, for the ``inputs`` of a JSON output: d1, d2, v1, v2, m1, m2,
+    E1, E2, nu1, nu2, sy1, sy2 (SI; sy None where not known) of two
+    :class:`~impactcli.impact.Sphere`."""
+    return {
+        "d1": sphere1.diameter,
+        "d2": sphere2.diameter,
+        "v1": v1,
+        "v2": v2,
+        "m1": sphere1.total_mass,
+        "m2": sphere2.total_mass,
+        "E1": sphere1.youngs_modulus,
+        "E2": sphere2.youngs_modulus,
+        "nu1": sphere1.poisson_ratio,
+        "nu2": sphere2.poisson_ratio,
+        "sy1": sphere1.yield_strength,
+        "sy2": sphere2.yield_strength,
+    }

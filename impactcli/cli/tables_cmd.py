@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import enum
-from typing import IO, Optional
+from typing import IO, Annotated, Optional
 
 import numpy as np
 import typer
@@ -17,6 +17,7 @@ from impactcli.cli.common import (
     console,
     resolve_format,
     save_plot,
+    segments_option,
 )
 from impactcli.limits import MAX_CONVERGENCE_RUNS, MAX_SEGMENTS, check_size
 from impactcli.output import atomic_output, write_csv, write_json
@@ -76,14 +77,7 @@ class StageChoice(enum.StrEnum):
 
 
 def tables(
-    n: int = typer.Option(
-        25,
-        "--n",
-        "-n",
-        min=1,
-        max=MAX_SEGMENTS,
-        help=f"Segments per stage, 1 to {MAX_SEGMENTS:,} (the paper used 25).",
-    ),
+    n: Annotated[int, segments_option("The paper used 25.")] = 25,
     stage: StageChoice = typer.Option(
         StageChoice.both, "--stage", help="Table A1 (loading), A2 (restitution) or both."
     ),
@@ -159,15 +153,13 @@ def convergence(
     ns: Optional[list[int]] = typer.Argument(
         None, metavar="[N]...", help="More segment counts (so '--n 1 3 5 25' works)."
     ),
-    n_option: Optional[list[int]] = typer.Option(
-        None,
-        "--n",
-        "-n",
-        min=1,
-        max=MAX_SEGMENTS,
-        help=f"Segments per stage, 1 to {MAX_SEGMENTS:,}; repeat or list several (at most "
-        f"{MAX_CONVERGENCE_RUNS:,}). Default: 1 2 3 5 10 25 100 1000 10000.",
-    ),
+    n_option: Annotated[
+        Optional[list[int]],
+        segments_option(
+            f"Repeat or list several (at most {MAX_CONVERGENCE_RUNS:,}). "
+            "Default: 1 2 3 5 10 25 100 1000 10000."
+        ),
+    ] = None,
     carry_velocity: bool = typer.Option(
         False,
         "--carry-velocity",

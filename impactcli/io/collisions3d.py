@@ -165,8 +165,8 @@ def compute_collisions3d(
     """
     from impactcli.batch import material_properties
     from impactcli.collision3d import TANGENTIAL_MODELS, effective_shear_modulus, oblique_impact
-    from impactcli.contact import sphere_mass
-    from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
+    from impactcli.contact import total_mass
+    from impactcli.spheres import missing_properties, resolve_properties
     from impactcli.units import parse_quantities
     from impactcli.validation import Problems, sphere_names, sphere_problems
 
@@ -204,18 +204,12 @@ def compute_collisions3d(
         names = np.where(np.equal(own, None), shared, own)
         *props, bad = material_properties(names)
         errors.add_messages(bad)
-        sphere = {"m": q[f"m{i}"], "d": q[f"d{i}"]}
-        for key, from_material in zip(PROPERTIES, props):
-            sphere[key] = resolve_property(q[f"{key}{i}"], q[key], from_material)
-        sphere["nu"] = np.where(np.isinf(sphere["E"]) & np.isnan(sphere["nu"]), 0.0, sphere["nu"])
-        errors.add(np.isnan(sphere["E"]), unknown_property(i, "E"))
-        errors.add(np.isnan(sphere["nu"]), unknown_property(i, "nu"))
-        errors.add(np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), unknown_property(i, "rho"))
+        sphere = {"m": q[f"m{i}"], "d": q[f"d{i}"], **resolve_properties(i, q, props)}
+        for unknown, message in missing_properties(i, sphere):
+            errors.add(unknown, message)
         sphere_problems(sphere["d"], sphere["E"], sphere["nu"], sphere["rho"], sphere["m"],
                         sphere["sy"], sphere_names(i), errors)  # fmt: skip
-        with np.errstate(invalid="ignore"):
-            sphere["mass"] = np.where(np.isnan(sphere["m"]), sphere_mass(sphere["d"],
-                                      sphere["rho"]), sphere["m"])  # fmt: skip
+        sphere["mass"] = total_mass(sphere["d"], sphere["rho"], sphere["m"])
         spheres.append(sphere)
     s1, s2 = spheres
 

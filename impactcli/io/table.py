@@ -12,13 +12,12 @@ physics, never the command line. pandas is imported inside the functions.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import wraps
 
 import numpy as np
 
 from impactcli.errors import InputError
-from impactcli.spheres import PROPERTIES, resolve_property, unknown_property
-from impactcli.validation import Problems
+from impactcli.spheres import missing_properties, resolve_properties
+from impactcli.validation import Problems, without_float_warnings
 
 __all__ = [
     "DAMPING_COLUMNS",
@@ -220,19 +219,7 @@ def _text_column(frame, name: str, size: int, lower: bool = False) -> np.ndarray
     return column.astype(object).where(~missing, None).to_numpy()
 
 
-def _quiet(function):
-    """Run ``function`` with NumPy's floating-point warnings off: an extreme row gives NaN
-    or inf in its own lanes, and its error, not a warning for the whole chunk."""
-
-    @wraps(function)
-    def quiet(*args, **kwargs):
-        with np.errstate(all="ignore"):
-            return function(*args, **kwargs)
-
-    return quiet
-
-
-@_quiet
+@without_float_warnings
 def compute_frame(
     frame,
     n: int = 25,
@@ -306,14 +293,9 @@ def compute_frame(
         names = np.where(np.equal(own, None), shared, own)
         *props, bad = material_properties(names)
         errors.add_messages(bad)
-        sphere = {"m": q[f"m{i}"]}
-        for key, from_material in zip(PROPERTIES, props):
-            sphere[key] = resolve_property(q[f"{key}{i}"], q[key], from_material)
-        # A rigid body's Poisson's ratio does not enter E*.
-        sphere["nu"] = np.where(np.isinf(sphere["E"]) & np.isnan(sphere["nu"]), 0.0, sphere["nu"])
-        errors.add(np.isnan(sphere["E"]), unknown_property(i, "E"))
-        errors.add(np.isnan(sphere["nu"]), unknown_property(i, "nu"))
-        errors.add(np.isnan(sphere["rho"]) & np.isnan(sphere["m"]), unknown_property(i, "rho"))
+        sphere = {"m": q[f"m{i}"], **resolve_properties(i, q, props)}
+        for unknown, message in missing_properties(i, sphere):
+            errors.add(unknown, message)
         spheres.append(sphere)
 
     # The law of each row (a law cell wins over the model), its parameters.
@@ -453,17 +435,16 @@ def _sphere_shares(result: dict, splits, s1: dict, s2: dict, q: dict, valid) -> 
     energy goes with the permanent part: energy_dissipated_i = p_i energy_dissipated
     (docs/method.md §9). First-yield velocities: :func:`impactcli.design.
     first_yield_velocities` (Hertz peak pressure 1.6 sigma_y,i)."""
-    from impactcli.contact import sphere_mass
+    from impactcli.contact import sphere_compliance, total_mass
     from impactcli.design import first_yield_velocities
     from impactcli.energy import yield_shares
     from impactcli.impact import split_fractions
 
     size = splits.size
     with np.errstate(invalid="ignore", divide="ignore"):
-        mass1 = np.where(np.isnan(s1["m"]), sphere_mass(q["d1"], s1["rho"]), s1["m"])
-        mass2 = np.where(np.isnan(s2["m"]), sphere_mass(q["d2"], s2["rho"]), s2["m"])
-        c1 = (1.0 - s1["nu"] ** 2) / s1["E"]
-        c2 = (1.0 - s2["nu"] ** 2) / s2["E"]
+        mass1 = total_mass(q["d1"], s1["rho"], s1["m"])
+        mass2 = total_mass(q["d2"], s2["rho"], s2["m"])
+        c1, c2 = sphere_compliance(s1["E"], s1["nu"]), sphere_compliance(s2["E"], s2["nu"])
         by_mass = split_fractions("mass", mass1, mass2, c1, c2)
         by_compliance = split_fractions("compliance", mass1, mass2, c1, c2)
     elastic = [np.where(splits == "mass", by_mass[i], by_compliance[i]) for i in (0, 1)]
