@@ -236,8 +236,11 @@ def _cases():
 
 
 @pytest.mark.parametrize(
-    "name", ["hertz", "du-wang", "thornton", "walton-braun", "tabulated", "tabulated-unloading"]
-)
+    "name",
+    # SciPy through the interpolated unloading curves takes seconds: in the slow tier
+    ["hertz", "du-wang", "thornton", "walton-braun", "tabulated",
+     pytest.param("tabulated-unloading", marks=pytest.mark.slow)],
+)  # fmt: skip
 @pytest.mark.parametrize("v0", [0.1, 1.0])
 def test_film_matches_scipy_integration(name, v0):
     contact, load_force, unloading = _cases()[name]
