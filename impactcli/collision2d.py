@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.validation import check_vectors
+from impactcli.validation import check_restitution, check_vectors
 from impactcli.validation import where_first as _where
 
 __all__ = [
@@ -400,9 +400,7 @@ def oblique_collision(
         bad = ~(np.isfinite(mass) & (mass > 0.0))
         if np.any(bad):
             raise ValueError(f"the mass {name} must be finite and > 0" + _where(bad))
-    bad = ~((e >= 0.0) & (e <= 1.0))
-    if np.any(bad):
-        raise ValueError("the coefficient of restitution must be in [0, 1]" + _where(bad))
+    check_restitution(e)
     normal = line_of_centres(p1, p2)
     check_vectors(2, v1=v1, v2=v2)
     v_rel_n = np.sum((v1 - v2) * normal, axis=-1)

@@ -96,7 +96,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.validation import check_vectors
+from impactcli.validation import check_friction, check_restitution, check_vectors
 from impactcli.validation import where_first as _where
 
 __all__ = [
@@ -681,12 +681,8 @@ def oblique_impact(
         bad = np.isinf(a) & np.isinf(b)
         if np.any(bad):
             raise ValueError(f"at most one body can have an infinite {name}" + _where(bad))
-    bad = ~((e >= 0.0) & (e <= 1.0))
-    if np.any(bad):
-        raise ValueError("the coefficient of restitution must be in [0, 1]" + _where(bad))
-    bad = ~((mu >= 0.0) & np.isfinite(mu))
-    if np.any(bad):
-        raise ValueError("the friction coefficient mu must be finite and >= 0" + _where(bad))
+    check_restitution(e)
+    check_friction(mu)
     vectors = {
         k: np.asarray(x, dtype=float)
         for k, x in dict(p1=p1, p2=p2, v1=v1, v2=v2, w1=w1, w2=w2).items()

@@ -28,6 +28,8 @@ __all__ = [
     "Problems",
     "below_yield_note",
     "brittle_notes",
+    "check_friction",
+    "check_restitution",
     "check_vectors",
     "du_wang_yield_velocity",
     "contact_radius_warning",
@@ -353,6 +355,30 @@ def where_first(bad: ArrayLike) -> str:
     if np.ndim(bad) == 0:
         return ""
     return f" (first at index {tuple(int(i) for i in np.argwhere(bad)[0])})"
+
+
+def check_restitution(e: ArrayLike, name: str = "") -> None:
+    """ValueError unless the coefficient(s) of restitution ``e`` lie in [0, 1]; the message
+    starts with ``name`` (an option, '--e') when given, else names the first bad entry.
+
+    >>> check_restitution(1.2, "--e")
+    Traceback (most recent call last):
+    ...
+    ValueError: --e: the coefficient of restitution must be in [0, 1], got 1.2
+    """
+    bad = ~((np.asarray(e) >= 0.0) & (np.asarray(e) <= 1.0))
+    if np.any(bad):
+        what = "the coefficient of restitution must be in [0, 1]"
+        raise ValueError(f"{name}: {what}, got {e}" if name else what + where_first(bad))
+
+
+def check_friction(mu: ArrayLike, name: str = "") -> None:
+    """ValueError unless the friction coefficient(s) ``mu`` are finite and >= 0; the message
+    as :func:`check_restitution`'s."""
+    bad = ~((np.asarray(mu) >= 0.0) & np.isfinite(mu))
+    if np.any(bad):
+        what = "the friction coefficient mu must be finite and >= 0"
+        raise ValueError(f"{name}: {what}, got {mu}" if name else what + where_first(bad))
 
 
 def check_vectors(components: int, **vectors: NDArray) -> None:

@@ -21,6 +21,7 @@ from impactcli.cli.common import (
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.errors import InputError
 from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.validation import check_restitution
 
 CONVENTIONS = {
     False: "angles counter-clockwise from +x",
@@ -171,8 +172,10 @@ def collide2d(
     if model is Model.elastoplastic:
         (chosen,) = resolve_laws(law)
     if e is not None:
-        if not 0.0 <= e <= 1.0:
-            raise InputError(f"--e: the coefficient of restitution must be in [0, 1], got {e}")
+        try:
+            check_restitution(e, "--e")
+        except ValueError as exc:
+            raise InputError(str(exc)) from None
         restitution, model_name = e, "given e"
     else:
         restitution, model_name = 1.0, (model or Model.elastic).value

@@ -26,6 +26,7 @@ from impactcli.errors import InputError
 from impactcli.limits import MAX_POINTS, check_size
 from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
 from impactcli.spheres import SphereOptions
+from impactcli.validation import check_friction, check_restitution
 
 #: --model -> the law of the library it names.
 MODEL_LAWS = {Model.elastic: "hertz", Model.elastoplastic: "du-wang"}
@@ -154,10 +155,12 @@ def collide3d(
     """
     from impactcli.spheres import check_options, spheres_from_options
 
-    if not (math.isfinite(mu) and mu >= 0.0):
-        raise InputError(f"--mu: the friction coefficient must be finite and >= 0, got {mu}")
-    if e is not None and not 0.0 <= e <= 1.0:
-        raise InputError(f"--e: the coefficient of restitution must be in [0, 1], got {e}")
+    try:
+        check_friction(mu, "--mu")
+        if e is not None:
+            check_restitution(e, "--e")
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
     law_name, params = _normal_law(law, model, damping, alpha, e, tangential)
     check_size("--points", points, MAX_POINTS, minimum=3)
     check_plot(plot, output)
