@@ -51,6 +51,8 @@ from typing import ClassVar, Literal, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.limits import MAX_SEGMENTS, check_size
+
 __all__ = [
     "DAMPING_LAWS",
     "SEPARATIONS",
@@ -820,9 +822,7 @@ def solve_damped_impact(
     Accuracy is second order in 1/n for e, contact time, delta_max and t_max
     (tests/test_damping.py).
     """
-    n = int(n)
-    if n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
+    n = check_size("n", n, MAX_SEGMENTS)
     check_damping(separation=separation)
     v0 = np.asarray(impact_velocity, dtype=float)
     m = np.asarray(mass, dtype=float)

@@ -499,9 +499,9 @@ def law_model(
         A callable ``model(params, v0)``; ``params`` override ``fixed``.
     """
     law = _check_law(law)
-    segments = int(n) if n is not None else DEFAULT_SEGMENTS.get(law, 25)
-    if segments < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
+    from impactcli.limits import MAX_SEGMENTS, check_size
+
+    segments = check_size("n", n if n is not None else DEFAULT_SEGMENTS.get(law, 25), MAX_SEGMENTS)
     m, r, e_star, sy = _pair(sphere1, sphere2)
     base: dict[str, float] = {}
     if law in ("walton-braun", *_DAMPED):

@@ -543,8 +543,6 @@ def _validate(
         raise ValueError(f"method must be film, table or ode, got {method!r}")
     if split not in SPLITS:
         raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
-    if int(n) < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n}")
     check_size("n", n, MAX_SEGMENTS)
     check_pair(sphere1, sphere2, v1, v2)
 
