@@ -856,20 +856,21 @@ def _mindlin(
     j_t = np.zeros(shape)
     forces = np.zeros(shape + (k_points,))
     stuck = np.zeros(shape, dtype=bool)
-    for j in range(k_points - 1):
-        s_trial = s * cos[..., j] - f * dt[..., j] * sinc[..., j] / m_t
-        f_trial = f * cos[..., j] + k_mid[..., j] * s * dt[..., j] * sinc[..., j]
+    steps = zip(*(np.moveaxis(a, -1, 0) for a in (cos, sinc, dt, k_mid, dj_most, scale)),
+                np.moveaxis(cap, -1, 0)[1:], np.moveaxis(-cap, -1, 0)[1:])  # fmt: skip
+    for j, (cos_j, sinc_j, dt_j, k_j, most_j, scale_j, cap_j, low_j) in enumerate(steps):
+        s_trial = s * cos_j - f * dt_j * sinc_j / m_t
+        f_trial = f * cos_j + k_j * s * dt_j * sinc_j
         # Coulomb: where the spring would end above mu F_n the step slides, with the
         # impulse mu dJ_n, but never more than the elastic step's (the force is bounded by
         # both); the end force is held within mu F_n.
         dj_elastic = m_t * (s - s_trial)
-        slides = np.abs(f_trial) >= cap[..., j + 1]
-        dj_slide = np.sign(dj_elastic) * np.minimum(dj_most[..., j], np.abs(dj_elastic))
+        slides = np.abs(f_trial) >= cap_j
+        dj_slide = np.sign(dj_elastic) * np.minimum(most_j, np.abs(dj_elastic))
         dj = np.where(slides, dj_slide, dj_elastic)
         s = np.where(slides, s - dj / m_t, s_trial)
-        f = np.clip(f_trial, -cap[..., j + 1], cap[..., j + 1])
         # A shrinking contact scales the force with the stiffness (Thornton et al. 2011).
-        f = f * scale[..., j]
+        f = np.clip(f_trial, low_j, cap_j) * scale_j
         j_t = j_t + dj
         forces[..., j + 1] = f
         stuck |= ~slides
