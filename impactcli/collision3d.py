@@ -870,7 +870,7 @@ def _mindlin(
         dj = np.where(slides, dj_slide, dj_elastic)
         s = np.where(slides, s - dj / m_t, s_trial)
         # A shrinking contact scales the force with the stiffness (Thornton et al. 2011).
-        f = np.clip(f_trial, low_j, cap_j) * scale_j
+        f = f_trial.clip(low_j, cap_j) * scale_j
         j_t = j_t + dj
         forces[..., j + 1] = f
         stuck |= ~slides

@@ -323,6 +323,8 @@ def to_jsonable(value: Any) -> Any:
             return value.tolist()  # plain numbers already (a history: thousands of them)
         return to_jsonable(value.tolist())
     if isinstance(value, (list, tuple)):
+        if all(type(v) is float for v in value) and all(map(math.isfinite, value)):
+            return list(value)
         return [to_jsonable(v) for v in value]
     if isinstance(value, np.generic):
         return to_jsonable(value.item())
