@@ -391,6 +391,31 @@ START_UP_COMMANDS: dict[str, list[str]] = {
         "collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
         "--v2", "2m/s", "--a2", "50deg", "--p1=-1,2", "--p2=2,-2", "--paper-angles",
     ],
+    "impact collide3d (steel ball with backspin on a plane, Tsuji damping, units)": [
+        "collide3d", "--d1", "5mm", "--material1", "steel", "--d2", "inf", "--m2", "inf",
+        "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1", "--v1", "3m/s@45deg",
+        "--w1", "0,-300rpm,0", "--mu", "0.2", "--damping", "tsuji", "--alpha", "0.3",
+        "-f", "csv",
+    ],
+    "impact collide3d --tangential mindlin (4,001 time steps, JSON, units)": [
+        "collide3d", "--d1", "5mm", "--E1", "380GPa", "--nu1", "0.23", "--rho1", "4000",
+        "--d2", "inf", "--m2", "inf", "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1",
+        "--v1", "3.9m/s@30deg", "--mu", "0.092", "--tangential", "mindlin", "-f", "json",
+    ],
+    "impact compare-laws (paper sec. 4.4, four laws, units)": [
+        "compare-laws", *PAPER, "--v1", "0.25m/s", "--v2", "0.75m/s", "--law", "du-wang",
+        "--law", "thornton", "--law", "walton-braun", "--k-load", "20MN/m",
+        "--k-unload", "80MN/m", "--law", "hertz",
+    ],
+    "impact laws": ["laws"],
+    "impact yield-limit --v0 (units)": [
+        "yield-limit", *PAPER, "--v0", "0.1m/s",
+    ],
+    "impact timestep (units)": ["timestep", "--d1", "2mm", "--material", "glass", "--v0", "1m/s"],
+    "impact fit, 12 drop tests, one law (imports scipy.optimize; units)": [
+        "fit", "docs/data/drop_tests_steel.csv", "--law", "du-wang", "--d1", "20mm",
+        "--d2", "inf", "--m2", "inf", "--material", "steel",
+    ],
     "impact batch, 3 rows with units": ["batch", "{rows}", "--model", "elastic"],
 }  # fmt: skip
 BATCH_ROWS = "d1,d2,v1,v2,material\n20mm,40mm,5mm/s,7.5mm/s,steel\n" \

@@ -837,30 +837,36 @@ def _mindlin(
     stiffness = 8.0 * g[..., None] * np.sqrt(radius[..., None] * hist["delta"])
     cap = mu[..., None] * hist["force"]
     dt = np.diff(hist["t"], axis=-1)
+    # What does not depend on the slip and the force, for every interval at once: the
+    # interval's spring (the mean of its ends' stiffness), its rotation omega dt, the
+    # largest sliding impulse mu dJ_n, and the scale of a shrinking contact's force.
+    k_old, k = stiffness[..., :-1], stiffness[..., 1:]
+    k_mid = 0.5 * (k_old + k)
+    omega_dt = np.sqrt(k_mid / np.asarray(m_t)[..., None]) * dt
+    cos, sinc = np.cos(omega_dt), np.sinc(omega_dt / np.pi)
+    dj_most = mu[..., None] * d_jn
+    with np.errstate(invalid="ignore", divide="ignore"):  # 1 where the contact grows
+        scale = np.where(k < k_old, k / np.where(k_old > 0.0, k_old, 1.0), 1.0)
     s = slip.copy()  # slip speed along t_hat
     f = np.zeros(shape)  # tangential force on sphere 2 along t_hat
     j_t = np.zeros(shape)
     forces = np.zeros(shape + (k_points,))
     stuck = np.zeros(shape, dtype=bool)
-    for j in range(k_points - 1):
-        k_old, k = stiffness[..., j], stiffness[..., j + 1]
-        k_mid = 0.5 * (k_old + k)
-        omega_dt = np.sqrt(k_mid / m_t) * dt[..., j]
-        cos, sinc = np.cos(omega_dt), np.sinc(omega_dt / np.pi)
-        s_trial = s * cos - f * dt[..., j] * sinc / m_t
-        f_trial = f * cos + k_mid * s * dt[..., j] * sinc
+    steps = zip(*(np.moveaxis(a, -1, 0) for a in (cos, sinc, dt, k_mid, dj_most, scale)),
+                np.moveaxis(cap, -1, 0)[1:], np.moveaxis(-cap, -1, 0)[1:])  # fmt: skip
+    for j, (cos_j, sinc_j, dt_j, k_j, most_j, scale_j, cap_j, low_j) in enumerate(steps):
+        s_trial = s * cos_j - f * dt_j * sinc_j / m_t
+        f_trial = f * cos_j + k_j * s * dt_j * sinc_j
         # Coulomb: where the spring would end above mu F_n the step slides, with the
         # impulse mu dJ_n, but never more than the elastic step's (the force is bounded by
         # both); the end force is held within mu F_n.
         dj_elastic = m_t * (s - s_trial)
-        slides = np.abs(f_trial) >= cap[..., j + 1]
-        dj_slide = np.sign(dj_elastic) * np.minimum(mu * d_jn[..., j], np.abs(dj_elastic))
+        slides = np.abs(f_trial) >= cap_j
+        dj_slide = np.sign(dj_elastic) * np.minimum(most_j, np.abs(dj_elastic))
         dj = np.where(slides, dj_slide, dj_elastic)
         s = np.where(slides, s - dj / m_t, s_trial)
-        f = np.clip(f_trial, -cap[..., j + 1], cap[..., j + 1])
         # A shrinking contact scales the force with the stiffness (Thornton et al. 2011).
-        with np.errstate(invalid="ignore", divide="ignore"):
-            f = np.where(k < k_old, f * (k / np.where(k_old > 0.0, k_old, 1.0)), f)
+        f = f_trial.clip(low_j, cap_j) * scale_j
         j_t = j_t + dj
         forces[..., j + 1] = f
         stuck |= ~slides

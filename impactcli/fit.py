@@ -223,6 +223,19 @@ def _residuals(
     return np.concatenate(parts), {k: np.asarray(v) for k, v in predicted.items()}
 
 
+def _student_t_quantile(probability: float, dof: int) -> float:
+    """The ``probability`` quantile of Student's t distribution with ``dof`` degrees of
+    freedom (NaN without one): :func:`scipy.special.stdtrit`, which ``scipy.stats.t.ppf``
+    evaluates, without importing :mod:`scipy.stats` (about 0.4 s).
+
+    >>> round(_student_t_quantile(0.975, 10), 4)
+    2.2281
+    """
+    from scipy.special import stdtrit
+
+    return float(stdtrit(dof, probability)) if dof > 0 else math.nan
+
+
 def fit_law(
     law: str,
     model: Model,
@@ -245,7 +258,6 @@ def fit_law(
     FitResult
     """
     from scipy.optimize import least_squares
-    from scipy.stats import t as student_t
 
     fixed = dict(fixed or {})
     names = tuple(p.name for p in parameters)
@@ -313,7 +325,7 @@ def fit_law(
     se_q = np.sqrt(np.diag(cov_q))
     with np.errstate(invalid="ignore", divide="ignore"):
         correlation = cov_q / np.outer(se_q, se_q)
-    t95 = float(student_t.ppf(0.975, dof)) if dof > 0 else math.nan
+    t95 = _student_t_quantile(0.975, dof)
     interval = np.column_stack([np.exp(q - t95 * se_q), np.exp(q + t95 * se_q)])
     at_bound = (np.isclose(q, lower, rtol=0, atol=1e-9)) | np.isclose(q, upper, rtol=0, atol=1e-9)
     for name, hit in zip(names, at_bound):
@@ -564,8 +576,6 @@ def prediction_band(
         ``impact_velocity`` [m/s], ``restitution``, ``lower``, ``upper`` [-] and
         ``contact_time`` [s]
     """
-    from scipy.stats import t as student_t
-
     v0 = np.asarray(impact_velocity, dtype=float).reshape(-1)
     fixed = dict(fixed or {})
     q = np.log(result.values)
@@ -590,7 +600,7 @@ def prediction_band(
             grad[j] = (up - down) / (2 * step)
         se = np.sqrt(np.maximum(np.einsum("iv,ij,jv->v", grad, cov, grad), 0.0))
     dof = result.points - p
-    t = float(student_t.ppf(0.5 + level / 2, dof)) if dof > 0 else math.nan
+    t = _student_t_quantile(0.5 + level / 2, dof)
     return {
         "impact_velocity": v0,
         "restitution": e,

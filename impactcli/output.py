@@ -319,8 +319,12 @@ def to_jsonable(value: Any) -> Any:
     if isinstance(value, Mapping):
         return {str(k): to_jsonable(v) for k, v in value.items()}
     if isinstance(value, np.ndarray):
+        if value.dtype.kind in "biu" or (value.dtype.kind == "f" and np.isfinite(value).all()):
+            return value.tolist()  # plain numbers already (a history: thousands of them)
         return to_jsonable(value.tolist())
     if isinstance(value, (list, tuple)):
+        if all(type(v) is float for v in value) and all(map(math.isfinite, value)):
+            return list(value)
         return [to_jsonable(v) for v in value]
     if isinstance(value, np.generic):
         return to_jsonable(value.item())

@@ -38,6 +38,7 @@ LIBRARY = (
     "impactcli.errors",
     "impactcli.formatting",
     "impactcli.io.table",
+    "impactcli.io.arrays",
     "impactcli.io.engines",
     "impactcli.io.csvblocks",
     "impactcli.io.fitdata",

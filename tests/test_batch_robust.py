@@ -188,6 +188,27 @@ def test_missing_spellings_in_quantity_columns_are_missing(batch):
     assert _frame(out)["error"][0] == "d1 is missing or NaN"
 
 
+def test_plain_numbers_in_a_column_with_units_are_numbers(batch):
+    """A column with units reads its plain numbers as the numbers alone are read: blanks
+    around them, an exponent, inf where allowed; one that overflows is not finite."""
+    data = (
+        b"d1,d2,v1,v2,model,material,m2\n"
+        b"20mm,40mm,1m/s,0,elastic,steel,\n"
+        b"0.02, 0.04 ,1,0,elastic,steel,\n"
+        b"2e-2,40 mm,1e400,0,elastic,steel,\n"
+        b"20mm,Infinity,+1,0,elastic,steel,inf\n"
+        b"20mm,-INF,1,0,elastic,steel,\n"
+    )
+    code, out, err = batch("-", stdin=data)
+    assert code == 0, err
+    frame = _frame(out)
+    assert frame["error"].tolist() == [
+        "", "", "v1: must be finite, got inf", "", "d2 must be positive, got -inf"
+    ]
+    assert frame["contact_time"][1] == frame["contact_time"][0] != ""
+    assert float(frame["effective_radius"][3]) == 0.01  # d2 = inf: a flat
+
+
 # -- items 5 and 8: inputs that are not a table: one line, exit 2, bounded ------------------
 
 

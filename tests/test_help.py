@@ -9,13 +9,14 @@ import re
 import shlex
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 import typer.main
 
 from impactcli.cli import app
 from impactcli.cli.helptext import HELP_WIDTH, example_commands, first_sentence
-from tests.conftest import ROOT, run_impact
+from tests.conftest import DATA, ROOT, run_impact
 
 COMMANDS = sorted(typer.main.get_command(app).commands)
 HEAVY = ("pandas", "scipy", "pint", "matplotlib")
@@ -143,6 +144,17 @@ LIGHT_RUNS = {
                 "--material", "steel", "--points", "3", "-f", "csv"],
     "collide2d": ["collide2d", "--m1", "50g", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
                   "--v2", "2m/s", "--a2", "50deg", "--p1=-1,2", "--p2=2,-2", "-f", "csv"],
+    "collide3d": ["collide3d", "--d1", "5mm", "--material1", "steel", "--d2", "inf", "--m2",
+                  "inf", "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1", "--v1", "3m/s@45deg",
+                  "--w1", "0,-300rpm,0", "--mu", "0.2", "--damping", "tsuji", "--alpha", "0.3",
+                  "-f", "csv"],
+    "compare-laws": ["compare-laws", "--d1", "20mm", "--d2", "40mm", "--v1", "0.25m/s", "--v2",
+                     "0.75m/s", "--material", "steel", "--law", "du-wang", "--law", "thornton",
+                     "-f", "csv"],
+    "yield-limit": ["yield-limit", "--d1", "20mm", "--d2", "40mm", "--material", "steel",
+                    "--v0", "0.1m/s", "-f", "json"],
+    "timestep": ["timestep", "--d1", "2mm", "--material", "glass", "--v0", "1m/s", "-f", "json"],
+    "batch": ["batch", str((DATA / "collisions.csv").relative_to(ROOT)), "-f", "csv"],
 }  # fmt: skip
 START_UP = [["--help"], ["--version"], *([c, "--help"] for c in COMMANDS), *LIGHT_RUNS.values()]
 
@@ -155,7 +167,8 @@ def test_start_up_imports_no_heavy_library():
         "import contextlib, io, json, sys\n"
         "from impactcli.cli import main\n"
         "for args in json.loads(sys.argv[1]):\n"
-        "    with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    out = io.TextIOWrapper(io.BytesIO(), encoding='utf-8')\n"
+        "    with contextlib.redirect_stdout(out):\n"
         "        try:\n"
         "            main(args)\n"
         "        except SystemExit as exc:\n"
@@ -169,3 +182,51 @@ def test_start_up_imports_no_heavy_library():
         cwd=ROOT, timeout=120,
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
+
+
+def _modules_after(*args: str, cwd: Path = ROOT) -> tuple[subprocess.CompletedProcess, set[str]]:
+    """Run ``impact ARGS`` in a fresh process: (the completed process, the modules it
+    imported)."""
+    code = (
+        "import sys\n"
+        "from impactcli.cli import main\n"
+        "try:\n"
+        "    main(sys.argv[1:])\n"
+        "except SystemExit as exc:\n"
+        "    code = exc.code\n"
+        "print('MODULES=' + ','.join(sorted(sys.modules)), file=sys.stderr)\n"
+        "sys.exit(code)\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code, *args], capture_output=True, text=True, cwd=cwd, timeout=120
+    )
+    result.stderr, _, modules = result.stderr.rpartition("MODULES=")
+    return result, set(modules.strip().split(","))
+
+
+@pytest.mark.parametrize(
+    ("source", "output"), [("csv", "csv"), ("csv", "parquet"), ("parquet", "csv")]
+)
+def test_batch_numpy_engine_imports_pyarrow_alone(source, output, tmp_path):
+    """``impact batch`` with the NumPy engine reads and writes its tables with pyarrow
+    alone: neither pandas (which pyarrow's own conversions import) nor pyarrow.compute (its
+    wrappers of Arrow's functions), on a good table and on one with a malformed line."""
+    pyarrow = pytest.importorskip("pyarrow")
+    from pyarrow import csv as pa_csv
+    from pyarrow import parquet as pq
+
+    table = (DATA / "collisions.csv").read_text()
+    if source == "parquet":
+        names = table.split()[0].split(",")
+        strings = pa_csv.ConvertOptions(column_types=dict.fromkeys(names, pyarrow.string()))
+        rows = pa_csv.read_csv(DATA / "collisions.csv", convert_options=strings)
+        pq.write_table(rows, tmp_path / "in.parquet")
+    else:
+        (tmp_path / "in.csv").write_text(table + "bad,20mm\n")
+    args = ["batch", f"in.{source}", "-o", f"out.{output}"]
+    result, modules = _modules_after(*args, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "row 4: malformed line" in result.stderr or source == "parquet"
+    assert (tmp_path / f"out.{output}").stat().st_size > 0
+    assert "pyarrow" in modules
+    assert not modules & {*HEAVY, "pyarrow.compute"}

@@ -360,6 +360,7 @@ def run_collisions3d(
 
     import pyarrow as pa
 
+    from impactcli.io.arrays import float_array, text_array
     from impactcli.io.engines import BatchReport
     from impactcli.io.readers import first_line, open_stream
     from impactcli.io.writers import TableFormat, TableSink
@@ -386,9 +387,8 @@ def run_collisions3d(
                     raise InputError(first_line(exc)) from None
                 report.add(result["error"], report.rows)
                 columns = list(batch.columns) + [
-                    pa.array(result[c], type=pa.float64(), from_pandas=True)
-                    for c in output_columns3d()[:-1]
-                ] + [pa.array(result["error"], type=pa.string())]  # fmt: skip
+                    float_array(result[c]) for c in output_columns3d()[:-1]
+                ] + [text_array(result["error"].tolist())]  # fmt: skip
                 sink.write(pa.RecordBatch.from_arrays(columns, schema=out_schema))
                 report.rows += batch.num_rows
             sink.close()

@@ -186,12 +186,16 @@ def parse_block(block: bytes, names: list[str], final: bool = True):
 def _empty(names: list[str]):
     import pyarrow as pa
 
-    return pa.RecordBatch.from_arrays([pa.array([], pa.string()) for _ in names], names=names)
+    from impactcli.io.arrays import text_array
+
+    return pa.RecordBatch.from_arrays([text_array([]) for _ in names], names=names)
 
 
 def _parse_records(block: bytes, names: list[str], final: bool):
     """:func:`parse_block`, record by record, for a block with a malformed line."""
     import pyarrow as pa
+
+    from impactcli.io.arrays import text_array
 
     lines = block.decode("utf-8", "surrogateescape").split("\n")
     if lines and lines[-1] == "":
@@ -225,7 +229,7 @@ def _parse_records(block: bytes, names: list[str], final: bool):
         i += span
     if not cells:
         return _empty(names), None, rest
-    columns = [pa.array(list(col), type=pa.string()) for col in zip(*cells)]
+    columns = [text_array(col) for col in zip(*cells)]
     batch = pa.RecordBatch.from_arrays(columns, names=names)
     return batch, np.array(errors, dtype=object), rest
 

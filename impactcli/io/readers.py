@@ -10,6 +10,8 @@ import os
 import sys
 from collections.abc import Iterator
 
+import numpy as np
+
 from impactcli.errors import InputError
 from impactcli.io.table import NULL_VALUES, QUANTITY_COLUMNS, check_columns
 
@@ -109,44 +111,58 @@ def first_line(exc: BaseException) -> str:
     return text[0] if text else type(exc).__name__
 
 
-def compute_input(batch, used: list[str]):
-    """The columns of a RecordBatch (or Table) that :func:`~impactcli.io.table.compute_frame` reads,
-    as pandas: the spellings of "missing" (:data:`~impactcli.io.table.NULL_VALUES`) become
-    null, and text columns that are then all numbers become floats by one Arrow cast; only
-    the others go through its slower path (numbers, then units). A column that cannot hold
-    a quantity or a name (a list, a struct, bytes that are not UTF-8) is one line."""
+def compute_input(batch, used: list[str]) -> dict[str, np.ndarray]:
+    """The columns of a RecordBatch (or Table) that :func:`~impactcli.io.table.compute_frame`
+    reads, as NumPy arrays: the spellings of "missing" (:data:`~impactcli.io.table.NULL_VALUES`)
+    become null, and text columns that are then all numbers become floats by one Arrow cast;
+    only the others go through its slower path (numbers, then units). Text is an object
+    array (None where null), numbers float or int (NaN where null), booleans bool (an
+    object array where one is null). A column that cannot hold a quantity or a name (a
+    list, a struct, bytes that are not UTF-8) is one line."""
     import pyarrow as pa
-    import pyarrow.compute as pc
 
-    nulls = pa.array(NULL_VALUES, pa.string())
-    columns = []
+    from impactcli.io.arrays import cast, kernels, text_array, to_numpy
+
+    arrow = kernels()
+    nulls = arrow.SetLookupOptions(text_array(NULL_VALUES))
+    columns = {}
     for name in used:
         column = _as_text_or_number(batch.column(name), name)
-        if pa.types.is_string(column.type):
-            column = pc.if_else(
-                pc.is_in(column, value_set=nulls), pa.scalar(None, pa.string()), column
-            )
-            if name in QUANTITY_COLUMNS:
-                try:
-                    column = pc.cast(column, pa.float64())
-                except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
-                    pass
-        columns.append(column)
-    return pa.table(columns, names=used).to_pandas()
+        if not pa.types.is_string(column.type):
+            columns[name] = to_numpy(column)
+            continue
+        spelled = arrow.call_function("is_in", [column], nulls)  # "missing", spelled out
+        if name in QUANTITY_COLUMNS:  # the other cells all numbers: one cast
+            kept = arrow.call_function("invert", [spelled])
+            try:
+                numbers = cast(arrow.call_function("filter", [column, kept]), pa.float64())
+            except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+                pass
+            else:
+                values = np.full(len(column), np.nan)
+                values[to_numpy(kept)] = to_numpy(numbers)
+                columns[name] = values
+                continue
+        cells = to_numpy(column)
+        cells[to_numpy(spelled)] = None
+        columns[name] = cells
+    return columns
 
 
 def _as_text_or_number(column, name: str):
     """A used column as strings, numbers, booleans or nulls; one line if it cannot be."""
     import pyarrow as pa
 
+    from impactcli.io.arrays import cast
+
     kind = column.type
     if pa.types.is_dictionary(kind):
-        column, kind = column.cast(kind.value_type), kind.value_type
+        column, kind = cast(column, kind.value_type), kind.value_type
     if pa.types.is_large_string(kind) or pa.types.is_string_view(kind):
-        return column.cast(pa.string())
+        return cast(column, pa.string())
     if pa.types.is_binary(kind) or pa.types.is_large_binary(kind):
         try:
-            return column.cast(pa.string())
+            return cast(column, pa.string())
         except pa.ArrowInvalid:
             raise InputError(f"column {name}: bytes that are not UTF-8 text") from None
     if (
@@ -157,5 +173,5 @@ def _as_text_or_number(column, name: str):
         or pa.types.is_null(kind)
         or pa.types.is_decimal(kind)
     ):
-        return column.cast(pa.float64()) if pa.types.is_decimal(kind) else column
+        return cast(column, pa.float64()) if pa.types.is_decimal(kind) else column
     raise InputError(f"column {name} holds {kind}; expected numbers or text")

@@ -1,17 +1,19 @@
 """The table layer of ``impact batch``: columns of a chunk of rows -> SI arrays -> summaries.
 
-:func:`compute_frame` is the public, pure per-chunk function: a pandas DataFrame of input
-columns (numbers in SI or strings with units, materials, the model of each row) in, the
-result columns (:func:`output_columns`) out, through the kernel
+:func:`compute_frame` is the public, pure per-chunk function: the input columns as NumPy
+arrays (numbers in SI or strings with units, materials, the model of each row; or a pandas
+DataFrame) in, the result columns (:func:`output_columns`) out, through the kernel
 :func:`impactcli.batch.batch_impacts`. Both engines map it (:mod:`impactcli.io.engines`):
 the NumPy engine over the chunks of a stream, the Dask engine over the partitions of a
 Dask DataFrame (:func:`dask_partition`); a Dask worker imports this module and the
-physics, never the command line. pandas is imported inside the functions.
+physics, never the command line. The NumPy engine never imports pandas; the Dask
+functions import it inside.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import re
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -39,6 +41,7 @@ __all__ = [
     "output_columns",
     "partition_errors",
     "row_warnings",
+    "table_columns",
     "used_columns",
 ]
 
@@ -180,43 +183,135 @@ def check_columns(names: Sequence[str], model: str | None) -> None:
     check_output_clash(present, output_columns(), "impact batch")
 
 
-def _quantity_column(series, kind: str, name: str, allow_inf: bool):
-    """SI floats of one column (NaN where missing) and each row's parse error (or "")."""
-    import pandas as pd
+#: A cell read as a plain number without the units parser: ASCII digits with an optional
+#: sign, point and exponent, blanks around them; or inf, infinity with an optional sign. A
+#: number that overflows is inf (then "must be finite"), one that underflows is 0.
+_PLAIN_NUMBER = re.compile(
+    r"[ \t\n\v\f\r]*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?[ \t\n\v\f\r]*"
+    r"|[+-]?inf(?:inity)?",
+    re.IGNORECASE,
+)
 
+
+def table_columns(frame) -> tuple[dict[str, np.ndarray], int]:
+    """The columns of a chunk as NumPy arrays, and its number of rows.
+
+    ``frame`` is a mapping of column name -> 1-D array (or list): numbers (NaN where
+    missing), text (None, NaN or ``pandas.NA`` where missing) or booleans, as
+    :func:`impactcli.io.readers.compute_input` gives them; or a pandas DataFrame, whose
+    boolean columns are read as text (``True``, ``False``) and nullable numbers as numbers.
+    """
+    if isinstance(frame, Mapping):
+        columns = {name: np.asarray(values) for name, values in frame.items()}
+        if any(values.ndim != 1 for values in columns.values()):
+            raise ValueError("each column must be one-dimensional")
+        sizes = {values.shape[0] for values in columns.values()}
+        if len(sizes) > 1:
+            raise ValueError(f"columns of different lengths: {sorted(sizes)}")
+        return columns, sizes.pop() if sizes else 0
+    columns = {}
+    for name in frame.columns:  # a pandas DataFrame
+        series = frame[name]
+        if isinstance(series.dtype, np.dtype):
+            columns[name] = series.to_numpy()
+        elif series.dtype.kind == "b":  # nullable booleans: text, as NumPy's are
+            columns[name] = series.astype("string").to_numpy(dtype=object, na_value=None)
+        else:  # nullable numbers, strings, categories: Python objects, None where missing
+            columns[name] = series.to_numpy(dtype=object, na_value=None)
+    return columns, len(frame)
+
+
+def _missing(cell: object) -> bool:
+    """Whether a cell is missing: None, NaN, ``pandas.NA`` or ``NaT``."""
+    if cell is None:
+        return True
+    if isinstance(cell, float | np.floating):
+        return bool(np.isnan(cell))
+    return type(cell).__name__ in ("NAType", "NaTType")
+
+
+def _distinct(values: np.ndarray) -> tuple[list, np.ndarray]:
+    """The distinct cells of a column and the index of each row's cell among them: each
+    distinct cell is then read once. Numbers and booleans stay NumPy scalars (their text
+    is NumPy's: ``0.1`` for a float32); in object columns ``True``, ``1`` and ``1.0`` are
+    distinct cells."""
+    if values.dtype != object:
+        unique, codes = np.unique(values, return_inverse=True)
+        return list(unique), codes.reshape(-1)
+    keys = [c if c.__class__ is str else (c.__class__, c) for c in values.tolist()]
+    index: dict[object, int] = {}
+    codes = np.array([index.setdefault(k, len(index)) for k in keys], dtype=np.intp)
+    return [k if k.__class__ is str else k[1] for k in index], codes
+
+
+def _quantity_column(values: np.ndarray, kind: str, name: str, allow_inf: bool):
+    """SI floats of one column (NaN where missing) and each row's parse error (or "").
+
+    Numbers are SI. Booleans are text (an error). A text cell (or UTF-8 bytes) that is a
+    plain number (:data:`_PLAIN_NUMBER`) is read as one, a blank cell or a spelling of
+    "missing" (:data:`NULL_VALUES`, blanks around it) is missing, and any other goes
+    through :func:`impactcli.units.parse_quantities` (numbers with units)."""
     from impactcli.units import parse_quantities
 
-    size = len(series)
+    values = np.asarray(values)
+    size = values.shape[0]
     errors = np.full(size, "", dtype=object)
-    if pd.api.types.is_bool_dtype(series.dtype):
-        series = series.astype("string")
-    if pd.api.types.is_numeric_dtype(series.dtype):
-        values = np.array(series.to_numpy(dtype=float, na_value=np.nan))
+    if values.dtype.kind == "b":
+        values = values.astype(str).astype(object)  # True, False
+    if values.dtype.kind in "iuf":
+        numbers = values.astype(float)
     else:
-        numbers = pd.to_numeric(series, errors="coerce")
-        values = np.array(numbers.to_numpy(dtype=float, na_value=np.nan))
-        text = np.flatnonzero(np.isnan(values) & series.notna().to_numpy())
-        if text.size:  # units, and the spellings of "missing"
-            cells = series.iloc[text].astype(str).to_numpy(dtype=object)
-            missing = np.isin(np.char.strip(cells.astype(str)), NULL_VALUES)
-            cells[missing] = None
-            values[text], errors[text] = parse_quantities(cells, kind, name, allow_inf)
+        cells, codes = _distinct(values.astype(object))
+        found = np.full(len(cells), np.nan)
+        text: list[int] = []
+        for k, cell in enumerate(cells):
+            if isinstance(cell, bytes):
+                cells[k] = cell = cell.decode("utf-8")
+            if isinstance(cell, str):
+                if _PLAIN_NUMBER.fullmatch(cell):
+                    found[k] = float(cell)
+                # trailing NUL characters do not count, as blanks do not
+                elif cell.rstrip("\x00").strip() not in NULL_VALUES:
+                    text.append(k)
+            elif not _missing(cell):
+                try:  # a number in an object column (a boolean is 1 or 0 there)
+                    found[k] = float(cell)  # type: ignore[arg-type]
+                except (TypeError, ValueError):
+                    cells[k] = str(cell)
+                    text.append(k)
+        messages = np.full(len(cells), "", dtype=object)
+        if text:  # units, and text that is not a quantity
+            found[text], messages[text] = parse_quantities(
+                [cells[k] for k in text], kind, name, allow_inf
+            )
+        numbers, errors = found[codes], messages[codes]
     if not allow_inf:
-        inf = np.flatnonzero(np.isinf(values))
-        errors[inf] = [f"{name}: must be finite, got {v:g}" for v in values[inf].tolist()]
-        values[inf] = np.nan
-    return values, errors
+        inf = np.flatnonzero(np.isinf(numbers))
+        errors[inf] = [f"{name}: must be finite, got {v:g}" for v in numbers[inf].tolist()]
+        numbers[inf] = np.nan
+    return numbers, errors
 
 
-def _text_column(frame, name: str, size: int, lower: bool = False) -> np.ndarray:
-    """A text column as an object array, None where missing (all None if absent)."""
-    if name not in frame.columns:
+def _text_column(
+    columns: Mapping[str, np.ndarray], name: str, size: int, lower: bool = False
+) -> np.ndarray:
+    """A text column as an object array, None where missing (all None if absent): each
+    cell's text (numbers and booleans as written by NumPy, bytes as UTF-8) without blanks
+    around it, in lower case if ``lower`` (each letter's own lower case: ``İ`` is ``i``);
+    missing where it is then a spelling of "missing" (:data:`NULL_VALUES`)."""
+    if name not in columns:
         return np.full(size, None, dtype=object)
-    column = frame[name].astype("string").str.strip()
-    if lower:
-        column = column.str.lower()
-    missing = column.isna() | column.isin(NULL_VALUES)
-    return column.astype(object).where(~missing, None).to_numpy()
+    cells, codes = _distinct(np.asarray(columns[name]))
+    texts = np.full(len(cells), None, dtype=object)
+    for k, cell in enumerate(cells):
+        if _missing(cell):
+            continue
+        text = (cell.decode("utf-8") if isinstance(cell, bytes) else str(cell)).strip()
+        if lower:
+            text = text.replace("\u0130", "i").lower()
+        if text not in NULL_VALUES:
+            texts[k] = text
+    return texts[codes]
 
 
 @without_float_warnings
@@ -227,12 +322,13 @@ def compute_frame(
     model: str | None = None,
     faults: np.ndarray | None = None,
 ) -> dict[str, np.ndarray]:
-    """The result columns of a chunk of rows (a pandas DataFrame of input columns).
+    """The result columns of a chunk of rows: its input columns, name -> array.
 
     Parameters
     ----------
-    frame : the chunk; columns as :data:`QUANTITY_COLUMNS` (numbers in SI or strings with
-        units) and :data:`TEXT_COLUMNS`; others are ignored
+    frame : the chunk, a mapping of column name -> 1-D array or a pandas DataFrame
+        (:func:`table_columns`); columns as :data:`QUANTITY_COLUMNS` (numbers in SI or
+        strings with units) and :data:`TEXT_COLUMNS`; others are ignored
     n : FILM segments per stage
     split : ``mass``, ``compliance`` or ``yield`` share of the indentation between the
         spheres, for rows whose ``split`` cell is empty (:func:`_sphere_shares`)
@@ -252,12 +348,10 @@ def compute_frame(
     --------
     The paper's sec. 4.3 impact and a row with no yield strength for its model:
 
-    >>> import pandas as pd
-    >>> rows = pd.DataFrame({"d1": ["20mm", "20mm"], "d2": ["40mm", "40mm"],
-    ...                      "v1": ["5mm/s", "1"], "v2": ["7.5mm/s", "0"],
-    ...                      "model": ["elastic", "elastoplastic"], "E": [None, "210GPa"],
-    ...                      "nu": [None, "0.3"], "rho": [None, "7800"],
-    ...                      "material": ["steel", None]})
+    >>> rows = {"d1": ["20mm", "20mm"], "d2": ["40mm", "40mm"],
+    ...         "v1": ["5mm/s", "1"], "v2": ["7.5mm/s", "0"],
+    ...         "model": ["elastic", "elastoplastic"], "E": [None, "210GPa"],
+    ...         "nu": [None, "0.3"], "rho": [None, "7800"], "material": ["steel", None]}
     >>> out = compute_frame(rows)
     >>> round(float(out["contact_time"][0]) * 1e6, 2), out["error"][0]
     (171.32, '')
@@ -271,7 +365,7 @@ def compute_frame(
         material_properties,
     )
 
-    size = len(frame)
+    columns, size = table_columns(frame)
     errors = Problems(size)
     if faults is not None:
         errors.add_messages(np.asarray(faults, dtype=object))
@@ -279,17 +373,17 @@ def compute_frame(
     # Quantities, in column order: the first bad cell of a row is its error.
     q: dict[str, np.ndarray] = {}
     for name, (kind, allow_inf) in QUANTITY_COLUMNS.items():
-        if name in frame.columns:
-            q[name], bad = _quantity_column(frame[name], kind, name, allow_inf)
+        if name in columns:
+            q[name], bad = _quantity_column(columns[name], kind, name, allow_inf)
             errors.add_messages(bad)
         else:
             q[name] = np.full(size, np.nan)
 
     # Materials: material{i}, else material. Explicit columns win: E{i}, then E, then these.
     spheres: list[dict[str, np.ndarray]] = []
-    shared = _text_column(frame, "material", size)
+    shared = _text_column(columns, "material", size)
     for i in (1, 2):
-        own = _text_column(frame, f"material{i}", size)
+        own = _text_column(columns, f"material{i}", size)
         names = np.where(np.equal(own, None), shared, own)
         *props, bad = material_properties(names)
         errors.add_messages(bad)
@@ -299,19 +393,19 @@ def compute_frame(
         spheres.append(sphere)
 
     # The law of each row (a law cell wins over the model), its parameters.
-    laws, law_params, elastic_law = _row_laws(frame, size, errors)
+    laws, law_params, elastic_law = _row_laws(columns, size, errors)
 
     # The model of each row without a law.
-    key = _text_column(frame, "model", size, lower=True)
+    key = _text_column(columns, "model", size, lower=True)
     if model is not None:
         key = np.where(np.equal(key, None), model, key)
     key = np.where(np.equal(laws, None), key, "")
-    damped_rows = ~np.equal(_text_column(frame, "damping", size), None)
+    damped_rows = ~np.equal(_text_column(columns, "damping", size), None)
     key = np.where(damped_rows & np.equal(key, None), "", key)  # damped: elastic anyway
     errors.add(np.equal(key, None), "model is missing (elastic or elastoplastic; or a law)")
     unknown = np.flatnonzero(~np.equal(key, None) & (key != "") & ~np.isin(key, MODELS))
     if unknown.size:
-        given = _text_column(frame, "model", size)
+        given = _text_column(columns, "model", size)
         message = np.full(size, "", dtype=object)
         message[unknown] = [
             f"model must be elastic or elastoplastic, got {v!r}" for v in given[unknown]
@@ -326,7 +420,7 @@ def compute_frame(
         s1["E"], s1["nu"], s2["E"], s2["nu"],
         s1["rho"], s2["rho"], s1["m"], s2["m"], s1["sy"], s2["sy"], plastic,
     )  # fmt: skip
-    damped, damping = _row_damping(frame, size, errors, laws, key)
+    damped, damping = _row_damping(columns, size, errors, laws, key)
     result = {k: np.full(size, np.nan) for k in (*BATCH_KEYS, *EXTRA_KEYS)}
     kernel = np.full(size, "", dtype=object)
     for rows, name, rule in _damping_groups(damped, damping, ~errors.bad):
@@ -351,7 +445,7 @@ def compute_frame(
                 result[k][part] = out[k]
             kernel[part] = out["error"]
     errors.add_messages(kernel)
-    splits = _text_column(frame, "split", size, lower=True)
+    splits = _text_column(columns, "split", size, lower=True)
     splits = np.where(np.equal(splits, None), split, splits).astype(str)
     errors.add(~np.isin(splits, SPLITS), f"split must be {', '.join(SPLITS)}")
     notes = _sphere_shares(result, splits, s1, s2, q, ~errors.bad)
@@ -371,7 +465,7 @@ def compute_frame(
     return result
 
 
-def _row_laws(frame, size: int, errors: Problems):
+def _row_laws(columns, size: int, errors: Problems):
     """Each row's law name (None: by the model column), its parameters by column
     (:func:`law_parameter_columns`: SI floats, NaN where empty; text for files and
     choices) and whether the law is elastic. Faults of a row (an unknown law, a parameter
@@ -380,7 +474,7 @@ def _row_laws(frame, size: int, errors: Problems):
     from impactcli.lawlib import get_law
     from impactcli.units import KINDS
 
-    given = _text_column(frame, "law", size)
+    given = _text_column(columns, "law", size)
     laws = np.full(size, None, dtype=object)
     elastic = np.zeros(size, dtype=bool)
     message = np.full(size, "", dtype=object)
@@ -398,14 +492,14 @@ def _row_laws(frame, size: int, errors: Problems):
 
     params: dict[str, np.ndarray] = {}
     for column, (kind, takers) in law_parameter_columns().items():
-        if column not in frame.columns:
+        if column not in columns:
             continue
         if kind in ("file", "choice"):
-            params[column] = _text_column(frame, column, size)
+            params[column] = _text_column(columns, column, size)
             present = ~np.equal(params[column], None)
         else:
             unit_kind = kind if kind in KINDS else "dimensionless"  # e.g. stiffness: SI
-            params[column], bad = _quantity_column(frame[column], unit_kind, column, False)
+            params[column], bad = _quantity_column(columns[column], unit_kind, column, False)
             errors.add_messages(bad)
             values = params[column]
             present = ~np.isnan(values)
@@ -491,26 +585,29 @@ def _sphere_shares(result: dict, splits, s1: dict, s2: dict, q: dict, valid) -> 
     return notes
 
 
-def _row_damping(frame, size: int, errors: Problems, laws: np.ndarray, model: np.ndarray):
+def _row_damping(
+    columns: Mapping[str, np.ndarray], size: int, errors: Problems, laws: np.ndarray,
+    model: np.ndarray,
+):  # fmt: skip
     """Each row's damping law (None: undamped) and its ``alpha``, ``e`` (NaN where empty)
     and ``separation`` (None: overlap). Damping is for elastic (Hertz) rows: a damping
     with the elastoplastic model or another law, an unknown damping law or separation
     rule, and alpha or e on an undamped row are the row's error."""
-    from impactcli.damping import DAMPING_LAWS, SEPARATIONS
-
-    damped = _text_column(frame, "damping", size, lower=True)
+    damped = _text_column(columns, "damping", size, lower=True)
     given = ~np.equal(damped, None)
-    values: dict[str, np.ndarray] = {"separation": _text_column(frame, "separation", size,
+    values: dict[str, np.ndarray] = {"separation": _text_column(columns, "separation", size,
                                                                  lower=True)}  # fmt: skip
     for column in DAMPING_COLUMNS:
-        if column in frame.columns:
-            values[column], bad = _quantity_column(frame[column], "dimensionless", column, False)
+        if column in columns:
+            values[column], bad = _quantity_column(columns[column], "dimensionless", column, False)
             errors.add_messages(bad)
         else:
             values[column] = np.full(size, np.nan)
         errors.add(~given & ~np.isnan(values[column]), f"{column} is for rows with a damping law")
     if not given.any():
         return damped, values
+    from impactcli.damping import DAMPING_LAWS, SEPARATIONS
+
     errors.add(
         given & ~np.isin(damped.astype(str), list(DAMPING_LAWS)),
         f"damping must be {' or '.join(DAMPING_LAWS)}",

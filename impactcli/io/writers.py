@@ -48,13 +48,15 @@ class TableSink:
             return
         self._write_header()
         import pyarrow as pa
-        import pyarrow.compute as pc
         from pyarrow import csv as pa_csv
 
+        from impactcli.io.arrays import cast, kernels
+
+        arrow = kernels()
         for k, field in enumerate(batch.schema):  # bytes carried through: as UTF-8 text
             if pa.types.is_binary(field.type) or pa.types.is_large_binary(field.type):
                 try:
-                    column = batch.column(k).cast(pa.string())
+                    column = cast(batch.column(k), pa.string())
                 except pa.ArrowInvalid:
                     raise InputError(
                         f"column {field.name}: bytes that are not UTF-8 text cannot be "
@@ -63,8 +65,11 @@ class TableSink:
                 batch = batch.set_column(k, field.name, column)
 
         # Quote strings only when a chunk has a string that needs it (a comma, a quote).
+        special = arrow.MatchSubstringOptions('[",\r\n]')
         needs = any(
-            pc.any(pc.match_substring_regex(col, '[",\r\n]')).as_py()
+            arrow.call_function(
+                "any", [arrow.call_function("match_substring_regex", [col], special)]
+            ).as_py()
             for col in batch.columns
             if pa.types.is_string(col.type) or pa.types.is_large_string(col.type)
         )
@@ -97,15 +102,17 @@ def _csv_field(text: str) -> str:
 
 
 def result_batch(batch, result: dict[str, np.ndarray], schema):
-    """The input batch's columns followed by the result columns."""
+    """The input batch's columns followed by the result columns (NaN as null)."""
     import pyarrow as pa
+
+    from impactcli.io.arrays import float_array, text_array
 
     columns = list(batch.columns)
     for name in output_columns():
         if name in TEXT_OUTPUTS:
-            columns.append(pa.array(result[name], type=pa.string()))
+            columns.append(text_array(result[name].tolist()))
         else:
-            columns.append(pa.array(result[name], type=pa.float64(), from_pandas=True))
+            columns.append(float_array(result[name]))
     return pa.RecordBatch.from_arrays(columns, schema=schema)
 
 
