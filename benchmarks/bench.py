@@ -412,7 +412,7 @@ START_UP_COMMANDS: dict[str, list[str]] = {
         "yield-limit", *PAPER, "--v0", "0.1m/s",
     ],
     "impact timestep (units)": ["timestep", "--d1", "2mm", "--material", "glass", "--v0", "1m/s"],
-    "impact fit, 12 drop tests, one law (imports scipy.optimize; units)": [
+    "impact fit, 12 drop tests, one law (units)": [
         "fit", "docs/data/drop_tests_steel.csv", "--law", "du-wang", "--d1", "20mm",
         "--d2", "inf", "--m2", "inf", "--material", "steel",
     ],

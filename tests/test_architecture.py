@@ -53,6 +53,7 @@ LIBRARY = (
     "impactcli.energy",
     "impactcli.design",
     "impactcli.fit",
+    "impactcli.lsq",
     "impactcli.limits",
     "impactcli.units",
     "impactcli",

@@ -155,6 +155,8 @@ LIGHT_RUNS = {
                     "--v0", "0.1m/s", "-f", "json"],
     "timestep": ["timestep", "--d1", "2mm", "--material", "glass", "--v0", "1m/s", "-f", "json"],
     "batch": ["batch", str((DATA / "collisions.csv").relative_to(ROOT)), "-f", "csv"],
+    "fit": ["fit", "docs/data/drop_tests_steel.csv", "--law", "du-wang", "--d1", "20mm", "--d2",
+            "inf", "--m2", "inf", "--material", "steel", "-f", "csv"],
 }  # fmt: skip
 START_UP = [["--help"], ["--version"], *([c, "--help"] for c in COMMANDS), *LIGHT_RUNS.values()]
 
