@@ -15,6 +15,7 @@ from impactcli.cli.common import (
     PlotFile,
     check_plot,
     console,
+    quantity_table,
     resolve_format,
     save_plot,
 )
@@ -363,34 +364,34 @@ def _print_tables(
         velocities.add_row(label, *cells, unit)
     out.print(velocities)
 
-    collision = Table(title="Line of centres and impulse")
-    for header, justify in (("", "left"), ("value", "right"), ("unit", "left")):
-        collision.add_column(header, justify=justify)
-    for label, key, unit in (
-        ("line of centres angle", "line_of_centres_angle", "deg"),
-        ("approach velocity (v1 - v2).n", "approach_velocity", "m/s"),
-        ("separation velocity (v2' - v1').n", "separation_velocity", "m/s"),
-        ("coefficient of restitution", "restitution", ""),
-        ("normal impulse on sphere 2", "normal_impulse", "N s"),
-        ("energy dissipated", "energy_dissipated", "J"),
-    ):
-        collision.add_row(label, f(s[key]), unit)
+    collision = quantity_table(
+        "Line of centres and impulse",
+        ("", "value", "unit"),
+        (
+            (label, f(s[key]), unit)
+            for label, key, unit in (
+                ("line of centres angle", "line_of_centres_angle", "deg"),
+                ("approach velocity (v1 - v2).n", "approach_velocity", "m/s"),
+                ("separation velocity (v2' - v1').n", "separation_velocity", "m/s"),
+                ("coefficient of restitution", "restitution", ""),
+                ("normal impulse on sphere 2", "normal_impulse", "N s"),
+                ("energy dissipated", "energy_dissipated", "J"),
+            )
+        ),
+    )
     out.print(collision)
-
-    totals = Table(title="Conservation (eqs. 17a-c)")
-    for header, justify in (
-        ("", "left"),
-        ("before", "right"),
-        ("after", "right"),
-        ("unit", "left"),
-    ):
-        totals.add_column(header, justify=justify)
-    for label, key, unit in (
-        ("momentum x", "momentum_x", "kg m/s"),
-        ("momentum y", "momentum_y", "kg m/s"),
-        ("kinetic energy", "kinetic_energy", "J"),
-    ):
-        totals.add_row(label, f(s[f"{key}_before"]), f(s[f"{key}_after"]), unit)
+    totals = quantity_table(
+        "Conservation (eqs. 17a-c)",
+        ("", "before", "after", "unit"),
+        (
+            (label, f(s[f"{key}_before"]), f(s[f"{key}_after"]), unit)
+            for label, key, unit in (
+                ("momentum x", "momentum_x", "kg m/s"),
+                ("momentum y", "momentum_y", "kg m/s"),
+                ("kinetic energy", "kinetic_energy", "J"),
+            )
+        ),
+    )
     out.print(totals)
 
 

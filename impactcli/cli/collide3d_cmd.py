@@ -16,6 +16,7 @@ from impactcli.cli.common import (
     PlotFile,
     check_plot,
     console,
+    quantity_table,
     resolve_format,
     save_plot,
 )
@@ -427,8 +428,6 @@ def summary(c) -> dict[str, float]:
 
 
 def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> None:
-    from rich.table import Table
-
     def f(value: float) -> str:
         return f"{value:.6g}"
 
@@ -440,66 +439,71 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
         f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = {f(s['restitution'])}; "
         f"{inputs['tangential_model']} tangential, mu = {f(inputs['mu'])})"
     )
-    motion = Table(title=title)
-    for header in ("", "before", "after", "unit"):
-        motion.add_column(header, justify="left" if header in ("", "unit") else "right")
-    for label, before, after, unit in (
-        ("v1", inputs["v1"], "v1_final", "m/s"),
-        ("w1", inputs["w1"], "w1_final", "rad/s"),
-        ("v2", inputs["v2"], "v2_final", "m/s"),
-        ("w2", inputs["w2"], "w2_final", "rad/s"),
-    ):
-        motion.add_row(label, "(" + ", ".join(f(x) for x in before) + ")", triple(after), unit)
+    motion = quantity_table(
+        title,
+        ("", "before", "after", "unit"),
+        (
+            (label, "(" + ", ".join(f(x) for x in inputs[label]) + ")", triple(f"{label}_final"),
+             unit)
+            for label, unit in (("v1", "m/s"), ("w1", "rad/s"), ("v2", "m/s"), ("w2", "rad/s"))
+        ),
+    )  # fmt: skip
     out.print(motion)
 
-    contact = Table(title="Contact")
-    for header in ("", "value", "unit"):
-        contact.add_column(header, justify="right" if header == "value" else "left")
-    for label, key, unit in (
-        ("approach velocity u_n", "approach_velocity", "m/s"),
-        ("slip speed |u_t| before", "slip_speed", "m/s"),
-        ("slip u_t' along the initial slip", "slip_speed_final", "m/s"),
-        ("normal restitution", "normal_restitution", ""),
-        ("tangential restitution", "tangential_restitution", ""),
-        ("incident angle at the contact", "incident_angle", "deg"),
-        ("rebound angle at the contact", "rebound_angle", "deg"),
-        ("rebound angle of the centres", "centre_rebound_angle", "deg"),
-        ("stuck (1) or slid throughout (0)", "stuck", ""),
-        ("normal impulse on sphere 2", "normal_impulse", "N s"),
-        ("tangential impulse on sphere 2", "tangential_impulse", "N s"),
-    ):
-        contact.add_row(label, f(s[key]), unit)
-    contact.add_row("normal n (sphere 1 to 2)", triple("normal"), "")
-    contact.add_row("contact point", triple("contact_point"), "m")
+    contact = quantity_table(
+        "Contact",
+        ("", "value", "unit"),
+        [
+            *(
+                (label, f(s[key]), unit)
+                for label, key, unit in (
+                    ("approach velocity u_n", "approach_velocity", "m/s"),
+                    ("slip speed |u_t| before", "slip_speed", "m/s"),
+                    ("slip u_t' along the initial slip", "slip_speed_final", "m/s"),
+                    ("normal restitution", "normal_restitution", ""),
+                    ("tangential restitution", "tangential_restitution", ""),
+                    ("incident angle at the contact", "incident_angle", "deg"),
+                    ("rebound angle at the contact", "rebound_angle", "deg"),
+                    ("rebound angle of the centres", "centre_rebound_angle", "deg"),
+                    ("stuck (1) or slid throughout (0)", "stuck", ""),
+                    ("normal impulse on sphere 2", "normal_impulse", "N s"),
+                    ("tangential impulse on sphere 2", "tangential_impulse", "N s"),
+                )
+            ),
+            ("normal n (sphere 1 to 2)", triple("normal"), ""),
+            ("contact point", triple("contact_point"), "m"),
+        ],
+    )
     out.print(contact)
 
-    checks = Table(title="Conservation and energy")
-    for header in ("", "before", "after", "unit"):
-        checks.add_column(header, justify="left" if header in ("", "unit") else "right")
-    checks.add_row("momentum", triple("momentum_before"), triple("momentum_after"), "kg m/s")
-    for label, key in (
-        ("angular momentum of 1 about c", "angular_momentum1_contact"),
-        ("angular momentum of 2 about c", "angular_momentum2_contact"),
-        ("angular momentum about 0", "angular_momentum_origin"),
-    ):
-        checks.add_row(label, triple(f"{key}_before"), triple(f"{key}_after"), "kg m^2/s")
-    checks.add_row(
-        "kinetic energy", f(s["kinetic_energy_before"]), f(s["kinetic_energy_after"]), "J"
+    momenta = (
+        ("momentum", "momentum", "kg m/s"),
+        ("angular momentum of 1 about c", "angular_momentum1_contact", "kg m^2/s"),
+        ("angular momentum of 2 about c", "angular_momentum2_contact", "kg m^2/s"),
+        ("angular momentum about 0", "angular_momentum_origin", "kg m^2/s"),
     )
+    checks = quantity_table(
+        "Conservation and energy",
+        ("", "before", "after", "unit"),
+        [
+            *((label, triple(f"{key}_before"), triple(f"{key}_after"), unit)
+              for label, key, unit in momenta),
+            ("kinetic energy", f(s["kinetic_energy_before"]), f(s["kinetic_energy_after"]), "J"),
+        ],
+    )  # fmt: skip
     out.print(checks)
 
-    energy = Table(title="Energy dissipated [J]")
-    for header in ("", "normal law", "friction"):
-        energy.add_column(header, justify="left" if not header else "right")
-    energy.add_row("total", f(s["energy_dissipated_normal"]), f(s["energy_dissipated_friction"]))
-    for i in (1, 2):
-        energy.add_row(
-            f"sphere {i}",
-            f(s[f"energy_dissipated{i}_normal"]),
-            f(s[f"energy_dissipated{i}_friction"]),
-        )
+    energy = quantity_table(
+        "Energy dissipated [J]",
+        ("", "normal law", "friction"),
+        [("total", f(s["energy_dissipated_normal"]), f(s["energy_dissipated_friction"]))]
+        + [
+            (f"sphere {i}", f(s[f"energy_dissipated{i}_normal"]),
+             f(s[f"energy_dissipated{i}_friction"]))
+            for i in (1, 2)
+        ],
+    )  # fmt: skip
     out.print(energy)
-
 
 def register(app: typer.Typer) -> None:
     app.command("collide3d")(collide3d)

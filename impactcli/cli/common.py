@@ -7,6 +7,7 @@ import enum
 import inspect
 import os
 import sys
+from collections.abc import Iterable, Sequence
 from typing import IO, Annotated, Optional
 
 import typer
@@ -108,6 +109,20 @@ def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.con
     if stream is None or stream is sys.stdout:
         return Console(highlight=False)
     return Console(file=stream, highlight=False, width=160, color_system=None)
+
+
+def quantity_table(title: str, headers: Sequence[str], rows: Iterable[Sequence[str]]):
+    """A Rich table (imported on demand) of labelled rows: the first column, headed ``""``,
+    names the quantity and a column headed ``unit`` its unit, both left-aligned; the value
+    columns between them are right-aligned."""
+    from rich.table import Table
+
+    table = Table(title=title)
+    for header in headers:
+        table.add_column(header, justify="left" if header in ("", "unit") else "right")
+    for row in rows:
+        table.add_row(*row)
+    return table
 
 
 def append_help(command, *paragraphs: str) -> None:
