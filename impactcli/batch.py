@@ -240,6 +240,8 @@ class _Pairs:
     radius: NDArray
     modulus: NDArray
     sigma_y: NDArray
+    sy1: NDArray
+    sy2: NDArray
 
     @classmethod
     def of(cls, columns: Sequence[NDArray], ok: NDArray[np.intp]) -> _Pairs:
@@ -260,6 +262,8 @@ class _Pairs:
             effective_radius(0.5 * d1, 0.5 * d2),
             effective_modulus(E1, nu1, E2, nu2),
             np.fmin(sy1, sy2),
+            sy1,
+            sy2,
         )
 
     @property
@@ -272,21 +276,27 @@ class _Pairs:
         """Hertz stiffness K_h, [N/m^1.5]."""
         return hertz_stiffness(self.modulus, self.radius)
 
-    def fractions(self, split: Split) -> tuple[NDArray, NDArray]:
-        """Each sphere's share of the indentation (:func:`impactcli.impact.split_fractions`)."""
-        return split_fractions(split, self.mass1, self.mass2, self.compliance1, self.compliance2)
+    def fractions(self, split: Split) -> tuple[tuple[NDArray, NDArray], tuple[NDArray, NDArray]]:
+        """Each sphere's share of the indentation and of its permanent part
+        (:func:`impactcli.impact.split_fractions`; they differ for ``yield``)."""
+        args = (split, self.mass1, self.mass2, self.compliance1, self.compliance2)
+        return (
+            split_fractions(*args),
+            split_fractions(*args, self.sy1, self.sy2, permanent=True),
+        )
 
     def summary(
         self,
         plan: ImpactPlan,
         t_max: NDArray,
         t_c: NDArray,
-        fractions: tuple[NDArray, NDArray],
+        fractions: tuple[tuple[NDArray, NDArray], tuple[NDArray, NDArray]],
     ) -> dict[str, NDArray]:
-        """:func:`impactcli.impact.impact_summary` of these impacts."""
+        """:func:`impactcli.impact.impact_summary` of these impacts (``fractions`` as
+        :meth:`fractions` gives them)."""
         return impact_summary(
             self.v1, self.v2, self.mass1, self.mass2, self.radius, self.modulus, plan,
-            t_max, t_c, fractions, self.sigma_y,
+            t_max, t_c, fractions[0], self.sigma_y, fractions[1],
         )  # fmt: skip
 
 
@@ -331,7 +341,9 @@ def batch_impacts(
         the elastoplastic model and of ``first_yield_velocity``
     plastic : True for the elastoplastic (Du & Wang) model, False for elastic Hertz, [-]
     n : FILM segments per stage
-    split : share of the indentation between the spheres: ``mass`` or ``compliance``
+    split : share of the indentation between the spheres: ``mass``, ``compliance`` or
+        ``yield`` (the permanent part to the weaker sphere, :func:`impactcli.energy.
+        permanent_fractions`)
     pressure_factor : p0 / sigma_y of the elastoplastic model, [-]
     law : a law of :data:`impactcli.lawlib.LAWS` for every row (``plastic`` and
         ``pressure_factor`` are then ignored; rows of several laws: one call per law, e.g.
@@ -426,7 +438,7 @@ def batch_impacts(
             m[rows],
             v0[rows],
             ImpactPlan((), delta_max[rows], force_max[rows], delta_res[rows], restitution[rows]),
-            (fractions[0][rows], fractions[1][rows]),
+            (fractions[1][0][rows], fractions[1][1][rows]),
         )
         for key, value in extra.items():
             out[key][ok[rows]] = value
@@ -517,7 +529,7 @@ def _batch_law(
     plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"])
     fractions = pairs.fractions(split)
     summary = pairs.summary(plan, values["tmax"], values["tc"], fractions)
-    summary.update(plastic_summary(contact, m, v0, plan, fractions))
+    summary.update(plastic_summary(contact, m, v0, plan, fractions[1]))
     for key, value in summary.items():
         column = np.broadcast_to(np.asarray(value, dtype=float), v0.shape).copy()
         column[errors != ""] = np.nan

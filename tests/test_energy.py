@@ -269,3 +269,29 @@ def test_yield_split_without_any_yield_strength():
     assert r.permanent_fractions == r.split_fractions == (0.5, 0.5)
     with pytest.raises(ValueError, match="neither sphere has a yield strength"):
         elastoplastic_impact(glass, glass, 30.0, 0.0, split="yield", yield_strength=1e9)
+
+
+@pytest.mark.parametrize("law", [None, "du-wang"])
+@pytest.mark.parametrize(
+    "sy1,sy2", [(1e9, 300e6), (300e6, 1e9), (None, 800e6), (1e9, 1.01e9)]
+)  # fmt: skip
+def test_batch_yield_split_equals_the_single_impact(law, sy1, sy2):
+    """``batch_impacts(split="yield")`` puts the permanent indentation where
+    ``elastoplastic_impact`` does: on the weaker sphere, none on a brittle one, and by
+    compliance for a tie (unlike spheres, so a split by compliance alone would differ)."""
+    from impactcli.batch import batch_impacts
+    from impactcli.impact import Sphere, elastoplastic_impact
+
+    s1 = Sphere(0.02, 210e9, 0.3, 7800.0, yield_strength=sy1)
+    s2 = Sphere(0.04, 70e9, 0.33, 2700.0, yield_strength=sy2)
+    single = elastoplastic_impact(s1, s2, 0.25, 0.75, n=25, split="yield").summary
+    nan = float("nan")
+    how = {"law": law} if law else {"plastic": True}
+    rows = batch_impacts(
+        0.02, 0.04, 0.25, 0.75, 210e9, 0.3, 70e9, 0.33, 7800.0, 2700.0,
+        sy1=nan if sy1 is None else sy1, sy2=nan if sy2 is None else sy2, n=25,
+        split="yield", **how,
+    )  # fmt: skip
+    assert rows["error"][0] == ""
+    for key in ("delta1_max", "delta2_max", "delta1_res", "delta2_res"):
+        assert float(rows[key][0]) == pytest.approx(single[key], rel=1e-12, abs=1e-18), key

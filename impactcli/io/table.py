@@ -522,16 +522,16 @@ def _sphere_shares(result: dict, splits, s1: dict, s2: dict, q: dict, valid) -> 
     ``result``; returns each row's note on the split (``""`` where none).
 
     ``mass`` and ``compliance``: delta_i = f_i delta (:func:`impactcli.impact.
-    split_fractions`). ``yield`` (:func:`impactcli.energy.sphere_shares`): the recoverable
-    part delta - delta_res by compliance, the permanent part delta_res to the sphere with
-    the lower yield strength (:func:`impactcli.energy.yield_shares`: a sphere without one is
-    brittle and does not yield; equal strengths share it by compliance). The dissipated
+    split_fractions`). ``yield``: the recoverable part delta - delta_res by compliance, the
+    permanent part delta_res to the sphere with the lower yield strength
+    (:func:`impactcli.energy.permanent_fractions`: a sphere without one is brittle and does
+    not yield; equal strengths share it by compliance). The dissipated
     energy goes with the permanent part: energy_dissipated_i = p_i energy_dissipated
     (docs/method.md §9). First-yield velocities: :func:`impactcli.design.
     first_yield_velocities` (Hertz peak pressure 1.6 sigma_y,i)."""
     from impactcli.contact import sphere_compliance, total_mass
     from impactcli.design import first_yield_velocities
-    from impactcli.energy import yield_shares
+    from impactcli.energy import permanent_fractions
     from impactcli.impact import split_fractions
 
     size = splits.size
@@ -546,17 +546,10 @@ def _sphere_shares(result: dict, splits, s1: dict, s2: dict, q: dict, valid) -> 
     notes = np.full(size, "", dtype=object)
     sy1, sy2 = s1["sy"], s2["sy"]
     chosen = np.flatnonzero(valid & (splits == "yield"))
-    if chosen.size:  # the rule of energy.yield_shares, once per distinct pair of strengths
-        pairs = np.stack([sy1[chosen], sy2[chosen]], axis=1)
-        unique, inverse = np.unique(pairs, axis=0, return_inverse=True)
-        shares = np.full((unique.shape[0], 2), np.nan)
-        for k, (a, b) in enumerate(unique.tolist()):
-            a, b = (None if np.isnan(a) else a), (None if np.isnan(b) else b)
-            if a is not None or b is not None:
-                shares[k] = yield_shares(a, b)
-        p = shares[inverse.reshape(-1)]
+    if chosen.size:
+        p = permanent_fractions(sy1[chosen], sy2[chosen], c1[chosen], c2[chosen])
         for i in (0, 1):
-            permanent[i][chosen] = np.where(np.isnan(p[:, i]), permanent[i][chosen], p[:, i])
+            permanent[i][chosen] = p[i]
         for i, sy in ((1, sy1), (2, sy2)):
             brittle = chosen[np.isnan(sy[chosen]) & (result["delta_res"][chosen] > 0)]
             notes[brittle] = (
