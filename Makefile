@@ -68,7 +68,7 @@ test: $(VENV)/.test-installed
 	$(BIN)/ruff check impactcli tests
 	$(BIN)/python -m pytest -q -n auto -m "not slow"
 
-## test-slow: the tests marked slow: new interpreters (start-up, signals, pipes), Dask,
+## test-slow: the tests marked slow: the smoke tests of a new interpreter, signals, pipes, Dask,
 ##            rendered figures, the README run verbatim, the fuzz; CI runs test, then this
 test-slow: $(VENV)/.test-installed
 	$(BIN)/python -m pytest -q -n auto -m slow

@@ -79,7 +79,9 @@ def impact_subprocess():
     return run_impact_subprocess
 
 
-#: Fixtures whose tests are slow by nature (a new interpreter, a Dask graph): marked ``slow``.
+#: Fixtures whose tests are slow by nature (the real entry point in a new interpreter, a Dask
+#: graph): marked ``slow``. (A few quick import-isolation checks start an interpreter of their
+#: own and stay in the fast tier.)
 SLOW_FIXTURES = {"impact_subprocess", "dask_dataframe"}
 
 

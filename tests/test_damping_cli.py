@@ -185,7 +185,6 @@ def test_elastic_damping_table(impact):
         assert key in result.stdout
 
 
-@pytest.mark.slow
 def test_elastic_target_e(impact):
     """--e 0.8 gives e = 0.8 and prints alpha; that alpha given back gives 0.8 again."""
     result = impact("elastic", *PAPER, "--damping", "tsuji", "--e", "0.8", "-f", "json")
@@ -200,7 +199,6 @@ def test_elastic_target_e(impact):
     assert json.loads(again.stdout)["summary"]["restitution"] == pytest.approx(0.8, abs=1e-6)
 
 
-@pytest.mark.slow
 def test_elastic_damping_ode_and_check(impact):
     result = impact(
         "elastic", *PAPER, "--damping", "tsuji", "--alpha", "0.3", "--method", "ode",
