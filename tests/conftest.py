@@ -74,6 +74,18 @@ def impact():
 
 
 @pytest.fixture
+def cli():
+    """``cli(*args, stdin=None, env=None, cwd=ROOT)`` -> (exit status, stdout, stderr) of
+    ``impact ARGS`` run in this process (:func:`run_impact`)."""
+
+    def run(*args: str, **options) -> tuple[int, str, str]:
+        done = run_impact(*args, **options)
+        return done.returncode, done.stdout, done.stderr
+
+    return run
+
+
+@pytest.fixture
 def impact_subprocess():
     """``impact_subprocess(*args, stdin=None, env=None)`` -> CompletedProcess, a new process."""
     return run_impact_subprocess

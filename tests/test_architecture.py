@@ -72,20 +72,6 @@ STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_stre
 ELASTIC = ["--d1", "20mm", "--d2", "40mm", "--v1", "5mm/s", "--v2", "7.5mm/s"]
 
 
-@pytest.fixture
-def cli(capsys):
-    """Run ``impact ARGS`` in this process: (exit status, stdout, stderr)."""
-    from impactcli.cli import main
-
-    def run(*args: str) -> tuple[int, str, str]:
-        with pytest.raises(SystemExit) as stop:
-            main(list(args))
-        out, err = capsys.readouterr()
-        return stop.value.code, out, err
-
-    return run
-
-
 # -- the boundary ---------------------------------------------------------------------------
 
 

@@ -16,20 +16,6 @@ from impactcli.contact import first_yield_velocity
 STEEL_WALL = ["--d2", "inf", "--m2", "inf", "--material2", "steel"]
 
 
-@pytest.fixture
-def cli(capsys):
-    """Run ``impact ARGS`` in this process: (exit status, stdout, stderr)."""
-    from impactcli.cli import main
-
-    def run(*args: str) -> tuple[int, str, str]:
-        with pytest.raises(SystemExit) as stop:
-            main(list(args))
-        out, err = capsys.readouterr()
-        return stop.value.code, out, err
-
-    return run
-
-
 def _hertz_pair(d1, d2, e1, nu1, e2, nu2, rho1, rho2):
     """m, R, E* of two spheres, written out (eq. 2)."""
     m1, m2 = rho1 * math.pi * d1**3 / 6, rho2 * math.pi * d2**3 / 6

@@ -18,20 +18,6 @@ PAIR = ["--d1", "20mm", "--d2", "40mm", "--E", "210GPa", "--nu", "0.3", "--rho",
 V0 = np.geomspace(0.3, 3.0, 10)
 
 
-@pytest.fixture
-def cli(capsys):
-    """Run ``impact ARGS`` in this process: (exit status, stdout, stderr)."""
-    from impactcli.cli import main
-
-    def run(*args: str) -> tuple[int, str, str]:
-        with pytest.raises(SystemExit) as stop:
-            main(list(args))
-        out, err = capsys.readouterr()
-        return stop.value.code, out, err
-
-    return run
-
-
 def write(path, text: str) -> str:
     path.write_text(text)
     return str(path)
