@@ -70,6 +70,7 @@ from impactcli.validation import (
     flat_floats,
     needs_yield_strength,
     pair_problems,
+    plastic_range_problems,
     sphere_names,
     sphere_problems,
     without_float_warnings,
@@ -526,6 +527,10 @@ def _batch_law(
             values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
+    # a law's plastic stage beyond double precision (docs/method.md §7): the row's error
+    scale = plastic_range_problems(contact, v0, m, values["dm"])
+    refused = (errors == "") & scale.bad
+    errors[refused] = scale.messages[refused]
     plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"])
     fractions = pairs.fractions(split)
     summary = pairs.summary(plan, values["tmax"], values["tc"], fractions)

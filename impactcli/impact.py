@@ -53,6 +53,7 @@ from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     needs_yield_strength,
     pair_problems,
+    plastic_range_problems,
     raise_first,
     sphere_problems,
     yield_scale_problems,
@@ -1046,6 +1047,7 @@ def law_impact(
     contact = spec.contact(r, e, sigma_y, **(params or {}))
     v0 = v1 + v2
     plan = contact.plan(v0, m)
+    raise_first(plastic_range_problems(contact, v0, m, plan.delta_max))
     hertz = len(plan.stages) == 2 and all(type(s.law) is Hertz for s in plan.stages)
     if hertz and float(plan.delta_res) == 0.0:
         model = "elastic"

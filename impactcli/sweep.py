@@ -25,6 +25,7 @@ from impactcli.impact import (
 )
 from impactcli.lawlib import get_law
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
+from impactcli.validation import plastic_range_problems, raise_first
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
@@ -90,6 +91,7 @@ def restitution_sweep(
         out["delta_max"][mask] = plan.delta_max
         out["force_max"][mask] = plan.force_max
         out["delta_res"][mask] = plan.delta_res
+    raise_first(plastic_range_problems(contact, v0, m, out["delta_max"]))
     if split == "yield" and np.any(out["delta_res"] > 0.0):
         if sphere1.yield_strength is None and sphere2.yield_strength is None:
             raise ValueError(

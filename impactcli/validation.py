@@ -43,6 +43,7 @@ __all__ = [
     "sphere_problems",
     "where_first",
     "without_float_warnings",
+    "plastic_range_problems",
     "yield_scale_problems",
 ]
 
@@ -234,6 +235,21 @@ def yield_scale_problems(
         ratio,
     )
     return p
+
+
+def plastic_range_problems(
+    contact, impact_velocity: ArrayLike, mass: ArrayLike, delta_max: ArrayLike
+) -> Problems:
+    """:func:`yield_scale_problems` of the impacts that ``contact`` (a contact model of any
+    law: ``yield_indentation`` [m], ``yields(V0, m)``) takes past its yield point, given
+    their maximum indentation delta_max [m]; impacts below it, and laws without an elastic
+    stage before a yield point (delta_y NaN, or 0 as Walton & Braun's), pass."""
+    v0, m, dm = flat_floats(impact_velocity, mass, delta_max)
+    dy = np.broadcast_to(np.asarray(contact.yield_indentation, dtype=float), v0.shape)
+    plastic = np.broadcast_to(contact.yields(v0, m), v0.shape)
+    with np.errstate(invalid="ignore"):
+        checked = plastic & np.isfinite(dy) & (dy > 0.0)
+    return yield_scale_problems(np.where(checked, dy, dm), dm)
 
 
 def raise_first(problems: Problems) -> None:

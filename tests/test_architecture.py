@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from impactcli.batch import batch_impacts
-from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
+from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact, law_impact
 from impactcli.spheres import SphereOptions, resolve_property, spheres_from_options
 from impactcli.sweep import restitution_sweep
 from impactcli.validation import YIELD_STRENGTH_NEEDED, contact_radius_warning
@@ -325,3 +325,26 @@ def test_sphere_options_are_declared_once_and_listed_by_every_command(cli):
         assert code == 0
         listed = [name for name in SPHERE_OPTIONS if f"--{name} " in out]
         assert listed == [name for name in SPHERE_OPTIONS if name not in skip]
+
+
+def test_every_path_refuses_a_plastic_stage_beyond_double_precision():
+    """A yield strength of 1 mPa at 1 m/s puts delta_y at 1e-31 of delta_max: out of the
+    elastoplastic models' range in double precision (validation.yield_scale_problems). The
+    single impact, the law path, the sweep and both batch paths refuse it with one message."""
+    weak = Sphere(0.02, **{**STEEL, "yield_strength": 1e-3})
+    messages = []
+    for run in (
+        lambda: elastoplastic_impact(weak, weak, 1.0, 0.0),
+        lambda: law_impact(weak, weak, 1.0, 0.0, law="du-wang"),
+        lambda: restitution_sweep(weak, weak, [0.5, 1.0]),
+        lambda: restitution_sweep(weak, weak, [0.5, 1.0], law="du-wang"),
+    ):
+        with pytest.raises(ValueError, match="^out of range: the yield indentation") as info:
+            run()
+        messages.append(str(info.value))
+    args = (0.02, 0.02, 1.0, 0.0, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0)
+    for how in ({"plastic": True}, {"law": "du-wang"}, {"law": "thornton"}):
+        rows = batch_impacts(*args, sy1=1e-3, sy2=1e-3, **how)
+        assert rows["error"][0].startswith("out of range: the yield indentation"), how
+        assert np.isnan(rows["restitution"][0])
+    assert messages[0] == messages[1]
