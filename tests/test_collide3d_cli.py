@@ -4,6 +4,7 @@ gross-slip closed form, the Mindlin force history, and one-line errors."""
 from __future__ import annotations
 
 import csv
+import gzip
 import io
 import json
 
@@ -230,3 +231,96 @@ def test_rows_refuses_single_options_and_bad_headers(impact, tmp_path):
     r = impact("collide3d", "--rows", str(bad), "-o", str(tmp_path / "o.csv"))
     assert r.returncode == 2 and "missing input column(s)" in r.stderr
     assert not (tmp_path / "o.csv").exists()
+
+
+# -- --rows through the table layer of impact batch -------------------------------------------
+
+
+def test_rows_short_line_is_one_error_row(impact, tmp_path):
+    """A malformed CSV line is an error row, as in impact batch; the good rows are kept."""
+    pytest.importorskip("pyarrow")
+    good = _rows_table([10.0, 50.0]).splitlines()
+    table = tmp_path / "in.csv"
+    table.write_text("\n".join([good[0], good[1], "0,0,0,0,0,-1,1,0", good[2]]) + "\n")
+    out = tmp_path / "out.csv"
+    r = impact("collide3d", "--rows", str(table), "-o", str(out), "--mu", "0.092")
+    assert r.returncode == 0, r.stderr
+    got = list(csv.DictReader(out.open()))
+    assert len(got) == 3
+    assert got[1]["error"].startswith("malformed line:") and got[1]["v1_final_x"] == ""
+    assert got[0]["error"] == got[2]["error"] == ""
+    assert got[0]["v1_final_x"] != "" and got[2]["v1_final_x"] != ""
+    assert "row 2: malformed line" in r.stderr and "1 of 3 rows invalid" in r.stderr
+    assert "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize(
+    "content, message",
+    [
+        (gzip.compress(_rows_table([10.0]).encode()), "gzip-compressed input"),
+        (_rows_table([10.0]).encode("utf-16"), "UTF-16/UTF-32 text"),
+        (b"PK\x03\x04\x00\x00binary", "binary input"),
+    ],
+    ids=["gzip", "utf16", "binary"],
+)
+def test_rows_refuses_input_kinds_in_one_line(impact, tmp_path, content, message):
+    """gzip, UTF-16 and binary input: the one-line refusal of impact batch, no file left."""
+    pytest.importorskip("pyarrow")
+    table = tmp_path / "in.csv"
+    table.write_bytes(content)
+    out = tmp_path / "out.csv"
+    r = impact("collide3d", "--rows", str(table), "-o", str(out))
+    assert r.returncode == 2
+    assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    assert not out.exists() and list(tmp_path.iterdir()) == [table]
+
+
+def test_rows_parquet_list_column(impact, tmp_path):
+    """A list column cannot go to CSV: one line, no traceback, no file; Parquet carries it."""
+    pa = pytest.importorskip("pyarrow")
+    from pyarrow import csv as pa_csv
+    from pyarrow import parquet as pq
+
+    source = tmp_path / "in.csv"
+    source.write_text(_rows_table([10.0, 50.0]))
+    table = pa_csv.read_csv(source)
+    table = table.append_column("tags", pa.array([[1, 2], [3]]))
+    pq.write_table(table, tmp_path / "in.parquet")
+    out = tmp_path / "out.csv"
+    r = impact("collide3d", "--rows", str(tmp_path / "in.parquet"), "-o", str(out))
+    assert r.returncode == 2 and "column tags holds list" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1 and not out.exists()
+    r = impact("collide3d", "--rows", str(tmp_path / "in.parquet"), "-o",
+               str(tmp_path / "out.parquet"), "--mu", "0.092")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    got = pq.read_table(tmp_path / "out.parquet")
+    assert got.column("tags").to_pylist() == [[1, 2], [3]]
+    assert got.column("error").to_pylist() == ["", ""]
+
+
+@pytest.mark.parametrize("command", ["batch", "collide3d"])
+def test_table_output_refuses_other_extensions(impact, tmp_path, command):
+    """-o OUT.json of a table command: one line naming the accepted extensions, no file."""
+    pytest.importorskip("pyarrow")
+    table = tmp_path / "in.csv"
+    table.write_text(_rows_table([10.0]))
+    out = tmp_path / "out.json"
+    args = ["batch", str(table)] if command == "batch" else ["collide3d", "--rows", str(table)]
+    r = impact(*args, "-o", str(out))
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1
+    assert ".csv, .parquet" in r.stderr and "Traceback" not in r.stderr
+    assert not out.exists()
+
+
+def test_rows_failure_after_a_written_chunk_leaves_nothing(impact, tmp_path):
+    """A line over the limit after chunks already written to Parquet: one line, exit 2, no
+    file and no message of the abandoned Parquet writer."""
+    pytest.importorskip("pyarrow")
+    table = _rows_table([10.0, 50.0] * 10_000)
+    source = tmp_path / "in.csv"
+    source.write_text(table + "x" * (2 << 20) + "\n" + table.split("\n", 1)[1])
+    out = tmp_path / "out.parquet"
+    r = impact("collide3d", "--rows", str(source), "-o", str(out))
+    assert r.returncode == 2 and "longer than" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    assert not out.exists() and list(tmp_path.iterdir()) == [source]

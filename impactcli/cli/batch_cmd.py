@@ -18,8 +18,7 @@ import typer
 
 from impactcli.cli.common import Model, OutputFile, Segments, Split, note, warn
 from impactcli.errors import InputError
-from impactcli.io.readers import PARQUET_SUFFIXES
-from impactcli.io.writers import TableFormat
+from impactcli.io.writers import TableFormat, table_format
 from impactcli.limits import MAX_CHUNK_ROWS
 
 
@@ -94,7 +93,8 @@ def batch(
         None,
         "--format",
         "-f",
-        help="Output csv or parquet. Default: from OUT's extension (.parquet, .pq), else CSV.",
+        help="Output csv or parquet. Default: from OUT's extension (.parquet, .pq, .parq), "
+        "else CSV; another extension than .csv is refused.",
     ),
     n: Segments = 25,
     split: Split = typer.Option(
@@ -155,13 +155,7 @@ def batch(
     """
     if scheduler is not None and engine is not Engine.dask:
         raise InputError("--scheduler is for --engine dask")
-    if fmt is None:
-        is_parquet = output is not None and output.lower().endswith(PARQUET_SUFFIXES)
-        fmt = TableFormat.parquet if is_parquet else TableFormat.csv
-    try:
-        import pyarrow  # noqa: F401
-    except ImportError:
-        raise InputError("impact batch needs pyarrow: pip install 'impactcli[batch]'") from None
+    fmt = table_format(fmt, output, "impact batch")
     from impactcli.io import engines
     from impactcli.io.allocator import keep_freed_memory
 

@@ -286,12 +286,9 @@ def _degrees(text: str, name: str) -> float:
 def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
     """``--rows TABLE``: every row through :func:`impactcli.io.collisions3d.run_collisions3d`,
     file to file; ``single`` names the options of one collision that were given."""
-    import os
-
     from impactcli.cli.common import warn
     from impactcli.io.collisions3d import run_collisions3d
-    from impactcli.io.readers import PARQUET_SUFFIXES
-    from impactcli.io.writers import TableFormat
+    from impactcli.io.writers import table_format
 
     if single:
         raise InputError(
@@ -300,10 +297,7 @@ def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
         )
     if fmt not in (None, Format.csv):
         raise InputError("--rows writes a table: CSV, or Parquet with -o OUT.parquet")
-    suffix = os.path.splitext(output or "")[1].lower()
-    if suffix not in ("", ".csv", *PARQUET_SUFFIXES):
-        raise InputError(f"-o {output}: --rows writes CSV (.csv) or Parquet (.parquet)")
-    table = TableFormat.parquet if suffix in PARQUET_SUFFIXES else TableFormat.csv
+    table = table_format(None, output, "impact collide3d --rows")
     report = run_collisions3d(path, output, table, **options)
     for line in report.lines:
         warn(line)

@@ -102,19 +102,6 @@ def check_collision_columns(names: Sequence[str]) -> None:
     check_output_clash(present, output_columns3d(), "impact collide3d --rows")
 
 
-def _cells(frame: Mapping[str, Any], name: str, size: int) -> list:
-    if name not in frame:
-        return [None] * size
-    column = frame[name]
-    return column.tolist() if hasattr(column, "tolist") else list(column)
-
-
-def _text(frame: Mapping[str, Any], name: str, size: int) -> np.ndarray:
-    cells = _cells(frame, name, size)
-    out = [c.strip() if isinstance(c, str) and c.strip() else None for c in cells]
-    return np.array(out, dtype=object)
-
-
 def compute_collisions3d(
     frame: Mapping[str, Any],
     mu: float = 0.0,
@@ -126,13 +113,15 @@ def compute_collisions3d(
     restitution: float | None = None,
     points: int = 4001,
     n: int = 25,
+    faults: np.ndarray | None = None,
 ) -> dict[str, np.ndarray]:
     """The result columns of a chunk of rows.
 
     Parameters
     ----------
-    frame : column name -> cells (a pandas DataFrame or a dict of lists/arrays): numbers in
-        SI or text with units; columns as the module docstring
+    frame : column name -> cells (a pandas DataFrame or a dict of lists/arrays, as
+        :func:`impactcli.io.table.table_columns`): numbers in SI or text with units, read
+        as ``impact batch`` reads them; columns as the module docstring
     mu : Coulomb friction of rows without a ``mu`` cell, [-]
     tangential : ``rigid`` or ``mindlin``, every row
     law, params : the normal law of every row and its parameters (SI)
@@ -140,6 +129,8 @@ def compute_collisions3d(
     restitution : e of rows without an ``e`` cell instead of the law (``rigid`` only)
     points : time points of each normal history (``mindlin``)
     n : FILM segments per stage of the normal law
+    faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
+        CSV line), which becomes its error
 
     Returns
     -------
@@ -166,41 +157,48 @@ def compute_collisions3d(
     from impactcli.batch import material_properties
     from impactcli.collision3d import TANGENTIAL_MODELS, effective_shear_modulus, oblique_impact
     from impactcli.contact import total_mass
+    from impactcli.io.table import _quantity_column, _text_column, table_columns
     from impactcli.spheres import missing_properties, resolve_properties
-    from impactcli.units import parse_quantities
     from impactcli.validation import Problems, sphere_names, sphere_problems
 
     if tangential not in TANGENTIAL_MODELS:
         raise ValueError(f"the tangential model must be rigid or mindlin, got {tangential!r}")
-    size = len(_cells(frame, next(iter(frame)), 0)) if len(frame) else 0
+    columns, size = table_columns(frame)
     if size == 0:
         return {key: np.zeros(0) for key in output_columns3d()[:-1]} | {
             "error": np.zeros(0, dtype=object)
         }
     errors = Problems(size)
+    if faults is not None:
+        errors.add_messages(np.asarray(faults, dtype=object))
+
+    def quantity(name: str, kind: str, allow_inf: bool) -> tuple[np.ndarray, np.ndarray]:
+        if name not in columns:
+            return np.full(size, np.nan), np.full(size, "", dtype=object)
+        return _quantity_column(columns[name], kind, name, allow_inf)
 
     vectors: dict[str, np.ndarray] = {}
     for name, kind in VECTOR_COLUMNS.items():
         parts = []
         for axis in "xyz":
             column = f"{name}_{axis}"
-            values, bad = parse_quantities(_cells(frame, column, size), kind, column)
+            values, bad = quantity(column, kind, False)
             errors.add_messages(bad)
-            if column in frame or name in REQUIRED_VECTORS:
+            if column in columns or name in REQUIRED_VECTORS:
                 errors.add(np.isnan(values) & (bad == ""), f"{column} is missing")
-            parts.append(np.where(np.isnan(values), 0.0, values) if column not in frame
+            parts.append(np.where(np.isnan(values), 0.0, values) if column not in columns
                          else values)  # fmt: skip
         vectors[name] = np.stack(parts, axis=-1)
 
     q: dict[str, np.ndarray] = {}
     for name, (kind, allow_inf) in SCALAR_COLUMNS.items():
-        q[name], bad = parse_quantities(_cells(frame, name, size), kind, name, allow_inf)
+        q[name], bad = quantity(name, kind, allow_inf)
         errors.add_messages(bad)
 
-    shared = _text(frame, "material", size)
+    shared = _text_column(columns, "material", size)
     spheres = []
     for i in (1, 2):
-        own = _text(frame, f"material{i}", size)
+        own = _text_column(columns, f"material{i}", size)
         names = np.where(np.equal(own, None), shared, own)
         *props, bad = material_properties(names)
         errors.add_messages(bad)
@@ -353,102 +351,31 @@ def run_collisions3d(
 ):
     """Compute every row of the table at ``path`` (CSV or Parquet by its magic bytes, ``-``
     for stdin) and write the input columns with :func:`output_columns3d` to ``output``
-    (``None`` or ``-`` for stdout; Parquet with ``fmt`` parquet), ``rows`` rows at a time.
-    ``options`` go to :func:`compute_collisions3d`. Returns the
-    :class:`~impactcli.io.engines.BatchReport` of the invalid rows."""
-    import sys
-
-    import pyarrow as pa
-
-    from impactcli.io.arrays import float_array, text_array
-    from impactcli.io.engines import BatchReport
-    from impactcli.io.readers import first_line, open_stream
-    from impactcli.io.writers import TableFormat, TableSink
-    from impactcli.output import atomic_output
-
-    fmt = TableFormat.csv if fmt is None else TableFormat(fmt)
-    stream = open_stream(path)
-    report = BatchReport(strict)
-    try:
-        schema, batches = _open_table(path, stream, rows)
-        check_collision_columns(schema.names)
-        used = [c for c in schema.names if c in INPUT_COLUMNS]
-        out_schema = pa.schema(
-            [*schema, *(pa.field(c, pa.float64()) for c in output_columns3d()[:-1]),
-             pa.field("error", pa.string())]
-        )  # fmt: skip
-        with atomic_output(output, binary=True) as out:
-            sink = TableSink(out, out_schema, fmt)
-            for batch in batches:
-                frame = {c: batch.column(c).to_pylist() for c in used}
-                try:
-                    result = compute_collisions3d(frame, **options)
-                except ValueError as exc:
-                    raise InputError(first_line(exc)) from None
-                report.add(result["error"], report.rows)
-                columns = list(batch.columns) + [
-                    float_array(result[c]) for c in output_columns3d()[:-1]
-                ] + [text_array(result["error"].tolist())]  # fmt: skip
-                sink.write(pa.RecordBatch.from_arrays(columns, schema=out_schema))
-                report.rows += batch.num_rows
-            sink.close()
-    finally:
-        if stream is not sys.stdin.buffer:
-            stream.close()
-    return report
-
-
-def _open_table(path: str, stream, rows: int):
-    """(schema, iterator of RecordBatches): Parquet by its magic bytes, else CSV read as
-    text (the cells are parsed by :func:`compute_collisions3d`)."""
-    import io
-
-    import pyarrow as pa
-    from pyarrow import csv as pa_csv
-    from pyarrow import parquet as pq
-
+    (``None`` or ``-`` for stdout; Parquet with ``fmt`` parquet), ``rows`` rows at a time,
+    through the table layer of ``impact batch``
+    (:func:`impactcli.io.engines.run_table`: a malformed CSV line is an error row, the
+    output whole or not at all). ``options`` go to :func:`compute_collisions3d`. Returns
+    the :class:`~impactcli.io.engines.BatchReport` of the invalid rows."""
+    from impactcli.io.engines import run_table
     from impactcli.io.readers import first_line
-    from impactcli.io.table import NULL_VALUES
+    from impactcli.io.writers import TableFormat
 
-    label = "stdin" if path == "-" else path
-    if stream.peek(4)[:4] == b"PAR1":
+    def compute(columns: dict[str, np.ndarray], faults: np.ndarray | None):
         try:
-            handle = pq.ParquetFile(io.BytesIO(stream.read()) if path == "-" else stream)
-        except (pa.ArrowInvalid, OSError) as exc:
-            raise InputError(f"{label}: {first_line(exc)}") from None
-        return handle.schema_arrow, handle.iter_batches(batch_size=rows)
-    import csv
+            return compute_collisions3d(columns, **options, faults=faults)
+        except ValueError as exc:
+            raise InputError(first_line(exc)) from None
 
-    header = stream.readline()
-    if not header.strip():
-        raise InputError(f"{label}: empty input; expected a CSV header line")
-    names = [c.strip() for c in next(csv.reader([header.decode("utf-8-sig")]))]
-    check_collision_columns(names)
-    schema = pa.schema([(c, pa.string()) for c in names])
-    if not stream.peek(1 << 16).strip():
-        return schema, iter(())
-    try:
-        reader = pa_csv.open_csv(
-            stream,
-            read_options=pa_csv.ReadOptions(column_names=names, block_size=1 << 20),
-            convert_options=pa_csv.ConvertOptions(
-                column_types={c: pa.string() for c in names},
-                null_values=list(NULL_VALUES),
-                strings_can_be_null=True,
-            ),
-        )
-    except (pa.ArrowInvalid, StopIteration) as exc:
-        raise InputError(f"{label}: {first_line(exc)}") from None
+    return run_table(
+        path, output, TableFormat.csv if fmt is None else TableFormat(fmt), compute=compute,
+        check=check_collision_columns, used=_used_columns, quantities=_QUANTITIES,
+        outputs=output_columns3d(), strict=strict, rows=rows,
+    )  # fmt: skip
 
-    def batches():
-        while True:
-            try:
-                batch = reader.read_next_batch()
-            except StopIteration:
-                return
-            except pa.ArrowInvalid as exc:
-                raise InputError(f"{label}: {first_line(exc)}") from None
-            if batch.num_rows:
-                yield batch
 
-    return reader.schema, batches()
+#: Columns read as quantities (cast at once when every cell is a number).
+_QUANTITIES: frozenset[str] = frozenset(INPUT_COLUMNS) - frozenset(TEXT_COLUMNS)
+
+
+def _used_columns(names: Sequence[str]) -> list[str]:
+    return [c for c in names if c in INPUT_COLUMNS]

@@ -52,7 +52,7 @@ def sniff(head: bytes, label: str) -> None:
     if head[:2] == b"\x1f\x8b":
         raise InputError(
             f"{label}: gzip-compressed input; decompress it first "
-            "(gunzip -c FILE.gz | impact batch -)"
+            "(gunzip FILE.gz, or pipe gunzip -c FILE.gz to IN '-')"
         )
     if head[:4] in (codecs.BOM_UTF32_LE, codecs.BOM_UTF32_BE) or head[:2] in (
         codecs.BOM_UTF16_LE,

@@ -12,7 +12,7 @@ from __future__ import annotations
 import io
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Collection, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import AbstractContextManager, nullcontext
 
@@ -21,6 +21,7 @@ import numpy as np
 from impactcli.errors import InputError
 from impactcli.io.readers import (
     PARQUET_SUFFIXES,
+    ColumnCheck,
     compute_input,
     first_line,
     open_source,
@@ -28,6 +29,7 @@ from impactcli.io.readers import (
 )
 from impactcli.io.table import (
     MAX_ROW_WARNINGS,
+    QUANTITY_COLUMNS,
     RowError,
     check_columns,
     compute_frame,
@@ -45,7 +47,7 @@ from impactcli.io.writers import (
 )
 from impactcli.output import atomic_output
 
-__all__ = ["BatchReport", "run_dask", "run_numpy"]
+__all__ = ["BatchReport", "run_dask", "run_numpy", "run_table"]
 
 
 class BatchReport:
@@ -105,12 +107,44 @@ def run_numpy(
     ``progress(rows_done, rows_expected)`` is called after each chunk (``rows_expected``
     is an estimate for CSV, None on stdin).
     """
+
+    def compute(columns: dict[str, np.ndarray], faults: np.ndarray | None):
+        return compute_frame(columns, n=n, split=split, model=model, faults=faults)
+
+    return run_table(
+        path, output, fmt, compute=compute, model=model, strict=strict, rows=rows,
+        progress=progress,
+    )  # fmt: skip
+
+
+def run_table(
+    path: str,
+    output: str | None,
+    fmt: TableFormat,
+    *,
+    compute: Callable[[dict[str, np.ndarray], np.ndarray | None], dict[str, np.ndarray]],
+    model: str | None = None,
+    check: ColumnCheck | None = None,
+    used: Callable[[Sequence[str]], list[str]] = used_columns,
+    quantities: Collection[str] = QUANTITY_COLUMNS,
+    outputs: Sequence[str] | None = None,
+    strict: bool = False,
+    rows: int = 100_000,
+    progress: Callable[[int, int | None], None] | None = None,
+) -> BatchReport:
+    """The loop of :func:`run_numpy`, for any per-chunk function: the table at ``path`` read
+    in chunks (:func:`~impactcli.io.readers.open_source`: its header checked by ``check``,
+    else :func:`~impactcli.io.table.check_columns` with ``model``), the ``used(names)``
+    columns of each through :func:`~impactcli.io.readers.compute_input` (``quantities``
+    cast at once when all numbers) and ``compute(columns, faults)``, which returns the
+    result columns ``outputs`` (default: those of ``impact batch``) with ``error``; the
+    input columns and the results written to ``output`` whole or not at all."""
     stream = open_stream(path)
     report = BatchReport(strict)
     try:
-        source = open_source(path, stream, model, rows)
-        used = used_columns(source.schema.names)
-        schema = output_schema(source.schema)
+        source = open_source(path, stream, model, rows, check)
+        read = used(source.schema.names)
+        schema = output_schema(source.schema, outputs)
         check_writable(schema, fmt)
         with (
             atomic_output(output, binary=True) as out,
@@ -123,9 +157,7 @@ def run_numpy(
                 # One chunk is written (pyarrow, without the GIL) while the next is computed.
                 writing = None
                 for batch, faults in source.batches:
-                    result = compute_frame(
-                        compute_input(batch, used), n=n, split=split, model=model, faults=faults
-                    )
+                    result = compute(compute_input(batch, read, quantities), faults)
                     report.add(result["error"], report.rows)
                     if writing is not None:
                         writing.result()

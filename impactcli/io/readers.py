@@ -8,7 +8,7 @@ from __future__ import annotations
 import io
 import os
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Collection, Iterator, Sequence
 
 import numpy as np
 
@@ -48,14 +48,32 @@ def open_stream(path: str) -> io.BufferedReader:
         raise InputError(f"cannot read {path!r}: {exc.strerror or exc}") from None
 
 
-def open_source(path: str, stream: io.BufferedReader, model: str | None, rows: int) -> TableSource:
+#: A check of a table's column names: raises :class:`~impactcli.errors.InputError` (one
+#: line) when the header cannot give any valid row.
+ColumnCheck = Callable[[Sequence[str]], None]
+
+
+def open_source(
+    path: str,
+    stream: io.BufferedReader,
+    model: str | None,
+    rows: int,
+    check: ColumnCheck | None = None,
+) -> TableSource:
     """The table on ``stream`` in chunks of ``rows`` rows: Parquet by its magic bytes (any
-    name, stdin too), else CSV. Its header is checked first (:func:`check_columns`)."""
+    name, stdin too), else CSV (a malformed line is a row with its reason; gzip, UTF-16
+    and binary input are refused in one line). Its header is checked first: by ``check``,
+    else by :func:`~impactcli.io.table.check_columns` with ``model`` (``impact batch``)."""
+    if check is None:
+
+        def check(names: Sequence[str]) -> None:
+            check_columns(names, model)
+
     parquet = stream.peek(4)[:4] == b"PAR1"
-    return (_parquet_source if parquet else _csv_source)(path, stream, model, rows)
+    return (_parquet_source if parquet else _csv_source)(path, stream, check, rows)
 
 
-def _csv_source(path: str, stream: io.BufferedReader, model: str | None, rows: int) -> TableSource:
+def _csv_source(path: str, stream: io.BufferedReader, check: ColumnCheck, rows: int) -> TableSource:
     import pyarrow as pa
 
     from impactcli.io.csvblocks import parse_block, read_header, record_blocks, sniff
@@ -63,7 +81,7 @@ def _csv_source(path: str, stream: io.BufferedReader, model: str | None, rows: i
     label = _label(path)
     sniff(stream.peek(1 << 16)[: 1 << 16], label)
     names, _ = read_header(stream, label)
-    check_columns(names, model)
+    check(names)
     schema = pa.schema([(c, pa.string()) for c in names])
     sample = stream.peek(1 << 16)[: 1 << 16]
     row_bytes = max(len(sample) / max(sample.count(b"\n"), 1), 8.0)
@@ -87,7 +105,7 @@ def _csv_source(path: str, stream: io.BufferedReader, model: str | None, rows: i
     return TableSource(schema, batches(), estimate)
 
 
-def _parquet_source(path: str, stream: io.BufferedReader, model: str | None, rows: int):
+def _parquet_source(path: str, stream: io.BufferedReader, check: ColumnCheck, rows: int):
     import pyarrow as pa
     from pyarrow import parquet as pq
 
@@ -96,7 +114,7 @@ def _parquet_source(path: str, stream: io.BufferedReader, model: str | None, row
     except (pa.ArrowInvalid, OSError) as exc:
         raise InputError(f"{_label(path)}: {first_line(exc)}") from None
     schema = handle.schema_arrow
-    check_columns(schema.names, model)
+    check(schema.names)
     batches = ((batch, None) for batch in handle.iter_batches(batch_size=rows))
     return TableSource(schema, batches, handle.metadata.num_rows)
 
@@ -111,10 +129,13 @@ def first_line(exc: BaseException) -> str:
     return text[0] if text else type(exc).__name__
 
 
-def compute_input(batch, used: list[str]) -> dict[str, np.ndarray]:
+def compute_input(
+    batch, used: list[str], quantities: Collection[str] = QUANTITY_COLUMNS
+) -> dict[str, np.ndarray]:
     """The columns of a RecordBatch (or Table) that :func:`~impactcli.io.table.compute_frame`
     reads, as NumPy arrays: the spellings of "missing" (:data:`~impactcli.io.table.NULL_VALUES`)
-    become null, and text columns that are then all numbers become floats by one Arrow cast;
+    become null, and text columns of ``quantities`` (default: the quantity columns of
+    ``impact batch``) that are then all numbers become floats by one Arrow cast;
     only the others go through its slower path (numbers, then units). Text is an object
     array (None where null), numbers float or int (NaN where null), booleans bool (an
     object array where one is null). A column that cannot hold a quantity or a name (a
@@ -132,7 +153,7 @@ def compute_input(batch, used: list[str]) -> dict[str, np.ndarray]:
             columns[name] = to_numpy(column)
             continue
         spelled = arrow.call_function("is_in", [column], nulls)  # "missing", spelled out
-        if name in QUANTITY_COLUMNS:  # the other cells all numbers: one cast
+        if name in quantities:  # the other cells all numbers: one cast
             kept = arrow.call_function("invert", [spelled])
             try:
                 numbers = cast(arrow.call_function("filter", [column, kept]), pa.float64())

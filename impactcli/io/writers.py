@@ -1,4 +1,5 @@
-"""Writing the result tables of ``impact batch``: the input columns, then the results.
+"""Writing result tables (``impact batch``, ``impact collide3d --rows``): the input
+columns, then the results.
 
 pyarrow is imported inside the functions.
 """
@@ -6,6 +7,8 @@ pyarrow is imported inside the functions.
 from __future__ import annotations
 
 import enum
+import os
+from collections.abc import Sequence
 from typing import IO
 
 import numpy as np
@@ -13,7 +16,15 @@ import numpy as np
 from impactcli.errors import InputError
 from impactcli.io.table import TEXT_OUTPUTS, output_columns
 
-__all__ = ["TableFormat", "TableSink", "check_writable", "output_schema", "result_batch"]
+__all__ = [
+    "TABLE_EXTENSIONS",
+    "TableFormat",
+    "TableSink",
+    "check_writable",
+    "output_schema",
+    "result_batch",
+    "table_format",
+]
 
 
 class TableFormat(enum.StrEnum):
@@ -21,6 +32,35 @@ class TableFormat(enum.StrEnum):
 
     csv = "csv"
     parquet = "parquet"
+
+
+#: Extensions of a result table's file -> its format (no extension, or stdout: CSV).
+TABLE_EXTENSIONS: dict[str, TableFormat] = {
+    ".csv": TableFormat.csv,
+    ".parquet": TableFormat.parquet,
+    ".pq": TableFormat.parquet,
+    ".parq": TableFormat.parquet,
+}
+
+
+def table_format(fmt: TableFormat | str | None, output: str | None, command: str) -> TableFormat:
+    """The format of the result table of ``command`` written to ``output`` (None or ``-``:
+    stdout): ``fmt`` if given, else from the extension (.parquet, .pq, .parq: Parquet;
+    .csv or none: CSV). Another extension, or pyarrow missing, is one line
+    (:class:`~impactcli.errors.InputError`)."""
+    extension = "" if output in (None, "-") else os.path.splitext(output)[1].lower()
+    if extension and extension not in TABLE_EXTENSIONS:
+        raise InputError(
+            f"-o {output}: {command} writes a table: {', '.join(TABLE_EXTENSIONS)} "
+            "(or no extension: CSV)"
+        )
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        raise InputError(f"{command} needs pyarrow: pip install '.[batch]'") from None
+    if fmt is not None:
+        return TableFormat(fmt)
+    return TABLE_EXTENSIONS.get(extension, TableFormat.csv)
 
 
 class TableSink:
@@ -102,26 +142,30 @@ def _csv_field(text: str) -> str:
 
 
 def result_batch(batch, result: dict[str, np.ndarray], schema):
-    """The input batch's columns followed by the result columns (NaN as null)."""
+    """The input batch's columns followed by the result columns of ``schema``
+    (:func:`output_schema`): text, or floats with NaN as null."""
     import pyarrow as pa
 
     from impactcli.io.arrays import float_array, text_array
 
     columns = list(batch.columns)
-    for name in output_columns():
-        if name in TEXT_OUTPUTS:
-            columns.append(text_array(result[name].tolist()))
+    for field in list(schema)[batch.num_columns :]:
+        if pa.types.is_string(field.type):
+            columns.append(text_array(result[field.name].tolist()))
         else:
-            columns.append(float_array(result[name]))
+            columns.append(float_array(result[field.name]))
     return pa.RecordBatch.from_arrays(columns, schema=schema)
 
 
-def output_schema(schema):
-    """The Arrow schema of the output: the input's fields, the results (float64), error."""
+def output_schema(schema, outputs: Sequence[str] | None = None):
+    """The Arrow schema of the output: the input's fields, then the result columns
+    ``outputs`` (default: those of ``impact batch``), float64 but for the text ones
+    (:data:`~impactcli.io.table.TEXT_OUTPUTS`: error, warning)."""
     import pyarrow as pa
 
     fields = [
-        pa.field(c, pa.string() if c in TEXT_OUTPUTS else pa.float64()) for c in output_columns()
+        pa.field(c, pa.string() if c in TEXT_OUTPUTS else pa.float64())
+        for c in (output_columns() if outputs is None else outputs)
     ]
     return pa.schema([*schema, *fields])
 
