@@ -499,6 +499,7 @@ def normal_restitution_and_history(
     alpha: float | None = None,
     points: int | None = None,
     n: int = 25,
+    separation: str = "overlap",
 ) -> tuple[float, NormalHistory | None]:
     r"""The normal law of an oblique impact: e and, if asked, the normal history.
 
@@ -507,7 +508,7 @@ def normal_restitution_and_history(
     (:func:`impactcli.impact.law_impact`: ``hertz``, ``du-wang``, ``thornton``,
     ``walton-braun``, ``tabulated``), or, with ``damping``, for Hertz elasticity plus viscous
     damping (:func:`impactcli.damping.solve_damped_impact`: ``tsuji`` or ``hunt-crossley``,
-    damping parameter ``alpha``; the contact ends when delta returns to 0).
+    damping parameter ``alpha``; the contact ends by the rule ``separation``).
 
     Parameters
     ----------
@@ -518,7 +519,10 @@ def normal_restitution_and_history(
     damping : None, ``tsuji`` or ``hunt-crossley``
     alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
     points : time points of the history (>= 3) for the ``mindlin`` model; None: no history
-    n : FILM segments per stage
+    n : FILM segments per stage of a law of :mod:`impactcli.lawlib` (damped Hertz uses the
+        400 of :func:`impactcli.damping.solve_damped_impact`)
+    separation : with ``damping``: ``overlap`` (the contact ends when delta returns to 0) or
+        ``force`` (when the total force does; the spheres part at delta_separation > 0)
 
     Returns
     -------
@@ -560,7 +564,12 @@ def normal_restitution_and_history(
         history = None if points is None else NormalHistory.from_impacts([impact], int(points))
         return e, history
 
-    from impactcli.damping import make_damping_law, solve_damped_impact
+    from impactcli.damping import (
+        check_alpha,
+        check_damping,
+        make_damping_law,
+        solve_damped_impact,
+    )
     from impactcli.lawlib import get_law
     from impactcli.laws import hertz_stiffness
 
@@ -569,11 +578,13 @@ def normal_restitution_and_history(
             f"damping {damping!r} is viscous damping on Hertz elasticity: its law is hertz, "
             f"got {law!r}" + (" with parameters" if params else "")
         )
-    if alpha is None or not (np.isfinite(alpha) and alpha >= 0.0):
-        raise ValueError(f"damping {damping!r} needs a finite alpha >= 0, got {alpha}")
+    if alpha is None:
+        raise ValueError(f"damping {damping!r} needs its parameter alpha")
+    check_alpha(alpha)
+    check_damping(damping, separation)
     m, radius, modulus = effective_properties(sphere1, sphere2)
     contact = make_damping_law(damping, float(hertz_stiffness(modulus, radius)), m, alpha)
-    solution = solve_damped_impact(contact, float(u_n), m)
+    solution = solve_damped_impact(contact, float(u_n), m, separation=separation)
     e = float(solution.restitution)
     if points is None:
         return e, None

@@ -62,10 +62,13 @@ __all__ = [
     "LawParameter",
     "TsujiDamping",
     "ViscoelasticLaw",
+    "alpha_label",
+    "check_alpha",
     "check_damping",
     "damped_impact_ode",
     "damped_ode_solution",
     "damping_for_restitution",
+    "damping_label",
     "hunt_crossley_alpha_published",
     "make_damping_law",
     "solve_damped_impact",
@@ -104,6 +107,7 @@ class ViscoelasticLaw(Protocol):
     """F(delta, delta') = K delta^1.5 + c(delta) delta'; parameters broadcast with delta."""
 
     name: ClassVar[str]
+    label: ClassVar[str]
     parameters: ClassVar[tuple[LawParameter, ...]]
     reference: ClassVar[str]
     stiffness: ArrayLike
@@ -169,6 +173,7 @@ class TsujiDamping(_HertzElastic):
     alpha: ArrayLike
 
     name: ClassVar[str] = "tsuji"
+    label: ClassVar[str] = "Tsuji"
     reference: ClassVar[str] = (
         "Tsuji, Tanaka & Ishida (1992), Powder Technol. 71:239-250, "
         "doi:10.1016/0032-5910(92)88030-L"
@@ -226,6 +231,7 @@ class HuntCrossleyDamping(_HertzElastic):
     alpha: ArrayLike
 
     name: ClassVar[str] = "hunt-crossley"
+    label: ClassVar[str] = "Hunt-Crossley"
     reference: ClassVar[str] = (
         "Hunt & Crossley (1975), J. Appl. Mech. 42:440-445, doi:10.1115/1.3423596"
     )
@@ -267,6 +273,37 @@ def check_damping(name: str | None = None, separation: str | None = None) -> Non
         raise ValueError(f"unknown damping law {name!r}; accepted: {', '.join(DAMPING_LAWS)}")
     if separation is not None and separation not in SEPARATIONS:
         raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}, got {separation!r}")
+
+
+def check_alpha(alpha: float, name: str = "alpha") -> None:
+    """Raise ValueError unless the damping parameter ``alpha`` (called ``name`` in the
+    message) is a finite number >= 0."""
+    if not (np.isfinite(alpha) and alpha >= 0.0):
+        raise ValueError(f"{name} must be a finite number >= 0, got {alpha:g}")
+
+
+def damping_label(name: str) -> str:
+    """The law called ``name`` as a title: ``'Tsuji damping'``, ``'Hunt-Crossley damping'``.
+
+    >>> damping_label("hunt-crossley")
+    'Hunt-Crossley damping'
+    """
+    check_damping(name)
+    return f"{DAMPING_LAWS[name].label} damping"
+
+
+def alpha_label(name: str, alpha: float, digits: int = 6) -> str:
+    """``'alpha = 0.3'`` for tsuji, ``'alpha = 0.5 s/m'`` for hunt-crossley: alpha with
+    ``digits`` significant digits and the unit of the law's parameter (none when
+    dimensionless).
+
+    >>> alpha_label("tsuji", 0.3), alpha_label("hunt-crossley", 0.5)
+    ('alpha = 0.3', 'alpha = 0.5 s/m')
+    """
+    check_damping(name)
+    (parameter,) = DAMPING_LAWS[name].parameters
+    unit = "" if parameter.unit == "dimensionless" else f" {parameter.unit}"
+    return f"{parameter.name} = {alpha:.{digits}g}{unit}"
 
 
 def make_damping_law(

@@ -1236,6 +1236,7 @@ def damped_impact(
     0.653551
     """
     from impactcli.damping import (
+        check_alpha,
         check_damping,
         damping_for_restitution,
         make_damping_law,
@@ -1250,8 +1251,8 @@ def damped_impact(
         )
     if (alpha is None) == (restitution is None):
         raise ValueError("give the damping as alpha or as a coefficient of restitution e, not both")
-    if alpha is not None and not (np.isfinite(alpha) and alpha >= 0.0):
-        raise ValueError(f"alpha must be a finite number >= 0, got {alpha:g}")
+    if alpha is not None:
+        check_alpha(alpha)
     if restitution is not None and not (0.0 < restitution <= 1.0):
         raise ValueError(
             f"the coefficient of restitution e must lie in (0, 1], got {restitution:g}"
@@ -1336,15 +1337,19 @@ def damped_restitution_sweep(
     damping's integral of c delta'^2 dt [J]; ``delta_separation`` the indentation at
     separation [m] (0 for ``overlap``).
     """
-    from impactcli.damping import check_damping, make_damping_law, solve_damped_impact
+    from impactcli.damping import (
+        check_alpha,
+        check_damping,
+        make_damping_law,
+        solve_damped_impact,
+    )
     from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS
 
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")
     check_damping(damping)
-    if not (np.isfinite(alpha) and alpha >= 0.0):
-        raise ValueError(f"alpha must be a finite number >= 0, got {alpha:g}")
+    check_alpha(alpha)
     check_size("the number of velocities", v0.size, MAX_COUNT)
     check_size("the number of velocities x n", v0.size * int(n), MAX_SWEEP_SEGMENTS)
     split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance

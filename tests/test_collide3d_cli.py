@@ -159,6 +159,74 @@ def test_law_and_damping_give_the_head_on_restitution(impact):
         assert summary["normal_restitution"] == pytest.approx(tsuji, rel=1e-12)
 
 
+def test_hunt_crossley_alpha_with_unit_as_impact_elastic(impact):
+    """--damping and --alpha (with its unit) are the shared options of impact elastic:
+    collide3d's normal restitution at u_n = 3 m/s is the head-on impact's at 3 m/s."""
+    hunt = ["--damping", "hunt-crossley", "--alpha", "0.5s/m"]
+    head_on = impact("elastic", *ALUMINA_ON_PLANE[1:15], "--v1", "3", "--v2", "0", *hunt,
+                     "-f", "json")  # fmt: skip
+    assert head_on.returncode == 0, head_on.stderr
+    e = json.loads(head_on.stdout)["summary"]["restitution"]
+    assert 0.0 < e < 1.0
+    for model in ("rigid", "mindlin"):
+        r = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", *hunt, "--tangential", model,
+                   "--points", "801", "-f", "json")  # fmt: skip
+        assert r.returncode == 0, r.stderr
+        doc = json.loads(r.stdout)
+        assert doc["summary"]["normal_restitution"] == pytest.approx(e, rel=1e-12)
+        assert doc["inputs"]["normal_model"] == "hunt-crossley damping (alpha = 0.5)"
+    # the same alpha written in SI: the same collision
+    si = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", "--damping", "hunt-crossley", "--alpha",
+                "0.5", "-f", "json")  # fmt: skip
+    assert json.loads(si.stdout)["summary"]["normal_restitution"] == pytest.approx(e, rel=1e-12)
+
+
+def test_separation_reaches_the_damped_normal_law(impact, tmp_path):
+    """--separation force: the contact ends when the total force returns to 0, as in impact
+    elastic (a larger e than overlap for tsuji), for one collision and for --rows."""
+    pytest.importorskip("pyarrow")
+    tsuji = ["--damping", "tsuji", "--alpha", "0.5"]
+    found = {}
+    for rule in ("overlap", "force"):
+        head_on = impact("elastic", *ALUMINA_ON_PLANE[1:15], "--v1", "3", "--v2", "0", *tsuji,
+                         "--separation", rule, "-f", "json")  # fmt: skip
+        assert head_on.returncode == 0, head_on.stderr
+        e = found[rule] = json.loads(head_on.stdout)["summary"]["restitution"]
+        for model in ("rigid", "mindlin"):
+            r = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", *tsuji, "--separation", rule,
+                       "--tangential", model, "--points", "801", "-f", "json")  # fmt: skip
+            assert r.returncode == 0, r.stderr
+            assert json.loads(r.stdout)["summary"]["normal_restitution"] == pytest.approx(
+                e, rel=1e-12
+            )
+        table, out = tmp_path / f"{rule}.csv", tmp_path / f"{rule}-out.csv"
+        table.write_text(ROWS_HEADER + "\n0,0,0,0,0,-1,1,0,-3,0,0,0,5mm,inf,inf,380GPa,0.23,"
+                         "4000,inf\n")  # fmt: skip
+        r = impact("collide3d", "--rows", str(table), "-o", str(out), *tsuji,
+                   "--separation", rule)  # fmt: skip
+        assert r.returncode == 0, r.stderr
+        (row,) = list(csv.DictReader(out.open()))
+        assert float(row["normal_restitution"]) == pytest.approx(e, rel=1e-12)
+    assert found["force"] > found["overlap"]
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--alpha", "0.2"], "--alpha needs --damping"),
+        (["--separation", "force"], "--separation needs --damping"),
+        (["--damping", "tsuji", "--alpha", "0.2", "--e", "0.5"], "one normal law"),
+        (["--damping", "tsuji", "--alpha", "0.5s/m"], "--alpha"),  # tsuji's alpha is [-]
+        (["--damping", "tsuji", "--alpha", "0.2", "--separation", "glue"], "--separation"),
+    ],
+)
+def test_damping_option_errors_one_line(impact, args, message):
+    r = impact(*ALUMINA_ON_PLANE, "--v1=1,0,-3", *args)
+    assert r.returncode == 2, r.stdout
+    assert message in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+
+
 @pytest.mark.parametrize(
     "args, message",
     [

@@ -20,7 +20,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
-from impactcli.cli.damping_options import DampingLaw
+from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
@@ -49,6 +49,7 @@ VELOCITY_HELP = (
 
 @with_law_options()
 @with_sphere_options(velocities=False)
+@with_damping_options(target_e=False)  # collide3d's --e is a given e, not a target of alpha
 def collide3d(
     v1: Optional[str] = typer.Option(
         None, "--v1", help="Velocity of sphere 1 before the impact: " + VELOCITY_HELP
@@ -80,15 +81,7 @@ def collide3d(
         help="Normal law when --law is not given: elastic (hertz, e = 1, the default) or "
         "elastoplastic (du-wang; needs a yield strength).",
     ),
-    damping: Optional[DampingLaw] = typer.Option(
-        None,
-        "--damping",
-        help="Viscous damping on Hertz elasticity instead of --law: tsuji (alpha [-]) or "
-        "hunt-crossley (alpha [s/m]); see docs/damping.md.",
-    ),
-    alpha: Optional[float] = typer.Option(
-        None, "--alpha", help="Damping parameter of --damping (>= 0)."
-    ),
+    damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     e: Optional[float] = typer.Option(
         None, "--e", help="Coefficient of restitution 0 <= e <= 1 instead of a law (rigid only)."
     ),
@@ -162,7 +155,9 @@ def collide3d(
             check_restitution(e, "--e")
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    law_name, params = _normal_law(law, model, damping, alpha, e, tangential)
+    law_name, params, (damping_law, alpha, separation) = _normal_law(
+        law, model, damping, e, tangential
+    )
     check_size("--points", points, MAX_POINTS, minimum=3)
     check_plot(plot, output)
     check_plot(plot_force, output)
@@ -177,7 +172,7 @@ def collide3d(
                    if value != "0,0,0"]
         single += [f"--{k}" for k, value in vars(spheres).items() if value is not None]
         _rows(rows, output, fmt, single, law=law_name, params=params,
-              damping=damping and damping.value, alpha=alpha, restitution=e, mu=mu,
+              damping=damping_law, alpha=alpha, separation=separation, restitution=e, mu=mu,
               tangential=tangential.value, points=points)  # fmt: skip
         return
     for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2)):
@@ -199,8 +194,9 @@ def collide3d(
     }
     s1, s2 = spheres_from_options(spheres)
     result, summary, inputs, force, limit = _solve(
-        s1, s2, vectors, law_name, params, damping, alpha, e, mu, tangential, points
-    )
+        s1, s2, vectors, law_name, params, (damping_law, alpha, separation), e, mu, tangential,
+        points,
+    )  # fmt: skip
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -220,12 +216,13 @@ def collide3d(
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
 
 
-def _normal_law(law: LawOptions, model, damping, alpha, e, tangential):
-    """(law name, parameters in SI) of the normal law from --law and its parameters
-    (:func:`impactcli.cli.law_options.resolve_laws`), --model, --damping, --alpha and --e,
-    with one line for each clash. Without --law: hertz, du-wang for --model elastoplastic."""
+def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
+    """(law name, parameters in SI, (damping law, alpha in SI, separation rule)) of the
+    normal law from --law and its parameters (:func:`impactcli.cli.law_options.resolve_laws`),
+    --model, the damping options (:meth:`DampingOptions.parse`) and --e, with one line for
+    each clash. Without --law: hertz, du-wang for --model elastoplastic."""
     given = [name for name, value in (("--law", law.names or None), ("--model", model),
-             ("--damping", damping), ("--e", e)) if value is not None]  # fmt: skip
+             ("--damping", damping.damping), ("--e", e)) if value is not None]  # fmt: skip
     if len(given) > 1:
         raise InputError(f"give one normal law: {' or '.join(given)}, not both")
     if e is not None and tangential is Tangential.mindlin:
@@ -233,13 +230,10 @@ def _normal_law(law: LawOptions, model, damping, alpha, e, tangential):
             "--e cannot drive --tangential mindlin, which needs the normal force history: "
             "use --law, --model or --damping"
         )
-    if (alpha is None) != (damping is None):
-        raise InputError("--damping and --alpha go together (e.g. --damping tsuji --alpha 0.2)")
-    if alpha is not None and not (math.isfinite(alpha) and alpha >= 0.0):
-        raise InputError(f"--alpha: the damping parameter must be finite and >= 0, got {alpha}")
+    damping_law, alpha, _, separation = damping.parse()
     default = MODEL_LAWS[model] if model is not None else "hertz"
     (choice,) = resolve_laws(law, default=(default,))
-    return choice.name, choice.params
+    return choice.name, choice.params, (damping_law, alpha, separation)
 
 
 def _normal(p1, p2):
@@ -335,7 +329,9 @@ def _plot(path: str, c, inputs: dict) -> None:
     save_plot(fig, path)
 
 
-def _solve(s1, s2, vectors, law, params, damping, alpha, e, mu, tangential, points):
+def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
+    """The collision, its summary, inputs, mindlin force history and Coulomb limit;
+    ``damped`` is (damping law or None, alpha, separation rule)."""
     import numpy as np
 
     from impactcli.collision3d import (
@@ -353,14 +349,14 @@ def _solve(s1, s2, vectors, law, params, damping, alpha, e, mu, tangential, poin
             f"{u_n:.6g} m/s with n = ({n[0]:.6g}, {n[1]:.6g}, {n[2]:.6g}) from sphere 1 to "
             "sphere 2 (an impact needs > 0)"
         )
+    damping, alpha, separation = damped
     mindlin = tangential is Tangential.mindlin
     history = shear = None
     try:
         if e is None:
             restitution, history = normal_restitution_and_history(
-                s1, s2, u_n, law=law, params=params,
-                damping=damping.value if damping is not None else None, alpha=alpha,
-                points=points if mindlin else None,
+                s1, s2, u_n, law=law, params=params, damping=damping, alpha=alpha,
+                points=points if mindlin else None, separation=separation,
             )  # fmt: skip
         else:
             restitution = e
@@ -379,8 +375,9 @@ def _solve(s1, s2, vectors, law, params, damping, alpha, e, mu, tangential, poin
         result = _first(result)
         force = {"t": result.times.tolist(), "force": result.tangential_force.tolist()}
         limit = mu * history.force[0]
+    rule = "" if separation == "overlap" else f", {separation} separation"
     normal_law = "given e" if e is not None else (
-        f"{damping.value} damping (alpha = {alpha:g})" if damping is not None else law
+        f"{damping} damping (alpha = {alpha:g}{rule})" if damping is not None else law
     )  # fmt: skip
     inputs = {
         **{k.lstrip("-"): list(map(float, v)) for k, v in vectors.items()},

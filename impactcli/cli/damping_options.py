@@ -3,7 +3,9 @@
 :func:`with_damping_options` adds --damping, --alpha, --e and --separation to a command's
 signature in place of its ``damping`` parameter and calls the command with them gathered in
 one :class:`DampingOptions` (raw text; :meth:`DampingOptions.parse` reads --alpha in the
-law's unit). The rules on the values (alpha >= 0, e in (0, 1], one of the two) live in
+law's unit). ``with_damping_options(target_e=False)`` leaves --e out, for a command whose
+--e means something else (``impact collide3d``: a given coefficient of restitution instead
+of a law). The rules on the values (alpha >= 0, e in (0, 1], one of the two) live in
 :func:`impactcli.impact.damped_impact` and :mod:`impactcli.damping`.
 """
 
@@ -60,6 +62,8 @@ class DampingOptions:
     alpha: str | None = None
     e: float | None = None
     separation: str | None = None
+    #: --e is a target coefficient of restitution of this command (else it has no such --e).
+    target_e: bool = True
 
     @property
     def given(self) -> bool:
@@ -74,7 +78,7 @@ class DampingOptions:
             extra = [
                 f"--{name}"
                 for name, value in (("alpha", self.alpha), ("e", self.e))
-                if value is not None
+                if value is not None and (name != "e" or self.target_e)
             ] + (["--separation"] if self.separation is not None else [])
             if extra:
                 verb = "needs" if len(extra) == 1 else "need"
@@ -82,11 +86,23 @@ class DampingOptions:
                     f"{', '.join(extra)} {verb} --damping tsuji or --damping hunt-crossley"
                 )
             return None, None, None, "overlap"
+        from impactcli.damping import check_alpha
         from impactcli.units import parse_quantity
 
         alpha = None
         if self.alpha is not None:
             alpha = parse_quantity(self.alpha, ALPHA_KINDS[self.damping], "--alpha")
+            try:
+                check_alpha(alpha, "--alpha")
+            except ValueError as exc:
+                raise InputError(str(exc)) from None
+        if not self.target_e:
+            if alpha is None:
+                raise InputError(
+                    f"--damping {self.damping} needs its parameter: --alpha A (e.g. --damping "
+                    "tsuji --alpha 0.2)"
+                )
+            return self.damping, alpha, None, self.separation or "overlap"
         if (alpha is None) == (self.e is None):
             raise InputError(
                 f"--damping {self.damping}: give the damping as --alpha A or as a coefficient "
@@ -95,10 +111,16 @@ class DampingOptions:
         return self.damping, alpha, self.e, self.separation or "overlap"
 
 
-def _parameters() -> list[inspect.Parameter]:
+def _parameters(target_e: bool) -> list[inspect.Parameter]:
     kinds: dict[str, Any] = {
         "damping": Annotated[
-            Optional[DampingLaw], typer.Option("--damping", help=DAMPING_HELP["damping"])
+            Optional[DampingLaw],
+            typer.Option(
+                "--damping",
+                help=DAMPING_HELP["damping"]
+                if target_e
+                else DAMPING_HELP["damping"].replace("--alpha or --e", "--alpha"),
+            ),
         ],
         "alpha": Annotated[Optional[str], typer.Option("--alpha", help=DAMPING_HELP["alpha"])],
         "e": Annotated[Optional[float], typer.Option("--e", help=DAMPING_HELP["e"])],
@@ -107,23 +129,28 @@ def _parameters() -> list[inspect.Parameter]:
             typer.Option("--separation", help=DAMPING_HELP["separation"]),
         ],
     }
+    if not target_e:
+        del kinds["e"]
     return [
         inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation)
         for name, annotation in kinds.items()
     ]
 
 
-def with_damping_options() -> Callable[[Callable], Callable]:
+def with_damping_options(target_e: bool = True) -> Callable[[Callable], Callable]:
     """Decorate a command whose signature has a ``damping`` parameter: --damping, --alpha,
     --e and --separation take its place, and the command receives them as
-    ``damping=DampingOptions(...)``."""
-    names = ("damping", "alpha", "e", "separation")
+    ``damping=DampingOptions(...)``. ``target_e=False``: no --e (the command's own --e, if
+    any, is left to it)."""
+    names = ("damping", "alpha", "e", "separation") if target_e else (
+        "damping", "alpha", "separation"
+    )  # fmt: skip
 
     def decorate(command: Callable) -> Callable:
         signature = inspect.signature(command, eval_str=True)
         params = list(signature.parameters.values())
         where = [p.name for p in params].index("damping")
-        new = [p.replace(kind=params[where].kind) for p in _parameters()]
+        new = [p.replace(kind=params[where].kind) for p in _parameters(target_e)]
         params[where : where + 1] = new
 
         @functools.wraps(command)
@@ -132,8 +159,9 @@ def with_damping_options() -> Callable[[Callable], Callable]:
             options = DampingOptions(
                 damping=None if raw["damping"] is None else str(raw["damping"]),
                 alpha=raw["alpha"],
-                e=raw["e"],
+                e=raw.get("e"),
                 separation=None if raw["separation"] is None else str(raw["separation"]),
+                target_e=target_e,
             )
             return command(*args, damping=options, **kwargs)
 

@@ -183,10 +183,10 @@ def _damped_title(result) -> str | None:
     impact has no damping."""
     law = getattr(result, "law", None)
     if law is not None and hasattr(result, "separation"):
-        name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}.get(law.name, law.name)
-        unit = " s/m" if law.name == "hunt-crossley" else ""
+        from impactcli.damping import alpha_label, damping_label
+
         return (
-            f"Hertz with {name} damping (alpha = {result.alpha:.6g}{unit}, "
+            f"Hertz with {damping_label(law.name)} ({alpha_label(law.name, result.alpha)}, "
             f"{result.separation} separation)"
         )
     return None
@@ -287,9 +287,11 @@ def _run(
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
     s, v0 = result.summary, result.impact_velocity
     if target is not None:
-        unit = " s/m" if damping_law == "hunt-crossley" else ""
+        from impactcli.damping import alpha_label
+
         note(
-            f"alpha = {s['alpha']:.10g}{unit} gives e = {target:g} at V0 = {v0:g} m/s "
+            f"{alpha_label(damping_law, s['alpha'], digits=10)} gives e = {target:g} at V0 = "
+            f"{v0:g} m/s "
             f"({damping_law}, {separation} separation, FILM n = {n})"
         )
     if model == "elastic" and law is None and "first_yield_velocity" in s:
@@ -850,9 +852,11 @@ def _damped_sweep(
     except ValueError as exc:
         raise InputError(str(exc)) from None
     _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
-    unit = " s/m" if law == "hunt-crossley" else ""
-    name = {"tsuji": "Tsuji", "hunt-crossley": "Hunt-Crossley"}[law]
-    model = f"Hertz with {name} damping, alpha = {alpha:.6g}{unit}, {separation} separation"
+    from impactcli.damping import alpha_label, damping_label
+
+    model = (
+        f"Hertz with {damping_label(law)}, {alpha_label(law, alpha)}, {separation} separation"
+    )
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:

@@ -114,6 +114,7 @@ def compute_collisions3d(
     points: int = 4001,
     n: int = 25,
     faults: np.ndarray | None = None,
+    separation: str = "overlap",
 ) -> dict[str, np.ndarray]:
     """The result columns of a chunk of rows.
 
@@ -131,6 +132,7 @@ def compute_collisions3d(
     n : FILM segments per stage of the normal law
     faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
         CSV line), which becomes its error
+    separation : the separation rule of damped Hertz (``overlap`` or ``force``)
 
     Returns
     -------
@@ -241,13 +243,14 @@ def compute_collisions3d(
     law_rows = ok[np.isnan(given_e[ok])]
     e[ok] = given_e[ok]
     if law_rows.size and tangential == "rigid":
-        e[law_rows], reasons = _restitutions(s1, s2, u_n, law_rows, law, params, damping, alpha, n)
+        e[law_rows], reasons = _restitutions(s1, s2, u_n, law_rows, law, params, damping,
+                                             alpha, n, separation)  # fmt: skip
         errors.add_messages(_scatter(reasons, law_rows, size))
     histories = None
     if tangential == "mindlin":
         ok = np.flatnonzero(~errors.bad)
         e[ok], histories, reasons = _histories(s1, s2, u_n, ok, law, params, damping, alpha,
-                                               points, n)  # fmt: skip
+                                               points, n, separation)  # fmt: skip
         errors.add_messages(_scatter(reasons, ok, size))
     ok = np.flatnonzero(~errors.bad)
     if ok.size:
@@ -279,7 +282,7 @@ def _scatter(reasons: np.ndarray, rows: np.ndarray, size: int) -> np.ndarray:
     return out
 
 
-def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n):
+def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n, separation):
     """e of ``rows`` at u_n, vectorised: the batch kernel for a law of the library, the
     damped FILM for damped Hertz. Returns (e, reasons)."""
     from impactcli.batch import batch_impacts
@@ -301,11 +304,11 @@ def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n):
     radius = effective_radius(0.5 * s1["d"][rows], 0.5 * s2["d"][rows])
     modulus = effective_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows], s2["nu"][rows])
     contact = make_damping_law(damping, hertz_stiffness(modulus, radius), m, alpha)
-    solution = solve_damped_impact(contact, u_n[rows], m)
+    solution = solve_damped_impact(contact, u_n[rows], m, separation=separation)
     return np.asarray(solution.restitution, dtype=float), np.full(rows.size, "", dtype=object)
 
 
-def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n):
+def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separation):
     """e and the normal history of each of ``rows`` (one FILM run per row). Returns (e,
     (t, delta, delta_dot, force) of the rows that ran, shape (k, points)), reasons)."""
     from impactcli.collision3d import normal_restitution_and_history
@@ -327,7 +330,7 @@ def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n):
             ]  # fmt: skip
             e[k], history = normal_restitution_and_history(
                 *pair, float(u_n[row]), law=law, params=dict(params or {}), damping=damping,
-                alpha=alpha, points=points, n=n,
+                alpha=alpha, points=points, n=n, separation=separation,
             )  # fmt: skip
         except (ValueError, InputError) as exc:
             reasons[k] = str(exc).splitlines()[0]
