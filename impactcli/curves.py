@@ -25,6 +25,7 @@ from __future__ import annotations
 import csv
 import os
 import re
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -201,15 +202,40 @@ def check_unloading_curves(
 
 def read_loading_curve(path: str | os.PathLike[str]) -> tuple[NDArray, NDArray]:
     """Loading curve (delta [m], force [N]) from a ``delta,force`` CSV file, checked
-    (:func:`check_loading_curve`) and starting at (0, 0)."""
-    table = read_curve_table(path, ("delta", "force"))
-    return check_loading_curve(table["delta"], table["force"], os.fspath(path))
+    (:func:`check_loading_curve`) and starting at (0, 0); read and checked once per version
+    of the file (:func:`_file_version`), its arrays read-only."""
+    return _read_loading_curve(*_file_version(path))
 
 
 def read_unloading_curves(path: str | os.PathLike[str]):
     """Unloading curves from a ``delta_max,delta,force`` CSV file, checked
-    (:func:`check_unloading_curves`), as :class:`~impactcli.lawlib.UnloadingCurves`."""
-    table = read_curve_table(path, ("delta_max", "delta", "force"))
-    return check_unloading_curves(
-        table["delta_max"], table["delta"], table["force"], os.fspath(path)
-    )
+    (:func:`check_unloading_curves`), as :class:`~impactcli.lawlib.UnloadingCurves`; read
+    and checked once per version of the file."""
+    return _read_unloading_curves(*_file_version(path))
+
+
+def _file_version(path: str | os.PathLike[str]) -> tuple[str, int, int]:
+    """(name, modification time [ns], size) of a curve file: a batch builds a law's contact
+    for every block of rows, and each must not read the file again; a file changed since is
+    read anew. A file that cannot be examined is left to the reader's one-line error."""
+    name = os.fspath(path)
+    try:
+        info = os.stat(name)
+    except OSError:
+        return name, -1, -1
+    return name, info.st_mtime_ns, info.st_size
+
+
+@lru_cache(maxsize=16)
+def _read_loading_curve(name: str, _mtime: int, _size: int) -> tuple[NDArray, NDArray]:
+    table = read_curve_table(name, ("delta", "force"))
+    delta, force = check_loading_curve(table["delta"], table["force"], name)
+    for array in (delta, force):
+        array.setflags(write=False)
+    return delta, force
+
+
+@lru_cache(maxsize=16)
+def _read_unloading_curves(name: str, _mtime: int, _size: int):
+    table = read_curve_table(name, ("delta_max", "delta", "force"))
+    return check_unloading_curves(table["delta_max"], table["delta"], table["force"], name)

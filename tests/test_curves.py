@@ -97,3 +97,23 @@ def test_tabulated_law_from_files(tmp_path):
     path = write(tmp_path, "delta [um],force [mN]\n" + rows + "\n")
     plan = get_law("tabulated").contact(1.0, 1.0, curve=path).plan(v0, m)
     assert float(plan.delta_max) == pytest.approx((5 * m * v0**2 / (4 * k)) ** 0.4, rel=1e-4)
+
+
+def test_a_curve_file_is_read_once_per_version(tmp_path, monkeypatch):
+    """A batch builds the tabulated law for every block of rows: the file is read once; a
+    file rewritten since is read again (its new points are used)."""
+    import impactcli.curves as curves
+
+    path = tmp_path / "curve.csv"
+    path.write_text("delta [um],force [N]\n0,0\n10,100\n20,300\n")
+    reads = []
+    real = curves.read_curve_table
+    monkeypatch.setattr(
+        curves, "read_curve_table", lambda *a, **k: (reads.append(a), real(*a, **k))[1]
+    )
+    first = [curves.read_loading_curve(path) for _ in range(3)]
+    assert len(reads) == 1 and all(f is first[0] for f in first)
+    assert not first[0][1].flags.writeable
+    path.write_text("delta [um],force [N]\n0,0\n10,200\n")  # a new size: a new version
+    again = curves.read_loading_curve(path)
+    assert len(reads) == 2 and again[1].tolist() == [0.0, 200.0]
