@@ -35,6 +35,7 @@ __all__ = [
     "contact_radius_warning",
     "first_yield_warning",
     "mass_split_warning",
+    "materials_differ",
     "flat_floats",
     "needs_yield_strength",
     "pair_problems",
@@ -433,11 +434,22 @@ def contact_radius_warning(
     )
 
 
-def _differ(a: float | None, b: float | None) -> bool:
-    """Two property values differ (None: not given) beyond rounding."""
-    if a is None or b is None:
-        return (a is None) != (b is None)
-    return not abs(a - b) <= 1e-9 * max(abs(a), abs(b))
+def materials_differ(
+    compliance1: ArrayLike,
+    compliance2: ArrayLike,
+    yield_strength1: ArrayLike,
+    yield_strength2: ArrayLike,
+) -> NDArray[np.bool_]:
+    """Whether two spheres' materials differ beyond rounding (1e-9 relative): compliance
+    (1 - nu^2)/E [1/Pa] or yield strength [Pa] (NaN or None: not given, which differs from a
+    given one). Arrays broadcast."""
+    def differ(a: ArrayLike, b: ArrayLike) -> NDArray[np.bool_]:
+        a, b = (np.asarray(np.nan if x is None else x, dtype=float) for x in (a, b))
+        with np.errstate(invalid="ignore"):
+            apart = ~(np.abs(a - b) <= 1e-9 * np.fmax(np.abs(a), np.abs(b)))
+        return np.where(np.isnan(a) | np.isnan(b), np.isnan(a) != np.isnan(b), apart)
+
+    return differ(compliance1, compliance2) | differ(yield_strength1, yield_strength2)
 
 
 def mass_split_warning(
@@ -449,8 +461,8 @@ def mass_split_warning(
 ) -> str | None:
     """The warning when the spheres' materials differ (compliance (1 - nu^2)/E [1/Pa] or
     yield strength [Pa]) and the indentation is split by mass, else None."""
-    if split != "mass" or not (
-        _differ(compliance1, compliance2) or _differ(yield_strength1, yield_strength2)
+    if split != "mass" or not materials_differ(
+        compliance1, compliance2, yield_strength1, yield_strength2
     ):
         return None
     return (

@@ -3,6 +3,7 @@ the single-impact :func:`impactcli.impact.law_impact` of its law and parameters.
 
 from __future__ import annotations
 
+import csv
 import io
 import sys
 
@@ -279,3 +280,25 @@ def test_split_option_yield_applies_to_rows_without_a_split_cell(batch):
     frame = _split_rows(batch, "--split", "yield")
     assert _f(frame, "glass_steel_mass", "delta1_res") == 0.0
     assert "split is mass" not in frame.loc["glass_steel_mass", "warning"]
+
+
+def test_the_mass_split_warning_follows_the_single_impacts_rule(impact, tmp_path):
+    """A row warns that split mass suits like spheres exactly when ``impact elastoplastic``
+    would (validation.materials_differ): different yield strengths alone count, the same
+    modulus written two ways does not."""
+    table = tmp_path / "rows.csv"
+    table.write_text(
+        "d1,d2,v1,v2,E1,E2,nu,rho,sy1,sy2,model,split\n"
+        "20mm,40mm,0.5,0.5,210GPa,210GPa,0.3,7800,1GPa,300MPa,elastoplastic,mass\n"
+        "20mm,40mm,0.5,0.5,210GPa,210e9,0.3,7800,1GPa,1GPa,elastoplastic,mass\n"
+    )
+    done = impact("batch", str(table), "-f", "csv", "--no-progress")
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader(io.StringIO(done.stdout)))
+    assert "split yield" in rows[0]["warning"] and rows[1]["warning"] == ""
+    single = impact(
+        "elastoplastic", "--d1", "20mm", "--d2", "40mm", "--v1", "0.5m/s", "--v2", "0.5m/s",
+        "--E", "210GPa", "--nu", "0.3", "--rho", "7800kg/m^3", "--sy1", "1GPa", "--sy2",
+        "300MPa", "-f", "json",
+    )  # fmt: skip
+    assert single.returncode == 0 and "--split mass shares the indentation" in single.stderr

@@ -19,7 +19,7 @@ import numpy as np
 
 from impactcli.errors import InputError
 from impactcli.spheres import missing_properties, resolve_properties
-from impactcli.validation import Problems, without_float_warnings
+from impactcli.validation import Problems, materials_differ, without_float_warnings
 
 __all__ = [
     "DAMPING_COLUMNS",
@@ -556,7 +556,7 @@ def _sphere_shares(result: dict, splits, s1: dict, s2: dict, q: dict, valid) -> 
                 f"sphere {i} has no yield strength: taken as brittle, it does not yield "
                 "(fracture is outside the model)"
             )
-    differ = valid & (splits == "mass") & ((s1["E"] != s2["E"]) | (s1["nu"] != s2["nu"]))
+    differ = valid & (splits == "mass") & materials_differ(c1, c2, sy1, sy2)
     notes[differ & (notes == "")] = (
         "the spheres' materials differ and split is mass, the paper's convention for like "
         "spheres; split yield puts the permanent indentation on the sphere that yields"
