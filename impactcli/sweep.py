@@ -14,16 +14,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.batch import law_stage_times
 from impactcli.contact import DU_WANG_PRESSURE_FACTOR, DuWangContact, first_yield_velocity
 from impactcli.impact import (
     Sphere,
     check_pair,
     effective_properties,
-    solve_plan,
     split_fractions,
     weaker_yield_strength,
 )
-from impactcli.lawlib import get_law
+from impactcli.lawlib import get_law, plan_groups
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.validation import plastic_range_problems, raise_first
 
@@ -81,16 +81,12 @@ def restitution_sweep(
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)
     plastic = np.broadcast_to(contact.yields(v0, m), v0.shape)
     out = {name: np.zeros_like(v0) for name in SWEEP_COLUMNS}
-    for mask, model in ((~plastic, contact), (plastic, contact)):
-        if not np.any(mask):
-            continue
-        plan = model.plan(v0[mask], m)
-        stages = solve_plan(plan, m, n)
-        out["restitution"][mask] = plan.restitution
-        out["contact_time"][mask] = stages[-1].end_time
-        out["delta_max"][mask] = plan.delta_max
-        out["force_max"][mask] = plan.force_max
-        out["delta_res"][mask] = plan.delta_res
+    for rows, plan in plan_groups(contact, v0, m):  # the elastic, then the plastic impacts
+        out["restitution"][rows] = plan.restitution
+        out["contact_time"][rows] = law_stage_times(plan, m, v0[rows], n)[1]
+        out["delta_max"][rows] = plan.delta_max
+        out["force_max"][rows] = plan.force_max
+        out["delta_res"][rows] = plan.delta_res
     raise_first(plastic_range_problems(contact, v0, m, out["delta_max"]))
     if split == "yield" and np.any(out["delta_res"] > 0.0):
         if sphere1.yield_strength is None and sphere2.yield_strength is None:
