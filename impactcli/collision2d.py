@@ -57,7 +57,6 @@ __all__ = [
     "approach_velocity",
     "check_contact_distance",
     "collision_summary",
-    "elastoplastic_restitution",
     "line_of_centres",
     "oblique_collision",
     "polar_angle",
@@ -116,7 +115,7 @@ def line_of_centres(p1: ArrayLike, p2: ArrayLike) -> Array:
 
     Parameters
     ----------
-    p1, p2 : positions of the centres at contact, (x, y) on the last axis, [m]
+    p1, p2 : positions of the centres at contact, (x, y) or (x, y, z) on the last axis, [m]
 
     Raises
     ------
@@ -125,9 +124,11 @@ def line_of_centres(p1: ArrayLike, p2: ArrayLike) -> Array:
     """
     p1 = np.asarray(p1, dtype=float)
     p2 = np.asarray(p2, dtype=float)
-    check_vectors(2, p1=p1, p2=p2)
+    check_vectors(3 if p1.ndim and p1.shape[-1] == 3 else 2, p1=p1, p2=p2)
     d = p2 - p1
     distance = np.hypot(d[..., 0], d[..., 1])
+    if d.shape[-1] == 3:  # hypot(hypot(x, y), z): for z = 0 the same number as in 2-D
+        distance = np.hypot(distance, d[..., 2])
     coincident = distance == 0.0
     if np.any(coincident):
         raise ValueError(
@@ -481,14 +482,3 @@ def collision_summary(c: ObliqueCollision, sign: dict[str, float]) -> dict[str, 
         "momentum_y_after": c.momentum_after[1],
     }
     return {k: float(v) for k, v in summary.items()}
-
-
-def elastoplastic_restitution(normal_velocity: float, sphere1, sphere2) -> float:
-    """e of the Du & Wang elastoplastic impact of ``sphere1`` and ``sphere2``
-    (:class:`~impactcli.impact.Sphere`) at the normal approach velocity (v1 - v2).n [m/s]
-    (paper sec. 4.4-4.5): the FILM run of the normal impact, sphere 2 at rest."""
-    from impactcli.impact import elastoplastic_impact
-
-    return float(
-        elastoplastic_impact(sphere1, sphere2, normal_velocity, 0.0).summary["restitution"]
-    )

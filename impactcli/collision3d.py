@@ -96,6 +96,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.collision2d import line_of_centres
 from impactcli.validation import check_friction, check_restitution, check_vectors
 from impactcli.validation import where_first as _where
 
@@ -705,7 +706,7 @@ def oblique_impact(
         if np.any(bad):
             raise ValueError(f"a flat target cannot spin: {name} must be 0" + _where(bad))
 
-    normal = _line_of_centres(p1, p2)
+    normal = line_of_centres(p1, p2)
     rot1 = _rotation(m1, r1, inertia1, "inertia1")
     rot2 = _rotation(m2, r2, inertia2, "inertia2")
     u = _contact_velocity(v1, v2, w1, w2, r1, r2, normal)
@@ -908,20 +909,6 @@ def _rotation(m: Array, r: Array, inertia: ArrayLike | None, name: str) -> Array
 def _lever(r: Array, rotation: Array) -> Array:
     """R / I = (R^2/I)/R, [1/(kg m)]: 0 for a flat body."""
     return np.where(np.isinf(r), 0.0, rotation / r)
-
-
-def _line_of_centres(p1: Array, p2: Array) -> Array:
-    d = p2 - p1
-    # hypot(hypot(x, y), z): for z = 0 the same number as collision2d's hypot(x, y).
-    distance = np.hypot(np.hypot(d[..., 0], d[..., 1]), d[..., 2])
-    bad = distance == 0.0
-    if np.any(bad):
-        raise ValueError(
-            "the positions of the two centres coincide"
-            + _where(bad)
-            + ": they do not define a line of centres"
-        )
-    return d / distance[..., None]
 
 
 def _dot(a: Array, b: Array) -> Array:

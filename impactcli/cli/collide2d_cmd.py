@@ -235,8 +235,7 @@ def collide2d(
 
 def _law_restitution(normal_velocity: float, law, sphere1, sphere2) -> float:
     """e of the normal impact at the approach velocity (v1 - v2).n [m/s] under ``law`` (a
-    :class:`~impactcli.cli.law_options.LawChoice`): the FILM run, sphere 2 at rest (for
-    Du & Wang, :func:`impactcli.collision2d.elastoplastic_restitution`)."""
+    :class:`~impactcli.cli.law_options.LawChoice`): the FILM run, sphere 2 at rest."""
     from impactcli.impact import law_impact
 
     impact = law_impact(sphere1, sphere2, normal_velocity, 0.0, law.name, law.params)
