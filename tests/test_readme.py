@@ -14,6 +14,7 @@ The ```python blocks run too, each as one script.
 
 from __future__ import annotations
 
+import ast
 import os
 import re
 import shlex
@@ -201,7 +202,48 @@ def test_readme_shell_block_runs_as_written(workdir, start, commands):
 @pytest.mark.slow
 @pytest.mark.parametrize("line,code", PYTHON_BLOCKS, ids=[f"line{n}" for n, _ in PYTHON_BLOCKS])
 def test_readme_python_block_runs(workdir, line, code, monkeypatch):
+    """Each block runs; a line ``expression  # ... NUMBER`` must give NUMBER to the digits
+    printed (the README's numbers are the library's, checked)."""
     if "impactcli.plots" in code and not _has("matplotlib"):
         pytest.skip("needs matplotlib")
     monkeypatch.chdir(workdir)
-    exec(compile(code, f"README.md line {line}", "exec"), {"__name__": "__main__"})
+    scope = {"__name__": "__main__", "_printed": _printed}
+    exec(compile(checked_numbers(code), f"README.md line {line}", "exec"), scope)
+
+
+#: The last number of a comment, as the README prints it (0.85611, 1.7132e-04).
+PRINTED = re.compile(r"[-+]?\d+\.\d+(?:[eE][-+]?\d+)?(?=\D*$)")
+
+
+def checked_numbers(code: str) -> str:
+    """``code`` with each one-line expression whose comment ends in a number turned into a
+    check of that number (:func:`_printed`)."""
+    lines = []
+    for text in code.splitlines():
+        expression, _, comment = text.partition("  #")
+        found = PRINTED.search(comment)
+        if found and expression.strip() and not text.startswith(" "):
+            try:
+                ast.parse(expression.strip(), mode="eval")
+            except SyntaxError:
+                pass
+            else:
+                text = f"_printed({expression.strip()}, {found.group()!r})"
+        lines.append(text)
+    return "\n".join(lines)
+
+
+def _printed(value: float, number: str) -> None:
+    """``value`` rounds to ``number`` at its last printed digit."""
+    mantissa, _, exponent = number.lower().partition("e")
+    digits = len(mantissa.partition(".")[2])
+    unit = 10.0 ** (int(exponent or 0) - digits)
+    assert abs(float(value) - float(number)) <= 0.5 * unit * (1 + 1e-9), (value, number)
+
+
+def test_printed_numbers_are_checked():
+    code = checked_numbers("x = 2\nx / 3    # about 0.66667\nx  # note")
+    assert code.splitlines()[1] == "_printed(x / 3, '0.66667')"
+    _printed(2 / 3, "0.66667")
+    with pytest.raises(AssertionError):
+        _printed(2 / 3, "0.66660")
