@@ -108,3 +108,22 @@ def pytest_collection_modifyitems(items):
 def dask_dataframe():
     """``dask.dataframe``; skips the test (only it, not its module) without the dask extra."""
     return pytest.importorskip("dask.dataframe")
+
+
+@pytest.fixture
+def batch(capfdbinary, monkeypatch):
+    """``batch(*args, stdin=b"")``: ``impact batch --no-progress ARGS`` in this process ->
+    (exit status, stdout bytes, stderr text)."""
+    from impactcli.cli import main
+
+    def run(*args: str, stdin: bytes = b""):
+        monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(io.BytesIO(stdin))))
+        try:
+            main(["batch", "--no-progress", *args])
+            code = 0
+        except SystemExit as exc:
+            code = exc.code
+        out, err = capfdbinary.readouterr()
+        return code, out, err.decode()
+
+    return run

@@ -15,7 +15,6 @@ import pandas as pd
 import pytest
 
 from impactcli.batch import BATCH_KEYS, batch_impacts, material_properties, normalised_times
-from impactcli.cli import main
 from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
 from impactcli.io.table import EXTRA_KEYS
 from impactcli.tables import normalised_contact_duration
@@ -173,23 +172,6 @@ def test_material_lookup_ignores_case_and_reports_unknown_names():
 
 
 # -- the command --------------------------------------------------------------------------
-
-
-@pytest.fixture
-def batch(capfdbinary, monkeypatch):
-    """Run ``impact batch ARGS`` in this process: (exit code, stdout bytes, stderr text)."""
-
-    def run(*args: str, stdin: bytes = b""):
-        monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(io.BytesIO(stdin))))
-        try:
-            main(["batch", *args])
-            code = 0
-        except SystemExit as exc:
-            code = exc.code
-        out, err = capfdbinary.readouterr()
-        return code, out, err.decode()
-
-    return run
 
 
 def _csv(rows: list[dict]) -> bytes:

@@ -5,13 +5,11 @@ from __future__ import annotations
 
 import csv
 import io
-import sys
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from impactcli.cli import main
 from impactcli.impact import Sphere, law_impact
 from impactcli.materials import material
 
@@ -20,17 +18,13 @@ KEYS = ("contact_time", "delta_max", "force_max", "restitution", "delta_res")
 
 
 @pytest.fixture
-def batch(capfdbinary, monkeypatch):
+def batch_rows(batch):
+    """As conftest's ``batch``, with the CSV output read back as text cells (None if none)."""
+
     def run(*args: str, stdin: bytes = b""):
-        monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(io.BytesIO(stdin))))
-        try:
-            main(["batch", "--no-progress", *args])
-            code = 0
-        except SystemExit as exc:
-            code = exc.code
-        out, err = capfdbinary.readouterr()
+        code, out, err = batch(*args, stdin=stdin)
         frame = pd.read_csv(io.BytesIO(out), dtype=str, keep_default_na=False) if out else None
-        return code, frame, err.decode()
+        return code, frame, err
 
     return run
 
@@ -63,8 +57,8 @@ def _table(rows) -> bytes:
     return ("\n".join(lines) + "\n").encode()
 
 
-def test_rows_of_several_laws_equal_their_single_impacts(batch):
-    code, frame, err = batch("-", stdin=_table(ROWS))
+def test_rows_of_several_laws_equal_their_single_impacts(batch_rows):
+    code, frame, err = batch_rows("-", stdin=_table(ROWS))
     assert code == 0, err
     assert (frame["error"] == "").all()
     for k, (v1, law, _, params) in enumerate(ROWS):
@@ -73,7 +67,7 @@ def test_rows_of_several_laws_equal_their_single_impacts(batch):
             assert float(frame[key][k]) == pytest.approx(ref[key], rel=1e-9, abs=1e-300)
 
 
-def test_a_bad_parameter_is_its_rows_error_only(batch):
+def test_a_bad_parameter_is_its_rows_error_only(batch_rows):
     rows = [*ROWS[:4],
             (1.0, "walton-braun", {"k_load": "-1e7", "k_unload": "2e7"}, None),
             (1.0, "walton-braun", {"k_load": "3e7", "k_unload": "2e7"}, None),
@@ -81,7 +75,7 @@ def test_a_bad_parameter_is_its_rows_error_only(batch):
             (1.0, "hertz", {"p0_factor": "2"}, None),
             (1.0, "nonesuch", {}, None),
             *ROWS[4:]]  # fmt: skip
-    code, frame, err = batch("-", stdin=_table(rows))
+    code, frame, err = batch_rows("-", stdin=_table(rows))
     assert code == 0
     errors = frame["error"].tolist()
     assert errors[4] == "k_load of law 'walton-braun' must be a positive, finite number, got -1e+07"
@@ -97,16 +91,16 @@ def test_a_bad_parameter_is_its_rows_error_only(batch):
         assert float(frame["restitution"][k]) == pytest.approx(ref["restitution"], rel=1e-9)
 
 
-def test_empty_law_cell_falls_back_to_the_model_column(batch):
+def test_empty_law_cell_falls_back_to_the_model_column(batch_rows):
     data = (b"d1,d2,v1,v2,material,model,law\n20mm,40mm,1,0,steel,elastoplastic,\n"
             b"20mm,40mm,1,0,steel,,du-wang\n20mm,40mm,1,0,steel,,\n")  # fmt: skip
-    code, frame, _ = batch("-", stdin=data)
+    code, frame, _ = batch_rows("-", stdin=data)
     assert code == 0
     assert frame["restitution"][0] == frame["restitution"][1]
     assert frame["error"][2].startswith("model is missing")
 
 
-def test_tabulated_rows_read_their_curve_file(batch, tmp_path):
+def test_tabulated_rows_read_their_curve_file(batch_rows, tmp_path):
     # A loading curve sampled from Hertz for these spheres: the tabulated law is Hertz.
     r = 0.02 * 0.04 / (2 * (0.02 + 0.04))
     e_star = STEEL.youngs_modulus / (2 * (1 - STEEL.poisson_ratio**2))
@@ -118,7 +112,7 @@ def test_tabulated_rows_read_their_curve_file(batch, tmp_path):
             f"20mm,40mm,1,0,steel,tabulated,{curve}\n"
             f"20mm,40mm,1,0,steel,tabulated,{tmp_path / 'missing.csv'}\n"
             f"20mm,40mm,50,0,steel,tabulated,{curve}\n").encode()  # fmt: skip
-    code, frame, _ = batch("-", stdin=data)
+    code, frame, _ = batch_rows("-", stdin=data)
     assert code == 0
     hertz, tab = (float(frame["contact_time"][k]) for k in (0, 1))
     assert tab == pytest.approx(hertz, rel=1e-4)
@@ -143,14 +137,14 @@ def _ode(law_name: str, alpha: float, v0: float, separation: str = "overlap") ->
     }
 
 
-def test_damped_rows_equal_scipy_integration_and_conserve_energy(batch):
+def test_damped_rows_equal_scipy_integration_and_conserve_energy(batch_rows):
     data = (b"id,d1,d2,v1,v2,material,damping,alpha,e,separation\n"
             b"t,20mm,40mm,1,0,steel,tsuji,0.3,,\n"
             b"t2,20mm,40mm,0.1,0,steel,tsuji,0.3,,\n"
             b"h,20mm,40mm,1,0,steel,hunt-crossley,0.05,,force\n"
             b"target,20mm,40mm,1,0,steel,tsuji,,0.8,\n"
             b"plain,20mm,40mm,1,0,steel,,,,\n")  # fmt: skip
-    code, frame, err = batch("-", "--model", "elastic", "--n", "400", stdin=data)
+    code, frame, err = batch_rows("-", "--model", "elastic", "--n", "400", stdin=data)
     assert code == 0, err
     assert (frame["error"] == "").all()
     num = lambda key, k: float(frame[key][k])  # noqa: E731
@@ -174,7 +168,7 @@ def test_damped_rows_equal_scipy_integration_and_conserve_energy(batch):
     assert frame["damping_alpha"][4] == "" and num("restitution", 4) == 1.0
 
 
-def test_damping_faults_are_row_errors(batch):
+def test_damping_faults_are_row_errors(batch_rows):
     data = (b"d1,d2,v1,v2,material,model,damping,alpha,e\n"
             b"20mm,40mm,1,0,steel,elastoplastic,tsuji,0.3,\n"
             b"20mm,40mm,1,0,steel,elastic,,0.3,\n"
@@ -183,7 +177,7 @@ def test_damping_faults_are_row_errors(batch):
             b"20mm,40mm,1,0,steel,elastic,tsuji,0.3,0.8\n"
             b"20mm,40mm,1,0,steel,elastic,tsuji,,1.5\n"
             b"20mm,40mm,1,0,steel,elastic,tsuji,0.3,\n")  # fmt: skip
-    code, frame, _ = batch("-", stdin=data)
+    code, frame, _ = batch_rows("-", stdin=data)
     assert code == 0
     assert frame["error"].tolist() == [
         "damping is for elastic rows (model elastic or law hertz)",
@@ -199,7 +193,7 @@ def test_damping_faults_are_row_errors(batch):
 # -- who yields: split yield, each sphere's dissipated energy and first-yield velocity ------
 
 
-def _split_rows(batch, *args):
+def _split_rows(batch_rows, *args):
     data = (b"id,d1,d2,v1,v2,model,material1,material2,split,m2\n"
             b"glass_steel,3mm,inf,5,0,elastoplastic,glass,steel,yield,inf\n"
             b"al_steel,3mm,inf,5,0,elastoplastic,aluminium-alloy,steel,yield,inf\n"
@@ -207,7 +201,7 @@ def _split_rows(batch, *args):
             b"glass_steel_mass,3mm,inf,5,0,elastoplastic,glass,steel,,inf\n"
             b"elastic,20mm,40mm,0.01,0,elastic,steel,steel,yield,\n"
             b"bad,20mm,40mm,1,0,elastic,steel,steel,volume,\n")  # fmt: skip
-    code, frame, err = batch("-", *args, stdin=data)
+    code, frame, err = batch_rows("-", *args, stdin=data)
     assert code == 0, err
     return frame.set_index("id")
 
@@ -216,8 +210,8 @@ def _f(frame, row: str, key: str) -> float:
     return float(frame.loc[row, key])
 
 
-def test_split_yield_puts_the_dent_on_the_sphere_that_yields(batch):
-    frame = _split_rows(batch)
+def test_split_yield_puts_the_dent_on_the_sphere_that_yields(batch_rows):
+    frame = _split_rows(batch_rows)
     # Glass (no yield strength) on a steel wall: the dent is the steel's, energy too.
     assert _f(frame, "glass_steel", "delta1_res") == 0.0
     assert _f(frame, "glass_steel", "delta2_res") == _f(frame, "glass_steel", "delta_res") > 0
@@ -232,8 +226,8 @@ def test_split_yield_puts_the_dent_on_the_sphere_that_yields(batch):
     assert frame.loc["bad", "error"] == "split must be mass, compliance, yield"
 
 
-def test_split_yield_shares_add_up_and_follow_compliance(batch):
-    frame = _split_rows(batch)
+def test_split_yield_shares_add_up_and_follow_compliance(batch_rows):
+    frame = _split_rows(batch_rows)
     glass, steel = material("glass"), material("steel")
     for row, (a, b) in {"glass_steel": (glass, steel), "steel_steel": (steel, steel)}.items():
         total = {k: _f(frame, row, k) for k in ("delta_max", "delta_res", "energy_dissipated")}
@@ -258,8 +252,8 @@ def test_split_yield_shares_add_up_and_follow_compliance(batch):
     )
 
 
-def test_first_yield_velocity_of_each_sphere_is_the_hertz_closed_form(batch):
-    frame = _split_rows(batch)
+def test_first_yield_velocity_of_each_sphere_is_the_hertz_closed_form(batch_rows):
+    frame = _split_rows(batch_rows)
     for row, names in {"al_steel": ("aluminium-alloy", "steel"),
                        "steel_steel": ("steel", "steel")}.items():  # fmt: skip
         m = _f(frame, row, "effective_mass")
@@ -276,8 +270,8 @@ def test_first_yield_velocity_of_each_sphere_is_the_hertz_closed_form(batch):
     )
 
 
-def test_split_option_yield_applies_to_rows_without_a_split_cell(batch):
-    frame = _split_rows(batch, "--split", "yield")
+def test_split_option_yield_applies_to_rows_without_a_split_cell(batch_rows):
+    frame = _split_rows(batch_rows, "--split", "yield")
     assert _f(frame, "glass_steel_mass", "delta1_res") == 0.0
     assert "split is mass" not in frame.loc["glass_steel_mass", "warning"]
 

@@ -16,7 +16,6 @@ import pandas as pd
 import pytest
 
 from impactcli.batch import BATCH_KEYS, batch_impacts
-from impactcli.cli import main
 from impactcli.impact import Sphere, elastoplastic_impact
 from impactcli.io.table import EXTRA_KEYS
 from impactcli.validation import MIN_YIELD_INDENTATION_RATIO
@@ -24,23 +23,6 @@ from impactcli.validation import MIN_YIELD_INDENTATION_RATIO
 OUTPUT = (*BATCH_KEYS, *EXTRA_KEYS, "error", "warning")
 HEADER = b"id,d1,d2,v1,v2,model,material\n"
 GOOD = b"a,20mm,40mm,1,0,elastic,steel\n"
-
-
-@pytest.fixture
-def batch(capfdbinary, monkeypatch):
-    """Run ``impact batch ARGS`` in this process: (exit code, stdout bytes, stderr text)."""
-
-    def run(*args: str, stdin: bytes = b""):
-        monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(io.BytesIO(stdin))))
-        try:
-            main(["batch", "--no-progress", *args])
-            code = 0
-        except SystemExit as exc:
-            code = exc.code
-        out, err = capfdbinary.readouterr()
-        return code, out, err.decode()
-
-    return run
 
 
 def _frame(data: bytes) -> pd.DataFrame:
