@@ -223,8 +223,8 @@ class HuntCrossleyDamping(_HertzElastic):
     Parameters
     ----------
     stiffness : K = (4/3) E* sqrt(R), [N/m^1.5]
-    alpha : damping factor, [s/m]; Hunt & Crossley's own estimate alpha = 3(1-e)/(2 V0)
-        holds for e near 1 (docs/damping.md)
+    alpha : damping factor, [s/m]; Hunt & Crossley's own estimate alpha = (1 - e)/V0
+        (:func:`hunt_crossley_alpha_published`) holds for e near 1 (docs/damping.md)
     """
 
     stiffness: ArrayLike
@@ -1033,7 +1033,7 @@ def _alpha_by_illinois(
     if name == TsujiDamping.name:
         guess = np.maximum(tsuji_alpha_dem(e_t), 1e-3)  # initial guess only
     else:
-        guess = 3.0 * (1.0 - e_t) / (2.0 * v0)  # Hunt & Crossley (1975)
+        guess = hunt_crossley_alpha_published(e_t, v0)["hunt-crossley"]  # initial guess
     todo = e_t < 1.0
     hi = np.where(todo, np.maximum(guess, 1e-6 / v0 if name != "tsuji" else 1e-6), 1.0)
     f_hi = gap(hi)
