@@ -22,7 +22,10 @@ def test_laws_json_lists_every_law(impact):
         "default": 2.57,
         "description": "p0 / sigma_y, mean pressure of fully plastic contact",
         "required": False,
+        "yield_factor": None,
+        "valid": "> 0",
     }
+    assert listed["thornton"]["parameters"][0]["yield_factor"] == 1.6
     assert listed["walton-braun"]["parameters"][0]["required"] is True
 
 
