@@ -71,8 +71,9 @@ def collide3d(
     p2: Optional[str] = typer.Option(
         None,
         "--p2",
-        help="Centre of sphere 2 at contact, x,y,z; for a flat target (--d2 inf) a point on "
-        "the side of the plane, p2 - p1 giving the normal.",
+        help="Centre of sphere 2 at contact, x,y,z: with --mu > 0, |p2 - p1| = (d1 + d2)/2 "
+        "within 1e-6 of it; for a flat target (--d2 inf) a point on the side of the plane, "
+        "p2 - p1 giving the normal.",
     ),
     spheres: SphereOptions = None,  # type: ignore[assignment]  # the shared sphere options
     law: LawOptions = None,  # type: ignore[assignment]  # --law and the law parameters
