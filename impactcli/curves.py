@@ -60,8 +60,7 @@ def _unit_factor(unit: str, column: str, where: str) -> float:
         return unit_factor(unit, kind)
     except ValueError as exc:
         raise InputError(
-            f"{where}: unit [{unit}] of column {column} is not a {kind} ({exc}); "
-            f"use e.g. [{si}]"
+            f"{where}: unit [{unit}] of column {column} is not a {kind} ({exc}); use e.g. [{si}]"
         ) from None
 
 
@@ -160,16 +159,16 @@ def check_loading_curve(
 def check_unloading_curves(
     delta_max: ArrayLike, delta: ArrayLike, force: ArrayLike, source: str = "unloading curves"
 ):
-    """Unloading curves from rows (delta_max [m], delta [m], force [N]), checked, as
-    :class:`~impactcli.lawlib.UnloadingCurves`.
+    """Unloading curves from rows (delta_max [m], delta [m], force [N]), checked: the
+    maximum indentations [m] in increasing order and, for each, its (delta [m], force [N])
+    points in increasing order, as :class:`~impactcli.laws.tabulated.UnloadingCurves` takes
+    them.
 
     Raises
     ------
     InputError
         A rule of the module docstring broken; the message names the curve's delta_max.
     """
-    from impactcli.lawlib import UnloadingCurves
-
     dm = np.asarray(delta_max, dtype=float).ravel()
     d, f = np.asarray(delta, dtype=float).ravel(), np.asarray(force, dtype=float).ravel()
     if not (dm.size == d.size == f.size) or dm.size == 0:
@@ -197,7 +196,7 @@ def check_unloading_curves(
                 f"force is {cf[0]:.6g} N at delta = {cd[0]:.6g} m"
             )
         curves.append((cd, cf))
-    return UnloadingCurves(tops, tuple(curves))
+    return tops, tuple(curves)
 
 
 def read_loading_curve(path: str | os.PathLike[str]) -> tuple[NDArray, NDArray]:
@@ -209,8 +208,9 @@ def read_loading_curve(path: str | os.PathLike[str]) -> tuple[NDArray, NDArray]:
 
 def read_unloading_curves(path: str | os.PathLike[str]):
     """Unloading curves from a ``delta_max,delta,force`` CSV file, checked
-    (:func:`check_unloading_curves`), as :class:`~impactcli.lawlib.UnloadingCurves`; read
-    and checked once per version of the file."""
+    (:func:`check_unloading_curves`): the maximum indentations and their (delta, force)
+    points, as :class:`~impactcli.laws.tabulated.UnloadingCurves` takes them; read and
+    checked once per version of the file."""
     return _read_unloading_curves(*_file_version(path))
 
 

@@ -46,12 +46,31 @@ Everything is SI (or any consistent units) and broadcasts over collisions.
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
-from typing import ClassVar, Literal, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.laws.base import SEPARATIONS, DampingModel, Separation
+from impactcli.laws.base import Parameter as LawParameter
+from impactcli.laws.hunt_crossley import HuntCrossleyDamping, hunt_crossley_alpha_published
+from impactcli.laws.registry import (
+    DAMPING_LAWS,
+    alpha_label,
+    check_alpha,
+    check_damping,
+    damping_label,
+    make_damping_law,
+)
+from impactcli.laws.tsuji import (
+    TsujiDamping,
+    tsuji_alpha_dem,
+    tsuji_alpha_hertz_mindlin,
+    tsuji_restitution_overlap,
+)
 from impactcli.limits import MAX_SEGMENTS, check_size
+
+#: The protocol of a damping model, by its former name.
+ViscoelasticLaw = DampingModel
 
 __all__ = [
     "DAMPING_LAWS",
@@ -77,243 +96,8 @@ __all__ = [
     "tsuji_restitution_overlap",
 ]
 
+
 Array = NDArray[np.float64]
-Separation = Literal["overlap", "force"]
-#: Separation rules: ``overlap`` (delta returns to 0) and ``force`` (total force returns to 0).
-SEPARATIONS: tuple[str, ...] = ("overlap", "force")
-
-
-@dataclass(frozen=True)
-class LawParameter:
-    """One parameter of a contact law, for listings and option help.
-
-    Attributes
-    ----------
-    name : option-style name (``alpha``)
-    unit : unit string as pint spells it (``"dimensionless"``, ``"s/m"``)
-    default : default value, or ``None`` when it must be given
-    description : one line
-    valid : accepted range, as text
-    """
-
-    name: str
-    unit: str
-    default: float | None
-    description: str
-    valid: str
-
-
-class ViscoelasticLaw(Protocol):
-    """F(delta, delta') = K delta^1.5 + c(delta) delta'; parameters broadcast with delta."""
-
-    name: ClassVar[str]
-    label: ClassVar[str]
-    parameters: ClassVar[tuple[LawParameter, ...]]
-    reference: ClassVar[str]
-    stiffness: ArrayLike
-    alpha: ArrayLike
-
-    def elastic_force(self, delta: ArrayLike) -> Array: ...
-
-    def elastic_work(self, start: ArrayLike, end: ArrayLike) -> Array: ...
-
-    def damping_coefficient(self, delta: ArrayLike) -> Array: ...
-
-    def mean_damping(self, start: ArrayLike, end: ArrayLike) -> Array: ...
-
-    def force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array: ...
-
-    def reduced_force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array: ...
-
-
-class _HertzElastic:
-    """Hertz elastic part K delta^1.5 shared by the damped laws."""
-
-    stiffness: ArrayLike
-
-    def elastic_force(self, delta: ArrayLike) -> Array:
-        """F_e = K delta^1.5 (0 for delta <= 0), [N]."""
-        d = np.maximum(np.asarray(delta, dtype=float), 0.0)
-        return self.stiffness * d * np.sqrt(d)
-
-    def elastic_work(self, start: ArrayLike, end: ArrayLike) -> Array:
-        """Integral of F_e from ``start`` to ``end`` = (2/5) K [end^2.5 - start^2.5], [J]."""
-        a = np.maximum(np.asarray(start, dtype=float), 0.0)
-        b = np.maximum(np.asarray(end, dtype=float), 0.0)
-        return 0.4 * self.stiffness * (b * b * np.sqrt(b) - a * a * np.sqrt(a))
-
-    def force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array:
-        """Total contact force F_e(delta) + c(delta) delta', [N]."""
-        return self.elastic_force(delta) + self.damping_coefficient(delta) * delta_dot
-
-    def damping_coefficient(self, delta: ArrayLike) -> Array:  # pragma: no cover - abstract
-        raise NotImplementedError
-
-
-@dataclass(frozen=True)
-class TsujiDamping(_HertzElastic):
-    """Tsuji, Tanaka & Ishida (1992): F = K delta^1.5 + alpha sqrt(m K) delta^(1/4) delta'.
-
-    Tsuji Y., Tanaka T., Ishida T. (1992), Lagrangian numerical simulation of plug flow of
-    cohesionless particles in a horizontal pipe, Powder Technol. 71:239-250,
-    doi:10.1016/0032-5910(92)88030-L. The law is self-similar: e depends on alpha only, not
-    on V0, m or K.
-
-    Parameters
-    ----------
-    stiffness : K = (4/3) E* sqrt(R), [N/m^1.5]
-    mass : effective mass m, [kg]
-    alpha : damping ratio alpha >= 0, [-]. The alpha(e) polynomial DEM codes use
-        (:func:`tsuji_alpha_dem`) is written with the particle mass in Tsuji et al.; with the
-        effective mass m used here, alpha = sqrt(2) alpha_Tsuji (docs/damping.md).
-    """
-
-    stiffness: ArrayLike
-    mass: ArrayLike
-    alpha: ArrayLike
-
-    name: ClassVar[str] = "tsuji"
-    label: ClassVar[str] = "Tsuji"
-    reference: ClassVar[str] = (
-        "Tsuji, Tanaka & Ishida (1992), Powder Technol. 71:239-250, "
-        "doi:10.1016/0032-5910(92)88030-L"
-    )
-    parameters: ClassVar[tuple[LawParameter, ...]] = (
-        LawParameter(
-            "alpha",
-            "dimensionless",
-            None,
-            "damping ratio: c = alpha sqrt(m K) delta^(1/4); e depends on alpha only",
-            ">= 0 (alpha = 0: Hertz)",
-        ),
-    )
-
-    def _scale(self) -> Array:
-        return np.asarray(self.alpha, dtype=float) * np.sqrt(
-            np.asarray(self.mass, dtype=float) * np.asarray(self.stiffness, dtype=float)
-        )
-
-    def damping_coefficient(self, delta: ArrayLike) -> Array:
-        """c = alpha sqrt(m K) delta^(1/4), [N s/m]."""
-        d = np.maximum(np.asarray(delta, dtype=float), 0.0)
-        return self._scale() * np.sqrt(np.sqrt(d))
-
-    def mean_damping(self, start: ArrayLike, end: ArrayLike) -> Array:
-        """Mean of c over [start, end] = alpha sqrt(m K) (b^1.25 - a^1.25) / (1.25 (b - a))."""
-        a, b = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
-        p = lambda x: x * np.sqrt(np.sqrt(x))  # noqa: E731
-        return self._scale() * (p(b) - p(a)) / (1.25 * (b - a))
-
-    def reduced_force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array:
-        """F / delta^(1/4) = K delta^1.25 + alpha sqrt(m K) delta', [N/m^0.25].
-
-        Same sign as F for delta > 0 and continuous at delta = 0 (the separation test).
-        """
-        d = np.maximum(np.asarray(delta, dtype=float), 0.0)
-        return self.stiffness * d * np.sqrt(np.sqrt(d)) + self._scale() * delta_dot
-
-
-@dataclass(frozen=True)
-class HuntCrossleyDamping(_HertzElastic):
-    """Hunt & Crossley (1975): F = K delta^1.5 (1 + (3/2) alpha delta').
-
-    Hunt K.H., Crossley F.R.E. (1975), Coefficient of restitution interpreted as damping in
-    vibroimpact, J. Appl. Mech. 42:440-445, doi:10.1115/1.3423596. e depends on alpha V0.
-
-    Parameters
-    ----------
-    stiffness : K = (4/3) E* sqrt(R), [N/m^1.5]
-    alpha : damping factor, [s/m]; Hunt & Crossley's own estimate alpha = (1 - e)/V0
-        (:func:`hunt_crossley_alpha_published`) holds for e near 1 (docs/damping.md)
-    """
-
-    stiffness: ArrayLike
-    alpha: ArrayLike
-
-    name: ClassVar[str] = "hunt-crossley"
-    label: ClassVar[str] = "Hunt-Crossley"
-    reference: ClassVar[str] = (
-        "Hunt & Crossley (1975), J. Appl. Mech. 42:440-445, doi:10.1115/1.3423596"
-    )
-    parameters: ClassVar[tuple[LawParameter, ...]] = (
-        LawParameter(
-            "alpha",
-            "s/m",
-            None,
-            "damping factor: F = K delta^1.5 (1 + 1.5 alpha delta'); e depends on alpha V0",
-            ">= 0 (alpha = 0: Hertz)",
-        ),
-    )
-
-    def damping_coefficient(self, delta: ArrayLike) -> Array:
-        """c = (3/2) alpha K delta^1.5, [N s/m]."""
-        return 1.5 * np.asarray(self.alpha, dtype=float) * self.elastic_force(delta)
-
-    def mean_damping(self, start: ArrayLike, end: ArrayLike) -> Array:
-        """Mean of c over [start, end] = 0.6 alpha K (b^2.5 - a^2.5) / (b - a)."""
-        a, b = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
-        return 1.5 * np.asarray(self.alpha, dtype=float) * self.elastic_work(a, b) / (b - a)
-
-    def reduced_force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array:
-        """F / delta^1.5 = K (1 + 1.5 alpha delta'), [N/m^1.5]: the sign of F, for delta > 0."""
-        return self.stiffness * (1.0 + 1.5 * np.asarray(self.alpha, dtype=float) * delta_dot)
-
-
-#: The damped laws by name.
-DAMPING_LAWS: dict[str, type] = {
-    TsujiDamping.name: TsujiDamping,
-    HuntCrossleyDamping.name: HuntCrossleyDamping,
-}
-
-
-def check_damping(name: str | None = None, separation: str | None = None) -> None:
-    """Raise ValueError unless ``name`` is a law of :data:`DAMPING_LAWS` and ``separation``
-    a rule of :data:`SEPARATIONS` (None: not checked)."""
-    if name is not None and name not in DAMPING_LAWS:
-        raise ValueError(f"unknown damping law {name!r}; accepted: {', '.join(DAMPING_LAWS)}")
-    if separation is not None and separation not in SEPARATIONS:
-        raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}, got {separation!r}")
-
-
-def check_alpha(alpha: float, name: str = "alpha") -> None:
-    """Raise ValueError unless the damping parameter ``alpha`` (called ``name`` in the
-    message) is a finite number >= 0."""
-    if not (np.isfinite(alpha) and alpha >= 0.0):
-        raise ValueError(f"{name} must be a finite number >= 0, got {alpha:g}")
-
-
-def damping_label(name: str) -> str:
-    """The law called ``name`` as a title: ``'Tsuji damping'``, ``'Hunt-Crossley damping'``.
-
-    >>> damping_label("hunt-crossley")
-    'Hunt-Crossley damping'
-    """
-    check_damping(name)
-    return f"{DAMPING_LAWS[name].label} damping"
-
-
-def alpha_label(name: str, alpha: float, digits: int = 6) -> str:
-    """``'alpha = 0.3'`` for tsuji, ``'alpha = 0.5 s/m'`` for hunt-crossley: alpha with
-    ``digits`` significant digits and the unit of the law's parameter (none when
-    dimensionless).
-
-    >>> alpha_label("tsuji", 0.3), alpha_label("hunt-crossley", 0.5)
-    ('alpha = 0.3', 'alpha = 0.5 s/m')
-    """
-    check_damping(name)
-    (parameter,) = DAMPING_LAWS[name].parameters
-    unit = "" if parameter.unit == "dimensionless" else f" {parameter.unit}"
-    return f"{parameter.name} = {alpha:.{digits}g}{unit}"
-
-
-def make_damping_law(
-    name: str, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike
-) -> TsujiDamping | HuntCrossleyDamping:
-    """The law called ``name`` (a key of :data:`DAMPING_LAWS`) with K [N/m^1.5], m [kg], alpha."""
-    check_damping(name)
-    if name == TsujiDamping.name:
-        return TsujiDamping(stiffness, mass, alpha)
-    return HuntCrossleyDamping(stiffness, alpha)
 
 
 # -- the damped linear oscillator of one segment ----------------------------------------------
@@ -1030,12 +814,9 @@ def _alpha_by_illinois(
         law = make_damping_law(name, k, m, alpha)
         return solve_damped_impact(law, v0, m, n, separation).restitution - e_t
 
-    if name == TsujiDamping.name:
-        guess = np.maximum(tsuji_alpha_dem(e_t), 1e-3)  # initial guess only
-    else:
-        guess = hunt_crossley_alpha_published(e_t, v0)["hunt-crossley"]  # initial guess
+    guess = DAMPING_LAWS[name].alpha_estimate(e_t, v0)  # a published estimate, > 0
     todo = e_t < 1.0
-    hi = np.where(todo, np.maximum(guess, 1e-6 / v0 if name != "tsuji" else 1e-6), 1.0)
+    hi = np.where(todo, guess, 1.0)
     f_hi = gap(hi)
     for _ in range(80):
         low = todo & (f_hi > 0.0)
@@ -1231,68 +1012,3 @@ def damped_ode_solution(
         "stored": float(law.elastic_work(0.0, d_sep)),
     }
     return DampedOdeSolution(summary, float(t_c), sol.sol)
-
-
-# -- published alpha(e) relations, for comparison with the exact model ------------------------
-
-
-def tsuji_alpha_dem(restitution: ArrayLike) -> Array:
-    """alpha(e) of the Tsuji law as DEM codes use it, in this module's convention, [-].
-
-    alpha = sqrt(2) (1.2728 - 4.2783 e + 11.087 e^2 - 22.348 e^3 + 27.467 e^4 - 18.022 e^5
-    + 4.8218 e^6): the polynomial fit of Tsuji et al. (1992) as written for the damping
-    eta = alpha (m K)^(1/2) delta^(1/4) with the effective mass m (LAMMPS pair granular,
-    ``damping tsuji``; the sqrt(2) comes from Tsuji's use of the particle mass, Marshall
-    2009, J. Comput. Phys. 228:1541-1561, doi:10.1016/j.jcp.2008.10.032). It matches the
-    ``overlap`` separation rule (docs/damping.md).
-    """
-    e = np.asarray(restitution, dtype=float)
-    coeffs = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
-    return np.sqrt(2.0) * sum(c * e**i for i, c in enumerate(coeffs))
-
-
-def tsuji_restitution_overlap(alpha: ArrayLike) -> Array:
-    """Closed-form e of the Tsuji law, ``overlap`` rule: e = exp(-pi alpha / sqrt(5 - alpha^2)).
-
-    Antypov & Elliott (2011), EPL 94:50004, doi:10.1209/0295-5075/94/50004, treat this damped
-    Hertzian spring analytically; the expression agrees with SciPy integration of the law to
-    1e-12 for alpha from 0.07 to 1.5 (tests/test_damping.py). For
-    alpha >= sqrt(5) the indentation creeps back to 0 without ever reaching it: e = 0.
-    Inverse: :func:`tsuji_alpha_hertz_mindlin`.
-    """
-    a = np.asarray(alpha, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        e = np.exp(-np.pi * a / np.sqrt(5.0 - a * a))
-    return np.where(a < np.sqrt(5.0), e, 0.0)
-
-
-def tsuji_alpha_hertz_mindlin(restitution: ArrayLike) -> Array:
-    """alpha(e) of the Hertz-Mindlin damping of LIGGGHTS/EDEM, in this module's convention.
-
-    Their damping gamma_n = -2 sqrt(5/6) beta sqrt(S_n m), S_n = 2 E* sqrt(R delta) and
-    beta = ln e / sqrt(ln^2 e + pi^2) (the linear spring-dashpot relation) is a Tsuji-type
-    damping with alpha = sqrt(5) (-ln e) / sqrt(ln^2 e + pi^2), [-]. This is the exact
-    inverse of :func:`tsuji_restitution_overlap` (the ``overlap`` rule), not an approximation.
-    """
-    log_e = np.log(np.asarray(restitution, dtype=float))
-    return np.sqrt(5.0) * -log_e / np.sqrt(log_e**2 + np.pi**2)
-
-
-def hunt_crossley_alpha_published(restitution: ArrayLike, impact_velocity: ArrayLike) -> dict:
-    """Published alpha(e, V0) for F = K delta^1.5 (1 + (3/2) alpha delta'), [s/m].
-
-    Each paper writes F = K delta^1.5 (1 + d delta'/V0); here alpha = (2/3) d / V0:
-
-    - Hunt & Crossley (1975): d = (3/2)(1 - e), alpha = (1 - e) / V0;
-    - Lankarani & Nikravesh (1990), J. Mech. Des. 112:369-376, doi:10.1115/1.2912617:
-      d = (3/4)(1 - e^2), alpha = (1 - e^2) / (2 V0);
-    - Flores et al. (2011), Multibody Syst. Dyn. 25:357-375, doi:10.1007/s11044-010-9237-4:
-      d = (8/5)(1 - e)/e, alpha = 16 (1 - e) / (15 e V0).
-    """
-    e = np.asarray(restitution, dtype=float)
-    v0 = np.asarray(impact_velocity, dtype=float)
-    return {
-        "hunt-crossley": (1.0 - e) / v0,
-        "lankarani-nikravesh": (1.0 - e * e) / (2.0 * v0),
-        "flores": 16.0 * (1.0 - e) / (15.0 * e * v0),
-    }

@@ -20,6 +20,10 @@ from typing import TypeVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.laws.base import YIELD_STRENGTH_NEEDED
+from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR
+from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR
+
 __all__ = [
     "MIN_YIELD_INDENTATION_RATIO",
     "SMALL_DEFORMATION_LIMIT",
@@ -48,10 +52,6 @@ __all__ = [
     "yield_scale_problems",
 ]
 
-#: The one message for an elastoplastic impact without a yield strength.
-YIELD_STRENGTH_NEEDED = (
-    "the elastoplastic model needs a yield strength: give sy, sy1/sy2 or a material that has one"
-)
 
 #: Largest contact radius a / R = sqrt(delta_max / R) of the small-deformation contact
 #: models (Hertz, Du & Wang): Johnson, *Contact Mechanics*, 1985, sec. 4.2.
@@ -263,13 +263,10 @@ def raise_first(problems: Problems) -> None:
 # The two yield criteria the messages name: first yield of an elastic (Hertz) contact at the
 # peak pressure 1.6 sigma_y (Johnson 1985, Contact Mechanics, sec. 4.2; docs/method.md §7.1),
 # and Du & Wang's contact pressure p0 = 2.57 sigma_y, the end of their Hertz stage (Du & Wang
-# 2009; paper eq. 16; docs/method.md §7). The factors live in impactcli.contact,
-# imported on use so that the collision modules that import this one stay light.
+# 2009; paper eq. 16; docs/method.md §7). The factors live with their laws in impactcli.laws.
 
 
 def _first_yield_criterion() -> str:
-    from impactcli.contact import FIRST_YIELD_PRESSURE_FACTOR
-
     return f"Hertz peak pressure {FIRST_YIELD_PRESSURE_FACTOR:g} sigma_y"
 
 
@@ -278,8 +275,6 @@ def _du_wang_criterion(pressure_factor: float | None) -> str:
 
 
 def _pressure_factor(pressure_factor: float | None) -> float:
-    from impactcli.contact import DU_WANG_PRESSURE_FACTOR
-
     return DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
 
 
@@ -293,8 +288,6 @@ def du_wang_yield_velocity(
     >>> round(du_wang_yield_velocity(0.078463), 4)  # the paper's sec. 4.3 / 4.4 spheres
     0.2566
     """
-    from impactcli.contact import FIRST_YIELD_PRESSURE_FACTOR
-
     ratio = _pressure_factor(pressure_factor) / FIRST_YIELD_PRESSURE_FACTOR
     return first_yield_velocity * ratio**2.5
 
@@ -345,8 +338,6 @@ def below_yield_note(
     in the words of :func:`first_yield_warning`. Without ``pressure_factor`` it follows from
     the two velocities (inverse of :func:`du_wang_yield_velocity`), else Du & Wang's 2.57."""
     if pressure_factor is None and first_yield_velocity:
-        from impactcli.contact import FIRST_YIELD_PRESSURE_FACTOR
-
         ratio = yield_velocity / first_yield_velocity
         pressure_factor = float(f"{FIRST_YIELD_PRESSURE_FACTOR * ratio**0.4:.4g}")
     note = (

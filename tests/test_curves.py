@@ -8,6 +8,7 @@ import pytest
 from impactcli.curves import read_loading_curve, read_unloading_curves
 from impactcli.errors import InputError
 from impactcli.lawlib import get_law
+from impactcli.laws.tabulated import UnloadingCurves
 
 
 def write(tmp_path, text: str, name: str = "curve.csv"):
@@ -69,7 +70,7 @@ def test_unloading_curves_grouped_and_sorted(tmp_path):
         "20,20,8\n20,15,3\n20,12,0\n"  # measured while unloading: decreasing delta
         "10,5,0\n10,10,3\n"
     )
-    curves = read_unloading_curves(write(tmp_path, text))
+    curves = UnloadingCurves(*read_unloading_curves(write(tmp_path, text)))
     np.testing.assert_allclose(curves.delta_max, [10e-6, 20e-6])
     np.testing.assert_allclose(curves.residual, [5e-6, 12e-6])
     np.testing.assert_allclose(curves.residual_indentation([5e-6, 15e-6]), [2.5e-6, 8.5e-6])

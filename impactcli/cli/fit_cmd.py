@@ -24,26 +24,29 @@ from impactcli.cli.common import (
 )
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
+from impactcli.fit import FIT_LAWS, fit_parameter_help
+from impactcli.laws.registry import DAMPING_LAWS, LAWS
 from impactcli.limits import MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_json
 from impactcli.spheres import SphereOptions
 
+#: The normal laws fit can fit (--law); the damping models are --damping.
+_FIT_NORMAL_LAWS = [name for name in FIT_LAWS if name not in DAMPING_LAWS]
+
 LAW_HELP = (
-    "Contact law to fit: hertz, du-wang, thornton, walton-braun (details: 'impact laws'). "
-    "Give it several times, with --damping too, to rank the models by AICc with Akaike "
-    "weights."
+    f"Contact law to fit: {', '.join(_FIT_NORMAL_LAWS)} (details: 'impact laws'). Give it "
+    "several times, with --damping too, to rank the models by AICc with Akaike weights."
 )
 DAMPING_HELP = (
-    "Viscous damping added to Hertz to fit, as --damping of the other commands: tsuji "
-    "(alpha [-]; e does not depend on V0) or hunt-crossley (alpha [s/m]). Repeatable; ranked "
-    "with the --law models."
+    "Viscous damping added to Hertz to fit, as --damping of the other commands: "
+    f"{' or '.join(DAMPING_LAWS)} (details: 'impact laws'). Repeatable; ranked with the "
+    "--law models."
 )
 PARAM_HELP = (
     "Parameter to fit (repeatable), named as the law's option without '--' (k-load for "
-    "--k-load); each model fits the named ones it has, else its default: du-wang sy (or "
-    "p0-factor), thornton py (or sy), walton-braun k-unload (and k-load), tsuji alpha [-], "
-    "hunt-crossley alpha [s/m]. sy is the yield strength of the sphere that yields (the "
-    "weaker one), as the output says."
+    "--k-load); each model fits the named ones it has, else its default: "
+    f"{fit_parameter_help().replace('_', '-')}. sy is the yield strength of the sphere that "
+    "yields (the weaker one), as the output says."
 )
 START_HELP = "Starting value NAME=VALUE (repeatable), e.g. sy=800MPa. Default from the material."
 BOUNDS_HELP = "Bounds NAME=LO:HI (repeatable), e.g. sy=100MPa:5GPa; both > 0."
@@ -55,7 +58,7 @@ N_HELP = (
 )
 
 #: Damping models given as --law before they had --damping: still accepted, with a warning.
-_DAMPING_AS_LAW = ("tsuji", "hunt-crossley")
+_DAMPING_AS_LAW = tuple(DAMPING_LAWS)
 
 #: parameter unit -> kind for :func:`impactcli.units.parse_quantity`
 _KINDS = {
@@ -279,7 +282,7 @@ def _models(laws: list[str], dampings: list[str], accepted: Sequence[str]) -> li
                 f"give --damping {key}"
             )
         elif key not in accepted:
-            extra = " (it has no numeric parameter)" if key == "tabulated" else ""
+            extra = " (it has no numeric parameter)" if key in LAWS else ""
             choices = [k for k in accepted if k not in _DAMPING_AS_LAW]
             raise InputError(
                 f"--law {name}: cannot fit this law{extra}; accepted: {', '.join(choices)} "

@@ -1,4 +1,5 @@
-"""``impact laws``: the contact laws of the library, their parameters and references."""
+"""``impact laws``: the contact models of the library (normal laws and damping models),
+their parameters and references."""
 
 from __future__ import annotations
 
@@ -29,53 +30,25 @@ def _default(value) -> str:
     return "" if value is None else f"{value:g}" if isinstance(value, float) else str(value)
 
 
-def _damping_models() -> list[dict]:
-    """The damping models of ``--damping`` (added to Hertz), as ``impact laws`` lists them."""
-    from impactcli.damping import DAMPING_LAWS
-
-    return [
-        {
-            "name": law.name,
-            "kind": "damping (--damping, added to hertz)",
-            "parameters": [
-                {
-                    "name": p.name,
-                    "unit": "-" if p.unit == "dimensionless" else p.unit,
-                    "required": p.default is None,
-                    "description": p.description,
-                    "valid": p.valid,
-                }
-                for p in law.parameters
-            ],
-            "reference": law.reference,
-        }
-        for law in DAMPING_LAWS.values()
-    ]
-
-
 def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
-    """List the contact laws FILM can run and the damping models --damping adds to Hertz:
-    name, kind, parameters (unit, default) and the published reference of each (authors,
-    year, journal, DOI, equations).
+    """List the contact laws and damping models FILM can run: name, kind, parameters (unit,
+    default) and the published reference of each (authors, year, journal, DOI, equations).
 
     CSV: one row per parameter (a law without parameters has one row with an empty
     parameter); columns law,kind,parameter,unit,parameter_kind,default,required,
     parameter_description,reference,doi,validity. An empty default that is not required is
-    derived (see the description). JSON: {"laws": [...], "damping": [...]}."""
-    from impactcli.lawlib import LAWS
+    derived (see the description). The damping models (kind ``damping``: Hertz plus a
+    viscous term, ``--damping NAME --alpha A``) are listed after the normal laws."""
+    from impactcli.laws.registry import MODELS
 
     kind = resolve_format(fmt, output)
-    dampings = _damping_models()
     with atomic_output(output) as stream:
         if kind is Format.json:
-            write_json(
-                stream,
-                {"laws": [spec.describe() for spec in LAWS.values()], "damping": dampings},
-            )
+            write_json(stream, {"laws": [spec.describe() for spec in MODELS.values()]})
         elif kind is Format.csv:
             writer = csv.writer(stream, lineterminator="\n")
             writer.writerow(CSV_COLUMNS)
-            for spec in LAWS.values():
+            for spec in MODELS.values():
                 ref = spec.reference
                 cite = f"{ref.authors} ({ref.year}), {ref.journal}; {ref.equations}"
                 for p in spec.parameters or (None,):
@@ -92,29 +65,20 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
                         )
                     )
                     writer.writerow((spec.name, spec.kind, *fields, cite, ref.doi, spec.validity))
-            for model in dampings:
-                reference, _, doi = model["reference"].rpartition(", doi:")
-                for p in model["parameters"]:
-                    writer.writerow(
-                        (model["name"], model["kind"], p["name"], p["unit"],
-                         "dimensionless" if p["unit"] == "-" else "inverse velocity", "",
-                         "yes" if p["required"] else "no", p["description"], reference, doi,
-                         p["valid"])
-                    )  # fmt: skip
         else:
-            _print_laws(stream if output not in (None, "-") else None, dampings)
+            _print_laws(stream if output not in (None, "-") else None)
 
 
-def _print_laws(stream: IO[str] | None, dampings: list[dict]) -> None:
+def _print_laws(stream: IO[str] | None) -> None:
     from rich.markup import escape
 
     from impactcli.cli.common import Table
-    from impactcli.lawlib import LAWS
+    from impactcli.laws.registry import MODELS
 
     table = Table(title="Contact laws (impact laws; --format json for everything)")
     for header in ("law", "kind", "parameters [unit] = default", "reference"):
         table.add_column(escape(header), overflow="fold")
-    for spec in LAWS.values():
+    for spec in MODELS.values():
         params = "\n".join(
             f"{p.name} [{p.unit}]"
             + (f" = {_default(p.default)}" if p.default is not None else "")
@@ -129,23 +93,7 @@ def _print_laws(stream: IO[str] | None, dampings: list[dict]) -> None:
             escape(params) or "(none)",
             f"{ref.authors} ({ref.year}), {ref.journal}, doi:{ref.doi}",
         )
-    out = console(stream)
-    out.print(table)
-    damping = Table(title="Damping models (--damping NAME --alpha A, added to hertz)")
-    for header in ("damping", "parameters [unit]", "reference"):
-        damping.add_column(escape(header))
-    for model in dampings:
-        damping.add_row(
-            model["name"],
-            escape(
-                "\n".join(
-                    f"{p['name']} [{p['unit']}] (required, or --e): {p['description']}"
-                    for p in model["parameters"]
-                )
-            ),
-            model["reference"],
-        )
-    out.print(damping)
+    console(stream).print(table)
 
 
 def register(app: typer.Typer) -> None:

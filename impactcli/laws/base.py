@@ -1,0 +1,469 @@
+"""What every contact model of :mod:`impactcli.laws` is made of.
+
+- a *force law* of one stage (:class:`~impactcli.film.ContactLaw`: ``force(delta)`` [N] and
+  ``work(start, end)`` [J]), which FILM integrates;
+- a *normal contact* (:class:`NormalContact`): the stages of one impact (:class:`ImpactPlan`
+  of :class:`StagePlan`) and its closed forms (yield, residual indentation, returned work);
+- a *damping model* (:class:`DampingModel`): F(delta, delta') = K delta^1.5 + c(delta) delta'
+  on Hertz elasticity (:class:`DampedHertz`);
+- the description of a law for the registry (:class:`LawSpec`): its :class:`Parameter`
+  list with units and defaults, its :class:`Reference`, validity and capabilities.
+
+Everything is SI and broadcasts over collisions (parameters of shape (N, 1) against node
+arrays of shape (N, n + 1)).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any, ClassVar, Literal, Protocol
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.film import ContactLaw
+
+__all__ = [
+    "SEPARATIONS",
+    "YIELD_MARGIN",
+    "YIELD_STRENGTH_NEEDED",
+    "DampedHertz",
+    "DampingModel",
+    "FitStart",
+    "Fitting",
+    "ImpactPlan",
+    "LawSpec",
+    "NormalContact",
+    "Parameter",
+    "Reference",
+    "StagePlan",
+    "YieldOnset",
+]
+
+Array = NDArray[np.float64]
+Separation = Literal["overlap", "force"]
+#: Separation rules of a damped impact: ``overlap`` (delta returns to 0) and ``force`` (the
+#: total force returns to 0).
+SEPARATIONS: tuple[str, ...] = ("overlap", "force")
+
+#: The one message for an elastoplastic impact without a yield strength.
+YIELD_STRENGTH_NEEDED = (
+    "the elastoplastic model needs a yield strength: give sy, sy1/sy2 or a material that has one"
+)
+
+#: Relative margin above the yield velocity below which an impact counts as elastic
+#: (:meth:`DuWangContact.yields`).
+YIELD_MARGIN = 1e-9
+
+
+@dataclass(frozen=True)
+class StagePlan:
+    """One FILM stage of an impact: its force law, ends [m] and start speed [m/s].
+
+    ``end_at_rest`` marks a stage that ends where delta' = 0 (at the maximum indentation),
+    so that FILM ends it at the turning point (:func:`impactcli.film.solve_stage`).
+    """
+
+    name: str
+    law: ContactLaw
+    delta_start: NDArray
+    delta_end: NDArray
+    speed_start: NDArray
+    end_at_rest: bool = False
+
+
+@dataclass(frozen=True)
+class ImpactPlan:
+    """The stages of one impact (or a batch) and its closed-form quantities.
+
+    Attributes
+    ----------
+    stages : FILM stages in time order; the last one ends at separation
+    delta_max : maximum indentation, [m]
+    force_max : maximum contact force, [N]
+    delta_res : residual (permanent) indentation at separation, [m]
+    restitution : coefficient of restitution e = |delta'| at separation / V0, [-]
+    """
+
+    stages: tuple[StagePlan, ...]
+    delta_max: NDArray
+    force_max: NDArray
+    delta_res: NDArray
+    restitution: NDArray
+
+    def force(self, stage: ArrayLike, delta: ArrayLike) -> NDArray:
+        """Contact force [N] at indentations ``delta`` [m], each by the law of its stage:
+        ``stage`` holds the index into :attr:`stages` of each indentation (broadcast to
+        the shape of ``delta``). One impact's plan; each stage's law takes only the
+        indentations that fall in it."""
+        delta = np.asarray(delta, dtype=float)
+        k = np.broadcast_to(stage, delta.shape)
+        force = np.zeros_like(delta)
+        for index, plan in enumerate(self.stages):  # a few stages, not rows
+            mask = k == index
+            if np.any(mask):
+                force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
+        return force
+
+
+def col(x: ArrayLike) -> NDArray:
+    """Parameters of a law broadcast against node arrays: one trailing axis."""
+    return np.asarray(x, dtype=float)[..., None]
+
+
+def energy_velocity(mass: ArrayLike, work: ArrayLike) -> Array:
+    """Velocity whose kinetic energy (1/2) m V^2 equals ``work`` [J], [m/s]."""
+    return np.sqrt(2.0 * np.asarray(work, dtype=float) / np.asarray(mass, dtype=float))
+
+
+class NormalContact(Protocol):
+    """What a normal law's contact model provides (as
+    :class:`~impactcli.laws.du_wang.DuWangContact`)."""
+
+    @property
+    def yield_indentation(self) -> Array:
+        """delta_y, [m]; NaN where the law has no yield point."""
+        ...
+
+    def yield_velocity(self, mass: ArrayLike) -> Array:
+        """V_y: below it the impact is elastic, [m/s]."""
+        ...
+
+    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
+        """True where an impact at V0 is plastic, [-]."""
+        ...
+
+    def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
+        """FILM stages and closed-form quantities; a batch all elastic or all plastic."""
+        ...
+
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """delta_res: the permanent indentation after unloading from delta_max, [m]."""
+        ...
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """Work that unloading from ``delta`` (taken as the maximum) gives back, [J]."""
+        ...
+
+
+# --------------------------------------------------------------------------------------
+# Damping models: Hertz elasticity plus a viscous term
+# --------------------------------------------------------------------------------------
+
+
+class DampingModel(Protocol):
+    """F(delta, delta') = K delta^1.5 + c(delta) delta'; parameters broadcast with delta.
+
+    What the registry, the commands and the solvers read of a damping model: ``name`` (its
+    ``--damping`` choice), ``label`` (titles: 'Tsuji damping'), ``summary`` (one line of
+    ``--help``), ``parameters`` (its one parameter alpha: unit, kind for unit parsing,
+    range), ``reference``, ``self_similar`` (e independent of V0), and the class methods
+    ``of(K, m, alpha)`` (the one constructor), ``alpha_estimate(e, V0)`` (the first guess of
+    the alpha search), ``fit_start(V_ref)`` ((start, lower, upper) of a fit of alpha) and
+    ``data_start(e, V0)`` (alpha read off measured points).
+    """
+
+    name: ClassVar[str]
+    label: ClassVar[str]
+    summary: ClassVar[str]
+    parameters: ClassVar[tuple[Parameter, ...]]
+    reference: ClassVar[Reference]
+    validity: ClassVar[str]
+    kind: ClassVar[str]
+    self_similar: ClassVar[bool]
+    stiffness: ArrayLike
+    alpha: ArrayLike
+
+    def elastic_force(self, delta: ArrayLike) -> Array: ...
+
+    def elastic_work(self, start: ArrayLike, end: ArrayLike) -> Array: ...
+
+    def damping_coefficient(self, delta: ArrayLike) -> Array: ...
+
+    def mean_damping(self, start: ArrayLike, end: ArrayLike) -> Array: ...
+
+    def force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array: ...
+
+    def reduced_force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array: ...
+
+
+class DampedHertz:
+    """Hertz elastic part K delta^1.5 shared by the damping models, and their total force.
+
+    A damping model subclasses it as a frozen dataclass with ``stiffness`` K [N/m^1.5],
+    ``mass`` m [kg] and ``alpha``, and defines ``damping_coefficient``, ``mean_damping``
+    and ``reduced_force``.
+    """
+
+    stiffness: ArrayLike
+    name: ClassVar[str]
+    label: ClassVar[str]
+    summary: ClassVar[str]
+    parameters: ClassVar[tuple[Parameter, ...]]
+    reference: ClassVar[Reference]
+    validity: ClassVar[str]
+    self_similar: ClassVar[bool]
+    #: the kind of contact model, as the registry lists it
+    kind: ClassVar[str] = "damping"
+
+    @classmethod
+    def describe(cls) -> dict[str, Any]:
+        """JSON-ready description, as :meth:`LawSpec.describe`: name, kind, parameters,
+        reference, validity."""
+        return {
+            "name": cls.name,
+            "kind": cls.kind,
+            "description": cls.summary,
+            "parameters": [vars(p).copy() for p in cls.parameters],
+            "reference": vars(cls.reference).copy(),
+            "validity": cls.validity,
+            "needs_yield_strength": False,
+        }
+
+    def elastic_force(self, delta: ArrayLike) -> Array:
+        """F_e = K delta^1.5 (0 for delta <= 0), [N]."""
+        d = np.maximum(np.asarray(delta, dtype=float), 0.0)
+        return self.stiffness * d * np.sqrt(d)
+
+    def elastic_work(self, start: ArrayLike, end: ArrayLike) -> Array:
+        """Integral of F_e from ``start`` to ``end`` = (2/5) K [end^2.5 - start^2.5], [J]."""
+        a = np.maximum(np.asarray(start, dtype=float), 0.0)
+        b = np.maximum(np.asarray(end, dtype=float), 0.0)
+        return 0.4 * self.stiffness * (b * b * np.sqrt(b) - a * a * np.sqrt(a))
+
+    def force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array:
+        """Total contact force F_e(delta) + c(delta) delta', [N]."""
+        return self.elastic_force(delta) + self.damping_coefficient(delta) * delta_dot
+
+    def damping_coefficient(self, delta: ArrayLike) -> Array:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+
+# --------------------------------------------------------------------------------------
+# The description of a law, for the registry
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter of a law.
+
+    Attributes
+    ----------
+    name : as in ``--name`` options and batch columns (``-`` for ``_``)
+    unit : SI unit (``-`` for dimensionless; ``file`` for a path)
+    kind : pint dimension or ``file``/``choice``: pressure, dimensionless, stiffness, ...
+    default : the value used when none is given (or NaN, for a row of a batch); None when
+        required or derived
+    description : one line, including how a missing value is derived
+    required : the law cannot run without it
+    """
+
+    name: str
+    unit: str
+    kind: str
+    default: float | str | None
+    description: str
+    required: bool = False
+    #: when not given, the parameter is this factor times the yield strength sigma_y (e.g.
+    #: Thornton's p_y = 1.6 sigma_y); None: not derived
+    yield_factor: float | None = None
+    #: accepted range, as text (for listings)
+    valid: str = "> 0"
+
+    @property
+    def option(self) -> str:
+        """The command-line option of the parameter, e.g. ``--p0-factor``, ``--k-load``."""
+        return "--" + self.name.replace("_", "-")
+
+
+@dataclass(frozen=True)
+class Reference:
+    """A published reference of a law."""
+
+    authors: str
+    year: int
+    title: str
+    journal: str
+    doi: str
+    equations: str
+
+    def __str__(self) -> str:
+        return f"{self.authors} ({self.year}), {self.journal}, doi:{self.doi} ({self.equations})"
+
+
+#: One parameter a fit can take: (unit, start, lower bound, upper bound), SI.
+FitStart = tuple[str, float, float, float]
+
+
+def _no_parameters(params: Mapping[str, float]) -> dict[str, float]:
+    return {}
+
+
+@dataclass(frozen=True)
+class Fitting:
+    """What :mod:`impactcli.fit` needs to fit a law to measured e(V0).
+
+    Attributes
+    ----------
+    default : the parameters fitted when none is named
+    starts : ``starts(m, R, E*, sigma_y, V_ref, fixed)`` -> name -> :data:`FitStart` of
+        every parameter a fit can take (m [kg], R [m], E* [Pa], the weaker sphere's sigma_y
+        [Pa] or 1 GPa if unknown, a typical impact velocity V_ref [m/s] of the data, and the
+        values held fixed)
+    run_parameters : the law's parameters for a run, from the fit's (name -> SI)
+    starts_are_defaults : a parameter neither fitted nor fixed takes its start value
+        (rather than the law's own default)
+    yield_onset : ``"law"``: the fitted law's V_y; ``"none"``: no yield point (NaN);
+        ``"first touch"``: plastic from the first touch (V_y = 0)
+    """
+
+    default: tuple[str, ...]
+    starts: Callable[..., dict[str, FitStart]]
+    run_parameters: Callable[[Mapping[str, float]], dict[str, float]] = _no_parameters
+    starts_are_defaults: bool = False
+    yield_onset: str = "law"
+
+
+@dataclass(frozen=True)
+class YieldOnset:
+    """Where a law's contact stops being elastic, when the yield strength sigma_y sets it
+    (:mod:`impactcli.design`: the largest elastic impact velocity or sphere size).
+
+    Attributes
+    ----------
+    pressure_factor : ``pressure_factor(params)`` -> the Hertz peak pressure at the onset
+        / sigma_y, [-], with the law's parameters (SI, by name) as given
+    words : ``words(factor)`` -> how a result names the criterion
+    help : one line of ``--help``
+    """
+
+    pressure_factor: Callable[[Mapping[str, float]], float]
+    words: Callable[[float], str]
+    help: str
+
+
+@dataclass(frozen=True)
+class LawSpec:
+    """A law of the library: metadata and the factory of its contact model.
+
+    ``build(radius, modulus, yield_strength, params)`` gets SI arrays and the resolved
+    parameters (defaults filled in, checked).
+    """
+
+    name: str
+    kind: str  # "elastic" or "elastoplastic"
+    description: str
+    parameters: tuple[Parameter, ...]
+    reference: Reference
+    validity: str
+    needs_yield_strength: bool
+    build: Callable[..., NormalContact] = field(repr=False)
+    #: how figures and tables name the law ('Du & Wang'); the name when empty
+    title: str = ""
+    #: how a fit takes the law (None: it cannot be fitted, e.g. it has no numeric parameter)
+    fitting: Fitting | None = field(default=None, repr=False)
+    #: the onset of yield set by sigma_y (None: the law has none, e.g. plastic from the
+    #: first touch, or the data's own)
+    yield_onset: YieldOnset | None = field(default=None, repr=False)
+    #: the published closed form of e: ``closed_form(contact, m, V0)`` -> (label, e [-])
+    closed_form: Callable[..., tuple[str, Array]] | None = field(default=None, repr=False)
+
+    def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
+        """The parameters with defaults filled in (also for NaN entries of per-row arrays);
+        a ValueError (one line) for an unknown name, a missing required parameter or a value
+        that is not a positive finite number. NaN stays in a derived parameter (Thornton's
+        p_y from sigma_y)."""
+        given = {k.replace("-", "_"): v for k, v in (params or {}).items() if v is not None}
+        known = {p.name: p for p in self.parameters}
+        for key in given:
+            if key not in known:
+                accepted = ", ".join(known) or "none"
+                raise ValueError(
+                    f"law {self.name!r} has no parameter {key!r} (accepted: {accepted})"
+                )
+        out: dict[str, Any] = {}
+        for p in self.parameters:
+            value = given.get(p.name, p.default)
+            if value is not None and p.kind not in ("file", "choice"):
+                arr = np.asarray(value, dtype=float)
+                missing = np.isnan(arr)
+                if p.default is not None:
+                    arr = np.where(missing, float(p.default), arr)
+                elif p.required and np.any(missing):
+                    value = None
+                rest = arr[~np.isnan(arr)]
+                if not np.all(np.isfinite(rest) & (rest > 0)):
+                    raise ValueError(
+                        f"{p.name} of law {self.name!r} must be a positive, finite number "
+                        f"[{p.unit}] (option {p.option}), got {value}"
+                    )
+                if value is not None:
+                    value = arr if arr.ndim else float(arr)
+            if value is None and p.required:
+                raise ValueError(
+                    f"law {self.name!r} needs the parameter {p.name} [{p.unit}] (option "
+                    f"{p.option}): {p.description}"
+                )
+            out[p.name] = value
+        return out
+
+    def yield_strength_needed(self, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
+        """Whether the law needs sigma_y with these (resolved) parameters: per row where a
+        parameter derived from it is missing (Thornton's p_y, NaN or not given)."""
+        for p in self.parameters:
+            if p.yield_factor is not None and params.get(p.name) is not None:
+                return np.isnan(np.asarray(params[p.name], dtype=float))
+        return self.needs_yield_strength
+
+    def contact(
+        self,
+        radius: ArrayLike,
+        modulus: ArrayLike,
+        yield_strength: ArrayLike | None = None,
+        **params: Any,
+    ) -> NormalContact:
+        """The contact model for effective radius R [m], modulus E* [Pa] and yield strength
+        sigma_y [Pa] (of the weaker sphere), one entry per collision; ``params`` by name."""
+        resolved = self.resolve(params)
+        needed = self.yield_strength_needed(resolved)
+        if np.any(needed):
+            sy = np.asarray(np.nan if yield_strength is None else yield_strength, dtype=float)
+            if np.any(needed & ~(np.isfinite(sy) & (sy > 0))):
+                raise ValueError(YIELD_STRENGTH_NEEDED)  # one message for one fault
+        return self.build(radius, modulus, yield_strength, resolved)
+
+    def used_parameters(
+        self, params: Mapping[str, Any] | None = None, yield_strength: float | None = None
+    ) -> dict[str, dict[str, Any]]:
+        """The parameters one impact runs with, ``{name: {"value": ..., "unit": ...}}``:
+        defaults filled in and derived ones computed (Thornton's p_y = 1.6 sigma_y when not
+        given); a file parameter's value is its path (or None). For the ``inputs`` of a
+        command's JSON output."""
+        resolved = self.resolve(params)
+        for p in self.parameters:
+            derive = p.yield_factor is not None and yield_strength is not None
+            if derive and resolved.get(p.name) is None:
+                resolved[p.name] = p.yield_factor * float(yield_strength)
+        out = {}
+        for p in self.parameters:
+            value = resolved.get(p.name)
+            if isinstance(value, np.ndarray):
+                value = value.tolist()
+            elif value is not None and p.kind == "file":
+                value = str(value)
+            out[p.name] = {"value": value, "unit": p.unit}
+        return out
+
+    def describe(self) -> dict[str, Any]:
+        """JSON-ready description: name, kind, parameters, reference, validity."""
+        return {
+            "name": self.name,
+            "kind": self.kind,
+            "description": self.description,
+            "parameters": [vars(p).copy() for p in self.parameters],
+            "reference": vars(self.reference).copy(),
+            "validity": self.validity,
+            "needs_yield_strength": self.needs_yield_strength,
+        }

@@ -1,0 +1,270 @@
+"""Du & Wang (2009): elastoplastic contact of two spheres, the law of the paper (eq. 16a-c).
+
+Hertz up to delta_y = pi^2 R p0^2 / (4 E*^2), where the contact pressure reaches the mean
+pressure p0 = 2.57 sigma_y of fully plastic contact; then the line F = pi R p0 delta -
+pi^3 R^2 p0^3 / (12 E*^2) (:class:`DuWangPlastic`); Hertzian unloading offset by the residual
+indentation delta_res (docs/method.md §7). :class:`DuWangContact` holds the stages of an
+impact and the closed forms; :data:`SPEC` is its registry entry.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.laws.base import (
+    YIELD_MARGIN,
+    Fitting,
+    ImpactPlan,
+    LawSpec,
+    Parameter,
+    Reference,
+    StagePlan,
+    YieldOnset,
+    col,
+)
+from impactcli.laws.hertz import (
+    Hertz,
+    HertzContact,
+    hertz_maximum_indentation,
+    hertz_stiffness,
+    hertz_velocity,
+)
+
+__all__ = ["DU_WANG_PRESSURE_FACTOR", "SPEC", "DuWangContact", "DuWangPlastic"]
+
+#: p0 = 2.57 sigma_y: mean contact pressure of fully plastic contact (Du & Wang 2009, eq. 16).
+DU_WANG_PRESSURE_FACTOR = 2.57
+
+
+@dataclass(frozen=True)
+class DuWangPlastic:
+    """Du & Wang (2009) elastoplastic loading past first yield (paper eq. 16b):
+
+    F = pi R p0 delta - pi^3 R^2 p0^3 / (12 E*^2), for delta_y <= delta <= delta_m,
+
+    continuous in value and slope with Hertz at delta_y = pi^2 R p0^2 / (4 E*^2).
+
+    Parameters
+    ----------
+    radius : effective radius R, [m]
+    mean_pressure : p0 = 2.57 sigma_y, [Pa]
+    modulus : effective modulus E*, [Pa]
+
+    Examples
+    --------
+    With R = p0 = E* = 1, delta_y = pi^2/4 and K_h = 4/3: both laws give pi^3/6 there.
+
+    >>> import math
+    >>> delta_y = math.pi**2 / 4
+    >>> float(Hertz(4 / 3).force(delta_y)), float(DuWangPlastic(1.0, 1.0, 1.0).force(delta_y))
+    (5.1677128, 5.1677128)
+    """
+
+    radius: ArrayLike
+    mean_pressure: ArrayLike
+    modulus: ArrayLike
+
+    @property
+    def slope(self) -> NDArray:
+        """dF/d delta = pi R p0, [N/m]."""
+        return np.pi * np.asarray(self.radius) * self.mean_pressure
+
+    @property
+    def intercept(self) -> NDArray:
+        """pi^3 R^2 p0^3 / (12 E*^2), [N]."""
+        r, p0, e = (
+            np.asarray(v, dtype=float) for v in (self.radius, self.mean_pressure, self.modulus)
+        )
+        return np.pi**3 * r**2 * p0**3 / (12.0 * e**2)
+
+    def force(self, delta: ArrayLike) -> NDArray:
+        """F = pi R p0 delta - pi^3 R^2 p0^3/(12 E*^2), [N]."""
+        return self.slope * np.asarray(delta, dtype=float) - self.intercept
+
+    def work(self, start: ArrayLike, end: ArrayLike) -> NDArray:
+        """Integral of F from ``start`` to ``end``, [J]."""
+        a, b = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
+        return 0.5 * self.slope * (b * b - a * a) - self.intercept * (b - a)
+
+
+@dataclass(frozen=True)
+class DuWangContact:
+    """Elastoplastic contact of Du & Wang (2009), paper eq. 16a-c, docs/method.md §7.
+
+    Parameters
+    ----------
+    radius : effective radius R, [m]
+    modulus : effective modulus E*, [Pa]
+    yield_strength : sigma_y of the sphere that yields (the lower one), [Pa]
+    pressure_factor : p0 / sigma_y, [-] (2.57)
+    """
+
+    radius: ArrayLike
+    modulus: ArrayLike
+    yield_strength: ArrayLike
+    pressure_factor: float = DU_WANG_PRESSURE_FACTOR
+
+    @property
+    def stiffness(self) -> NDArray:
+        """Hertz stiffness K_h, [N/m^1.5]."""
+        return hertz_stiffness(self.modulus, self.radius)
+
+    @property
+    def mean_pressure(self) -> NDArray:
+        """p0 = 2.57 sigma_y, [Pa]."""
+        return self.pressure_factor * np.asarray(self.yield_strength, dtype=float)
+
+    @property
+    def yield_indentation(self) -> NDArray:
+        """delta_y = pi^2 R p0^2 / (4 E*^2), [m]."""
+        r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
+        return np.pi**2 * r * self.mean_pressure**2 / (4.0 * e**2)
+
+    def yield_velocity(self, mass: ArrayLike) -> NDArray:
+        """V_y = sqrt((2/m)(2/5) K_h delta_y^2.5): below it the impact is elastic, [m/s]."""
+        return hertz_velocity(mass, self.stiffness, self.yield_indentation)
+
+    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray:
+        """True where an impact at V0 is plastic: V0 > V_y (1 + 1e-9), [-].
+
+        Within 1e-9 of V_y the plastic stage delta_y -> delta_m would be only a few ulps
+        long, so FILM's equal steps would collapse to zero length; such an impact is elastic
+        to that accuracy (delta_m - delta_y < 1e-9 delta_y, 1 - e ~ 1e-16). Every caller
+        that splits impacts into elastic and plastic ones uses this test, so that they
+        agree with :meth:`plan`.
+        """
+        v0 = np.asarray(impact_velocity, dtype=float)
+        return v0 > self.yield_velocity(mass) * (1.0 + YIELD_MARGIN)
+
+    def plastic_law(self) -> DuWangPlastic:
+        return DuWangPlastic(col(self.radius), col(self.mean_pressure), col(self.modulus))
+
+    def maximum_indentation(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray:
+        """delta_m from (1/2) m V0^2 = W(0, delta_m), a quadratic past delta_y, [m]."""
+        m, v0 = np.asarray(mass, dtype=float), np.asarray(impact_velocity, dtype=float)
+        k, dy = self.stiffness, self.yield_indentation
+        law = DuWangPlastic(self.radius, self.mean_pressure, self.modulus)
+        a, c = law.slope, law.intercept
+        # (a/2) d^2 - c d - [E0 - W_y + (a/2) dy^2 - c dy] = 0, E0 = m V0^2 / 2.
+        rest = 0.5 * m * v0**2 - 0.4 * k * dy**2.5 + 0.5 * a * dy**2 - c * dy
+        plastic = (c + np.sqrt(np.maximum(c**2 + 2.0 * a * rest, 0.0))) / a  # used past V_y
+        elastic = hertz_maximum_indentation(m, v0, k)
+        return np.where(v0 > self.yield_velocity(m), plastic, elastic)
+
+    def residual_indentation(self, delta_max: ArrayLike) -> NDArray:
+        """delta_res = delta_m - [(pi sqrt(R) p0 / E*)(3 delta_m/4 - delta_y/4)]^(2/3), [m]
+
+        (eq. 16c; force continuous at delta_m). Zero for delta_m <= delta_y.
+        """
+        dm = np.asarray(delta_max, dtype=float)
+        r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
+        dy = self.yield_indentation
+        term = np.pi * np.sqrt(r) * self.mean_pressure / e * (0.75 * dm - 0.25 * dy)
+        return np.where(dm > dy, dm - np.cbrt(term) ** 2, 0.0)
+
+    def recoverable_work(self, delta: ArrayLike) -> NDArray:
+        """Work that unloading from ``delta`` (taken as the maximum) gives back, [J]:
+        0.4 K_h (delta - delta_res(delta))^2.5 (the Hertz unloading of eq. 16c)."""
+        d = np.asarray(delta, dtype=float)
+        rest = np.maximum(d - self.residual_indentation(d), 0.0)
+        return 0.4 * self.stiffness * rest**2.5
+
+    def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
+        """Hertz 0 -> delta_y, linear delta_y -> delta_m, unloading delta_m -> delta_res.
+
+        Up to the yield velocity (every entry, for a batch) it is the elastic Hertz plan.
+        A batch must be all elastic or all plastic: split it with :meth:`yields`.
+        """
+        v0 = np.asarray(impact_velocity, dtype=float)
+        m = np.asarray(mass, dtype=float)
+        plastic = self.yields(v0, m)  # elastic within 1e-9 of V_y: see yields()
+        if not np.any(plastic):
+            return HertzContact(self.stiffness).plan(v0, m)
+        if not np.all(plastic):
+            raise ValueError("a batch must be all above or all below the yield velocity")
+        k, dy = self.stiffness, self.yield_indentation
+        dm = self.maximum_indentation(v0, m)
+        dres = self.residual_indentation(dm)
+        hertz = Hertz(col(k))
+        speed_y = np.sqrt(np.maximum(v0**2 - 2.0 / m * 0.4 * k * dy**2.5, 0.0))
+        zero = np.zeros_like(dm)
+        restitution = hertz_velocity(m, k, dm - dres) / v0
+        return ImpactPlan(
+            stages=(
+                StagePlan("elastic loading", hertz, zero, dy, v0),
+                StagePlan("plastic loading", self.plastic_law(), dy, dm, speed_y, end_at_rest=True),
+                StagePlan("unloading", Hertz(col(k), col(dres)), dm, dres, zero),
+            ),
+            delta_max=dm,
+            force_max=DuWangPlastic(self.radius, self.mean_pressure, self.modulus).force(dm),
+            delta_res=dres,
+            restitution=restitution,
+        )
+
+
+def _build(radius, modulus, sy, params) -> DuWangContact:
+    return DuWangContact(radius, modulus, sy, params["p0_factor"])  # float or per-row array
+
+
+
+def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
+    """sigma_y of the weaker sphere within x/1000 to x*1000, and p0/sigma_y from 2.57."""
+    sy = yield_strength
+    return {
+        "sy": ("Pa", sy, sy / 1e3, sy * 1e3),
+        "p0_factor": ("-", DU_WANG_PRESSURE_FACTOR, 0.1, 100.0),
+    }
+
+
+def _run_parameters(params) -> dict:
+    return {"p0_factor": params["p0_factor"]} if "p0_factor" in params else {}
+
+
+def _pressure_factor(params) -> float:
+    """p0 / sigma_y: the law's V_y is where the mean pressure reaches p0 (eq. 16)."""
+    p0_factor = params.get("p0_factor", DU_WANG_PRESSURE_FACTOR)
+    if not (math.isfinite(p0_factor) and p0_factor > 0):
+        raise ValueError(f"the pressure factor must be positive, got {p0_factor}")
+    return float(p0_factor)
+
+
+#: The registry entry of the law.
+SPEC = LawSpec(
+    name="du-wang",
+    title="Du & Wang",
+    kind="elastoplastic",
+    description=(
+        "Hertz to delta_y, linear plastic loading at mean pressure p0 = p0_factor "
+        "sigma_y, Hertz unloading offset by delta_res (force continuous at delta_m)."
+    ),
+    parameters=(
+        Parameter(
+            "p0_factor",
+            "-",
+            "dimensionless",
+            DU_WANG_PRESSURE_FACTOR,
+            "p0 / sigma_y, mean pressure of fully plastic contact",
+        ),
+    ),
+    reference=Reference(
+        "Y. Du, S. Wang",
+        2009,
+        "Energy dissipation in normal elastoplastic impact between two spheres",
+        "J. Appl. Mech. 76(6):061010",
+        "10.1115/1.3130801",
+        "Big-Alabo (2018) eq. 16a-c",
+    ),
+    validity="elastic-perfectly-plastic spheres, delta << R; any V0 (elastic below V_y)",
+    needs_yield_strength=True,
+    build=_build,
+    fitting=Fitting(default=("sy",), starts=_fit_starts, run_parameters=_run_parameters),
+    yield_onset=YieldOnset(
+        pressure_factor=_pressure_factor,
+        words=lambda factor: f"Du & Wang V_y, p0 = {factor:g} sigma_y",
+        help="its yield velocity V_y, mean pressure p0 = --p0-factor sigma_y",
+    ),
+)

@@ -1,0 +1,183 @@
+"""The registry: the one list of the contact models of the library.
+
+Normal laws (:data:`LAWS`: name -> :class:`~impactcli.laws.base.LawSpec`) and damping
+models (:data:`DAMPING_LAWS`: name -> model class), each defined in its own module of
+:mod:`impactcli.laws`. The command-line options, ``--help``, ``impact laws``, batch columns,
+``fit``, ``compare-laws`` and ``design`` read them here; adding a model is one module and
+one line below.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.laws import du_wang, hertz, tabulated, thornton, walton_braun
+from impactcli.laws.base import SEPARATIONS, ImpactPlan, LawSpec, NormalContact, Parameter
+from impactcli.laws.hunt_crossley import HuntCrossleyDamping
+from impactcli.laws.tsuji import TsujiDamping
+
+__all__ = [
+    "DAMPING_LAWS",
+    "CURVE_LAW",
+    "DEFAULT_LAW",
+    "ELASTIC_LAW",
+    "LAWS",
+    "MODELS",
+    "alpha_label",
+    "check_alpha",
+    "check_damping",
+    "comparison_laws",
+    "damping_label",
+    "get_law",
+    "law_names",
+    "make_damping_law",
+    "parameter_laws",
+    "plan_groups",
+]
+
+#: The one registry: every contact model of the library by name, in listing order: the
+#: normal laws (:class:`LawSpec`, kind elastic or elastoplastic) and the damping models
+#: (classes of kind ``damping``, Hertz plus a viscous term).
+MODELS: dict[str, LawSpec | type] = {
+    model.name: model
+    for model in (
+        hertz.SPEC,
+        du_wang.SPEC,
+        thornton.SPEC,
+        walton_braun.SPEC,
+        tabulated.SPEC,
+        TsujiDamping,
+        HuntCrossleyDamping,
+    )
+}
+
+#: The normal laws: law name -> :class:`LawSpec`.
+LAWS: dict[str, LawSpec] = {
+    name: model for name, model in MODELS.items() if isinstance(model, LawSpec)
+}
+
+#: The damping models by name.
+DAMPING_LAWS: dict[str, type] = {
+    name: model for name, model in MODELS.items() if getattr(model, "kind", "") == "damping"
+}
+
+
+#: The law of ``impact elastoplastic``, ``restitution`` and ``collide2d --model
+#: elastoplastic`` when none is named: Du & Wang, the paper's (eq. 16a-c).
+DEFAULT_LAW = "du-wang"
+#: The law of elastic impacts (``impact elastic``, ``--model elastic``) and of the first
+#: yield of an elastic contact: Hertz.
+ELASTIC_LAW = "hertz"
+#: The law of the user's own loading curve (``impact elastic --curve FILE``).
+CURVE_LAW = "tabulated"
+
+
+def comparison_laws() -> tuple[str, ...]:
+    """The elastoplastic laws that run on the spheres' properties alone (no required
+    parameter): what ``impact compare-laws`` compares when no law is named."""
+    return tuple(
+        spec.name
+        for spec in LAWS.values()
+        if spec.kind == "elastoplastic" and not any(p.required for p in spec.parameters)
+    )
+
+
+def parameter_laws() -> dict[str, tuple[Parameter, tuple[str, ...]]]:
+    """Every parameter name of the library -> (its :class:`Parameter`, the laws taking it),
+    in listing order (the first law's declaration gives unit and kind)."""
+    out: dict[str, tuple[Parameter, tuple[str, ...]]] = {}
+    for spec in LAWS.values():
+        for p in spec.parameters:
+            first, names = out.get(p.name, (p, ()))
+            out[p.name] = (first, (*names, spec.name))
+    return out
+
+
+def law_names() -> tuple[str, ...]:
+    """Names of the laws in the library, in listing order."""
+    return tuple(LAWS)
+
+
+def get_law(name: str) -> LawSpec:
+    """The law called ``name`` (case and ``_`` for ``-`` ignored); a one-line ValueError
+    listing the accepted names otherwise."""
+    key = str(name).strip().lower().replace("_", "-").replace(" ", "-")
+    if key in LAWS:
+        return LAWS[key]
+    raise ValueError(f"unknown law {name!r} (accepted: {', '.join(LAWS)})")
+
+
+def plan_groups(
+    contact: NormalContact,
+    impact_velocity: ArrayLike,
+    mass: ArrayLike,
+    take: Callable[[NDArray[np.intp]], NormalContact] | None = None,
+) -> Iterator[tuple[NDArray[np.intp], ImpactPlan]]:
+    """Plans of many impacts of one law, as (row indices, plan) for the elastic and the
+    plastic rows (each a batch FILM solves at once, :func:`impactcli.impact.solve_plan`).
+
+    Parameters
+    ----------
+    contact : contact model of all rows (per-row parameters of shape (N,) or scalars)
+    impact_velocity, mass : V0 [m/s] and m [kg], shape (N,)
+    take : contact model of a subset of rows; needed when the contact has per-row
+        parameters (e.g. ``lambda rows: spec.contact(R[rows], E[rows], sy[rows], **p)``)
+    """
+    v0 = np.atleast_1d(np.asarray(impact_velocity, dtype=float))
+    m = np.broadcast_to(np.asarray(mass, dtype=float), v0.shape)
+    plastic = np.broadcast_to(contact.yields(v0, m), v0.shape)
+    for mask in (~plastic, plastic):
+        rows = np.flatnonzero(mask)
+        if rows.size:
+            model = contact if take is None else take(rows)
+            yield rows, model.plan(v0[rows], m[rows])
+
+
+def check_damping(name: str | None = None, separation: str | None = None) -> None:
+    """Raise ValueError unless ``name`` is a law of :data:`DAMPING_LAWS` and ``separation``
+    a rule of :data:`SEPARATIONS` (None: not checked)."""
+    if name is not None and name not in DAMPING_LAWS:
+        raise ValueError(f"unknown damping law {name!r}; accepted: {', '.join(DAMPING_LAWS)}")
+    if separation is not None and separation not in SEPARATIONS:
+        raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}, got {separation!r}")
+
+
+def check_alpha(alpha: float, name: str = "alpha") -> None:
+    """Raise ValueError unless the damping parameter ``alpha`` (called ``name`` in the
+    message) is a finite number >= 0."""
+    if not (np.isfinite(alpha) and alpha >= 0.0):
+        raise ValueError(f"{name} must be a finite number >= 0, got {alpha:g}")
+
+
+def damping_label(name: str) -> str:
+    """The law called ``name`` as a title: ``'Tsuji damping'``, ``'Hunt-Crossley damping'``.
+
+    >>> damping_label("hunt-crossley")
+    'Hunt-Crossley damping'
+    """
+    check_damping(name)
+    return f"{DAMPING_LAWS[name].label} damping"
+
+
+def alpha_label(name: str, alpha: float, digits: int = 6) -> str:
+    """``'alpha = 0.3'`` for tsuji, ``'alpha = 0.5 s/m'`` for hunt-crossley: alpha with
+    ``digits`` significant digits and the unit of the law's parameter (none when
+    dimensionless).
+
+    >>> alpha_label("tsuji", 0.3), alpha_label("hunt-crossley", 0.5)
+    ('alpha = 0.3', 'alpha = 0.5 s/m')
+    """
+    check_damping(name)
+    (parameter,) = DAMPING_LAWS[name].parameters
+    unit = "" if parameter.unit == "dimensionless" else f" {parameter.unit}"
+    return f"{parameter.name} = {alpha:.{digits}g}{unit}"
+
+
+def make_damping_law(name: str, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike):
+    """The model called ``name`` (a key of :data:`DAMPING_LAWS`) with K [N/m^1.5], m [kg],
+    alpha."""
+    check_damping(name)
+    return DAMPING_LAWS[name].of(stiffness, mass, alpha)

@@ -1,0 +1,398 @@
+"""The user's own force-indentation data as a contact law: a loading curve, and optionally
+unloading curves measured from several maximum indentations (docs/laws.md). The files are
+read by :mod:`impactcli.curves`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.curves import (
+    check_loading_curve,
+    check_unloading_curves,
+    read_loading_curve,
+    read_unloading_curves,
+)
+from impactcli.errors import InputError
+from impactcli.laws.base import (
+    ImpactPlan,
+    LawSpec,
+    Parameter,
+    Reference,
+    StagePlan,
+    col,
+    energy_velocity,
+)
+
+__all__ = ["SPEC", "TabulatedContact", "TabulatedLaw", "UnloadingCurves", "UnloadingLaw"]
+
+Array = NDArray[np.float64]
+
+
+class TabulatedLaw:
+    """A force-indentation law interpolated from tabulated points, with its exact work.
+
+    ``linear``: piecewise linear between the points (FILM is exact on a segment whose ends
+    are tabulated points); ``pchip``: the monotone piecewise-cubic Hermite interpolant
+    (Fritsch & Carlson 1980, SIAM J. Numer. Anal. 17:238-246, doi:10.1137/0717021), smooth
+    and increasing between increasing points. The work integral is the exact integral of the
+    interpolant in both cases. Outside the tabulated range the force is that of the nearest
+    end: callers check the reach first (:meth:`maximum_indentation`).
+
+    Parameters
+    ----------
+    delta : indentations, strictly increasing, [m]
+    force : forces, strictly increasing, [N]
+    interpolation : ``linear`` or ``pchip``
+    """
+
+    def __init__(self, delta: ArrayLike, force: ArrayLike, interpolation: str = "linear"):
+        d, f = np.asarray(delta, dtype=float), np.asarray(force, dtype=float)
+        if d.ndim != 1 or d.shape != f.shape or d.size < 2:
+            raise ValueError("a tabulated curve needs two 1-D arrays of equal length >= 2")
+        if not (np.all(np.diff(d) > 0) and np.all(np.diff(f) > 0)):
+            raise ValueError("a tabulated curve must increase strictly in delta and force")
+        if interpolation not in ("linear", "pchip"):
+            raise ValueError(f"interpolation must be linear or pchip, got {interpolation!r}")
+        self.delta, self.values, self.interpolation = d, f, interpolation
+        self.slope = np.diff(f) / np.diff(d)
+        cumulative = np.zeros_like(d)
+        if interpolation == "linear":
+            np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(d), out=cumulative[1:])
+            self._spline = self._antiderivative = None
+        else:
+            from scipy.interpolate import PchipInterpolator
+
+            self._spline = PchipInterpolator(d, f, extrapolate=False)
+            self._antiderivative = self._spline.antiderivative()
+            cumulative = self._antiderivative(d) - self._antiderivative(d[0])
+        #: work from the first point to each point, [J]
+        self.cumulative_work = cumulative
+
+    def _clip(self, delta: ArrayLike) -> Array:
+        return np.clip(np.asarray(delta, dtype=float), self.delta[0], self.delta[-1])
+
+    def force(self, delta: ArrayLike) -> Array:
+        """F(delta) of the interpolant, [N]."""
+        if self._spline is None:
+            return np.interp(np.asarray(delta, dtype=float), self.delta, self.values)
+        return self._spline(self._clip(delta))
+
+    def primitive(self, delta: ArrayLike) -> Array:
+        """Work from the first point to ``delta``, [J] (exact for the interpolant)."""
+        x = self._clip(delta)
+        if self._antiderivative is not None:
+            return self._antiderivative(x) - self._antiderivative(self.delta[0])
+        i = np.clip(np.searchsorted(self.delta, x, side="right") - 1, 0, self.delta.size - 2)
+        s = x - self.delta[i]
+        return self.cumulative_work[i] + s * (self.values[i] + 0.5 * self.slope[i] * s)
+
+    def work(self, start: ArrayLike, end: ArrayLike) -> Array:
+        """Integral of F from ``start`` to ``end``, [J]."""
+        return self.primitive(end) - self.primitive(start)
+
+    def indentation_for_work(self, work: ArrayLike) -> Array:
+        """delta at which the work from the first point reaches ``work`` [J] (within the
+        curve; ``inf`` beyond it), [m]. Exact for ``linear`` (a quadratic per segment),
+        bisection to rounding for ``pchip``."""
+        w = np.asarray(work, dtype=float)
+        total = self.cumulative_work
+        i = np.clip(np.searchsorted(total, w, side="right") - 1, 0, total.size - 2)
+        rest = w - total[i]
+        if self._antiderivative is None:
+            f, k = self.values[i], self.slope[i]
+            s = 2.0 * rest / (f + np.sqrt(f * f + 2.0 * k * rest))
+            delta = self.delta[i] + s
+        else:
+            lo, hi = self.delta[i].astype(float), self.delta[i + 1].astype(float)
+            for _ in range(64):  # fixed bisection steps, vectorised over impacts
+                mid = 0.5 * (lo + hi)
+                below = self.primitive(mid) < w
+                lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+            delta = 0.5 * (lo + hi)
+        return np.where(w > total[-1], np.inf, delta)
+
+    def needed_indentation(self, work: ArrayLike) -> Array:
+        """Indentation at which ``work`` [J] is reached with the last segment extended as a
+        straight line: an estimate past the end of the curve, [m]."""
+        rest = np.asarray(work, dtype=float) - self.cumulative_work[-1]
+        f, k = self.values[-1], self.slope[-1]
+        return self.delta[-1] + 2.0 * rest / (f + np.sqrt(f * f + 2.0 * k * rest))
+
+
+@dataclass(frozen=True)
+class UnloadingCurves:
+    """Unloading curves measured from several maximum indentations (rows delta_max, delta,
+    force), each normalised by its own start and end:
+
+        xi = (delta - delta_res_j) / (delta_max_j - delta_res_j),  g_j = F / F_j(delta_max_j),
+
+    delta_res_j being the indentation where its force is zero. For a reached delta_m between
+    two measured ones, delta_res and the shape g are interpolated linearly in delta_max
+    between the two curves, and the force is scaled to the loading force at delta_m (so the
+    force is continuous at the turning point). Below the smallest delta_max_1 the shape is
+    the first curve's and delta_res = delta_res_1 delta_m / delta_max_1 (no permanent
+    indentation at zero load). Beyond the largest delta_max there is no curve: an error.
+
+    Parameters
+    ----------
+    delta_max : the J maximum indentations, strictly increasing, [m]
+    curves : for each, the (delta, force) points of its unloading, delta increasing, force
+        increasing from exactly 0 at delta_res_j to its value at delta_max_j, [m], [N]
+    """
+
+    delta_max: Array
+    curves: tuple[tuple[Array, Array], ...]
+    shapes: tuple[TabulatedLaw, ...] = field(init=False)
+    residual: Array = field(init=False)
+
+    def __post_init__(self) -> None:
+        dmax = np.asarray(self.delta_max, dtype=float)
+        if dmax.ndim != 1 or dmax.size != len(self.curves) or dmax.size == 0:
+            raise ValueError("give one delta_max per unloading curve")
+        if not np.all(np.diff(dmax) > 0):
+            raise ValueError("the unloading curves' delta_max must increase strictly")
+        shapes, residual = [], []
+        for top, (d, f) in zip(dmax.tolist(), self.curves):
+            d, f = np.asarray(d, dtype=float), np.asarray(f, dtype=float)
+            if f[0] != 0.0:
+                raise ValueError(
+                    f"the unloading curve from delta_max = {top:g} m must reach zero force "
+                    f"(its residual indentation); its smallest force is {f[0]:g} N"
+                )
+            span = d[-1] - d[0]
+            shapes.append(TabulatedLaw((d - d[0]) / span, f / f[-1]))
+            residual.append(d[0])
+        object.__setattr__(self, "delta_max", dmax)
+        object.__setattr__(self, "shapes", tuple(shapes))
+        object.__setattr__(self, "residual", np.asarray(residual))
+
+    def weights(self, delta_max: ArrayLike) -> Array:
+        """Weight of each curve's shape for each reached delta_m: shape (..., J), [-]."""
+        dm = np.asarray(delta_max, dtype=float)
+        nodes = self.delta_max
+        pos = np.interp(dm, nodes, np.arange(nodes.size, dtype=float))
+        j = np.arange(nodes.size, dtype=float)
+        return np.maximum(1.0 - np.abs(pos[..., None] - j), 0.0)
+
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """delta_res for a reached delta_m, interpolated in delta_max, [m]."""
+        nodes = np.concatenate([[0.0], self.delta_max])
+        return np.interp(np.asarray(delta_max, dtype=float), nodes, np.r_[0.0, self.residual])
+
+
+class UnloadingLaw:
+    """The unloading F(delta) from a reached delta_m of :class:`UnloadingCurves`, with its
+    exact work: F = F_m sum_j w_j g_j(xi), xi = (delta - delta_res)/(delta_m - delta_res).
+    Per-impact values carry a trailing axis (shape (N, 1)) as the other laws'."""
+
+    def __init__(
+        self,
+        curves: UnloadingCurves,
+        delta_max: ArrayLike,
+        delta_res: ArrayLike,
+        force_max: ArrayLike,
+    ):
+        self.curves = curves
+        self.delta_res = col(delta_res)
+        self.span = col(delta_max) - self.delta_res
+        self.force_max = col(force_max)
+        w = curves.weights(delta_max)
+        self.weights = [w[..., j, None] for j in range(w.shape[-1])]
+
+    def _xi(self, delta: ArrayLike) -> Array:
+        return (np.asarray(delta, dtype=float) - self.delta_res) / self.span
+
+    def force(self, delta: ArrayLike) -> Array:
+        xi = self._xi(delta)
+        shape = sum(w * g.force(xi) for w, g in zip(self.weights, self.curves.shapes))
+        return self.force_max * shape
+
+    def work(self, start: ArrayLike, end: ArrayLike) -> Array:
+        a, b = self._xi(start), self._xi(end)
+        shape = sum(
+            w * (g.primitive(b) - g.primitive(a)) for w, g in zip(self.weights, self.curves.shapes)
+        )
+        return self.force_max * self.span * shape
+
+
+@dataclass(frozen=True)
+class TabulatedContact:
+    """The user's own force-indentation data as a contact law.
+
+    Without unloading curves: an elastic, reversible law (loading and restitution on the
+    same curve, e = 1, no yield). With :class:`UnloadingCurves`: loading on the curve to
+    delta_m, unloading from rest on the curve interpolated for that delta_m; every impact is
+    plastic (delta_y = V_y = 0: the data define no yield point).
+
+    Parameters
+    ----------
+    loading : the loading curve, starting at (0, 0)
+    unloading : unloading curves, or None for an elastic law
+    """
+
+    loading: TabulatedLaw
+    unloading: UnloadingCurves | None = None
+
+    @property
+    def yield_indentation(self) -> Array:
+        return np.array(np.nan if self.unloading is None else 0.0)
+
+    def yield_velocity(self, mass: ArrayLike) -> Array:
+        return np.full(np.shape(mass), np.nan if self.unloading is None else 0.0)
+
+    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
+        shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass)).shape
+        return np.full(shape, self.unloading is not None)
+
+    def reach_errors(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.object_]:
+        """Why each impact cannot be computed with these curves: one line per impact, ``""``
+        when it stays within them (the checks of :meth:`maximum_indentation`, per row)."""
+        v0, m = np.broadcast_arrays(
+            np.asarray(impact_velocity, dtype=float), np.asarray(mass, dtype=float)
+        )
+        dm = self.loading.indentation_for_work(0.5 * m * v0**2)
+        failed = ~np.isfinite(dm)
+        if self.unloading is not None:
+            failed |= dm > self.unloading.delta_max[-1] * (1.0 + 1e-9)
+        errors = np.full(v0.shape, "", dtype=object)
+        for i in zip(*np.nonzero(failed)):  # a loop over the failing rows only, to word them
+            try:
+                self.maximum_indentation(v0[i], m[i])
+            except InputError as exc:
+                errors[i] = str(exc)
+        return errors
+
+    def maximum_indentation(self, impact_velocity: ArrayLike, mass: ArrayLike) -> Array:
+        """delta_m from (1/2) m V0^2 = W(0, delta_m), [m]; an InputError naming the largest
+        tabulated indentation and the one needed when an impact goes past the curve."""
+        v0, m = np.asarray(impact_velocity, dtype=float), np.asarray(mass, dtype=float)
+        energy = 0.5 * m * v0**2
+        dm = self.loading.indentation_for_work(energy)
+        if np.any(~np.isfinite(dm)):
+            need = float(np.max(self.loading.needed_indentation(energy)))
+            raise InputError(
+                "the impact goes beyond the loading curve: it needs an indentation of about "
+                f"{need:.6g} m (the last segment extended), the largest tabulated one is "
+                f"{self.loading.delta[-1]:.6g} m"
+            )
+        if self.unloading is not None and np.any(dm > self.unloading.delta_max[-1] * (1.0 + 1e-9)):
+            raise InputError(
+                f"the impact reaches delta_max = {float(np.max(dm)):.6g} m, beyond the largest "
+                f"delta_max of the unloading curves, {self.unloading.delta_max[-1]:.6g} m"
+            )
+        return dm
+
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """delta_res of the interpolated unloading curve (:class:`UnloadingCurves`); zero
+        without unloading curves, [m]."""
+        dm = np.asarray(delta_max, dtype=float)
+        if self.unloading is None:
+            return np.zeros_like(dm)
+        return self.unloading.residual_indentation(dm)
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """Work of the unloading curve interpolated for delta_m = ``delta`` (the loading
+        curve's own work without unloading curves), [J]."""
+        dm = np.asarray(delta, dtype=float)
+        if self.unloading is None:
+            return self.loading.work(0.0, dm)
+        top = np.where(dm > 0.0, dm, self.loading.delta[-1])  # no contact: no zero span
+        dres = self.unloading.residual_indentation(top)
+        law = UnloadingLaw(self.unloading, top, dres, self.loading.force(top))
+        returned = law.work(col(dres), col(top))[..., 0]
+        return np.where(dm > 0.0, returned, 0.0)
+
+    def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
+        """Loading 0 -> delta_m from V0; then back to 0 on the same curve (elastic), or
+        unloading delta_m -> delta_res on the interpolated unloading curve."""
+        v0, m = np.asarray(impact_velocity, dtype=float), np.asarray(mass, dtype=float)
+        dm = self.maximum_indentation(v0, m)
+        fm = self.loading.force(dm)
+        zero = np.zeros_like(dm)
+        load = StagePlan("loading", self.loading, zero, dm, v0, end_at_rest=True)
+        if self.unloading is None:
+            return ImpactPlan(
+                stages=(load, StagePlan("restitution", self.loading, dm, zero, zero)),
+                delta_max=dm,
+                force_max=fm,
+                delta_res=zero,
+                restitution=np.ones_like(dm),
+            )
+        dres = self.unloading.residual_indentation(dm)
+        law = UnloadingLaw(self.unloading, dm, dres, fm)
+        returned = law.work(col(dres), col(dm))[..., 0]
+        restitution = energy_velocity(m, returned) / v0
+        if np.any(restitution > 1.0 + 1e-12):
+            raise InputError(
+                "the unloading curves return more energy than the loading took "
+                f"(e = {float(np.max(restitution)):.6g} > 1): they lie above the loading curve"
+            )
+        return ImpactPlan(
+            stages=(load, StagePlan("unloading", law, dm, dres, zero)),
+            delta_max=dm,
+            force_max=fm,
+            delta_res=dres,
+            restitution=restitution,
+        )
+
+
+def _build(_radius, _modulus, _sy, params) -> TabulatedContact:
+    curve = params["curve"]
+    kind = params["interpolation"]
+    if kind not in ("linear", "pchip"):
+        raise ValueError(f"interpolation of law 'tabulated' must be linear or pchip, got {kind!r}")
+    if isinstance(curve, TabulatedLaw):
+        loading = curve
+    elif isinstance(curve, tuple):  # (delta [m], force [N]) arrays
+        loading = TabulatedLaw(*check_loading_curve(*curve), interpolation=kind)
+    else:
+        loading = TabulatedLaw(*read_loading_curve(curve), interpolation=kind)
+    unload = params["unload_curves"]
+    if isinstance(unload, tuple):  # (delta_max [m], delta [m], force [N]) rows
+        unload = UnloadingCurves(*check_unloading_curves(*unload))
+    elif unload is not None and not isinstance(unload, UnloadingCurves):
+        unload = UnloadingCurves(*read_unloading_curves(unload))
+    return TabulatedContact(loading, unload)
+
+
+#: The registry entry of the law.
+SPEC = LawSpec(
+    name="tabulated",
+    title="tabulated curve",
+    kind="elastic or elastoplastic",
+    description=(
+        "The user's force-indentation data: a loading curve (elastic, reversible), "
+        "optionally unloading curves from several delta_max, interpolated between."
+    ),
+    parameters=(
+        Parameter("curve", "file", "file", None, "CSV delta,force of the loading curve", True),
+        Parameter(
+            "unload_curves",
+            "file",
+            "file",
+            None,
+            "CSV delta_max,delta,force of unloading curves; none: elastic",
+        ),
+        Parameter(
+            "interpolation",
+            "-",
+            "choice",
+            "linear",
+            "linear (exact on tabulated segments) or pchip (monotone cubic)",
+        ),
+    ),
+    reference=Reference(
+        "A. Big-Alabo",
+        2018,
+        "Rigid body motions and local compliance response during impact of two deformable spheres",
+        "Mech. Eng. Res. 8(1)",
+        "10.5539/mer.v8n1p1",
+        "FILM for any monotone law, eqs. 5-8, 13e",
+    ),
+    validity="within the tabulated indentations (an impact beyond them is an error)",
+    needs_yield_strength=False,
+    build=_build,
+)
