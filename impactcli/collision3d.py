@@ -97,14 +97,19 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.collision2d import line_of_centres
+from impactcli.errors import InputError
+from impactcli.laws.registry import ELASTIC_LAW
 from impactcli.validation import check_friction, check_restitution, check_vectors
 from impactcli.validation import where_first as _where
 
 __all__ = [
+    "CONTACT_DISTANCE_RTOL",
     "SUMMARY_KEYS",
     "TANGENTIAL_MODELS",
     "Collision3D",
+    "check_contact_distance",
     "collision_summary",
+    "contact_distance_problem",
     "NormalHistory",
     "effective_shear_modulus",
     "normal_restitution_and_history",
@@ -123,6 +128,12 @@ TANGENTIAL_MODELS: tuple[str, ...] = ("rigid", "mindlin")
 
 #: Relative tolerance on the agreement of a normal history with u_n and e.
 _HISTORY_RTOL = 1e-6
+
+#: Relative tolerance on |p2 - p1| = R1 + R2 for two spheres of finite radius with friction:
+#: the friction impulse acts at one contact point, and turns both spheres about it, only
+#: when the centres are at contact; then the angular momentum about any point is conserved.
+#: (Without friction the impulse is along the line of centres and the distance is free.)
+CONTACT_DISTANCE_RTOL = 1e-6
 
 
 def effective_shear_modulus(e1: ArrayLike, nu1: ArrayLike, e2: ArrayLike, nu2: ArrayLike) -> Array:
@@ -168,13 +179,21 @@ class NormalHistory:
     t : times, increasing, [s]
     delta : total indentation delta(t), [m]
     delta_dot : indentation rate delta'(t), [m/s]; delta'(0) = u_n, at separation -e u_n
-    force : normal contact force F_n(t) >= 0, [N]
+    force : compressive normal force F_n(t) = max(F(t), 0), [N]: the Coulomb limit of the
+        ``mindlin`` model is mu F_n
+    impulse : the integral of F_n dt over the contact, [N s], batch shape S: the most
+        impulse friction can take is mu times it. ``None`` (the default): J_n = (1 + e) m u_n,
+        right when the normal force never pulls (F >= 0 throughout: every law of the
+        library, and damped Hertz with the ``force`` separation). A damped contact with the
+        ``overlap`` separation pulls at its end (F < 0): its J_n is the integral of F, while
+        friction is capped by the larger integral of max(F, 0).
     """
 
     t: Array
     delta: Array
     delta_dot: Array
     force: Array
+    impulse: Array | None = None
 
     def __post_init__(self) -> None:
         arrays = [np.asarray(getattr(self, k), dtype=float) for k in ("t", "delta")]
@@ -190,6 +209,11 @@ class NormalHistory:
             raise ValueError("the times of a normal history must increase")
         if np.any(self.force < 0.0) or np.any(self.delta < 0.0):
             raise ValueError("a normal history needs delta >= 0 and F_n >= 0")
+        if self.impulse is not None:
+            impulse = np.asarray(self.impulse, dtype=float)
+            if not np.all(np.isfinite(impulse) & (impulse > 0.0)):
+                raise ValueError("the impulse of a normal history must be finite and > 0")
+            object.__setattr__(self, "impulse", np.broadcast_to(impulse, shape[:-1]))
 
     @classmethod
     def from_impacts(cls, impacts: Sequence[ImpactResult], points: int = 4001) -> NormalHistory:
@@ -494,7 +518,7 @@ def normal_restitution_and_history(
     sphere1: Sphere,
     sphere2: Sphere,
     u_n: float,
-    law: str = "hertz",
+    law: str = ELASTIC_LAW,
     params: dict[str, Any] | None = None,
     damping: str | None = None,
     alpha: float | None = None,
@@ -531,8 +555,10 @@ def normal_restitution_and_history(
         The coefficient of restitution [-] and the :class:`NormalHistory` of shape (1, K)
         (None when ``points`` is None). A damped history is the FILM closed form evaluated
         at ``points`` even times (:meth:`impactcli.damping.DampedImpact.evaluate`), its force
-        F_n = max(F, 0): where the damping force pulls near separation the Coulomb limit
-        mu F_n is 0 (the tangential model scales the impulse shares to J_n).
+        F_n = max(F, 0): where the damping force pulls near separation (``overlap``) the
+        Coulomb limit mu F_n is 0, and the history's ``impulse``, the integral of F_n dt,
+        is (1 + e_force) m u_n > J_n, e_force the restitution of the ``force`` rule (the
+        rate at which the total force first returns to 0).
 
     Raises
     ------
@@ -574,7 +600,7 @@ def normal_restitution_and_history(
     from impactcli.lawlib import get_law
     from impactcli.laws import hertz_stiffness
 
-    if get_law(law).name != "hertz" or params:
+    if get_law(law).name != ELASTIC_LAW or params:
         raise ValueError(
             f"damping {damping!r} is viscous damping on Hertz elasticity: its law is hertz, "
             f"got {law!r}" + (" with parameters" if params else "")
@@ -599,7 +625,14 @@ def normal_restitution_and_history(
     delta, delta_dot = solution.evaluate(t)
     delta = np.maximum(delta, 0.0)
     force = np.maximum(contact.force(delta, delta_dot), 0.0)
-    return e, NormalHistory(t[None], delta[None], delta_dot[None], force[None])
+    # The impulse of max(F, 0): the total force pushes until it first returns to 0, where
+    # the ``force`` rule separates at -e_force u_n, and pulls from there on (F < 0 stays
+    # negative: F'' = 0 on F = 0 while delta falls), so its integral is (1 + e_force) m u_n.
+    pushing = solution
+    if separation == "overlap":
+        pushing = solve_damped_impact(contact, float(u_n), m, separation="force")
+    impulse = (1.0 + float(pushing.restitution)) * m * float(u_n)
+    return e, NormalHistory(t[None], delta[None], delta_dot[None], force[None], [impulse])
 
 
 def oblique_impact(
@@ -633,9 +666,11 @@ def oblique_impact(
       mu F_n, scaled down while the contact shrinks (Thornton, Cummins & Cleary 2011),
       integrated over ``history``. Each interval is solved exactly as a harmonic oscillator
       of stiffness k_t (the mean of its ends) and mass m_t; where the spring would end
-      above mu F_n the interval slides with the impulse mu dJ_n (dJ_n: the interval's share
-      of J_n, from the change of delta'), but no more than the elastic interval's, and ends
-      at |F_t| = mu F_n. In gross slip throughout J_t = mu J_n to rounding.
+      above mu F_n the interval slides with the impulse mu dJ (dJ: the interval's share of
+      the integral of F_n dt, the trapezoid of F_n dt scaled to the history's ``impulse``),
+      but no more than the elastic interval's, and ends at |F_t| = mu F_n. In gross slip
+      throughout J_t = mu times the impulse of F_n = max(F, 0) to rounding: mu J_n where
+      the normal force never pulls.
 
     With mu = 0 both models give the smooth collision of
     :func:`impactcli.collision2d.oblique_collision` (exactly, for planar input with z = 0).
@@ -644,8 +679,10 @@ def oblique_impact(
     ----------
     m1, m2 : masses, > 0, [kg]; ``inf`` for a fixed target (at most one)
     r1, r2 : radii, > 0, [m]; ``inf`` for a flat target (at most one)
-    p1, p2 : centres at contact, (x, y, z) on the last axis, [m]; for a flat target p2 - p1
-        only gives the normal direction
+    p1, p2 : centres at contact, (x, y, z) on the last axis, [m]: with friction (mu > 0)
+        two spheres of finite radius must be at |p2 - p1| = R1 + R2 within
+        :data:`CONTACT_DISTANCE_RTOL` (relative); for a flat target p2 - p1 only gives the
+        normal direction
     v1, v2 : velocities before the impact, [m/s]
     w1, w2 : angular velocities before the impact, [rad/s]; a flat target must not spin
     restitution : normal coefficient of restitution e in [0, 1], [-], from the normal law
@@ -665,9 +702,10 @@ def oblique_impact(
     Raises
     ------
     ValueError
-        Masses, radii, e, mu or vectors out of range, coincident centres, spheres not
-        approaching (u_n <= 0), an unknown model, or a ``mindlin`` call without a history
-        consistent with u_n and e. For a batch the message names the first bad collision.
+        Masses, radii, e, mu or vectors out of range, coincident centres, centres of two
+        spheres with friction not at contact distance, spheres not approaching (u_n <= 0),
+        an unknown model, or a ``mindlin`` call without a history consistent with u_n and
+        e. For a batch the message names the first bad collision.
 
     Examples
     --------
@@ -707,6 +745,7 @@ def oblique_impact(
             raise ValueError(f"a flat target cannot spin: {name} must be 0" + _where(bad))
 
     normal = line_of_centres(p1, p2)
+    check_contact_distance(p1, p2, r1, r2, mu)
     rot1 = _rotation(m1, r1, inertia1, "inertia1")
     rot2 = _rotation(m2, r2, inertia2, "inertia2")
     u = _contact_velocity(v1, v2, w1, w2, r1, r2, normal)
@@ -810,6 +849,45 @@ def oblique_impact(
     )
 
 
+def contact_distance_problem(
+    distance: ArrayLike, r1: ArrayLike, r2: ArrayLike, friction: ArrayLike = 1.0
+) -> Array:
+    """Where two spheres of finite radius with friction (mu > 0) are not at contact: True
+    where the distance of their centres differs from R1 + R2 by more than
+    :data:`CONTACT_DISTANCE_RTOL` of it (a flat target, R = inf, has no centre: its p only
+    gives the normal; without friction the distance is free), [-]."""
+    distance, r1, r2, mu = (np.asarray(x, dtype=float) for x in (distance, r1, r2, friction))
+    touch = r1 + r2
+    with np.errstate(invalid="ignore"):
+        apart = ~(np.abs(distance - touch) <= CONTACT_DISTANCE_RTOL * touch)
+        return np.isfinite(touch) & apart & (mu != 0.0)
+
+
+def check_contact_distance(
+    p1: ArrayLike, p2: ArrayLike, r1: ArrayLike, r2: ArrayLike, friction: ArrayLike = 1.0
+) -> None:
+    """Raise InputError unless the centres of two spheres of finite radius with friction
+    are at contact, |p2 - p1| = R1 + R2 within :data:`CONTACT_DISTANCE_RTOL` (relative).
+
+    >>> check_contact_distance((0, 0, 0), (0, 0, 0.03), 0.01, 0.02)
+    >>> check_contact_distance((0, 0, 0), (1, 1, 1), 0.005, 0.01)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    impactcli.errors.InputError: the centres are 1.732 m apart but the spheres touch at ...
+    """
+    d = np.asarray(p2, dtype=float) - np.asarray(p1, dtype=float)
+    distance = np.sqrt(np.sum(d * d, axis=-1))
+    bad = contact_distance_problem(distance, r1, r2, friction)
+    if np.any(bad):
+        first = tuple(np.argwhere(bad)[0]) if np.ndim(bad) else ()
+        gap = np.broadcast_to(distance, np.shape(bad))[first]
+        touch = np.broadcast_to(np.asarray(r1, float) + np.asarray(r2, float), np.shape(bad))
+        raise InputError(
+            f"the centres are {float(gap):.4g} m apart but the spheres touch at R1 + R2 = "
+            f"{float(touch[first]):.4g} m: give the centres at contact (within "
+            f"{CONTACT_DISTANCE_RTOL:g} of R1 + R2)" + _where(bad)
+        )
+
+
 def _mindlin(
     history: NormalHistory,
     shape: tuple[int, ...],
@@ -836,22 +914,33 @@ def _mindlin(
     bad = ~np.isclose(-end, e * u_n, rtol=_HISTORY_RTOL, atol=_HISTORY_RTOL * u_n)
     if np.any(bad):
         raise ValueError("the normal history must end at delta' = -e u_n" + _where(bad))
-    # Share of J_n in each interval: the trapezoid of F_n dt, scaled to sum to J_n to
-    # rounding, so gross slip gives J_t = mu J_n to rounding. (Between FILM nodes delta'
-    # is not monotonic to rounding, so its differences are not used.)
+    # Share of the impulse of F_n = max(F, 0) in each interval: the trapezoid of F_n dt,
+    # scaled to sum to the history's impulse (J_n where the normal force never pulls) to
+    # rounding, so gross slip gives J_t = mu * that impulse to rounding. (Between FILM
+    # nodes delta' is not monotonic to rounding, so its differences are not used.)
+    impulse = j_n
+    if history.impulse is not None:
+        impulse = np.broadcast_to(history.impulse, shape)
+        bad = impulse < j_n * (1.0 - _HISTORY_RTOL)
+        if np.any(bad):
+            raise ValueError(
+                "the impulse of the normal history must be at least J_n = (1 + e) m u_n "
+                "(the integral of max(F, 0) dt)" + _where(bad)
+            )
     f_n = hist["force"]
     area = 0.5 * (f_n[..., 1:] + f_n[..., :-1]) * np.diff(hist["t"], axis=-1)
     total = np.sum(area, axis=-1)
     bad = ~(total > 0.0)
     if np.any(bad):
         raise ValueError("the normal history has no contact force" + _where(bad))
-    d_jn = j_n[..., None] * area / total[..., None]
+    d_jn = impulse[..., None] * area / total[..., None]
     stiffness = 8.0 * g[..., None] * np.sqrt(radius[..., None] * hist["delta"])
     cap = mu[..., None] * hist["force"]
     dt = np.diff(hist["t"], axis=-1)
     # What does not depend on the slip and the force, for every interval at once: the
     # interval's spring (the mean of its ends' stiffness), its rotation omega dt, the
-    # largest sliding impulse mu dJ_n, and the scale of a shrinking contact's force.
+    # largest sliding impulse mu dJ (Coulomb's mu F_n integrated over the interval), and
+    # the scale of a shrinking contact's force.
     k_old, k = stiffness[..., :-1], stiffness[..., 1:]
     k_mid = 0.5 * (k_old + k)
     omega_dt = np.sqrt(k_mid / np.asarray(m_t)[..., None]) * dt
@@ -870,7 +959,7 @@ def _mindlin(
         s_trial = s * cos_j - f * dt_j * sinc_j / m_t
         f_trial = f * cos_j + k_j * s * dt_j * sinc_j
         # Coulomb: where the spring would end above mu F_n the step slides, with the
-        # impulse mu dJ_n, but never more than the elastic step's (the force is bounded by
+        # impulse mu dJ, but never more than the elastic step's (the force is bounded by
         # both); the end force is held within mu F_n.
         dj_elastic = m_t * (s - s_trial)
         slides = np.abs(f_trial) >= cap_j

@@ -392,3 +392,50 @@ def test_rows_failure_after_a_written_chunk_leaves_nothing(impact, tmp_path):
     assert r.returncode == 2 and "longer than" in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
     assert not out.exists() and list(tmp_path.iterdir()) == [source]
+
+
+TWO_SPHERES = ["collide3d", "--d1", "10mm", "--d2", "20mm", "--material", "steel",
+               "--p1", "0,0,0", "--v1=1,0.5,2", "--v2", "0,0,0", "--w1", "0,30,0",
+               "--mu", "0.3", "-f", "csv"]  # fmt: skip
+
+
+def test_centres_not_at_contact_are_refused_with_friction(impact, tmp_path):
+    """Two spheres with friction whose centres are not R1 + R2 apart: one line, exit 2,
+    nothing written (the friction impulse would turn them about two different points and
+    the angular momentum about the origin would change)."""
+    out = tmp_path / "out.csv"
+    r = impact(*TWO_SPHERES, "--p2", "1,1,1", "-o", str(out))
+    assert r.returncode == 2 and not out.exists()
+    assert r.stderr.count("\n") == 1
+    assert "the centres are 1.732 m apart but the spheres touch at R1 + R2 = 0.015 m" in r.stderr
+    assert "within 1e-06 of R1 + R2" in r.stderr
+
+
+def test_two_spheres_at_contact_conserve_angular_momentum_about_the_origin(impact):
+    """The same spheres at contact along (1, 1, 1): the angular momentum about the origin
+    (and momentum) after equals before, for both tangential models."""
+    p2 = ",".join([repr(float(0.015 / np.sqrt(3.0)))] * 3)
+    for model in ("rigid", "mindlin"):
+        r = impact(*TWO_SPHERES, "--p2", p2, "--tangential", model)
+        assert r.returncode == 0, r.stderr
+        got = rows(r.stdout)
+        assert got["tangential_impulse"] > 0.0
+        scale = max(abs(got[f"angular_momentum_origin_before_{a}"]) for a in "xyz")
+        for axis in "xyz":
+            before = got[f"angular_momentum_origin_before_{axis}"]
+            after = got[f"angular_momentum_origin_after_{axis}"]
+            assert after == pytest.approx(before, rel=0, abs=1e-10 * scale)
+
+
+def test_rows_centres_not_at_contact_are_that_rows_error(impact, tmp_path):
+    pytest.importorskip("pyarrow")
+    table = tmp_path / "in.csv"
+    table.write_text("p1_x,p1_y,p1_z,p2_x,p2_y,p2_z,v1_x,v1_y,v1_z,d1,d2,material\n"
+                     "0,0,0,1,1,1,1,1,1,10mm,20mm,steel\n"
+                     "0,0,0,0,0,15mm,1,0,2,10mm,20mm,steel\n")  # fmt: skip
+    out = tmp_path / "out.csv"
+    r = impact("collide3d", "--rows", str(table), "-o", str(out), "--mu", "0.3")
+    assert r.returncode == 0, r.stderr
+    got = list(csv.DictReader(out.open()))
+    assert "the centres must be at contact" in got[0]["error"] and got[0]["v1_final_x"] == ""
+    assert got[1]["error"] == "" and float(got[1]["tangential_impulse"]) > 0.0

@@ -165,8 +165,11 @@ def test_energy_columns_add_up_to_the_initial_kinetic_energy(law, params, method
     assert np.allclose(h["dissipated1"] + h["dissipated2"], h["dissipated"], rtol=1e-15, atol=0)
     # at separation: nothing stored, (1/2) m V0^2 (1 - e^2) dissipated, never given back
     e = s["restitution"]
-    assert h["strain_energy"][-1] == pytest.approx(0.0, abs=1e-9 * relative)
-    assert h["dissipated"][-1] == pytest.approx(relative * (1 - e**2), abs=1e-9 * relative)
+    # (the ODE to its tolerance, 1e-8 of (1/2) m V0^2, as for the sum above: its e is
+    # 1 + 6e-10 for the elastic tabulated curve, whose dissipation stays 0)
+    end_tol = 1e-9 * relative if method == "film" else 1e-8 * relative
+    assert h["strain_energy"][-1] == pytest.approx(0.0, abs=end_tol)
+    assert h["dissipated"][-1] == pytest.approx(relative * (1 - e**2), abs=end_tol)
     assert np.all(np.diff(h["dissipated"]) >= -1e-12 * relative)
     assert s["energy_dissipated1"] + s["energy_dissipated2"] == pytest.approx(
         relative * (1 - e**2), abs=1e-12 * relative

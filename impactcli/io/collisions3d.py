@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from impactcli.errors import InputError
+from impactcli.laws.registry import ELASTIC_LAW
 
 __all__ = [
     "INPUT_COLUMNS",
@@ -106,7 +107,7 @@ def compute_collisions3d(
     frame: Mapping[str, Any],
     mu: float = 0.0,
     tangential: str = "rigid",
-    law: str = "hertz",
+    law: str = ELASTIC_LAW,
     params: Mapping[str, Any] | None = None,
     damping: str | None = None,
     alpha: float | None = None,
@@ -157,7 +158,13 @@ def compute_collisions3d(
     'the spheres are not approaching along the line of centres ((v1 - v2) . n_hat <= 0)'
     """
     from impactcli.batch import material_properties
-    from impactcli.collision3d import TANGENTIAL_MODELS, effective_shear_modulus, oblique_impact
+    from impactcli.collision3d import (
+        CONTACT_DISTANCE_RTOL,
+        TANGENTIAL_MODELS,
+        contact_distance_problem,
+        effective_shear_modulus,
+        oblique_impact,
+    )
     from impactcli.contact import total_mass
     from impactcli.io.table import _quantity_column, _text_column, table_columns
     from impactcli.spheres import missing_properties, resolve_properties
@@ -232,6 +239,9 @@ def compute_collisions3d(
         d = vectors["p2"] - vectors["p1"]
         distance = np.sqrt(np.sum(d * d, axis=-1))
         errors.add(distance == 0.0, "the centres p1 and p2 coincide: no line of centres")
+        errors.add(contact_distance_problem(distance, 0.5 * s1["d"], 0.5 * s2["d"], friction),
+                   "with friction the centres must be at contact: |p2 - p1| = (d1 + d2)/2 "
+                   f"within {CONTACT_DISTANCE_RTOL:g} of it")  # fmt: skip
         normal = d / np.where(distance > 0.0, distance, 1.0)[..., None]
         u_n = np.sum((vectors["v1"] - vectors["v2"]) * normal, axis=-1)
         errors.add(~(u_n > 0.0), "the spheres are not approaching along the line of centres "
@@ -260,7 +270,9 @@ def compute_collisions3d(
             from impactcli.collision3d import NormalHistory
 
             keep = np.isin(np.flatnonzero(~np.isnan(e)), ok)
-            history = NormalHistory(*(h[keep] for h in histories))
+            *arrays, impulse = (h[keep] for h in histories)
+            given = None if np.all(np.isnan(impulse)) else impulse  # None: J_n (no pull)
+            history = NormalHistory(*arrays, impulse=given)
             shear = effective_shear_modulus(s1["E"][ok], s1["nu"][ok], s2["E"][ok], s2["nu"][ok])
         from impactcli.collision3d import collision_summary
 
@@ -344,13 +356,15 @@ def _damped_scales(s1, s2, u_n, rows):
 
 def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separation):
     """e and the normal history of each of ``rows`` (one FILM run per row). Returns (e,
-    (t, delta, delta_dot, force) of the rows that ran, shape (k, points)), reasons)."""
+    (t, delta, delta_dot, force) of the rows that ran, shape (k, points), and their
+    impulse, shape (k,), NaN where it is J_n), reasons)."""
     from impactcli.collision3d import normal_restitution_and_history
     from impactcli.impact import Sphere
 
     e = np.full(rows.size, np.nan)
     reasons = np.full(rows.size, "", dtype=object)
     stacks: list[list[np.ndarray]] = [[], [], [], []]
+    impulses: list[float] = []
 
     def given(x: float) -> float | None:
         return None if np.isnan(x) else float(x)
@@ -381,10 +395,11 @@ def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separa
             continue
         for stack, array in zip(stacks, arrays):
             stack.append(array)
+        impulses.append(np.nan if history.impulse is None else float(history.impulse[0]))
     arrays = tuple(
         np.stack(s) if s else np.zeros((0, max(int(points), 2))) for s in stacks
     )
-    return e, arrays, reasons
+    return e, (*arrays, np.asarray(impulses, dtype=float)), reasons
 
 
 def run_collisions3d(
