@@ -988,7 +988,14 @@ def damped_ode_solution(
     d_max = float(sol.y_events[0][0][0])
     ends = [(ev[0], ye[0]) for ev, ye in zip(sol.t_events[1:], sol.y_events[1:]) if ev.size]
     if not ends:
-        raise RuntimeError("the contact did not end within 50 Hertz contact times")
+        from impactcli.errors import InputError
+
+        alpha = float(np.ravel(np.asarray(law.alpha, dtype=float))[0])
+        raise InputError(
+            f"alpha = {alpha:.4g}: SciPy integration finds no end of contact within 50 Hertz "
+            "contact times (the indentation creeps back toward 0, as when overdamped; FILM's "
+            "segments end the creep with a tiny e): use the FILM method or a smaller alpha"
+        )
     t_c, y_c = min(ends, key=lambda p: p[0])
     grid = np.linspace(0.0, t_max, 2001)
     f_grid = np.array([float(law.force(*sol.sol(t)[:2])) for t in grid])

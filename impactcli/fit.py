@@ -402,7 +402,13 @@ def _pair(sphere1, sphere2) -> tuple[float, float, float, float]:
     """m [kg], R [m], E* [Pa] of the pair and the weaker sphere's sigma_y [Pa] (NaN if
     unknown)."""
     from impactcli.impact import effective_properties, weaker_yield_strength
+    from impactcli.validation import pair_problems, raise_first
 
+    fixed1 = bool(np.isinf(sphere1.total_mass))  # the moving sphere: 2 on a fixed sphere 1
+    raise_first(pair_problems(0.0 if fixed1 else 1.0, 1.0 if fixed1 else 0.0,
+                              sphere1.total_mass, sphere2.total_mass, sphere1.diameter,
+                              sphere2.diameter, sphere1.youngs_modulus,
+                              sphere2.youngs_modulus))  # fmt: skip
     m, r, e = effective_properties(sphere1, sphere2)
     sy = weaker_yield_strength(sphere1, sphere2)
     return m, r, e, math.nan if sy is None else float(sy)

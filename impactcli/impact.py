@@ -379,6 +379,9 @@ class ImpactResult:
         """Time [s] and value [m] of the maximum indentation of ``method``."""
         if method == "ode":
             return self.ode.t_max, self.ode.delta_max
+        if self.plan is None:  # a damped impact: its FILM solution has the turning point
+            film: Any = self.film
+            return float(np.ravel(film.t_max)[0]), float(np.ravel(film.delta_max)[0])
         return float(self.film.stages[-2].end_time), float(np.reshape(self.plan.delta_max, -1)[0])
 
     def permanent_indentation(self, t: NDArray, delta: NDArray, method: str) -> NDArray:

@@ -158,6 +158,14 @@ def sphere_problems(
             np.isnan(m) & (np.isnan(rho) | ~np.isfinite(d)),
             f"give {names['m']}, or a finite {names['d']} and {names['rho']}",
         )
+        with np.errstate(over="ignore", under="ignore"):
+            computed = rho * (np.pi / 6.0) * d**3
+        p.add(
+            np.isnan(m) & np.isfinite(d) & ~((computed > 0.0) & np.isfinite(computed)),
+            f"{names['d']} and {names['rho']} give a mass of {{:.3g}} kg, beyond the range of "
+            "a float: give sizes in metres and densities in kg/m^3",
+            computed,
+        )
     return p
 
 
@@ -198,6 +206,15 @@ def pair_problems(
             np.isinf(E1) & np.isinf(E2),
             "at most one sphere can be rigid (infinite Young's modulus)",
         )
+        with np.errstate(divide="ignore", over="ignore", under="ignore"):
+            for what, a, b, unit in (("mass m", m1, m2, "kg"), ("radius R", d1 / 2, d2 / 2, "m")):
+                effective = 1.0 / (1.0 / a + 1.0 / b)
+                p.add(
+                    (a > 0) & (b > 0) & ~((effective > 0) & np.isfinite(effective)),
+                    f"the effective {what} = {{:.3g}} {unit} of the pair is beyond the range "
+                    "of a float: give sizes in metres and masses in kg",
+                    effective,
+                )
     return p
 
 
@@ -228,6 +245,12 @@ def yield_scale_problems(
     p = Problems(dy.size) if problems is None else problems
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         ratio = dy / dm
+        p.add(
+            ~((dm > 0.0) & np.isfinite(dm)),
+            "out of range: the maximum indentation is {:.3g} m, beyond double precision (V0, "
+            "the sizes or the moduli too small or too large for the model)",
+            dm,
+        )
     p.add(
         ~(ratio >= MIN_YIELD_INDENTATION_RATIO),
         "out of range: the yield indentation is {:.3g} of the maximum indentation, below "
@@ -254,10 +277,13 @@ def plastic_range_problems(
 
 
 def raise_first(problems: Problems) -> None:
-    """Raise the first problem as a :class:`ValueError` (the scalar paths)."""
+    """Raise the first problem as an :class:`~impactcli.errors.InputError` (a
+    :class:`ValueError`; the scalar paths)."""
+    from impactcli.errors import InputError
+
     bad = np.flatnonzero(problems.bad)
     if bad.size:
-        raise ValueError(problems.messages[bad[0]])
+        raise InputError(problems.messages[bad[0]])
 
 
 # The two yield criteria the messages name: first yield of an elastic (Hertz) contact at the
@@ -418,8 +444,9 @@ def contact_radius_warning(
     if over.size == 0:
         return None
     k = over[0]
+    shown = f"{ratio[k]:.2f}" if ratio[k] < 100.0 else f"{ratio[k]:.3g}"  # never 150 digits
     return (
-        f"contact radius / R = {ratio[k]:.2f} > {SMALL_DEFORMATION_LIMIT:g} from V0 = "
+        f"contact radius / R = {shown} > {SMALL_DEFORMATION_LIMIT:g} from V0 = "
         f"{v0[k]:.4g} m/s: beyond the small-deformation contact models used here (Hertz, "
         "Du & Wang); treat the result as indicative only"
     )

@@ -24,9 +24,11 @@ import os
 import signal
 import sys
 import warnings
+from functools import partial
 from collections.abc import Callable, Iterator
 
 from impactcli.errors import InputError, StdoutClosed
+from impactcli import output
 from impactcli.output import describe_os_error, output_transaction
 
 #: Signals that end a run as Ctrl-C does, with exit status 128 + the signal number.
@@ -203,6 +205,7 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
             try:
                 with warnings.catch_warnings(record=True) as caught:
                     warnings.simplefilter("always", RuntimeWarning)
+                    output.before_stdout = partial(_refuse_numeric_warnings, caught)
                     with output_transaction():
                         result = call()
                         _flush_stdout()
@@ -256,6 +259,7 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
         end_children(kill=True)
     finally:
         common.pending_messages = None
+        output.before_stdout = None
     if status != 0:
         _quiet_stdout_if_broken()
     return status
