@@ -98,6 +98,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.collision2d import line_of_centres
 from impactcli.errors import InputError
+from impactcli.laws.registry import ELASTIC_LAW
 from impactcli.validation import check_friction, check_restitution, check_vectors
 from impactcli.validation import where_first as _where
 
@@ -517,7 +518,7 @@ def normal_restitution_and_history(
     sphere1: Sphere,
     sphere2: Sphere,
     u_n: float,
-    law: str = "hertz",
+    law: str = ELASTIC_LAW,
     params: dict[str, Any] | None = None,
     damping: str | None = None,
     alpha: float | None = None,
@@ -599,7 +600,7 @@ def normal_restitution_and_history(
     from impactcli.lawlib import get_law
     from impactcli.laws import hertz_stiffness
 
-    if get_law(law).name != "hertz" or params:
+    if get_law(law).name != ELASTIC_LAW or params:
         raise ValueError(
             f"damping {damping!r} is viscous damping on Hertz elasticity: its law is hertz, "
             f"got {law!r}" + (" with parameters" if params else "")

@@ -133,15 +133,13 @@ def published_restitution(
     """Published closed forms of e for those of ``laws`` that have one, at impact
     velocities V0 [m/s]: label -> (V0 [m/s], e [-]).
 
-    - ``thornton``: Thornton (1997), J. Appl. Mech. 64:383-386, doi:10.1115/1.2787319,
-      e(V_y/V0) (:func:`impactcli.lawlib.thornton_restitution`) with the law's own V_y;
-    - ``walton-braun``: Walton & Braun (1986), J. Rheol. 30:949-980, doi:10.1122/1.549893,
-      e = sqrt(k_load / k_unload) at every V0.
-
-    Du & Wang (2009) give no closed form for e; their law is checked against the paper's
-    sec. 4.4 value instead (e = 0.85611 at V0 = 1 m/s for its steel spheres).
+    Each law declares its own (:attr:`impactcli.laws.base.LawSpec.closed_form`), e.g.
+    Thornton's (1997) e(V_y/V0) with the law's own V_y, or Walton & Braun's (1986)
+    e = sqrt(k_load / k_unload) at every V0. Du & Wang (2009) give no closed form for e;
+    their law is checked against the paper's sec. 4.4 value instead (e = 0.85611 at
+    V0 = 1 m/s for its steel spheres).
     """
-    from impactcli.lawlib import get_law, thornton_restitution
+    from impactcli.laws.registry import get_law
 
     v0 = np.asarray(velocities, dtype=float)
     m, r, e = effective_properties(sphere1, sphere2)
@@ -149,14 +147,8 @@ def published_restitution(
     out: dict[str, tuple[NDArray, NDArray]] = {}
     for name, params in laws:
         spec = get_law(name)
-        if name == "thornton":
-            own = spec.contact(r, e, sigma_y, **dict(params)).yield_velocity(m)
-            out["Thornton (1997) closed form"] = (v0, thornton_restitution(own / v0))
-        elif name == "walton-braun":
-            p = spec.resolve(params)
-            ratio = np.sqrt(p["k_load"] / p["k_unload"])
-            out[r"Walton & Braun (1986): $\sqrt{k_{load}/k_{unload}}$"] = (
-                v0,
-                np.full(v0.shape, ratio),
-            )
+        if spec.closed_form is not None:
+            contact = spec.contact(r, e, sigma_y, **dict(params))
+            label, restitution = spec.closed_form(contact, m, v0)
+            out[label] = (v0, restitution)
     return out

@@ -38,6 +38,7 @@ from impactcli.contact import (
     sphere_mass,
 )
 from impactcli.laws import hertz_stiffness
+from impactcli.laws.registry import LAWS
 
 __all__ = [
     "HERTZ_CONTACT_TIME_FACTOR",
@@ -54,7 +55,9 @@ __all__ = [
 
 #: Laws whose onset of yield :func:`law_pressure_factor` knows: the Hertz peak pressure at
 #: which the sphere starts to yield, as a multiple of its sigma_y.
-YIELD_LIMIT_LAWS: tuple[str, ...] = ("hertz", "thornton", "du-wang")
+YIELD_LIMIT_LAWS: tuple[str, ...] = tuple(
+    name for name, spec in LAWS.items() if spec.yield_onset is not None
+)
 
 #: t_c V0 / delta_m = 2 (2/5) B(2/5, 1/2) for Hertz contact (docs/method.md §3), [-].
 HERTZ_CONTACT_TIME_FACTOR = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
@@ -237,26 +240,23 @@ def yield_limit_diameter(
 def law_pressure_factor(law: str, p0_factor: float = DU_WANG_PRESSURE_FACTOR) -> float:
     """The pressure at which a law's contact stops being elastic, / sigma_y, [-].
 
-    ``hertz``: first yield, Hertz peak pressure 1.6 sigma_y (Johnson 1985, sec. 6.2);
-    ``thornton``: its default limiting pressure p_y = 1.6 sigma_y (the same onset);
-    ``du-wang``: its V_y, where the mean pressure reaches p0 = ``p0_factor`` sigma_y
-    (paper eq. 16, docs/method.md §7). Laws without a yield point set by sigma_y
-    (walton-braun: plastic from the first touch; tabulated: the data's) are refused.
+    Each law of :data:`YIELD_LIMIT_LAWS` declares it
+    (:attr:`impactcli.laws.base.LawSpec.yield_onset`): the Hertz peak pressure at first
+    yield, 1.6 sigma_y (Johnson 1985, sec. 6.2), or a law's own criterion, e.g. Du & Wang's
+    V_y where the mean pressure reaches p0 = ``p0_factor`` sigma_y (paper eq. 16,
+    docs/method.md §7). Laws without a yield point set by sigma_y (plastic from the first
+    touch, or the data's own) are refused.
 
     >>> law_pressure_factor("hertz"), law_pressure_factor("du-wang")
     (1.6, 2.57)
     """
-    key = str(law).strip().lower().replace("_", "-")
-    if key in ("hertz", "thornton"):
-        return FIRST_YIELD_PRESSURE_FACTOR
-    if key == "du-wang":
-        if not (math.isfinite(p0_factor) and p0_factor > 0):
-            raise ValueError(f"the pressure factor must be positive, got {p0_factor}")
-        return float(p0_factor)
-    raise ValueError(
-        f"law {law!r} has no yield onset set by a yield strength (accepted: "
-        f"{', '.join(YIELD_LIMIT_LAWS)})"
-    )
+    spec = LAWS.get(str(law).strip().lower().replace("_", "-"))
+    if spec is None or spec.yield_onset is None:
+        raise ValueError(
+            f"law {law!r} has no yield onset set by a yield strength (accepted: "
+            f"{', '.join(YIELD_LIMIT_LAWS)})"
+        )
+    return spec.yield_onset.pressure_factor({"p0_factor": p0_factor})
 
 
 def timestep_table(

@@ -17,11 +17,11 @@ Akaike information criterion of a Gaussian least-squares fit, AIC = N ln(RSS/N) 
 its small-sample correction AICc = AIC + 2p(p+1)/(N-p-1) (Burnham & Anderson 2002, sec.
 2.2).
 
-The models (:func:`law_model`): every law of :mod:`impactcli.lawlib` with a numeric
-parameter through :func:`impactcli.sweep.restitution_sweep` (``du-wang``, ``thornton``,
-``walton-braun``, and ``hertz`` with none), and the damped laws ``tsuji`` and
-``hunt-crossley`` through :func:`impactcli.damping.solve_damped_impact`; their starting
-values and bounds come from the spheres (:func:`law_parameters`), :func:`fit_named_law`
+The models (:func:`law_model`): every normal law of :mod:`impactcli.laws` that declares how
+a fit takes it (:class:`~impactcli.laws.base.Fitting`) through
+:func:`impactcli.sweep.restitution_sweep`, and every damping model through
+:func:`impactcli.damping.solve_damped_impact`; their starting values and bounds come from
+the laws and the spheres (:func:`law_parameters`), :func:`fit_named_law`
 fits one, :func:`rank_fits` ranks several and :func:`prediction_band` gives the fitted
 curve's confidence band.
 
@@ -40,6 +40,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.laws.hertz import hertz_stiffness
+from impactcli.laws.registry import DAMPING_LAWS, LAWS
 from impactcli.lsq import bounded_least_squares, student_t_quantile
 
 __all__ = [
@@ -370,30 +372,24 @@ def rank_fits(results: Sequence[FitResult]) -> list[tuple[FitResult, float, floa
 
 # -- the models of the library's laws ------------------------------------------------------
 
-#: The laws a fit can take: those of :mod:`impactcli.lawlib` with numeric parameters (and
-#: Hertz, with none) and the damped laws of :mod:`impactcli.damping`.
+#: The laws a fit can take: the normal laws of :mod:`impactcli.laws` that declare how a fit
+#: takes them (:class:`~impactcli.laws.base.Fitting`), and every damping model.
 #: The parameters fitted when none is named: law -> names.
 DEFAULT_FIT: dict[str, tuple[str, ...]] = {
-    "hertz": (),
-    "du-wang": ("sy",),
-    "thornton": ("py",),
-    "walton-braun": ("k_unload",),
-    "tsuji": ("alpha",),
-    "hunt-crossley": ("alpha",),
+    **{name: spec.fitting.default for name, spec in LAWS.items() if spec.fitting is not None},
+    **{name: ("alpha",) for name in DAMPING_LAWS},
 }
 FIT_LAWS: tuple[str, ...] = tuple(DEFAULT_FIT)
 
 #: FILM segments per stage by default: the elastoplastic sweep, and the damped laws (whose
 #: e is second order in 1/n, docs/damping.md).
-DEFAULT_SEGMENTS: dict[str, int] = {"tsuji": 50, "hunt-crossley": 50}
-
-_DAMPED = ("tsuji", "hunt-crossley")
+DEFAULT_SEGMENTS: dict[str, int] = dict.fromkeys(DAMPING_LAWS, 50)
 
 
 def _check_law(law: str) -> str:
     key = str(law).strip().lower().replace("_", "-")
     if key not in FIT_LAWS:
-        extra = " (it has no numeric parameter)" if key == "tabulated" else ""
+        extra = " (it has no numeric parameter)" if key in LAWS else ""
         raise ValueError(f"cannot fit law {law!r}{extra}; accepted: {', '.join(FIT_LAWS)}")
     return key
 
@@ -423,15 +419,11 @@ def law_parameters(
 ) -> dict[str, FitParameter]:
     """Every parameter of ``law`` a fit can take, with a starting value and bounds (SI).
 
-    Starting values come from the spheres where they can: sigma_y of the weaker sphere
-    (1 GPa if unknown) for Du & Wang's ``sy`` (bounds x/1000 to x*1000), Thornton's p_y =
-    1.6 sigma_y (the Hertz peak pressure at first yield, Johnson 1985), and for Walton &
-    Braun the linear stiffness storing the Hertz energy at ``reference_velocity`` V_ref
-    [m/s]: k = 0.8 K_h sqrt(delta_m), delta_m = (5 m V_ref^2 / (4 K_h))^0.4, with
-    ``k_unload`` = k_load / 0.8^2 (e = 0.8); Tsuji's alpha from 0.3 [-] (below sqrt(5),
-    where e reaches 0, docs/damping.md) and Hunt & Crossley's alpha = (1 - 0.8) / V_ref
-    [s/m] (their e near 1 estimate). ``fixed`` values (e.g. ``k_load``) move the starts that
-    depend on them.
+    Each law declares them (:attr:`impactcli.laws.base.Fitting.starts`), from the spheres
+    where it can: sigma_y of the weaker sphere (1 GPa if unknown), the effective mass,
+    radius and modulus, a typical impact velocity of the data ``reference_velocity``
+    V_ref [m/s] and the ``fixed`` values (e.g. ``k_load``), which move the starts that
+    depend on them; a damping model's alpha from its ``fit_start(V_ref)``.
 
     Parameters
     ----------
@@ -445,39 +437,35 @@ def law_parameters(
     dict
         name -> :class:`FitParameter`
     """
-    from impactcli.contact import DU_WANG_PRESSURE_FACTOR, FIRST_YIELD_PRESSURE_FACTOR
-    from impactcli.laws import hertz_stiffness
-
     law = _check_law(law)
     fixed = dict(fixed or {})
     m, r, e_star, sy = _pair(sphere1, sphere2)
     sy = fixed.get("sy", sy if math.isfinite(sy) else 1e9)
     v_ref = float(reference_velocity)
-    if law == "du-wang":
-        return {
-            "sy": FitParameter("sy", "Pa", sy, sy / 1e3, sy * 1e3),
-            "p0_factor": FitParameter("p0_factor", "-", DU_WANG_PRESSURE_FACTOR, 0.1, 100.0),
-        }
-    if law == "thornton":
-        py = FIRST_YIELD_PRESSURE_FACTOR * sy
-        return {
-            "py": FitParameter("py", "Pa", py, py / 1e3, py * 1e3),
-            "sy": FitParameter("sy", "Pa", sy, sy / 1e3, sy * 1e3),
-        }
-    if law == "walton-braun":
-        k_h = float(hertz_stiffness(e_star, r))
-        delta_m = (5.0 * m * v_ref**2 / (4.0 * k_h)) ** 0.4
-        k_ref = 0.8 * k_h * math.sqrt(delta_m)
-        k1 = fixed.get("k_load", k_ref)
-        return {
-            "k_load": FitParameter("k_load", "N/m", k1, k_ref / 1e4, k_ref * 1e4),
-            "k_unload": FitParameter("k_unload", "N/m", k1 / 0.64, k_ref / 1e4, k_ref * 1e6),
-        }
-    if law == "tsuji":
-        return {"alpha": FitParameter("alpha", "-", 0.3, 1e-4, 2.2)}
-    if law == "hunt-crossley":
-        return {"alpha": FitParameter("alpha", "s/m", 0.2 / v_ref, 1e-6, 1e3)}
-    return {}  # hertz
+    if law in DAMPING_LAWS:
+        model = DAMPING_LAWS[law]
+        (alpha,) = model.parameters
+        unit = "-" if alpha.kind == "dimensionless" else alpha.unit
+        return {"alpha": FitParameter("alpha", unit, *model.fit_start(v_ref))}
+    starts = LAWS[law].fitting.starts(m, r, e_star, sy, v_ref, fixed)
+    return {name: FitParameter(name, *start) for name, start in starts.items()}
+
+
+def fit_parameter_help() -> str:
+    """What each law fits by default and what else it can fit, for ``--help``: 'du-wang sy
+    (or p0_factor), ..., tsuji alpha [-], ...'."""
+    parts = []
+    for law, default in DEFAULT_FIT.items():
+        if law in DAMPING_LAWS:
+            (alpha,) = DAMPING_LAWS[law].parameters
+            unit = "-" if alpha.kind == "dimensionless" else alpha.unit
+            parts.append(f"{law} alpha [{unit}]")
+        elif default:
+            starts = LAWS[law].fitting.starts(1.0, 1.0, 1.0, 1.0, 1.0, {})  # names only
+            others = [name for name in starts if name not in default]
+            also = f" (or {', '.join(others)})" if others else ""
+            parts.append(f"{law} {' '.join(default)}{also}")
+    return ", ".join(parts)
 
 
 def law_model(
@@ -490,15 +478,11 @@ def law_model(
     """The :data:`Model` of ``law`` for this pair of spheres: (parameters, V0 [m/s]) ->
     ``restitution`` [-] and ``contact_time`` [s], vectorised over V0.
 
-    The laws of :mod:`impactcli.lawlib` run through
-    :func:`impactcli.sweep.restitution_sweep` (elastoplastic FILM, docs/method.md §7, §9):
-    ``du-wang`` (``sy`` [Pa], ``p0_factor`` [-]), ``thornton`` (``py`` [Pa], or ``sy``
-    [Pa] for p_y = 1.6 sigma_y), ``walton-braun`` (``k_load``, ``k_unload`` [N/m]; a
-    ``k_unload`` below ``k_load`` is taken equal to it, e = 1) and ``hertz`` (none; e = 1).
-    The damped laws run through :func:`impactcli.damping.solve_damped_impact` (FILM for
-    rate-dependent laws, ``overlap`` separation): ``tsuji`` (``alpha`` [-]; e does not
-    depend on V0, Tsuji et al. 1992) and ``hunt-crossley`` (``alpha`` [s/m]; e depends on
-    alpha V0, Hunt & Crossley 1975).
+    The normal laws run through :func:`impactcli.sweep.restitution_sweep` (elastoplastic
+    FILM, docs/method.md §7, §9) with the parameters their
+    :attr:`~impactcli.laws.base.Fitting.run_parameters` take from the fit's; the damping
+    models through :func:`impactcli.damping.solve_damped_impact` (FILM for rate-dependent
+    laws, ``overlap`` separation) with their ``alpha``.
 
     Parameters
     ----------
@@ -506,8 +490,8 @@ def law_model(
     law : a name of :data:`FIT_LAWS`
     n : FILM segments per stage (default 25; 50 for the damped laws)
     fixed : values of parameters not fitted, SI; the rest default as the law does (sigma_y
-        of the weaker sphere, p0_factor 2.57, and :func:`law_parameters`' starting values
-        of Walton & Braun's stiffnesses)
+        of the weaker sphere, the law's own defaults, or :func:`law_parameters`' starting
+        values where the law's ``starts_are_defaults``)
 
     Returns
     -------
@@ -520,7 +504,8 @@ def law_model(
     segments = check_size("n", n if n is not None else DEFAULT_SEGMENTS.get(law, 25), MAX_SEGMENTS)
     m, r, e_star, sy = _pair(sphere1, sphere2)
     base: dict[str, float] = {}
-    if law in ("walton-braun", *_DAMPED):
+    damped = law in DAMPING_LAWS
+    if damped or LAWS[law].fitting.starts_are_defaults:
         starts = law_parameters(sphere1, sphere2, law, fixed=fixed)
         base = {name: p.initial for name, p in starts.items()}
     base.update(fixed or {})
@@ -535,22 +520,15 @@ def law_model(
                 f"law {law!r} has no parameter {sorted(unknown)[0]!r} (accepted: {accepted})"
             )
         v = np.asarray(v0, dtype=float)
-        if law in _DAMPED:
+        if damped:
             from impactcli.damping import make_damping_law, solve_damped_impact
-            from impactcli.laws import hertz_stiffness
 
-            damped = make_damping_law(law, hertz_stiffness(e_star, r), m, p["alpha"])
-            out = solve_damped_impact(damped, v, m, segments)
+            model = make_damping_law(law, hertz_stiffness(e_star, r), m, p["alpha"])
+            out = solve_damped_impact(model, v, m, segments)
             return {"restitution": out.restitution, "contact_time": out.contact_time}
         from impactcli.sweep import restitution_sweep
 
-        law_params: dict[str, float] = {}
-        if law == "du-wang" and "p0_factor" in p:
-            law_params["p0_factor"] = p["p0_factor"]
-        elif law == "thornton" and "py" in p:
-            law_params["py"] = p["py"]
-        elif law == "walton-braun":
-            law_params = {"k_load": p["k_load"], "k_unload": max(p["k_unload"], p["k_load"])}
+        law_params = LAWS[law].fitting.run_parameters(p)
         sweep = restitution_sweep(
             sphere1, sphere2, v, segments, yield_strength=p.get("sy"), law=law,
             law_params=law_params,
@@ -621,29 +599,25 @@ def law_yield_velocity(sphere1, sphere2, law: str, params: Mapping[str, float]) 
     from impactcli.sweep import sweep_yield_velocity
 
     law = _check_law(law)
-    if law in ("hertz", *_DAMPED):
+    onset = "none" if law in DAMPING_LAWS else LAWS[law].fitting.yield_onset
+    if onset == "none":
         return math.nan
-    if law == "walton-braun":
+    if onset == "first touch":
         return 0.0
-    extra = {k: params[k] for k in ("p0_factor", "py") if k in params}
+    extra = LAWS[law].fitting.run_parameters(params)
     return sweep_yield_velocity(
         sphere1, sphere2, yield_strength=params.get("sy"), law=law, law_params=extra
     )
 
 
 def _data_starts(law: str, data: FitData) -> dict[str, float]:
-    """Starting values read off the data, where a closed form gives them: Tsuji's alpha
-    from the mean e by the exact inverse of its ``overlap`` e(alpha)
-    (:func:`impactcli.damping.tsuji_alpha_hertz_mindlin`), Hunt & Crossley's alpha =
-    (1 - e) / V0 (their estimate for e near 1), the median over the points."""
-    from impactcli.damping import tsuji_alpha_hertz_mindlin
-
+    """Starting values read off the data, where the law gives them: a damping model's
+    alpha from the measured e (its ``data_start``, e.g. the exact inverse of a closed-form
+    e(alpha), or an estimate for e near 1)."""
+    if law not in DAMPING_LAWS:
+        return {}
     e = np.clip(data.restitution, 1e-3, 1.0 - 1e-6)
-    if law == "tsuji":
-        return {"alpha": float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(e)), 1e-3, 2.0))}
-    if law == "hunt-crossley":
-        return {"alpha": float(np.clip(np.median((1.0 - e) / data.impact_velocity), 1e-5, 1e2))}
-    return {}
+    return {"alpha": DAMPING_LAWS[law].data_start(e, data.impact_velocity)}
 
 
 def fit_named_law(

@@ -24,6 +24,7 @@ from impactcli.impact import (
     weaker_yield_strength,
 )
 from impactcli.lawlib import get_law, plan_groups
+from impactcli.laws.registry import DEFAULT_LAW
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.validation import plastic_range_problems, raise_first
 
@@ -157,7 +158,7 @@ def _contact(
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
-    if law is not None and not (sigma_y is None and get_law(law).name == "du-wang"):
+    if law is not None and not (sigma_y is None and get_law(law).name == DEFAULT_LAW):
         m, r, e = effective_properties(sphere1, sphere2)
         return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     m, r, e = effective_properties(sphere1, sphere2)

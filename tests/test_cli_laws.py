@@ -6,14 +6,18 @@ import csv
 import io
 import json
 
-from impactcli.lawlib import LAWS
+from impactcli.laws.registry import DAMPING_LAWS, LAWS, MODELS
 
 
 def test_laws_json_lists_every_law(impact):
     done = impact("laws", "--format", "json")
     assert done.returncode == 0, done.stderr
     listed = {law["name"]: law for law in json.loads(done.stdout)["laws"]}
-    assert list(listed) == list(LAWS)
+    assert list(listed) == list(MODELS) == [*LAWS, *DAMPING_LAWS]
+    for name in DAMPING_LAWS:
+        assert listed[name]["kind"] == "damping"
+        assert listed[name]["parameters"][0]["name"] == "alpha"
+    assert listed["tsuji"]["reference"]["doi"] == "10.1016/0032-5910(92)88030-L"
     assert listed["thornton"]["reference"]["doi"] == "10.1115/1.2787319"
     assert listed["du-wang"]["parameters"][0] == {
         "name": "p0_factor",
@@ -33,7 +37,7 @@ def test_laws_csv_one_row_per_parameter(impact):
     done = impact("laws", "--format", "csv")
     assert done.returncode == 0, done.stderr
     rows = list(csv.DictReader(io.StringIO(done.stdout)))
-    expected = sum(max(1, len(spec.parameters)) for spec in LAWS.values())
+    expected = sum(max(1, len(spec.parameters)) for spec in MODELS.values())
     assert len(rows) == expected
     thornton = [r for r in rows if r["law"] == "thornton"]
     assert thornton[0]["parameter"] == "py" and thornton[0]["unit"] == "Pa"

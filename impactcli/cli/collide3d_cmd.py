@@ -24,13 +24,14 @@ from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
+from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW
 from impactcli.limits import MAX_POINTS, check_size
 from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
 from impactcli.spheres import SphereOptions
 from impactcli.validation import check_friction, check_restitution
 
 #: --model -> the law of the library it names.
-MODEL_LAWS = {Model.elastic: "hertz", Model.elastoplastic: "du-wang"}
+MODEL_LAWS = {Model.elastic: ELASTIC_LAW, Model.elastoplastic: DEFAULT_LAW}
 
 
 class Tangential(enum.StrEnum):
@@ -232,7 +233,7 @@ def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
             "use --law, --model or --damping"
         )
     damping_law, alpha, _, separation = damping.parse()
-    default = MODEL_LAWS[model] if model is not None else "hertz"
+    default = MODEL_LAWS[model] if model is not None else ELASTIC_LAW
     (choice,) = resolve_laws(law, default=(default,))
     return choice.name, choice.params, (damping_law, alpha, separation)
 

@@ -22,12 +22,7 @@ import typer
 
 from impactcli.errors import InputError
 
-__all__ = ["DAMPING_HELP", "DampingOptions", "with_damping_options"]
-
-
-class DampingLaw(enum.StrEnum):
-    tsuji = "tsuji"
-    hunt_crossley = "hunt-crossley"
+__all__ = ["DampingOptions", "damping_help", "with_damping_options"]
 
 
 class Separation(enum.StrEnum):
@@ -35,23 +30,44 @@ class Separation(enum.StrEnum):
     force = "force"
 
 
-#: --alpha: the unit kind of :func:`impactcli.units.parse_quantity` for each law.
-ALPHA_KINDS = {"tsuji": "dimensionless", "hunt-crossley": "inverse velocity"}
+def _models() -> dict:
+    """The damping models of the registry, by name."""
+    from impactcli.laws.registry import DAMPING_LAWS
 
-DAMPING_HELP = {
-    "damping": "Viscous damping added to Hertz (docs/damping.md): tsuji, F = K delta^1.5 + "
-    "alpha sqrt(m K) delta^(1/4) delta' (Tsuji et al. 1992; e depends on alpha only), or "
-    "hunt-crossley, F = K delta^1.5 (1 + 1.5 alpha delta') (Hunt & Crossley 1975; e depends "
-    "on alpha V0). Give --alpha or --e with it.",
-    "alpha": "Damping parameter alpha >= 0: dimensionless for tsuji, in s/m for hunt-crossley "
-    "(units accepted: 0.5s/m, 0.5ms/mm).",
-    "e": "Coefficient of restitution in (0, 1] to reach at this V0 instead of --alpha: alpha "
-    "is solved for exactly by the model (FILM, same n and separation) and printed.",
-    "separation": "When the contact ends. overlap (default): when the indentation returns to "
-    "0; the damping force may then pull, as DEM codes integrate it and as the published "
-    "Tsuji alpha(e) relations assume. force: when the total force returns to 0 (no "
-    "tension); the spheres part at an indentation delta_separation > 0.",
-}
+    return DAMPING_LAWS
+
+
+def _alpha(name: str):
+    """The damping parameter (a :class:`~impactcli.laws.base.Parameter`) of model ``name``."""
+    (parameter,) = _models()[name].parameters
+    return parameter
+
+
+def _either() -> str:
+    """'--damping tsuji or --damping hunt-crossley': every model of the registry."""
+    return " or ".join(f"--damping {name}" for name in _models())
+
+
+def damping_help() -> dict[str, str]:
+    """The help of each damping option, written from the registry's models."""
+    models = _models()
+    laws = ", or ".join(f"{name}, {model.summary}" for name, model in models.items())
+    units = ", ".join(
+        ("dimensionless" if _alpha(name).kind == "dimensionless" else f"in {_alpha(name).unit}")
+        + f" for {name}"
+        for name in models
+    )
+    return {
+        "damping": f"Viscous damping added to Hertz (docs/damping.md): {laws}. Give --alpha "
+        "or --e with it.",
+        "alpha": f"Damping parameter alpha >= 0: {units} (units accepted: 0.5s/m, 0.5ms/mm).",
+        "e": "Coefficient of restitution in (0, 1] to reach at this V0 instead of --alpha: alpha "
+        "is solved for exactly by the model (FILM, same n and separation) and printed.",
+        "separation": "When the contact ends. overlap (default): when the indentation returns "
+        "to 0; the damping force may then pull, as DEM codes integrate it and as the published "
+        "Tsuji alpha(e) relations assume. force: when the total force returns to 0 (no "
+        "tension); the spheres part at an indentation delta_separation > 0.",
+    }
 
 
 @dataclass(frozen=True)
@@ -82,25 +98,23 @@ class DampingOptions:
             ] + (["--separation"] if self.separation is not None else [])
             if extra:
                 verb = "needs" if len(extra) == 1 else "need"
-                raise InputError(
-                    f"{', '.join(extra)} {verb} --damping tsuji or --damping hunt-crossley"
-                )
+                raise InputError(f"{', '.join(extra)} {verb} {_either()}")
             return None, None, None, "overlap"
         from impactcli.damping import check_alpha
         from impactcli.units import parse_quantity
 
         alpha = None
         if self.alpha is not None:
-            alpha = parse_quantity(self.alpha, ALPHA_KINDS[self.damping], "--alpha")
+            alpha = parse_quantity(self.alpha, _alpha(self.damping).kind, "--alpha")
             try:
                 check_alpha(alpha, "--alpha")
             except ValueError as exc:
                 raise InputError(str(exc)) from None
         if not self.target_e:
+            unit = _alpha(self.damping).unit
             if alpha is None:
                 raise InputError(
-                    f"--damping {self.damping} needs its parameter: --alpha A (e.g. --damping "
-                    "tsuji --alpha 0.2)"
+                    f"--damping {self.damping} needs its parameter: --alpha A [{unit}]"
                 )
             return self.damping, alpha, None, self.separation or "overlap"
         if (alpha is None) == (self.e is None):
@@ -112,21 +126,24 @@ class DampingOptions:
 
 
 def _parameters(target_e: bool) -> list[inspect.Parameter]:
+    helps = damping_help()
+    # the choices of --damping: the registry's damping models
+    model = enum.StrEnum("DampingModel", {name.replace("-", "_"): name for name in _models()})
     kinds: dict[str, Any] = {
         "damping": Annotated[
-            Optional[DampingLaw],
+            Optional[model],  # type: ignore[valid-type]
             typer.Option(
                 "--damping",
-                help=DAMPING_HELP["damping"]
+                help=helps["damping"]
                 if target_e
-                else DAMPING_HELP["damping"].replace("--alpha or --e", "--alpha"),
+                else helps["damping"].replace("--alpha or --e", "--alpha"),
             ),
         ],
-        "alpha": Annotated[Optional[str], typer.Option("--alpha", help=DAMPING_HELP["alpha"])],
-        "e": Annotated[Optional[float], typer.Option("--e", help=DAMPING_HELP["e"])],
+        "alpha": Annotated[Optional[str], typer.Option("--alpha", help=helps["alpha"])],
+        "e": Annotated[Optional[float], typer.Option("--e", help=helps["e"])],
         "separation": Annotated[
             Optional[Separation],
-            typer.Option("--separation", help=DAMPING_HELP["separation"]),
+            typer.Option("--separation", help=helps["separation"]),
         ],
     }
     if not target_e:

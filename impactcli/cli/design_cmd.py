@@ -14,14 +14,19 @@ from impactcli.cli.common import Format, OutputFile, console, resolve_format
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.contact import DU_WANG_PRESSURE_FACTOR
 from impactcli.errors import InputError
+from impactcli.laws.registry import ELASTIC_LAW
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
 
-class YieldLaw(enum.StrEnum):
-    hertz = "hertz"
-    thornton = "thornton"
-    du_wang = "du-wang"
+def _yield_laws() -> dict:
+    """The laws whose onset of yield sigma_y sets, from the registry."""
+    from impactcli.laws.registry import LAWS
+
+    return {name: spec for name, spec in LAWS.items() if spec.yield_onset is not None}
+
+
+YieldLaw = enum.StrEnum("YieldLaw", {name.replace("-", "_"): name for name in _yield_laws()})
 
 
 class LineFormat(enum.StrEnum):
@@ -58,11 +63,10 @@ def yield_limit(
         YieldLaw,
         typer.Option(
             "--law",
-            help="hertz: first yield, Hertz peak pressure 1.6 sigma_y (Johnson 1985); "
-            "thornton: its default p_y = 1.6 sigma_y (the same); du-wang: its yield "
-            "velocity V_y, mean pressure p0 = --p0-factor sigma_y.",
+            help="; ".join(f"{name}: {s.yield_onset.help}" for name, s in _yield_laws().items())
+            + ".",
         ),
-    ] = YieldLaw.hertz,
+    ] = YieldLaw(ELASTIC_LAW),
     p0_factor: Annotated[
         float, typer.Option("--p0-factor", help="p0 / sigma_y of --law du-wang (2.57).")
     ] = DU_WANG_PRESSURE_FACTOR,
@@ -104,11 +108,7 @@ def yield_limit(
             f"sphere {sphere} has no yield strength: it does not yield in these models (a "
             f"brittle material such as glass: its fracture is outside them); give --sy{sphere}"
         )
-    how = {
-        "hertz": "first yield, Hertz peak pressure 1.6 sigma_y",
-        "thornton": "Thornton, p_y = 1.6 sigma_y",
-        "du-wang": f"Du & Wang V_y, p0 = {factor:g} sigma_y",
-    }[law.value]
+    how = _yield_laws()[law.value].yield_onset.words(factor)
     sigma = target.yield_strength
     doc: dict[str, object] = {
         "sphere": sphere,

@@ -23,18 +23,18 @@ from impactcli.cli.common import (
 )
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
+from impactcli.fit import FIT_LAWS, fit_parameter_help
 from impactcli.limits import MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_json
 from impactcli.spheres import SphereOptions
 
 LAW_HELP = (
-    "Law to fit: hertz, du-wang, thornton, walton-braun, tsuji, hunt-crossley. Give it "
-    "several times to rank the laws by AICc with Akaike weights."
+    f"Law to fit: {', '.join(FIT_LAWS)}. Give it several times to rank the laws by AICc with "
+    "Akaike weights."
 )
 PARAM_HELP = (
     "Parameter to fit (repeatable); each law fits the named ones it has, else its default: "
-    "du-wang sy (or p0_factor), thornton py (or sy), walton-braun k_unload (and k_load), "
-    "tsuji alpha [-], hunt-crossley alpha [s/m]."
+    f"{fit_parameter_help()}."
 )
 START_HELP = "Starting value NAME=VALUE (repeatable), e.g. sy=800MPa. Default from the material."
 BOUNDS_HELP = "Bounds NAME=LO:HI (repeatable), e.g. sy=100MPa:5GPa; both > 0."
@@ -145,6 +145,7 @@ def fit(
     """
     from impactcli.fit import DEFAULT_FIT, FIT_LAWS, fit_named_law, law_parameters, rank_fits
     from impactcli.io.fitdata import read_fit_data
+    from impactcli.laws.registry import LAWS
     from impactcli.spheres import spheres_from_options
 
     check_plot(plot, output)
@@ -153,7 +154,7 @@ def fit(
     for name in law:
         key = name.strip().lower().replace("_", "-")
         if key not in FIT_LAWS:
-            extra = " (it has no numeric parameter)" if key == "tabulated" else ""
+            extra = " (it has no numeric parameter)" if key in LAWS else ""
             raise InputError(
                 f"--law {name}: cannot fit this law{extra}; accepted: {', '.join(FIT_LAWS)}"
             )

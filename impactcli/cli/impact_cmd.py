@@ -31,6 +31,7 @@ from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
+from impactcli.laws.registry import CURVE_LAW, DEFAULT_LAW
 from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
@@ -162,7 +163,7 @@ SUMMARY_UNITS = {
 #: Summary keys of a damped impact whose unit or meaning differ (or that are its own).
 DAMPED_SUMMARY_UNITS = {
     "delta_separation": ("m", "total indentation at separation (0 for --separation overlap)"),
-    "alpha": ("", "damping parameter alpha (dimensionless for tsuji)"),
+    "alpha": ("", "damping parameter alpha (unit: the damping model's)"),
     "energy_dissipated": ("J", "energy dissipated by damping, integral of c delta'^2 dt"),
     "energy_stored": ("J", "elastic energy left in the contact at separation"),
 }
@@ -173,8 +174,9 @@ def _summary_units(result) -> dict[str, tuple[str, str]]:
     if _damped_title(result) is None:
         return SUMMARY_UNITS
     units = {**SUMMARY_UNITS, **DAMPED_SUMMARY_UNITS}
-    if result.law.name == "hunt-crossley":
-        units["alpha"] = ("s/m", "damping factor alpha of Hunt & Crossley")
+    (alpha,) = result.law.parameters
+    unit = "" if alpha.kind == "dimensionless" else alpha.unit
+    units["alpha"] = (unit, f"damping parameter alpha of {result.law.label} damping")
     return units
 
 
@@ -417,7 +419,7 @@ def _model_title(result, law: LawChoice | None) -> str:
         return damped
     if law is None:
         return "Elastic (Hertz)"
-    kind = "Elastic" if result.model in ("elastic", "tabulated") else "Elastoplastic"
+    kind = "Elastic" if result.model in ("elastic", CURVE_LAW) else "Elastoplastic"
     return f"{kind} ({law.title})"
 
 
@@ -597,7 +599,7 @@ def elastic(
     """
     if n is None:
         n = 400 if damping is not None and damping.given else 25
-    own = None if curve is None else LawChoice("tabulated", {"curve": curve})
+    own = None if curve is None else LawChoice(CURVE_LAW, {"curve": curve})
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
         fmt=fmt, output=output, plot=plot, summary=summary, law=own, damping=damping,
@@ -797,7 +799,7 @@ def restitution(
 def _elastic_sweep(law: LawChoice, s1, s2) -> bool:
     """Du & Wang (the default law) without any yield strength: the elastic Hertz sweep
     (:func:`impactcli.sweep.restitution_sweep`)."""
-    return law.name == "du-wang" and s1.yield_strength is None and s2.yield_strength is None
+    return law.name == DEFAULT_LAW and s1.yield_strength is None and s2.yield_strength is None
 
 
 def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
@@ -959,7 +961,7 @@ def _plot_sweep(
         # the figure labels V_y as Du & Wang's; other laws show the Hertz first yield only
         yield_velocity=(
             sweep_yield_velocity(s1, s2, law=law.name, law_params=law.params)
-            if law.name == "du-wang"
+            if law.name == DEFAULT_LAW
             else None
         ),
         first_yield_velocity=first_yield,

@@ -54,17 +54,10 @@ class LawChoice:
     @property
     def title(self) -> str:
         """How figures and tables name the law: 'Du & Wang', 'Thornton', ..."""
-        return LAW_TITLES.get(self.name, self.name)
+        from impactcli.laws.registry import LAWS
 
-
-#: Law name -> the name it goes by in titles.
-LAW_TITLES = {
-    "hertz": "Hertz",
-    "du-wang": "Du & Wang",
-    "thornton": "Thornton",
-    "walton-braun": "Walton & Braun",
-    "tabulated": "tabulated curve",
-}
+        spec = LAWS.get(self.name)
+        return (spec.title or spec.name) if spec is not None else self.name
 
 
 def _law_help(multiple: bool) -> str:

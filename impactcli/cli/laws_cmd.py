@@ -1,4 +1,5 @@
-"""``impact laws``: the contact laws of the library, their parameters and references."""
+"""``impact laws``: the contact models of the library (normal laws and damping models),
+their parameters and references."""
 
 from __future__ import annotations
 
@@ -30,23 +31,24 @@ def _default(value) -> str:
 
 
 def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
-    """List the contact laws FILM can run: name, kind, parameters (unit, default) and the
-    published reference of each (authors, year, journal, DOI, equations).
+    """List the contact laws and damping models FILM can run: name, kind, parameters (unit,
+    default) and the published reference of each (authors, year, journal, DOI, equations).
 
     CSV: one row per parameter (a law without parameters has one row with an empty
     parameter); columns law,kind,parameter,unit,parameter_kind,default,required,
     parameter_description,reference,doi,validity. An empty default that is not required is
-    derived (see the description)."""
-    from impactcli.lawlib import LAWS
+    derived (see the description). The damping models (kind ``damping``: Hertz plus a
+    viscous term, ``--damping NAME --alpha A``) are listed after the normal laws."""
+    from impactcli.laws.registry import MODELS
 
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.json:
-            write_json(stream, {"laws": [spec.describe() for spec in LAWS.values()]})
+            write_json(stream, {"laws": [spec.describe() for spec in MODELS.values()]})
         elif kind is Format.csv:
             writer = csv.writer(stream, lineterminator="\n")
             writer.writerow(CSV_COLUMNS)
-            for spec in LAWS.values():
+            for spec in MODELS.values():
                 ref = spec.reference
                 cite = f"{ref.authors} ({ref.year}), {ref.journal}; {ref.equations}"
                 for p in spec.parameters or (None,):
@@ -71,12 +73,12 @@ def _print_laws(stream: IO[str] | None) -> None:
     from rich.markup import escape
     from rich.table import Table
 
-    from impactcli.lawlib import LAWS
+    from impactcli.laws.registry import MODELS
 
     table = Table(title="Contact laws (impact laws; --format json for everything)")
     for header in ("law", "kind", "parameters [unit] = default", "reference"):
         table.add_column(escape(header), overflow="fold")
-    for spec in LAWS.values():
+    for spec in MODELS.values():
         params = "\n".join(
             f"{p.name} [{p.unit}]"
             + (f" = {_default(p.default)}" if p.default is not None else "")

@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from impactcli.errors import InputError
+from impactcli.laws.registry import ELASTIC_LAW
 
 __all__ = [
     "INPUT_COLUMNS",
@@ -106,7 +107,7 @@ def compute_collisions3d(
     frame: Mapping[str, Any],
     mu: float = 0.0,
     tangential: str = "rigid",
-    law: str = "hertz",
+    law: str = ELASTIC_LAW,
     params: Mapping[str, Any] | None = None,
     damping: str | None = None,
     alpha: float | None = None,

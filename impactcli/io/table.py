@@ -18,6 +18,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from impactcli.errors import InputError
+from impactcli.laws.registry import ELASTIC_LAW
 from impactcli.spheres import missing_properties, resolve_properties
 from impactcli.validation import Problems, materials_differ, without_float_warnings
 
@@ -611,7 +612,7 @@ def _row_damping(
         f"separation must be {' or '.join(SEPARATIONS)}",
     )
     errors.add(
-        given & ((model == "elastoplastic") | (~np.equal(laws, None) & (laws != "hertz"))),
+        given & ((model == "elastoplastic") | (~np.equal(laws, None) & (laws != ELASTIC_LAW))),
         "damping is for elastic rows (model elastic or law hertz)",
     )
     return damped, values

@@ -30,12 +30,15 @@ __all__ = [
     "YIELD_STRENGTH_NEEDED",
     "DampedHertz",
     "DampingModel",
+    "FitStart",
+    "Fitting",
     "ImpactPlan",
     "LawSpec",
     "NormalContact",
     "Parameter",
     "Reference",
     "StagePlan",
+    "YieldOnset",
 ]
 
 Array = NDArray[np.float64]
@@ -150,12 +153,25 @@ class NormalContact(Protocol):
 
 
 class DampingModel(Protocol):
-    """F(delta, delta') = K delta^1.5 + c(delta) delta'; parameters broadcast with delta."""
+    """F(delta, delta') = K delta^1.5 + c(delta) delta'; parameters broadcast with delta.
+
+    What the registry, the commands and the solvers read of a damping model: ``name`` (its
+    ``--damping`` choice), ``label`` (titles: 'Tsuji damping'), ``summary`` (one line of
+    ``--help``), ``parameters`` (its one parameter alpha: unit, kind for unit parsing,
+    range), ``reference``, ``self_similar`` (e independent of V0), and the class methods
+    ``of(K, m, alpha)`` (the one constructor), ``alpha_estimate(e, V0)`` (the first guess of
+    the alpha search), ``fit_start(V_ref)`` ((start, lower, upper) of a fit of alpha) and
+    ``data_start(e, V0)`` (alpha read off measured points).
+    """
 
     name: ClassVar[str]
     label: ClassVar[str]
+    summary: ClassVar[str]
     parameters: ClassVar[tuple[Parameter, ...]]
-    reference: ClassVar[str]
+    reference: ClassVar[Reference]
+    validity: ClassVar[str]
+    kind: ClassVar[str]
+    self_similar: ClassVar[bool]
     stiffness: ArrayLike
     alpha: ArrayLike
 
@@ -181,6 +197,29 @@ class DampedHertz:
     """
 
     stiffness: ArrayLike
+    name: ClassVar[str]
+    label: ClassVar[str]
+    summary: ClassVar[str]
+    parameters: ClassVar[tuple[Parameter, ...]]
+    reference: ClassVar[Reference]
+    validity: ClassVar[str]
+    self_similar: ClassVar[bool]
+    #: the kind of contact model, as the registry lists it
+    kind: ClassVar[str] = "damping"
+
+    @classmethod
+    def describe(cls) -> dict[str, Any]:
+        """JSON-ready description, as :meth:`LawSpec.describe`: name, kind, parameters,
+        reference, validity."""
+        return {
+            "name": cls.name,
+            "kind": cls.kind,
+            "description": cls.summary,
+            "parameters": [vars(p).copy() for p in cls.parameters],
+            "reference": vars(cls.reference).copy(),
+            "validity": cls.validity,
+            "needs_yield_strength": False,
+        }
 
     def elastic_force(self, delta: ArrayLike) -> Array:
         """F_e = K delta^1.5 (0 for delta <= 0), [N]."""
@@ -254,6 +293,57 @@ class Reference:
         return f"{self.authors} ({self.year}), {self.journal}, doi:{self.doi} ({self.equations})"
 
 
+#: One parameter a fit can take: (unit, start, lower bound, upper bound), SI.
+FitStart = tuple[str, float, float, float]
+
+
+def _no_parameters(params: Mapping[str, float]) -> dict[str, float]:
+    return {}
+
+
+@dataclass(frozen=True)
+class Fitting:
+    """What :mod:`impactcli.fit` needs to fit a law to measured e(V0).
+
+    Attributes
+    ----------
+    default : the parameters fitted when none is named
+    starts : ``starts(m, R, E*, sigma_y, V_ref, fixed)`` -> name -> :data:`FitStart` of
+        every parameter a fit can take (m [kg], R [m], E* [Pa], the weaker sphere's sigma_y
+        [Pa] or 1 GPa if unknown, a typical impact velocity V_ref [m/s] of the data, and the
+        values held fixed)
+    run_parameters : the law's parameters for a run, from the fit's (name -> SI)
+    starts_are_defaults : a parameter neither fitted nor fixed takes its start value
+        (rather than the law's own default)
+    yield_onset : ``"law"``: the fitted law's V_y; ``"none"``: no yield point (NaN);
+        ``"first touch"``: plastic from the first touch (V_y = 0)
+    """
+
+    default: tuple[str, ...]
+    starts: Callable[..., dict[str, FitStart]]
+    run_parameters: Callable[[Mapping[str, float]], dict[str, float]] = _no_parameters
+    starts_are_defaults: bool = False
+    yield_onset: str = "law"
+
+
+@dataclass(frozen=True)
+class YieldOnset:
+    """Where a law's contact stops being elastic, when the yield strength sigma_y sets it
+    (:mod:`impactcli.design`: the largest elastic impact velocity or sphere size).
+
+    Attributes
+    ----------
+    pressure_factor : ``pressure_factor(params)`` -> the Hertz peak pressure at the onset
+        / sigma_y, [-], with the law's parameters (SI, by name) as given
+    words : ``words(factor)`` -> how a result names the criterion
+    help : one line of ``--help``
+    """
+
+    pressure_factor: Callable[[Mapping[str, float]], float]
+    words: Callable[[float], str]
+    help: str
+
+
 @dataclass(frozen=True)
 class LawSpec:
     """A law of the library: metadata and the factory of its contact model.
@@ -270,6 +360,15 @@ class LawSpec:
     validity: str
     needs_yield_strength: bool
     build: Callable[..., NormalContact] = field(repr=False)
+    #: how figures and tables name the law ('Du & Wang'); the name when empty
+    title: str = ""
+    #: how a fit takes the law (None: it cannot be fitted, e.g. it has no numeric parameter)
+    fitting: Fitting | None = field(default=None, repr=False)
+    #: the onset of yield set by sigma_y (None: the law has none, e.g. plastic from the
+    #: first touch, or the data's own)
+    yield_onset: YieldOnset | None = field(default=None, repr=False)
+    #: the published closed form of e: ``closed_form(contact, m, V0)`` -> (label, e [-])
+    closed_form: Callable[..., tuple[str, Array]] | None = field(default=None, repr=False)
 
     def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """The parameters with defaults filled in (also for NaN entries of per-row arrays);

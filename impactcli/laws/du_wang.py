@@ -9,6 +9,7 @@ impact and the closed forms; :data:`SPEC` is its registry entry.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,11 +17,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws.base import (
     YIELD_MARGIN,
+    Fitting,
     ImpactPlan,
     LawSpec,
     Parameter,
     Reference,
     StagePlan,
+    YieldOnset,
     col,
 )
 from impactcli.laws.hertz import (
@@ -207,9 +210,32 @@ def _build(radius, modulus, sy, params) -> DuWangContact:
     return DuWangContact(radius, modulus, sy, params["p0_factor"])  # float or per-row array
 
 
+
+def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
+    """sigma_y of the weaker sphere within x/1000 to x*1000, and p0/sigma_y from 2.57."""
+    sy = yield_strength
+    return {
+        "sy": ("Pa", sy, sy / 1e3, sy * 1e3),
+        "p0_factor": ("-", DU_WANG_PRESSURE_FACTOR, 0.1, 100.0),
+    }
+
+
+def _run_parameters(params) -> dict:
+    return {"p0_factor": params["p0_factor"]} if "p0_factor" in params else {}
+
+
+def _pressure_factor(params) -> float:
+    """p0 / sigma_y: the law's V_y is where the mean pressure reaches p0 (eq. 16)."""
+    p0_factor = params.get("p0_factor", DU_WANG_PRESSURE_FACTOR)
+    if not (math.isfinite(p0_factor) and p0_factor > 0):
+        raise ValueError(f"the pressure factor must be positive, got {p0_factor}")
+    return float(p0_factor)
+
+
 #: The registry entry of the law.
 SPEC = LawSpec(
     name="du-wang",
+    title="Du & Wang",
     kind="elastoplastic",
     description=(
         "Hertz to delta_y, linear plastic loading at mean pressure p0 = p0_factor "
@@ -235,4 +261,10 @@ SPEC = LawSpec(
     validity="elastic-perfectly-plastic spheres, delta << R; any V0 (elastic below V_y)",
     needs_yield_strength=True,
     build=_build,
+    fitting=Fitting(default=("sy",), starts=_fit_starts, run_parameters=_run_parameters),
+    yield_onset=YieldOnset(
+        pressure_factor=_pressure_factor,
+        words=lambda factor: f"Du & Wang V_y, p0 = {factor:g} sigma_y",
+        help="its yield velocity V_y, mean pressure p0 = --p0-factor sigma_y",
+    ),
 )

@@ -14,7 +14,15 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import ImpactPlan, LawSpec, Reference, StagePlan, col
+from impactcli.laws.base import (
+    Fitting,
+    ImpactPlan,
+    LawSpec,
+    Reference,
+    StagePlan,
+    YieldOnset,
+    col,
+)
 
 __all__ = [
     "FIRST_YIELD_PRESSURE_FACTOR",
@@ -199,9 +207,15 @@ def _build(radius, modulus, _sy, _params) -> HertzLawContact:
 
 _JOHNSON = "Johnson (1985), Contact Mechanics, Cambridge University Press"
 
+
+def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
+    return {}  # no parameter: a fit compares the elastic law with the data
+
+
 #: The registry entry of the law.
 SPEC = LawSpec(
     name="hertz",
+    title="Hertz",
     kind="elastic",
     description="Hertz elastic contact F = (4/3) E* sqrt(R) delta^1.5; e = 1.",
     parameters=(),
@@ -216,4 +230,10 @@ SPEC = LawSpec(
     validity="small elastic indentation, delta << R; below the first-yield velocity",
     needs_yield_strength=False,
     build=_build,
+    fitting=Fitting(default=(), starts=_fit_starts, yield_onset="none"),
+    yield_onset=YieldOnset(
+        pressure_factor=lambda _params: FIRST_YIELD_PRESSURE_FACTOR,
+        words=lambda factor: f"first yield, Hertz peak pressure {factor:g} sigma_y",
+        help="first yield, Hertz peak pressure 1.6 sigma_y (Johnson 1985)",
+    ),
 )

@@ -12,7 +12,7 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import DampedHertz, Parameter
+from impactcli.laws.base import DampedHertz, Parameter, Reference
 
 __all__ = ["HuntCrossleyDamping", "hunt_crossley_alpha_published"]
 
@@ -38,9 +38,20 @@ class HuntCrossleyDamping(DampedHertz):
 
     name: ClassVar[str] = "hunt-crossley"
     label: ClassVar[str] = "Hunt-Crossley"
-    reference: ClassVar[str] = (
-        "Hunt & Crossley (1975), J. Appl. Mech. 42:440-445, doi:10.1115/1.3423596"
+    summary: ClassVar[str] = (
+        "F = K delta^1.5 (1 + 1.5 alpha delta') (Hunt & Crossley 1975; e depends on alpha V0)"
     )
+    #: e depends on alpha V0: not self-similar
+    self_similar: ClassVar[bool] = False
+    reference: ClassVar[Reference] = Reference(
+        "K. H. Hunt, F. R. E. Crossley",
+        1975,
+        "Coefficient of restitution interpreted as damping in vibroimpact",
+        "J. Appl. Mech. 42(2):440-445",
+        "10.1115/1.3423596",
+        "F = K delta^n (1 + (3/2) alpha delta'), with n = 3/2",
+    )
+    validity: ClassVar[str] = "Hertz contact with viscous damping; e near 1 falls with alpha V0"
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Parameter(
             "alpha",
@@ -66,6 +77,18 @@ class HuntCrossleyDamping(DampedHertz):
         v0 = np.asarray(impact_velocity, dtype=float)
         guess = hunt_crossley_alpha_published(restitution, v0)[cls.name]
         return np.maximum(guess, 1e-6 / v0)
+
+    @classmethod
+    def fit_start(cls, reference_velocity: float) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of alpha [s/m]: Hunt & Crossley's (1 - e)/V_ref
+        with e = 0.8 at the data's typical V_ref [m/s], within (1e-6, 1e3)."""
+        return 0.2 / reference_velocity, 1e-6, 1e3
+
+    @classmethod
+    def data_start(cls, restitution: NDArray, impact_velocity: NDArray) -> float:
+        """alpha [s/m] read off measured e: the median of (1 - e)/V0 (their estimate for e
+        near 1)."""
+        return float(np.clip(np.median((1.0 - restitution) / impact_velocity), 1e-5, 1e2))
 
     def damping_coefficient(self, delta: ArrayLike) -> Array:
         """c = (3/2) alpha K delta^1.5, [N s/m]."""

@@ -21,8 +21,11 @@ from impactcli.laws.tsuji import TsujiDamping
 
 __all__ = [
     "DAMPING_LAWS",
+    "CURVE_LAW",
     "DEFAULT_LAW",
+    "ELASTIC_LAW",
     "LAWS",
+    "MODELS",
     "alpha_label",
     "check_alpha",
     "check_damping",
@@ -35,18 +38,41 @@ __all__ = [
     "plan_groups",
 ]
 
-#: The normal laws: law name -> :class:`LawSpec`, in listing order.
-LAWS: dict[str, LawSpec] = {
-    spec.name: spec
-    for spec in (hertz.SPEC, du_wang.SPEC, thornton.SPEC, walton_braun.SPEC, tabulated.SPEC)
+#: The one registry: every contact model of the library by name, in listing order: the
+#: normal laws (:class:`LawSpec`, kind elastic or elastoplastic) and the damping models
+#: (classes of kind ``damping``, Hertz plus a viscous term).
+MODELS: dict[str, LawSpec | type] = {
+    model.name: model
+    for model in (
+        hertz.SPEC,
+        du_wang.SPEC,
+        thornton.SPEC,
+        walton_braun.SPEC,
+        tabulated.SPEC,
+        TsujiDamping,
+        HuntCrossleyDamping,
+    )
 }
 
-#: The damping models by name, in listing order.
-DAMPING_LAWS: dict[str, type] = {model.name: model for model in (TsujiDamping, HuntCrossleyDamping)}
+#: The normal laws: law name -> :class:`LawSpec`.
+LAWS: dict[str, LawSpec] = {
+    name: model for name, model in MODELS.items() if isinstance(model, LawSpec)
+}
+
+#: The damping models by name.
+DAMPING_LAWS: dict[str, type] = {
+    name: model for name, model in MODELS.items() if getattr(model, "kind", "") == "damping"
+}
+
 
 #: The law of ``impact elastoplastic``, ``restitution`` and ``collide2d --model
 #: elastoplastic`` when none is named: Du & Wang, the paper's (eq. 16a-c).
 DEFAULT_LAW = "du-wang"
+#: The law of elastic impacts (``impact elastic``, ``--model elastic``) and of the first
+#: yield of an elastic contact: Hertz.
+ELASTIC_LAW = "hertz"
+#: The law of the user's own loading curve (``impact elastic --curve FILE``).
+CURVE_LAW = "tabulated"
 
 
 def comparison_laws() -> tuple[str, ...]:

@@ -361,6 +361,7 @@ def _build(_radius, _modulus, _sy, params) -> TabulatedContact:
 #: The registry entry of the law.
 SPEC = LawSpec(
     name="tabulated",
+    title="tabulated curve",
     kind="elastic or elastoplastic",
     description=(
         "The user's force-indentation data: a loading curve (elastic, reversible), "

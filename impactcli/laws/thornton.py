@@ -9,11 +9,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws.base import (
+    Fitting,
     ImpactPlan,
     LawSpec,
     Parameter,
     Reference,
     StagePlan,
+    YieldOnset,
     col,
     energy_velocity,
 )
@@ -172,9 +174,29 @@ def _build(radius, modulus, sy, params) -> ThorntonContact:
     return ThorntonContact(radius, modulus, py)
 
 
+
+def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
+    """p_y = 1.6 sigma_y (the Hertz peak pressure at first yield, Johnson 1985) and sigma_y,
+    each within x/1000 to x*1000."""
+    sy = yield_strength
+    py = FIRST_YIELD_PRESSURE_FACTOR * sy
+    return {"py": ("Pa", py, py / 1e3, py * 1e3), "sy": ("Pa", sy, sy / 1e3, sy * 1e3)}
+
+
+def _run_parameters(params) -> dict:
+    return {"py": params["py"]} if "py" in params else {}
+
+
+def _closed_form(contact: ThorntonContact, mass, impact_velocity) -> tuple[str, Array]:
+    """Thornton's e(V_y/V0) (:func:`thornton_restitution`) with the law's own V_y."""
+    v_y = contact.yield_velocity(mass)
+    return "Thornton (1997) closed form", thornton_restitution(v_y / impact_velocity)
+
+
 #: The registry entry of the law.
 SPEC = LawSpec(
     name="thornton",
+    title="Thornton",
     kind="elastoplastic",
     description=(
         "Hertz until the peak pressure reaches p_y, then F = F_y + pi p_y R "
@@ -203,4 +225,11 @@ SPEC = LawSpec(
     validity="elastic-perfectly-plastic spheres, delta << R; any V0 (elastic below V_y)",
     needs_yield_strength=True,
     build=_build,
+    fitting=Fitting(default=("py",), starts=_fit_starts, run_parameters=_run_parameters),
+    yield_onset=YieldOnset(
+        pressure_factor=lambda _params: FIRST_YIELD_PRESSURE_FACTOR,
+        words=lambda factor: f"Thornton, p_y = {factor:g} sigma_y",
+        help="its default p_y = 1.6 sigma_y (the same)",
+    ),
+    closed_form=_closed_form,
 )

@@ -13,7 +13,7 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import DampedHertz, Parameter
+from impactcli.laws.base import DampedHertz, Parameter, Reference
 
 __all__ = [
     "TsujiDamping",
@@ -49,10 +49,22 @@ class TsujiDamping(DampedHertz):
 
     name: ClassVar[str] = "tsuji"
     label: ClassVar[str] = "Tsuji"
-    reference: ClassVar[str] = (
-        "Tsuji, Tanaka & Ishida (1992), Powder Technol. 71:239-250, "
-        "doi:10.1016/0032-5910(92)88030-L"
+    summary: ClassVar[str] = (
+        "F = K delta^1.5 + alpha sqrt(m K) delta^(1/4) delta' (Tsuji et al. 1992; e depends "
+        "on alpha only)"
     )
+    #: e does not depend on V0, m or K (the model is self-similar)
+    self_similar: ClassVar[bool] = True
+    reference: ClassVar[Reference] = Reference(
+        "Y. Tsuji, T. Tanaka, T. Ishida",
+        1992,
+        "Lagrangian numerical simulation of plug flow of cohesionless particles in a "
+        "horizontal pipe",
+        "Powder Technol. 71:239-250",
+        "10.1016/0032-5910(92)88030-L",
+        "normal force: Hertz spring and dashpot eta = alpha sqrt(m K) delta^(1/4)",
+    )
+    validity: ClassVar[str] = "Hertz contact with viscous damping; e independent of V0"
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Parameter(
             "alpha",
@@ -76,6 +88,18 @@ class TsujiDamping(DampedHertz):
         """A first guess of alpha for a coefficient of restitution e: the DEM polynomial
         (:func:`tsuji_alpha_dem`), at least 1e-3, [-] (the alpha search starts from it)."""
         return np.maximum(tsuji_alpha_dem(restitution), 1e-3)
+
+    @classmethod
+    def fit_start(cls, reference_velocity: float) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of alpha [-]: 0.3, within (1e-4, 2.2), below
+        sqrt(5), where e reaches 0 (docs/damping.md)."""
+        return 0.3, 1e-4, 2.2
+
+    @classmethod
+    def data_start(cls, restitution: NDArray, impact_velocity: NDArray) -> float:
+        """alpha [-] read off measured e: the exact inverse of the ``overlap`` e(alpha)
+        (:func:`tsuji_alpha_hertz_mindlin`) at the mean e."""
+        return float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(restitution)), 1e-3, 2.0))
 
     def _scale(self) -> Array:
         return np.asarray(self.alpha, dtype=float) * np.sqrt(

@@ -3,12 +3,22 @@ unloading stiffness K2 >= K1; e = sqrt(K1/K2) whatever the impact velocity."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import ImpactPlan, LawSpec, Parameter, Reference, StagePlan, col
+from impactcli.laws.base import (
+    Fitting,
+    ImpactPlan,
+    LawSpec,
+    Parameter,
+    Reference,
+    StagePlan,
+    col,
+)
+from impactcli.laws.hertz import hertz_stiffness
 
 __all__ = ["SPEC", "LinearSpring", "WaltonBraunContact"]
 
@@ -109,9 +119,36 @@ def _build(_radius, _modulus, _sy, params) -> WaltonBraunContact:
     return WaltonBraunContact(k1, k2)
 
 
+
+def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
+    """The linear stiffness storing the Hertz energy at V_ref: k = 0.8 K_h sqrt(delta_m),
+    delta_m = (5 m V_ref^2 / (4 K_h))^0.4, and k_unload = k_load / 0.8^2 (e = 0.8)."""
+    k_h = float(hertz_stiffness(modulus, radius))
+    delta_m = (5.0 * mass * reference_velocity**2 / (4.0 * k_h)) ** 0.4
+    k_ref = 0.8 * k_h * math.sqrt(delta_m)
+    k1 = fixed.get("k_load", k_ref)
+    return {
+        "k_load": ("N/m", k1, k_ref / 1e4, k_ref * 1e4),
+        "k_unload": ("N/m", k1 / 0.64, k_ref / 1e4, k_ref * 1e6),
+    }
+
+
+def _run_parameters(params) -> dict:
+    """A k_unload below k_load is taken equal to it (e = 1)."""
+    return {"k_load": params["k_load"], "k_unload": max(params["k_unload"], params["k_load"])}
+
+
+def _closed_form(contact: WaltonBraunContact, mass, impact_velocity) -> tuple[str, Array]:
+    """e = sqrt(k_load / k_unload) at every V0."""
+    ratio = np.sqrt(contact.k_load / contact.k_unload)
+    label = r"Walton & Braun (1986): $\sqrt{k_{load}/k_{unload}}$"
+    return label, np.full(np.shape(impact_velocity), ratio)
+
+
 #: The registry entry of the law.
 SPEC = LawSpec(
     name="walton-braun",
+    title="Walton & Braun",
     kind="elastoplastic",
     description=(
         "Hysteretic linear spring: loading F = k_load delta, unloading "
@@ -133,4 +170,12 @@ SPEC = LawSpec(
     validity="a DEM calibration law: e independent of V0; plastic from first touch",
     needs_yield_strength=False,
     build=_build,
+    fitting=Fitting(
+        default=("k_unload",),
+        starts=_fit_starts,
+        run_parameters=_run_parameters,
+        starts_are_defaults=True,
+        yield_onset="first touch",
+    ),
+    closed_form=_closed_form,
 )
