@@ -68,6 +68,7 @@ from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     Problems,
     flat_floats,
+    input_errors,
     needs_yield_strength,
     pair_problems,
     plastic_range_problems,
@@ -97,12 +98,10 @@ BATCH_KEYS: tuple[str, ...] = PLASTIC_SUMMARY_KEYS
 FILM_BLOCK = 131072
 
 
-#: Results every computed row must have as finite numbers, and those that must be > 0: a row
-#: where one is not (an impact velocity or size whose numbers overflow or underflow in
+#: Results every computed row must have as finite numbers, and those that must be > 0 (and
+#: ``energy_dissipated`` not infinite): a row where one is not (an impact velocity or size whose numbers overflow or underflow in
 #: double precision) gets :data:`OUT_OF_RANGE` as its error instead of the numbers.
-FINITE_KEYS: tuple[str, ...] = (
-    "contact_time", "t_max", "delta_max", "force_max", "restitution", "energy_dissipated",
-)  # fmt: skip
+FINITE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max", "restitution")
 POSITIVE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max")
 OUT_OF_RANGE = (
     "the model cannot compute this impact in double precision (at V0 = {:.3g} m/s a result "
@@ -121,6 +120,7 @@ def refuse_out_of_range(out: dict[str, NDArray], v0: NDArray) -> dict[str, NDArr
             broken |= ~np.isfinite(out[key])
         for key in POSITIVE_KEYS:
             broken |= ~(out[key] > 0.0)
+        broken |= np.isinf(out["energy_dissipated"])  # NaN where it does not apply
     broken &= valid
     for row in np.flatnonzero(broken):
         out["error"][row] = OUT_OF_RANGE.format(float(v0[row]))
@@ -335,6 +335,7 @@ class _Pairs:
 
 
 @without_float_warnings
+@input_errors
 def batch_impacts(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -586,6 +587,7 @@ def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray
 
 
 @without_float_warnings
+@input_errors
 def batch_damped_impacts(
     d1: ArrayLike,
     d2: ArrayLike,

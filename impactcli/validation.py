@@ -40,7 +40,9 @@ __all__ = [
     "first_yield_warning",
     "mass_split_warning",
     "materials_differ",
+    "finite_float",
     "flat_floats",
+    "input_errors",
     "needs_yield_strength",
     "pair_problems",
     "raise_first",
@@ -103,6 +105,49 @@ class Problems:
 
 
 _F = TypeVar("_F", bound=Callable)
+
+
+def input_errors(function: _F) -> _F:
+    """Make ``function`` a public entry point of the library: a :class:`ValueError` of bad
+    input from any layer below it (and an :class:`OverflowError` or
+    :class:`ZeroDivisionError` of a number beyond the range of a float) reaches the caller
+    as one :class:`~impactcli.errors.InputError` (itself a ValueError, so ``except
+    ValueError`` keeps working), with the same one-line message the command line prints."""
+    from impactcli.errors import InputError
+
+    @wraps(function)
+    def checked(*args, **kwargs):
+        try:
+            return function(*args, **kwargs)
+        except InputError:
+            raise
+        except ValueError as exc:
+            raise InputError(" ".join(str(exc).split())) from exc
+        except (OverflowError, ZeroDivisionError) as exc:
+            raise InputError(
+                f"a number is beyond the range of a float ({exc}): check the values and "
+                "their units"
+            ) from exc
+
+    return checked  # type: ignore[return-value]
+
+
+def finite_float(name: str, value: object) -> float:
+    """``value`` as a float, or an :class:`~impactcli.errors.InputError` naming ``name``
+    when it is not a number within the range of a float (``10**400``, ``"abc"``, ``None``
+    where a number is needed). NaN and infinities pass: the checks say where they may be.
+
+    >>> finite_float("diameter", 0.02)
+    0.02
+    """
+    from impactcli.errors import InputError
+
+    try:
+        return float(value)  # type: ignore[arg-type]
+    except OverflowError:
+        raise InputError(f"{name} is beyond the range of a float, got {value!r:.40}") from None
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number, got {value!r:.40}") from None
 
 
 def without_float_warnings(function: _F) -> _F:

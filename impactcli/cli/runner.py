@@ -24,11 +24,11 @@ import os
 import signal
 import sys
 import warnings
-from functools import partial
 from collections.abc import Callable, Iterator
+from functools import partial
 
-from impactcli.errors import InputError, StdoutClosed
 from impactcli import output
+from impactcli.errors import InputError, StdoutClosed
 from impactcli.output import describe_os_error, output_transaction
 
 #: Signals that end a run as Ctrl-C does, with exit status 128 + the signal number.
