@@ -99,8 +99,9 @@ FILM_BLOCK = 131072
 
 
 #: Results every computed row must have as finite numbers, and those that must be > 0 (and
-#: ``energy_dissipated`` not infinite): a row where one is not (an impact velocity or size whose numbers overflow or underflow in
-#: double precision) gets :data:`OUT_OF_RANGE` as its error instead of the numbers.
+#: ``energy_dissipated`` not infinite): a row where one is not (an impact velocity or size
+#: whose numbers overflow or underflow in double precision) gets :data:`OUT_OF_RANGE` as
+#: its error instead of the numbers.
 FINITE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max", "restitution")
 POSITIVE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max")
 OUT_OF_RANGE = (
