@@ -83,6 +83,7 @@ __all__ = [
     "FILM_BLOCK",
     "batch_damped_impacts",
     "batch_impacts",
+    "hertz_scale_problems",
     "law_stage_times",
     "material_properties",
     "normalised_times",
@@ -587,6 +588,43 @@ def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray
         yield chunk[local], plan
 
 
+def hertz_scale_problems(m: ArrayLike, stiffness: ArrayLike, v0: ArrayLike) -> NDArray:
+    """Why the Hertz scales of each impact cannot be computed, ``""`` where they can.
+
+    The scales are the maximum indentation delta_m = (5 m V0^2 / (4 K))^(2/5) [m], the peak
+    force K delta_m^(3/2) [N] and the time delta_m / V0 [s] (docs/method.md §1); each, and
+    m [kg], K [N/m^1.5], must be a positive, finite, normal double (above 2.2e-308). A row
+    beyond that (``d2 = 1e-300``: a mass that underflows to 0; V0 = 1e300) is that row's
+    error, not an exception for the whole batch.
+
+    >>> hertz_scale_problems([0.1, 0.0], [1e10, 1e10], [1.0, 1.0])[0]
+    ''
+    """
+    m, stiffness, v0 = flat_floats(m, stiffness, v0)
+    with np.errstate(all="ignore"):
+        delta = (5.0 * m * v0 * v0 / (4.0 * stiffness)) ** 0.4
+        scales = (m, stiffness, delta, stiffness * delta**1.5, delta / v0)
+    tiny = np.finfo(float).tiny
+    good = np.logical_and.reduce([np.isfinite(x) & (x >= tiny) for x in scales])
+    out = np.full(m.size, "", dtype=object)
+    bad = np.flatnonzero(~good)
+    out[bad] = [
+        f"out of range: the Hertz scales of this impact (effective mass {a:.3g} kg, "
+        f"stiffness K {k:.3g} N/m^1.5, V0 {v:.3g} m/s: maximum indentation {d:.3g} m) leave "
+        "double precision; check the values and their units"
+        for a, k, v, d in zip(m[bad].tolist(), stiffness[bad].tolist(), v0[bad].tolist(),
+                              delta[bad].tolist())
+    ]  # fmt: skip
+    return out
+
+
+def _scatter(values: NDArray, rows: NDArray[np.intp], size: int) -> NDArray:
+    """An object array of ``size`` entries, ``values`` at ``rows`` and ``""`` elsewhere."""
+    out = np.full(size, "", dtype=object)
+    out[rows] = values
+    return out
+
+
 @without_float_warnings
 @input_errors
 def batch_damped_impacts(
@@ -660,14 +698,26 @@ def batch_damped_impacts(
     out = {key: np.full(alpha.shape, np.nan) for key in BATCH_KEYS}
     out["alpha"] = np.full(alpha.shape, np.nan)
     ok = np.flatnonzero(~problems.bad)
-    if ok.size:
+    if ok.size:  # rows whose Hertz scales leave double precision are their own error
         pairs = _Pairs.of(columns, ok)
+        problems.add_messages(
+            _scatter(hertz_scale_problems(pairs.m, pairs.stiffness, pairs.v0), ok, alpha.size)
+        )
+        ok = np.flatnonzero(~problems.bad)
+    never = np.zeros(problems.bad.size, dtype=bool)
+    beyond = np.zeros(problems.bad.size, dtype=bool)
+    # FILM on (rows, n) arrays: blocks of about FILM_BLOCK values, so memory does not grow
+    # with the number of rows
+    block = max(1, FILM_BLOCK // (n + 1))
+    for start in range(0, ok.size, block):
+        rows = ok[start : start + block]
+        pairs = _Pairs.of(columns, rows)
         m, stiffness, v0 = pairs.m, pairs.stiffness, pairs.v0
-        a = alpha[ok].copy()
+        a = alpha[rows].copy()
         solve = np.flatnonzero(np.isnan(a))
         if solve.size:  # the alpha of the target e, exactly by the model (FILM, n)
             a[solve] = damping_for_restitution(
-                damping, e_target[ok][solve], v0[solve], stiffness[solve], m[solve], n=n,
+                damping, e_target[rows][solve], v0[solve], stiffness[solve], m[solve], n=n,
                 separation=separation,
             )  # fmt: skip
         law = make_damping_law(damping, stiffness, m, a)
@@ -678,8 +728,8 @@ def batch_damped_impacts(
         summary = pairs.summary(plan, sol.t_max, sol.contact_time, pairs.fractions(split))
         summary["energy_dissipated"] = sol.dissipated
         for key, value in summary.items():
-            out[key][ok] = np.where(ends, value, np.nan)
-        out["alpha"][ok] = a
+            out[key][rows] = np.where(ends, value, np.nan)
+        out["alpha"][rows] = a
         # Overdamped, or out of range? The damped laws are self-similar: e depends on alpha
         # (Tsuji) or alpha V0 (Hunt & Crossley) only, so the same impact at K = m = V0 = 1
         # tells a contact that never ends from numbers that overflow or underflow.
@@ -689,11 +739,9 @@ def batch_damped_impacts(
             unit = solve_damped_impact(make_damping_law(damping, 1.0, 1.0, same), 1.0, 1.0,
                                        n=n, separation=separation)  # fmt: skip
             creeps = ~(np.isfinite(unit.contact_time) & (unit.restitution > 0))
-            never = np.zeros(problems.bad.size, dtype=bool)
-            never[ok[stuck[creeps]]] = True
-            problems.add(never, "the contact never ends (overdamped: the spheres stay together)")
-            beyond = np.zeros(problems.bad.size, dtype=bool)
-            beyond[ok[stuck[~creeps]]] = True
-            problems.add(beyond, OUT_OF_RANGE, columns[2] + columns[3])
+            never[rows[stuck[creeps]]] = True
+            beyond[rows[stuck[~creeps]]] = True
+    problems.add(never, "the contact never ends (overdamped: the spheres stay together)")
+    problems.add(beyond, OUT_OF_RANGE, columns[2] + columns[3])
     out["error"] = problems.messages
     return refuse_out_of_range(out, columns[2] + columns[3])

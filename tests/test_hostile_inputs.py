@@ -83,9 +83,9 @@ def test_batch_rows_out_of_double_precision_are_their_errors(impact, tmp_path):
     for good in (rows[0], rows[3]):
         assert good["error"] == "" and 0 < float(good["restitution"]) < 1
     for bad in (rows[1], rows[2], rows[4], rows[5]):
-        assert "cannot compute this impact in double precision" in bad["error"], bad["error"]
+        assert "double precision" in bad["error"] and "overdamped" not in bad["error"]
         assert bad["restitution"] == bad["contact_time"] == bad["energy_dissipated"] == ""
-    assert "at V0 = 1e+300 m/s" in rows[1]["error"] and "at V0 = 1e-300 m/s" in rows[5]["error"]
+    assert "1e+300 m/s" in rows[1]["error"] and "1e-300 m/s" in rows[5]["error"]
     assert "overdamped" in rows[6]["error"]  # alpha = 3 > sqrt(5): a contact that never ends
 
 
