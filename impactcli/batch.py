@@ -106,8 +106,8 @@ FILM_BLOCK = 131072
 FINITE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max", "restitution")
 POSITIVE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max")
 OUT_OF_RANGE = (
-    "the model cannot compute this impact in double precision (at V0 = {:.3g} m/s a result "
-    "overflows or underflows): check the values and their units"
+    "out of range: the model cannot compute this impact in double precision (at V0 = "
+    "{:.3g} m/s a result overflows or underflows): check the values and their units"
 )
 
 

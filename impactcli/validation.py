@@ -207,8 +207,8 @@ def sphere_problems(
             computed = rho * (np.pi / 6.0) * d**3
         p.add(
             np.isnan(m) & np.isfinite(d) & ~((computed > 0.0) & np.isfinite(computed)),
-            f"{names['d']} and {names['rho']} give a mass of {{:.3g}} kg, beyond the range of "
-            "a float: give sizes in metres and densities in kg/m^3",
+            f"out of range: {names['d']} and {names['rho']} give a mass of {{:.3g}} kg, beyond "
+            "double precision: give sizes in metres and densities in kg/m^3",
             computed,
         )
     return p
@@ -256,8 +256,8 @@ def pair_problems(
                 effective = 1.0 / (1.0 / a + 1.0 / b)
                 p.add(
                     (a > 0) & (b > 0) & ~((effective > 0) & np.isfinite(effective)),
-                    f"the effective {what} = {{:.3g}} {unit} of the pair is beyond the range "
-                    "of a float: give sizes in metres and masses in kg",
+                    f"out of range: the effective {what} = {{:.3g}} {unit} of the pair is "
+                    "beyond double precision: give sizes in metres and masses in kg",
                     effective,
                 )
     return p
