@@ -8,9 +8,9 @@ are equally well scaled; their standard errors are carried back to the parameter
 delta method and their 95 % intervals are exp(q +- t se_q), which stay positive (t:
 :func:`impactcli.lsq.student_t_quantile`).
 
-Residuals: for point i with weight w_i (relative weights: 1 / variance up to a common
-factor), r_i = sqrt(w_i) (e_model - e_i) and, with a measured contact time,
-sqrt(w_i) (t_model / t_i - 1). The covariance of the fitted log-parameters is
+Residuals, measured minus model: for point i with weight w_i (relative weights: 1 /
+variance up to a common factor), r_i = sqrt(w_i) (e_i - e_model) and, with a measured
+contact time, sqrt(w_i) (1 - t_model / t_i). The covariance of the fitted log-parameters is
 s^2 (J^T J)^-1 with s^2 = sum(r^2) / (N - p), the reduced chi-square (as
 ``scipy.optimize.curve_fit`` with ``absolute_sigma=False``). Laws are ranked by the
 Akaike information criterion of a Gaussian least-squares fit, AIC = N ln(RSS/N) + 2p, and
@@ -223,9 +223,9 @@ def _residuals(
     params.update({name: float(np.exp(v)) for name, v in zip(names, q)})
     predicted = model(params, data.impact_velocity)
     sqrt_w = 1.0 if data.weight is None else np.sqrt(data.weight)
-    parts = [sqrt_w * (np.asarray(predicted["restitution"]) - data.restitution)]
+    parts = [sqrt_w * (data.restitution - np.asarray(predicted["restitution"]))]
     if data.contact_time is not None:
-        parts.append(sqrt_w * (np.asarray(predicted["contact_time"]) / data.contact_time - 1.0))
+        parts.append(sqrt_w * (1.0 - np.asarray(predicted["contact_time"]) / data.contact_time))
     return np.concatenate(parts), {k: np.asarray(v) for k, v in predicted.items()}
 
 

@@ -368,12 +368,13 @@ def first_yield_warning(
     first_yield_velocity: float,
     yield_velocity: float | None = None,
     pressure_factor: float | None = None,
+    advice: str = "'impact elastoplastic'",
 ) -> str | None:
     """The warning of an elastic impact above the first-yield velocity V_Y [m/s] (Hertz peak
     pressure 1.6 sigma_y), else None. Its advice agrees with :func:`below_yield_note`: it
-    says to use ``impact elastoplastic`` only above Du & Wang's yield velocity V_y [m/s]
-    (``yield_velocity``; by default from V_Y with :func:`du_wang_yield_velocity`); between
-    V_Y and V_y both commands give this Hertz result."""
+    says to use ``advice`` (``impact elastoplastic``) only above Du & Wang's yield velocity
+    V_y [m/s] (``yield_velocity``; by default from V_Y with :func:`du_wang_yield_velocity`);
+    between V_Y and V_y both give this Hertz result."""
     if not impact_velocity > first_yield_velocity:
         return None
     if yield_velocity is None:
@@ -387,11 +388,11 @@ def first_yield_warning(
     if impact_velocity > yield_velocity:
         return (
             f"{head} and exceed the yield velocity V_y = {yield_velocity:.4g} m/s "
-            f"({criterion}), so the elastic model no longer holds; use 'impact elastoplastic'"
+            f"({criterion}), so the elastic model no longer holds; use {advice}"
         )
     return (
         f"{head}, but stay below the yield velocity V_y = {yield_velocity:.4g} m/s "
-        f"({criterion}), up to which 'impact elastoplastic' gives this same Hertz result; "
+        f"({criterion}), up to which {advice} gives this same Hertz result; "
         "the local yield is in neither model"
     )
 
@@ -489,12 +490,29 @@ def contact_radius_warning(
     if over.size == 0:
         return None
     k = over[0]
-    shown = f"{ratio[k]:.2f}" if ratio[k] < 100.0 else f"{ratio[k]:.3g}"  # never 150 digits
+    # two decimals (more where needed to read above the limit), 3 digits from 100 on: never
+    # the 150 digits of f"{7.5e147:.2f}"
+    shown = _above(ratio[k], SMALL_DEFORMATION_LIMIT) if ratio[k] < 100.0 else f"{ratio[k]:.3g}"
     return (
-        f"contact radius / R = {shown} > {SMALL_DEFORMATION_LIMIT:g} from V0 = "
-        f"{v0[k]:.4g} m/s: beyond the small-deformation contact models used here (Hertz, "
-        "Du & Wang); treat the result as indicative only"
+        f"contact radius / R = {shown} > "
+        f"{SMALL_DEFORMATION_LIMIT:g} from V0 = {v0[k]:.4g} m/s: beyond the small-deformation "
+        "range of the contact laws (Johnson 1985, sec. 4.2); treat the result as indicative "
+        "only"
     )
+
+
+def _above(value: float, limit: float) -> str:
+    """``value`` (> ``limit``) with two decimals, or as many more as it takes to read
+    above ``limit``.
+
+    >>> _above(0.1234, 0.1), _above(0.10004, 0.1)
+    ('0.12', '0.10004')
+    """
+    for decimals in range(2, 17):
+        text = f"{value:.{decimals}f}"
+        if float(text) > limit:
+            return text
+    return repr(value)
 
 
 def materials_differ(
@@ -506,6 +524,7 @@ def materials_differ(
     """Whether two spheres' materials differ beyond rounding (1e-9 relative): compliance
     (1 - nu^2)/E [1/Pa] or yield strength [Pa] (NaN or None: not given, which differs from a
     given one). Arrays broadcast."""
+
     def differ(a: ArrayLike, b: ArrayLike) -> NDArray[np.bool_]:
         a, b = (np.asarray(np.nan if x is None else x, dtype=float) for x in (a, b))
         with np.errstate(invalid="ignore"):
