@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 from impactcli.laws.hertz import hertz_stiffness
 from impactcli.laws.registry import DAMPING_LAWS, LAWS
 from impactcli.lsq import bounded_least_squares, student_t_quantile
+from impactcli.validation import input_errors
 
 __all__ = [
     "DEFAULT_FIT",
@@ -239,6 +240,7 @@ def _student_t_quantile(probability: float, dof: int) -> float:
     return student_t_quantile(probability, dof) if dof > 0 else math.nan
 
 
+@input_errors
 def fit_law(
     law: str,
     model: Model,
@@ -398,12 +400,19 @@ def _pair(sphere1, sphere2) -> tuple[float, float, float, float]:
     """m [kg], R [m], E* [Pa] of the pair and the weaker sphere's sigma_y [Pa] (NaN if
     unknown)."""
     from impactcli.impact import effective_properties, weaker_yield_strength
+    from impactcli.validation import pair_problems, raise_first
 
+    fixed1 = bool(np.isinf(sphere1.total_mass))  # the moving sphere: 2 on a fixed sphere 1
+    raise_first(pair_problems(0.0 if fixed1 else 1.0, 1.0 if fixed1 else 0.0,
+                              sphere1.total_mass, sphere2.total_mass, sphere1.diameter,
+                              sphere2.diameter, sphere1.youngs_modulus,
+                              sphere2.youngs_modulus))  # fmt: skip
     m, r, e = effective_properties(sphere1, sphere2)
     sy = weaker_yield_strength(sphere1, sphere2)
     return m, r, e, math.nan if sy is None else float(sy)
 
 
+@input_errors
 def law_parameters(
     sphere1,
     sphere2,
@@ -462,6 +471,7 @@ def fit_parameter_help() -> str:
     return ", ".join(parts)
 
 
+@input_errors
 def law_model(
     sphere1,
     sphere2,
@@ -532,6 +542,7 @@ def law_model(
     return model
 
 
+@input_errors
 def prediction_band(
     result: FitResult,
     model: Model,
@@ -614,6 +625,7 @@ def _data_starts(law: str, data: FitData) -> dict[str, float]:
     return {"alpha": DAMPING_LAWS[law].data_start(e, data.impact_velocity)}
 
 
+@input_errors
 def fit_named_law(
     sphere1,
     sphere2,
