@@ -772,7 +772,7 @@ def oblique_impact(
         "in 0.3: use oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, ..., mu=), with "
         "diameters",
         DeprecationWarning,
-        stacklevel=2,
+        stacklevel=3,  # the caller, past the input_errors wrapper
     )
     return _oblique(
         m1, m2, r1, r2, p1, p2, v1, v2, w1, w2, restitution, friction, tangential, inertia1,

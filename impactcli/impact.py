@@ -1220,7 +1220,7 @@ def law_impact(
             "law_impact(params=) is deprecated and goes in 0.3: write law_params=, as "
             "batch_impacts takes them",
             DeprecationWarning,
-            stacklevel=2,
+            stacklevel=3,  # the caller, past the input_errors wrapper
         )
         if law_params is not None:
             raise TypeError("give law_params or the deprecated params, not both")
