@@ -164,3 +164,31 @@ def test_python_library_errors_are_input_errors():
     with pytest.raises(InputError):
         law_impact(s, s, 1.0, 0.0, "no-such-law")
     assert np.isfinite(law_impact(s, s, 1.0, 0.0, "hertz").summary["restitution"])
+
+
+# -- fit: what the table says when the statistics do not exist -----------------------------
+
+
+def test_fit_with_too_few_points_for_aicc_says_so(impact, tmp_path):
+    """2 points and 1 parameter: AICc = inf was shown as 'inf' with no word."""
+    path = tmp_path / "two.csv"
+    path.write_text("v0,e\n1,0.8\n2,0.75\n")
+    r = impact("fit", str(path), "--law", "du-wang", "--d1", "20mm", "--d2", "inf", "--m2", "inf",
+               "--material", "steel", "-f", "table")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "AICc needs more than p + 1 = 2 points for 1 parameter(s), got 2" in r.stderr
+    assert "AICc undefined (2 points" in " ".join(r.stdout.split())
+    assert "AICc inf" not in r.stdout
+
+
+def test_fit_of_an_unconstrained_parameter_says_so_in_the_table(impact, tmp_path):
+    """Thornton's sy is unconstrained when py is fitted too: its error and interval were
+    printed as 'nan Pa'."""
+    path = tmp_path / "four.csv"
+    path.write_text("v0,e\n0.5,0.9\n1,0.8\n2,0.75\n3,0.7\n")
+    r = impact("fit", str(path), "--law", "thornton", "--param", "py", "--param", "sy",
+               "--d1", "20mm", "--d2", "inf", "--m2", "inf", "--material", "steel", "-f",
+               "table")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "the data cannot constrain sy" in r.stderr
+    assert "not constrained" in r.stdout and "nan" not in r.stdout.lower()
