@@ -520,6 +520,7 @@ def law_model(
     base.update(fixed or {})
     known = set(law_parameters(sphere1, sphere2, law))
 
+    @input_errors
     def model(params: Mapping[str, float], v0: NDArray) -> dict[str, NDArray]:
         p = {**base, **params}
         unknown = set(p) - known
