@@ -110,6 +110,16 @@ def restitution_sweep(
         out["force_max"][rows] = plan.force_max
         out["delta_res"][rows] = plan.delta_res
     raise_first(plastic_range_problems(contact, v0, m, out["delta_max"]))
+    with np.errstate(invalid="ignore"):  # a plan whose numbers left double precision
+        broken = ~(np.isfinite(out["restitution"]) & (out["contact_time"] > 0.0)
+                   & np.isfinite(out["contact_time"]) & (out["delta_max"] > 0.0)
+                   & np.isfinite(out["force_max"]))  # fmt: skip
+    if np.any(broken):
+        raise ValueError(
+            f"out of range: at V0 = {float(v0[broken][0]):.3g} m/s the model's numbers "
+            "overflow or underflow in double precision (a yield strength, size or V0 too "
+            "small or too large); check the values and their units"
+        )
     if split == "yield" and np.any(out["delta_res"] > 0.0):
         if sphere1.yield_strength is None and sphere2.yield_strength is None:
             raise ValueError(
