@@ -65,6 +65,18 @@ def restitution_sweep(
     ``split``: ``mass``, ``compliance`` or ``yield`` (the permanent indentation to the
     sphere that yields, :func:`impactcli.impact.split_fractions`).
 
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (:class:`impactcli.impact.Sphere`, SI)
+    velocities : impact velocities V0 = V1 + V2, > 0, [m/s]
+    n : FILM segments per stage
+    yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
+    pressure_factor : p0 / sigma_y of Du & Wang's law, [-]
+    split : ``mass``, ``compliance`` or ``yield``
+    law : a law of ``impact laws``, or None for Du & Wang
+    law_params : the law's parameters by name, SI (as for
+        :func:`impactcli.impact.law_impact`)
+
     Returns
     -------
     dict
@@ -72,6 +84,14 @@ def restitution_sweep(
         residual indentation (total and of each sphere) [m], maximum force [N], energy
         dissipated (1/2) m V0^2 (1 - e^2) [J], and ``plastic``
         (1 above the yield velocity, else 0).
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> out = restitution_sweep(*steel, [0.1, 1.0])
+    >>> out["restitution"].round(5).tolist(), out["plastic"].tolist()
+    ([1.0, 0.85611], [0.0, 1.0])
     """
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
