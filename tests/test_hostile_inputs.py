@@ -121,7 +121,7 @@ def test_a_contact_radius_warning_has_a_few_digits():
 
 
 def _api_calls():
-    from impactcli.collision3d import oblique_impact
+    from impactcli.collision3d import oblique_collision_3d
     from impactcli.damping import damping_for_restitution
     from impactcli.design import hertz_contact_time, rayleigh_time_step, yield_limit_diameter
     from impactcli.impact import Sphere, elastic_impact
@@ -136,8 +136,8 @@ def _api_calls():
         "damping_for_restitution(V0=inf)": lambda: damping_for_restitution(
             "tsuji", 0.5, math.inf, 1e10, 0.01
         ),
-        "oblique_impact(m1=5e-324)": lambda: oblique_impact(
-            5e-324, 1.0, 0.01, 0.01, (0, 0, 0), (0, 0, 0.02), (1, 0, 1), (0, 0, 0), friction=0.2
+        "oblique_collision_3d(m1=5e-324)": lambda: oblique_collision_3d(
+            5e-324, 1.0, (1, 0, 1), (0, 0, 0), (0, 0, 0), (0, 0, 0.02), 0.02, 0.02, mu=0.2
         ),
         "elastic_impact(0.0, ...)": lambda: elastic_impact(0.0, ball, 1.0, 0.0),
         "Sphere(10**400, ...)": lambda: Sphere(10**400, **STEEL),
@@ -205,7 +205,7 @@ def _public_api() -> dict[str, tuple]:
     entry points the CLI commands call."""
     from impactcli import elastic_impact, elastoplastic_impact, oblique_collision
     from impactcli.batch import batch_impacts
-    from impactcli.collision3d import oblique_impact
+    from impactcli.collision3d import oblique_collision_3d
     from impactcli.damping import damping_for_restitution
     from impactcli.design import hertz_contact_time, rayleigh_time_step, yield_limit_diameter
     from impactcli.fit import law_model
@@ -241,10 +241,10 @@ def _public_api() -> dict[str, tuple]:
         "oblique_collision": (oblique_collision, dict(m1=0.05, m2=0.15, v1=(2.6, -1.5),
                               v2=(1.3, 1.5), p1=(-1.0, 2.0), p2=(2.0, -2.0), restitution=0.8),
                               lambda c: [*c.v1_final, *c.v2_final]),  # fmt: skip
-        "oblique_impact": (oblique_impact, dict(m1=2.6e-4, m2=math.inf, r1=2.5e-3, r2=math.inf,
-                           p1=(0, 0, 0), p2=(0, 0, -1), v1=(1.0, 0.0, -3.0), v2=(0, 0, 0),
-                           restitution=0.9, friction=0.1),
-                           lambda c: [*c.v1_final, *c.w1_final]),  # fmt: skip
+        "oblique_collision_3d": (oblique_collision_3d, dict(m1=2.6e-4, m2=math.inf,
+                                 v1=(1.0, 0.0, -3.0), v2=(0, 0, 0), p1=(0, 0, 0),
+                                 p2=(0, 0, -1), d1=5e-3, d2=math.inf, restitution=0.9, mu=0.1),
+                                 lambda c: [*c.v1_final, *c.w1_final]),  # fmt: skip
         "rayleigh_time_step": (rayleigh_time_step, dict(radius=1e-3, youngs_modulus=210e9,
                                poisson_ratio=0.3, density=7800.0), lambda t: [t]),  # fmt: skip
         "hertz_contact_time": (hertz_contact_time, dict(mass=0.03, radius=0.007, modulus=1e11,
