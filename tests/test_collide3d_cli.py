@@ -439,3 +439,21 @@ def test_rows_centres_not_at_contact_are_that_rows_error(impact, tmp_path):
     got = list(csv.DictReader(out.open()))
     assert "the centres must be at contact" in got[0]["error"] and got[0]["v1_final_x"] == ""
     assert got[1]["error"] == "" and float(got[1]["tangential_impulse"]) > 0.0
+
+
+def test_rows_carry_the_damped_friction_budget(impact, tmp_path):
+    """A damped normal law with the overlap rule pulls at the end of the contact: the
+    mindlin friction impulse of a --rows table, as of the single command, exceeds mu J_n
+    (Coulomb's cap mu max(F, 0) integrates to more than mu J_n; tests/test_collision3d.py)."""
+    pytest.importorskip("pyarrow")
+    table = tmp_path / "in.csv"
+    table.write_text("p1_x,p1_y,p1_z,p2_x,p2_y,p2_z,v1_x,v1_y,v1_z,d1,d2,m2,E2,E1,nu1,rho1\n"
+                     "0,0,0,0,0,-1,11.342,0,-2,5mm,inf,inf,inf,380GPa,0.23,4000\n")  # fmt: skip
+    damped = ["--mu", "0.2", "--tangential", "mindlin", "--damping", "tsuji", "--alpha", "0.25"]
+    r = impact("collide3d", "--rows", str(table), *damped)
+    assert r.returncode == 0, r.stderr
+    (row,) = list(csv.DictReader(io.StringIO(r.stdout)))
+    one = rows(impact(*ALUMINA_ON_PLANE[:-2], "--v1=11.342,0,-2", *damped, "-f", "csv").stdout)
+    j_t, j_n = float(row["tangential_impulse"]), float(row["normal_impulse"])
+    assert j_t == pytest.approx(one["tangential_impulse"], rel=1e-10)
+    assert 1.009 < j_t / (0.2 * j_n) < 1.011
