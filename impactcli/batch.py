@@ -71,6 +71,7 @@ from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     Problems,
     flat_floats,
+    input_errors,
     needs_yield_strength,
     pair_problems,
     plastic_range_problems,
@@ -106,6 +107,39 @@ FILM_BLOCK = 131072
 #: in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s unblocked); peak memory about
 #: 0.2 GB a block, whatever the number of rows.
 DAMPED_BLOCK = 524288
+
+
+#: Results every computed row must have as finite numbers, and those that must be > 0 (and
+#: ``energy_dissipated`` not infinite): a row where one is not (an impact velocity or size
+#: whose numbers overflow or underflow in double precision) gets :data:`OUT_OF_RANGE` as
+#: its error instead of the numbers.
+FINITE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max", "restitution")
+POSITIVE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max")
+OUT_OF_RANGE = (
+    "out of range: the model cannot compute this impact in double precision (at V0 = "
+    "{:.3g} m/s a result overflows or underflows): check the values and their units"
+)
+
+
+def refuse_out_of_range(out: dict[str, NDArray], v0: NDArray) -> dict[str, NDArray]:
+    """Give the rows of ``out`` without an error whose :data:`FINITE_KEYS` are not finite
+    or whose :data:`POSITIVE_KEYS` are not > 0 the error :data:`OUT_OF_RANGE` (their V0
+    [m/s] from ``v0``) and NaN numbers, in place; returns ``out``."""
+    valid = out["error"] == ""
+    with np.errstate(invalid="ignore"):
+        broken = np.zeros(valid.shape, dtype=bool)
+        for key in FINITE_KEYS:
+            broken |= ~np.isfinite(out[key])
+        for key in POSITIVE_KEYS:
+            broken |= ~(out[key] > 0.0)
+        broken |= np.isinf(out["energy_dissipated"])  # NaN where it does not apply
+    broken &= valid
+    for row in np.flatnonzero(broken):
+        out["error"][row] = OUT_OF_RANGE.format(float(v0[row]))
+    for key, column in out.items():
+        if key != "error":
+            column[broken] = np.nan
+    return out
 
 
 @lru_cache(maxsize=16)
@@ -313,6 +347,7 @@ class _Pairs:
 
 
 @without_float_warnings
+@input_errors
 def batch_impacts(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -396,7 +431,8 @@ def batch_impacts(
     # Valid rows only from here: the per-collision constants (docs/method.md §1).
     pairs = _Pairs.of(columns, ok)
     if law is not None:
-        return _batch_law(out, ok, law, law_params or {}, pairs, n, split)
+        out = _batch_law(out, ok, law, law_params or {}, pairs, n, split)
+        return refuse_out_of_range(out, columns[2] + columns[3])
     plastic = plastic[ok]
     m, radius, modulus, sigma_y, v0 = pairs.m, pairs.radius, pairs.modulus, pairs.sigma_y, pairs.v0
     stiffness = pairs.stiffness
@@ -457,7 +493,7 @@ def batch_impacts(
     refused = out["error"] != ""  # rows out of range (yield_scale_problems): no numbers
     for key in BATCH_KEYS:
         out[key][refused] = np.nan
-    return out
+    return refuse_out_of_range(out, columns[2] + columns[3])
 
 
 def _needs_yield_strength(law: str, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
@@ -600,6 +636,7 @@ def _scatter(values: NDArray, rows: NDArray[np.intp], size: int) -> NDArray:
 
 
 @without_float_warnings
+@input_errors
 def batch_damped_impacts(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -678,6 +715,7 @@ def batch_damped_impacts(
         )
         ok = np.flatnonzero(~problems.bad)
     never = np.zeros(problems.bad.size, dtype=bool)
+    beyond = np.zeros(problems.bad.size, dtype=bool)
     # FILM on (rows, n) arrays: blocks of about DAMPED_BLOCK values, so memory does not grow
     # with the number of rows
     block = max(1, DAMPED_BLOCK // (n + 1))
@@ -702,7 +740,18 @@ def batch_damped_impacts(
         for key, value in summary.items():
             out[key][rows] = np.where(ends, value, np.nan)
         out["alpha"][rows] = a
-        never[rows[~ends]] = True
+        # Overdamped, or out of range? The damped laws are self-similar: e depends on alpha
+        # (Tsuji) or alpha V0 (Hunt & Crossley) only, so the same impact at K = m = V0 = 1
+        # tells a contact that never ends from numbers that overflow or underflow.
+        stuck = np.flatnonzero(~ends)
+        if stuck.size:
+            same = a[stuck] * (v0[stuck] if damping == "hunt-crossley" else 1.0)
+            unit = solve_damped_impact(make_damping_law(damping, 1.0, 1.0, same), 1.0, 1.0,
+                                       n=n, separation=separation)  # fmt: skip
+            creeps = ~(np.isfinite(unit.contact_time) & (unit.restitution > 0))
+            never[rows[stuck[creeps]]] = True
+            beyond[rows[stuck[~creeps]]] = True
     problems.add(never, "the contact never ends (overdamped: the spheres stay together)")
+    problems.add(beyond, OUT_OF_RANGE, columns[2] + columns[3])
     out["error"] = problems.messages
-    return out
+    return refuse_out_of_range(out, columns[2] + columns[3])

@@ -27,7 +27,9 @@ import signal
 import sys
 import warnings
 from collections.abc import Callable, Iterator
+from functools import partial
 
+from impactcli import output
 from impactcli.errors import InputError, StdoutClosed
 from impactcli.output import describe_os_error, output_transaction
 
@@ -255,6 +257,7 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
             try:
                 with warnings.catch_warnings(record=True) as caught:
                     warnings.simplefilter("always", RuntimeWarning)
+                    output.before_stdout = partial(_refuse_numeric_warnings, caught)
                     with output_transaction():
                         result = call()
                         _flush_stdout()
@@ -308,6 +311,7 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
         end_children(kill=True)
     finally:
         common.pending_messages = None
+        output.before_stdout = None
     if status != 0:
         _quiet_stdout_if_broken()
     return status

@@ -13,8 +13,8 @@ coefficient of restitution of every row at its normal approach velocity in one c
 batch kernel (:func:`impactcli.batch.batch_impacts`, any law of the library) or of
 :func:`impactcli.damping.solve_damped_impact` (damped Hertz, in blocks of about
 :data:`impactcli.batch.DAMPED_BLOCK` rows x segments), then one call of
-:func:`impactcli.collision3d.oblique_impact` for all rows. The ``mindlin`` model needs each
-row's normal history: those are built row by row
+:func:`impactcli.collision3d.oblique_collision_3d` for all rows. The ``mindlin`` model
+needs each row's normal history: those are built row by row
 (:func:`impactcli.collision3d.normal_restitution_and_history`, a FILM run each), and the
 tangential spring is then integrated for a block of rows at once, :data:`HISTORY_BLOCK`
 history points (rows x points) a block, so memory does not grow with the rows. As in
@@ -273,13 +273,13 @@ def compute_collisions3d(
 def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result,
                    tangential, law, params, damping, alpha, points, n, separation):  # fmt: skip
     """The collisions of ``rows`` (valid so far): the normal histories for ``mindlin``,
-    then :func:`impactcli.collision3d.oblique_impact`; the results written into ``result``,
-    each refused row's reason into ``errors``."""
+    then :func:`impactcli.collision3d.oblique_collision_3d`; the results written into
+    ``result``, each refused row's reason into ``errors``."""
     from impactcli.collision3d import (
         NormalHistory,
         collision_summary,
         effective_shear_modulus,
-        oblique_impact,
+        oblique_collision_3d,
     )
 
     shear = history = None
@@ -296,11 +296,11 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
         shear = effective_shear_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows],
                                         s2["nu"][rows])  # fmt: skip
     with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
-        collision = oblique_impact(
-            s1["mass"][rows], s2["mass"][rows], 0.5 * s1["d"][rows], 0.5 * s2["d"][rows],
-            vectors["p1"][rows], vectors["p2"][rows], vectors["v1"][rows],
-            vectors["v2"][rows], vectors["w1"][rows], vectors["w2"][rows], e[rows],
-            friction[rows], tangential, history=history, shear_modulus=shear,
+        collision = oblique_collision_3d(
+            s1["mass"][rows], s2["mass"][rows], vectors["v1"][rows], vectors["v2"][rows],
+            vectors["p1"][rows], vectors["p2"][rows], s1["d"][rows], s2["d"][rows],
+            vectors["w1"][rows], vectors["w2"][rows], e[rows], friction[rows], tangential,
+            history=history, shear_modulus=shear,
         )  # fmt: skip
         summary = collision_summary(collision)
     finite = np.logical_and.reduce([np.isfinite(summary[k]) for k in _FINITE_KEYS])
