@@ -15,7 +15,9 @@ the line where there is one):
   straight segment, anything else is an error;
 - unloading: rows grouped by delta_max (any order of rows); in each group delta and force
   increase together (rows may be given in either direction), the smallest force is exactly
-  0 (the residual indentation), and no delta exceeds its delta_max.
+  0 (the residual indentation), and no delta exceeds its delta_max;
+- sizes: at most 1,000,000 points, 64 MiB and lines of 4,096 characters
+  (:mod:`impactcli.limits`).
 
 pint is imported only when a header carries units.
 """
@@ -31,6 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.errors import InputError
+from impactcli.limits import MAX_CURVE_BYTES, MAX_CURVE_LINE, MAX_CURVE_POINTS
 from impactcli.units import unit_factor
 
 __all__ = [
@@ -68,21 +71,63 @@ def read_curve_table(path: str | os.PathLike[str], columns: tuple[str, ...]) -> 
     """The columns of a curve CSV file, in SI: ``{name: array}``.
 
     The header names exactly ``columns`` (in any order, each optionally with ``[unit]``).
+    At most :data:`~impactcli.limits.MAX_CURVE_POINTS` rows,
+    :data:`~impactcli.limits.MAX_CURVE_BYTES` in all and lines of at most
+    :data:`~impactcli.limits.MAX_CURVE_LINE` characters: the file is read line by line and
+    refused as soon as it passes one (a regular file by its size, before it is read), so
+    memory stays bounded whatever the file (``/dev/zero`` included).
     """
     name = os.fspath(path)
     try:
+        size = os.stat(name).st_size if os.path.isfile(name) else 0
+        if size > MAX_CURVE_BYTES:
+            raise InputError(_too_large(name, f"{size:,} bytes"))
         with open(name, newline="", encoding="utf-8-sig") as stream:
-            lines = list(enumerate(csv.reader(stream), start=1))
+            return _curve_rows(name, csv.reader(_bounded_lines(stream, name)), columns)
     except OSError as exc:
         raise InputError(f"cannot read curve file {name!r}: {exc.strerror or exc}") from None
     except UnicodeDecodeError:
         raise InputError(f"{name}: not a text (UTF-8) CSV file") from None
-    rows = [(i, r) for i, r in lines if r and any(c.strip() for c in r)]
-    rows = [(i, r) for i, r in rows if not r[0].lstrip().startswith("#")]
+    except csv.Error as exc:
+        raise InputError(f"{name}: not a CSV file of numbers ({exc})") from None
+
+
+def _too_large(name: str, what: str) -> str:
+    return (
+        f"{name}: {what}; a curve file has at most {MAX_CURVE_POINTS:,} points and "
+        f"{MAX_CURVE_BYTES // 2**20} MiB (lines of at most {MAX_CURVE_LINE:,} characters)"
+    )
+
+
+def _bounded_lines(stream, name: str):
+    """The lines of ``stream``, each at most :data:`MAX_CURVE_LINE` characters, in all at
+    most :data:`MAX_CURVE_BYTES` characters: a device or a pipe without end (/dev/zero) is
+    refused as soon as it passes them, in bounded memory."""
+    read = 0
+    while True:
+        line = stream.readline(MAX_CURVE_LINE + 1)
+        if not line:
+            return
+        read += len(line)
+        if len(line) > MAX_CURVE_LINE:
+            raise InputError(_too_large(name, f"a line longer than {MAX_CURVE_LINE:,} characters"))
+        if read > MAX_CURVE_BYTES:
+            raise InputError(_too_large(name, f"more than {MAX_CURVE_BYTES // 2**20} MiB"))
+        yield line
+
+
+def _curve_rows(name: str, reader, columns: tuple[str, ...]) -> dict[str, NDArray]:
+    """The header and the rows of numbers of a curve file (:func:`read_curve_table`), read
+    row by row into an array of at most :data:`MAX_CURVE_POINTS` rows."""
+    rows = (
+        (i, r) for i, r in enumerate(reader, start=1)
+        if r and any(c.strip() for c in r) and not r[0].lstrip().startswith("#")
+    )  # fmt: skip
     expected = ",".join(columns)
-    if not rows:
+    first = next(rows, None)
+    if first is None:
         raise InputError(f"{name}: empty; expected a header {expected} and rows of numbers")
-    line, header = rows[0]
+    line, header = first
     names, factors = [], []
     for cell in header:
         match = _HEADER.match(cell)
@@ -98,10 +143,17 @@ def read_curve_table(path: str | os.PathLike[str], columns: tuple[str, ...]) -> 
         raise InputError(
             f"{name} line {line}: header {','.join(header)!r} must name the columns {expected}"
         )
-    values = np.empty((len(rows) - 1, len(names)))
-    for k, (i, row) in enumerate(rows[1:]):
+    values = np.empty((1024, len(names)))
+    k = 0
+    for i, row in rows:
         if len(row) != len(names):
             raise InputError(f"{name} line {i}: {len(row)} fields, expected {len(names)}")
+        if k == MAX_CURVE_POINTS:
+            raise InputError(_too_large(name, f"more than {MAX_CURVE_POINTS:,} points"))
+        if k == values.shape[0]:  # room for twice as many rows, up to the limit
+            grown = np.empty((min(2 * k, MAX_CURVE_POINTS), values.shape[1]))
+            grown[:k] = values
+            values = grown
         for j, cell in enumerate(row):
             try:
                 x = float(cell)
@@ -112,6 +164,8 @@ def read_curve_table(path: str | os.PathLike[str], columns: tuple[str, ...]) -> 
                     f"{name} line {i}: {names[j]} must be a finite number >= 0, got {cell.strip()}"
                 )
             values[k, j] = x * factors[j]
+        k += 1
+    values = values[:k].copy()
     if values.shape[0] < 1:
         raise InputError(f"{name}: no rows of numbers after the header")
     return {column: values[:, j] for j, column in enumerate(names)}

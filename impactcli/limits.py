@@ -1,15 +1,20 @@
 """Limits on the sizes of a run, so that every run fits in a few GB of memory.
 
-Measured peak memory (resident set) of one run, about:
+Measured peak memory (resident set) of one run at the limits below (README, "Limits on
+sizes"), about:
 
-- 250 bytes per FILM segment per stage: ``tables --n``, ``elastic/elastoplastic --n``,
-  ``batch --n`` (per row being solved), ``convergence`` n;
-- 200 bytes per history point: ``elastic/elastoplastic --points``;
-- 250 bytes per velocity and segment: ``restitution --count`` times ``--n``.
+- 650 bytes per FILM segment per stage for ``elastoplastic --n`` (6.5 GB at 10^7), 440 for
+  ``elastic --n`` (4.4 GB), 260 for ``tables --n`` (2.6 GB), 210 for a ``convergence`` n;
+- 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7);
+- 0.55 GB for ``restitution --count`` x ``--n`` at 10^7;
+- 0.08 GB for a curve file of 10^6 points.
 
-So the largest run allowed below needs about 2.5 GB. The checks live here once; the
-command line states the limits in ``--help`` and refuses larger values up front, the library
-entry points refuse them with the same message.
+Work over many rows (``batch``, ``collide3d --rows``) is done in blocks
+(:data:`impactcli.batch.FILM_BLOCK`, :data:`impactcli.batch.DAMPED_BLOCK`,
+:data:`impactcli.io.collisions3d.HISTORY_BLOCK`), so its memory does not grow with the
+number of rows. The checks live here once; the command line states the limits in
+``--help`` and refuses larger values up front, the library entry points refuse them with
+the same message.
 """
 
 from __future__ import annotations
@@ -23,21 +28,32 @@ __all__ = [
     "MAX_SWEEP_SEGMENTS",
     "MAX_CHUNK_ROWS",
     "MAX_CONVERGENCE_RUNS",
+    "MAX_CURVE_POINTS",
+    "MAX_CURVE_BYTES",
+    "MAX_CURVE_LINE",
     "check_size",
 ]
 
-#: FILM segments per stage (``--n``): about 2.5 GB at the limit.
+#: FILM segments per stage (``--n``): 6.5 GB at the limit (``elastoplastic``).
 MAX_SEGMENTS = 10_000_000
-#: Points of a history (``--points``): about 2 GB at the limit.
+#: Points of a history (``--points``): 3.5 GB at the limit.
 MAX_POINTS = 10_000_000
 #: Impact velocities of a restitution sweep (``--count``).
 MAX_COUNT = 1_000_000
-#: Velocities times segments of a restitution sweep (``--count`` x ``--n``): about 2.5 GB.
+#: Velocities times segments of a restitution sweep (``--count`` x ``--n``): 0.55 GB.
 MAX_SWEEP_SEGMENTS = 10_000_000
 #: Rows per chunk of ``impact batch`` (``--chunk-size``).
 MAX_CHUNK_ROWS = 1_000_000
 #: Segment counts in one ``impact convergence`` run.
 MAX_CONVERGENCE_RUNS = 1_000
+#: Points of a force-indentation curve file (``--curve``, ``--unload-curves``, the curve
+#: columns of a batch): rows of numbers after the header.
+MAX_CURVE_POINTS = 1_000_000
+#: Size of a curve file, [bytes] (a regular file is refused by its size before it is read;
+#: a pipe or a device as soon as it passes it).
+MAX_CURVE_BYTES = 64 * 2**20
+#: Characters of one line of a curve file.
+MAX_CURVE_LINE = 4096
 
 
 def check_size(name: str, value: int, maximum: int, minimum: int = 1) -> int:

@@ -148,3 +148,42 @@ def test_remove_stale_stages_removes_only_unlocked_marked_folders(tmp_path):
         os.close(fd)
     assert not stale.exists()
     assert living.exists() and unmarked.exists() and other.exists()
+
+
+# -- the limits of a curve file --------------------------------------------------------------
+
+
+def test_a_curve_file_beyond_its_limits_is_one_input_error(tmp_path, monkeypatch):
+    import impactcli.curves as curves
+    from impactcli.errors import InputError
+    from impactcli.limits import MAX_CURVE_BYTES, MAX_CURVE_LINE
+
+    columns = ("delta", "force")
+    with pytest.raises(InputError, match="a line longer than 4,096 characters"):
+        curves.read_curve_table("/dev/zero", columns)  # endless, without a line break
+    large = tmp_path / "large.csv"
+    with open(large, "wb") as handle:  # sparse: refused by its size, before it is read
+        handle.truncate(MAX_CURVE_BYTES + 1)
+    with pytest.raises(InputError, match=f"{MAX_CURVE_BYTES + 1:,} bytes"):
+        curves.read_curve_table(large, columns)
+    long = tmp_path / "long.csv"
+    long.write_text("delta,force\n" + "1" * MAX_CURVE_LINE + ",1\n")
+    with pytest.raises(InputError, match="a line longer than"):
+        curves.read_curve_table(long, columns)
+    monkeypatch.setattr(curves, "MAX_CURVE_POINTS", 3)
+    three = tmp_path / "three.csv"
+    three.write_text("delta,force\n1e-6,1\n2e-6,3\n3e-6,6\n")
+    assert curves.read_curve_table(three, columns)["force"].tolist() == [1.0, 3.0, 6.0]
+    (tmp_path / "four.csv").write_text(three.read_text() + "4e-6,10\n")
+    with pytest.raises(InputError, match="more than 3 points"):
+        curves.read_curve_table(tmp_path / "four.csv", columns)
+
+
+def test_a_curve_file_with_a_nul_byte_is_one_input_error(tmp_path):
+    from impactcli.curves import read_curve_table
+    from impactcli.errors import InputError
+
+    nul = tmp_path / "nul.csv"
+    nul.write_bytes(b"delta,force\n1e-6,\x001\n")
+    with pytest.raises(InputError):
+        read_curve_table(nul, ("delta", "force"))

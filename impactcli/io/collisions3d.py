@@ -11,12 +11,15 @@ velocities in rad/s, rpm, deg/s). The result columns are
 :func:`compute_collisions3d` is the pure per-chunk function, vectorised over rows: the
 coefficient of restitution of every row at its normal approach velocity in one call of the
 batch kernel (:func:`impactcli.batch.batch_impacts`, any law of the library) or of
-:func:`impactcli.damping.solve_damped_impact` (damped Hertz), then one call of
-:func:`impactcli.collision3d.oblique_collision_3d` for all rows. The ``mindlin`` model needs each
-row's normal history: those are built row by row
+:func:`impactcli.damping.solve_damped_impact` (damped Hertz, in blocks of about
+:data:`impactcli.batch.DAMPED_BLOCK` rows x segments), then one call of
+:func:`impactcli.collision3d.oblique_collision_3d` for all rows. The ``mindlin`` model
+needs each row's normal history: those are built row by row
 (:func:`impactcli.collision3d.normal_restitution_and_history`, a FILM run each), and the
-tangential spring is then integrated for all rows at once. As in ``impact batch``, a bad
-row gets NaN results and its reason in ``error``; the others are computed.
+tangential spring is then integrated for a block of rows at once, :data:`HISTORY_BLOCK`
+history points (rows x points) a block, so memory does not grow with the rows. As in
+``impact batch``, a bad row gets NaN results and its reason in ``error``; the others are
+computed.
 :func:`run_collisions3d` reads CSV or Parquet in chunks and writes the input columns and
 the results, whole or not at all (:mod:`impactcli.io.readers`, :mod:`impactcli.io.writers`).
 pyarrow is imported inside the functions.
@@ -33,6 +36,7 @@ from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW
 
 __all__ = [
+    "HISTORY_BLOCK",
     "INPUT_COLUMNS",
     "REQUIRED_VECTORS",
     "SCALAR_COLUMNS",
@@ -162,8 +166,6 @@ def compute_collisions3d(
         CONTACT_DISTANCE_RTOL,
         TANGENTIAL_MODELS,
         contact_distance_problem,
-        effective_shear_modulus,
-        oblique_collision_3d,
     )
     from impactcli.contact import total_mass
     from impactcli.io.table import _quantity_column, _text_column, table_columns
@@ -256,43 +258,63 @@ def compute_collisions3d(
         e[law_rows], reasons = _restitutions(s1, s2, u_n, law_rows, law, params, damping,
                                              alpha, n, separation)  # fmt: skip
         errors.add_messages(_scatter(reasons, law_rows, size))
-    histories = None
-    if tangential == "mindlin":
-        ok = np.flatnonzero(~errors.bad)
-        e[ok], histories, reasons = _histories(s1, s2, u_n, ok, law, params, damping, alpha,
-                                               points, n, separation)  # fmt: skip
-        errors.add_messages(_scatter(reasons, ok, size))
     ok = np.flatnonzero(~errors.bad)
-    if ok.size:
-        shear = None
-        history = None
-        if tangential == "mindlin":
-            from impactcli.collision3d import NormalHistory
-
-            keep = np.isin(np.flatnonzero(~np.isnan(e)), ok)
-            *arrays, impulse = (h[keep] for h in histories)
-            given = None if np.all(np.isnan(impulse)) else impulse  # None: J_n (no pull)
-            history = NormalHistory(*arrays, impulse=given)
-            shear = effective_shear_modulus(s1["E"][ok], s1["nu"][ok], s2["E"][ok], s2["nu"][ok])
-        from impactcli.collision3d import collision_summary
-
-        with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
-            collision = oblique_collision_3d(
-                s1["mass"][ok], s2["mass"][ok], vectors["v1"][ok], vectors["v2"][ok],
-                vectors["p1"][ok], vectors["p2"][ok], s1["d"][ok], s2["d"][ok],
-                vectors["w1"][ok], vectors["w2"][ok], e[ok], friction[ok], tangential,
-                history=history, shear_modulus=shear,
-            )  # fmt: skip
-            summary = collision_summary(collision)
-        finite = np.logical_and.reduce([np.isfinite(summary[k]) for k in _FINITE_KEYS])
-        beyond = np.zeros(size, dtype=bool)
-        beyond[ok[~finite]] = True
-        errors.add(beyond, _OUT_OF_RANGE)
-        for key, value in summary.items():
-            result[key][ok] = np.where(finite, value, np.nan)
+    blocks = [ok] if ok.size else []
+    if tangential == "mindlin":  # (rows, points) histories: blocks of HISTORY_BLOCK points
+        rows_per_block = max(1, HISTORY_BLOCK // max(int(points), 2))
+        blocks = [ok[i : i + rows_per_block] for i in range(0, ok.size, rows_per_block)]
+    for rows in blocks:
+        _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result,
+                       tangential, law, params, damping, alpha, points, n, separation)  # fmt: skip
     result["error"] = errors.messages
     return result
 
+
+def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result,
+                   tangential, law, params, damping, alpha, points, n, separation):  # fmt: skip
+    """The collisions of ``rows`` (valid so far): the normal histories for ``mindlin``,
+    then :func:`impactcli.collision3d.oblique_collision_3d`; the results written into
+    ``result``, each refused row's reason into ``errors``."""
+    from impactcli.collision3d import (
+        NormalHistory,
+        collision_summary,
+        effective_shear_modulus,
+        oblique_collision_3d,
+    )
+
+    shear = history = None
+    if tangential == "mindlin":
+        e[rows], histories, reasons = _histories(s1, s2, u_n, rows, law, params, damping,
+                                                 alpha, points, n, separation)  # fmt: skip
+        errors.add_messages(_scatter(reasons, rows, size))
+        rows = rows[reasons == ""]  # the rows that ran, in the order of their histories
+        if not rows.size:
+            return
+        *arrays, impulse = histories
+        given = None if np.all(np.isnan(impulse)) else impulse  # None: J_n (no pull)
+        history = NormalHistory(*arrays, impulse=given)
+        shear = effective_shear_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows],
+                                        s2["nu"][rows])  # fmt: skip
+    with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
+        collision = oblique_collision_3d(
+            s1["mass"][rows], s2["mass"][rows], vectors["v1"][rows], vectors["v2"][rows],
+            vectors["p1"][rows], vectors["p2"][rows], s1["d"][rows], s2["d"][rows],
+            vectors["w1"][rows], vectors["w2"][rows], e[rows], friction[rows], tangential,
+            history=history, shear_modulus=shear,
+        )  # fmt: skip
+        summary = collision_summary(collision)
+    finite = np.logical_and.reduce([np.isfinite(summary[k]) for k in _FINITE_KEYS])
+    beyond = np.zeros(size, dtype=bool)
+    beyond[rows[~finite]] = True
+    errors.add(beyond, _OUT_OF_RANGE)
+    for key, value in summary.items():
+        result[key][rows] = np.where(finite, value, np.nan)
+
+
+#: History points (rows x ``points``) per block of ``--tangential mindlin`` rows: each row's
+#: normal history and the tangential spring integrated over a block of rows at once; memory
+#: does not grow with the number of rows (one row a block when ``points`` is larger).
+HISTORY_BLOCK = 1_048_576
 
 #: The error of a row whose collision cannot be computed in double precision.
 _OUT_OF_RANGE = (
@@ -326,16 +348,21 @@ def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n, separation)
             s2["m"][rows], s1["sy"][rows], s2["sy"][rows], n=n, law=law, law_params=params,
         )  # fmt: skip
         return out["restitution"], out["error"]
+    from impactcli.batch import DAMPED_BLOCK
     from impactcli.damping import make_damping_law, solve_damped_impact
 
     m, stiffness, reasons = _damped_scales(s1, s2, u_n, rows)
     e = np.full(rows.size, np.nan)
     good = np.flatnonzero(reasons == "")
-    if good.size:
-        contact = make_damping_law(damping, stiffness[good], m[good], alpha)
+    # FILM on (rows, segments) arrays, solve_damped_impact's 400 segments a stage: blocks of
+    # about DAMPED_BLOCK values, so memory does not grow with the number of rows
+    block = max(1, DAMPED_BLOCK // 401)
+    for start in range(0, good.size, block):
+        part = good[start : start + block]
+        contact = make_damping_law(damping, stiffness[part], m[part], alpha)
         with np.errstate(all="ignore"):
-            solution = solve_damped_impact(contact, u_n[rows][good], m[good], separation=separation)
-        e[good] = solution.restitution
+            solution = solve_damped_impact(contact, u_n[rows][part], m[part], separation=separation)
+        e[part] = solution.restitution
     return e, reasons
 
 
