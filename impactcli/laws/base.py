@@ -161,7 +161,8 @@ class DampingModel(Protocol):
     range), ``reference``, ``self_similar`` (e independent of V0), and the class methods
     ``of(K, m, alpha)`` (the one constructor), ``alpha_estimate(e, V0)`` (the first guess of
     the alpha search), ``fit_start(V_ref)`` ((start, lower, upper) of a fit of alpha) and
-    ``data_start(e, V0)`` (alpha read off measured points).
+    ``data_start(e, V0)`` (alpha read off measured points); optionally
+    ``closed_form(K, m, alpha, V0, separation)`` -> (label, e) or None, a published e(V0).
     """
 
     name: ClassVar[str]

@@ -90,6 +90,22 @@ class TsujiDamping(DampedHertz):
         return np.maximum(tsuji_alpha_dem(restitution), 1e-3)
 
     @classmethod
+    def closed_form(
+        cls,
+        stiffness: float,
+        mass: float,
+        alpha: float,
+        impact_velocity: ArrayLike,
+        separation: str,
+    ) -> tuple[str, Array] | None:
+        """The published e of the ``overlap`` rule at every V0
+        (:func:`tsuji_restitution_overlap`); None for the ``force`` rule."""
+        if separation != "overlap":
+            return None
+        e = tsuji_restitution_overlap(alpha)
+        return "Tsuji: Antypov & Elliott (2011) closed form", np.full(np.shape(impact_velocity), e)
+
+    @classmethod
     def fit_start(cls, reference_velocity: float) -> tuple[float, float, float]:
         """(start, lower, upper) of a fit of alpha [-]: 0.3, within (1e-4, 2.2), below
         sqrt(5), where e reaches 0 (docs/damping.md)."""
