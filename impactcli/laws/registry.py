@@ -18,6 +18,7 @@ from impactcli.laws import du_wang, hertz, tabulated, thornton, walton_braun
 from impactcli.laws.base import SEPARATIONS, ImpactPlan, LawSpec, NormalContact, Parameter
 from impactcli.laws.hunt_crossley import HuntCrossleyDamping
 from impactcli.laws.tsuji import TsujiDamping
+from impactcli.laws.viscoelastic import ViscoelasticDamping
 
 __all__ = [
     "DAMPING_LAWS",
@@ -51,6 +52,7 @@ MODELS: dict[str, LawSpec | type] = {
         tabulated.SPEC,
         TsujiDamping,
         HuntCrossleyDamping,
+        ViscoelasticDamping,
     )
 }
 
