@@ -6,7 +6,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check
 
-.PHONY: run test test-slow tables bench lint clean venv
+.PHONY: run test test-slow tables options bench lint clean venv
 
 $(BIN)/python:
 	@echo "== creating $(VENV) with $(PYTHON)"
@@ -52,14 +52,14 @@ run: $(VENV)/.run-installed
 	$(BIN)/impact convergence -o figures/convergence.csv --plot figures/convergence.png
 	$(BIN)/impact restitution $(PAPER) --v-min 0.05m/s --v-max 2.5m/s --count 40 \
 		-o figures/restitution.csv --plot figures/restitution.png
-	$(BIN)/impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s --a1 30deg --v2 2m/s \
-		--a2 50deg --p1=-1,2 --p2=2,-2 --paper-angles \
+	$(BIN)/impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s@30deg --v2 2m/s@50deg \
+		--p1=-1,2 --p2=2,-2 --paper-angles \
 		-o figures/collide2d_4_5.csv --plot figures/collide2d_4_5.png
 	$(BIN)/python benchmarks/chung_ooi.py docs/figures
 	$(BIN)/impact compare-laws $(PAPER) --v1 0.25m/s --v2 0.75m/s --law du-wang \
 		--law thornton --law walton-braun --k-load 20MN/m --k-unload 80MN/m --law hertz \
 		-o figures/compare_laws.csv --plot docs/figures/compare_laws.png
-	$(BIN)/impact fit docs/data/drop_tests_steel.csv --law du-wang --law thornton --law tsuji --d1 20mm --d2 inf --m2 inf --material steel -f table --plot docs/figures/fit_drop_tests.png
+	$(BIN)/impact fit docs/data/drop_tests_steel.csv --law du-wang --law thornton --damping tsuji --d1 20mm --d2 inf --m2 inf --material steel -f table --plot docs/figures/fit_drop_tests.png
 	@echo "Figures (paper sec. 4.1, 4.3, 4.4, 4.5) and their data: figures/"
 	@echo "Run the command as .venv/bin/impact, or after: source .venv/bin/activate"
 
@@ -77,6 +77,10 @@ test-slow: $(VENV)/.test-installed
 tables: $(VENV)/.run-installed
 	$(BIN)/impact tables --n 25 --stage loading --format csv -o tables/table_a1_n25.csv
 	$(BIN)/impact tables --n 25 --stage restitution --format csv -o tables/table_a2_n25.csv
+
+## options: docs/options.md, every option of every command, from the commands themselves
+options: $(VENV)/.run-installed
+	$(BIN)/python -m impactcli.cli.options_doc > docs/options.md
 
 ## bench: FILM against SciPy, impact batch throughput, tables --n 10^6, cold start (a few
 ##        minutes); prints the table, and writes it into README.md with `make bench README=1`

@@ -388,8 +388,8 @@ START_UP_COMMANDS: dict[str, list[str]] = {
         "restitution", *PAPER, "--v-min", "0.05m/s", "--v-max", "2.5m/s", "--count", "40",
     ],
     "impact collide2d (paper sec. 4.5, units)": [
-        "collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
-        "--v2", "2m/s", "--a2", "50deg", "--p1=-1,2", "--p2=2,-2", "--paper-angles",
+        "collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s@30deg",
+        "--v2", "2m/s@50deg", "--p1=-1,2", "--p2=2,-2", "--paper-angles",
     ],
     "impact collide3d (steel ball with backspin on a plane, Tsuji damping, units)": [
         "collide3d", "--d1", "5mm", "--material1", "steel", "--d2", "inf", "--m2", "inf",

@@ -68,6 +68,7 @@ from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     Problems,
     flat_floats,
+    input_errors,
     needs_yield_strength,
     pair_problems,
     plastic_range_problems,
@@ -82,6 +83,7 @@ __all__ = [
     "FILM_BLOCK",
     "batch_damped_impacts",
     "batch_impacts",
+    "hertz_scale_problems",
     "law_stage_times",
     "material_properties",
     "normalised_times",
@@ -95,6 +97,39 @@ BATCH_KEYS: tuple[str, ...] = PLASTIC_SUMMARY_KEYS
 #: the yield velocity: 1 MiB work arrays (measured by ``make bench``: faster than blocks of
 #: 2048 rows, 1.5-2.6x for n = 25-100, and than smaller blocks for n in the hundreds).
 FILM_BLOCK = 131072
+
+
+#: Results every computed row must have as finite numbers, and those that must be > 0 (and
+#: ``energy_dissipated`` not infinite): a row where one is not (an impact velocity or size
+#: whose numbers overflow or underflow in double precision) gets :data:`OUT_OF_RANGE` as
+#: its error instead of the numbers.
+FINITE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max", "restitution")
+POSITIVE_KEYS: tuple[str, ...] = ("contact_time", "t_max", "delta_max", "force_max")
+OUT_OF_RANGE = (
+    "out of range: the model cannot compute this impact in double precision (at V0 = "
+    "{:.3g} m/s a result overflows or underflows): check the values and their units"
+)
+
+
+def refuse_out_of_range(out: dict[str, NDArray], v0: NDArray) -> dict[str, NDArray]:
+    """Give the rows of ``out`` without an error whose :data:`FINITE_KEYS` are not finite
+    or whose :data:`POSITIVE_KEYS` are not > 0 the error :data:`OUT_OF_RANGE` (their V0
+    [m/s] from ``v0``) and NaN numbers, in place; returns ``out``."""
+    valid = out["error"] == ""
+    with np.errstate(invalid="ignore"):
+        broken = np.zeros(valid.shape, dtype=bool)
+        for key in FINITE_KEYS:
+            broken |= ~np.isfinite(out[key])
+        for key in POSITIVE_KEYS:
+            broken |= ~(out[key] > 0.0)
+        broken |= np.isinf(out["energy_dissipated"])  # NaN where it does not apply
+    broken &= valid
+    for row in np.flatnonzero(broken):
+        out["error"][row] = OUT_OF_RANGE.format(float(v0[row]))
+    for key, column in out.items():
+        if key != "error":
+            column[broken] = np.nan
+    return out
 
 
 @lru_cache(maxsize=16)
@@ -302,6 +337,7 @@ class _Pairs:
 
 
 @without_float_warnings
+@input_errors
 def batch_impacts(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -385,7 +421,8 @@ def batch_impacts(
     # Valid rows only from here: the per-collision constants (docs/method.md §1).
     pairs = _Pairs.of(columns, ok)
     if law is not None:
-        return _batch_law(out, ok, law, law_params or {}, pairs, n, split)
+        out = _batch_law(out, ok, law, law_params or {}, pairs, n, split)
+        return refuse_out_of_range(out, columns[2] + columns[3])
     plastic = plastic[ok]
     m, radius, modulus, sigma_y, v0 = pairs.m, pairs.radius, pairs.modulus, pairs.sigma_y, pairs.v0
     stiffness = pairs.stiffness
@@ -446,7 +483,7 @@ def batch_impacts(
     refused = out["error"] != ""  # rows out of range (yield_scale_problems): no numbers
     for key in BATCH_KEYS:
         out[key][refused] = np.nan
-    return out
+    return refuse_out_of_range(out, columns[2] + columns[3])
 
 
 def _needs_yield_strength(law: str, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
@@ -551,7 +588,45 @@ def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray
         yield chunk[local], plan
 
 
+def hertz_scale_problems(m: ArrayLike, stiffness: ArrayLike, v0: ArrayLike) -> NDArray:
+    """Why the Hertz scales of each impact cannot be computed, ``""`` where they can.
+
+    The scales are the maximum indentation delta_m = (5 m V0^2 / (4 K))^(2/5) [m], the peak
+    force K delta_m^(3/2) [N] and the time delta_m / V0 [s] (docs/method.md §1); each, and
+    m [kg], K [N/m^1.5], must be a positive, finite, normal double (above 2.2e-308). A row
+    beyond that (``d2 = 1e-300``: a mass that underflows to 0; V0 = 1e300) is that row's
+    error, not an exception for the whole batch.
+
+    >>> hertz_scale_problems([0.1, 0.0], [1e10, 1e10], [1.0, 1.0])[0]
+    ''
+    """
+    m, stiffness, v0 = flat_floats(m, stiffness, v0)
+    with np.errstate(all="ignore"):
+        delta = (5.0 * m * v0 * v0 / (4.0 * stiffness)) ** 0.4
+        scales = (m, stiffness, delta, stiffness * delta**1.5, delta / v0)
+    tiny = np.finfo(float).tiny
+    good = np.logical_and.reduce([np.isfinite(x) & (x >= tiny) for x in scales])
+    out = np.full(m.size, "", dtype=object)
+    bad = np.flatnonzero(~good)
+    out[bad] = [
+        f"out of range: the Hertz scales of this impact (effective mass {a:.3g} kg, "
+        f"stiffness K {k:.3g} N/m^1.5, V0 {v:.3g} m/s: maximum indentation {d:.3g} m) leave "
+        "double precision; check the values and their units"
+        for a, k, v, d in zip(m[bad].tolist(), stiffness[bad].tolist(), v0[bad].tolist(),
+                              delta[bad].tolist())
+    ]  # fmt: skip
+    return out
+
+
+def _scatter(values: NDArray, rows: NDArray[np.intp], size: int) -> NDArray:
+    """An object array of ``size`` entries, ``values`` at ``rows`` and ``""`` elsewhere."""
+    out = np.full(size, "", dtype=object)
+    out[rows] = values
+    return out
+
+
 @without_float_warnings
+@input_errors
 def batch_damped_impacts(
     d1: ArrayLike,
     d2: ArrayLike,
@@ -623,14 +698,26 @@ def batch_damped_impacts(
     out = {key: np.full(alpha.shape, np.nan) for key in BATCH_KEYS}
     out["alpha"] = np.full(alpha.shape, np.nan)
     ok = np.flatnonzero(~problems.bad)
-    if ok.size:
+    if ok.size:  # rows whose Hertz scales leave double precision are their own error
         pairs = _Pairs.of(columns, ok)
+        problems.add_messages(
+            _scatter(hertz_scale_problems(pairs.m, pairs.stiffness, pairs.v0), ok, alpha.size)
+        )
+        ok = np.flatnonzero(~problems.bad)
+    never = np.zeros(problems.bad.size, dtype=bool)
+    beyond = np.zeros(problems.bad.size, dtype=bool)
+    # FILM on (rows, n) arrays: blocks of about FILM_BLOCK values, so memory does not grow
+    # with the number of rows
+    block = max(1, FILM_BLOCK // (n + 1))
+    for start in range(0, ok.size, block):
+        rows = ok[start : start + block]
+        pairs = _Pairs.of(columns, rows)
         m, stiffness, v0 = pairs.m, pairs.stiffness, pairs.v0
-        a = alpha[ok].copy()
+        a = alpha[rows].copy()
         solve = np.flatnonzero(np.isnan(a))
         if solve.size:  # the alpha of the target e, exactly by the model (FILM, n)
             a[solve] = damping_for_restitution(
-                damping, e_target[ok][solve], v0[solve], stiffness[solve], m[solve], n=n,
+                damping, e_target[rows][solve], v0[solve], stiffness[solve], m[solve], n=n,
                 separation=separation,
             )  # fmt: skip
         law = make_damping_law(damping, stiffness, m, a)
@@ -641,10 +728,20 @@ def batch_damped_impacts(
         summary = pairs.summary(plan, sol.t_max, sol.contact_time, pairs.fractions(split))
         summary["energy_dissipated"] = sol.dissipated
         for key, value in summary.items():
-            out[key][ok] = np.where(ends, value, np.nan)
-        out["alpha"][ok] = a
-        never = np.zeros(problems.bad.size, dtype=bool)
-        never[ok[~ends]] = True
-        problems.add(never, "the contact never ends (overdamped: the spheres stay together)")
+            out[key][rows] = np.where(ends, value, np.nan)
+        out["alpha"][rows] = a
+        # Overdamped, or out of range? The damped laws are self-similar: e depends on alpha
+        # (Tsuji) or alpha V0 (Hunt & Crossley) only, so the same impact at K = m = V0 = 1
+        # tells a contact that never ends from numbers that overflow or underflow.
+        stuck = np.flatnonzero(~ends)
+        if stuck.size:
+            same = a[stuck] * (v0[stuck] if damping == "hunt-crossley" else 1.0)
+            unit = solve_damped_impact(make_damping_law(damping, 1.0, 1.0, same), 1.0, 1.0,
+                                       n=n, separation=separation)  # fmt: skip
+            creeps = ~(np.isfinite(unit.contact_time) & (unit.restitution > 0))
+            never[rows[stuck[creeps]]] = True
+            beyond[rows[stuck[~creeps]]] = True
+    problems.add(never, "the contact never ends (overdamped: the spheres stay together)")
+    problems.add(beyond, OUT_OF_RANGE, columns[2] + columns[3])
     out["error"] = problems.messages
-    return out
+    return refuse_out_of_range(out, columns[2] + columns[3])

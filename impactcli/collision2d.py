@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.validation import check_restitution, check_vectors
+from impactcli.validation import check_restitution, check_vectors, input_errors
 from impactcli.validation import where_first as _where
 
 __all__ = [
@@ -329,6 +329,7 @@ def _kinetic_energy(mass: Array, velocity: Array) -> Array:
     return 0.5 * mass * np.sum(velocity * velocity, axis=-1)
 
 
+@input_errors
 def oblique_collision(
     m1: ArrayLike,
     m2: ArrayLike,

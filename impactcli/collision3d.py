@@ -99,7 +99,7 @@ from numpy.typing import ArrayLike, NDArray
 from impactcli.collision2d import line_of_centres
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW
-from impactcli.validation import check_friction, check_restitution, check_vectors
+from impactcli.validation import check_friction, check_restitution, check_vectors, input_errors
 from impactcli.validation import where_first as _where
 
 __all__ = [
@@ -514,6 +514,7 @@ def velocity_from_angles(
     return np.asarray(speed, dtype=float)[..., None] * direction
 
 
+@input_errors
 def normal_restitution_and_history(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -635,6 +636,7 @@ def normal_restitution_and_history(
     return e, NormalHistory(t[None], delta[None], delta_dot[None], force[None], [impulse])
 
 
+@input_errors
 def oblique_impact(
     m1: ArrayLike,
     m2: ArrayLike,
@@ -727,6 +729,11 @@ def oblique_impact(
         bad = ~(value > 0.0)
         if np.any(bad):
             raise ValueError(f"{name} must be > 0 (inf for a fixed or flat target)" + _where(bad))
+        with np.errstate(divide="ignore", over="ignore"):
+            bad = np.isinf(1.0 / value)
+        if np.any(bad):
+            raise InputError(f"{name} is too small: 1/{name} is beyond the range of a float"
+                             + _where(bad))  # fmt: skip
     for name, a, b in (("mass", m1, m2), ("radius", r1, r2)):
         bad = np.isinf(a) & np.isinf(b)
         if np.any(bad):
@@ -813,6 +820,13 @@ def oblique_impact(
     n_x_jt = np.cross(normal, impulse_t)
     w1_final = w1 - _lever(r1, rot1)[..., None] * n_x_jt
     w2_final = w2 - _lever(r2, rot2)[..., None] * n_x_jt
+    bad = ~np.all(np.isfinite(np.concatenate([v1_final, v2_final, w1_final, w2_final], -1)
+                             + np.zeros(vec[:-1] + (12,))), axis=-1)  # fmt: skip
+    if np.any(bad):
+        raise InputError(
+            "out of range: the velocities after the impact overflow in double precision "
+            "(check the masses, radii and velocities and their units)" + _where(bad)
+        )
     contact = np.where(
         np.isinf(r1)[..., None],
         p2 - np.where(np.isinf(r2), 0.0, r2)[..., None] * normal,

@@ -68,6 +68,7 @@ from impactcli.laws.tsuji import (
     tsuji_restitution_overlap,
 )
 from impactcli.limits import MAX_SEGMENTS, check_size
+from impactcli.validation import input_errors
 
 #: The protocol of a damping model, by its former name.
 ViscoelasticLaw = DampingModel
@@ -615,6 +616,7 @@ def _stage(
     return DampedStage(time, delta, velocity, stiff, offset, damp, s, count), info
 
 
+@input_errors
 def solve_damped_impact(
     law,
     impact_velocity: ArrayLike,
@@ -649,8 +651,8 @@ def solve_damped_impact(
     m = np.asarray(mass, dtype=float)
     param_shapes = [np.shape(getattr(law, f.name)) for f in fields(law)]
     shape = np.broadcast_shapes(v0.shape, m.shape, *param_shapes)
-    if np.any(~(np.broadcast_to(v0, shape) > 0.0)):
-        raise ValueError("the impact velocity V0 must be positive")
+    if np.any(~(np.isfinite(np.broadcast_to(v0, shape)) & (np.broadcast_to(v0, shape) > 0.0))):
+        raise ValueError("the impact velocity V0 must be finite and positive")
     if np.any(~(np.broadcast_to(m, shape) > 0.0)) or np.any(
         ~(np.asarray(law.stiffness, dtype=float) > 0.0)
     ):
@@ -746,6 +748,7 @@ def _law_force_nodes(law, stage: DampedStage) -> Array:
 # -- the inverse problem: alpha for a given restitution ---------------------------------------
 
 
+@input_errors
 def damping_for_restitution(
     name: str,
     restitution: ArrayLike,
@@ -784,6 +787,9 @@ def damping_for_restitution(
     e_t, v0, k, m = (x.ravel() for x in (e_t, v0, k, m))
     if np.any(~((e_t > 0.0) & (e_t <= 1.0))):
         raise ValueError("the coefficient of restitution e must lie in (0, 1]")
+    for what, x in (("the impact velocity V0", v0), ("the stiffness K", k), ("the mass m", m)):
+        if np.any(~(np.isfinite(x) & (x > 0.0))):
+            raise ValueError(f"{what} must be finite and > 0")
     n = int(n)
     coarse = min(n, _COARSE_N)
     alpha = _alpha_by_illinois(name, e_t, v0, k, m, coarse, separation, rtol)
@@ -988,7 +994,14 @@ def damped_ode_solution(
     d_max = float(sol.y_events[0][0][0])
     ends = [(ev[0], ye[0]) for ev, ye in zip(sol.t_events[1:], sol.y_events[1:]) if ev.size]
     if not ends:
-        raise RuntimeError("the contact did not end within 50 Hertz contact times")
+        from impactcli.errors import InputError
+
+        alpha = float(np.ravel(np.asarray(law.alpha, dtype=float))[0])
+        raise InputError(
+            f"alpha = {alpha:.4g}: SciPy integration finds no end of contact within 50 Hertz "
+            "contact times (the indentation creeps back toward 0, as when overdamped; FILM's "
+            "segments end the creep with a tiny e): use the FILM method or a smaller alpha"
+        )
     t_c, y_c = min(ends, key=lambda p: p[0])
     grid = np.linspace(0.0, t_max, 2001)
     f_grid = np.array([float(law.force(*sol.sol(t)[:2])) for t in grid])

@@ -37,8 +37,10 @@ from impactcli.contact import (
     hertz_maximum_indentation,
     sphere_mass,
 )
+from impactcli.errors import InputError
 from impactcli.laws import hertz_stiffness
 from impactcli.laws.registry import LAWS
+from impactcli.validation import finite_float, input_errors
 
 __all__ = [
     "HERTZ_CONTACT_TIME_FACTOR",
@@ -70,6 +72,26 @@ RAYLEIGH_FRACTIONS: tuple[float, ...] = (0.1, 0.2, 0.3, 0.4)
 CONTACT_TIME_DIVISORS: tuple[int, ...] = (20, 50)
 
 
+def _require(name: str, value: ArrayLike, ok: ArrayLike, accepted: str) -> None:
+    """InputError naming ``name`` and its first value where ``ok`` is False."""
+    bad = ~np.broadcast_to(np.asarray(ok, dtype=bool), np.shape(ok))
+    if np.any(bad):
+        first = float(np.broadcast_to(np.asarray(value, dtype=float), bad.shape)[bad][0])
+        raise InputError(f"{name} must be {accepted}, got {first:.6g}")
+
+
+def _check_material(
+    radius: ArrayLike, youngs_modulus: ArrayLike, poisson_ratio: ArrayLike
+) -> tuple[NDArray, NDArray, NDArray]:
+    r, e, nu = (np.asarray(x, dtype=float) for x in (radius, youngs_modulus, poisson_ratio))
+    with np.errstate(invalid="ignore"):
+        _require("the radius", r, r > 0, "> 0 (inf for a flat body)")
+        _require("Young's modulus", e, e > 0, "> 0 (inf for a rigid body)")
+        _require("Poisson's ratio", nu, (nu > -1.0) & (nu < 0.5), "in (-1, 0.5)")
+    return r, e, nu
+
+
+@input_errors
 def rayleigh_time_step(
     radius: ArrayLike, youngs_modulus: ArrayLike, poisson_ratio: ArrayLike, density: ArrayLike
 ) -> NDArray:
@@ -96,12 +118,15 @@ def rayleigh_time_step(
     >>> round(float(rayleigh_time_step(1e-3, 210e9, 0.3, 7800.0)) * 1e6, 4)
     1.0548
     """
-    r = np.asarray(radius, dtype=float)
-    e, nu = np.asarray(youngs_modulus, dtype=float), np.asarray(poisson_ratio, dtype=float)
+    r, e, nu = _check_material(radius, youngs_modulus, poisson_ratio)
+    rho = np.asarray(density, dtype=float)
+    with np.errstate(invalid="ignore"):
+        _require("the density", rho, np.isfinite(rho) & (rho > 0), "finite and > 0")
     shear = e / (2.0 * (1.0 + nu))
-    return np.pi * r * np.sqrt(np.asarray(density, dtype=float) / shear) / (0.1631 * nu + 0.8766)
+    return np.pi * r * np.sqrt(rho / shear) / (0.1631 * nu + 0.8766)
 
 
+@input_errors
 def hertz_contact_time(
     mass: ArrayLike, radius: ArrayLike, modulus: ArrayLike, impact_velocity: ArrayLike
 ) -> NDArray:
@@ -125,9 +150,18 @@ def hertz_contact_time(
     >>> round(float(hertz_contact_time(0.0290423, 0.02 / 3, 115.385e9, 0.0125)) * 1e6, 2)
     171.32
     """
-    v0 = np.asarray(impact_velocity, dtype=float)
-    stiffness = hertz_stiffness(modulus, radius)
-    return HERTZ_CONTACT_TIME_FACTOR * hertz_maximum_indentation(mass, v0, stiffness) / v0
+    v0, m, r, e = (np.asarray(x, dtype=float) for x in (impact_velocity, mass, radius, modulus))
+    with np.errstate(invalid="ignore"):
+        _require("the impact velocity V0", v0, np.isfinite(v0) & (v0 > 0), "finite and > 0")
+        for name, x in (("the effective mass", m), ("the effective radius", r),
+                        ("the effective modulus", e)):  # fmt: skip
+            _require(name, x, np.isfinite(x) & (x > 0), "finite and > 0")
+    stiffness = hertz_stiffness(e, r)
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        t_c = HERTZ_CONTACT_TIME_FACTOR * hertz_maximum_indentation(m, v0, stiffness) / v0
+    _require("the contact time", t_c, np.isfinite(t_c) & (t_c > 0),
+             "finite and > 0 (an input beyond the range of a float)")  # fmt: skip
+    return t_c
 
 
 def first_yield_velocities(
@@ -170,6 +204,7 @@ def first_yield_velocities(
     return one(yield_strength1), one(yield_strength2)
 
 
+@input_errors
 def yield_limit_diameter(
     velocity: float,
     which: int,
@@ -199,6 +234,13 @@ def yield_limit_diameter(
         (the entry of ``resize`` in ``diameters`` and ``masses`` is ignored)
     yield_strength : sigma_y of sphere ``which``, [Pa]
     """
+    if which not in (1, 2) or resize not in (1, 2):
+        raise InputError(f"which and resize must be 1 or 2, got {which!r} and {resize!r}")
+    v, sy = finite_float("the velocity", velocity), finite_float("sy", yield_strength)
+    _require("the impact velocity", v, math.isfinite(v) and v > 0, "finite and > 0")
+    _require("the yield strength sy", sy, math.isfinite(sy) and sy > 0, "finite and > 0")
+    _require("the pressure factor", pressure_factor,
+             math.isfinite(pressure_factor) and pressure_factor > 0, "finite and > 0")  # fmt: skip
     k = resize - 1
     if densities[k] is None:
         raise ValueError(f"sphere {resize}: its density is needed to change its diameter")

@@ -8,9 +8,9 @@ are equally well scaled; their standard errors are carried back to the parameter
 delta method and their 95 % intervals are exp(q +- t se_q), which stay positive (t:
 :func:`impactcli.lsq.student_t_quantile`).
 
-Residuals: for point i with weight w_i (relative weights: 1 / variance up to a common
-factor), r_i = sqrt(w_i) (e_model - e_i) and, with a measured contact time,
-sqrt(w_i) (t_model / t_i - 1). The covariance of the fitted log-parameters is
+Residuals, measured minus model: for point i with weight w_i (relative weights: 1 /
+variance up to a common factor), r_i = sqrt(w_i) (e_i - e_model) and, with a measured
+contact time, sqrt(w_i) (1 - t_model / t_i). The covariance of the fitted log-parameters is
 s^2 (J^T J)^-1 with s^2 = sum(r^2) / (N - p), the reduced chi-square (as
 ``scipy.optimize.curve_fit`` with ``absolute_sigma=False``). Laws are ranked by the
 Akaike information criterion of a Gaussian least-squares fit, AIC = N ln(RSS/N) + 2p, and
@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 from impactcli.laws.hertz import hertz_stiffness
 from impactcli.laws.registry import DAMPING_LAWS, LAWS
 from impactcli.lsq import bounded_least_squares, student_t_quantile
+from impactcli.validation import input_errors
 
 __all__ = [
     "DEFAULT_FIT",
@@ -222,9 +223,9 @@ def _residuals(
     params.update({name: float(np.exp(v)) for name, v in zip(names, q)})
     predicted = model(params, data.impact_velocity)
     sqrt_w = 1.0 if data.weight is None else np.sqrt(data.weight)
-    parts = [sqrt_w * (np.asarray(predicted["restitution"]) - data.restitution)]
+    parts = [sqrt_w * (data.restitution - np.asarray(predicted["restitution"]))]
     if data.contact_time is not None:
-        parts.append(sqrt_w * (np.asarray(predicted["contact_time"]) / data.contact_time - 1.0))
+        parts.append(sqrt_w * (1.0 - np.asarray(predicted["contact_time"]) / data.contact_time))
     return np.concatenate(parts), {k: np.asarray(v) for k, v in predicted.items()}
 
 
@@ -239,6 +240,7 @@ def _student_t_quantile(probability: float, dof: int) -> float:
     return student_t_quantile(probability, dof) if dof > 0 else math.nan
 
 
+@input_errors
 def fit_law(
     law: str,
     model: Model,
@@ -398,12 +400,19 @@ def _pair(sphere1, sphere2) -> tuple[float, float, float, float]:
     """m [kg], R [m], E* [Pa] of the pair and the weaker sphere's sigma_y [Pa] (NaN if
     unknown)."""
     from impactcli.impact import effective_properties, weaker_yield_strength
+    from impactcli.validation import pair_problems, raise_first
 
+    fixed1 = bool(np.isinf(sphere1.total_mass))  # the moving sphere: 2 on a fixed sphere 1
+    raise_first(pair_problems(0.0 if fixed1 else 1.0, 1.0 if fixed1 else 0.0,
+                              sphere1.total_mass, sphere2.total_mass, sphere1.diameter,
+                              sphere2.diameter, sphere1.youngs_modulus,
+                              sphere2.youngs_modulus))  # fmt: skip
     m, r, e = effective_properties(sphere1, sphere2)
     sy = weaker_yield_strength(sphere1, sphere2)
     return m, r, e, math.nan if sy is None else float(sy)
 
 
+@input_errors
 def law_parameters(
     sphere1,
     sphere2,
@@ -463,6 +472,7 @@ def fit_parameter_help() -> str:
     return ", ".join(parts)
 
 
+@input_errors
 def law_model(
     sphere1,
     sphere2,
@@ -533,6 +543,7 @@ def law_model(
     return model
 
 
+@input_errors
 def prediction_band(
     result: FitResult,
     model: Model,
@@ -616,6 +627,7 @@ def _data_starts(law: str, data: FitData, stiffness: float, mass: float) -> dict
     return {"alpha": model.data_start(e, data.impact_velocity, stiffness, mass)}
 
 
+@input_errors
 def fit_named_law(
     sphere1,
     sphere2,

@@ -47,12 +47,15 @@ from impactcli.contact import (
     sphere_compliance,
     sphere_mass,
 )
+from impactcli.errors import InputError
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import hertz_stiffness
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
+    finite_float,
+    input_errors,
     needs_yield_strength,
     pair_problems,
     plastic_range_problems,
@@ -195,6 +198,11 @@ class Sphere:
     yield_strength: float | None = None
 
     def __post_init__(self) -> None:
+        for key in ("diameter", "youngs_modulus", "poisson_ratio", "density", "mass",
+                    "yield_strength"):  # fmt: skip
+            value = getattr(self, key)
+            if value is not None:  # a number of float range (10**400 is not)
+                finite_float(key.replace("_", " "), value)
         raise_first(
             sphere_problems(
                 self.diameter,
@@ -383,6 +391,9 @@ class ImpactResult:
         """Time [s] and value [m] of the maximum indentation of ``method``."""
         if method == "ode":
             return self.ode.t_max, self.ode.delta_max
+        if self.plan is None:  # a damped impact: its FILM solution has the turning point
+            film: Any = self.film
+            return float(np.ravel(film.t_max)[0]), float(np.ravel(film.delta_max)[0])
         return float(self.film.stages[-2].end_time), float(np.reshape(self.plan.delta_max, -1)[0])
 
     def permanent_indentation(self, t: NDArray, delta: NDArray, method: str) -> NDArray:
@@ -555,6 +566,9 @@ def _validate(
 def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -> None:
     """Raise the first fault of the pair at velocities V1, V2 [m/s] (arrays broadcast):
     the checks of :func:`impactcli.validation.pair_problems`, as for a row of a batch."""
+    for name, sphere in (("sphere1", sphere1), ("sphere2", sphere2)):
+        if not isinstance(sphere, Sphere):
+            raise InputError(f"{name} must be a Sphere, got {type(sphere).__name__}")
     raise_first(
         pair_problems(
             v1,
@@ -759,6 +773,7 @@ def _summarise(
     return {key: float(value) for key, value in summary.items()}
 
 
+@input_errors
 def integrate_impact(result: ImpactResult) -> dict[str, float]:
     """The summary of ``result``'s impact (same keys) by SciPy integration of its plan.
 
@@ -898,6 +913,7 @@ def _film_impact(
     return _finish(result, summary)
 
 
+@input_errors
 def elastic_impact(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -942,6 +958,7 @@ def elastic_impact(
     return _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, "elastic")
 
 
+@input_errors
 def elastoplastic_impact(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -997,6 +1014,7 @@ def elastoplastic_impact(
     )
 
 
+@input_errors
 def law_impact(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -1189,6 +1207,7 @@ def _damped_summary(
     return out
 
 
+@input_errors
 def damped_impact(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -1321,6 +1340,7 @@ DAMPED_SWEEP_COLUMNS: tuple[str, ...] = (
 )
 
 
+@input_errors
 def damped_restitution_sweep(
     sphere1: Sphere,
     sphere2: Sphere,

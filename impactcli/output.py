@@ -13,7 +13,7 @@ import os
 import stat
 import sys
 import tempfile
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from typing import IO, Any
 
 import numpy as np
@@ -190,8 +190,16 @@ def _new_file_mode(target: str) -> int:
         return 0o666 & ~_umask()
 
 
+#: Called before anything is written to stdout, if set: the command line's check of the
+#: numerical warnings recorded so far (:func:`impactcli.cli.runner.run`), so that a run
+#: whose numbers overflowed fails with one line before printing any of them.
+before_stdout: Callable[[], None] | None = None
+
+
 @contextlib.contextmanager
 def _stdout(binary: bool) -> Iterator[IO]:
+    if before_stdout is not None:
+        before_stdout()
     try:
         if binary:
             sys.stdout.flush()

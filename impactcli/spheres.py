@@ -230,9 +230,13 @@ def spheres_from_options(options: SphereOptions, prefix: str = "--"):
 
 
 def velocities_from_options(options: SphereOptions, prefix: str = "--") -> tuple[float, float]:
-    """V1 and V2 [m/s] of ``options``, each toward the other sphere; both are needed."""
+    """V1 and V2 [m/s] of ``options``, each toward the other sphere; V1 is needed, V2 is 0
+    (sphere 2 at rest) unless given, as in every command."""
     out = []
     for name in ("v1", "v2"):
+        if options.get(name) is None and name == "v2":
+            out.append(0.0)
+            continue
         if options.get(name) is None:
             raise InputError(
                 f"missing {prefix}{name}: the velocity toward the other sphere "

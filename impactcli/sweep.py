@@ -26,7 +26,7 @@ from impactcli.impact import (
 from impactcli.lawlib import get_law, plan_groups
 from impactcli.laws.registry import DEFAULT_LAW
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
-from impactcli.validation import plastic_range_problems, raise_first
+from impactcli.validation import input_errors, plastic_range_problems, raise_first
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
@@ -44,6 +44,7 @@ SWEEP_COLUMNS: tuple[str, ...] = (
 )
 
 
+@input_errors
 def restitution_sweep(
     sphere1: Sphere,
     sphere2: Sphere,

@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import Hertz
 from impactcli.limits import MAX_CONVERGENCE_RUNS, MAX_SEGMENTS, check_size
+from impactcli.validation import input_errors
 
 __all__ = [
     "EXACT_CONTACT_DURATION",
@@ -111,11 +112,13 @@ def normalised_history(
     return t, delta
 
 
+@input_errors
 def normalised_contact_duration(n: int, carry_velocity: bool = False) -> float:
     """Normalised contact duration t_c V0/delta_m by FILM: loading plus restitution time."""
     return float(normalised_elastic(n, carry_velocity)[1].end_time)
 
 
+@input_errors
 def normalised_table(
     n: int, stage: str = "loading", midpoint: bool = True
 ) -> dict[str, NDArray[np.float64]]:

@@ -40,7 +40,9 @@ __all__ = [
     "first_yield_warning",
     "mass_split_warning",
     "materials_differ",
+    "finite_float",
     "flat_floats",
+    "input_errors",
     "needs_yield_strength",
     "pair_problems",
     "raise_first",
@@ -105,6 +107,49 @@ class Problems:
 _F = TypeVar("_F", bound=Callable)
 
 
+def input_errors(function: _F) -> _F:
+    """Make ``function`` a public entry point of the library: a :class:`ValueError` of bad
+    input from any layer below it (and an :class:`OverflowError` or
+    :class:`ZeroDivisionError` of a number beyond the range of a float) reaches the caller
+    as one :class:`~impactcli.errors.InputError` (itself a ValueError, so ``except
+    ValueError`` keeps working), with the same one-line message the command line prints."""
+    from impactcli.errors import InputError
+
+    @wraps(function)
+    def checked(*args, **kwargs):
+        try:
+            return function(*args, **kwargs)
+        except InputError:
+            raise
+        except ValueError as exc:
+            raise InputError(" ".join(str(exc).split())) from exc
+        except (OverflowError, ZeroDivisionError) as exc:
+            raise InputError(
+                f"a number is beyond the range of a float ({exc}): check the values and "
+                "their units"
+            ) from exc
+
+    return checked  # type: ignore[return-value]
+
+
+def finite_float(name: str, value: object) -> float:
+    """``value`` as a float, or an :class:`~impactcli.errors.InputError` naming ``name``
+    when it is not a number within the range of a float (``10**400``, ``"abc"``, ``None``
+    where a number is needed). NaN and infinities pass: the checks say where they may be.
+
+    >>> finite_float("diameter", 0.02)
+    0.02
+    """
+    from impactcli.errors import InputError
+
+    try:
+        return float(value)  # type: ignore[arg-type]
+    except OverflowError:
+        raise InputError(f"{name} is beyond the range of a float, got {value!r:.40}") from None
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number, got {value!r:.40}") from None
+
+
 def without_float_warnings(function: _F) -> _F:
     """Run ``function`` under ``np.errstate(all="ignore")``: an extreme row of a batch gives
     NaN or inf in its own lanes (checked afterwards, as that row's error), not a NumPy
@@ -158,6 +203,14 @@ def sphere_problems(
             np.isnan(m) & (np.isnan(rho) | ~np.isfinite(d)),
             f"give {names['m']}, or a finite {names['d']} and {names['rho']}",
         )
+        with np.errstate(over="ignore", under="ignore"):
+            computed = rho * (np.pi / 6.0) * d**3
+        p.add(
+            np.isnan(m) & np.isfinite(d) & ~((computed > 0.0) & np.isfinite(computed)),
+            f"out of range: {names['d']} and {names['rho']} give a mass of {{:.3g}} kg, beyond "
+            "double precision: give sizes in metres and densities in kg/m^3",
+            computed,
+        )
     return p
 
 
@@ -198,6 +251,15 @@ def pair_problems(
             np.isinf(E1) & np.isinf(E2),
             "at most one sphere can be rigid (infinite Young's modulus)",
         )
+        with np.errstate(divide="ignore", over="ignore", under="ignore"):
+            for what, a, b, unit in (("mass m", m1, m2, "kg"), ("radius R", d1 / 2, d2 / 2, "m")):
+                effective = 1.0 / (1.0 / a + 1.0 / b)
+                p.add(
+                    (a > 0) & (b > 0) & ~((effective > 0) & np.isfinite(effective)),
+                    f"out of range: the effective {what} = {{:.3g}} {unit} of the pair is "
+                    "beyond double precision: give sizes in metres and masses in kg",
+                    effective,
+                )
     return p
 
 
@@ -228,6 +290,12 @@ def yield_scale_problems(
     p = Problems(dy.size) if problems is None else problems
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         ratio = dy / dm
+        p.add(
+            ~((dm > 0.0) & np.isfinite(dm)),
+            "out of range: the maximum indentation is {:.3g} m, beyond double precision (V0, "
+            "the sizes or the moduli too small or too large for the model)",
+            dm,
+        )
     p.add(
         ~(ratio >= MIN_YIELD_INDENTATION_RATIO),
         "out of range: the yield indentation is {:.3g} of the maximum indentation, below "
@@ -254,10 +322,13 @@ def plastic_range_problems(
 
 
 def raise_first(problems: Problems) -> None:
-    """Raise the first problem as a :class:`ValueError` (the scalar paths)."""
+    """Raise the first problem as an :class:`~impactcli.errors.InputError` (a
+    :class:`ValueError`; the scalar paths)."""
+    from impactcli.errors import InputError
+
     bad = np.flatnonzero(problems.bad)
     if bad.size:
-        raise ValueError(problems.messages[bad[0]])
+        raise InputError(problems.messages[bad[0]])
 
 
 # The two yield criteria the messages name: first yield of an elastic (Hertz) contact at the
@@ -297,12 +368,13 @@ def first_yield_warning(
     first_yield_velocity: float,
     yield_velocity: float | None = None,
     pressure_factor: float | None = None,
+    advice: str = "'impact elastoplastic'",
 ) -> str | None:
     """The warning of an elastic impact above the first-yield velocity V_Y [m/s] (Hertz peak
     pressure 1.6 sigma_y), else None. Its advice agrees with :func:`below_yield_note`: it
-    says to use ``impact elastoplastic`` only above Du & Wang's yield velocity V_y [m/s]
-    (``yield_velocity``; by default from V_Y with :func:`du_wang_yield_velocity`); between
-    V_Y and V_y both commands give this Hertz result."""
+    says to use ``advice`` (``impact elastoplastic``) only above Du & Wang's yield velocity
+    V_y [m/s] (``yield_velocity``; by default from V_Y with :func:`du_wang_yield_velocity`);
+    between V_Y and V_y both give this Hertz result."""
     if not impact_velocity > first_yield_velocity:
         return None
     if yield_velocity is None:
@@ -316,11 +388,11 @@ def first_yield_warning(
     if impact_velocity > yield_velocity:
         return (
             f"{head} and exceed the yield velocity V_y = {yield_velocity:.4g} m/s "
-            f"({criterion}), so the elastic model no longer holds; use 'impact elastoplastic'"
+            f"({criterion}), so the elastic model no longer holds; use {advice}"
         )
     return (
         f"{head}, but stay below the yield velocity V_y = {yield_velocity:.4g} m/s "
-        f"({criterion}), up to which 'impact elastoplastic' gives this same Hertz result; "
+        f"({criterion}), up to which {advice} gives this same Hertz result; "
         "the local yield is in neither model"
     )
 
@@ -418,11 +490,29 @@ def contact_radius_warning(
     if over.size == 0:
         return None
     k = over[0]
+    # two decimals (more where needed to read above the limit), 3 digits from 100 on: never
+    # the 150 digits of f"{7.5e147:.2f}"
+    shown = _above(ratio[k], SMALL_DEFORMATION_LIMIT) if ratio[k] < 100.0 else f"{ratio[k]:.3g}"
     return (
-        f"contact radius / R = {ratio[k]:.2f} > {SMALL_DEFORMATION_LIMIT:g} from V0 = "
-        f"{v0[k]:.4g} m/s: beyond the small-deformation contact models used here (Hertz, "
-        "Du & Wang); treat the result as indicative only"
+        f"contact radius / R = {shown} > "
+        f"{SMALL_DEFORMATION_LIMIT:g} from V0 = {v0[k]:.4g} m/s: beyond the small-deformation "
+        "range of the contact laws (Johnson 1985, sec. 4.2); treat the result as indicative "
+        "only"
     )
+
+
+def _above(value: float, limit: float) -> str:
+    """``value`` (> ``limit``) with two decimals, or as many more as it takes to read
+    above ``limit``.
+
+    >>> _above(0.1234, 0.1), _above(0.10004, 0.1)
+    ('0.12', '0.10004')
+    """
+    for decimals in range(2, 17):
+        text = f"{value:.{decimals}f}"
+        if float(text) > limit:
+            return text
+    return repr(value)
 
 
 def materials_differ(
@@ -434,6 +524,7 @@ def materials_differ(
     """Whether two spheres' materials differ beyond rounding (1e-9 relative): compliance
     (1 - nu^2)/E [1/Pa] or yield strength [Pa] (NaN or None: not given, which differs from a
     given one). Arrays broadcast."""
+
     def differ(a: ArrayLike, b: ArrayLike) -> NDArray[np.bool_]:
         a, b = (np.asarray(np.nan if x is None else x, dtype=float) for x in (a, b))
         with np.errstate(invalid="ignore"):

@@ -267,8 +267,8 @@ def test_sweep_compliance_split_is_the_impacts():
     assert sweep["delta2_res"][0] == pytest.approx(single["delta2_res"], rel=1e-12)
 
 
-COLLIDE = ["collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
-           "--v2", "2m/s", "--a2", "50deg", "--p1=-1,2", "--p2=2,-2"]  # fmt: skip
+COLLIDE = ["collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s@30deg",
+           "--v2", "2m/s@50deg", "--p1=-1,2", "--p2=2,-2"]  # fmt: skip
 
 
 @pytest.mark.parametrize(

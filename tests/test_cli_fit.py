@@ -145,8 +145,8 @@ def test_start_bounds_and_fix_are_read_with_units(cli, du_wang_data):
     "extra, message",
     [
         (["--law", "tabulated"], "cannot fit this law"),
-        (["--law", "du-wang", "--param", "alpha"], "--param alpha: not a parameter of --law"),
-        (["--law", "du-wang", "--param", "zeta"], "--param zeta: no law fits such a parameter"),
+        (["--law", "du-wang", "--param", "alpha"], "--param alpha: not a parameter of du-wang"),
+        (["--law", "du-wang", "--param", "zeta"], "--param zeta: no model fits such a parameter"),
         (["--law", "du-wang", "--start", "sy"], "--start 'sy': expected NAME=VALUE"),
         (["--law", "du-wang", "--bounds", "sy=5GPa:1GPa"], "need LO < HI"),
         (["--law", "du-wang", "--start", "sy=3kg"], "expected a pressure"),
@@ -181,7 +181,7 @@ def test_plot_draws_data_curves_bands_and_residuals(cli, tmp_path):
     rows = "".join(f"{v:.17g},{x:.17g},{w}\n" for v, x, w in zip(V0, noisy, [1, 2] * 5))
     path = write(tmp_path / "w.csv", "v0,e,weight\n" + rows)
     figure = tmp_path / "fit.svg"
-    code, _, err = cli("fit", path, "--law", "du-wang", "--law", "tsuji", *PAIR, "-f", "csv",
+    code, _, err = cli("fit", path, "--law", "du-wang", "--damping", "tsuji", *PAIR, "-f", "csv",
                        "--plot", str(figure))  # fmt: skip
     assert code == 0, err
     svg = figure.read_text()
@@ -213,9 +213,9 @@ def test_alpha_is_read_in_the_unit_of_each_law(cli, tmp_path):
     """One --start alpha serves tsuji ([-]) and hunt-crossley ([s/m]); a value for a
     parameter no chosen law has is refused."""
     path = write(tmp_path / "c.csv", "v0,e\n0.5,0.9\n1,0.85\n2,0.8\n4,0.74\n")
-    code, out, err = cli("fit", path, "--law", "hunt-crossley", *PAIR, "--start", "alpha=0.2",
+    code, out, err = cli("fit", path, "--damping", "hunt-crossley", *PAIR, "--start", "alpha=0.2",
                          "-n", "20", "-f", "json")  # fmt: skip
     assert code == 0, err
     assert json.loads(out)["fits"][0]["parameters"]["alpha"]["unit"] == "s/m"
     code, _, err = cli("fit", path, "--law", "du-wang", *PAIR, "--start", "alpha=0.2")
-    assert code == 2 and "--start alpha: not a parameter of --law du-wang" in err
+    assert code == 2 and "--start alpha: not a parameter of du-wang" in err

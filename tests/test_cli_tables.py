@@ -63,7 +63,7 @@ def test_output_file_written_atomically(impact, tmp_path):
     [
         (["--n", "0"], "--n"),
         (["--n", "-3"], "--n"),
-        (["--n", "abc"], "not a valid int"),
+        (["--n", "abc"], "--n: 'abc' is not a whole number"),
         (["--format", "xml"], "'table', 'csv', 'json'"),
         (["--stage", "both-ish"], "--stage"),
     ],

@@ -16,8 +16,8 @@ from impactcli.collision2d import oblique_collision, polar_angle, velocity_from_
 PAPER = [
     "collide2d",
     "--m1", "0.05kg", "--m2", "0.15kg",
-    "--v1", "3m/s", "--a1", "30deg",
-    "--v2", "2m/s", "--a2", "50deg",
+    "--v1", "3m/s@30deg",
+    "--v2", "2m/s@50deg",
     "--p1=-1,2", "--p2=2,-2",
     "--paper-angles",
 ]  # fmt: skip
@@ -25,8 +25,8 @@ PAPER = [
 CCW = [
     "collide2d",
     "--m1", "0.05", "--m2", "0.15",
-    "--v1", "3", "--a1", "-30",
-    "--v2", "2", "--a2", "50",
+    "--v1", "3@-30",
+    "--v2", "2@50",
     "--p1=-1,2", "--p2=2,-2",
 ]  # fmt: skip
 
@@ -138,7 +138,7 @@ def test_head_on_with_units_equals_the_normal_impact(impact):
     s = summary_of(
         impact(
             "collide2d", "--m1", "32.6726g", "--m2", "261.381g",
-            "--v1", "5mm/s", "--a1", "90deg", "--v2", "7.5mm/s", "--a2", "-90deg",
+            "--v1", "5mm/s@90deg", "--v2", "7.5mm/s@-90deg",
             "--p1", "0,0", "--p2", "0,30mm", "--e", str(e),
         )
     )  # fmt: skip
@@ -192,7 +192,7 @@ def without(args, option):
         (with_option(CCW, "--m1", "nan"), "--m1: got NaN"),
         (with_option(CCW, "--m2", "3m/s"), "--m2: expected a mass"),
         (with_option(CCW, "--v1", "3kg"), "--v1: expected a velocity"),
-        (with_option(CCW, "--a1", "30m"), "--a1: expected a"),
+        (with_option(CCW, "--v1", "3@30m"), "--v1: expected a"),
         (with_option(CCW, "--p2", "2m,-2s"), "--p2: expected a length"),
         (with_option(CCW, "--p2", "1,2,3"), "--p2: expected two components"),
         (with_option(CCW, "--p2", "-1,2"), "--p1 and --p2 coincide"),
@@ -204,9 +204,10 @@ def without(args, option):
         (with_option(CCW, "--model", "plastic"), "--model"),
         (with_option(CCW, "--model", "elastic") + ["--e", "0.5"], "either --model or --e"),
         (with_option(CCW, "--v1", "-3"), "--v1: a speed must be >= 0"),
-        (without(CCW, "--a1"), "--v1 is a speed: give its direction with --a1"),
-        (with_option(CCW, "--v2", "1,1"), "--a2 is the direction of a speed"),
-        (without(CCW, "--m2"), "Missing option '--m2'"),
+        (with_option(CCW, "--v1", "3"), "--v1 is a speed: give its direction, --v1 3@ANGLE"),
+        (with_option(with_option(CCW, "--v2", "1,1"), "--a2", "50"),
+         "--a2 is the direction of a speed"),
+        (without(CCW, "--m2"), "missing --m2: it is required"),
         # Swapping the positions makes the same velocities separate.
         (
             with_option(with_option(CCW, "--p1", "2,-2"), "--p2", "-1,2"),
@@ -298,8 +299,8 @@ def test_model_elastoplastic_needs_sizes(impact):
 
 def test_diameters_must_match_the_distance_between_centres(impact):
     """With --d1/--d2 the positions are the centres at contact: |p2 - p1| = R1 + R2."""
-    base = ["collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
-            "--v2", "2m/s", "--a2", "150deg", "--d1", "20mm", "--d2", "40mm"]  # fmt: skip
+    base = ["collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s@30deg",
+            "--v2", "2m/s@150deg", "--d1", "20mm", "--d2", "40mm"]  # fmt: skip
     result = impact(*base, "--p1=0,0", "--p2=18mm,24mm", "-f", "json")  # 30 mm apart
     assert result.returncode == 0, result.stderr
     result = impact(*base, "--p1=-1,2", "--p2=2,-2", "-f", "json")  # 5 m apart

@@ -272,7 +272,7 @@ def test_restitution_damping_formats(impact, tmp_path):
         (["elastic", "--damping", "tsuji", "--alpha", "0.3", "--method", "table"], "table"),
         (["elastic", "--damping", "maxwell", "--alpha", "0.3"], "--damping"),
         (["elastoplastic", "--damping", "tsuji", "--alpha", "0.3"], "--damping"),
-        (["restitution", "--damping", "tsuji", "--e", "0.5"], "--alpha"),
+        (["restitution", "--damping", "hunt-crossley", "--e", "0.5"], "give --alpha"),
         (["restitution", "--damping", "tsuji", "--alpha", "0.3", "--p0-factor", "3"], "--law"),
     ],
 )

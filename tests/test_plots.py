@@ -61,8 +61,8 @@ PLASTIC_4_4 = ["elastoplastic", *PAPER, "--v1", "0.25m/s", "--v2", "0.75m/s"]
 SWEEP = ["restitution", *PAPER, "--v-min", "0.1", "--v-max", "10", "--count", "9"]
 # Paper sec. 4.5.3, e = 1.
 COLLIDE_4_5 = [
-    "collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s", "--a1", "30deg",
-    "--v2", "2m/s", "--a2", "50deg", "--p1=-1,2", "--p2=2,-2", "--paper-angles",
+    "collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s@30deg",
+    "--v2", "2m/s@50deg", "--p1=-1,2", "--p2=2,-2", "--paper-angles",
 ]  # fmt: skip
 
 

@@ -3,9 +3,10 @@
 Each command of a ```sh block runs in bash, in order, in one scratch directory whose PATH
 starts with an ``impact`` that is this interpreter's ``python -m impactcli`` (with this
 checkout importable), as after ``make run`` and ``source .venv/bin/activate``; the scratch
-directory also holds ``.venv/bin/impact`` and ``.venv/bin/activate`` doing the same, and the
-README's example ``collisions.csv`` (its ```csv block) with a Parquet copy, and
-``docs/data/`` (the calibration data) with an empty ``docs/figures/``. Commands that set
+directory also holds ``.venv/bin/impact``, ``.venv/bin/python`` and ``.venv/bin/activate``
+doing the same, and ``docs/data/`` (the calibration data) with an empty ``docs/figures/``:
+every other input is made by the README's own blocks, each before the command that reads
+it. Commands that set
 up the machine are checked, not run: ``make TARGET`` must be a target of the Makefile (``make
 -n``), ``pip install '.[extras]'`` must name extras of pyproject.toml. A command carrying the
 comment ``# placeholder`` stands for the reader's own (a program, a cluster) and is skipped.
@@ -109,17 +110,14 @@ def workdir(tmp_path_factory) -> Path:
     shim = venv_bin / "impact"
     shim.write_text(f'#!/bin/sh\nexec "{sys.executable}" -m impactcli "$@"\n')
     shim.chmod(0o755)
+    python = venv_bin / "python"  # the virtualenv's python, first on PATH once activated
+    python.write_text(f'#!/bin/sh\nexec "{sys.executable}" "$@"\n')
+    python.chmod(0o755)
     (venv_bin / "activate").write_text(f'PATH="{venv_bin}:$PATH"\nexport PATH\n')
-    csv_blocks = [body for lang, _, body in code_blocks(TEXT) if lang == "csv"]
-    assert csv_blocks, "the README shows an example input table in a ```csv block"
-    (work / "collisions.csv").write_text("\n".join(csv_blocks[0]) + "\n")
-    shutil.copytree(ROOT / "docs" / "data", work / "docs" / "data")  # the calibration example
+    # the checkout's files the README names (the calibration example); every other input
+    # is made by the README's own blocks, in order
+    shutil.copytree(ROOT / "docs" / "data", work / "docs" / "data")
     (work / "docs" / "figures").mkdir()
-    if _has("pyarrow"):
-        import pandas as pd
-
-        frame = pd.read_csv(work / "collisions.csv", dtype=str, keep_default_na=False)
-        frame.to_parquet(work / "collisions.parquet")
     return work
 
 
@@ -247,3 +245,45 @@ def test_printed_numbers_are_checked():
     _printed(2 / 3, "0.66667")
     with pytest.raises(AssertionError):
         _printed(2 / 3, "0.66660")
+
+
+#: Options whose value is a file a command writes.
+WRITES = {"-o", "--output", "--plot", "--summary", "--energy-plot", "--plot-force", ">"}
+DATA_FILE = re.compile(r"[\w./-]+\.(csv|parquet|pq|parq|json)$")
+
+
+def _files(command: str) -> tuple[list[str], list[str]]:
+    """(files the command reads, files it writes) among its words: data files named as
+    arguments, and the targets of -o, --plot, ..., and of a shell redirection."""
+    words = shlex.split(command.replace(">", " > "), comments=True)
+    reads, writes = [], []
+    for before, word in zip(["", *words], words):
+        if "write_table(" in word:  # python -c: pyarrow reads the first file, writes the last
+            *read, written = re.findall(r"'([\w./-]+)'", word)
+            reads += read
+            writes.append(written)
+        elif before in WRITES:
+            writes.append(word)
+        elif DATA_FILE.fullmatch(word) and not word.startswith("-"):
+            reads.append(word)
+    return reads, writes
+
+
+def test_each_readme_input_is_made_before_a_command_reads_it():
+    """In README order, a data file a command reads is one the checkout has (docs/) or one
+    an earlier command wrote; and no block writes one file twice (a redirection after
+    ``-o`` would empty it)."""
+    made: set[str] = set()
+    for start, commands in SHELL_BLOCKS:
+        written: list[str] = []
+        for line, command in commands:
+            if "# placeholder" in command:
+                continue
+            reads, writes = _files(command)
+            for name in reads:
+                assert name.startswith("docs/") or name in made, f"README line {line}: {name}"
+            written += writes
+            made.update(writes)
+        twice = {name for name in written if written.count(name) > 1}
+        assert not twice, f"README block at line {start} writes {twice} twice"
+    assert {"collisions.csv", "collisions.parquet"} <= made

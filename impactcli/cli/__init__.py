@@ -51,7 +51,10 @@ def _print_version(value: bool) -> None:
 
 def _root(
     version: bool = typer.Option(
-        False, "--version", is_eager=True, callback=_print_version,
+        False,
+        "--version",
+        is_eager=True,
+        callback=_print_version,
         help="Print the version of impactcli and exit.",
     ),  # fmt: skip
 ) -> None:
@@ -91,9 +94,54 @@ def __getattr__(name: str):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+#: Click's words for a value of the wrong type -> ours.
+_TYPE_WORDS = {
+    "is not a valid int range": "is not a whole number",
+    "is not a valid integer range": "is not a whole number",
+    "is not a valid integer": "is not a whole number",
+    "is not a valid int": "is not a whole number",
+    "is not a valid float range": "is not a number",
+    "is not a valid float": "is not a number",
+}
+
+
+def usage_message(exc: BaseException) -> str:
+    """The one line of a Typer/Click usage error, in the words of every other error
+    (``impact: error: ...``): the option first, then what is wrong, then where to look."""
+    ctx = getattr(exc, "ctx", None)
+    command = ctx.command_path if ctx is not None else "impact"
+    see = f" (see '{command} --help')"
+    name = type(exc).__name__
+    if name == "NoSuchOption":
+        import difflib
+
+        known = [o for p in (ctx.command.params if ctx else ()) for o in p.opts if o[:2] == "--"]
+        close = difflib.get_close_matches(exc.option_name, known, n=3, cutoff=0.75)
+        hint = f"; did you mean {' or '.join(close)}?" if close else ""
+        return f"no such option {exc.option_name} for '{command}'{hint}{see}"
+    if name in ("BadParameter", "MissingParameter") and getattr(exc, "param", None) is not None:
+        param = exc.param
+        option = (
+            max(param.opts, key=len)
+            if param.param_type_name == "option"
+            else (param.name or "").upper()
+        )
+        if name == "MissingParameter":
+            return f"missing {option}: it is required{see}"
+        message = " ".join(str(exc.message).split())
+        for click_words, ours in _TYPE_WORDS.items():
+            message = message.replace(click_words, ours)
+        message = message.removesuffix(".")
+        return f"{option}: {message}{see}"
+    message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
+    message = " ".join(message.split()).removesuffix(".")
+    return f"{message}{see}"
+
+
 def _usage_error(exc: BaseException) -> int | None:
-    """Typer/Click usage errors (bad option values, unknown options) as one line, exit 2;
-    ``impact`` alone prints the help, exit 0. None for any other exception."""
+    """Typer/Click usage errors (bad option values, unknown options) as one line
+    ``impact: error: ...``, exit 2, as every other error; ``impact`` alone prints the help,
+    exit 0. None for any other exception."""
     if isinstance(exc, typer.Abort):
         return 130
     if not isinstance(exc, typer.TyperException):
@@ -102,9 +150,7 @@ def _usage_error(exc: BaseException) -> int | None:
     if type(exc).__name__ == "NoArgsIsHelpError":
         print(ctx.get_help() if ctx else exc)
         return 0
-    where = ctx.command_path if ctx is not None else "impact"
-    message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
-    print(f"{where}: error: {' '.join(message.split())}", file=sys.stderr)
+    print(f"impact: error: {usage_message(exc)}", file=sys.stderr)
     return 2
 
 

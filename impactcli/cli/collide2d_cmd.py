@@ -32,7 +32,9 @@ CONVENTIONS = {
 }
 
 
-@with_law_options()
+@with_law_options(
+    default="none, e = 1 (elastic); du-wang with --model elastoplastic, which --law needs"
+)
 @with_damping_options(target_e=False)  # collide2d's --e is a given e, not a target of alpha
 def collide2d(
     m1: str = typer.Option(..., "--m1", help="Mass of sphere 1, e.g. 50g or 0.05 (kg)."),
@@ -40,25 +42,33 @@ def collide2d(
     v1: str = typer.Option(
         ...,
         "--v1",
-        help="Velocity of sphere 1 before the impact: a speed with its angle --a1 "
-        "(--v1 3m/s --a1 -30deg) or components x,y (--v1 2.598,-1.5 in m/s, or "
-        "'2.598m/s,-1.5m/s').",
+        metavar="X,Y|SPEED@ANGLE",
+        help="Velocity of sphere 1 before the impact [m/s]: components x,y (--v1 2.598,-1.5, "
+        "or '2.598m/s,-1.5m/s'), or a speed and its direction SPEED@ANGLE, as impact "
+        "collide3d writes it (--v1 3m/s@-30deg): ANGLE counter-clockwise from +x (clockwise, "
+        "the paper's alpha_1, with --paper-angles), a bare angle in degrees. (impact "
+        "collide3d's angle is from the normal, as a 3-D impact has no +x of its own.)",
     ),
     a1: Optional[str] = typer.Option(
         None,
         "--a1",
-        help="Direction of --v1 when it is a speed: -30deg, -0.5236rad, or a bare number in "
-        "degrees. Counter-clockwise from +x (clockwise, the paper's alpha_1, with "
-        "--paper-angles).",
+        metavar="ANGLE",
+        help="Deprecated (goes in 0.3): the direction of a speed --v1; write "
+        "--v1 SPEED@ANGLE.",
     ),
     v2: str = typer.Option(
-        ..., "--v2", help="Velocity of sphere 2: a speed with --a2, or components x,y."
+        "0,0",
+        "--v2",
+        metavar="X,Y|SPEED@ANGLE",
+        help="Velocity of sphere 2 [m/s], as --v1; ANGLE counter-clockwise from +x (also the "
+        "paper's alpha_2); at rest by default.",
     ),
     a2: Optional[str] = typer.Option(
         None,
         "--a2",
-        help="Direction of --v2 when it is a speed; counter-clockwise from +x (also the "
-        "paper's alpha_2).",
+        metavar="ANGLE",
+        help="Deprecated (goes in 0.3): the direction of a speed --v2; write "
+        "--v2 SPEED@ANGLE.",
     ),
     p1: str = typer.Option(
         ...,
@@ -95,8 +105,8 @@ def collide2d(
     paper_angles: bool = typer.Option(
         False,
         "--paper-angles",
-        help="Read --a1 and print theta_2 and phi clockwise, as the paper does (alpha_2 and "
-        "theta_1 stay counter-clockwise), to reproduce sec. 4.5.3 as printed.",
+        help="Read the angle of --v1 and print theta_2 and phi clockwise, as the paper does "
+        "(alpha_2 and theta_1 stay counter-clockwise), to reproduce sec. 4.5.3 as printed.",
     ),
     fmt: OutputFormat = None,
     output: OutputFile = None,
@@ -118,12 +128,13 @@ def collide2d(
     a unit (50g, 3m/s, 20mm, -30deg, 0.5rad). Output is SI with angles in degrees.
 
     Angles are counter-clockwise from +x and printed in (-180, 180]. With --paper-angles
-    they follow the paper's Fig. 12: alpha_1 (--a1), theta_2 (final angle of sphere 2) and
-    phi (line of centres) clockwise; alpha_2 (--a2) and theta_1 counter-clockwise.
+    they follow the paper's Fig. 12: alpha_1 (the angle of --v1), theta_2 (final angle of
+    sphere 2) and phi (line of centres) clockwise; alpha_2 (the angle of --v2) and theta_1
+    counter-clockwise.
 
     Example (the paper's sec. 4.5.3, which gives |v1'| = 2.374 m/s at 97.11 deg and
     |v2'| = 2.263 m/s at -6.26 deg, clockwise):
-    impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s --a1 30deg --v2 2m/s --a2 50deg
+    impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s@30deg --v2 2m/s@50deg
     --p1=-1,2 --p2=2,-2 --paper-angles
 
     CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"}.
@@ -317,6 +328,22 @@ def _velocity(
     from impactcli.collision2d import polar_angle, velocity_from_polar, wrap_degrees
     from impactcli.units import parse_quantity, parse_vector
 
+    if "@" in text:
+        if angle is not None:
+            raise InputError(f"{name} {text} has its direction: drop {angle_name}")
+        text, _, angle = text.partition("@")
+        angle_name = name
+        if not text.strip() or not angle.strip() or "@" in angle:
+            raise InputError(
+                f"{name}: expected x,y or SPEED@ANGLE (e.g. 3m/s@30deg), got {text}@{angle}"
+            )
+    elif angle is not None:
+        from impactcli.cli.common import warn
+
+        warn(
+            f"{angle_name} is deprecated (it goes in 0.3): write {name} {text}@{angle}, the "
+            "notation of impact collide3d"
+        )
     if "," in text:
         if angle is not None:
             raise InputError(
@@ -329,13 +356,14 @@ def _velocity(
     speed = parse_quantity(text, "velocity", name)
     if speed < 0.0:
         raise InputError(
-            f"{name}: a speed must be >= 0, got {speed:g} m/s; give the direction with {angle_name}"
+            f"{name}: a speed must be >= 0, got {speed:g} m/s; give the direction as "
+            f"{name} SPEED@ANGLE"
         )
     if angle is None:
         convention = "clockwise" if paper and sign < 0 else "counter-clockwise"
         raise InputError(
-            f"{name} is a speed: give its direction with {angle_name} (degrees "
-            f"{convention} from +x, e.g. 30deg), or give {name} as components x,y"
+            f"{name} is a speed: give its direction, {name} {text}@ANGLE (degrees "
+            f"{convention} from +x, e.g. {text}@30deg), or give {name} as components x,y"
         )
     degrees = _angle_degrees(angle, angle_name)
     vx, vy = velocity_from_polar(speed, math.radians(sign * degrees)).tolist()
@@ -349,7 +377,7 @@ def _pair(vector) -> str:
 def _print_tables(
     stream: IO[str] | None, inputs: dict, s: dict[str, float], paper_angles: bool
 ) -> None:
-    from rich.table import Table
+    from impactcli.cli.common import Table
 
     def f(value: float) -> str:
         return f"{value:.6g}"

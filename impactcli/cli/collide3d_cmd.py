@@ -16,9 +16,11 @@ from impactcli.cli.common import (
     PlotFile,
     check_plot,
     console,
+    no_negative_zero,
     quantity_table,
     resolve_format,
     save_plot,
+    screen_value,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
@@ -44,18 +46,27 @@ VELOCITY_HELP = (
     "SPEED@THETA[@PHI]: THETA from the normal n (the line of centres, sphere 1 to sphere 2), "
     "PHI about n from the tangent nearest +x (+y when n is along x), counter-clockwise seen "
     "from sphere 1 looking along n; bare angles in degrees, "
-    "e.g. 3.9m/s@30deg."
+    "e.g. 3.9m/s@30deg. (impact collide2d writes SPEED@ANGLE too, its ANGLE from +x in the "
+    "plane of the collision.)"
 )
 
 
-@with_law_options()
+@with_law_options(default="hertz, e = 1; du-wang with --model elastoplastic")
 @with_sphere_options(velocities=False)
 @with_damping_options(target_e=False)  # collide3d's --e is a given e, not a target of alpha
 def collide3d(
     v1: Optional[str] = typer.Option(
-        None, "--v1", help="Velocity of sphere 1 before the impact: " + VELOCITY_HELP
+        None,
+        "--v1",
+        metavar="X,Y,Z|SPEED@THETA[@PHI]",
+        help="Velocity of sphere 1 before the impact: " + VELOCITY_HELP,
     ),
-    v2: str = typer.Option("0,0,0", "--v2", help="Velocity of sphere 2, as --v1."),
+    v2: str = typer.Option(
+        "0,0,0",
+        "--v2",
+        metavar="X,Y,Z|SPEED@THETA[@PHI]",
+        help="Velocity of sphere 2, as --v1; at rest by default.",
+    ),
     w1: str = typer.Option(
         "0,0,0",
         "--w1",
@@ -63,7 +74,10 @@ def collide3d(
         "e.g. --w1 100rad/s,0,0 or --w1 0,0,600rpm.",
     ),
     w2: str = typer.Option(
-        "0,0,0", "--w2", help="Angular velocity of sphere 2, as --w1 (0 for a flat target)."
+        "0,0,0",
+        "--w2",
+        metavar="X,Y,Z",
+        help="Angular velocity of sphere 2, as --w1 (0 for a flat target).",
     ),
     p1: Optional[str] = typer.Option(
         None, "--p1", help="Centre of sphere 1 at contact, x,y,z (m). Write --p1=-1,0,0 when x < 0."
@@ -98,7 +112,8 @@ def collide3d(
     points: int = typer.Option(
         4001,
         "--points",
-        help=f"Time points of the normal history for --tangential mindlin, 3 to {MAX_POINTS:,}.",
+        help=f"Time points of the normal history for --tangential mindlin, 3 to {MAX_POINTS:,} "
+        "(impact elastic's --points, 201, are the points of its history table).",
     ),
     rows: Optional[str] = typer.Option(
         None,
@@ -199,6 +214,8 @@ def collide3d(
         s1, s2, vectors, law_name, params, (damping_law, alpha, separation), e, mu, tangential,
         points,
     )  # fmt: skip
+    if law_name == ELASTIC_LAW and damping_law is None and e is None:
+        _first_yield(s1, s2, summary["approach_velocity"])
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -216,6 +233,27 @@ def collide3d(
         from impactcli.plots import tangential_force_figure
 
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
+
+
+def _first_yield(sphere1, sphere2, approach_velocity: float) -> None:
+    """The warning of ``impact elastic`` for the same normal impact (Hertz, at the normal
+    approach velocity of the contact point [m/s]) above its first-yield velocity."""
+    from impactcli.cli.common import warn
+    from impactcli.contact import first_yield_velocity
+    from impactcli.impact import effective_properties, weaker_yield_strength
+    from impactcli.validation import first_yield_warning
+
+    yield_strength = weaker_yield_strength(sphere1, sphere2)
+    if yield_strength is None or not approach_velocity > 0.0:
+        return
+    m, r, modulus = effective_properties(sphere1, sphere2)
+    message = first_yield_warning(
+        approach_velocity,
+        float(first_yield_velocity(m, r, modulus, yield_strength)),
+        advice="--model elastoplastic",
+    )
+    if message:
+        warn(message.replace("V0 = ", "the normal approach velocity u_n = ", 1))
 
 
 def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
@@ -421,34 +459,58 @@ def summary(c) -> dict[str, float]:
 
 
 def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> None:
-    def f(value: float) -> str:
-        return f"{value:.6g}"
+    """The tables of one collision: each value with its own SI prefix, each vector with one
+    prefix for its components (:func:`impactcli.cli.common.screen_value`), no ``-0``; the
+    quantities a fixed target leaves undefined (its momentum) are left out, and said so."""
+    import numpy as np
 
-    def triple(key: str) -> str:
-        return "(" + ", ".join(f(s[f"{key}_{a}"]) for a in "xyz") + ")"
+    from impactcli.formatting import unit_scale
+
+    def f(value: float) -> str:
+        return no_negative_zero(f"{value:.6g}")
+
+    def scalar(key: str, unit: str) -> tuple[str, str]:
+        if key == "slip_speed_final":  # in the unit of the slip before: 0 reads as 0
+            scale = unit_scale([s["slip_speed"], s[key]], unit)
+            return f(s[key] / scale.factor), scale.unit
+        return screen_value(s[key], unit)
+
+    def vector(values, unit: str) -> tuple[str, str]:
+        values = np.asarray(values, dtype=float)
+        if not unit or unit == "rad/s":
+            return "(" + ", ".join(f(x) for x in values) + ")", unit
+        scale = unit_scale(values, unit)
+        return "(" + ", ".join(f(x / scale.factor) for x in values) + ")", scale.unit
+
+    def triple(key: str) -> list[float]:
+        return [s[f"{key}_{a}"] for a in "xyz"]
 
     out = console(stream)
     title = (
         f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = {f(s['restitution'])}; "
         f"{inputs['tangential_model']} tangential, mu = {f(inputs['mu'])})"
     )
-    motion = quantity_table(
-        title,
-        ("", "before", "after", "unit"),
-        (
-            (label, "(" + ", ".join(f(x) for x in inputs[label]) + ")", triple(f"{label}_final"),
-             unit)
-            for label, unit in (("v1", "m/s"), ("w1", "rad/s"), ("v2", "m/s"), ("w2", "rad/s"))
-        ),
-    )  # fmt: skip
-    out.print(motion)
+    rows = []
+    for label, unit in (("v1", "m/s"), ("w1", "rad/s"), ("v2", "m/s"), ("w2", "rad/s")):
+        before, after = inputs[label], triple(f"{label}_final")
+        scale = unit_scale([before, after], unit) if unit == "m/s" else None
+        factor, shown = (scale.factor, scale.unit) if scale else (1.0, unit)
+        rows.append(
+            (
+                label,
+                vector(np.divide(before, factor), "")[0],
+                vector(np.divide(after, factor), "")[0],
+                shown,
+            )
+        )
+    out.print(quantity_table(title, ("", "before", "after", "unit"), rows))
 
     contact = quantity_table(
         "Contact",
         ("", "value", "unit"),
         [
             *(
-                (label, f(s[key]), unit)
+                (label, f(s[key]), unit) if unit == "deg" else (label, *scalar(key, unit))
                 for label, key, unit in (
                     ("approach velocity u_n", "approach_velocity", "m/s"),
                     ("slip speed |u_t| before", "slip_speed", "m/s"),
@@ -463,40 +525,63 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
                     ("tangential impulse on sphere 2", "tangential_impulse", "N s"),
                 )
             ),
-            ("normal n (sphere 1 to 2)", triple("normal"), ""),
-            ("contact point", triple("contact_point"), "m"),
+            ("normal n (sphere 1 to 2)", *vector(triple("normal"), "")),
+            ("contact point", *vector(triple("contact_point"), "m")),
         ],
     )
     out.print(contact)
 
     momenta = (
-        ("momentum", "momentum", "kg m/s"),
-        ("angular momentum of 1 about c", "angular_momentum1_contact", "kg m^2/s"),
-        ("angular momentum of 2 about c", "angular_momentum2_contact", "kg m^2/s"),
-        ("angular momentum about 0", "angular_momentum_origin", "kg m^2/s"),
+        ("momentum", "momentum", "N s"),
+        ("angular momentum of 1 about c", "angular_momentum1_contact", "N m s"),
+        ("angular momentum of 2 about c", "angular_momentum2_contact", "N m s"),
+        ("angular momentum about 0", "angular_momentum_origin", "N m s"),
     )
-    checks = quantity_table(
-        "Conservation and energy",
-        ("", "before", "after", "unit"),
-        [
-            *((label, triple(f"{key}_before"), triple(f"{key}_after"), unit)
-              for label, key, unit in momenta),
-            ("kinetic energy", f(s["kinetic_energy_before"]), f(s["kinetic_energy_after"]), "J"),
-        ],
-    )  # fmt: skip
+    rows, undefined = [], []
+    for label, key, unit in momenta:
+        before, after = triple(f"{key}_before"), triple(f"{key}_after")
+        if not np.all(np.isfinite(before + after)):
+            undefined.append(label)
+            continue
+        scale = unit_scale([before, after], unit)
+        rows.append(
+            (
+                label,
+                vector(np.divide(before, scale.factor), "")[0],
+                vector(np.divide(after, scale.factor), "")[0],
+                scale.unit,
+            )
+        )
+    energy_scale = unit_scale([s["kinetic_energy_before"], s["kinetic_energy_after"]], "J")
+    rows.append(
+        (
+            "kinetic energy",
+            f(s["kinetic_energy_before"] / energy_scale.factor),
+            f(s["kinetic_energy_after"] / energy_scale.factor),
+            energy_scale.unit,
+        )
+    )
+    checks = quantity_table("Conservation and energy", ("", "before", "after", "unit"), rows)
+    if undefined:
+        checks.caption = (
+            f"Left out: {', '.join(undefined)}, undefined with a fixed target (infinite mass)."
+        )
     out.print(checks)
 
+    keys = [("total", "energy_dissipated"), ("sphere 1", "energy_dissipated1"),
+            ("sphere 2", "energy_dissipated2")]  # fmt: skip
+    values = [s[f"{key}_{part}"] for _, key in keys for part in ("normal", "friction")]
+    scale = unit_scale(values, "J")
     energy = quantity_table(
-        "Energy dissipated [J]",
+        f"Energy dissipated [{scale.unit}]",
         ("", "normal law", "friction"),
-        [("total", f(s["energy_dissipated_normal"]), f(s["energy_dissipated_friction"]))]
-        + [
-            (f"sphere {i}", f(s[f"energy_dissipated{i}_normal"]),
-             f(s[f"energy_dissipated{i}_friction"]))
-            for i in (1, 2)
+        [
+            (label, f(s[f"{key}_normal"] / scale.factor), f(s[f"{key}_friction"] / scale.factor))
+            for label, key in keys
         ],
-    )  # fmt: skip
+    )
     out.print(energy)
+
 
 def register(app: typer.Typer) -> None:
     app.command("collide3d")(collide3d)

@@ -111,18 +111,124 @@ def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.con
     return Console(file=stream, highlight=False, width=160, color_system=None)
 
 
+def __getattr__(name: str):
+    """``Table``: Rich's table (imported on first use) that never cuts a number: on a
+    terminal too narrow for it, text wraps between words, each column keeps room for its
+    longest word or number, and the columns that still do not fit are left out, which the
+    caption says (:func:`narrow_layout`)."""
+    if name == "Table":
+        from rich.table import Table as RichTable
+
+        class Table(RichTable):
+            def add_column(self, *args, **kwargs) -> None:
+                kwargs.update(overflow="fold", no_wrap=False)
+                super().add_column(*args, **kwargs)
+
+            def __rich_console__(self, console, options):
+                cells = [[_plain(c) for c in column._cells] for column in self.columns]
+                headers = [_plain(column.header) for column in self.columns]
+                widths, kept = narrow_layout(headers, cells, options.max_width)
+                if widths is not None:
+                    left_out = [h for h in headers[kept:]]
+                    self.columns = self.columns[:kept]
+                    for column, width in zip(self.columns, widths):
+                        column.width = width
+                    if left_out:
+                        said = f"{', '.join(left_out)} left out at {options.max_width} columns"
+                        self.caption = f"{self.caption} ({said})" if self.caption else said
+                yield from super().__rich_console__(console, options)
+
+        globals()["Table"] = Table
+        return Table
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _plain(cell) -> str:
+    return cell.plain if hasattr(cell, "plain") else str(cell)
+
+
+def narrow_layout(
+    headers: Sequence[str], cells: Sequence[Sequence[str]], width: int
+) -> tuple[list[int] | None, int]:
+    """The widths of a table's columns on a terminal of ``width`` characters, and how many
+    of the leading columns are kept: ``(None, all)`` when every cell fits on one line; else
+    each kept column gets at least its longest word or number (so that nothing is cut) and
+    the rest of the width goes to the columns whose text wraps.
+
+    >>> narrow_layout(["a", "b"], [["1.25", "2"], ["some words", "x"]], 40)
+    (None, 2)
+    >>> narrow_layout(["a", "b", "c"], [["1.25"], ["some longer words"], ["123456789"]], 20)
+    ([4, 9], 2)
+    """
+    natural = [max([len(h), *(len(c) for c in column)]) for h, column in zip(headers, cells)]
+    if sum(natural) + 3 * len(natural) + 1 <= width:
+        return None, len(natural)
+    least = [max([1, *(len(word) for c in column for word in c.split())]) for column in cells]
+    kept = fitting_columns(least, width)
+    widths = least[:kept]
+    spare = width - (sum(widths) + 3 * kept + 1)
+    want = [max(0, n - w) for n, w in zip(natural, widths)]
+    while spare > 0 and any(want):
+        for i in range(kept):
+            if spare > 0 and want[i] > 0:
+                widths[i] += 1
+                want[i] -= 1
+                spare -= 1
+    return widths, kept
+
+
+def fitting_columns(widths: Sequence[int], width: int) -> int:
+    """How many of the leading columns of a Rich table (each of ``widths`` characters at
+    most, padding excluded) fit in ``width`` characters of a terminal, at least one."""
+    used, count = 1, 0
+    for column in widths:
+        used += column + 3  # a space each side and the border
+        if used > width and count:
+            break
+        count += 1
+    return count
+
+
 def quantity_table(title: str, headers: Sequence[str], rows: Iterable[Sequence[str]]):
     """A Rich table (imported on demand) of labelled rows: the first column, headed ``""``,
     names the quantity and a column headed ``unit`` its unit, both left-aligned; the value
     columns between them are right-aligned."""
-    from rich.table import Table
-
-    table = Table(title=title)
+    table = __getattr__("Table")(title=title)
     for header in headers:
         table.add_column(header, justify="left" if header in ("", "unit") else "right")
     for row in rows:
         table.add_row(*row)
     return table
+
+
+def screen_value(value: float, unit: str, digits: int = 6) -> tuple[str, str]:
+    """``value`` [SI ``unit``] as (number, unit) for the screen, with the SI prefix that puts
+    it in [1, 1000) (grams for kg), ``digits`` significant digits and no negative zero.
+
+    >>> screen_value(0.0171321, "m"), screen_value(7.2759e-07, "m"), screen_value(-0.0, "m/s")
+    (('17.1321', 'mm'), ('727.59', 'nm'), ('0', 'm/s'))
+    >>> screen_value(0.0290423, "kg"), screen_value(0.85611, "")
+    (('29.0423', 'g'), ('0.85611', ''))
+    """
+    import numpy as np
+
+    from impactcli.formatting import unit_scale
+
+    if not unit or not np.isfinite(value):
+        return no_negative_zero(f"{value:.{digits}g}"), unit
+    if unit == "kg":
+        value, unit = value * 1e3, "g"
+    scale = unit_scale([value], unit)
+    return no_negative_zero(f"{value / scale.factor:.{digits}g}"), scale.unit
+
+
+def no_negative_zero(text: str) -> str:
+    """'-0', '-0.000' (a value that rounds to zero) -> without the sign.
+
+    >>> no_negative_zero("-0"), no_negative_zero("-0.000"), no_negative_zero("-0.01")
+    ('0', '0.000', '-0.01')
+    """
+    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
 
 
 def append_help(command, *paragraphs: str) -> None:
@@ -170,6 +276,13 @@ OUTPUT_HELP = (
 
 #: ``--format/-f``: table, csv or json.
 OutputFormat = Annotated[Optional[Format], typer.Option("--format", "-f", help=FORMAT_HELP)]
+
+
+def format_option(csv_holds: str):  # -> typing.Annotated
+    """``--format/-f`` of a command whose CSV is ``csv_holds`` (e.g. "the history"): the
+    help of :data:`OutputFormat` saying what the CSV holds."""
+    text = FORMAT_HELP.replace("csv or json", f"csv ({csv_holds}) or json", 1)
+    return Annotated[Optional[Format], typer.Option("--format", "-f", help=text)]
 #: ``--output/-o FILE``.
 OutputFile = Annotated[
     Optional[str], typer.Option("--output", "-o", metavar="FILE", help=OUTPUT_HELP)

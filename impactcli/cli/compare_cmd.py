@@ -40,7 +40,10 @@ COLUMNS = {
 
 
 @with_sphere_options()
-@with_law_options(multiple=True)
+@with_law_options(
+    multiple=True,
+    default="every elastoplastic law that needs only the spheres' properties",
+)
 @with_damping_options(target_e=False)
 def compare_laws(
     spheres: SphereOptions,
@@ -57,7 +60,11 @@ def compare_laws(
     count: Annotated[
         int,
         typer.Option(
-            "--count", min=2, max=MAX_COUNT, help="Velocities of the e panel (--plot)."
+            "--count",
+            min=2,
+            max=MAX_COUNT,
+            help="Velocities of the e panel (--plot), as impact restitution --count (50) gives "
+            "the velocities of its sweep.",
         ),
     ] = 80,
     fmt: OutputFormat = None,
@@ -141,8 +148,8 @@ def _inputs(s1, s2, v1: float, v2: float, n: int, choices: list[LawChoice]) -> d
 
 def _print(stream: IO[str] | None, table: dict, v0: float, n: int) -> None:
     from rich import box
-    from rich.table import Table
 
+    from impactcli.cli.common import Table
     from impactcli.formatting import format_quantity, unit_scale
 
     out = Table(

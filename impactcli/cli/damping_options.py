@@ -63,6 +63,10 @@ def damping_help() -> dict[str, str]:
         "alpha": f"Damping parameter alpha >= 0: {units} (units accepted: 0.5s/m, 0.5ms/mm).",
         "e": "Coefficient of restitution in (0, 1] to reach at this V0 instead of --alpha: alpha "
         "is solved for exactly by the model (FILM, same n and separation) and printed.",
+        "e_sweep": "Coefficient of restitution in (0, 1] instead of --alpha, with --damping "
+        "tsuji only (its e is the same at every V0): alpha is solved for exactly by the model "
+        "(FILM, same n and separation) and printed. hunt-crossley's e depends on alpha V0: "
+        "give --alpha.",
         "separation": "When the contact ends. overlap (default): when the indentation returns "
         "to 0; the damping force may then pull, as DEM codes integrate it and as the published "
         "Tsuji alpha(e) relations assume. force: when the total force returns to 0 (no "
@@ -125,7 +129,7 @@ class DampingOptions:
         return self.damping, alpha, self.e, self.separation or "overlap"
 
 
-def _parameters(target_e: bool) -> list[inspect.Parameter]:
+def _parameters(target_e: bool, sweep: bool = False) -> list[inspect.Parameter]:
     helps = damping_help()
     # the choices of --damping: the registry's damping models
     model = enum.StrEnum("DampingModel", {name.replace("-", "_"): name for name in _models()})
@@ -139,8 +143,13 @@ def _parameters(target_e: bool) -> list[inspect.Parameter]:
                 else helps["damping"].replace("--alpha or --e", "--alpha"),
             ),
         ],
-        "alpha": Annotated[Optional[str], typer.Option("--alpha", help=helps["alpha"])],
-        "e": Annotated[Optional[float], typer.Option("--e", help=helps["e"])],
+        "alpha": Annotated[
+            Optional[str], typer.Option("--alpha", metavar="ALPHA", help=helps["alpha"])
+        ],
+        "e": Annotated[
+            Optional[float],
+            typer.Option("--e", metavar="NUMBER", help=helps["e_sweep" if sweep else "e"]),
+        ],
         "separation": Annotated[
             Optional[Separation],
             typer.Option("--separation", help=helps["separation"]),
@@ -154,11 +163,14 @@ def _parameters(target_e: bool) -> list[inspect.Parameter]:
     ]
 
 
-def with_damping_options(target_e: bool = True) -> Callable[[Callable], Callable]:
+def with_damping_options(
+    target_e: bool = True, sweep: bool = False
+) -> Callable[[Callable], Callable]:
     """Decorate a command whose signature has a ``damping`` parameter: --damping, --alpha,
     --e and --separation take its place, and the command receives them as
     ``damping=DampingOptions(...)``. ``target_e=False``: no --e (the command's own --e, if
-    any, is left to it)."""
+    any, is left to it). ``sweep``: the command sweeps V0, so --e is for tsuji alone (its
+    e does not depend on V0), and its help says so."""
     names = ("damping", "alpha", "e", "separation") if target_e else (
         "damping", "alpha", "separation"
     )  # fmt: skip
@@ -167,7 +179,7 @@ def with_damping_options(target_e: bool = True) -> Callable[[Callable], Callable
         signature = inspect.signature(command, eval_str=True)
         params = list(signature.parameters.values())
         where = [p.name for p in params].index("damping")
-        new = [p.replace(kind=params[where].kind) for p in _parameters(target_e)]
+        new = [p.replace(kind=params[where].kind) for p in _parameters(target_e, sweep)]
         params[where : where + 1] = new
 
         @functools.wraps(command)

@@ -52,7 +52,8 @@ def yield_limit(
             "--v0",
             help="Impact velocity V0 [m/s]: then the largest diameter of the sphere of "
             "--resize (default --sphere) at which --sphere stays elastic; its --d option may "
-            "be left out.",
+            "be left out. No default (impact timestep's --v0 is 1 m/s): without it, the "
+            "first-yield velocity.",
         ),
     ] = None,
     resize: Annotated[
@@ -163,7 +164,12 @@ def yield_limit(
 def timestep(
     spheres: SphereOptions = None,
     v0: Annotated[
-        str, typer.Option("--v0", help="Impact velocity V0 for the Hertz contact time [m/s].")
+        str,
+        typer.Option(
+            "--v0",
+            help="Impact velocity V0 for the Hertz contact time [m/s] (impact yield-limit's "
+            "--v0 has no default: it asks for a diameter).",
+        ),
     ] = "1",
     fmt: Annotated[
         Optional[Format], typer.Option("--format", "-f", help="table, csv or json.")
@@ -237,9 +243,7 @@ def _meaning(key: str, velocity: float) -> str:
 
 
 def _print_timestep(stream, table: dict[str, float], velocity: float) -> None:
-    from rich.table import Table
-
-    from impactcli.cli.impact_cmd import screen_value
+    from impactcli.cli.common import Table, screen_value
 
     out = Table(title="DEM time step: Rayleigh time step and Hertz contact time")
     for head in ("quantity", "value", "unit", "meaning"):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Sequence
 from typing import IO, Annotated, Optional
 
 import numpy as np
@@ -24,28 +25,48 @@ from impactcli.cli.common import (
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.fit import FIT_LAWS, fit_parameter_help
+from impactcli.laws.registry import DAMPING_LAWS, LAWS
 from impactcli.limits import MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_json
 from impactcli.spheres import SphereOptions
 
+#: The normal laws fit can fit (--law); the damping models are --damping.
+_FIT_NORMAL_LAWS = [name for name in FIT_LAWS if name not in DAMPING_LAWS]
+
 LAW_HELP = (
-    f"Law to fit: {', '.join(FIT_LAWS)}. Give it several times to rank the laws by AICc with "
-    "Akaike weights."
+    f"Contact law to fit: {', '.join(_FIT_NORMAL_LAWS)} (details: 'impact laws'). Give it "
+    "several times, with --damping too, to rank the models by AICc with Akaike weights."
+)
+DAMPING_HELP = (
+    "Viscous damping added to Hertz to fit, as --damping of the other commands: "
+    f"{' or '.join(DAMPING_LAWS)} (details: 'impact laws'). Repeatable; ranked with the "
+    "--law models."
 )
 PARAM_HELP = (
-    "Parameter to fit (repeatable); each law fits the named ones it has, else its default: "
-    f"{fit_parameter_help()}."
+    "Parameter to fit (repeatable), named as the law's option without '--' (k-load for "
+    "--k-load); each model fits the named ones it has, else its default: "
+    f"{fit_parameter_help().replace('_', '-')}. sy is the yield strength of the sphere that "
+    "yields (the weaker one), as the output says."
 )
 START_HELP = "Starting value NAME=VALUE (repeatable), e.g. sy=800MPa. Default from the material."
 BOUNDS_HELP = "Bounds NAME=LO:HI (repeatable), e.g. sy=100MPa:5GPa; both > 0."
-FIX_HELP = "Hold a law parameter at NAME=VALUE (repeatable), e.g. k_load=2e7 or p0_factor=3."
+FIX_HELP = "Hold a parameter at NAME=VALUE (repeatable), e.g. k-load=20MN/m or p0-factor=3."
 N_HELP = (
-    "Default 25; 50 for tsuji and hunt-crossley. Data points x n at most "
-    f"{MAX_SWEEP_SEGMENTS:,}."
+    "Default 25; 50 with --damping (e and the contact time within 1e-4 of n = 400, the "
+    "default of --damping in impact elastic and restitution, for e >= 0.3; so that 100,000 "
+    f"points fit in the limit of data points x n, {MAX_SWEEP_SEGMENTS:,})."
 )
 
+#: Damping models given as --law before they had --damping: still accepted, with a warning.
+_DAMPING_AS_LAW = tuple(DAMPING_LAWS)
+
 #: parameter unit -> kind for :func:`impactcli.units.parse_quantity`
-_KINDS = {"Pa": "pressure", "-": "dimensionless"}
+_KINDS = {
+    "Pa": "pressure",
+    "-": "dimensionless",
+    "N/m": "stiffness",
+    "s/m": "inverse velocity",
+}
 
 CSV_COLUMNS = (
     "law",
@@ -67,7 +88,7 @@ def _pairs(items: list[str] | None, option: str) -> dict[str, str]:
     out: dict[str, str] = {}
     for item in items or []:
         name, sep, value = item.partition("=")
-        name = name.strip().replace("-", "_")
+        name = _name(name)
         if not sep or not name or not value.strip():
             raise InputError(f"{option} {item!r}: expected NAME=VALUE")
         out[name] = value.strip()
@@ -112,7 +133,13 @@ def fit(
             "e.g. 2.5m/s, or in the header, e.g. 'v0 [m/s]'); '-' is stdin.",
         ),
     ],
-    law: Annotated[list[str], typer.Option("--law", metavar="NAME", help=LAW_HELP)],
+    law: Annotated[
+        Optional[list[str]], typer.Option("--law", metavar="NAME", help=LAW_HELP)
+    ] = None,
+    damping: Annotated[
+        Optional[list[str]],
+        typer.Option("--damping", metavar="[tsuji|hunt-crossley]", help=DAMPING_HELP),
+    ] = None,
     param: Annotated[
         Optional[list[str]], typer.Option("--param", metavar="NAME", help=PARAM_HELP)
     ] = None,
@@ -141,27 +168,17 @@ def fit(
     predictions). --plot: data (error bars when weights are given), fitted curves with
     their 95 % bands, and the residuals.
 
-    Example: impact fit drops.csv --law du-wang --d1 20mm --d2 inf --m2 inf --material steel
+    Example: impact fit drops.csv --law du-wang --damping tsuji --d1 20mm --d2 inf --m2 inf
+    --material steel
     """
     from impactcli.fit import DEFAULT_FIT, FIT_LAWS, fit_named_law, law_parameters, rank_fits
     from impactcli.io.fitdata import read_fit_data
-    from impactcli.laws.registry import LAWS
     from impactcli.spheres import spheres_from_options
 
     check_plot(plot, output)
     kind = resolve_format(fmt, output)
-    laws: list[str] = []
-    for name in law:
-        key = name.strip().lower().replace("_", "-")
-        if key not in FIT_LAWS:
-            extra = " (it has no numeric parameter)" if key in LAWS else ""
-            raise InputError(
-                f"--law {name}: cannot fit this law{extra}; accepted: {', '.join(FIT_LAWS)}"
-            )
-        if key in laws:
-            raise InputError(f"--law {key} is given twice")
-        laws.append(key)
-    names = [p.strip().replace("-", "_") for p in param or []]
+    laws = _models(law or [], damping or [], FIT_LAWS)
+    names = [_name(p) for p in param or []]
     given = {
         "--start": _pairs(start, "--start"),
         "--bounds": _pairs(bounds, "--bounds"),
@@ -174,8 +191,8 @@ def fit(
         for name in items:
             if name not in everywhere:
                 raise InputError(
-                    f"{option} {name}: no law fits such a parameter; accepted: "
-                    f"{', '.join(sorted(everywhere))}"
+                    f"{option} {_option_name(name)}: no model fits such a parameter; accepted: "
+                    f"{', '.join(sorted(map(_option_name, everywhere)))}"
                 )
     # each law: the parameters it fits, and the values given for its parameters, read in
     # its units (alpha is [-] for tsuji, [s/m] for hunt-crossley)
@@ -186,17 +203,26 @@ def fit(
         mine = {
             option: {k: v for k, v in items.items() if k in own} for option, items in given.items()
         }
-        starts = {k: _value(v, own[k].unit, f"--start {k}") for k, v in mine["--start"].items()}
-        held = {k: _value(v, own[k].unit, f"--fix {k}") for k, v in mine["--fix"].items()}
-        limits = {k: _bounds(v, own[k].unit, k) for k, v in mine["--bounds"].items()}
+        starts = {
+            k: _value(v, own[k].unit, f"--start {_option_name(k)}")
+            for k, v in mine["--start"].items()
+        }
+        held = {
+            k: _value(v, own[k].unit, f"--fix {_option_name(k)}") for k, v in mine["--fix"].items()
+        }
+        limits = {k: _bounds(v, own[k].unit, _option_name(k)) for k, v in mine["--bounds"].items()}
         plan.append((key, chosen, starts, limits, held))
     unused = [nm for nm in names if not any(nm in p[1] for p in plan)]
     if unused:
-        raise InputError(f"--param {unused[0]}: not a parameter of --law {', '.join(laws)}")
+        raise InputError(
+            f"--param {_option_name(unused[0])}: not a parameter of {', '.join(laws)}"
+        )
     for option, items in given.items():
         for name in items:
             if not any(name in own for own in owns.values()):
-                raise InputError(f"{option} {name}: not a parameter of --law {', '.join(laws)}")
+                raise InputError(
+                    f"{option} {_option_name(name)}: not a parameter of {', '.join(laws)}"
+                )
     measured = read_fit_data(data, max(len(p[1]) for p in plan))
 
     fits = []
@@ -221,23 +247,86 @@ def fit(
     for result, _, _ in fits:
         for message in result.warnings:
             warn(f"{result.law}: {message}")
+    meaning = yield_strength_meaning(s1, s2)
 
     with atomic_output(output) as stream:
         if kind is Format.json:
-            write_json(stream, _document(measured, fits, rank, data))
+            write_json(stream, _document(measured, fits, rank, data, meaning))
         elif kind is Format.csv:
             _write_csv(stream, fits, rank)
         else:
-            _print_tables(stream if output not in (None, "-") else None, measured, fits, ranked)
+            _print_tables(
+                stream if output not in (None, "-") else None, measured, fits, ranked, meaning
+            )
     if plot:
         _plot(plot, measured, fits, ranked, s1, s2)
 
 
-def _document(measured, fits, rank, source: str) -> dict:
+def _models(laws: list[str], dampings: list[str], accepted: Sequence[str]) -> list[str]:
+    """The models to fit, in the order given: each --law, then each --damping; a damping
+    model given as --law (the spelling before --damping) is taken with a deprecation
+    warning. One line for an unknown or repeated model."""
+    out: list[str] = []
+    given = [("--law", name) for name in laws] + [("--damping", name) for name in dampings]
+    for option, name in given:
+        key = name.strip().lower().replace("_", "-")
+        if option == "--damping":
+            if key not in _DAMPING_AS_LAW:
+                raise InputError(
+                    f"--damping {name}: not a damping model; accepted: "
+                    f"{', '.join(_DAMPING_AS_LAW)}"
+                )
+        elif key in _DAMPING_AS_LAW:
+            warn(
+                f"--law {key} is deprecated (it goes in 0.3): {key} is a damping model, "
+                f"give --damping {key}"
+            )
+        elif key not in accepted:
+            extra = " (it has no numeric parameter)" if key in LAWS else ""
+            choices = [k for k in accepted if k not in _DAMPING_AS_LAW]
+            raise InputError(
+                f"--law {name}: cannot fit this law{extra}; accepted: {', '.join(choices)} "
+                f"(and --damping {' or '.join(_DAMPING_AS_LAW)})"
+            )
+        if key in out:
+            raise InputError(f"{option} {key} is given twice")
+        out.append(key)
+    if not out:
+        raise InputError("give a model to fit: --law NAME or --damping NAME (repeatable)")
+    return out
+
+
+def _name(text: str) -> str:
+    """A parameter as the library names it (``k_load``), from the option spelling
+    (``k-load``) or its own."""
+    return text.strip().replace("-", "_")
+
+
+def _option_name(name: str) -> str:
+    """A parameter as ``impact fit`` writes it: as the law's option without '--'."""
+    return name.replace("_", "-")
+
+
+def yield_strength_meaning(sphere1, sphere2) -> str:
+    """Which sphere's yield strength a fitted ``sy`` is: the one that yields first, the
+    weaker of the two (both when they are equal; the sphere that yields when neither is
+    given)."""
+    sy1, sy2 = sphere1.yield_strength, sphere2.yield_strength
+    if sy1 is None and sy2 is None:
+        return "sy: yield strength of the sphere that yields (neither sphere gave one)"
+    if sy1 is not None and sy2 is not None and sy1 == sy2:
+        return "sy: yield strength of sphere 1 and sphere 2 (the same material)"
+    weaker = 1 if sy2 is None or (sy1 is not None and sy1 < sy2) else 2
+    return f"sy: yield strength of sphere {weaker}, the weaker one, which yields"
+
+
+def _document(measured, fits, rank, source: str, meaning: str = "") -> dict:
     best = min(rank, key=lambda k: rank[k][0])
     out = {"data": {"file": source, "points": measured.size}, "best": best, "fits": []}
     for result, _, held in fits:
         entry = result.as_dict()
+        if "sy" in result.names:
+            entry["sy_meaning"] = meaning
         delta, weight = rank[result.law]
         entry.update(
             {
@@ -297,8 +386,8 @@ def _shown(value: float, unit: str) -> str:
     return f"{value:.5g} {unit}"
 
 
-def _print_tables(stream: IO[str] | None, measured, fits, ranked) -> None:
-    from rich.table import Table
+def _print_tables(stream: IO[str] | None, measured, fits, ranked, meaning: str = "") -> None:
+    from impactcli.cli.common import Table
 
     out = console(stream)
     for result, _, held in fits:
@@ -318,14 +407,14 @@ def _print_tables(stream: IO[str] | None, measured, fits, ranked) -> None:
             result.names, result.units, result.values, result.std_errors, result.interval
         ):
             table.add_row(
-                name,
+                _option_name(name),
                 _shown(value, unit),
                 _shown(se, unit),
                 f"{_shown(lo, unit)} .. {_shown(hi, unit)}",
             )
         table.caption = (
             f"reduced chi-square {result.reduced_chi_square:.4g}, AIC {result.aic:.4g}, "
-            f"AICc {result.aicc:.4g}"
+            f"AICc {result.aicc:.4g}" + (f"; {meaning}" if "sy" in result.names else "")
         )
         out.print(table)
     residuals = Table(title="Residuals e - e_fit")
@@ -353,7 +442,7 @@ def _print_tables(stream: IO[str] | None, measured, fits, ranked) -> None:
         for result, delta, weight in ranked:
             table.add_row(
                 result.law,
-                ", ".join(result.names) or "(none)",
+                ", ".join(map(_option_name, result.names)) or "(none)",
                 f"{result.reduced_chi_square:.4g}",
                 f"{result.aicc:.4g}",
                 f"{delta:.3g}",
@@ -375,7 +464,8 @@ def _plot(path: str, measured, fits, ranked, s1, s2) -> None:
     for result, model, held in fits:
         band = prediction_band(result, model, grid, held)
         values = ", ".join(
-            f"{nm} = {_shown(v, u)}" for nm, u, v in zip(result.names, result.units, result.values)
+            f"{_option_name(nm)} = {_shown(v, u)}"
+            for nm, u, v in zip(result.names, result.units, result.values)
         )
         curves.append(
             {

@@ -62,17 +62,16 @@ WORD_METAVARS = (
     ("direction", "ANGLE"),
     ("angle", "ANGLE"),
 )
+#: Click's name of a plain option type -> the metavar.
 _PLAIN_TYPES = {
     "int": "INTEGER",
     "int range": "INTEGER",
+    "integer": "INTEGER",
+    "integer range": "INTEGER",
     "float": "NUMBER",
     "float range": "NUMBER",
-    "list[int]": "INTEGER",
-    "list[float]": "NUMBER",
-    "list[str]": "TEXT",
-    "str": "TEXT",
     "path": "FILE",
-    "file": "FILE",
+    "filename": "FILE",
 }
 _UNIT = re.compile(r"[\[(]\s*([^\]\),;\s]+)\s*[\]),;]")
 _SENTENCE_END = re.compile(
@@ -81,17 +80,18 @@ _SENTENCE_END = re.compile(
 
 
 def metavar_of(param: Any, ctx: Any) -> str:
-    """The word shown for the value of ``param`` in help (see the module docstring)."""
+    """The word shown for the value of ``param`` in help (see the module docstring): an
+    explicit metavar; the choices ``[a|b|c]``; INTEGER or NUMBER; else from the help text."""
     if param.metavar is not None:
         return param.metavar
-    display = getattr(param, "display_type", None)
-    label = display(ctx).strip("<>") if display is not None else "str"
-    descriptor = getattr(param, "type_descriptor", None)
-    if descriptor is not None and descriptor.is_choice:
-        return f"[{label}]"
-    if label in ("str", "list[str]"):
-        return _metavar_from_help(getattr(param, "help", None) or "") or "TEXT"
-    return _PLAIN_TYPES.get(label, label.upper())
+    kind = getattr(param, "type", None)
+    choices = getattr(kind, "choices", None)
+    if choices:
+        return "[" + "|".join(str(getattr(c, "value", c)) for c in choices) + "]"
+    label = getattr(kind, "name", "text")
+    if label in _PLAIN_TYPES:
+        return _PLAIN_TYPES[label]
+    return _metavar_from_help(getattr(param, "help", None) or "") or "TEXT"
 
 
 def _metavar_from_help(text: str) -> str | None:

@@ -21,9 +21,12 @@ from impactcli.cli.common import (
     check_plot,
     check_summary_file,
     console,
+    format_option,
+    no_negative_zero,
     note,
     resolve_format,
     save_plot,
+    screen_value,
     segments_option,
     warn,
 )
@@ -31,7 +34,7 @@ from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
-from impactcli.laws.registry import CURVE_LAW, DEFAULT_LAW
+from impactcli.laws.registry import CURVE_LAW, DAMPING_LAWS, DEFAULT_LAW
 from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
@@ -65,7 +68,8 @@ N_DAMPED = Annotated[
     Optional[int],
     segments_option(
         "Default 25; 400 with --damping (e and the contact time within 1e-6 of SciPy "
-        "integration of the same law)."
+        "integration of the same law; impact fit takes 50 for its damping models, within "
+        "1e-4 for e >= 0.3, to fit up to 100,000 points)."
     ),
 ]
 POINTS = Annotated[
@@ -74,7 +78,9 @@ POINTS = Annotated[
         "--points",
         min=2,
         max=MAX_POINTS,
-        help=f"History points, evenly spaced in time, 2 to {MAX_POINTS:,}.",
+        help=f"History points, evenly spaced in time, 2 to {MAX_POINTS:,}. Default 201 in impact "
+        "elastic and elastoplastic, 401 in impact compare-laws (its loops); impact collide3d's "
+        "--points (4001) sample the normal history of --tangential mindlin.",
     ),
 ]
 METHOD = Annotated[
@@ -95,16 +101,15 @@ CHECK = Annotated[
     ),
 ]
 SPLIT = Annotated[Split, typer.Option("--split", help=SPLIT_HELP)]
-FMT = Annotated[
-    Optional[Format],
-    typer.Option("--format", "-f", help="table (terminal), csv (the history) or json."),
-]
+FMT = format_option("the history")
+SWEEP_FMT = format_option("one row per impact velocity")
 OUT = OutputFile
 PLOT = PlotFile
 ENERGY_PLOT = Annotated[
     Optional[str],
     typer.Option(
         "--energy-plot",
+        metavar="FILE",
         help="Also draw the energy partition (each sphere's kinetic, stored and dissipated "
         "energy against t) into this .png, .svg or .pdf file.",
     ),
@@ -192,30 +197,6 @@ def _damped_title(result) -> str | None:
             f"{result.separation} separation)"
         )
     return None
-
-
-def screen_value(value: float, unit: str, digits: int = 6) -> tuple[str, str]:
-    """``value`` [SI ``unit``] as (number, unit) for the screen, with the SI prefix that puts
-    it in [1, 1000) (grams for kg), ``digits`` significant digits and no negative zero.
-
-    >>> screen_value(0.0171321, "m"), screen_value(7.2759e-07, "m"), screen_value(-0.0, "m/s")
-    (('17.1321', 'mm'), ('727.59', 'nm'), ('0', 'm/s'))
-    >>> screen_value(0.0290423, "kg"), screen_value(0.85611, "")
-    (('29.0423', 'g'), ('0.85611', ''))
-    """
-    from impactcli.formatting import unit_scale
-
-    if not unit or not np.isfinite(value):
-        return _no_negative_zero(f"{value:.{digits}g}"), unit
-    if unit == "kg":
-        value, unit = value * 1e3, "g"
-    scale = unit_scale([value], unit)
-    return _no_negative_zero(f"{value / scale.factor:.{digits}g}"), scale.unit
-
-
-def _no_negative_zero(text: str) -> str:
-    """'-0', '-0.000' (a value that rounds to zero) -> without the sign."""
-    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
 
 
 def _speed(text: str, name: str) -> float:
@@ -428,8 +409,7 @@ def _print(
 ) -> None:
     """The compact history, the FILM-ODE check, then the summary last (so a terminal of
     80 columns and 24 lines still shows it without scrolling)."""
-    from rich.table import Table
-
+    from impactcli.cli.common import Table
     from impactcli.formatting import unit_scale
 
     out = console(stream)
@@ -452,11 +432,11 @@ def _print(
             if ref > 0:
                 most = 6 - math.floor(math.log10(largest))
                 decimals = max(0, min(3 - math.floor(math.log10(ref)), most))
-            columns[col] = [_no_negative_zero(f"{v:.{decimals}f}") for v in values]
+            columns[col] = [no_negative_zero(f"{v:.{decimals}f}") for v in values]
             headers[col] = f"{col} ({scale.unit})"
     order = ("t", "delta", "force", "d1", "d2", "v1", "v2")
     for col in order:
-        compact.add_column(headers[col], justify="right", no_wrap=True)
+        compact.add_column(headers[col], justify="right")
     for r in range(len(rows)):
         compact.add_row(*(columns[c][r] for c in order))
     out.print(compact)
@@ -654,7 +634,7 @@ append_help(elastoplastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 @with_sphere_options(velocities=False)
 @with_law_options()
-@with_damping_options()
+@with_damping_options(sweep=True)
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
@@ -665,7 +645,7 @@ def restitution(
             min=1,
             max=MAX_COUNT,
             help=f"Number of velocities, 1 to {MAX_COUNT:,} (and --count x --n at most "
-            f"{MAX_SWEEP_SEGMENTS:,}).",
+            f"{MAX_SWEEP_SEGMENTS:,}); impact compare-laws --count (80) is that of its e panel.",
         ),
     ] = 50,
     linear: Annotated[
@@ -676,7 +656,7 @@ def restitution(
     damping: DampingOptions = None,  # type: ignore[assignment]
     n: N_DAMPED = None,
     split: SPLIT = Split.mass,
-    fmt: FMT = None,
+    fmt: SWEEP_FMT = None,
     output: OUT = None,
     plot: PLOT = None,
 ) -> None:
@@ -712,10 +692,11 @@ def restitution(
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
     if damping is not None and damping.given:
-        if damping.e is not None:
+        if damping.e is not None and not DAMPING_LAWS[damping.damping].self_similar:
             raise InputError(
-                "impact restitution --damping sweeps V0 at one alpha: give --alpha (find the "
-                "alpha of a target e at one V0 with 'impact elastic --damping ... --e E')"
+                f"impact restitution --damping {damping.damping} --e: its e depends on alpha "
+                "V0, so no alpha gives one e at every V0; give --alpha (the alpha of e at one "
+                "V0: 'impact elastic --damping ... --e E')"
             )
         if law is not None and (law.names or law.given):
             raise InputError(
@@ -767,15 +748,15 @@ def restitution(
         elif elastic_only:
             _print_elastic_sweep(stream if output not in (None, "-") else None, data)
         else:
-            from rich.table import Table
+            from impactcli.cli.common import Table
 
             table = Table(title=f"Restitution against impact velocity ({choice.title}, FILM)")
             heads = (
                 "V0 (m/s)",
                 "e",
-                "t_c (us)",
-                "delta_max (um)",
-                "delta_res (um)",
+                "t_c (µs)",
+                "delta_max (µm)",
+                "delta_res (µm)",
                 "E_diss (mJ)",
                 "regime",
             )
@@ -804,10 +785,10 @@ def _elastic_sweep(law: LawChoice, s1, s2) -> bool:
 
 def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
     """The elastic sweep on screen: V0, contact time, delta_max, force_max."""
-    from rich.table import Table
+    from impactcli.cli.common import Table
 
     table = Table(title="Elastic (Hertz) impact against impact velocity (FILM)")
-    for head in ("V0 (m/s)", "t_c (us)", "delta_max (um)", "force_max (N)"):
+    for head in ("V0 (m/s)", "t_c (µs)", "delta_max (µm)", "force_max (N)"):
         table.add_column(head, justify="right")
     for i in range(data["impact_velocity"].size):
         table.add_row(
@@ -846,9 +827,24 @@ def _damped_sweep(
     from impactcli.impact import DAMPED_SWEEP_COLUMNS, damped_restitution_sweep
     from impactcli.spheres import spheres_from_options
 
-    law, alpha, _target, separation = damping.parse()
-    assert law is not None and alpha is not None
+    law, alpha, target, separation = damping.parse()
+    assert law is not None
     s1, s2 = spheres_from_options(spheres)
+    if alpha is None:  # tsuji --e: its e is the same at every V0 (docs/damping.md)
+        from impactcli.damping import alpha_label, damping_for_restitution
+        from impactcli.impact import effective_properties
+        from impactcli.laws import hertz_stiffness
+
+        assert target is not None
+        try:
+            m, r, modulus = effective_properties(s1, s2)
+            stiffness = float(hertz_stiffness(modulus, r))
+            alpha = float(
+                damping_for_restitution(law, target, velocities[0], stiffness, m, n, separation)
+            )
+        except ValueError as exc:
+            raise InputError(str(exc)) from None
+        note(f"{alpha_label(law, alpha, digits=10)} gives e = {target:g} at every V0")
     try:
         data = damped_restitution_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
     except ValueError as exc:
@@ -869,10 +865,10 @@ def _damped_sweep(
             inputs.update(damping=law, alpha=alpha, separation=separation)
             write_json(stream, {"inputs": inputs, "sweep": data})
         else:
-            from rich.table import Table
+            from impactcli.cli.common import Table
 
             table = Table(title=f"Restitution against impact velocity ({model}, FILM n = {n})")
-            heads = ("V0 (m/s)", "e", "t_c (us)", "delta_max (um)", "delta_sep (um)")
+            heads = ("V0 (m/s)", "e", "t_c (µs)", "delta_max (µm)", "delta_sep (µm)")
             for h in heads + ("E_diss (mJ)",):
                 table.add_column(h, justify="right")
             for i in range(velocities.size):
@@ -1008,11 +1004,13 @@ def materials(fmt: OutputFormat = None, output: OUT = None) -> None:
                     ]
                 )
         else:
-            from rich.table import Table
+            from rich.markup import escape
+
+            from impactcli.cli.common import Table
 
             table = Table(title="Built-in materials (typical values; measure yours if it matters)")
             for h in ("name", "E [GPa]", "nu", "rho [kg/m^3]", "sigma_y [MPa]", "source"):
-                table.add_column(h)
+                table.add_column(escape(h))  # [kg/m^3] would read as Rich markup
             for m in MATERIALS.values():
                 table.add_row(
                     m.name,

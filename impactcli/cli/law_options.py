@@ -60,7 +60,12 @@ class LawChoice:
         return (spec.title or spec.name) if spec is not None else self.name
 
 
-def _law_help(multiple: bool) -> str:
+#: A parameter's kind -> the word ``--help`` shows for its value (else the kind itself:
+#: ``--py PRESSURE``, ``--k-load STIFFNESS``).
+_METAVARS = {"file": "FILE", "choice": "TEXT", "dimensionless": "NUMBER"}
+
+
+def _law_help(multiple: bool, default: str | None = None) -> str:
     from impactcli.lawlib import DEFAULT_LAW, LAWS
 
     parts = []
@@ -70,7 +75,7 @@ def _law_help(multiple: bool) -> str:
     again = " Give it several times to compare laws." if multiple else ""
     return (
         f"Contact law (details: 'impact laws'): {'; '.join(parts)}. Default: "
-        f"{DEFAULT_LAW}.{again}"
+        f"{default or DEFAULT_LAW}.{again}"
     )
 
 
@@ -85,7 +90,7 @@ def _parameter_help(param, owners: tuple[str, ...]) -> str:
     return f"Law {', '.join(owners)}: {param.description}{unit}.{default}{required}"
 
 
-def _parameters(multiple: bool) -> list[inspect.Parameter]:
+def _parameters(multiple: bool, default: str | None = None) -> list[inspect.Parameter]:
     from impactcli.lawlib import parameter_laws
 
     law_type = Optional[list[str]] if multiple else Optional[str]
@@ -95,12 +100,13 @@ def _parameters(multiple: bool) -> list[inspect.Parameter]:
             inspect.Parameter.POSITIONAL_OR_KEYWORD,
             default=None,
             annotation=Annotated[
-                law_type, typer.Option("--law", metavar="NAME", help=_law_help(multiple))
+                law_type,
+                typer.Option("--law", metavar="NAME", help=_law_help(multiple, default)),
             ],
         )
     ]
     for name, (param, owners) in parameter_laws().items():
-        metavar = "FILE" if param.kind == "file" else "TEXT" if param.kind == "choice" else "VALUE"
+        metavar = _METAVARS.get(param.kind, param.kind.upper())
         out.append(
             inspect.Parameter(
                 f"{_PREFIX}{name}",
@@ -117,16 +123,19 @@ def _parameters(multiple: bool) -> list[inspect.Parameter]:
     return out
 
 
-def with_law_options(multiple: bool = False) -> Callable[[Callable], Callable]:
+def with_law_options(
+    multiple: bool = False, default: str | None = None
+) -> Callable[[Callable], Callable]:
     """Decorate a command whose signature has a ``law`` parameter: ``--law`` (repeatable
     when ``multiple``) and the parameters of every law take its place, and the command
-    receives them as ``law=LawOptions(...)``."""
+    receives them as ``law=LawOptions(...)``; ``default`` says in ``--help`` what runs
+    without ``--law`` when it is not the library's default law."""
 
     def decorate(command: Callable) -> Callable:
         signature = inspect.signature(command, eval_str=True)
         params = list(signature.parameters.values())
         where = [p.name for p in params].index("law")
-        added = _parameters(multiple)
+        added = _parameters(multiple, default)
         params[where : where + 1] = added
         names = [p.name for p in added]
 

@@ -71,8 +71,8 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
 
 def _print_laws(stream: IO[str] | None) -> None:
     from rich.markup import escape
-    from rich.table import Table
 
+    from impactcli.cli.common import Table
     from impactcli.laws.registry import MODELS
 
     table = Table(title="Contact laws (impact laws; --format json for everything)")

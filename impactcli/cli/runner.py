@@ -13,7 +13,9 @@ exit status:
   :class:`Terminated` in the main thread, so the temporary output files are removed exactly
   as for Ctrl-C; the child processes the run started (Dask ``--scheduler processes``
   workers, a LocalCluster's nannies and workers) are terminated at once, and any still
-  alive at the end are killed.
+  alive at the end are killed. The cleanup has :data:`CLEANUP_SECONDS`: past them the
+  process kills what is left below it and exits with the same status, whatever a
+  library's threads still wait for.
 """
 
 from __future__ import annotations
@@ -25,7 +27,9 @@ import signal
 import sys
 import warnings
 from collections.abc import Callable, Iterator
+from functools import partial
 
+from impactcli import output
 from impactcli.errors import InputError, StdoutClosed
 from impactcli.output import describe_os_error, output_transaction
 
@@ -43,14 +47,39 @@ class Terminated(BaseException):
 
 _stopping = False
 
+#: Seconds a run stopped by a signal has to clean up and exit (remove its temporary files,
+#: end its worker processes and threads); past them it exits at once with the status of
+#: the signal (:func:`_exit_by_deadline`).
+CLEANUP_SECONDS = 20.0
+
 
 def _on_signal(signum: int, frame) -> None:  # noqa: ARG001 (the handler's signature)
     global _stopping
     if _stopping:  # a second signal during the cleanup: let the cleanup finish
         return
     _stopping = True
+    _exit_by_deadline(CLEANUP_SECONDS, 128 + signum)
     end_children(kill=False)  # workers stop now, not when their tasks finish
     raise Terminated(signum)
+
+
+def _exit_by_deadline(seconds: float, status: int) -> None:
+    """In ``seconds``, unless the process has ended: kill every process below this one and
+    exit with ``status`` at once (``os._exit``: no thread is waited for). A run stopped by a
+    signal thus ends even if a library waits for ever at its cleanup or at the
+    interpreter's exit (e.g. for the manager thread of a process pool whose worker was
+    killed while sending a result)."""
+    import threading
+
+    def stop() -> None:
+        with contextlib.suppress(Exception):
+            sys.stderr.flush()
+        end_children(kill=True)
+        os._exit(status)
+
+    timer = threading.Timer(seconds, stop)
+    timer.daemon = True
+    timer.start()
 
 
 @contextlib.contextmanager
@@ -107,14 +136,39 @@ def end_children(kill: bool = True) -> None:
     is done."""
     import multiprocessing
 
+    managed: set[int] = set()
     with contextlib.suppress(Exception):
         for child in multiprocessing.active_children():
+            managed.add(child.pid)
             with contextlib.suppress(Exception):
                 child.kill() if kill else child.terminate()
     if kill:
+        killed = []
         for pid in _descendants(os.getpid()):
             with contextlib.suppress(OSError):
                 os.kill(pid, signal.SIGKILL)
+                killed.append(pid)
+        # reap the killed children no multiprocessing.Process owns (its resource tracker),
+        # so that none stays defunct; the others are reaped by multiprocessing
+        _reap([pid for pid in killed if pid not in managed], seconds=1.0)
+
+
+def _reap(pids: list[int], seconds: float) -> None:
+    """Wait (at most ``seconds``) for those of ``pids`` that are children of this process
+    to end, and collect their exit status."""
+    import time
+
+    pending, deadline = set(pids), time.monotonic() + seconds
+    while pending:
+        for pid in list(pending):
+            try:
+                if os.waitpid(pid, os.WNOHANG)[0]:
+                    pending.discard(pid)
+            except OSError:  # not a child of this process, or already collected
+                pending.discard(pid)
+        if not pending or time.monotonic() > deadline:
+            return
+        time.sleep(0.01)
 
 
 class _ClosedStdout:
@@ -203,6 +257,7 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
             try:
                 with warnings.catch_warnings(record=True) as caught:
                     warnings.simplefilter("always", RuntimeWarning)
+                    output.before_stdout = partial(_refuse_numeric_warnings, caught)
                     with output_transaction():
                         result = call()
                         _flush_stdout()
@@ -256,6 +311,7 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
         end_children(kill=True)
     finally:
         common.pending_messages = None
+        output.before_stdout = None
     if status != 0:
         _quiet_stdout_if_broken()
     return status

@@ -25,8 +25,8 @@ __all__ = ["SPHERE_METAVARS", "SPHERE_OPTIONS", "pair_inputs", "with_sphere_opti
 SPHERE_OPTIONS: dict[str, str] = {
     "d1": "Diameter of sphere 1 [m]. Required.",
     "d2": "Diameter of sphere 2 [m]; 'inf' is a flat target.",
-    "v1": "Velocity of sphere 1 toward sphere 2 [m/s].",
-    "v2": "Velocity of sphere 2 toward sphere 1 [m/s].",
+    "v1": "Velocity of sphere 1 toward sphere 2 [m/s]. Required.",
+    "v2": "Velocity of sphere 2 toward sphere 1 [m/s]. Default 0 (at rest).",
     "material": "Material of both spheres (see 'impact materials').",
     "material1": "Material of sphere 1.",
     "material2": "Material of sphere 2.",

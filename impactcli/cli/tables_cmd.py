@@ -127,7 +127,7 @@ def tables(
 
 
 def _print_tables(stream: IO[str] | None, n: int, data: dict) -> None:
-    from rich.table import Table
+    from impactcli.cli.common import Table
 
     out = console(stream)
     formats = {
@@ -215,7 +215,7 @@ def convergence(
                 },
             )
         else:
-            from rich.table import Table
+            from impactcli.cli.common import Table
 
             table = Table(
                 title="FILM convergence: normalised contact duration t_c·V0/δm",

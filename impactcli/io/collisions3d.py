@@ -274,18 +274,36 @@ def compute_collisions3d(
             given = None if np.all(np.isnan(impulse)) else impulse  # None: J_n (no pull)
             history = NormalHistory(*arrays, impulse=given)
             shear = effective_shear_modulus(s1["E"][ok], s1["nu"][ok], s2["E"][ok], s2["nu"][ok])
-        collision = oblique_impact(
-            s1["mass"][ok], s2["mass"][ok], 0.5 * s1["d"][ok], 0.5 * s2["d"][ok],
-            vectors["p1"][ok], vectors["p2"][ok], vectors["v1"][ok], vectors["v2"][ok],
-            vectors["w1"][ok], vectors["w2"][ok], e[ok], friction[ok], tangential,
-            history=history, shear_modulus=shear,
-        )  # fmt: skip
         from impactcli.collision3d import collision_summary
 
-        for key, value in collision_summary(collision).items():
-            result[key][ok] = value
+        with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
+            collision = oblique_impact(
+                s1["mass"][ok], s2["mass"][ok], 0.5 * s1["d"][ok], 0.5 * s2["d"][ok],
+                vectors["p1"][ok], vectors["p2"][ok], vectors["v1"][ok], vectors["v2"][ok],
+                vectors["w1"][ok], vectors["w2"][ok], e[ok], friction[ok], tangential,
+                history=history, shear_modulus=shear,
+            )  # fmt: skip
+            summary = collision_summary(collision)
+        finite = np.logical_and.reduce([np.isfinite(summary[k]) for k in _FINITE_KEYS])
+        beyond = np.zeros(size, dtype=bool)
+        beyond[ok[~finite]] = True
+        errors.add(beyond, _OUT_OF_RANGE)
+        for key, value in summary.items():
+            result[key][ok] = np.where(finite, value, np.nan)
     result["error"] = errors.messages
     return result
+
+
+#: The error of a row whose collision cannot be computed in double precision.
+_OUT_OF_RANGE = (
+    "out of range: the collision's results leave double precision (velocities, masses or "
+    "sizes too large or too small); check the values and their units"
+)
+#: Results every computed row has as finite numbers (a fixed or flat sphere included).
+_FINITE_KEYS: tuple[str, ...] = (
+    *(f"{v}_final_{a}" for v in ("v1", "w1", "v2", "w2") for a in "xyz"),
+    "restitution", "normal_impulse", "tangential_impulse",
+)  # fmt: skip
 
 
 def _scatter(reasons: np.ndarray, rows: np.ndarray, size: int) -> np.ndarray:
@@ -308,16 +326,32 @@ def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n, separation)
             s2["m"][rows], s1["sy"][rows], s2["sy"][rows], n=n, law=law, law_params=params,
         )  # fmt: skip
         return out["restitution"], out["error"]
-    from impactcli.contact import effective_mass, effective_modulus, effective_radius
     from impactcli.damping import make_damping_law, solve_damped_impact
+
+    m, stiffness, reasons = _damped_scales(s1, s2, u_n, rows)
+    e = np.full(rows.size, np.nan)
+    good = np.flatnonzero(reasons == "")
+    if good.size:
+        contact = make_damping_law(damping, stiffness[good], m[good], alpha)
+        with np.errstate(all="ignore"):
+            solution = solve_damped_impact(contact, u_n[rows][good], m[good], separation=separation)
+        e[good] = solution.restitution
+    return e, reasons
+
+
+def _damped_scales(s1, s2, u_n, rows):
+    """(effective mass [kg], Hertz stiffness [N/m^1.5], reasons) of ``rows``: the reason of
+    a row whose Hertz scales leave double precision
+    (:func:`impactcli.batch.hertz_scale_problems`), ``""`` elsewhere."""
+    from impactcli.batch import hertz_scale_problems
+    from impactcli.contact import effective_mass, effective_modulus, effective_radius
     from impactcli.laws import hertz_stiffness
 
     m = effective_mass(s1["mass"][rows], s2["mass"][rows])
     radius = effective_radius(0.5 * s1["d"][rows], 0.5 * s2["d"][rows])
     modulus = effective_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows], s2["nu"][rows])
-    contact = make_damping_law(damping, hertz_stiffness(modulus, radius), m, alpha)
-    solution = solve_damped_impact(contact, u_n[rows], m, separation=separation)
-    return np.asarray(solution.restitution, dtype=float), np.full(rows.size, "", dtype=object)
+    stiffness = hertz_stiffness(modulus, radius)
+    return m, stiffness, hertz_scale_problems(m, stiffness, u_n[rows])
 
 
 def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separation):
@@ -335,22 +369,32 @@ def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separa
     def given(x: float) -> float | None:
         return None if np.isnan(x) else float(x)
 
+    if damping is not None:
+        reasons[:] = _damped_scales(s1, s2, u_n, rows)[2]
     for k, row in enumerate(rows.tolist()):
-        try:
-            pair = [
-                Sphere(float(s["d"][row]), float(s["E"][row]), float(s["nu"][row]),
-                       given(s["rho"][row]), given(s["m"][row]), given(s["sy"][row]))
-                for s in (s1, s2)
-            ]  # fmt: skip
-            e[k], history = normal_restitution_and_history(
-                *pair, float(u_n[row]), law=law, params=dict(params or {}), damping=damping,
-                alpha=alpha, points=points, n=n, separation=separation,
-            )  # fmt: skip
-        except (ValueError, InputError) as exc:
+        if reasons[k]:
+            continue
+        try:  # an extreme row gives NaN or inf, its own error, not a warning for the table
+            with np.errstate(all="ignore"):
+                pair = [
+                    Sphere(float(s["d"][row]), float(s["E"][row]), float(s["nu"][row]),
+                           given(s["rho"][row]), given(s["m"][row]), given(s["sy"][row]))
+                    for s in (s1, s2)
+                ]  # fmt: skip
+                e[k], history = normal_restitution_and_history(
+                    *pair, float(u_n[row]), law=law, params=dict(params or {}),
+                    damping=damping, alpha=alpha, points=points, n=n, separation=separation,
+                )  # fmt: skip
+        except (ValueError, InputError, ArithmeticError) as exc:
             reasons[k] = str(exc).splitlines()[0]
             continue
-        for stack, key in zip(stacks, ("t", "delta", "delta_dot", "force")):
-            stack.append(getattr(history, key)[0])
+        arrays = [getattr(history, key)[0] for key in ("t", "delta", "delta_dot", "force")]
+        if not (np.isfinite(e[k]) and all(np.isfinite(a).all() for a in arrays)):
+            e[k] = np.nan
+            reasons[k] = _OUT_OF_RANGE
+            continue
+        for stack, array in zip(stacks, arrays):
+            stack.append(array)
         impulses.append(np.nan if history.impulse is None else float(history.impulse[0]))
     arrays = tuple(
         np.stack(s) if s else np.zeros((0, max(int(points), 2))) for s in stacks

@@ -12,9 +12,9 @@ from __future__ import annotations
 import io
 import os
 import sys
-from collections.abc import Callable, Collection, Sequence
+from collections.abc import Callable, Collection, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
-from contextlib import AbstractContextManager, nullcontext
+from contextlib import AbstractContextManager, contextmanager, nullcontext, suppress
 
 import numpy as np
 
@@ -196,11 +196,21 @@ def _is_url(path: str) -> bool:
     return "://" in path
 
 
-def _dask_scheduler(scheduler: str | None):
-    """(compute keyword, client to close): threads by default, ``local`` for a
-    LocalCluster, an address (tcp://host:8786) for a running distributed cluster."""
-    if scheduler in (None, "threads", "synchronous", "processes"):
-        return {"scheduler": scheduler or "threads"}, None
+@contextmanager
+def _dask_scheduler(scheduler: str | None) -> Iterator[dict]:
+    """The keywords of ``dask.compute`` for ``scheduler``, for the time of the block:
+    threads by default; ``processes`` on a process pool of this run; ``local`` for a
+    LocalCluster whose scratch space is a private temporary folder; an address
+    (tcp://host:8786) for a running distributed scheduler. Whatever ends the block, the
+    pool, the cluster and the folder end with it (:func:`_end_pool` after a failure or a
+    signal)."""
+    if scheduler in (None, "threads", "synchronous"):
+        yield {"scheduler": scheduler or "threads"}
+        return
+    if scheduler == "processes":
+        with _process_pool() as pool:
+            yield {"scheduler": "processes", "pool": pool}
+        return
     if scheduler != "local" and "://" not in scheduler:
         raise InputError(
             "--scheduler must be threads, processes, synchronous, local or the address of a "
@@ -212,15 +222,213 @@ def _dask_scheduler(scheduler: str | None):
         raise InputError(
             f"--scheduler {scheduler}: needs dask.distributed: pip install 'impactcli[dask]'"
         ) from None
+    import tempfile
+
+    import dask
+
+    scratch = client = cluster = None
     try:
         if scheduler == "local":
-            cluster = LocalCluster(
-                n_workers=os.cpu_count() or 1, threads_per_worker=1, dashboard_address=None
-            )
-            return {}, Client(cluster)
-        return {}, Client(scheduler, timeout="10s")
+            # dask's default scratch space, $TMPDIR/dask-scratch-space, outlives the run
+            scratch = tempfile.mkdtemp(prefix="impact-dask-")
+            with dask.config.set({"temporary-directory": scratch}):
+                cluster = LocalCluster(
+                    n_workers=os.cpu_count() or 1, threads_per_worker=1,
+                    dashboard_address=None, local_directory=scratch,
+                )  # fmt: skip
+            client = Client(cluster)
+        else:
+            client = Client(scheduler, timeout="10s")
     except (OSError, ValueError, TypeError, RuntimeError) as exc:
         raise InputError(f"--scheduler {scheduler}: {first_line(exc)}") from None
+    finally:
+        if client is None:  # failed or stopped while starting
+            _close_cluster(None, cluster, scratch)
+    try:
+        yield {}
+    finally:
+        _close_cluster(client, cluster, scratch)
+
+
+def _close_cluster(client, cluster, scratch: str | None) -> None:
+    """Close a distributed client and the LocalCluster this run started, then remove its
+    scratch folder."""
+    import shutil
+
+    for item in (client, cluster):
+        if item is not None:
+            with suppress(Exception):
+                item.close()
+    if scratch is not None:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
+@contextmanager
+def _process_pool() -> Iterator[object]:
+    """A process pool for Dask's ``processes`` scheduler, owned by this run: shut down
+    normally after a run that completes, ended by :func:`_end_pool` after any other end (a
+    signal, an invalid row under ``--strict``, an error), so the run never waits for it."""
+    from concurrent.futures import ProcessPoolExecutor
+    from functools import partial
+
+    import dask
+    from dask.multiprocessing import get_context, initialize_worker_process
+    from dask.system import CPU_COUNT
+
+    # as dask.multiprocessing.get does for a pool of its own: its number of workers (dask's
+    # num_workers setting, else one per core) and one hash seed for them
+    if os.environ.get("PYTHONHASHSEED") in (None, "0"):
+        os.environ["PYTHONHASHSEED"] = "6640"
+    pool = ProcessPoolExecutor(
+        dask.config.get("num_workers", None) or CPU_COUNT, mp_context=get_context(),
+        initializer=partial(initialize_worker_process, user_initializer=None),
+    )  # fmt: skip
+    done = False
+    try:
+        yield pool
+        pool.shutdown(wait=True)
+        done = True
+    finally:
+        if not done:
+            _end_pool(pool)
+
+
+def _end_pool(pool) -> None:
+    """End a process pool at once, without waiting for its tasks: kill its workers, then
+    close this process's end of the pipe they send results on. A worker killed while
+    sending a result leaves half a message there, and the pool's manager thread, which
+    reads it, would wait for the rest for ever (and the interpreter for that thread at
+    exit): with no writer left, its read ends (EOF) and the thread ends."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    for process in processes:
+        with suppress(Exception):
+            process.kill()
+    for process in processes:
+        with suppress(Exception):
+            process.join(timeout=5)
+    queue = getattr(pool, "_result_queue", None)
+    with suppress(Exception):
+        queue._writer.close()  # type: ignore[union-attr]
+    with suppress(Exception):
+        pool.shutdown(wait=False, cancel_futures=True)
+
+
+#: The Dask engine's private folder beside a local output: ``.impact-XXXXXXXX`` (mkdtemp),
+#: holding the output being written and, while its run lives, the marker :data:`STAGE_MARK`.
+STAGE_PREFIX = ".impact-"
+#: A file in a stage folder that says: the run that made it holds an exclusive lock
+#: (``flock``) on the folder. A stage with it whose lock can be taken belongs to a run that
+#: ended without cleaning up (SIGKILL, a power cut); the next Dask run writing into the
+#: same folder removes it.
+STAGE_MARK = ".impact-lock"
+
+_HELD_SIGNALS = ("SIGINT", "SIGTERM", "SIGHUP")
+
+
+@contextmanager
+def _signals_held() -> Iterator[None]:
+    """SIGINT, SIGTERM and SIGHUP held back (their handlers run at the end of the block),
+    so that what the block creates is recorded before a signal can stop the run. A no-op
+    where the platform cannot block signals."""
+    import signal
+
+    numbers = {getattr(signal, name) for name in _HELD_SIGNALS if hasattr(signal, name)}
+    try:
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, numbers)
+    except (AttributeError, OSError, ValueError):
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+class _Stage:
+    """The private folder a Dask run writes its local output in, locked while the run lives
+    (where the platform and the filesystem can lock it)."""
+
+    def __init__(self, path: str, lock: int | None) -> None:
+        self.path, self._lock = path, lock
+
+    def remove(self) -> None:
+        """Remove the folder, then release the lock (never the other way round)."""
+        import shutil
+
+        shutil.rmtree(self.path, ignore_errors=True)
+        if self._lock is not None:
+            with suppress(OSError):
+                os.close(self._lock)
+            self._lock = None
+
+
+def _lock_folder(path: str, wait: bool) -> int | None:
+    """An open descriptor of the folder ``path`` holding an exclusive ``flock`` on it, or
+    None if it cannot be locked (another process holds it, or no ``flock`` here)."""
+    try:
+        import fcntl
+    except ImportError:  # not POSIX
+        return None
+    try:
+        fd = os.open(path, os.O_RDONLY)
+    except OSError:
+        return None
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
+    except OSError:
+        os.close(fd)
+        return None
+    return fd
+
+
+def remove_stale_stages(folder: str) -> list[str]:
+    """Remove the stages in ``folder`` (:data:`STAGE_PREFIX` folders with a
+    :data:`STAGE_MARK`) whose run has ended without removing them: a run killed by SIGKILL
+    cannot clean up, so the next Dask run writing into the same folder does. A stage whose
+    run still lives is locked and kept; a folder without the mark is never touched.
+    Returns the names removed."""
+    import shutil
+
+    removed = []
+    try:
+        entries = os.listdir(folder or ".")
+    except OSError:
+        return removed
+    for name in entries:
+        path = os.path.join(folder, name)
+        if not name.startswith(STAGE_PREFIX) or not os.path.isfile(os.path.join(path, STAGE_MARK)):
+            continue
+        fd = _lock_folder(path, wait=False)
+        if fd is None:  # its run still lives (or locks do not work here): kept
+            continue
+        try:
+            shutil.rmtree(path, ignore_errors=True)
+            removed.append(name)
+        finally:
+            os.close(fd)
+    return removed
+
+
+def _new_stage(target: str, output: str, stages: list[_Stage]) -> str:
+    """A new private folder beside ``target`` (mkdtemp: no name race), locked, with its mark;
+    appended to ``stages`` before any signal can stop the run. Stale stages of killed runs
+    in the same folder are removed first (:func:`remove_stale_stages`)."""
+    import tempfile
+
+    folder = os.path.dirname(target)
+    remove_stale_stages(folder)
+    with _signals_held():
+        try:
+            path = tempfile.mkdtemp(prefix=STAGE_PREFIX, dir=folder)
+        except OSError as exc:
+            raise InputError(f"cannot write {output!r}: {exc.strerror or exc}") from None
+        stage = _Stage(path, _lock_folder(path, wait=True))
+        stages.append(stage)
+        if stage._lock is not None:  # the mark says: locked by its living run
+            with suppress(OSError):
+                with open(os.path.join(path, STAGE_MARK), "x"):
+                    pass
+    return path
 
 
 def _output_schema_of(path: str):
@@ -290,7 +498,9 @@ def run_dask(
     (default), ``processes``, ``synchronous``, ``local`` (a LocalCluster) or the address of
     a distributed scheduler; ``progress()`` gives a context manager (e.g. dask's
     ``ProgressBar``) entered around the computation on a local scheduler. A local output
-    is written in a new private folder beside it and moved into place when complete.
+    is written in a new private folder beside it (:func:`_new_stage`), moved into place when
+    complete; the folders of killed runs found there are removed first
+    (:func:`remove_stale_stages`).
     """
     import pandas as pd
 
@@ -331,39 +541,40 @@ def run_dask(
             f"{output!r} is a file; --engine dask writes Parquet as a folder of part files: "
             "remove it or choose another OUT"
         )
-    write_to, stage = target, None
-    if local:  # a new private folder beside the target (mkdtemp: no name race)
-        import tempfile
-
-        try:
-            stage = tempfile.mkdtemp(prefix=".impact-", dir=os.path.dirname(target))
-        except OSError as exc:
-            raise InputError(f"cannot write {output!r}: {exc.strerror or exc}") from None
-        write_to = os.path.join(stage, os.path.basename(target))
-    if fmt is TableFormat.parquet:
-        schema = _output_schema_of(path) if parquet else "infer"
-        try:
-            write = out.to_parquet(write_to, write_index=False, compute=False, schema=schema)
-        except (ValueError, TypeError, OSError) as exc:  # pyarrow's ArrowInvalid included
-            raise InputError(f"cannot write {output!r}: {first_line(exc)}") from None
-    else:
-        write = out.to_csv(write_to, single_file=True, index=False, compute=False)
-    # The error summary reuses the partitions the writer computes (the same graph keys):
-    # expressions beside to_parquet's expression, delayed objects beside to_csv's delayed.
-    if fmt is TableFormat.csv:
-        infos = [
-            dask.delayed(partition_errors)(part, partition_info={"number": i})
-            for i, part in enumerate(out.to_delayed())
-        ]
-    else:
-        infos = [out.map_partitions(partition_errors, meta=partition_errors(out._meta))]
     report = BatchReport(strict=False)
-    client = None
-    try:  # the scheduler starts inside: a signal while a cluster starts still cleans up
-        kwargs, client = _dask_scheduler(scheduler)
-        bar = progress() if progress is not None and client is None else nullcontext()
-        with bar:
-            _, *parts = dask.compute(write, *infos, **kwargs)
+    stages: list[_Stage] = []
+    try:  # the stage and the scheduler start inside: a signal while they start cleans up too
+        write_to = target
+        if local:
+            write_to = os.path.join(_new_stage(target, output, stages), os.path.basename(target))
+        if fmt is TableFormat.parquet:
+            schema = _output_schema_of(path) if parquet else "infer"
+            try:
+                write = out.to_parquet(write_to, write_index=False, compute=False, schema=schema)
+            except (ValueError, TypeError, OSError) as exc:  # pyarrow's ArrowInvalid too
+                raise InputError(f"cannot write {output!r}: {first_line(exc)}") from None
+        else:
+            write = out.to_csv(write_to, single_file=True, index=False, compute=False)
+        # The error summary reuses the partitions the writer computes (the same graph keys):
+        # expressions beside to_parquet's expression, delayed objects beside to_csv's delayed.
+        if fmt is TableFormat.csv:
+            infos = [
+                dask.delayed(partition_errors)(part, partition_info={"number": i})
+                for i, part in enumerate(out.to_delayed())
+            ]
+        else:
+            infos = [out.map_partitions(partition_errors, meta=partition_errors(out._meta))]
+        with _dask_scheduler(scheduler) as kwargs:
+            bar = progress() if progress is not None and kwargs else nullcontext()
+            try:
+                with bar:
+                    _, *parts = dask.compute(write, *infos, **kwargs)
+            except RowError as exc:
+                offset = 0
+                if exc.partition:  # the rows of the partitions before it
+                    lengths = out.partitions[: exc.partition].map_partitions(len)
+                    offset = int(lengths.compute(**kwargs).sum())
+                raise InputError(f"row {offset + exc.row + 1}: {exc.reason}") from None
         info = pd.concat(parts, ignore_index=True)
         offset = 0
         for _, part in info.groupby("partition", sort=True):
@@ -376,20 +587,7 @@ def run_dask(
         report.rows = offset
         if local:
             os.replace(write_to, target)
-    except RowError as exc:
-        offset = 0
-        if exc.partition:  # the rows of the partitions before it
-            lengths = out.partitions[: exc.partition].map_partitions(len)
-            offset = int(lengths.compute(**kwargs).sum())
-        raise InputError(f"row {offset + exc.row + 1}: {exc.reason}") from None
     finally:
-        if stage is not None:
-            import shutil
-
-            shutil.rmtree(stage, ignore_errors=True)
-        if client is not None:
-            cluster = getattr(client, "cluster", None)
-            client.close()
-            if cluster is not None:
-                cluster.close()
+        for stage in stages:
+            stage.remove()
     return report

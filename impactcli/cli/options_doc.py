@@ -1,0 +1,207 @@
+"""docs/options.md: every option of every command (name, metavar, default, unit), read from
+the commands' own declarations, and the options whose name is shared but whose value or
+default differs, with where the helps say so.
+
+``python -m impactcli.cli.options_doc`` prints the page; ``make options`` writes it and
+``tests/test_options_doc.py`` fails when it drifts from the commands.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+__all__ = ["OptionRow", "differences", "option_rows", "options_markdown"]
+
+#: The unit of the value an option's metavar names (SI; a unit may be given on the line).
+METAVAR_UNITS = {
+    "LENGTH": "m",
+    "VELOCITY": "m/s",
+    "PRESSURE": "Pa",
+    "MASS": "kg",
+    "DENSITY": "kg/m^3",
+    "ANGLE": "deg",
+    "STIFFNESS": "N/m",
+    "NUMBER": "-",
+    "INTEGER": "",
+    "ALPHA": "- (tsuji), s/m (hunt-crossley)",
+    "X,Y": "m",
+    "X,Y,Z": "m",
+}
+
+#: Options of the same name whose value differs by nature between commands, and why. Every
+#: other difference of metavar or default is stated in the helps of both commands, which
+#: name the other command (:func:`differences`).
+BY_NATURE = {
+    "--p1": "a point in the plane (collide2d) or in space (collide3d)",
+    "--p2": "a point in the plane (collide2d) or in space (collide3d)",
+    "--v1": "along the line of centres (elastic, elastoplastic, compare-laws), in the plane "
+    "(collide2d, angle from +x) or in space (collide3d, angle from the normal); see each help",
+    "--v2": "as --v1; at rest unless given, in every command",
+    "--format": "each command lists the formats it writes",
+    "--n": "FILM segments per stage, 25 unless --damping (400; impact fit: 50, both helps "
+    "say so); convergence takes a list of them",
+    "--law": "the contact law; yield-limit asks for the yield point of one of three laws",
+    "--p0-factor": "2.57 everywhere (Du & Wang)",
+    "--m1": "collide2d takes the masses (required); the others take diameters and densities "
+    "and compute the masses unless given",
+    "--m2": "as --m1",
+    "--d1": "collide2d takes the masses, and the diameters only for --model elastoplastic and "
+    "to draw the spheres; the others need --d1",
+    "--d2": "as --d1",
+    "--model": "elastic (Hertz, e = 1) or elastoplastic (Du & Wang); batch fills empty cells "
+    "of its model column with it",
+}
+
+
+@dataclass(frozen=True)
+class OptionRow:
+    """One option of one command, as docs/options.md lists it."""
+
+    command: str
+    names: str
+    metavar: str
+    default: str
+    unit: str
+    help: str
+
+
+#: Units written in brackets in an option's help, ``[m/s]``.
+_UNITS = {"m", "m/s", "Pa", "kg", "kg/m^3", "N/m", "s/m", "-", "s", "N", "J", "deg", "rad/s"}
+
+
+def _default(param) -> str:
+    """The default a command runs with: the declared one, else the one its help states."""
+    if getattr(param, "is_flag", False):
+        return "off" if not param.default else "on"
+    if param.required:
+        return "required"
+    value = param.default
+    if value is not None and not callable(value):
+        if isinstance(value, (list, tuple)):
+            return " ".join(str(getattr(v, "value", v)) for v in value)
+        return str(getattr(value, "value", value))
+    text = " ".join((param.help or "").split())
+    if "No default" in text:
+        return ""
+    if re.search(r"\bRequired\.", text) and "Required by that law" not in text:
+        return "required"
+    for pattern in (
+        r"\bDefault:? (.+?)(?:[.;:](?:\s|$)|$| \()",
+        r"\((?:the )?default (?!--)([^)]+)\)",
+        r"[;,] default (.+?)(?: \(|[.;](?:\s|$)|$)",
+        r"(\w+) \([^)]*\bthe default\)",
+    ):
+        found = re.search(pattern, text)
+        if found:
+            return found[1].strip()
+    return ""
+
+
+def _unit(metavar: str, help_text: str) -> str:
+    lowered = help_text.lower()
+    if metavar in ("X,Y", "X,Y,Z") or metavar.startswith(("X,Y|", "X,Y,Z|")):
+        if "angular velocity" in lowered:
+            return "rad/s"
+        return "m/s" if "velocity" in lowered else "m"
+    if metavar in ("FILE", "TABLE"):
+        return ""
+    if metavar in METAVAR_UNITS:
+        return METAVAR_UNITS[metavar]
+    for unit in re.findall(r"\[([^\]\s]+)\]", help_text):
+        if unit in _UNITS:
+            return unit
+    return ""
+
+
+def option_rows() -> list[OptionRow]:
+    """Every option of every command of ``impact``, in the order of ``impact --help`` and of
+    each command's help."""
+    import click
+    import typer.main
+
+    from impactcli.cli import COMMAND_MODULES, build_app
+    from impactcli.cli.helptext import _join_options, metavar_of
+
+    group = typer.main.get_command(build_app())
+    rows = []
+    for name in COMMAND_MODULES:
+        command = group.commands[name]
+        ctx = click.Context(command, info_name=name)
+        for param in command.get_params(ctx):
+            if param.param_type_name != "option" or "--help" in param.opts:
+                continue
+            names = _join_options(param.opts)
+            if param.secondary_opts:
+                names += " / " + _join_options(param.secondary_opts)
+            flag = getattr(param, "is_flag", False)
+            metavar = "" if flag else metavar_of(param, ctx)
+            text = " ".join((param.help or "").split())
+            rows.append(
+                OptionRow(name, names, metavar, _default(param), _unit(metavar, text), text)
+            )
+    return rows
+
+
+def _long(row: OptionRow) -> str:
+    return max(row.names.split(" / ")[0].split(", "), key=len)
+
+
+def differences(rows: list[OptionRow] | None = None) -> dict[str, list[OptionRow]]:
+    """Options of one name whose metavar or default differs between commands."""
+    rows = option_rows() if rows is None else rows
+    by_name: dict[str, list[OptionRow]] = {}
+    for row in rows:
+        by_name.setdefault(_long(row), []).append(row)
+    return {
+        name: group
+        for name, group in by_name.items()
+        if len({(r.metavar, r.default) for r in group}) > 1
+    }
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|") if text else ""
+
+
+def options_markdown() -> str:
+    """The page docs/options.md."""
+    rows = option_rows()
+    out = [
+        "# Options of every command",
+        "",
+        "<!-- generated by `make options` (python -m impactcli.cli.options_doc) from the "
+        "commands' own declarations; tests/test_options_doc.py fails when it drifts -->",
+        "",
+        "A bare number is SI, in the unit of the last column; a unit may be given "
+        "(`20mm`, `7.5 mm/s`). An option of one name means the same in every command that "
+        "takes it; where its value or default differs, the table at the end says how, and "
+        "the helps of both commands say so.",
+        "",
+        "| command | option | value | default | unit |",
+        "|---|---|---|---|---|",
+    ]
+    for row in rows:
+        out.append(
+            f"| {row.command} | `{row.names}` | {_cell(row.metavar)} | {_cell(row.default)} "
+            f"| {_cell(row.unit)} |"
+        )
+    out += [
+        "",
+        "## Same name, different value or default",
+        "",
+        "| option | commands: value (default) | why |",
+        "|---|---|---|",
+    ]
+    for name, group in sorted(differences(rows).items()):
+        seen = "; ".join(
+            f"{r.command}: {r.metavar or 'flag'}" + (f" ({r.default})" if r.default else "")
+            for r in group
+        )
+        why = BY_NATURE.get(name, "stated in the help of each command, which names the other")
+        out.append(f"| `{name}` | {_cell(seen)} | {_cell(why)} |")
+    return "\n".join(out) + "\n"
+
+
+if __name__ == "__main__":
+    print(options_markdown(), end="")

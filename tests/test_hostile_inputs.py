@@ -1,0 +1,166 @@
+"""Hostile input that used to end in a traceback, in silent nonsense or in a misleading
+message: each now ends in one line and exit 2 (a batch: that row's error), and a Python
+caller gets :class:`impactcli.errors.InputError`, a ValueError."""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+
+import numpy as np
+import pytest
+
+from impactcli.errors import InputError
+
+PAIR = ["--d1", "20mm", "--d2", "40mm", "--v1", "5", "--v2", "-1", "--material", "steel"]
+STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
+
+
+def _one_line(result, needle: str = "") -> None:
+    assert result.returncode == 2, (result.stdout[:200], result.stderr)
+    assert result.stdout == "", result.stdout[:200]  # nothing printed before the error
+    assert result.stderr.count("\n") == 1 and result.stderr.startswith("impact"), result.stderr
+    assert "Traceback" not in result.stderr
+    assert needle in result.stderr, result.stderr
+
+
+def _table(text: str) -> list[dict[str, str]]:
+    return list(csv.DictReader(io.StringIO(text)))
+
+
+# -- tracebacks ------------------------------------------------------------------------------
+
+
+def test_damped_impact_with_the_yield_split(impact):
+    """--damping with --split yield used to raise AttributeError (no FILM stages)."""
+    r = impact("elastic", *PAIR, "--damping", "tsuji", "--alpha", "0.3", "--split", "yield",
+               "--nu1", "0.23", "--summary", "-", "-o", "/dev/null")  # fmt: skip
+    assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
+    (row,) = _table(r.stdout)
+    assert 0.0 < float(row["restitution"]) < 1.0
+
+
+def test_damped_ode_that_creeps_is_one_line(impact):
+    """alpha = 2.3: the exact equation creeps back toward delta = 0 without reaching it
+    within 50 Hertz contact times (FILM's segments end the creep with e = 7.7e-7): one line
+    saying so, not a RuntimeError."""
+    r = impact("elastic", *PAIR, "--damping", "tsuji", "--alpha", "2.3", "--method", "ode")
+    _one_line(r, "SciPy integration finds no end of contact within 50 Hertz contact times")
+    film = impact("elastic", *PAIR, "--damping", "tsuji", "--alpha", "2.3", "--summary", "-",
+                  "-o", "/dev/null")  # fmt: skip
+    assert film.returncode == 0 and 0 < float(_table(film.stdout)[0]["restitution"]) < 1e-5
+
+
+@pytest.mark.parametrize("extra", [[], ["--m2", "1kg"]], ids=["density", "mass"])
+def test_fit_with_a_diameter_below_the_float_range(impact, extra):
+    r = impact("fit", "docs/data/drop_tests_steel.csv", "--law", "du-wang", "--d1", "20mm",
+               "--d2", "1e-320", *extra, "--material", "steel")  # fmt: skip
+    _one_line(r, "out of range: ")
+
+
+# -- silent nonsense -------------------------------------------------------------------------
+
+
+def test_batch_rows_out_of_double_precision_are_their_errors(impact, tmp_path):
+    """Walton & Braun at V0 = 1e300 gave e = 0.5, no contact time and infinite dissipation
+    with no error; at 1e-300 a zero t_max. Damped rows there were "overdamped". Each is now
+    its row's error saying the numbers overflow or underflow; the good rows stay."""
+    path = tmp_path / "in.csv"
+    path.write_text(
+        "d1,d2,v1,v2,material,law,k_load,k_unload,damping,alpha,model\n"
+        "20mm,20mm,1,0,steel,walton-braun,2e7,8e7,,,\n"
+        "20mm,20mm,1e300,0,steel,walton-braun,2e7,8e7,,,\n"
+        "20mm,20mm,1e-300,0,steel,walton-braun,2e7,8e7,,,\n"
+        "20mm,20mm,1,0,steel,,,,tsuji,0.3,elastic\n"
+        "20mm,20mm,1e300,0,steel,,,,tsuji,0.3,elastic\n"
+        "20mm,20mm,1e-300,0,steel,,,,tsuji,0.3,elastic\n"
+        "20mm,20mm,1,0,steel,,,,tsuji,3,elastic\n"
+    )
+    r = impact("batch", str(path))
+    assert r.returncode == 0, r.stderr
+    rows = _table(r.stdout)
+    for good in (rows[0], rows[3]):
+        assert good["error"] == "" and 0 < float(good["restitution"]) < 1
+    for bad in (rows[1], rows[2], rows[4], rows[5]):
+        assert "double precision" in bad["error"] and "overdamped" not in bad["error"]
+        assert bad["restitution"] == bad["contact_time"] == bad["energy_dissipated"] == ""
+    assert "1e+300 m/s" in rows[1]["error"] and "1e-300 m/s" in rows[5]["error"]
+    assert "overdamped" in rows[6]["error"]  # alpha = 3 > sqrt(5): a contact that never ends
+
+
+@pytest.mark.parametrize("command", ["elastoplastic", "compare-laws"])
+@pytest.mark.parametrize("option, value", [("--E", "1e-300"), ("--rho", "1e-300"),
+                                           ("--sy", "1e300"), ("--m1", "1e-300")])  # fmt: skip
+def test_overflow_prints_nothing_before_its_error(impact, command, option, value):
+    """These used to print rows of NaN and inf on stdout, then fail with exit 2."""
+    args = {"--d1": "20mm", "--d2": "40mm", "--v1": "1", "--v2": "0", option: value}
+    r = impact(command, *(x for kv in args.items() for x in kv), "--material", "steel")
+    _one_line(r, "the computation failed")
+
+
+@pytest.mark.parametrize("command", ["elastoplastic", "compare-laws"])
+def test_an_indentation_that_underflows_is_named(impact, command):
+    """V0 = 1e-300: the maximum indentation underflows to 0; the message said "the yield
+    indentation is nan of the maximum indentation, below 1e-12"."""
+    r = impact(command, "--d1", "20mm", "--d2", "40mm", "--v1", "1e-300", "--v2", "0",
+               "--material", "steel", *(["--law", "hertz"] if command == "compare-laws" else []))
+    _one_line(r, "the maximum indentation is 0 m, beyond double precision")
+    assert "nan" not in r.stderr
+
+
+def test_a_contact_radius_warning_has_a_few_digits():
+    from impactcli.validation import contact_radius_warning
+
+    message = contact_radius_warning(1e300, 2.8e295, 0.005)
+    assert "contact radius / R = 7.48e+148 > 0.1" in message and len(message) < 250
+    assert "contact radius / R = 0.14 > 0.1" in contact_radius_warning(3.0, 0.0196 * 0.005, 0.005)
+
+
+# -- the Python API: one exception type, no NaN for bad input -------------------------------
+
+
+def _api_calls():
+    from impactcli.collision3d import oblique_impact
+    from impactcli.damping import damping_for_restitution
+    from impactcli.design import hertz_contact_time, rayleigh_time_step, yield_limit_diameter
+    from impactcli.impact import Sphere, elastic_impact
+
+    ball = Sphere(0.02, **STEEL)
+    limit = (1, 1, (0.01, 0.02), (2e11, 2e11), (0.3, 0.3), (7800.0, 7800.0), (None, None))
+    return {
+        "rayleigh_time_step(radius=-1)": lambda: rayleigh_time_step(-1.0, 210e9, 0.3, 7800.0),
+        "hertz_contact_time(V0=-1)": lambda: hertz_contact_time(0.01, 0.005, 1e11, -1.0),
+        "yield_limit_diameter(v=-1)": lambda: yield_limit_diameter(-1.0, *limit, 1e9),
+        "yield_limit_diameter(sy=-1)": lambda: yield_limit_diameter(1.0, *limit, -1.0),
+        "damping_for_restitution(V0=inf)": lambda: damping_for_restitution(
+            "tsuji", 0.5, math.inf, 1e10, 0.01
+        ),
+        "oblique_impact(m1=5e-324)": lambda: oblique_impact(
+            5e-324, 1.0, 0.01, 0.01, (0, 0, 0), (0, 0, 0.02), (1, 0, 1), (0, 0, 0), friction=0.2
+        ),
+        "elastic_impact(0.0, ...)": lambda: elastic_impact(0.0, ball, 1.0, 0.0),
+        "Sphere(10**400, ...)": lambda: Sphere(10**400, **STEEL),
+    }
+
+
+@pytest.mark.parametrize("call", list(_api_calls()))
+def test_python_callers_get_input_error(call):
+    """Each of these returned a negative time, inf, 0 or NaN velocities, or raised
+    AttributeError or OverflowError."""
+    with pytest.raises(InputError) as caught:
+        _api_calls()[call]()
+    assert isinstance(caught.value, ValueError)  # except ValueError keeps working
+    assert "\n" not in str(caught.value)
+
+
+def test_python_library_errors_are_input_errors():
+    """A ValueError from a lower layer reaches a caller of the public API as InputError."""
+    from impactcli.impact import Sphere, damped_impact, law_impact
+
+    s = Sphere(0.02, **STEEL)
+    with pytest.raises(InputError, match="alpha"):
+        damped_impact(s, s, 1.0, 0.0, "tsuji", alpha=-1.0)
+    with pytest.raises(InputError):
+        law_impact(s, s, 1.0, 0.0, "no-such-law")
+    assert np.isfinite(law_impact(s, s, 1.0, 0.0, "hertz").summary["restitution"])
