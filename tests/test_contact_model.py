@@ -90,3 +90,18 @@ def test_collide2d_refuses_damping_with_a_given_e(impact):
         "0.3",
     )  # fmt: skip
     assert done.returncode == 2 and "--damping goes with --model elastic" in done.stderr
+
+
+@pytest.mark.parametrize("name", list(DAMPING_LAWS))
+def test_every_damping_model_has_its_similar_alpha(name):
+    """e at (alpha, K, m, V0) is e at K = m = V0 = 1 with the model's similar_alpha: the
+    batch's check of a contact that never ends relies on it."""
+    from impactcli.damping import make_damping_law, solve_damped_impact
+
+    model = DAMPING_LAWS[name]
+    k, m, v0 = 1.256e10, 0.029, 0.7
+    alpha = float(model.alpha_estimate(0.8, v0, k, m))
+    real = solve_damped_impact(make_damping_law(name, k, m, alpha), v0, m, n=200)
+    same = float(model.similar_alpha(alpha, k, m, v0))
+    unit = solve_damped_impact(make_damping_law(name, 1.0, 1.0, same), 1.0, 1.0, n=200)
+    assert float(real.restitution) == pytest.approx(float(unit.restitution), rel=1e-9)

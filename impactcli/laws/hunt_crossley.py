@@ -85,6 +85,14 @@ class HuntCrossleyDamping(DampedHertz):
         return np.maximum(guess, 1e-6 / v0)
 
     @classmethod
+    def similar_alpha(
+        cls, alpha: ArrayLike, stiffness: ArrayLike, mass: ArrayLike, impact_velocity: ArrayLike
+    ) -> Array:
+        """The alpha that gives the same e at K = m = V0 = 1 (the law in its own units):
+        alpha V0 (e depends on alpha V0 only)."""
+        return np.asarray(alpha, dtype=float) * np.asarray(impact_velocity, dtype=float)
+
+    @classmethod
     def fit_start(
         cls, reference_velocity: float, stiffness: float, mass: float
     ) -> tuple[float, float, float]:

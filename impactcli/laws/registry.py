@@ -37,6 +37,7 @@ __all__ = [
     "make_damping_law",
     "parameter_laws",
     "plan_groups",
+    "unit_kinds",
 ]
 
 #: The one registry: every contact model of the library by name, in listing order: the
@@ -95,6 +96,17 @@ def parameter_laws() -> dict[str, tuple[Parameter, tuple[str, ...]]]:
         for p in spec.parameters:
             first, names = out.get(p.name, (p, ()))
             out[p.name] = (first, (*names, spec.name))
+    return out
+
+
+def unit_kinds() -> dict[str, str]:
+    """Every numeric parameter unit of the registry -> its kind of quantity (for unit
+    parsing: ``Pa`` -> ``pressure``, ``s`` -> ``time``); ``-`` is dimensionless."""
+    out = {"-": "dimensionless"}
+    for model in MODELS.values():
+        for p in model.parameters:
+            if p.kind not in ("file", "choice"):
+                out.setdefault(p.unit if p.kind != "dimensionless" else "-", p.kind)
     return out
 
 

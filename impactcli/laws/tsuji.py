@@ -112,6 +112,14 @@ class TsujiDamping(DampedHertz):
         return "Tsuji: Antypov & Elliott (2011) closed form", np.full(np.shape(impact_velocity), e)
 
     @classmethod
+    def similar_alpha(
+        cls, alpha: ArrayLike, stiffness: ArrayLike, mass: ArrayLike, impact_velocity: ArrayLike
+    ) -> Array:
+        """The alpha that gives the same e at K = m = V0 = 1 (the law in its own units):
+        alpha itself, [-] (e depends on alpha only)."""
+        return np.asarray(alpha, dtype=float) + 0.0 * np.asarray(impact_velocity, dtype=float)
+
+    @classmethod
     def fit_start(
         cls, reference_velocity: float, stiffness: float, mass: float
     ) -> tuple[float, float, float]:

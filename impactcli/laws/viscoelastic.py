@@ -151,6 +151,19 @@ class ViscoelasticDamping(DampedHertz):
         return (1.0 - e) / (RESTITUTION_C1 * per_alpha)
 
     @classmethod
+    def similar_alpha(
+        cls, alpha: ArrayLike, stiffness: ArrayLike, mass: ArrayLike, impact_velocity: ArrayLike
+    ) -> Array:
+        """The alpha that gives the same e at K = m = V0 = 1 (the law in its own units):
+        A (K/m)^(2/5) V0^(1/5) (e depends on it only: scale delta by
+        (m V0^2 / K)^(2/5) and t by that over V0)."""
+        return (
+            viscoelastic_beta(alpha, stiffness, mass)
+            / 1.5
+            * np.asarray(impact_velocity, float) ** 0.2
+        )
+
+    @classmethod
     def fit_start(
         cls, reference_velocity: float, stiffness: float, mass: float
     ) -> tuple[float, float, float]:
