@@ -25,7 +25,7 @@ import numpy as np
 from impactcli.collision3d import (
     effective_shear_modulus,
     normal_restitution_and_history,
-    oblique_impact,
+    oblique_collision_3d,
     velocity_from_angles,
 )
 from impactcli.impact import Sphere
@@ -57,9 +57,9 @@ def sweep(material: str, theta: np.ndarray, v_n: np.ndarray, model: str) -> dict
         e = np.array([r[0] for r in runs])
         history = NormalHistory(*(np.concatenate([getattr(r[1], k) for r in runs])
                                   for k in ("t", "delta", "delta_dot", "force")))  # fmt: skip
-    c = oblique_impact(
-        ball.total_mass, np.inf, R, np.inf, (0.0, 0.0, 0.0), NORMAL, v1, (0.0, 0.0, 0.0),
-        restitution=e, friction=MU, tangential=model, history=history,
+    c = oblique_collision_3d(
+        ball.total_mass, np.inf, v1, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), NORMAL, 2 * R, np.inf,
+        restitution=e, mu=MU, tangential=model, history=history,
         shear_modulus=effective_shear_modulus(youngs, nu, np.inf, 0.0),
     )  # fmt: skip
     axis = np.cross(c.slip_direction, c.normal)  # the spin of rolling along t

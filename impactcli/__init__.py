@@ -3,23 +3,53 @@
 The numerical core works in SI units on floats and NumPy arrays and never prints or writes
 files; the ``impact`` command line (:mod:`impactcli.cli`) is a thin layer over it.
 
+The public API, one set of names: a pair of spheres is ``sphere1, sphere2, v1, v2`` (SI,
+diameters, velocities toward the other sphere) or, for the vectorised functions, the
+columns of ``impact batch`` (``d1, d2, v1, v2, E1, nu1, ...``); a law's parameters are
+``law_params``; friction is ``mu``; every result carries the ``warnings`` the command line
+prints. Each name is imported on first use, so that ``impact --help`` stays light.
+
+>>> import impactcli
+>>> s1 = impactcli.Sphere.from_material(0.02, "steel")
+>>> s2 = impactcli.Sphere.from_material(0.04, "steel")
+>>> round(impactcli.elastic_impact(s1, s2, 5e-3, 7.5e-3).summary["contact_time"] * 1e6, 2)
+171.32
+
 Reference: A. Big-Alabo, "Rigid Body Motions and Local Compliance Response during Impact of
 Two Deformable Spheres", Mechanical Engineering Research 8(1), 2018, doi:10.5539/mer.v8n1p1.
 """
 
 __version__ = "0.1.0"
 
-__all__ = ["Sphere", "elastic_impact", "elastoplastic_impact", "oblique_collision"]
+#: Public name -> the module that defines it.
+_PUBLIC: dict[str, str] = {
+    "Sphere": "impactcli.impact",
+    "ImpactResult": "impactcli.impact",
+    "elastic_impact": "impactcli.impact",
+    "elastoplastic_impact": "impactcli.impact",
+    "law_impact": "impactcli.impact",
+    "damped_impact": "impactcli.impact",
+    "impact_warnings": "impactcli.impact",
+    "oblique_collision": "impactcli.collision2d",
+    "oblique_collision_3d": "impactcli.collision3d",
+    "batch_impacts": "impactcli.batch",
+    "restitution_sweep": "impactcli.sweep",
+    "Material": "impactcli.materials",
+    "material": "impactcli.materials",
+    "InputError": "impactcli.errors",
+}
+
+__all__ = list(_PUBLIC)
 
 
 def __getattr__(name: str):
     """The public API, imported on first use so that ``impact --help`` stays light."""
-    if name in ("Sphere", "elastic_impact", "elastoplastic_impact"):
-        from impactcli import impact
+    if name in _PUBLIC:
+        from importlib import import_module
 
-        return getattr(impact, name)
-    if name == "oblique_collision":
-        from impactcli.collision2d import oblique_collision
-
-        return oblique_collision
+        return getattr(import_module(_PUBLIC[name]), name)
     raise AttributeError(f"module 'impactcli' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *__all__])

@@ -113,6 +113,7 @@ __all__ = [
     "NormalHistory",
     "effective_shear_modulus",
     "normal_restitution_and_history",
+    "oblique_collision_3d",
     "oblique_impact",
     "reference_tangent",
     "velocity_from_angles",
@@ -123,7 +124,7 @@ if TYPE_CHECKING:
 
 Array = NDArray[np.float64]
 
-#: The tangential models of :func:`oblique_impact`.
+#: The tangential models of :func:`oblique_collision_3d`.
 TANGENTIAL_MODELS: tuple[str, ...] = ("rigid", "mindlin")
 
 #: Relative tolerance on the agreement of a normal history with u_n and e.
@@ -637,30 +638,32 @@ def normal_restitution_and_history(
 
 
 @input_errors
-def oblique_impact(
+def oblique_collision_3d(
     m1: ArrayLike,
     m2: ArrayLike,
-    r1: ArrayLike,
-    r2: ArrayLike,
-    p1: ArrayLike,
-    p2: ArrayLike,
     v1: ArrayLike,
     v2: ArrayLike,
+    p1: ArrayLike,
+    p2: ArrayLike,
+    d1: ArrayLike,
+    d2: ArrayLike,
     w1: ArrayLike = (0.0, 0.0, 0.0),
     w2: ArrayLike = (0.0, 0.0, 0.0),
     restitution: ArrayLike = 1.0,
-    friction: ArrayLike = 0.0,
+    mu: ArrayLike = 0.0,
     tangential: str = "rigid",
     inertia1: ArrayLike | None = None,
     inertia2: ArrayLike | None = None,
     history: NormalHistory | None = None,
     shear_modulus: ArrayLike | None = None,
 ) -> Collision3D:
-    r"""Velocities and spins after the oblique collision of two rough spheres.
+    r"""Velocities and spins after the oblique collision of two rough spheres, in 3-D.
 
-    See the module docstring for the equations. The normal impulse is
-    J_n = (1 + e) m u_n (paper eq. 20, any e); the tangential impulse follows from the
-    ``tangential`` model:
+    The arguments of :func:`impactcli.collision2d.oblique_collision` in its order (masses,
+    velocities, centres at contact), then what a rough sphere adds: diameters (as
+    :class:`impactcli.impact.Sphere` and every command take them), spins, e and mu. See the
+    module docstring for the equations. The normal impulse is J_n = (1 + e) m u_n (paper
+    eq. 20, any e); the tangential impulse follows from the ``tangential`` model:
 
     - ``rigid``: J_t = m_t |u_t| (stick) if that is <= mu J_n, else mu J_n (gross slip),
       along the slip direction t_hat (Brach 1991; Stronge 2000).
@@ -680,16 +683,16 @@ def oblique_impact(
     Parameters
     ----------
     m1, m2 : masses, > 0, [kg]; ``inf`` for a fixed target (at most one)
-    r1, r2 : radii, > 0, [m]; ``inf`` for a flat target (at most one)
+    v1, v2 : velocities before the impact, (x, y, z) on the last axis, [m/s]
     p1, p2 : centres at contact, (x, y, z) on the last axis, [m]: with friction (mu > 0)
-        two spheres of finite radius must be at |p2 - p1| = R1 + R2 within
+        two spheres of finite size must be at |p2 - p1| = (D1 + D2)/2 within
         :data:`CONTACT_DISTANCE_RTOL` (relative); for a flat target p2 - p1 only gives the
         normal direction
-    v1, v2 : velocities before the impact, [m/s]
+    d1, d2 : diameters, > 0, [m]; ``inf`` for a flat target (at most one)
     w1, w2 : angular velocities before the impact, [rad/s]; a flat target must not spin
     restitution : normal coefficient of restitution e in [0, 1], [-], from the normal law
         (elastic: 1; elastoplastic: the FILM run at the normal approach velocity u_n)
-    friction : Coulomb coefficient mu >= 0, [-]
+    mu : Coulomb friction coefficient mu >= 0, [-] (``--mu`` of ``impact collide3d``)
     tangential : ``rigid`` or ``mindlin``
     inertia1, inertia2 : moments of inertia, [kg m^2]; default a solid sphere,
         I = (2/5) m R^2 (R^2/I = 5/(2 m); 0 for a fixed body and for a flat one, which
@@ -700,26 +703,103 @@ def oblique_impact(
     Returns
     -------
     Collision3D
+        Velocities, spins, impulses, restitution and rebound angles after the impact, with
+        the momenta and energies before and after (:func:`collision_summary`).
 
     Raises
     ------
     ValueError
-        Masses, radii, e, mu or vectors out of range, coincident centres, centres of two
-        spheres with friction not at contact distance, spheres not approaching (u_n <= 0),
-        an unknown model, or a ``mindlin`` call without a history consistent with u_n and
-        e. For a batch the message names the first bad collision.
+        Masses, diameters, e, mu or vectors out of range, coincident centres, centres of
+        two spheres with friction not at contact distance, spheres not approaching
+        (u_n <= 0), an unknown model, or a ``mindlin`` call without a history consistent
+        with u_n and e. For a batch the message names the first bad collision.
 
     Examples
     --------
-    A solid sphere (R = 2.5 mm) on a fixed plane at 3.9 m/s, 60 deg from the normal,
+    A solid sphere (D = 5 mm) on a fixed plane at 3.9 m/s, 60 deg from the normal,
     mu = 0.092, e = 1: gross slip, v_t' = v_t - 2 mu v_n.
 
     >>> s, c = np.sin(np.radians(60.0)), np.cos(np.radians(60.0))
-    >>> r = oblique_impact(2.6e-4, np.inf, 2.5e-3, np.inf, (0, 0, 0), (0, 0, -1),
-    ...                    (3.9 * s, 0.0, -3.9 * c), (0, 0, 0), friction=0.092)
+    >>> r = oblique_collision_3d(2.6e-4, np.inf, (3.9 * s, 0.0, -3.9 * c), (0, 0, 0),
+    ...                          (0, 0, 0), (0, 0, -1), 5e-3, np.inf, mu=0.092)
     >>> bool(r.stuck), round(float(r.v1_final[0]), 6), round(float(r.w1_final[1]), 3)
     (False, 3.018699, 358.8)
     """
+    return _oblique(
+        m1, m2, 0.5 * np.asarray(d1, dtype=float), 0.5 * np.asarray(d2, dtype=float), p1, p2,
+        v1, v2, w1, w2, restitution, mu, tangential, inertia1, inertia2, history,
+        shear_modulus,
+    )  # fmt: skip
+
+
+@input_errors
+def oblique_impact(
+    m1: ArrayLike,
+    m2: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    p1: ArrayLike,
+    p2: ArrayLike,
+    v1: ArrayLike,
+    v2: ArrayLike,
+    w1: ArrayLike = (0.0, 0.0, 0.0),
+    w2: ArrayLike = (0.0, 0.0, 0.0),
+    restitution: ArrayLike = 1.0,
+    friction: ArrayLike = 0.0,
+    tangential: str = "rigid",
+    inertia1: ArrayLike | None = None,
+    inertia2: ArrayLike | None = None,
+    history: NormalHistory | None = None,
+    shear_modulus: ArrayLike | None = None,
+) -> Collision3D:
+    """Deprecated (it goes in 0.3): :func:`oblique_collision_3d`, which takes diameters
+    and the arguments in the order of :func:`impactcli.collision2d.oblique_collision`
+    (``oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, ..., mu=...)``). The same
+    result, bit for bit.
+
+    Parameters
+    ----------
+    r1, r2 : radii, [m]; friction : mu, [-]; the others as :func:`oblique_collision_3d`
+
+    Returns
+    -------
+    Collision3D
+    """
+    import warnings
+
+    warnings.warn(
+        "oblique_impact(m1, m2, r1, r2, p1, p2, v1, v2, ..., friction=) is deprecated and goes "
+        "in 0.3: use oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, ..., mu=), with "
+        "diameters",
+        DeprecationWarning,
+        stacklevel=3,  # the caller, past the input_errors wrapper
+    )
+    return _oblique(
+        m1, m2, r1, r2, p1, p2, v1, v2, w1, w2, restitution, friction, tangential, inertia1,
+        inertia2, history, shear_modulus,
+    )  # fmt: skip
+
+
+def _oblique(
+    m1: ArrayLike,
+    m2: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    p1: ArrayLike,
+    p2: ArrayLike,
+    v1: ArrayLike,
+    v2: ArrayLike,
+    w1: ArrayLike = (0.0, 0.0, 0.0),
+    w2: ArrayLike = (0.0, 0.0, 0.0),
+    restitution: ArrayLike = 1.0,
+    friction: ArrayLike = 0.0,
+    tangential: str = "rigid",
+    inertia1: ArrayLike | None = None,
+    inertia2: ArrayLike | None = None,
+    history: NormalHistory | None = None,
+    shear_modulus: ArrayLike | None = None,
+) -> Collision3D:
+    """:func:`oblique_collision_3d` with radii [m] and friction mu [-]."""
     if tangential not in TANGENTIAL_MODELS:
         raise ValueError(f"the tangential model must be rigid or mindlin, got {tangential!r}")
     m1, m2, r1, r2, e, mu = (
@@ -915,7 +995,7 @@ def _mindlin(
     radius: Array,
 ) -> tuple[Array, NDArray[np.bool_], Array]:
     """Tangential impulse, stick flag and force history of the Mindlin spring (see
-    :func:`oblique_impact`). One vectorised step per interval of the history."""
+    :func:`oblique_collision_3d`). One vectorised step per interval of the history."""
     k_points = history.t.shape[-1]
     hist = {
         key: np.broadcast_to(getattr(history, key), shape + (k_points,))

@@ -141,7 +141,7 @@ def restitution_curves(
                 sphere1, sphere2, v0, model.damping, model.alpha, n, model.separation
             )["restitution"]
             continue
-        name, params = model.law, model.params
+        name, params = model.law, model.law_params
         contact = get_law(name).contact(r, e, sigma_y, **dict(params))
         within = np.ones(v0.shape, dtype=bool)
         reach = getattr(contact, "reach_errors", None)  # tabulated curves end somewhere
@@ -187,7 +187,7 @@ def published_restitution(
             continue
         spec = get_law(model.law)
         if spec.closed_form is not None:
-            contact = spec.contact(r, e, sigma_y, **dict(model.params))
+            contact = spec.contact(r, e, sigma_y, **dict(model.law_params))
             label, restitution = spec.closed_form(contact, m, v0)
             out[label] = (v0, restitution)
     return out

@@ -790,6 +790,14 @@ def damping_for_restitution(
     for what, x in (("the impact velocity V0", v0), ("the stiffness K", k), ("the mass m", m)):
         if np.any(~(np.isfinite(x) & (x > 0.0))):
             raise ValueError(f"{what} must be finite and > 0")
+    with np.errstate(all="ignore"):  # the Hertz scales must be normal doubles
+        delta = (5.0 * m * v0 * v0 / (4.0 * k)) ** 0.4
+        scales = (delta, k * delta**1.5, delta / v0, m * k, m * v0 * v0)
+    if not all(np.all(np.isfinite(x) & (x >= np.finfo(float).tiny)) for x in scales):
+        raise ValueError(
+            "out of range: the Hertz scales of this impact (maximum indentation, force, time, "
+            "energy) leave double precision; check V0, K, m and their units"
+        )
     n = int(n)
     coarse = min(n, _COARSE_N)
     alpha = _alpha_by_illinois(name, e_t, v0, k, m, coarse, separation, rtol)

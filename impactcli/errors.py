@@ -11,7 +11,24 @@ __all__ = ["InputError", "OutputError", "StdoutClosed"]
 
 
 class InputError(ValueError):
-    """Bad user input: reported as one line on stderr with exit status 2."""
+    """Bad user input: reported as one line on stderr with exit status 2.
+
+    A :class:`ValueError`, so ``except ValueError`` catches it too.
+
+    Parameters
+    ----------
+    message : one line: what is wrong and what is accepted
+
+    Examples
+    --------
+    >>> from impactcli.materials import material
+    >>> from impactcli.spheres import spheres_from_options, SphereOptions
+    >>> try:
+    ...     spheres_from_options(SphereOptions(d1="20mm", d2="40mm", material="unobtainium"))
+    ... except InputError as exc:
+    ...     print(str(exc)[:34])
+    --material: unknown material 'unob
+    """
 
 
 class OutputError(InputError):

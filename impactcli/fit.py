@@ -338,6 +338,11 @@ def fit_law(
     else:
         aic = -math.inf
     aicc = aic + (2 * p * (p + 1) / (points - p - 1) if points - p - 1 > 0 else math.inf)
+    if points - p - 1 <= 0:
+        warnings.append(
+            f"AICc needs more than p + 1 = {p + 1} points for {p} parameter(s), got {points}: "
+            "it is infinite, and a ranking by it says nothing"
+        )
     return FitResult(
         law=law,
         names=names,
@@ -516,6 +521,7 @@ def law_model(
     base.update(fixed or {})
     known = set(law_parameters(sphere1, sphere2, law))
 
+    @input_errors
     def model(params: Mapping[str, float], v0: NDArray) -> dict[str, NDArray]:
         p = {**base, **params}
         unknown = set(p) - known

@@ -91,6 +91,7 @@ __all__ = [
     "energy_summary",
     "impact_summary",
     "impact",
+    "impact_warnings",
     "integrate_impact",
     "law_impact",
     "plastic_summary",
@@ -188,6 +189,20 @@ class Sphere:
     density : rho, [kg/m^3]
     mass : m, [kg]; ``None`` for rho pi D^3 / 6, ``inf`` for a fixed target
     yield_strength : sigma_y, [Pa], or ``None`` if unknown
+
+    Raises
+    ------
+    InputError
+        A property out of range, named (``diameter must be > 0 ...``).
+
+    Examples
+    --------
+    >>> s = Sphere(0.02, youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
+    >>> s.radius, round(s.total_mass, 6)
+    (0.01, 0.032673)
+    >>> Sphere.from_material(0.02, "steel") == Sphere(0.02, 210e9, 0.3, 7800.0, None, 1e9)
+    True
+    >>> wall = Sphere(float("inf"), float("inf"), 0.0, mass=float("inf"))  # rigid, fixed
     """
 
     diameter: float
@@ -219,6 +234,46 @@ class Sphere:
             )
         )
 
+    @classmethod
+    def from_material(
+        cls,
+        diameter: float,
+        material: str | Any,
+        mass: float | None = None,
+        **properties: float | None,
+    ) -> Sphere:
+        """A sphere of ``diameter`` [m] of a built-in material (``impact materials``), or
+        of a :class:`~impactcli.materials.Material`; ``properties`` (``youngs_modulus``,
+        ``poisson_ratio``, ``density``, ``yield_strength``, SI) replace the material's.
+
+        ``Sphere(0.02, **material("steel").properties())`` is the same sphere.
+
+        Parameters
+        ----------
+        diameter : D, [m]; ``inf`` for a flat target
+        material : a name of :data:`impactcli.materials.MATERIALS` or a ``Material``
+        mass : m, [kg]; ``None`` for rho pi D^3 / 6, ``inf`` for a fixed target
+        properties : the material's values to replace, SI
+
+        Returns
+        -------
+        Sphere
+
+        Examples
+        --------
+        >>> s = Sphere.from_material(0.02, "steel")
+        >>> s.youngs_modulus, s.yield_strength, round(s.total_mass, 6)
+        (210000000000.0, 1000000000.0, 0.032673)
+        >>> Sphere.from_material(0.02, "steel", yield_strength=8e8).yield_strength
+        800000000.0
+        """
+        from impactcli.materials import Material
+        from impactcli.materials import material as named
+
+        chosen = material if isinstance(material, Material) else named(material)
+        values = {**chosen.properties(), **properties}
+        return cls(diameter, mass=mass, **values)
+
     @property
     def radius(self) -> float:
         """R_i = D_i / 2, [m]."""
@@ -244,7 +299,30 @@ class ImpactResult:
     ``summary`` is FILM's, or the SciPy integration's when ``method == "ode"``
     (:func:`integrate_impact`); :attr:`ode` holds that integration, done once on first use.
     Use :meth:`history` for the columns of :data:`HISTORY_COLUMNS` at any times, by any
-    method (default ``method``).
+    method (default ``method``). Made by :func:`elastic_impact`,
+    :func:`elastoplastic_impact`, :func:`law_impact` and :func:`damped_impact`.
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]
+    plan, film : the stages of the impact and their FILM solution
+    n : FILM segments per stage
+    split : how the indentation is shared (``mass``, ``compliance``, ``yield``)
+    model : ``elastic``, ``elastoplastic`` or the law's name
+    summary : the summary, SI (:data:`ELASTIC_SUMMARY_KEYS`, ...)
+    method : ``film``, ``table`` or ``ode``
+    contact : the contact model that planned the stages
+    warnings : what ``impact`` prints for this impact (:func:`impact_warnings`)
+
+    Examples
+    --------
+    >>> r = elastic_impact(Sphere.from_material(0.02, "steel"),
+    ...                    Sphere.from_material(0.04, "steel"), 0.2, 0.0)
+    >>> r.model, round(r.summary["restitution"], 3), len(r.warnings)
+    ('elastic', 1.0, 1)
+    >>> r.warnings[0][:45]
+    'V0 = 0.2 m/s exceeds the first-yield velocity'
     """
 
     sphere1: Sphere
@@ -259,6 +337,10 @@ class ImpactResult:
     summary: dict[str, float] = field(default_factory=dict)
     method: Method = "film"
     contact: Any = None
+    #: The warnings ``impact`` prints for this impact (:func:`impact_warnings`): above the
+    #: first-yield velocity of an elastic impact, a contact radius beyond 0.1 R, the mass
+    #: split between different materials.
+    warnings: tuple[str, ...] = ()
 
     # -- derived constants -------------------------------------------------------------
     @property
@@ -884,6 +966,58 @@ def _finish(result: ImpactResult, summary: dict[str, float]) -> ImpactResult:
     return result
 
 
+def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[str, ...]:
+    """The warnings of an impact, in the words the command line prints them.
+
+    ``first_yield``: an elastic model, so V0 above the first-yield velocity (Hertz peak
+    pressure 1.6 sigma_y) is worth a warning
+    (:func:`impactcli.validation.first_yield_warning`); then, for every impact, a contact
+    radius beyond the small-deformation range and a mass split between different
+    materials.
+
+    Parameters
+    ----------
+    result : an impact (its ``summary``, spheres and split)
+    first_yield : whether to check V0 against the first-yield velocity
+
+    Returns
+    -------
+    tuple of str
+        One sentence per warning; empty when there is nothing to say.
+
+    Examples
+    --------
+    >>> s = Sphere.from_material(0.02, "steel")
+    >>> r = elastic_impact(s, Sphere.from_material(0.04, "steel"), 0.2, 0.0)
+    >>> impact_warnings(r, first_yield=True)[0][:60]
+    'V0 = 0.2 m/s exceeds the first-yield velocity 0.07846 m/s (H'
+    """
+    from impactcli.validation import (
+        contact_radius_warning,
+        first_yield_warning,
+        mass_split_warning,
+    )
+
+    s, v0 = result.summary, result.impact_velocity
+    s1, s2 = result.sphere1, result.sphere2
+    found = [
+        first_yield_warning(v0, s["first_yield_velocity"])
+        if first_yield and "first_yield_velocity" in s
+        else None,
+        contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),
+        mass_split_warning(
+            result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
+        ),
+    ]
+    return tuple(message for message in found if message)
+
+
+def _warned(result: ImpactResult, first_yield: bool = False) -> ImpactResult:
+    """``result`` with its :attr:`~ImpactResult.warnings`."""
+    object.__setattr__(result, "warnings", impact_warnings(result, first_yield))
+    return result
+
+
 def _film_impact(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -955,7 +1089,8 @@ def elastic_impact(
 
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
     contact = HertzLawContact(r, e)
-    return _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, "elastic")
+    result = _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, "elastic")
+    return _warned(result, first_yield=True)
 
 
 @input_errors
@@ -979,10 +1114,19 @@ def elastoplastic_impact(
 
     Parameters
     ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
+    n, split : as for :func:`elastic_impact` (``split`` also ``yield``)
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
     pressure_factor : p0 / sigma_y, [-]
     method : ``film`` or ``ode``, as for :func:`elastic_impact` (``table`` only below the
         yield velocity)
+
+    Returns
+    -------
+    ImpactResult
+        ``summary`` holds :data:`PLASTIC_SUMMARY_KEYS`; ``model`` is ``elastic`` below the
+        yield velocity; ``warnings`` what ``impact elastoplastic`` prints.
 
     Examples
     --------
@@ -1009,8 +1153,8 @@ def elastoplastic_impact(
     if not elastic:
         raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
     model = "elastic" if elastic else "elastoplastic"
-    return _film_impact(
-        sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, plastic=True
+    return _warned(
+        _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, True)
     )
 
 
@@ -1021,11 +1165,13 @@ def law_impact(
     v1: float,
     v2: float,
     law: str = DEFAULT_LAW,
-    params: dict[str, Any] | None = None,
+    law_params: dict[str, Any] | None = None,
     n: int = 25,
     split: Split = "mass",
     yield_strength: float | None = None,
     method: Method = "film",
+    *,
+    params: dict[str, Any] | None = None,
 ) -> ImpactResult:
     """Impact of two spheres under any law of the library (:mod:`impactcli.lawlib`) by FILM.
 
@@ -1039,9 +1185,20 @@ def law_impact(
 
     Parameters
     ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
     law : name of the law (``impact laws`` lists them)
-    params : the law's parameters by name (SI; files for ``tabulated``)
+    law_params : the law's parameters by name (SI; files for ``tabulated``), as
+        :func:`impactcli.batch.batch_impacts` takes them (``params=``, the former name,
+        works until 0.3 with a DeprecationWarning)
+    n, split, method : as for :func:`elastic_impact`
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
+
+    Returns
+    -------
+    ImpactResult
+        ``summary`` holds :data:`PLASTIC_SUMMARY_KEYS`; ``warnings`` what ``impact``
+        prints (for ``hertz`` also above the first-yield velocity).
 
     Raises
     ------
@@ -1059,13 +1216,25 @@ def law_impact(
     """
     from impactcli.laws import Hertz
 
+    if params is not None:
+        import warnings
+
+        warnings.warn(
+            "law_impact(params=) is deprecated and goes in 0.3: write law_params=, as "
+            "batch_impacts takes them",
+            DeprecationWarning,
+            stacklevel=3,  # the caller, past the input_errors wrapper
+        )
+        if law_params is not None:
+            raise TypeError("give law_params or the deprecated params, not both")
+        law_params = params
     _validate(sphere1, sphere2, v1, v2, n, split, method)
     spec = get_law(law)
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
     m, r, e = effective_properties(sphere1, sphere2)
-    contact = spec.contact(r, e, sigma_y, **(params or {}))
+    contact = spec.contact(r, e, sigma_y, **(law_params or {}))
     v0 = v1 + v2
     plan = contact.plan(v0, m)
     raise_first(plastic_range_problems(contact, v0, m, plan.delta_max))
@@ -1076,9 +1245,8 @@ def law_impact(
         model = "elastoplastic"
     else:
         model = spec.name
-    return _film_impact(
-        sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, plastic=True
-    )
+    result = _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, True)
+    return _warned(result, first_yield=spec.name == "hertz")
 
 
 #: Summary keys of :func:`damped_impact`: the elastic ones and the damping's.
@@ -1321,7 +1489,7 @@ def damped_impact(
     result.summary.update(_damped_summary(result, values, r, e))
     if method == "ode":
         result.summary.update(_damped_summary(result, result.ode.summary, r, e))
-    return result
+    return _warned(result, first_yield=True)
 
 
 #: Columns of :func:`damped_restitution_sweep`: those of
@@ -1411,7 +1579,7 @@ class ContactModel:
     Attributes
     ----------
     law : the normal law's name (:data:`impactcli.laws.registry.LAWS`); Hertz by default
-    params : its parameters by name, SI (files for a tabulated law)
+    law_params : its parameters by name, SI (files for a tabulated law)
     damping : a damping model's name (:data:`impactcli.laws.registry.DAMPING_LAWS`), or
         None; a damping model acts on Hertz elasticity, so ``law`` is then Hertz
     alpha : the damping model's parameter, in its unit (see ``impact laws``)
@@ -1426,7 +1594,7 @@ class ContactModel:
     """
 
     law: str = ELASTIC_LAW
-    params: Mapping[str, Any] = field(default_factory=dict)
+    law_params: Mapping[str, Any] = field(default_factory=dict)
     damping: str | None = None
     alpha: float | None = None
     restitution: float | None = None
@@ -1438,6 +1606,7 @@ class ContactModel:
         return self.law if self.damping is None else f"{self.law}+{self.damping}"
 
 
+@input_errors
 def impact(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -1474,13 +1643,13 @@ def impact(
     model = ContactModel() if model is None else model
     if model.damping is None:
         return law_impact(
-            sphere1, sphere2, v1, v2, model.law, dict(model.params), 25 if n is None else n,
+            sphere1, sphere2, v1, v2, model.law, dict(model.law_params), 25 if n is None else n,
             split, method=method,
         )  # fmt: skip
-    if get_law(model.law).name != ELASTIC_LAW or model.params:
+    if get_law(model.law).name != ELASTIC_LAW or model.law_params:
         raise ValueError(
             f"damping {model.damping!r} is viscous damping on Hertz elasticity: its law is "
-            f"{ELASTIC_LAW}, got {model.law!r}" + (" with parameters" if model.params else "")
+            f"{ELASTIC_LAW}, got {model.law!r}" + (" with parameters" if model.law_params else "")
         )
     return damped_impact(
         sphere1, sphere2, v1, v2, model.damping, model.alpha, model.restitution,

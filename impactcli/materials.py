@@ -24,6 +24,18 @@ class Material:
     density : rho, [kg/m^3]
     yield_strength : sigma_y, [Pa]; ``None`` for brittle materials that do not yield
     source : where the values come from
+
+    Parameters
+    ----------
+    name, youngs_modulus, poisson_ratio, density, yield_strength, source : as the
+        attributes (SI)
+
+    Examples
+    --------
+    >>> bronze = Material("bronze", 110e9, 0.34, 8800.0, 250e6, "a supplier's data sheet")
+    >>> from impactcli.impact import Sphere
+    >>> Sphere.from_material(0.01, bronze).yield_strength
+    250000000.0
     """
 
     name: str
@@ -32,6 +44,29 @@ class Material:
     density: float
     yield_strength: float | None
     source: str
+
+    def properties(self) -> dict[str, float | None]:
+        """The material's values as :class:`impactcli.impact.Sphere` takes them, SI:
+        ``Sphere(0.02, **material("steel").properties())``.
+
+        Returns
+        -------
+        dict
+            ``youngs_modulus`` [Pa], ``poisson_ratio`` [-], ``density`` [kg/m^3],
+            ``yield_strength`` [Pa] (None for a brittle material)
+
+        Examples
+        --------
+        >>> glass = material("glass").properties()
+        >>> glass["youngs_modulus"], glass["poisson_ratio"], glass["yield_strength"]
+        (72000000000.0, 0.23, None)
+        """
+        return {
+            "youngs_modulus": self.youngs_modulus,
+            "poisson_ratio": self.poisson_ratio,
+            "density": self.density,
+            "yield_strength": self.yield_strength,
+        }
 
 
 _ASM = "ASM Handbook / MatWeb typical values"
@@ -69,6 +104,20 @@ ALIASES = {
 
 def material(name: str) -> Material:
     """The built-in material called ``name`` (case-insensitive; ``_`` or space for ``-``).
+
+    Parameters
+    ----------
+    name : as ``impact materials`` lists them (``steel``, ``glass``, ...)
+
+    Returns
+    -------
+    Material
+        Its properties in SI and their source.
+
+    Examples
+    --------
+    >>> material("Steel").youngs_modulus, material("aluminium").name
+    (210000000000.0, 'aluminium-alloy')
 
     Raises
     ------

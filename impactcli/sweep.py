@@ -65,6 +65,18 @@ def restitution_sweep(
     ``split``: ``mass``, ``compliance`` or ``yield`` (the permanent indentation to the
     sphere that yields, :func:`impactcli.impact.split_fractions`).
 
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (:class:`impactcli.impact.Sphere`, SI)
+    velocities : impact velocities V0 = V1 + V2, > 0, [m/s]
+    n : FILM segments per stage
+    yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
+    pressure_factor : p0 / sigma_y of Du & Wang's law, [-]
+    split : ``mass``, ``compliance`` or ``yield``
+    law : a law of ``impact laws``, or None for Du & Wang
+    law_params : the law's parameters by name, SI (as for
+        :func:`impactcli.impact.law_impact`)
+
     Returns
     -------
     dict
@@ -72,6 +84,14 @@ def restitution_sweep(
         residual indentation (total and of each sphere) [m], maximum force [N], energy
         dissipated (1/2) m V0^2 (1 - e^2) [J], and ``plastic``
         (1 above the yield velocity, else 0).
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> out = restitution_sweep(*steel, [0.1, 1.0])
+    >>> out["restitution"].round(5).tolist(), out["plastic"].tolist()
+    ([1.0, 0.85611], [0.0, 1.0])
     """
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
@@ -90,6 +110,16 @@ def restitution_sweep(
         out["force_max"][rows] = plan.force_max
         out["delta_res"][rows] = plan.delta_res
     raise_first(plastic_range_problems(contact, v0, m, out["delta_max"]))
+    with np.errstate(invalid="ignore"):  # a plan whose numbers left double precision
+        broken = ~(np.isfinite(out["restitution"]) & (out["contact_time"] > 0.0)
+                   & np.isfinite(out["contact_time"]) & (out["delta_max"] > 0.0)
+                   & np.isfinite(out["force_max"]))  # fmt: skip
+    if np.any(broken):
+        raise ValueError(
+            f"out of range: at V0 = {float(v0[broken][0]):.3g} m/s the model's numbers "
+            "overflow or underflow in double precision (a yield strength, size or V0 too "
+            "small or too large); check the values and their units"
+        )
     if split == "yield" and np.any(out["delta_res"] > 0.0):
         if sphere1.yield_strength is None and sphere2.yield_strength is None:
             raise ValueError(

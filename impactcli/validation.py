@@ -108,8 +108,8 @@ _F = TypeVar("_F", bound=Callable)
 
 
 def input_errors(function: _F) -> _F:
-    """Make ``function`` a public entry point of the library: a :class:`ValueError` of bad
-    input from any layer below it (and an :class:`OverflowError` or
+    """Make ``function`` a public entry point of the library: a :class:`ValueError` or
+    :class:`TypeError` of bad input from any layer below it (and an :class:`OverflowError` or
     :class:`ZeroDivisionError` of a number beyond the range of a float) reaches the caller
     as one :class:`~impactcli.errors.InputError` (itself a ValueError, so ``except
     ValueError`` keeps working), with the same one-line message the command line prints."""
@@ -121,7 +121,7 @@ def input_errors(function: _F) -> _F:
             return function(*args, **kwargs)
         except InputError:
             raise
-        except ValueError as exc:
+        except (ValueError, TypeError) as exc:  # TypeError: e.g. 10**400 in a NumPy check
             raise InputError(" ".join(str(exc).split())) from exc
         except (OverflowError, ZeroDivisionError) as exc:
             raise InputError(

@@ -20,11 +20,21 @@ from impactcli.collision3d import (
     NormalHistory,
     effective_shear_modulus,
     normal_restitution_and_history,
-    oblique_impact,
+    oblique_collision_3d,
 )
 from impactcli.contact import effective_modulus
 from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
 from impactcli.laws import hertz_stiffness
+
+
+def oblique_impact(m1, m2, r1, r2, p1, p2, v1, v2, w1=(0.0, 0.0, 0.0), w2=(0.0, 0.0, 0.0),
+                   restitution=1.0, friction=0.0, tangential="rigid", **more):  # fmt: skip
+    """These tests' calls in radii, on :func:`oblique_collision_3d` (diameters 2 R: halved
+    again exactly)."""
+    d1, d2 = (2.0 * np.asarray(r, dtype=float) for r in (r1, r2))
+    return oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, w1, w2, restitution, friction,
+                                tangential, **more)  # fmt: skip
+
 
 ALUMINA = dict(youngs_modulus=380e9, poisson_ratio=0.23, density=4000.0)
 ALUMINIUM = dict(youngs_modulus=70e9, poisson_ratio=0.33, density=2700.0)
@@ -719,3 +729,17 @@ def test_centres_not_at_contact_are_refused_only_with_friction():
         tol = 1e-12 * float(np.max(np.abs(before))) + gap * float(r.tangential_impulse)
         np.testing.assert_allclose(after, before, rtol=0, atol=tol)
         assert mu == 0 or float(r.tangential_impulse) > 0.0
+
+
+def test_oblique_impact_is_deprecated_and_gives_the_same_bits():
+    """The former spelling, radii and its own argument order, still works until 0.3 with a
+    DeprecationWarning, and equals oblique_collision_3d with diameters."""
+    from impactcli import collision3d
+
+    args = (0.05, 0.15, 0.02, 0.03, (0, 0, 0), (0.05, 0, 0), (1.0, 0.4, 0.1), (-0.5, 0, 0))
+    with pytest.warns(DeprecationWarning, match="oblique_collision_3d"):
+        old = collision3d.oblique_impact(*args, friction=0.3)
+    new = oblique_collision_3d(0.05, 0.15, (1.0, 0.4, 0.1), (-0.5, 0, 0), (0, 0, 0),
+                               (0.05, 0, 0), 0.04, 0.06, mu=0.3)  # fmt: skip
+    for name in ("v1_final", "v2_final", "w1_final", "w2_final", "normal_impulse"):
+        assert np.array_equal(getattr(old, name), getattr(new, name)), name

@@ -232,6 +232,12 @@ def test_tsuji_overlap_restitution_has_a_closed_form():
     # The DEM polynomial (times sqrt 2 for the effective mass) is a fit of it to about 1e-3.
     e = np.linspace(0.1, 0.95, 18)
     np.testing.assert_allclose(tsuji_restitution_overlap(tsuji_alpha_dem(e)), e, atol=1.5e-3)
+    # Without sqrt 2 (the bare polynomial on the effective mass, as LAMMPS 22 Jul 2025 has
+    # it: docs/damping.md) a target of 0.5 gives 0.616, by the closed form and by FILM.
+    bare = float(tsuji_alpha_dem(0.5)) / np.sqrt(2.0)
+    assert round(float(tsuji_restitution_overlap(bare)), 3) == 0.616
+    film = solve_damped_impact(TsujiDamping(K, M, bare), V0, M, n=N)
+    assert round(float(film.restitution), 3) == 0.616
 
 
 def test_published_hunt_crossley_relations_hold_only_near_e_1():

@@ -164,3 +164,135 @@ def test_python_library_errors_are_input_errors():
     with pytest.raises(InputError):
         law_impact(s, s, 1.0, 0.0, "no-such-law")
     assert np.isfinite(law_impact(s, s, 1.0, 0.0, "hertz").summary["restitution"])
+
+
+# -- fit: what the table says when the statistics do not exist -----------------------------
+
+
+def test_fit_with_too_few_points_for_aicc_says_so(impact, tmp_path):
+    """2 points and 1 parameter: AICc = inf was shown as 'inf' with no word."""
+    path = tmp_path / "two.csv"
+    path.write_text("v0,e\n1,0.8\n2,0.75\n")
+    r = impact("fit", str(path), "--law", "du-wang", "--d1", "20mm", "--d2", "inf", "--m2", "inf",
+               "--material", "steel", "-f", "table")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "AICc needs more than p + 1 = 2 points for 1 parameter(s), got 2" in r.stderr
+    assert "AICc undefined (2 points" in " ".join(r.stdout.split())
+    assert "AICc inf" not in r.stdout
+
+
+def test_fit_of_an_unconstrained_parameter_says_so_in_the_table(impact, tmp_path):
+    """Thornton's sy is unconstrained when py is fitted too: its error and interval were
+    printed as 'nan Pa'."""
+    path = tmp_path / "four.csv"
+    path.write_text("v0,e\n0.5,0.9\n1,0.8\n2,0.75\n3,0.7\n")
+    r = impact("fit", str(path), "--law", "thornton", "--param", "py", "--param", "sy",
+               "--d1", "20mm", "--d2", "inf", "--m2", "inf", "--material", "steel", "-f",
+               "table")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "the data cannot constrain sy" in r.stderr
+    assert "not constrained" in r.stdout and "nan" not in r.stdout.lower()
+
+
+# -- the fuzz of the Python API: every public function, one hostile argument at a time -------
+
+HOSTILE = [-1.0, 0.0, math.nan, math.inf, -math.inf, 5e-324, 1e-300, 1e300, -1e300, 10**400]
+
+
+def _public_api() -> dict[str, tuple]:
+    """name -> (function, valid keyword arguments, the numbers its result must not hold
+    as NaN): the functions exported by ``impactcli`` and those the README shows, and the
+    entry points the CLI commands call."""
+    from impactcli import elastic_impact, elastoplastic_impact, oblique_collision
+    from impactcli.batch import batch_impacts
+    from impactcli.collision3d import oblique_impact
+    from impactcli.damping import damping_for_restitution
+    from impactcli.design import hertz_contact_time, rayleigh_time_step, yield_limit_diameter
+    from impactcli.fit import law_model
+    from impactcli.impact import Sphere, damped_impact, integrate_impact, law_impact
+    from impactcli.sweep import restitution_sweep
+    from impactcli.tables import normalised_contact_duration, normalised_table
+
+    s1, s2 = Sphere(0.02, **STEEL), Sphere(0.04, **STEEL)
+
+    def sphere(**kw):
+        return Sphere(**{"diameter": 0.02, **STEEL, **kw})
+
+    def summary(keys):
+        return lambda r: [r.summary[k] for k in keys]
+
+    impact_keys = summary(("restitution", "contact_time", "delta_max", "force_max"))
+    pair = dict(sphere1=s1, sphere2=s2, v1=0.25, v2=0.75)
+    return {
+        "Sphere": (sphere, dict(diameter=0.02, youngs_modulus=210e9, poisson_ratio=0.3,
+                                density=7800.0, yield_strength=1e9),
+                   lambda s: [s.total_mass, s.radius, s.compliance]),  # fmt: skip
+        "elastic_impact": (elastic_impact, dict(pair), impact_keys),
+        "elastoplastic_impact": (elastoplastic_impact, dict(pair, pressure_factor=2.57),
+                                 impact_keys),  # fmt: skip
+        "law_impact": (lambda **kw: law_impact(**kw, law="thornton"), dict(pair), impact_keys),
+        "damped_impact": (lambda **kw: damped_impact(**kw, damping="tsuji"),
+                          dict(pair, alpha=0.3), impact_keys),  # fmt: skip
+        "integrate_impact": (lambda **kw: integrate_impact(elastic_impact(**kw)), dict(pair),
+                             lambda r: [r["restitution"], r["contact_time"]]),  # fmt: skip
+        "restitution_sweep": (lambda v, **kw: restitution_sweep(s1, s2, [v, 1.0], **kw),
+                              dict(v=0.5, yield_strength=1e9),
+                              lambda r: [*r["restitution"], *r["contact_time"]]),  # fmt: skip
+        "oblique_collision": (oblique_collision, dict(m1=0.05, m2=0.15, v1=(2.6, -1.5),
+                              v2=(1.3, 1.5), p1=(-1.0, 2.0), p2=(2.0, -2.0), restitution=0.8),
+                              lambda c: [*c.v1_final, *c.v2_final]),  # fmt: skip
+        "oblique_impact": (oblique_impact, dict(m1=2.6e-4, m2=math.inf, r1=2.5e-3, r2=math.inf,
+                           p1=(0, 0, 0), p2=(0, 0, -1), v1=(1.0, 0.0, -3.0), v2=(0, 0, 0),
+                           restitution=0.9, friction=0.1),
+                           lambda c: [*c.v1_final, *c.w1_final]),  # fmt: skip
+        "rayleigh_time_step": (rayleigh_time_step, dict(radius=1e-3, youngs_modulus=210e9,
+                               poisson_ratio=0.3, density=7800.0), lambda t: [t]),  # fmt: skip
+        "hertz_contact_time": (hertz_contact_time, dict(mass=0.03, radius=0.007, modulus=1e11,
+                               impact_velocity=1.0), lambda t: [t]),  # fmt: skip
+        "yield_limit_diameter": (
+            lambda velocity, yield_strength, d2: yield_limit_diameter(
+                velocity, 1, 1, (0.01, d2), (2e11, 2e11), (0.3, 0.3), (7800.0, 7800.0),
+                (None, None), yield_strength),
+            dict(velocity=1.0, yield_strength=1e9, d2=0.02), lambda d: [d]),  # fmt: skip
+        "damping_for_restitution": (
+            lambda **kw: damping_for_restitution("tsuji", 0.5, **kw),  # (e: tested above)
+            dict(impact_velocity=1.0, stiffness=1e10, mass=0.01),
+            lambda a: [a]),  # fmt: skip
+        "normalised_table": (normalised_table, dict(n=25),
+                             lambda t: [*t["t_bar"], *t["force_bar"]]),  # fmt: skip
+        "normalised_contact_duration": (normalised_contact_duration, dict(n=25),
+                                        lambda t: [t]),  # fmt: skip
+        "law_model": (lambda sy, v: law_model(s1, s2, "du-wang")({"sy": sy}, [v]),
+                      dict(sy=1e9, v=1.0),
+                      lambda r: [*r["restitution"], *r["contact_time"]]),  # fmt: skip
+        "batch_impacts": (
+            lambda **kw: batch_impacts(**{**dict(d1=0.02, d2=0.04, v1=0.25, v2=0.75, E1=2.1e11,
+                                                 nu1=0.3, E2=2.1e11, nu2=0.3, rho1=7800.0,
+                                                 rho2=7800.0, sy1=1e9, sy2=1e9), **kw},
+                                       plastic=True),
+            dict(v1=0.25, d2=0.04, E1=2.1e11, sy1=1e9),
+            lambda r: [] if r["error"][0] else [r["restitution"][0], r["contact_time"][0]]),
+    }
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # NumPy's, on the way to the error
+@pytest.mark.parametrize("name", list(_public_api()))
+def test_fuzz_the_python_api(name):
+    """Each argument of each public function in turn takes each hostile value: the call
+    raises InputError (a ValueError: one line), or returns numbers none of which is NaN (a
+    batch: the row's error, or its numbers)."""
+    function, valid, numbers = _public_api()[name]
+    assert not np.any(np.isnan(np.asarray(numbers(function(**valid)), dtype=float)))
+    for key, value in valid.items():
+        if not isinstance(value, (int, float)) or isinstance(value, bool):
+            continue
+        for hostile in HOSTILE:
+            if key == "n" and isinstance(hostile, float):
+                continue  # a count: its floats are refused by type, tested elsewhere
+            try:
+                result = function(**{**valid, key: hostile})
+            except InputError as exc:
+                assert "\n" not in str(exc) and str(exc), (name, key, hostile)
+                continue
+            got = np.asarray(numbers(result), dtype=float)
+            assert not np.any(np.isnan(got)), (name, key, hostile, got)

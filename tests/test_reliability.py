@@ -430,6 +430,20 @@ NUMBERS = [
 ]
 INTEGERS = ["1", "2", "25", "0", "-1", "x", "2.5", "99999999999999999999999", "100"]
 MATERIALS = ["steel", "aluminium", "unobtanium", "", "STEEL"]
+VECTORS = ["0,0,0", "0,0,-1", "1,0,-3", "0,0,0.02", "3.9m/s@30deg", "2m/s@80deg@90deg",
+           "nan,0,0", "1e300,0,0", "1e-300,0,-1", "abc", "1,2", "1,1,1", "0,0,-inf"]  # fmt: skip
+LAWS = ["hertz", "du-wang", "thornton", "walton-braun", "tabulated", "tsuji", "x", ""]
+DAMPINGS = ["tsuji", "hunt-crossley", "x", ""]
+#: Input files of the fuzz besides in.csv (kept between runs).
+FUZZ_INPUTS = {
+    "curve.csv": "delta,force\n0,0\n1e-5,100\n2e-5,300\n4e-5,900\n",
+    "bad_curve.csv": "delta,force\n0,0\n1e-5,-100\n",
+    "fit.csv": "v0,e\n0.5,0.95\n1,0.9\n2,0.85\n3,0.8\n",
+    "fit2.csv": "v0,e\n1,0.8\n2,0.75\n",
+    "rows3d.csv": "p1_x,p1_y,p1_z,p2_x,p2_y,p2_z,v1_x,v1_y,v1_z,d1,d2,m2,E2,material1\n"
+    "0,0,0,0,0,-1,1,0,-3,5mm,inf,inf,inf,steel\n0,0,0,1,1,1,1,1,1,10mm,20mm,,,steel\n"
+    "0,0,0,0,0,-1,1e300,0,-1e300,5mm,inf,inf,inf,steel\n",
+}
 
 
 def _option_values(rng: random.Random, options: dict[str, list[str]], most: int) -> list[str]:
@@ -475,9 +489,25 @@ def _fuzz_argv(rng: random.Random, folder: Path) -> list[str]:
             "materials",
             "collide2d",
             "batch",
+            "collide3d",
+            "compare-laws",
+            "laws",
+            "yield-limit",
+            "timestep",
+            "fit",
         ]
     )
     argv = [command]
+    newer = {  # the options of the laws and damping models, on every command that has them
+        "--law": LAWS,
+        "--damping": DAMPINGS,
+        "--alpha": NUMBERS,
+        "--curve": [str(folder / "curve.csv"), str(folder / "bad_curve.csv"), "/dev/null"],
+        "--k-load": NUMBERS,
+        "--k-unload": NUMBERS,
+        "--py": NUMBERS,
+        "--p0-factor": NUMBERS,
+    }
     if command == "tables":
         options = {
             "--n": INTEGERS,
@@ -496,8 +526,10 @@ def _fuzz_argv(rng: random.Random, folder: Path) -> list[str]:
             "--material": MATERIALS,
             "--material1": MATERIALS,
             "--sy": NUMBERS,
-            "--split": ["mass", "compliance", "x"],
+            "--split": ["mass", "compliance", "yield", "x"],
             "--check": [None],
+            "--method": ["film", "ode", "table", "x"],
+            **newer,
             **common,
         }
         argv += SPHERES if rng.random() < 0.5 else []
@@ -547,6 +579,62 @@ def _fuzz_argv(rng: random.Random, folder: Path) -> list[str]:
                 "--p1=-1,2",
                 "--p2=2,-2",
             ]
+    elif command == "collide3d":
+        options = {
+            **quantity,
+            **{f"--{k}": VECTORS for k in ("p1", "p2", "v1", "v2", "w1", "w2")},
+            "--mu": NUMBERS,
+            "--e": NUMBERS,
+            "--tangential": ["rigid", "mindlin", "x"],
+            "--points": INTEGERS,
+            "--separation": ["overlap", "force", "x"],
+            "--material": MATERIALS,
+            "--rows": [str(folder / "rows3d.csv")],
+            **newer,
+            **common,
+        }
+        if rng.random() < 0.6:
+            argv += ["--d1", "5mm", "--material1", "steel", "--d2", "inf", "--m2", "inf",
+                     "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1", "--v1=1,0,-3"]  # fmt: skip
+    elif command in ("compare-laws", "yield-limit", "timestep"):
+        options = {
+            **quantity,
+            "--material": MATERIALS,
+            "--sy": NUMBERS,
+            "--v0": NUMBERS,
+            "--n": INTEGERS,
+            "--count": INTEGERS[:5],
+            "--sphere": ["1", "2", "3"],
+            "--resize": ["1", "2", "0"],
+            **newer,
+            **common,
+        }
+        options = {k: v for k, v in options.items() if k not in ("--n", "--count", "--law",
+                   "--curve", "--k-load", "--k-unload", "--py", "--damping", "--alpha")
+                   or command == "compare-laws"}  # fmt: skip
+        if command == "yield-limit":
+            options.pop("--output")
+        if rng.random() < 0.6:  # compare-laws takes v1, v2; the others --v0
+            argv += SPHERES if command == "compare-laws" else SPHERES[:4] + SPHERES[-2:]
+    elif command == "laws":
+        options = common
+    elif command == "fit":
+        options = {
+            **quantity,
+            "--law": LAWS,
+            "--damping": DAMPINGS,
+            "--param": ["sy", "py", "alpha", "k_load", "x"],
+            "--start": ["sy=800MPa", "sy=-1", "alpha=nan", "x=1"],
+            "--bounds": ["sy=100MPa:5GPa", "sy=5GPa:1MPa", "alpha=0:1"],
+            "--fix": ["k_load=2e7", "p0_factor=3", "x=1"],
+            "--material": MATERIALS,
+            "--n": INTEGERS,
+            **common,
+        }
+        argv.append(str(folder / rng.choice(["fit.csv", "fit2.csv", "in.csv"])))
+        if rng.random() < 0.6:
+            argv += ["--law", "du-wang", "--d1", "20mm", "--d2", "inf", "--m2", "inf",
+                     "--material", "steel"]  # fmt: skip
     else:
         options = {
             "--n": INTEGERS,
@@ -570,16 +658,22 @@ def test_fuzz_every_command_ends_with_0_or_one_line_and_2(tmp_path, capsys, monk
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "in.csv").write_text(
-        "d1,d2,v1,v2,model,material,sy,id\n"
-        "20mm,20mm,1,0,elastic,steel,,a\n"
-        "20mm,20mm,5,0,elastoplastic,steel,300MPa,b\n"
-        "abc,20mm,1,0,elastic,unobtanium,,NA\n"
-        "1e300,1e-320,1e300,0,elastic,steel,,c\n"
+        "d1,d2,v1,v2,model,material,sy,id,law,k_load,k_unload,damping,alpha\n"
+        "20mm,20mm,1,0,elastic,steel,,a,,,,,\n"
+        "20mm,20mm,5,0,elastoplastic,steel,300MPa,b,,,,,\n"
+        "abc,20mm,1,0,elastic,unobtanium,,NA,,,,,\n"
+        "1e300,1e-320,1e300,0,elastic,steel,,c,,,,,\n"
+        "20mm,20mm,1e300,0,,steel,,d,walton-braun,2e7,8e7,,\n"
+        "20mm,1e-300,1,0,elastic,steel,,e,,,,tsuji,0.3\n"
     )
+    for name, text in FUZZ_INPUTS.items():
+        (tmp_path / name).write_text(text)
+    inputs = {"in.csv", *FUZZ_INPUTS}
     rng = random.Random(20260411)
     started = time.monotonic()
     runs = 0
-    while runs < 400 and time.monotonic() - started < 60:
+    ran: dict[tuple[str, int], int] = {}
+    while runs < 600 and time.monotonic() - started < 90:
         argv = _fuzz_argv(rng, tmp_path)
         try:
             main(argv)
@@ -587,7 +681,7 @@ def test_fuzz_every_command_ends_with_0_or_one_line_and_2(tmp_path, capsys, monk
         except SystemExit as exc:
             code = exc.code
         out, err = capsys.readouterr()
-        files = set(os.listdir(tmp_path)) - {"in.csv"}
+        files = set(os.listdir(tmp_path)) - inputs
         assert code in (0, 2), (argv, code, err)
         assert "Traceback" not in err and "RuntimeWarning" not in err, (argv, err)
         assert not any(f.startswith(".impact-") for f in files), (argv, files)
@@ -597,4 +691,9 @@ def test_fuzz_every_command_ends_with_0_or_one_line_and_2(tmp_path, capsys, monk
         for name in files:
             os.unlink(tmp_path / name)
         runs += 1
-    assert runs >= 50
+        ran[argv[0], code] = ran.get((argv[0], code), 0) + 1
+    assert runs >= 80
+    # every command ran, and the newer ones ended well at least once
+    assert {command for command, _ in ran} >= {"collide3d", "compare-laws", "fit", "laws",
+                                               "yield-limit", "timestep", "elastic"}, ran
+    assert all(ran.get((c, 0), 0) > 0 for c in ("collide3d", "fit", "laws", "timestep")), ran

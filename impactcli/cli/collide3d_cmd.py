@@ -377,7 +377,7 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
     from impactcli.collision3d import (
         effective_shear_modulus,
         normal_restitution_and_history,
-        oblique_impact,
+        oblique_collision_3d,
     )
 
     v1, v2, w1, w2, p1, p2 = (np.array(x) for x in vectors.values())
@@ -404,8 +404,8 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
             shear = effective_shear_modulus(
                 s1.youngs_modulus, s1.poisson_ratio, s2.youngs_modulus, s2.poisson_ratio
             )
-        result = oblique_impact(
-            s1.total_mass, s2.total_mass, s1.radius, s2.radius, p1, p2, v1, v2, w1, w2,
+        result = oblique_collision_3d(
+            s1.total_mass, s2.total_mass, v1, v2, p1, p2, s1.diameter, s2.diameter, w1, w2,
             restitution, mu, tangential.value, history=history, shear_modulus=shear,
         )  # fmt: skip
     except ValueError as exc:

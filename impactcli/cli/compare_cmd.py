@@ -246,7 +246,7 @@ def _title(model) -> str:
     """How the figure names a contact model: 'Du & Wang', 'Hertz with Tsuji damping'."""
     from impactcli.laws.registry import DAMPING_LAWS
 
-    title = LawChoice(model.law, dict(model.params)).title
+    title = LawChoice(model.law, dict(model.law_params)).title
     if model.damping is None:
         return title
     return f"{title} with {DAMPING_LAWS[model.damping].label} damping"

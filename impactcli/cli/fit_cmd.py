@@ -381,6 +381,13 @@ def _shown(value: float, unit: str) -> str:
     return f"{value:.5g} {unit}"
 
 
+def _aicc(result) -> str:
+    """AICc as shown in the tables: the number, or why there is none (N <= p + 1)."""
+    if math.isinf(result.aicc) and result.points <= len(result.names) + 1:
+        return f"undefined ({result.points} points <= p + 1)"
+    return f"{result.aicc:.4g}"
+
+
 def _print_tables(stream: IO[str] | None, measured, fits, ranked, meaning: str = "") -> None:
     from impactcli.cli.common import Table
 
@@ -389,7 +396,7 @@ def _print_tables(stream: IO[str] | None, measured, fits, ranked, meaning: str =
         if not result.names:
             out.print(
                 f"{result.law}: no parameter to fit; reduced chi-square "
-                f"{result.reduced_chi_square:.4g}, AICc {result.aicc:.4g}"
+                f"{result.reduced_chi_square:.4g}, AICc {_aicc(result)}"
             )
             continue
         table = Table(
@@ -401,15 +408,16 @@ def _print_tables(stream: IO[str] | None, measured, fits, ranked, meaning: str =
         for name, unit, value, se, (lo, hi) in zip(
             result.names, result.units, result.values, result.std_errors, result.interval
         ):
+            known = math.isfinite(se)  # NaN: the data do not constrain it (a warning says why)
             table.add_row(
                 _option_name(name),
                 _shown(value, unit),
-                _shown(se, unit),
-                f"{_shown(lo, unit)} .. {_shown(hi, unit)}",
+                _shown(se, unit) if known else "not constrained",
+                f"{_shown(lo, unit)} .. {_shown(hi, unit)}" if known else "not constrained",
             )
         table.caption = (
             f"reduced chi-square {result.reduced_chi_square:.4g}, AIC {result.aic:.4g}, "
-            f"AICc {result.aicc:.4g}" + (f"; {meaning}" if "sy" in result.names else "")
+            f"AICc {_aicc(result)}" + (f"; {meaning}" if "sy" in result.names else "")
         )
         out.print(table)
     residuals = Table(title="Residuals e - e_fit")
@@ -439,7 +447,7 @@ def _print_tables(stream: IO[str] | None, measured, fits, ranked, meaning: str =
                 result.law,
                 ", ".join(map(_option_name, result.names)) or "(none)",
                 f"{result.reduced_chi_square:.4g}",
-                f"{result.aicc:.4g}",
+                _aicc(result),
                 f"{delta:.3g}",
                 f"{weight:.3g}",
             )

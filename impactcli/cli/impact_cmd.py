@@ -232,8 +232,6 @@ def _run(
     from impactcli.spheres import spheres_from_options, velocities_from_options
     from impactcli.validation import (
         below_yield_note,
-        contact_radius_warning,
-        first_yield_warning,
     )
 
     check_plot(plot, output)
@@ -277,16 +275,11 @@ def _run(
             f"{v0:g} m/s "
             f"({damping_law}, {separation} separation, FILM n = {n})"
         )
-    if model == "elastic" and law is None and "first_yield_velocity" in s:
-        message = first_yield_warning(v0, s["first_yield_velocity"])
-        if message:
-            warn(message)
     if model == "elastoplastic" and result.model == "elastic" and np.isfinite(s["yield_velocity"]):
         note(below_yield_note(v0, s["yield_velocity"], s.get("first_yield_velocity")))
-    message = contact_radius_warning(v0, s["delta_max"], s["effective_radius"])
-    if message:
+    for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
-    _split_messages(split, s1, s2)
+    _split_notes(split, s1, s2)
 
     history = result.history(points=points)
     differences, reference = _check(result, history) if check else (None, None)
@@ -341,13 +334,21 @@ def _run(
 def _split_messages(split: Split, s1, s2) -> None:
     """The warning of a mass split between different materials, and the notes of the
     yield split (a sphere without a yield strength does not yield; ties)."""
-    from impactcli.validation import brittle_notes, mass_split_warning
+    from impactcli.validation import mass_split_warning
 
     message = mass_split_warning(
         split.value, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
     )
     if message:
         warn(message)
+    _split_notes(split, s1, s2)
+
+
+def _split_notes(split: Split, s1, s2) -> None:
+    """The notes of the yield split: a sphere without a yield strength does not yield;
+    ties."""
+    from impactcli.validation import brittle_notes
+
     for text in brittle_notes(split.value, s1.yield_strength, s2.yield_strength):
         note(text)
 

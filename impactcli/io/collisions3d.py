@@ -12,7 +12,7 @@ velocities in rad/s, rpm, deg/s). The result columns are
 coefficient of restitution of every row at its normal approach velocity in one call of the
 batch kernel (:func:`impactcli.batch.batch_impacts`, any law of the library) or of
 :func:`impactcli.damping.solve_damped_impact` (damped Hertz), then one call of
-:func:`impactcli.collision3d.oblique_impact` for all rows. The ``mindlin`` model needs each
+:func:`impactcli.collision3d.oblique_collision_3d` for all rows. The ``mindlin`` model needs each
 row's normal history: those are built row by row
 (:func:`impactcli.collision3d.normal_restitution_and_history`, a FILM run each), and the
 tangential spring is then integrated for all rows at once. As in ``impact batch``, a bad
@@ -163,7 +163,7 @@ def compute_collisions3d(
         TANGENTIAL_MODELS,
         contact_distance_problem,
         effective_shear_modulus,
-        oblique_impact,
+        oblique_collision_3d,
     )
     from impactcli.contact import total_mass
     from impactcli.io.table import _quantity_column, _text_column, table_columns
@@ -277,9 +277,9 @@ def compute_collisions3d(
         from impactcli.collision3d import collision_summary
 
         with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
-            collision = oblique_impact(
-                s1["mass"][ok], s2["mass"][ok], 0.5 * s1["d"][ok], 0.5 * s2["d"][ok],
-                vectors["p1"][ok], vectors["p2"][ok], vectors["v1"][ok], vectors["v2"][ok],
+            collision = oblique_collision_3d(
+                s1["mass"][ok], s2["mass"][ok], vectors["v1"][ok], vectors["v2"][ok],
+                vectors["p1"][ok], vectors["p2"][ok], s1["d"][ok], s2["d"][ok],
                 vectors["w1"][ok], vectors["w2"][ok], e[ok], friction[ok], tangential,
                 history=history, shear_modulus=shear,
             )  # fmt: skip

@@ -165,10 +165,11 @@ def tsuji_alpha_dem(restitution: ArrayLike) -> Array:
 
     alpha = sqrt(2) (1.2728 - 4.2783 e + 11.087 e^2 - 22.348 e^3 + 27.467 e^4 - 18.022 e^5
     + 4.8218 e^6): the polynomial fit of Tsuji et al. (1992) as written for the damping
-    eta = alpha (m K)^(1/2) delta^(1/4) with the effective mass m (LAMMPS pair granular,
-    ``damping tsuji``; the sqrt(2) comes from Tsuji's use of the particle mass, Marshall
-    2009, J. Comput. Phys. 228:1541-1561, doi:10.1016/j.jcp.2008.10.032). It matches the
-    ``overlap`` separation rule (docs/damping.md).
+    eta = alpha (m K)^(1/2) delta^(1/4) with the effective mass m (the sqrt(2) comes from
+    Tsuji's use of the particle mass, Marshall 2009, J. Comput. Phys. 228:1541-1561,
+    doi:10.1016/j.jcp.2008.10.032; LAMMPS pair granular ``damping tsuji`` has it in its
+    sources after the stable release of 22 Jul 2025, which uses the bare polynomial:
+    docs/damping.md). It matches the ``overlap`` separation rule (docs/damping.md).
     """
     e = np.asarray(restitution, dtype=float)
     coeffs = (1.2728, -4.2783, 11.087, -22.348, 27.467, -18.022, 4.8218)
