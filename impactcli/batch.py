@@ -66,6 +66,7 @@ from impactcli.impact import (
     split_fractions,
 )
 from impactcli.laws import hertz_stiffness
+from impactcli.laws.registry import DAMPING_LAWS
 from impactcli.limits import MAX_SEGMENTS, check_size
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
@@ -740,12 +741,13 @@ def batch_damped_impacts(
         for key, value in summary.items():
             out[key][rows] = np.where(ends, value, np.nan)
         out["alpha"][rows] = a
-        # Overdamped, or out of range? The damped laws are self-similar: e depends on alpha
-        # (Tsuji) or alpha V0 (Hunt & Crossley) only, so the same impact at K = m = V0 = 1
-        # tells a contact that never ends from numbers that overflow or underflow.
+        # Overdamped, or out of range? e of a damping model depends on one combination of
+        # alpha, K, m and V0 (its similar_alpha), so the same impact at K = m = V0 = 1 tells
+        # a contact that never ends from numbers that overflow or underflow.
         stuck = np.flatnonzero(~ends)
         if stuck.size:
-            same = a[stuck] * (v0[stuck] if damping == "hunt-crossley" else 1.0)
+            model = DAMPING_LAWS[damping]
+            same = model.similar_alpha(a[stuck], stiffness[stuck], m[stuck], v0[stuck])
             unit = solve_damped_impact(make_damping_law(damping, 1.0, 1.0, same), 1.0, 1.0,
                                        n=n, separation=separation)  # fmt: skip
             creeps = ~(np.isfinite(unit.contact_time) & (unit.restitution > 0))

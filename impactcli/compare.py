@@ -20,10 +20,21 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.impact import ImpactResult, Sphere, effective_properties, weaker_yield_strength
+from impactcli.impact import (
+    ContactModel,
+    ImpactResult,
+    Sphere,
+    damped_restitution_sweep,
+    effective_properties,
+    impact,
+    weaker_yield_strength,
+)
+from impactcli.laws.hertz import hertz_stiffness
+from impactcli.laws.registry import DAMPING_LAWS, get_law
 
 __all__ = [
     "COMPARISON_KEYS",
+    "comparison_row",
     "compare_impacts",
     "published_restitution",
     "reference_yield_velocity",
@@ -44,13 +55,31 @@ COMPARISON_KEYS: tuple[str, ...] = (
 
 Law = tuple[str, Mapping[str, Any]]
 
+#: What a damped impact (no yield point, no permanent indentation) reports for the
+#: comparison keys that only a normal law's plan has.
+_DAMPED_DEFAULTS = {"delta_res": 0.0, "delta_y": float("nan"), "yield_velocity": float("nan")}
+
+
+def _model(entry: Law | ContactModel) -> ContactModel:
+    """A contact model from a (law name, parameters) pair or a :class:`ContactModel`."""
+    if isinstance(entry, ContactModel):
+        return entry
+    name, params = entry
+    return ContactModel(name, dict(params))
+
+
+def comparison_row(result: ImpactResult) -> dict[str, float]:
+    """:data:`COMPARISON_KEYS` of one impact: a damped one has no yield point (NaN) and no
+    permanent indentation (0)."""
+    return {key: result.summary.get(key, _DAMPED_DEFAULTS.get(key)) for key in COMPARISON_KEYS}
+
 
 def compare_impacts(
     sphere1: Sphere,
     sphere2: Sphere,
     v1: float,
     v2: float,
-    laws: Sequence[Law],
+    laws: Sequence[Law | ContactModel],
     n: int = 25,
     split: str = "mass",
 ) -> dict[str, ImpactResult]:
@@ -61,7 +90,9 @@ def compare_impacts(
     ----------
     sphere1, sphere2 : the spheres (SI)
     v1, v2 : velocities of the centres toward the other sphere, [m/s]
-    laws : (name, parameters) of each law, parameters in SI (files for ``tabulated``)
+    laws : (name, parameters) of each law, parameters in SI (files for a tabulated law), or
+        a :class:`~impactcli.impact.ContactModel` (e.g. Hertz with a damping model), keyed
+        by its ``name``
     n : FILM segments per stage
 
     Raises
@@ -69,12 +100,8 @@ def compare_impacts(
     ValueError
         Bad input of a law, or an impact beyond a tabulated curve (one line each).
     """
-    from impactcli.impact import law_impact
-
-    return {
-        name: law_impact(sphere1, sphere2, v1, v2, name, dict(params), n, split)
-        for name, params in laws
-    }
+    models = [_model(entry) for entry in laws]
+    return {model.name: impact(sphere1, sphere2, v1, v2, model, n, split) for model in models}
 
 
 def reference_yield_velocity(
@@ -94,7 +121,7 @@ def restitution_curves(
     sphere1: Sphere,
     sphere2: Sphere,
     velocities: ArrayLike,
-    laws: Sequence[Law],
+    laws: Sequence[Law | ContactModel],
     n: int = 25,
 ) -> dict[str, NDArray]:
     """e [-] of each law at each impact velocity V0 [m/s]: law name -> array.
@@ -102,14 +129,19 @@ def restitution_curves(
     One FILM sweep per law (:func:`impactcli.sweep.restitution_sweep`, vectorised over V0).
     Velocities a tabulated law's curves cannot take (the impact goes beyond them) get NaN.
     """
-    from impactcli.lawlib import get_law
     from impactcli.sweep import restitution_sweep
 
     v0 = np.asarray(velocities, dtype=float)
     m, r, e = effective_properties(sphere1, sphere2)
     sigma_y = weaker_yield_strength(sphere1, sphere2)
     out: dict[str, NDArray] = {}
-    for name, params in laws:
+    for model in map(_model, laws):
+        if model.damping is not None:
+            out[model.name] = damped_restitution_sweep(
+                sphere1, sphere2, v0, model.damping, model.alpha, n, model.separation
+            )["restitution"]
+            continue
+        name, params = model.law, model.law_params
         contact = get_law(name).contact(r, e, sigma_y, **dict(params))
         within = np.ones(v0.shape, dtype=bool)
         reach = getattr(contact, "reach_errors", None)  # tabulated curves end somewhere
@@ -128,27 +160,34 @@ def published_restitution(
     sphere1: Sphere,
     sphere2: Sphere,
     velocities: ArrayLike,
-    laws: Sequence[Law],
+    laws: Sequence[Law | ContactModel],
 ) -> dict[str, tuple[NDArray, NDArray]]:
     """Published closed forms of e for those of ``laws`` that have one, at impact
     velocities V0 [m/s]: label -> (V0 [m/s], e [-]).
 
     Each law declares its own (:attr:`impactcli.laws.base.LawSpec.closed_form`), e.g.
     Thornton's (1997) e(V_y/V0) with the law's own V_y, or Walton & Braun's (1986)
-    e = sqrt(k_load / k_unload) at every V0. Du & Wang (2009) give no closed form for e;
-    their law is checked against the paper's sec. 4.4 value instead (e = 0.85611 at
-    V0 = 1 m/s for its steel spheres).
+    e = sqrt(k_load / k_unload) at every V0; so does a damping model
+    (``closed_form(K, m, alpha, V0, separation)``, None where it has none for the rule).
+    Du & Wang (2009) give no closed form for e; their law is checked against the paper's
+    sec. 4.4 value instead (e = 0.85611 at V0 = 1 m/s for its steel spheres).
     """
-    from impactcli.laws.registry import get_law
-
     v0 = np.asarray(velocities, dtype=float)
     m, r, e = effective_properties(sphere1, sphere2)
     sigma_y = weaker_yield_strength(sphere1, sphere2)
     out: dict[str, tuple[NDArray, NDArray]] = {}
-    for name, params in laws:
-        spec = get_law(name)
+    for model in map(_model, laws):
+        if model.damping is not None:
+            form = getattr(DAMPING_LAWS[model.damping], "closed_form", None)
+            found = None if form is None else form(
+                float(hertz_stiffness(e, r)), m, model.alpha, v0, model.separation
+            )
+            if found is not None:
+                out[found[0]] = (v0, found[1])
+            continue
+        spec = get_law(model.law)
         if spec.closed_form is not None:
-            contact = spec.contact(r, e, sigma_y, **dict(params))
+            contact = spec.contact(r, e, sigma_y, **dict(model.law_params))
             label, restitution = spec.closed_form(contact, m, v0)
             out[label] = (v0, restitution)
     return out

@@ -828,7 +828,7 @@ def _alpha_by_illinois(
         law = make_damping_law(name, k, m, alpha)
         return solve_damped_impact(law, v0, m, n, separation).restitution - e_t
 
-    guess = DAMPING_LAWS[name].alpha_estimate(e_t, v0)  # a published estimate, > 0
+    guess = DAMPING_LAWS[name].alpha_estimate(e_t, v0, k, m)  # a published estimate, > 0
     todo = e_t < 1.0
     hi = np.where(todo, guess, 1.0)
     f_hi = gap(hi)

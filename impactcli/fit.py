@@ -431,7 +431,7 @@ def law_parameters(
     where it can: sigma_y of the weaker sphere (1 GPa if unknown), the effective mass,
     radius and modulus, a typical impact velocity of the data ``reference_velocity``
     V_ref [m/s] and the ``fixed`` values (e.g. ``k_load``), which move the starts that
-    depend on them; a damping model's alpha from its ``fit_start(V_ref)``.
+    depend on them; a damping model's alpha from its ``fit_start(V_ref, K, m)``.
 
     Parameters
     ----------
@@ -454,7 +454,8 @@ def law_parameters(
         model = DAMPING_LAWS[law]
         (alpha,) = model.parameters
         unit = "-" if alpha.kind == "dimensionless" else alpha.unit
-        return {"alpha": FitParameter("alpha", unit, *model.fit_start(v_ref))}
+        start = model.fit_start(v_ref, float(hertz_stiffness(e_star, r)), m)
+        return {"alpha": FitParameter("alpha", unit, *start)}
     starts = LAWS[law].fitting.starts(m, r, e_star, sy, v_ref, fixed)
     return {name: FitParameter(name, *start) for name, start in starts.items()}
 
@@ -621,14 +622,15 @@ def law_yield_velocity(sphere1, sphere2, law: str, params: Mapping[str, float]) 
     )
 
 
-def _data_starts(law: str, data: FitData) -> dict[str, float]:
+def _data_starts(law: str, data: FitData, stiffness: float, mass: float) -> dict[str, float]:
     """Starting values read off the data, where the law gives them: a damping model's
     alpha from the measured e (its ``data_start``, e.g. the exact inverse of a closed-form
     e(alpha), or an estimate for e near 1)."""
     if law not in DAMPING_LAWS:
         return {}
     e = np.clip(data.restitution, 1e-3, 1.0 - 1e-6)
-    return {"alpha": DAMPING_LAWS[law].data_start(e, data.impact_velocity)}
+    model = DAMPING_LAWS[law]
+    return {"alpha": model.data_start(e, data.impact_velocity, stiffness, mass)}
 
 
 @input_errors
@@ -674,7 +676,9 @@ def fit_named_law(
     both = [name for name in names if name in fixed]
     if both:
         raise ValueError(f"{both[0]} of law {law!r} is both fitted and held fixed")
-    for name, guess in _data_starts(law, data).items():
+    m, r, e_star, _ = _pair(sphere1, sphere2)
+    k = float(hertz_stiffness(e_star, r))
+    for name, guess in _data_starts(law, data, k, m).items():
         if name in available:
             p = available[name]
             available[name] = FitParameter(name, p.unit, guess, p.lower, p.upper)

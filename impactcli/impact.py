@@ -27,6 +27,7 @@ energy at every time (:mod:`impactcli.energy`).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
@@ -49,6 +50,7 @@ from impactcli.contact import (
 from impactcli.errors import InputError
 from impactcli.film import FilmSolution, FilmStage, solve_stage
 from impactcli.laws import hertz_stiffness
+from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
@@ -76,6 +78,7 @@ __all__ = [
     "DAMPED_ENERGY_COLUMNS",
     "DAMPED_SWEEP_COLUMNS",
     "DAMPED_SUMMARY_KEYS",
+    "ContactModel",
     "DampedImpactResult",
     "Sphere",
     "ImpactResult",
@@ -87,6 +90,7 @@ __all__ = [
     "elastoplastic_impact",
     "energy_summary",
     "impact_summary",
+    "impact",
     "impact_warnings",
     "integrate_impact",
     "law_impact",
@@ -1160,7 +1164,7 @@ def law_impact(
     sphere2: Sphere,
     v1: float,
     v2: float,
-    law: str = "du-wang",
+    law: str = DEFAULT_LAW,
     law_params: dict[str, Any] | None = None,
     n: int = 25,
     split: Split = "mass",
@@ -1210,7 +1214,6 @@ def law_impact(
     >>> round(r.summary["restitution"], 5), r.model
     (0.62143, 'elastoplastic')
     """
-    from impactcli.lawlib import get_law
     from impactcli.laws import Hertz
 
     if params is not None:
@@ -1563,3 +1566,92 @@ def damped_restitution_sweep(
         "plastic": zero.copy(),
         "delta_separation": np.asarray(sol.delta_separation, dtype=float),
     }
+
+
+# -- one entry point for any contact model --------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ContactModel:
+    """A contact model: a normal law of the registry with its parameters, and optionally a
+    damping model on it (Hertz elasticity plus a viscous term, :mod:`impactcli.laws`).
+
+    Attributes
+    ----------
+    law : the normal law's name (:data:`impactcli.laws.registry.LAWS`); Hertz by default
+    law_params : its parameters by name, SI (files for a tabulated law)
+    damping : a damping model's name (:data:`impactcli.laws.registry.DAMPING_LAWS`), or
+        None; a damping model acts on Hertz elasticity, so ``law`` is then Hertz
+    alpha : the damping model's parameter, in its unit (see ``impact laws``)
+    restitution : instead of ``alpha``, the coefficient of restitution in (0, 1] that the
+        damping is to give at the impact's V0 (alpha is solved for)
+    separation : ``overlap`` or ``force``: when a damped contact ends
+
+    Examples
+    --------
+    >>> ContactModel("thornton").name, ContactModel(damping="tsuji", alpha=0.3).name
+    ('thornton', 'hertz+tsuji')
+    """
+
+    law: str = ELASTIC_LAW
+    law_params: Mapping[str, Any] = field(default_factory=dict)
+    damping: str | None = None
+    alpha: float | None = None
+    restitution: float | None = None
+    separation: str = "overlap"
+
+    @property
+    def name(self) -> str:
+        """The law's name, ``law+damping`` with a damping model."""
+        return self.law if self.damping is None else f"{self.law}+{self.damping}"
+
+
+@input_errors
+def impact(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    model: ContactModel | None = None,
+    n: int | None = None,
+    split: Split = "mass",
+    method: Method = "film",
+) -> ImpactResult:
+    """Impact of two spheres under any contact model of the library, by FILM.
+
+    The one entry point: a normal law of the registry (:func:`law_impact`), or Hertz with
+    a damping model (:func:`damped_impact`). :func:`elastic_impact`,
+    :func:`elastoplastic_impact`, :func:`law_impact` and :func:`damped_impact` are the same
+    computations for one kind of model each.
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]
+    model : the contact model (default: Hertz)
+    n : FILM segments per stage (default 25; :data:`DAMPED_DEFAULT_N` with damping)
+    split, method : as for :func:`elastic_impact`
+
+    Examples
+    --------
+    >>> steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
+    >>> s1, s2 = Sphere(0.02, **steel), Sphere(0.04, **steel)
+    >>> round(impact(s1, s2, 0.25, 0.75, ContactModel(damping="tsuji", alpha=0.3))
+    ...       .summary["restitution"], 6)
+    0.653551
+    """
+    model = ContactModel() if model is None else model
+    if model.damping is None:
+        return law_impact(
+            sphere1, sphere2, v1, v2, model.law, dict(model.law_params), 25 if n is None else n,
+            split, method=method,
+        )  # fmt: skip
+    if get_law(model.law).name != ELASTIC_LAW or model.law_params:
+        raise ValueError(
+            f"damping {model.damping!r} is viscous damping on Hertz elasticity: its law is "
+            f"{ELASTIC_LAW}, got {model.law!r}" + (" with parameters" if model.law_params else "")
+        )
+    return damped_impact(
+        sphere1, sphere2, v1, v2, model.damping, model.alpha, model.restitution,
+        DAMPED_DEFAULT_N if n is None else n, model.separation, split, method,
+    )  # fmt: skip

@@ -28,13 +28,12 @@ LIBRARY = (
     "impactcli.laws",
     "impactcli.laws.base",
     "impactcli.laws.registry",
-    "impactcli.laws.hertz",
-    "impactcli.laws.du_wang",
-    "impactcli.laws.thornton",
-    "impactcli.laws.walton_braun",
-    "impactcli.laws.tabulated",
-    "impactcli.laws.tsuji",
-    "impactcli.laws.hunt_crossley",
+    # one module per contact model, each checked as it is added
+    *sorted(
+        f"impactcli.laws.{p.stem}"
+        for p in (PACKAGE / "laws").glob("*.py")
+        if p.stem not in ("__init__", "base", "registry")
+    ),
     "impactcli.contact",
     "impactcli.impact",
     "impactcli.sweep",

@@ -19,6 +19,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
+from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.errors import InputError
 from impactcli.output import atomic_output, write_csv, write_json
@@ -34,6 +35,7 @@ CONVENTIONS = {
 @with_law_options(
     default="none, e = 1 (elastic); du-wang with --model elastoplastic, which --law needs"
 )
+@with_damping_options(target_e=False)  # collide2d's --e is a given e, not a target of alpha
 def collide2d(
     m1: str = typer.Option(..., "--m1", help="Mass of sphere 1, e.g. 50g or 0.05 (kg)."),
     m2: str = typer.Option(..., "--m2", help="Mass of sphere 2, e.g. 0.15kg."),
@@ -84,6 +86,7 @@ def collide2d(
         "elastic, unless --e is given.",
     ),
     law: LawOptions = None,
+    damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     d1: Optional[str] = typer.Option(
         None, "--d1", help="Diameter of sphere 1 [m] (elastoplastic)."
     ),
@@ -148,6 +151,7 @@ def collide2d(
         collision_summary,
         oblique_collision,
     )
+    from impactcli.impact import ContactModel
     from impactcli.spheres import SphereOptions, check_options, spheres_from_options
     from impactcli.units import parse_vector
 
@@ -177,6 +181,9 @@ def collide2d(
             raise InputError(f"--p1, --p2, --d1, --d2: {exc}") from None
     if e is not None and model is not None:
         raise InputError("give either --model or --e, not both")
+    damping_law, alpha, _, separation = damping.parse()
+    if damping_law is not None and (e is not None or model is Model.elastoplastic):
+        raise InputError("--damping goes with --model elastic (Hertz with damping), not --e")
     chosen = None
     if law.names or law.given:
         if model is not Model.elastoplastic:
@@ -192,13 +199,20 @@ def collide2d(
     else:
         restitution, model_name = 1.0, (model or Model.elastic).value
     v_rel_n = float(approach_velocity(vel1, vel2, pos1, pos2))
-    if model is Model.elastoplastic and v_rel_n > 0.0:
+    contact = None
+    if model is Model.elastoplastic:
+        contact = ContactModel(chosen.name, chosen.params)
+    elif damping_law is not None:
+        contact = ContactModel(damping=damping_law, alpha=alpha, separation=separation)
+        model_name = f"{model_name} with {damping_law} damping (alpha = {alpha:g})"
+    if contact is not None and v_rel_n > 0.0:
         if d1 is None or d2 is None or (material is None and None in (material1, material2)):
+            which = "--model elastoplastic" if damping_law is None else "--damping"
             raise InputError(
-                "--model elastoplastic needs --d1, --d2 and --material (or --material1/--material2)"
+                f"{which} needs --d1, --d2 and --material (or --material1/--material2)"
             )
         try:
-            restitution = _law_restitution(v_rel_n, chosen, *spheres_from_options(spheres))
+            restitution = _normal_restitution(v_rel_n, contact, *spheres_from_options(spheres))
         except ValueError as exc:
             raise InputError(str(exc)) from None
     try:  # the spheres must approach along the line of centres
@@ -244,13 +258,13 @@ def collide2d(
         _plot(plot, result, vel1, vel2, pos1, pos2, radii, model_name, restitution)
 
 
-def _law_restitution(normal_velocity: float, law, sphere1, sphere2) -> float:
-    """e of the normal impact at the approach velocity (v1 - v2).n [m/s] under ``law`` (a
-    :class:`~impactcli.cli.law_options.LawChoice`): the FILM run, sphere 2 at rest."""
-    from impactcli.impact import law_impact
+def _normal_restitution(normal_velocity: float, model, sphere1, sphere2) -> float:
+    """e of the normal impact at the approach velocity (v1 - v2).n [m/s] under the contact
+    model ``model`` (:class:`~impactcli.impact.ContactModel`): the FILM run, sphere 2 at
+    rest."""
+    from impactcli.impact import impact
 
-    impact = law_impact(sphere1, sphere2, normal_velocity, 0.0, law.name, law.params)
-    return float(impact.summary["restitution"])
+    return float(impact(sphere1, sphere2, normal_velocity, 0.0, model).summary["restitution"])
 
 
 def _radii(spheres) -> tuple[float, float] | None:

@@ -214,7 +214,7 @@ def collide3d(
         s1, s2, vectors, law_name, params, (damping_law, alpha, separation), e, mu, tangential,
         points,
     )  # fmt: skip
-    if law_name == "hertz" and damping_law is None and e is None:
+    if law_name == ELASTIC_LAW and damping_law is None and e is None:
         _first_yield(s1, s2, summary["approach_velocity"])
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:

@@ -18,6 +18,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
 )
+from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.impact_cmd import POINTS, SUMMARY_UNITS
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
@@ -43,9 +44,11 @@ COLUMNS = {
     multiple=True,
     default="every elastoplastic law that needs only the spheres' properties",
 )
+@with_damping_options(target_e=False)
 def compare_laws(
     spheres: SphereOptions,
     law: LawOptions = None,
+    damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     n: Segments = 25,
     points: POINTS = 401,
     ratio_min: Annotated[
@@ -82,6 +85,9 @@ def compare_laws(
     this impact's V0. Open circles mark published closed forms (Thornton 1997's e(V_y/V0),
     Walton & Braun's sqrt(k_load/k_unload)).
 
+    --damping NAME --alpha A adds Hertz with that damping model to the comparison (row
+    hertz+NAME; no yield point, no permanent indentation).
+
     Output: one row per law, columns law, restitution, contact_time, delta_max, force_max,
     delta_res, energy_dissipated, delta_y, yield_velocity (SI); JSON {"inputs", "laws"}.
 
@@ -89,22 +95,26 @@ def compare_laws(
     steel --law du-wang --law thornton --law walton-braun --k-load 2e7 --k-unload 8e7
     --plot laws.png
     """
-    from impactcli.compare import COMPARISON_KEYS, compare_impacts
-    from impactcli.lawlib import comparison_laws
+    from impactcli.compare import COMPARISON_KEYS, compare_impacts, comparison_row
+    from impactcli.impact import ContactModel
+    from impactcli.laws.registry import comparison_laws
     from impactcli.spheres import spheres_from_options, velocities_from_options
 
     check_plot(plot, output)
     if not 0 < ratio_min < ratio_max:
         raise InputError(f"need 0 < --ratio-min < --ratio-max, got {ratio_min:g}, {ratio_max:g}")
     choices = resolve_laws(law, default=comparison_laws())
+    damping_law, alpha, _, separation = damping.parse()
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
-    laws = [(c.name, c.params) for c in choices]
+    laws = [ContactModel(c.name, c.params) for c in choices]
+    if damping_law is not None:
+        laws.append(ContactModel(damping=damping_law, alpha=alpha, separation=separation))
     try:
         results = compare_impacts(s1, s2, v1, v2, laws, n)
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    table = {name: {k: r.summary[k] for k in COMPARISON_KEYS} for name, r in results.items()}
+    table = {name: comparison_row(r) for name, r in results.items()}
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -114,14 +124,14 @@ def compare_laws(
                 [((name,), np.array([list(row.values())])) for name, row in table.items()],
             )
         elif kind is Format.json:
-            write_json(
-                stream,
-                {"inputs": _inputs(s1, s2, v1, v2, n, choices), "laws": table},
-            )
+            inputs = _inputs(s1, s2, v1, v2, n, choices)
+            if damping_law is not None:
+                inputs.update(damping=damping_law, alpha=alpha, separation=separation)
+            write_json(stream, {"inputs": inputs, "laws": table})
         else:
             _print(stream if output not in (None, "-") else None, table, v1 + v2, n)
     if plot:
-        _plot(plot, results, choices, spheres, s1, s2, n, points, ratio_min, ratio_max, count)
+        _plot(plot, results, laws, spheres, s1, s2, n, points, ratio_min, ratio_max, count)
 
 
 def _inputs(s1, s2, v1: float, v2: float, n: int, choices: list[LawChoice]) -> dict:
@@ -167,7 +177,7 @@ def _print(stream: IO[str] | None, table: dict, v0: float, n: int) -> None:
 def _plot(
     path: str,
     results: dict,
-    choices: list[LawChoice],
+    models: list,
     spheres: SphereOptions,
     s1,
     s2,
@@ -180,6 +190,7 @@ def _plot(
     """Loops of this impact and e against V0/V_y for the same laws, written to ``path``."""
     from impactcli.cli.impact_cmd import _material_parts
     from impactcli.compare import (
+        comparison_row,
         published_restitution,
         reference_yield_velocity,
         restitution_curves,
@@ -187,7 +198,7 @@ def _plot(
     from impactcli.formatting import format_quantity
     from impactcli.plots import law_comparison_figure
 
-    titles = {c.name: f"{c.name} ({c.title})" for c in choices}
+    titles = {m.name: f"{m.name} ({_title(m)})" for m in models}
     v0 = next(iter(results.values())).impact_velocity
     loops = {}
     for name, result in results.items():
@@ -203,10 +214,11 @@ def _plot(
         reference = v0
         label = rf"$V_0 / V_{{ref}}$, $V_{{ref}}$ = {format_quantity(v0, 'm/s')} (this impact)"
     ratio = np.geomspace(ratio_min, ratio_max, count)
-    laws = [(c.name, c.params) for c in choices]
     try:
-        curves = restitution_curves(s1, s2, ratio * reference, laws, n)
-        published = published_restitution(s1, s2, ratio[:: max(1, count // 16)] * reference, laws)
+        curves = restitution_curves(s1, s2, ratio * reference, models, n)
+        published = published_restitution(
+            s1, s2, ratio[:: max(1, count // 16)] * reference, models
+        )
     except ValueError as exc:
         raise InputError(str(exc)) from None
     parts = [
@@ -222,12 +234,22 @@ def _plot(
         title=f"Contact laws compared (FILM, n = {n}): " + ", ".join(parts),
         ratio_label=label,
         impact_ratio=v0 / reference,
-        residual={titles[name]: r.summary["delta_res"] for name, r in results.items()},
+        residual={titles[name]: comparison_row(r)["delta_res"] for name, r in results.items()},
         published={
             label: (velocities / reference, e) for label, (velocities, e) in published.items()
         },
     )
     save_plot(fig, path)
+
+
+def _title(model) -> str:
+    """How the figure names a contact model: 'Du & Wang', 'Hertz with Tsuji damping'."""
+    from impactcli.laws.registry import DAMPING_LAWS
+
+    title = LawChoice(model.law, dict(model.law_params)).title
+    if model.damping is None:
+        return title
+    return f"{title} with {DAMPING_LAWS[model.damping].label} damping"
 
 
 def register(app: typer.Typer) -> None:

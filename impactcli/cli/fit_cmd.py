@@ -25,7 +25,7 @@ from impactcli.cli.common import (
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.fit import FIT_LAWS, fit_parameter_help
-from impactcli.laws.registry import DAMPING_LAWS, LAWS
+from impactcli.laws.registry import DAMPING_LAWS, LAWS, unit_kinds
 from impactcli.limits import MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_json
 from impactcli.spheres import SphereOptions
@@ -60,13 +60,8 @@ N_HELP = (
 #: Damping models given as --law before they had --damping: still accepted, with a warning.
 _DAMPING_AS_LAW = tuple(DAMPING_LAWS)
 
-#: parameter unit -> kind for :func:`impactcli.units.parse_quantity`
-_KINDS = {
-    "Pa": "pressure",
-    "-": "dimensionless",
-    "N/m": "stiffness",
-    "s/m": "inverse velocity",
-}
+#: parameter unit -> kind for :func:`impactcli.units.parse_quantity`, from the registry
+_KINDS = unit_kinds()
 
 CSV_COLUMNS = (
     "law",
@@ -138,7 +133,7 @@ def fit(
     ] = None,
     damping: Annotated[
         Optional[list[str]],
-        typer.Option("--damping", metavar="[tsuji|hunt-crossley]", help=DAMPING_HELP),
+        typer.Option("--damping", metavar=f"[{'|'.join(DAMPING_LAWS)}]", help=DAMPING_HELP),
     ] = None,
     param: Annotated[
         Optional[list[str]], typer.Option("--param", metavar="NAME", help=PARAM_HELP)

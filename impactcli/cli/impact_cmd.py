@@ -34,7 +34,7 @@ from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
-from impactcli.laws.registry import CURVE_LAW, DEFAULT_LAW
+from impactcli.laws.registry import CURVE_LAW, DAMPING_LAWS, DEFAULT_LAW
 from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
@@ -693,7 +693,7 @@ def restitution(
     if not 0 < lo <= hi:
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
     if damping is not None and damping.given:
-        if damping.e is not None and damping.damping != "tsuji":
+        if damping.e is not None and not DAMPING_LAWS[damping.damping].self_similar:
             raise InputError(
                 f"impact restitution --damping {damping.damping} --e: its e depends on alpha "
                 "V0, so no alpha gives one e at every V0; give --alpha (the alpha of e at one "

@@ -159,9 +159,11 @@ class DampingModel(Protocol):
     ``--damping`` choice), ``label`` (titles: 'Tsuji damping'), ``summary`` (one line of
     ``--help``), ``parameters`` (its one parameter alpha: unit, kind for unit parsing,
     range), ``reference``, ``self_similar`` (e independent of V0), and the class methods
-    ``of(K, m, alpha)`` (the one constructor), ``alpha_estimate(e, V0)`` (the first guess of
-    the alpha search), ``fit_start(V_ref)`` ((start, lower, upper) of a fit of alpha) and
-    ``data_start(e, V0)`` (alpha read off measured points).
+    ``of(K, m, alpha)`` (the one constructor), ``alpha_estimate(e, V0, K, m)`` (the first guess of
+    the alpha search), ``fit_start(V_ref, K, m)`` ((start, lower, upper) of a fit of alpha)
+    and ``data_start(e, V0, K, m)`` (alpha read off measured points),
+    ``similar_alpha(alpha, K, m, V0)`` (the alpha of the same e at K = m = V0 = 1); optionally
+    ``closed_form(K, m, alpha, V0, separation)`` -> (label, e) or None, a published e(V0).
     """
 
     name: ClassVar[str]

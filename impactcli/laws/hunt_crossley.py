@@ -71,7 +71,13 @@ class HuntCrossleyDamping(DampedHertz):
         return cls(stiffness, alpha)
 
     @classmethod
-    def alpha_estimate(cls, restitution: ArrayLike, impact_velocity: ArrayLike) -> Array:
+    def alpha_estimate(
+        cls,
+        restitution: ArrayLike,
+        impact_velocity: ArrayLike,
+        stiffness: ArrayLike,
+        mass: ArrayLike,
+    ) -> Array:
         """A first guess of alpha for e at V0: Hunt & Crossley's (1 - e)/V0, at least
         1e-6/V0, [s/m] (the alpha search starts from it)."""
         v0 = np.asarray(impact_velocity, dtype=float)
@@ -79,13 +85,25 @@ class HuntCrossleyDamping(DampedHertz):
         return np.maximum(guess, 1e-6 / v0)
 
     @classmethod
-    def fit_start(cls, reference_velocity: float) -> tuple[float, float, float]:
+    def similar_alpha(
+        cls, alpha: ArrayLike, stiffness: ArrayLike, mass: ArrayLike, impact_velocity: ArrayLike
+    ) -> Array:
+        """The alpha that gives the same e at K = m = V0 = 1 (the law in its own units):
+        alpha V0 (e depends on alpha V0 only)."""
+        return np.asarray(alpha, dtype=float) * np.asarray(impact_velocity, dtype=float)
+
+    @classmethod
+    def fit_start(
+        cls, reference_velocity: float, stiffness: float, mass: float
+    ) -> tuple[float, float, float]:
         """(start, lower, upper) of a fit of alpha [s/m]: Hunt & Crossley's (1 - e)/V_ref
         with e = 0.8 at the data's typical V_ref [m/s], within (1e-6, 1e3)."""
         return 0.2 / reference_velocity, 1e-6, 1e3
 
     @classmethod
-    def data_start(cls, restitution: NDArray, impact_velocity: NDArray) -> float:
+    def data_start(
+        cls, restitution: NDArray, impact_velocity: NDArray, stiffness: float, mass: float
+    ) -> float:
         """alpha [s/m] read off measured e: the median of (1 - e)/V0 (their estimate for e
         near 1)."""
         return float(np.clip(np.median((1.0 - restitution) / impact_velocity), 1e-5, 1e2))

@@ -18,6 +18,7 @@ from impactcli.laws import du_wang, hertz, tabulated, thornton, walton_braun
 from impactcli.laws.base import SEPARATIONS, ImpactPlan, LawSpec, NormalContact, Parameter
 from impactcli.laws.hunt_crossley import HuntCrossleyDamping
 from impactcli.laws.tsuji import TsujiDamping
+from impactcli.laws.viscoelastic import ViscoelasticDamping
 
 __all__ = [
     "DAMPING_LAWS",
@@ -36,6 +37,7 @@ __all__ = [
     "make_damping_law",
     "parameter_laws",
     "plan_groups",
+    "unit_kinds",
 ]
 
 #: The one registry: every contact model of the library by name, in listing order: the
@@ -51,6 +53,7 @@ MODELS: dict[str, LawSpec | type] = {
         tabulated.SPEC,
         TsujiDamping,
         HuntCrossleyDamping,
+        ViscoelasticDamping,
     )
 }
 
@@ -93,6 +96,17 @@ def parameter_laws() -> dict[str, tuple[Parameter, tuple[str, ...]]]:
         for p in spec.parameters:
             first, names = out.get(p.name, (p, ()))
             out[p.name] = (first, (*names, spec.name))
+    return out
+
+
+def unit_kinds() -> dict[str, str]:
+    """Every numeric parameter unit of the registry -> its kind of quantity (for unit
+    parsing: ``Pa`` -> ``pressure``, ``s`` -> ``time``); ``-`` is dimensionless."""
+    out = {"-": "dimensionless"}
+    for model in MODELS.values():
+        for p in model.parameters:
+            if p.kind not in ("file", "choice"):
+                out.setdefault(p.unit if p.kind != "dimensionless" else "-", p.kind)
     return out
 
 

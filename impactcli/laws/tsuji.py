@@ -84,19 +84,53 @@ class TsujiDamping(DampedHertz):
         return cls(stiffness, mass, alpha)
 
     @classmethod
-    def alpha_estimate(cls, restitution: ArrayLike, impact_velocity: ArrayLike) -> Array:
+    def alpha_estimate(
+        cls,
+        restitution: ArrayLike,
+        impact_velocity: ArrayLike,
+        stiffness: ArrayLike,
+        mass: ArrayLike,
+    ) -> Array:
         """A first guess of alpha for a coefficient of restitution e: the DEM polynomial
         (:func:`tsuji_alpha_dem`), at least 1e-3, [-] (the alpha search starts from it)."""
         return np.maximum(tsuji_alpha_dem(restitution), 1e-3)
 
     @classmethod
-    def fit_start(cls, reference_velocity: float) -> tuple[float, float, float]:
+    def closed_form(
+        cls,
+        stiffness: float,
+        mass: float,
+        alpha: float,
+        impact_velocity: ArrayLike,
+        separation: str,
+    ) -> tuple[str, Array] | None:
+        """The published e of the ``overlap`` rule at every V0
+        (:func:`tsuji_restitution_overlap`); None for the ``force`` rule."""
+        if separation != "overlap":
+            return None
+        e = tsuji_restitution_overlap(alpha)
+        return "Tsuji: Antypov & Elliott (2011) closed form", np.full(np.shape(impact_velocity), e)
+
+    @classmethod
+    def similar_alpha(
+        cls, alpha: ArrayLike, stiffness: ArrayLike, mass: ArrayLike, impact_velocity: ArrayLike
+    ) -> Array:
+        """The alpha that gives the same e at K = m = V0 = 1 (the law in its own units):
+        alpha itself, [-] (e depends on alpha only)."""
+        return np.asarray(alpha, dtype=float) + 0.0 * np.asarray(impact_velocity, dtype=float)
+
+    @classmethod
+    def fit_start(
+        cls, reference_velocity: float, stiffness: float, mass: float
+    ) -> tuple[float, float, float]:
         """(start, lower, upper) of a fit of alpha [-]: 0.3, within (1e-4, 2.2), below
         sqrt(5), where e reaches 0 (docs/damping.md)."""
         return 0.3, 1e-4, 2.2
 
     @classmethod
-    def data_start(cls, restitution: NDArray, impact_velocity: NDArray) -> float:
+    def data_start(
+        cls, restitution: NDArray, impact_velocity: NDArray, stiffness: float, mass: float
+    ) -> float:
         """alpha [-] read off measured e: the exact inverse of the ``overlap`` e(alpha)
         (:func:`tsuji_alpha_hertz_mindlin`) at the mean e."""
         return float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(restitution)), 1e-3, 2.0))
