@@ -19,8 +19,8 @@ How each row is computed
   the work arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
   any n; the unloading from rest is the normalised Hertz restitution stage in
   delta - delta_res, scaled (:func:`plastic_stage_times`).
-- Rows of another law of :mod:`impactcli.lawlib` (``law=``, one law per call): the law's
-  plans for the elastic and plastic groups (:func:`impactcli.lawlib.plan_groups`), timed by
+- Rows of another law of :mod:`impactcli.laws` (``law=``, one law per call): the law's
+  plans for the elastic and plastic groups (:func:`impactcli.laws.registry.plan_groups`), timed by
   the fast paths above when the plan is Hertz-based, else by FILM on blocks of
   about :data:`FILM_BLOCK` values (:func:`law_stage_times`).
 - Damped (Hertz plus viscous damping) rows, :func:`batch_damped_impacts`: the damped FILM
@@ -393,7 +393,7 @@ def batch_impacts(
         ``yield`` (the permanent part to the weaker sphere, :func:`impactcli.energy.
         permanent_fractions`)
     pressure_factor : p0 / sigma_y of the elastoplastic model, [-]
-    law : a law of :data:`impactcli.lawlib.LAWS` for every row (``plastic`` and
+    law : a law of :data:`impactcli.laws.registry.LAWS` for every row (``plastic`` and
         ``pressure_factor`` are then ignored; rows of several laws: one call per law, e.g.
         on the groups of a ``law`` column); None: Du & Wang where ``plastic``, else Hertz
     law_params : the law's parameters by name, scalars or one value per row (SI)
@@ -499,7 +499,7 @@ def batch_impacts(
 
 def _needs_yield_strength(law: str, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
     """Whether rows of ``law`` need sigma_y (Thornton's p_y, where given, replaces it)."""
-    from impactcli.lawlib import get_law
+    from impactcli.laws.registry import get_law
 
     spec = get_law(law)
     return spec.yield_strength_needed(spec.resolve(params))
@@ -545,7 +545,7 @@ def _batch_law(
 ) -> dict[str, NDArray]:
     """The rows ``ok`` (valid; their constants ``pairs``) of :func:`batch_impacts` under one
     law of the library."""
-    from impactcli.lawlib import get_law
+    from impactcli.laws.registry import get_law
 
     spec = get_law(law)
     m, radius, modulus, sigma_y, v0 = pairs.m, pairs.radius, pairs.modulus, pairs.sigma_y, pairs.v0
@@ -593,7 +593,7 @@ def _batch_law(
 
 def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray[np.intp]):
     """(rows of the batch, plan) for the elastic and plastic impacts of ``chunk``."""
-    from impactcli.lawlib import plan_groups
+    from impactcli.laws.registry import plan_groups
 
     for local, plan in plan_groups(contact, v0, m, lambda r: contact_of(chunk[r])):
         yield chunk[local], plan

@@ -531,7 +531,7 @@ def normal_restitution_and_history(
     r"""The normal law of an oblique impact: e and, if asked, the normal history.
 
     The normal law is run as a head-on impact at the normal approach velocity u_n of the
-    contact (docs/collision3d.md): by FILM for a law of :mod:`impactcli.lawlib`
+    contact (docs/collision3d.md): by FILM for a law of :mod:`impactcli.laws`
     (:func:`impactcli.impact.law_impact`: ``hertz``, ``du-wang``, ``thornton``,
     ``walton-braun``, ``tabulated``), or, with ``damping``, for Hertz elasticity plus viscous
     damping (:func:`impactcli.damping.solve_damped_impact`: ``tsuji`` or ``hunt-crossley``,
@@ -546,7 +546,7 @@ def normal_restitution_and_history(
     damping : None, ``tsuji`` or ``hunt-crossley``
     alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
     points : time points of the history (>= 3) for the ``mindlin`` model; None: no history
-    n : FILM segments per stage of a law of :mod:`impactcli.lawlib` (damped Hertz uses the
+    n : FILM segments per stage of a law of :mod:`impactcli.laws` (damped Hertz uses the
         400 of :func:`impactcli.damping.solve_damped_impact`)
     separation : with ``damping``: ``overlap`` (the contact ends when delta returns to 0) or
         ``force`` (when the total force does; the spheres part at delta_separation > 0)
@@ -599,13 +599,13 @@ def normal_restitution_and_history(
         make_damping_law,
         solve_damped_impact,
     )
-    from impactcli.lawlib import get_law
     from impactcli.laws import hertz_stiffness
+    from impactcli.laws.registry import get_law
 
     if get_law(law).name != ELASTIC_LAW or params:
         raise ValueError(
-            f"damping {damping!r} is viscous damping on Hertz elasticity: its law is hertz, "
-            f"got {law!r}" + (" with parameters" if params else "")
+            f"damping {damping!r} is viscous damping on Hertz elasticity: its law is "
+            f"{ELASTIC_LAW}, got {law!r}" + (" with parameters" if params else "")
         )
     if alpha is None:
         raise ValueError(f"damping {damping!r} needs its parameter alpha")

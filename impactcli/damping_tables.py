@@ -14,15 +14,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from impactcli.damping import (
-    HuntCrossleyDamping,
-    TsujiDamping,
-    damping_for_restitution,
-    hunt_crossley_alpha_published,
-    solve_damped_impact,
-    tsuji_alpha_dem,
-    tsuji_alpha_hertz_mindlin,
-)
+from impactcli.damping import damping_for_restitution, solve_damped_impact
+from impactcli.laws.hunt_crossley import HuntCrossleyDamping, hunt_crossley_alpha_published
+from impactcli.laws.tsuji import TsujiDamping, tsuji_alpha_dem, tsuji_alpha_hertz_mindlin
 
 # Normalised units: m = V0 = 1 and K = 5/4, so the Hertz maximum indentation is 1.
 K, M, V0 = 1.25, 1.0, 1.0
@@ -53,7 +47,9 @@ def tsuji_relations(n: int = 400) -> dict[str, np.ndarray]:
     e = np.array(TARGETS)
     out: dict[str, np.ndarray] = {"e": e}
     for rule in ("overlap", "force"):
-        out[f"alpha_{rule}"] = damping_for_restitution("tsuji", e, V0, K, M, n=n, separation=rule)
+        out[f"alpha_{rule}"] = damping_for_restitution(
+            TsujiDamping.name, e, V0, K, M, n=n, separation=rule
+        )
     for name, alpha in (
         ("dem", tsuji_alpha_dem(e)),
         ("dem_unscaled", tsuji_alpha_dem(e) / np.sqrt(2.0)),
@@ -69,7 +65,7 @@ def hunt_crossley_relations(n: int = 400) -> dict[str, np.ndarray]:
     """alpha V0 for target e: exact against Hunt-Crossley, Lankarani-Nikravesh, Flores."""
     e = np.array(TARGETS)
     out: dict[str, np.ndarray] = {"e": e}
-    out["alpha_exact"] = damping_for_restitution("hunt-crossley", e, V0, K, M, n=n)
+    out["alpha_exact"] = damping_for_restitution(HuntCrossleyDamping.name, e, V0, K, M, n=n)
     for name, alpha in hunt_crossley_alpha_published(e, V0).items():
         out[f"alpha_{name}"] = alpha
         out[f"e_{name}"] = _e_model(HuntCrossleyDamping, alpha, n, "overlap")

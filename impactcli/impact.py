@@ -464,7 +464,7 @@ class ImpactResult:
         """The contact model of this impact (residual indentation, recoverable work)."""
         if self.contact is not None:
             return self.contact
-        from impactcli.lawlib import HertzLawContact
+        from impactcli.laws.hertz import HertzLawContact
 
         _, r, e = effective_properties(self.sphere1, self.sphere2)
         return HertzLawContact(r, e)
@@ -1085,7 +1085,7 @@ def elastic_impact(
     """
     _validate(sphere1, sphere2, v1, v2, n, split, method)
     m, r, e = effective_properties(sphere1, sphere2)
-    from impactcli.lawlib import HertzLawContact
+    from impactcli.laws.hertz import HertzLawContact
 
     plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
     contact = HertzLawContact(r, e)
@@ -1173,7 +1173,7 @@ def law_impact(
     *,
     params: dict[str, Any] | None = None,
 ) -> ImpactResult:
-    """Impact of two spheres under any law of the library (:mod:`impactcli.lawlib`) by FILM.
+    """Impact of two spheres under any law of the library (:mod:`impactcli.laws`) by FILM.
 
     The stages come from the law's plan (loading, plastic loading, unloading from rest);
     ``summary`` holds :data:`PLASTIC_SUMMARY_KEYS` whatever the law (``delta_y`` and
@@ -1246,7 +1246,7 @@ def law_impact(
     else:
         model = spec.name
     result = _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, True)
-    return _warned(result, first_yield=spec.name == "hertz")
+    return _warned(result, first_yield=spec.name == ELASTIC_LAW)
 
 
 #: Summary keys of :func:`damped_impact`: the elastic ones and the damping's.

@@ -23,8 +23,7 @@ from impactcli.impact import (
     split_fractions,
     weaker_yield_strength,
 )
-from impactcli.lawlib import get_law, plan_groups
-from impactcli.laws.registry import DEFAULT_LAW
+from impactcli.laws.registry import DEFAULT_LAW, get_law, plan_groups
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.validation import input_errors, plastic_range_problems, raise_first
 
@@ -58,7 +57,7 @@ def restitution_sweep(
 ) -> dict[str, NDArray]:
     """Elastoplastic impact quantities for each impact velocity V0 [m/s] (docs/method.md §7).
 
-    ``law``: any law of :mod:`impactcli.lawlib` with its ``law_params`` instead of Du & Wang
+    ``law``: any law of :mod:`impactcli.laws` with its ``law_params`` instead of Du & Wang
     (``pressure_factor`` is then ignored); ``plastic`` is 1 past the law's yield point.
     Without ``law`` and without any yield strength (neither ``yield_strength`` nor the
     spheres'), the impacts are elastic (Hertz): e = 1, no permanent indentation.
@@ -194,7 +193,7 @@ def _contact(
         return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     m, r, e = effective_properties(sphere1, sphere2)
     if sigma_y is None:  # Du & Wang, nothing can yield: the elastic Hertz impact
-        from impactcli.lawlib import HertzLawContact
+        from impactcli.laws.hertz import HertzLawContact
 
         return HertzLawContact(r, e), m
     return DuWangContact(r, e, sigma_y, pressure_factor), m

@@ -357,3 +357,63 @@ def test_every_path_refuses_a_plastic_stage_beyond_double_precision():
         assert rows["error"][0].startswith("out of range: the yield indentation"), how
         assert np.isnan(rows["restitution"][0])
     assert messages[0] == messages[1]
+
+
+def _code_strings(tree: ast.AST):
+    """The string constants of a module's code (docstrings left out: prose may name a law)."""
+    docstrings = {
+        id(node.body[0].value)
+        for node in ast.walk(tree)
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+        and node.body
+        and isinstance(node.body[0], ast.Expr)
+        and isinstance(node.body[0].value, ast.Constant)
+    }
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Constant) and isinstance(node.value, str):
+            if id(node) not in docstrings:
+                yield node
+
+
+def test_a_law_is_named_only_in_its_own_module_and_the_registry():
+    """What is particular to a law lives in its module of impactcli/laws/: every other
+    module asks the registry (a name of DEFAULT_LAW, ELASTIC_LAW, a model's ``name``, its
+    declared capabilities) rather than spelling a law's name in its code."""
+    import re
+
+    from impactcli.laws.registry import MODELS
+
+    pattern = re.compile(r"(?<![\w-])(" + "|".join(map(re.escape, MODELS)) + r")(?![\w-])")
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if path.parent.name == "laws":
+            continue
+        for node in _code_strings(ast.parse(path.read_text())):
+            if pattern.search(node.value):
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno}: {node.value[:60]!r}")
+    assert not found, "\n".join(found)
+
+
+def test_a_law_module_names_no_other_law():
+    """A law's module is about that law alone: no other model's name in its code."""
+    import re
+
+    from impactcli.laws.registry import MODELS
+
+    for name in MODELS:
+        module = PACKAGE / "laws" / f"{name.replace('-', '_')}.py"
+        others = [other for other in MODELS if other != name]
+        pattern = re.compile(r"(?<![\w-])(" + "|".join(map(re.escape, others)) + r")(?![\w-])")
+        strings = _code_strings(ast.parse(module.read_text()))
+        hits = [node.lineno for node in strings if pattern.search(node.value)]
+        assert not hits, f"{module.name} names another law at lines {hits}"
+
+
+def test_the_library_imports_laws_from_the_laws_package():
+    """impactcli.lawlib is a deprecated re-export: no module of the library imports it."""
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if path.name == "lawlib.py":
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module == "impactcli.lawlib":
+                raise AssertionError(f"{path.relative_to(ROOT)}:{node.lineno} imports lawlib")

@@ -22,6 +22,7 @@ from impactcli.cli.common import (
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.errors import InputError
+from impactcli.laws.registry import DEFAULT_LAW
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.validation import check_restitution
 
@@ -33,7 +34,7 @@ CONVENTIONS = {
 
 
 @with_law_options(
-    default="none, e = 1 (elastic); du-wang with --model elastoplastic, which --law needs"
+    default=f"none, e = 1 (elastic); {DEFAULT_LAW} with --model elastoplastic, which --law needs"
 )
 @with_damping_options(target_e=False)  # collide2d's --e is a given e, not a target of alpha
 def collide2d(

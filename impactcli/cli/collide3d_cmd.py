@@ -51,7 +51,7 @@ VELOCITY_HELP = (
 )
 
 
-@with_law_options(default="hertz, e = 1; du-wang with --model elastoplastic")
+@with_law_options(default=f"{ELASTIC_LAW}, e = 1; {DEFAULT_LAW} with --model elastoplastic")
 @with_sphere_options(velocities=False)
 @with_damping_options(target_e=False)  # collide3d's --e is a given e, not a target of alpha
 def collide3d(
@@ -94,8 +94,8 @@ def collide3d(
     model: Optional[Model] = typer.Option(
         None,
         "--model",
-        help="Normal law when --law is not given: elastic (hertz, e = 1, the default) or "
-        "elastoplastic (du-wang; needs a yield strength).",
+        help=f"Normal law when --law is not given: elastic ({ELASTIC_LAW}, e = 1, the default) or "
+        f"elastoplastic ({DEFAULT_LAW}; needs a yield strength).",
     ),
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     e: Optional[float] = typer.Option(

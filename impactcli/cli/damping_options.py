@@ -44,7 +44,7 @@ def _alpha(name: str):
 
 
 def _either() -> str:
-    """'--damping tsuji or --damping hunt-crossley': every model of the registry."""
+    """'--damping A or --damping B': every model of the registry."""
     return " or ".join(f"--damping {name}" for name in _models())
 
 
@@ -57,19 +57,21 @@ def damping_help() -> dict[str, str]:
         + f" for {name}"
         for name in models
     )
+    similar = [name for name, model in models.items() if model.self_similar]
+    others = [name for name in models if name not in similar]
     return {
         "damping": f"Viscous damping added to Hertz (docs/damping.md): {laws}. Give --alpha "
         "or --e with it.",
         "alpha": f"Damping parameter alpha >= 0: {units} (units accepted: 0.5s/m, 0.5ms/mm).",
         "e": "Coefficient of restitution in (0, 1] to reach at this V0 instead of --alpha: alpha "
         "is solved for exactly by the model (FILM, same n and separation) and printed.",
-        "e_sweep": "Coefficient of restitution in (0, 1] instead of --alpha, with --damping "
-        "tsuji only (its e is the same at every V0): alpha is solved for exactly by the model "
-        "(FILM, same n and separation) and printed. hunt-crossley's e depends on alpha V0: "
-        "give --alpha.",
+        "e_sweep": "Coefficient of restitution in (0, 1] instead of --alpha, with "
+        f"{' or '.join(f'--damping {name}' for name in similar)} only (its e is the same at "
+        "every V0): alpha is solved for exactly by the model (FILM, same n and separation) "
+        f"and printed. {' and '.join(others)}: e depends on V0, give --alpha.",
         "separation": "When the contact ends. overlap (default): when the indentation returns "
         "to 0; the damping force may then pull, as DEM codes integrate it and as the published "
-        "Tsuji alpha(e) relations assume. force: when the total force returns to 0 (no "
+        "alpha(e) relations assume. force: when the total force returns to 0 (no "
         "tension); the spheres part at an indentation delta_separation > 0.",
     }
 

@@ -12,7 +12,6 @@ import typer
 
 from impactcli.cli.common import Format, OutputFile, console, resolve_format
 from impactcli.cli.sphere_options import with_sphere_options
-from impactcli.contact import DU_WANG_PRESSURE_FACTOR
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW
 from impactcli.output import atomic_output, write_csv, write_json
@@ -24,6 +23,22 @@ def _yield_laws() -> dict:
     from impactcli.laws.registry import LAWS
 
     return {name: spec for name, spec in LAWS.items() if spec.yield_onset is not None}
+
+
+def _pressure_factor():
+    """The registry's pressure-factor parameter p0_factor (a
+    :class:`~impactcli.laws.base.Parameter`)."""
+    from impactcli.laws.registry import parameter_laws
+
+    return parameter_laws()["p0_factor"][0]
+
+
+def _pressure_factor_help() -> str:
+    """'p0 / sigma_y of --law du-wang (2.57).': of each law that takes p0_factor."""
+    from impactcli.laws.registry import parameter_laws
+
+    parameter, laws = parameter_laws()["p0_factor"]
+    return f"p0 / sigma_y of {', '.join(f'--law {law}' for law in laws)} ({parameter.default:g})."
 
 
 YieldLaw = enum.StrEnum("YieldLaw", {name.replace("-", "_"): name for name in _yield_laws()})
@@ -69,8 +84,8 @@ def yield_limit(
         ),
     ] = YieldLaw(ELASTIC_LAW),
     p0_factor: Annotated[
-        float, typer.Option("--p0-factor", help="p0 / sigma_y of --law du-wang (2.57).")
-    ] = DU_WANG_PRESSURE_FACTOR,
+        float, typer.Option("--p0-factor", help=_pressure_factor_help())
+    ] = _pressure_factor().default,
     fmt: Annotated[
         LineFormat, typer.Option("--format", "-f", help="text (one line) or json.")
     ] = LineFormat.text,

@@ -121,7 +121,7 @@ CURVE = Annotated[
         metavar="FILE",
         help="Your own loading curve instead of Hertz: CSV 'delta,force' in SI, or with "
         "units in the header ('delta [um],force [N]'), run as an elastic, reversible law "
-        "(law tabulated, linear interpolation; see 'impact laws').",
+        f"(law {CURVE_LAW}, linear interpolation; see 'impact laws').",
     ),
 ]
 

@@ -1,13 +1,13 @@
 """The contact-law options, declared once: ``--law`` and every law parameter of the library.
 
 :func:`with_law_options` adds ``--law NAME`` (or, with ``multiple=True``, ``--law`` given
-several times) and one option per parameter of :data:`impactcli.lawlib.LAWS`
+several times) and one option per parameter of :data:`impactcli.laws.registry.LAWS`
 (``--p0-factor`` of du-wang, ``--py`` of thornton, ``--k-load`` and ``--k-unload`` of
 walton-braun, ``--curve``, ``--unload-curves``, ``--interpolation`` of tabulated) to a
 command's signature in place of its ``law`` parameter, and calls the command with them
 gathered in one :class:`LawOptions` of the raw text. The options come from the registry, so
 a new law's parameters appear on every command that runs laws. Which law needs what and
-the defaults are the library's (:meth:`impactcli.lawlib.LawSpec.resolve`);
+the defaults are the library's (:meth:`impactcli.laws.base.LawSpec.resolve`);
 :func:`resolve_laws` only parses units and says which option belongs to which law.
 """
 
@@ -45,7 +45,7 @@ class LawOptions:
 @dataclass(frozen=True)
 class LawChoice:
     """A law to run: its name and parameters in SI (files as paths), as
-    :meth:`impactcli.lawlib.LawSpec.contact` and :func:`impactcli.impact.law_impact` take
+    :meth:`impactcli.laws.base.LawSpec.contact` and :func:`impactcli.impact.law_impact` take
     them."""
 
     name: str
@@ -66,7 +66,7 @@ _METAVARS = {"file": "FILE", "choice": "TEXT", "dimensionless": "NUMBER"}
 
 
 def _law_help(multiple: bool, default: str | None = None) -> str:
-    from impactcli.lawlib import DEFAULT_LAW, LAWS
+    from impactcli.laws.registry import DEFAULT_LAW, LAWS
 
     parts = []
     for spec in LAWS.values():
@@ -91,7 +91,7 @@ def _parameter_help(param, owners: tuple[str, ...]) -> str:
 
 
 def _parameters(multiple: bool, default: str | None = None) -> list[inspect.Parameter]:
-    from impactcli.lawlib import parameter_laws
+    from impactcli.laws.registry import parameter_laws
 
     law_type = Optional[list[str]] if multiple else Optional[str]
     out = [
@@ -171,7 +171,7 @@ def resolve_laws(
         that do); a value that is not a quantity of the parameter's kind; a missing required
         parameter or a value out of range (the library's message).
     """
-    from impactcli.lawlib import DEFAULT_LAW, get_law, parameter_laws
+    from impactcli.laws.registry import DEFAULT_LAW, get_law, parameter_laws
     from impactcli.units import parse_quantity
 
     names = options.names or default or (DEFAULT_LAW,)
@@ -212,7 +212,7 @@ def resolve_laws(
 def law_inputs(choice: LawChoice, yield_strength: float | None) -> dict[str, Any]:
     """The ``inputs`` entries naming the law and the parameters it ran with, with units:
     ``{"law": "thornton", "law_parameters": {"py": {"value": 1.6e9, "unit": "Pa"}}}``."""
-    from impactcli.lawlib import get_law
+    from impactcli.laws.registry import get_law
 
     spec = get_law(choice.name)
     return {

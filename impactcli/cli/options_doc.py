@@ -11,6 +11,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from impactcli.laws.registry import alpha_units
+
 __all__ = ["OptionRow", "differences", "option_rows", "options_markdown"]
 
 #: The unit of the value an option's metavar names (SI; a unit may be given on the line).
@@ -24,7 +26,6 @@ METAVAR_UNITS = {
     "STIFFNESS": "N/m",
     "NUMBER": "-",
     "INTEGER": "",
-    "ALPHA": "- (tsuji), s/m (hunt-crossley)",
     "X,Y": "m",
     "X,Y,Z": "m",
 }
@@ -104,8 +105,10 @@ def _unit(metavar: str, help_text: str) -> str:
         if "angular velocity" in lowered:
             return "rad/s"
         return "m/s" if "velocity" in lowered else "m"
-    if metavar in ("FILE", "TABLE"):
+    if metavar in ("FILE", "TABLE") or metavar.startswith("["):  # a path or a choice
         return ""
+    if metavar == "ALPHA":
+        return alpha_units()
     if metavar in METAVAR_UNITS:
         return METAVAR_UNITS[metavar]
     for unit in re.findall(r"\[([^\]\s]+)\]", help_text):

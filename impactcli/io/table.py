@@ -85,9 +85,9 @@ EXTRA_KEYS: tuple[str, ...] = (
 
 def law_parameter_columns() -> dict[str, tuple[str, str]]:
     """The law-parameter columns: name -> (kind, law names that take it), from the law
-    registry (:data:`impactcli.lawlib.LAWS`): ``p0_factor``, ``py``, ``k_load``,
+    registry (:data:`impactcli.laws.registry.LAWS`): ``p0_factor``, ``py``, ``k_load``,
     ``k_unload``, ``curve``, ``unload_curves``, ``interpolation``."""
-    from impactcli.lawlib import LAWS
+    from impactcli.laws.registry import LAWS
 
     found: dict[str, tuple[str, str]] = {}
     for spec in LAWS.values():
@@ -472,7 +472,7 @@ def _row_laws(columns, size: int, errors: Problems):
     choices) and whether the law is elastic. Faults of a row (an unknown law, a parameter
     its law does not take, a value that is not a positive finite number) go to
     ``errors``."""
-    from impactcli.lawlib import get_law
+    from impactcli.laws.registry import get_law
     from impactcli.units import KINDS
 
     given = _text_column(columns, "law", size)
@@ -613,7 +613,7 @@ def _row_damping(
     )
     errors.add(
         given & ((model == "elastoplastic") | (~np.equal(laws, None) & (laws != ELASTIC_LAW))),
-        "damping is for elastic rows (model elastic or law hertz)",
+        f"damping is for elastic rows (model elastic or law {ELASTIC_LAW})",
     )
     return damped, values
 
@@ -633,7 +633,7 @@ def _damping_groups(damped: np.ndarray, values: dict, valid: np.ndarray):
 def _law_groups(laws: np.ndarray, params: dict[str, np.ndarray], valid: np.ndarray):
     """(rows, law name, law_params) of each group of valid rows with one law and the same
     files and choices (the tabulated curves): one kernel call per group."""
-    from impactcli.lawlib import get_law
+    from impactcli.laws.registry import get_law
 
     chosen = np.flatnonzero(valid & ~np.equal(laws, None))
     if chosen.size == 0:

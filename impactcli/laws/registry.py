@@ -28,6 +28,7 @@ __all__ = [
     "LAWS",
     "MODELS",
     "alpha_label",
+    "alpha_units",
     "check_alpha",
     "check_damping",
     "comparison_laws",
@@ -188,6 +189,16 @@ def alpha_label(name: str, alpha: float, digits: int = 6) -> str:
     (parameter,) = DAMPING_LAWS[name].parameters
     unit = "" if parameter.unit == "dimensionless" else f" {parameter.unit}"
     return f"{parameter.name} = {alpha:.{digits}g}{unit}"
+
+
+def alpha_units() -> str:
+    """The unit of each damping model's alpha, as option tables list it: ``'- (tsuji),
+    s/m (hunt-crossley), ...'`` (``-``: dimensionless)."""
+    units = []
+    for name, model in DAMPING_LAWS.items():
+        (parameter,) = model.parameters
+        units.append(f"{'-' if parameter.kind == 'dimensionless' else parameter.unit} ({name})")
+    return ", ".join(units)
 
 
 def make_damping_law(name: str, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike):
