@@ -9,20 +9,23 @@ over their chunks.
 
 How each row is computed
 ------------------------
-- Elastic (Hertz) rows, and elastoplastic rows below the yield velocity, need no FILM run of
-  their own: in t V0/delta_m every Hertz impact is the same normalised solution
-  (docs/method.md §3, :func:`impactcli.tables.normalised_elastic`), so the FILM contact time with n
-  segments is t_c = t_bar_c(n) delta_m / V0 and the time of maximum indentation
+Every law goes one path (``_batch_law``): the law's contact model of the rows, its plans for
+the elastic and plastic groups (:func:`impactcli.laws.registry.plan_groups`), in blocks of
+about :data:`FILM_BLOCK` values, each plan timed by :func:`law_stage_times`. Without a law
+(``law=None``) the rows marked ``plastic`` take the registry's default elastoplastic law
+(Du & Wang) and the others its elastic law (Hertz), each group by the same path.
+
+- Elastic (Hertz) plans, as of elastoplastic rows below the yield velocity, need no FILM run
+  of their own: in t V0/delta_m every Hertz impact is the same normalised solution
+  (docs/method.md §3, :func:`impactcli.tables.normalised_elastic`), so the FILM contact time
+  with n segments is t_c = t_bar_c(n) delta_m / V0 and the time of maximum indentation
   t_max = t_bar_max(n) delta_m / V0, both from one normalised run.
-- Elastoplastic rows above the yield velocity (docs/method.md §7): the elastic loading is a FILM
-  run on arrays of shape (rows, n), in blocks of about :data:`FILM_BLOCK` values so
-  the work arrays stay in cache; the plastic loading is linear in delta, so FILM is exact there with
-  any n; the unloading from rest is the normalised Hertz restitution stage in
-  delta - delta_res, scaled (:func:`plastic_stage_times`).
-- Rows of another law of :mod:`impactcli.laws` (``law=``, one law per call): the law's
-  plans for the elastic and plastic groups (:func:`impactcli.laws.registry.plan_groups`), timed by
-  the fast paths above when the plan is Hertz-based, else by FILM on blocks of
-  about :data:`FILM_BLOCK` values (:func:`law_stage_times`).
+- Hertz, linear, Hertz-from-rest plans (Du & Wang and Thornton above the yield velocity,
+  docs/method.md §7): the elastic loading is a FILM run on arrays of shape (rows, n); the
+  plastic loading is linear in delta, so FILM is exact there with any n; the unloading from
+  rest is the normalised Hertz restitution stage in delta - delta_res, scaled
+  (:func:`plastic_stage_times`).
+- Any other plan: FILM on its stages (:func:`impactcli.impact.solve_plan`).
 - Damped (Hertz plus viscous damping) rows, :func:`batch_damped_impacts`: the damped FILM
   (:func:`impactcli.damping.solve_damped_impact`) in blocks of about :data:`DAMPED_BLOCK`
   values (rows x (n + 1)).
@@ -48,8 +51,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
     DU_WANG_PRESSURE_FACTOR,
-    DuWangContact,
-    HertzContact,
     ImpactPlan,
     effective_mass,
     effective_modulus,
@@ -66,7 +67,7 @@ from impactcli.impact import (
     split_fractions,
 )
 from impactcli.laws import hertz_stiffness
-from impactcli.laws.registry import DAMPING_LAWS
+from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW
 from impactcli.limits import MAX_SEGMENTS, check_size
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
@@ -79,7 +80,6 @@ from impactcli.validation import (
     sphere_names,
     sphere_problems,
     without_float_warnings,
-    yield_scale_problems,
 )
 
 __all__ = [
@@ -434,66 +434,15 @@ def batch_impacts(
     if law is not None:
         out = _batch_law(out, ok, law, law_params or {}, pairs, n, split)
         return refuse_out_of_range(out, columns[2] + columns[3])
+    # No law named: Du & Wang where ``plastic``, else Hertz, each group by the one law path.
     plastic = plastic[ok]
-    m, radius, modulus, sigma_y, v0 = pairs.m, pairs.radius, pairs.modulus, pairs.sigma_y, pairs.v0
-    stiffness = pairs.stiffness
-
-    contact = DuWangContact(radius, modulus, sigma_y, pressure_factor)
-    with np.errstate(invalid="ignore"):
-        above = plastic & contact.yields(v0, m)
-    delta_max, force_max, delta_res, restitution, t_max, t_c = (
-        np.full_like(v0, np.nan) for _ in range(6)
-    )
-
-    # Hertz rows: one normalised FILM solution scaled by delta_m / V0 (docs/method.md §3).
-    hertz = np.flatnonzero(~above)
-    if hertz.size:
-        plan = HertzContact(stiffness[hertz]).plan(v0[hertz], m[hertz])
-        t_bar_max, t_bar_c = normalised_times(n)
-        scale = plan.delta_max / v0[hertz]
-        delta_max[hertz], force_max[hertz] = plan.delta_max, plan.force_max
-        delta_res[hertz], restitution[hertz] = plan.delta_res, plan.restitution
-        t_max[hertz], t_c[hertz] = t_bar_max * scale, t_bar_c * scale
-
-    # Elastoplastic rows above the yield velocity: their three FILM stages (docs/method.md §7).
-    yielding = np.flatnonzero(above)
-    block_rows = max(1, FILM_BLOCK // (n + 1))
-    for start in range(0, yielding.size, block_rows):
-        rows = yielding[start : start + block_rows]
-        block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
-        with np.errstate(all="ignore"):
-            plan = block.plan(v0[rows], m[rows])
-        scale = yield_scale_problems(plan.stages[0].delta_end, plan.delta_max)
-        if scale.bad.any():  # out of double precision: the row's error, not a NaN
-            out["error"][ok[rows[scale.bad]]] = scale.messages[scale.bad]
-            rows = rows[~scale.bad]
-            if rows.size == 0:
-                continue
-            block = DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor)
-            plan = block.plan(v0[rows], m[rows])
-        delta_max[rows], force_max[rows] = plan.delta_max, plan.force_max
-        delta_res[rows], restitution[rows] = plan.delta_res, plan.restitution
-        t_max[rows], t_c[rows] = plastic_stage_times(plan, m[rows], v0[rows], n)
-
-    plan = ImpactPlan((), delta_max, force_max, delta_res, restitution)
-    fractions = pairs.fractions(split)
-    summary = pairs.summary(plan, t_max, t_c, fractions)
-    for key, value in summary.items():
-        out[key][ok] = value
-    rows = np.flatnonzero(plastic)
-    if rows.size:
-        extra = plastic_summary(
-            DuWangContact(radius[rows], modulus[rows], sigma_y[rows], pressure_factor),
-            m[rows],
-            v0[rows],
-            ImpactPlan((), delta_max[rows], force_max[rows], delta_res[rows], restitution[rows]),
-            (fractions[1][0][rows], fractions[1][1][rows]),
-        )
-        for key, value in extra.items():
-            out[key][ok[rows]] = value
-    refused = out["error"] != ""  # rows out of range (yield_scale_problems): no numbers
-    for key in BATCH_KEYS:
-        out[key][refused] = np.nan
+    for model, params, rows in (
+        (ELASTIC_LAW, {}, np.flatnonzero(~plastic)),
+        (DEFAULT_LAW, {"p0_factor": pressure_factor}, np.flatnonzero(plastic)),
+    ):
+        if rows.size:
+            group = _Pairs.of(columns, ok[rows])
+            out = _batch_law(out, ok[rows], model, params, group, n, split, model != ELASTIC_LAW)
     return refuse_out_of_range(out, columns[2] + columns[3])
 
 
@@ -542,9 +491,11 @@ def _batch_law(
     pairs: _Pairs,
     n: int,
     split: Split,
+    plastic_keys: bool = True,
 ) -> dict[str, NDArray]:
     """The rows ``ok`` (valid; their constants ``pairs``) of :func:`batch_impacts` under one
-    law of the library."""
+    law of the library; without ``plastic_keys`` the elastoplastic keys stay NaN (the
+    elastic rows of a batch without a law)."""
     from impactcli.laws.registry import get_law
 
     spec = get_law(law)
@@ -582,7 +533,8 @@ def _batch_law(
     plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"])
     fractions = pairs.fractions(split)
     summary = pairs.summary(plan, values["tmax"], values["tc"], fractions)
-    summary.update(plastic_summary(contact, m, v0, plan, fractions[1]))
+    if plastic_keys:
+        summary.update(plastic_summary(contact, m, v0, plan, fractions[1]))
     for key, value in summary.items():
         column = np.broadcast_to(np.asarray(value, dtype=float), v0.shape).copy()
         column[errors != ""] = np.nan
