@@ -6,7 +6,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check
 
-.PHONY: run test test-slow tables options bench lint clean venv
+.PHONY: run test test-slow docs tables options bench lint clean venv
 
 $(BIN)/python:
 	@echo "== creating $(VENV) with $(PYTHON)"
@@ -28,6 +28,12 @@ $(VENV)/.test-installed: $(BIN)/python pyproject.toml
 $(VENV)/.bench-installed: $(BIN)/python pyproject.toml
 	@echo "== installing impactcli[plot,batch] into $(VENV) (pyarrow for batch input and output)"
 	$(PIP) -e '.[plot,batch]'
+	touch $(VENV)/.run-installed $@
+
+# the documentation site: + Sphinx, pydata-sphinx-theme, numpydoc, sphinx-gallery, myst-parser
+$(VENV)/.docs-installed: $(BIN)/python pyproject.toml
+	@echo "== installing impactcli[plot,docs] into $(VENV) (Sphinx and its extensions)"
+	$(PIP) -e '.[plot,docs]'
 	touch $(VENV)/.run-installed $@
 
 venv: $(VENV)/.run-installed
@@ -73,6 +79,13 @@ test: $(VENV)/.test-installed
 test-slow: $(VENV)/.test-installed
 	$(BIN)/python -m pytest -q -n auto -m slow
 
+## docs: set up, then build the documentation site into docs/_build/html: the guide, the
+##       theory, the API reference from the docstrings, the CLI reference from the commands'
+##       --help, and the gallery, whose scripts it runs; a warning fails the build
+docs: $(VENV)/.docs-installed
+	$(BIN)/python -m sphinx -b html -E -W --keep-going docs docs/_build/html
+	@echo "The site: docs/_build/html/index.html"
+
 ## tables: regenerate the committed normalised tables in tables/
 tables: $(VENV)/.run-installed
 	$(BIN)/impact tables --n 25 --stage loading --format csv -o tables/table_a1_n25.csv
@@ -92,3 +105,4 @@ lint: $(VENV)/.test-installed
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .ruff_cache
+	rm -rf docs/_build docs/gallery docs/reference/generated
