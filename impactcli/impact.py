@@ -1398,10 +1398,12 @@ def damped_impact(
 
     Parameters
     ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
     damping : ``tsuji`` (Tsuji, Tanaka & Ishida 1992, alpha [-]) or ``hunt-crossley``
         (Hunt & Crossley 1975, alpha [s/m])
-    alpha : the damping parameter, >= 0; or
-    restitution : the coefficient of restitution e in (0, 1] to reach at this V0: alpha is
+    alpha : the damping parameter, >= 0, [-] (``tsuji``) or [s/m] (``hunt-crossley``); or
+    restitution : the coefficient of restitution e in (0, 1] to reach at this V0, [-]: alpha is
         solved for by the model (:func:`impactcli.damping.damping_for_restitution`, FILM
         with the same n and separation rule). Give exactly one of the two.
     n : FILM segments per stage (default :data:`DAMPED_DEFAULT_N`)

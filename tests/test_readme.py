@@ -1,12 +1,14 @@
-"""The README works verbatim: every shell command in its code blocks runs as written.
+"""The README and the documentation pages work verbatim: every shell command in their code
+blocks runs as written.
 
-Each command of a ```sh block runs in bash, in order, in one scratch directory whose PATH
+The pages are README.md and every Markdown page of the site (docs/**/*.md). Each command of
+a ```sh block runs in bash, in order, in one scratch directory whose PATH
 starts with an ``impact`` that is this interpreter's ``python -m impactcli`` (with this
 checkout importable), as after ``make run`` and ``source .venv/bin/activate``; the scratch
 directory also holds ``.venv/bin/impact``, ``.venv/bin/python`` and ``.venv/bin/activate``
 doing the same, and ``docs/data/`` (the calibration data) with an empty ``docs/figures/``:
-every other input is made by the README's own blocks, each before the command that reads
-it. Commands that set
+every other input is made by the page's own blocks, each before the command that reads
+it (on a documentation page, by the same block). Commands that set
 up the machine are checked, not run: ``make TARGET`` must be a target of the Makefile (``make
 -n``), ``pip install '.[extras]'`` must name extras of pyproject.toml. A command carrying the
 comment ``# placeholder`` stands for the reader's own (a program, a cluster) and is skipped.
@@ -31,6 +33,7 @@ from tests.conftest import run_impact
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
+DOCS = ROOT / "docs"
 FENCE = re.compile(r"^(?P<indent>\s*)```(?P<lang>[\w-]*)\s*$")
 
 
@@ -82,10 +85,27 @@ def shell_commands(text: str) -> list[tuple[int, str]]:
     return [command for _, commands in shell_blocks(text) for command in commands]
 
 
+def doc_pages() -> list[Path]:
+    """The site's Markdown pages, sources only (not the build's output)."""
+    generated = {"_build", "gallery"}
+    return sorted(p for p in DOCS.rglob("*.md") if not generated & set(p.relative_to(DOCS).parts))
+
+
+#: The pages whose blocks run: the README, then the documentation site's pages.
+PAGES = [README, *doc_pages()]
+
+
+def page_name(page: Path) -> str:
+    return "README" if page == README else str(page.relative_to(ROOT))
+
+
 TEXT = README.read_text()
-SHELL_BLOCKS = shell_blocks(TEXT)
 COMMANDS = shell_commands(TEXT)
-PYTHON_BLOCKS = [(start, "\n".join(body)) for lang, start, body in code_blocks(TEXT)
+#: (page, first line, [(line, command), ...]) of each shell block of each page.
+SHELL_BLOCKS = [(page_name(page), start, commands) for page in PAGES
+                for start, commands in shell_blocks(page.read_text())]  # fmt: skip
+PYTHON_BLOCKS = [(page_name(page), start, "\n".join(body)) for page in PAGES
+                 for lang, start, body in code_blocks(page.read_text())
                  if lang == "python"]  # fmt: skip
 
 
@@ -149,10 +169,11 @@ def test_make_bench_leaves_the_readme_alone_unless_asked():
     assert "--readme" not in plain and "--readme README.md" in asked
 
 
-def run_readme_command(workdir: Path, line: int, command: str) -> str | None:
-    """Run one README command as its reader would; the reason when it cannot run here."""
+def run_readme_command(workdir: Path, line: int, command: str, page: str = "README") -> str | None:
+    """Run one command of a page as its reader would; the reason when it cannot run here."""
+    where = f"{page} line {line}"
     if "# placeholder" in command:
-        return f"README line {line} is a placeholder"
+        return f"{where} is a placeholder"
     words = shlex.split(command, comments=True)
     if words[0] == "make":
         if shutil.which("make") is None:
@@ -160,7 +181,7 @@ def run_readme_command(workdir: Path, line: int, command: str) -> str | None:
         # the targets install and run for minutes: check that make knows them, run nothing
         result = subprocess.run(["make", "-n", "-C", str(ROOT), *words[1:]],
                                 capture_output=True, text=True)  # fmt: skip
-        assert result.returncode == 0, f"README line {line}: {command}\n{result.stderr}"
+        assert result.returncode == 0, f"{where}: {command}\n{result.stderr}"
         return None
     if words[:2] == ["pip", "install"]:
         extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
@@ -168,8 +189,8 @@ def run_readme_command(workdir: Path, line: int, command: str) -> str | None:
         ]
         for spec in words[2:]:
             found = re.fullmatch(r"\.\[(?P<extras>[\w,]+)\]", spec)
-            assert found, f"README line {line}: install from the checkout, '.[extra]': {spec}"
-            assert set(found["extras"].split(",")) <= set(extras), f"README line {line}"
+            assert found, f"{where}: install from the checkout, '.[extra]': {spec}"
+            assert set(found["extras"].split(",")) <= set(extras), where
         return None
     if "parquet" in command and not _has("pyarrow"):
         return "needs pyarrow"
@@ -182,31 +203,33 @@ def run_readme_command(workdir: Path, line: int, command: str) -> str | None:
         result = subprocess.run(["bash", "-c", command], cwd=workdir,
                                 env=_environment(workdir), capture_output=True, text=True,
                                 timeout=600)  # fmt: skip
-    assert result.returncode == 0, f"README line {line}: {command}\n{result.stderr}"
-    assert "Traceback" not in result.stderr, f"README line {line}: {command}"
+    assert result.returncode == 0, f"{where}: {command}\n{result.stderr}"
+    assert "Traceback" not in result.stderr, f"{where}: {command}"
     return None
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("start,commands", SHELL_BLOCKS, ids=[f"line{n}" for n, _ in SHELL_BLOCKS])
-def test_readme_shell_block_runs_as_written(workdir, start, commands):
+@pytest.mark.parametrize("page,start,commands", SHELL_BLOCKS,
+                         ids=[f"{page}:line{n}" for page, n, _ in SHELL_BLOCKS])  # fmt: skip
+def test_readme_shell_block_runs_as_written(workdir, page, start, commands):
     """The commands of one block run in order (a block may write a file its next command
     reads); a command that cannot run here (a placeholder, a missing extra) is passed over."""
-    passed_over = [run_readme_command(workdir, line, command) for line, command in commands]
+    passed_over = [run_readme_command(workdir, line, command, page) for line, command in commands]
     if all(passed_over):
         pytest.skip("; ".join(passed_over))
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("line,code", PYTHON_BLOCKS, ids=[f"line{n}" for n, _ in PYTHON_BLOCKS])
-def test_readme_python_block_runs(workdir, line, code, monkeypatch):
+@pytest.mark.parametrize("page,line,code", PYTHON_BLOCKS,
+                         ids=[f"{page}:line{n}" for page, n, _ in PYTHON_BLOCKS])  # fmt: skip
+def test_readme_python_block_runs(workdir, page, line, code, monkeypatch):
     """Each block runs; a line ``expression  # ... NUMBER`` must give NUMBER to the digits
-    printed (the README's numbers are the library's, checked)."""
+    printed (the pages' numbers are the library's, checked)."""
     if "impactcli.plots" in code and not _has("matplotlib"):
         pytest.skip("needs matplotlib")
     monkeypatch.chdir(workdir)
     scope = {"__name__": "__main__", "_printed": _printed}
-    exec(compile(checked_numbers(code), f"README.md line {line}", "exec"), scope)
+    exec(compile(checked_numbers(code), f"{page} line {line}", "exec"), scope)
 
 
 #: The last number of a comment, as the README prints it (0.85611, 1.7132e-04).
@@ -269,21 +292,42 @@ def _files(command: str) -> tuple[list[str], list[str]]:
     return reads, writes
 
 
-def test_each_readme_input_is_made_before_a_command_reads_it():
-    """In README order, a data file a command reads is one the checkout has (docs/) or one
-    an earlier command wrote; and no block writes one file twice (a redirection after
-    ``-o`` would empty it)."""
+@pytest.mark.parametrize("page", PAGES, ids=page_name)
+def test_each_input_is_made_before_a_command_reads_it(page):
+    """In page order, a data file a command reads is one the checkout has (docs/) or one
+    an earlier command wrote (on a documentation page, in the same block: the blocks run
+    apart); and no block writes one file twice (a redirection after ``-o`` would empty
+    it)."""
     made: set[str] = set()
-    for start, commands in SHELL_BLOCKS:
+    for start, commands in shell_blocks(page.read_text()):
         written: list[str] = []
+        if page != README:
+            made = set()
         for line, command in commands:
             if "# placeholder" in command:
                 continue
             reads, writes = _files(command)
             for name in reads:
-                assert name.startswith("docs/") or name in made, f"README line {line}: {name}"
+                where = f"{page_name(page)} line {line}: {name}"
+                assert name.startswith("docs/") or name in made, where
             written += writes
             made.update(writes)
         twice = {name for name in written if written.count(name) > 1}
-        assert not twice, f"README block at line {start} writes {twice} twice"
-    assert {"collisions.csv", "collisions.parquet"} <= made
+        assert not twice, f"{page_name(page)} block at line {start} writes {twice} twice"
+
+
+def test_the_readme_and_the_batch_page_make_their_tables():
+    """The README's and the batch guide's blocks make the tables their commands read."""
+    for page in (README, DOCS / "guide" / "batch.md"):
+        made = {w for _, commands in shell_blocks(page.read_text()) for _, c in commands
+                for w in _files(c)[1]}  # fmt: skip
+        assert {"collisions.csv", "collisions.parquet"} <= made, page_name(page)
+
+
+def test_the_pages_have_blocks_to_run():
+    """The documentation pages are found and their blocks extracted (guards against a
+    silent empty list)."""
+    names = {page_name(p) for p in PAGES}
+    assert {"docs/getting-started.md", "docs/guide/elastic.md", "docs/guide/batch.md"} <= names
+    assert sum(page != "README" for page, _, _ in SHELL_BLOCKS) > 20
+    assert sum(page != "README" for page, _, _ in PYTHON_BLOCKS) > 8

@@ -25,8 +25,9 @@ anvil = Sphere.from_material(np.inf, "steel", mass=np.inf)  # flat and fixed
 fits = {law: fit_named_law(ball, anvil, law, data) for law in ("du-wang", "thornton", "tsuji")}
 ranked = rank_fits([result for result, _ in fits.values()])
 for result, delta, weight in ranked:
-    values = ", ".join(f"{n} = {v:.4g} {u}"
-                       for n, u, v in zip(result.names, result.units, result.values))
+    values = ", ".join(
+        f"{n} = {v:.4g} {u}" for n, u, v in zip(result.names, result.units, result.values)
+    )
     print(f"{result.law:9s} {values:28s} dAICc = {delta:5.1f}, Akaike weight {weight:.3f}")
 
 # %%
@@ -35,9 +36,19 @@ for result, delta, weight in ranked:
 
 v0 = data.impact_velocity
 grid = np.unique(np.concatenate([np.geomspace(v0.min(), v0.max(), 80), v0]))
-curves = [{"label": law, **prediction_band(result, model, grid),
-           "residuals": data.restitution - result.predicted["restitution"]}
-          for law, (result, model) in fits.items()]
+curves = [
+    {
+        "label": law,
+        **prediction_band(result, model, grid),
+        "residuals": data.restitution - result.predicted["restitution"],
+    }
+    for law, (result, model) in fits.items()
+]
 error = np.sqrt(ranked[0][0].reduced_chi_square / data.weight)
-fig = fit_figure(v0, data.restitution, curves, error=error,
-                 title="Fit to 12 drop tests, D1 = 20 mm on a flat, fixed anvil")
+fig = fit_figure(
+    v0,
+    data.restitution,
+    curves,
+    error=error,
+    title="Fit to 12 drop tests, D1 = 20 mm on a flat, fixed anvil",
+)

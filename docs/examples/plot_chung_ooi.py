@@ -19,19 +19,31 @@ from impactcli.plots import oblique_impact_figure
 
 theta = np.radians(np.arange(1.0, 89.5, 2.0))
 v_n = 3.9 * np.cos(theta)
-curves = {f"{material}, {model}": sweep(material, theta, v_n, model)
-          for material in MATERIALS for model in ("rigid", "mindlin")}
+curves = {
+    f"{material}, {model}": sweep(material, theta, v_n, model)
+    for material in MATERIALS
+    for model in ("rigid", "mindlin")
+}
 test4 = oblique_impact_figure(
-    np.degrees(theta), curves, closed_form=closed_form(theta, v_n),
-    title="Chung & Ooi test 4: sphere on a rigid plane at 3.9 m/s, mu = 0.092, e = 1")
+    np.degrees(theta),
+    curves,
+    closed_form=closed_form(theta, v_n),
+    title="Chung & Ooi test 4: sphere on a rigid plane at 3.9 m/s, mu = 0.092, e = 1",
+)
 
 # %%
 # Test 5: the normal velocity stays 5 m/s, the tangential one is 5 tan(theta).
 
 theta = np.radians(np.arange(1.0, 85.5, 2.0))
 v_n = np.full_like(theta, 5.0)
-curves = {f"{material}, {model}": sweep(material, theta, v_n, model)
-          for material in MATERIALS for model in ("rigid", "mindlin")}
+curves = {
+    f"{material}, {model}": sweep(material, theta, v_n, model)
+    for material in MATERIALS
+    for model in ("rigid", "mindlin")
+}
 test5 = oblique_impact_figure(
-    np.degrees(theta), curves, closed_form=closed_form(theta, v_n),
-    title="Chung & Ooi test 5: v_n = 5 m/s, v_t = v_n tan(theta), mu = 0.092, e = 1")
+    np.degrees(theta),
+    curves,
+    closed_form=closed_form(theta, v_n),
+    title="Chung & Ooi test 5: v_n = 5 m/s, v_t = v_n tan(theta), mu = 0.092, e = 1",
+)

@@ -24,5 +24,13 @@ p1, p2 = np.array([-1.0, 2.0]), np.array([2.0, -2.0])
 c = oblique_collision(0.05, 0.15, polar(3.0, -30.0), polar(2.0, 50.0), p1, p2)
 print(f"|v1'| = {np.hypot(*c.v1_final):.5f} m/s, |v2'| = {np.hypot(*c.v2_final):.5f} m/s")
 
-fig = collision2d_figure(c.v1, c.v2, c.v1_final, c.v2_final, p1, p2, masses=(0.05, 0.15),
-                         title="Paper sec. 4.5.3: smooth spheres, e = 1")
+fig = collision2d_figure(
+    c.v1,
+    c.v2,
+    c.v1_final,
+    c.v2_final,
+    p1,
+    p2,
+    masses=(0.05, 0.15),
+    title="Paper sec. 4.5.3: smooth spheres, e = 1",
+)

@@ -22,8 +22,12 @@ from impactcli.plots import law_comparison_figure
 
 steel1 = Sphere.from_material(0.02, "steel")
 steel2 = Sphere.from_material(0.04, "steel")
-laws = [("du-wang", {}), ("thornton", {}),
-        ("walton-braun", {"k_load": 20e6, "k_unload": 80e6}), ("hertz", {})]
+laws = [
+    ("du-wang", {}),
+    ("thornton", {}),
+    ("walton-braun", {"k_load": 20e6, "k_unload": 80e6}),
+    ("hertz", {}),
+]
 results = compare_impacts(steel1, steel2, 0.25, 0.75, laws)
 for name, result in results.items():
     print(f"{name:13s} e = {result.summary['restitution']:.5f}")

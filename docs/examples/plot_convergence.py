@@ -14,8 +14,10 @@ from impactcli.tables import convergence, normalised_history
 ns = [1, 2, 3, 5, 10, 25, 100, 1000, 10000]
 rows = convergence(ns)
 for row in rows[:6]:
-    print(f"n = {row.n:5d}: contact duration {row.contact_duration:.7f}, "
-          f"error {row.relative_error:.2e}")
+    print(
+        f"n = {row.n:5d}: contact duration {row.contact_duration:.7f}, "
+        f"error {row.relative_error:.2e}"
+    )
 
 curves = {n: normalised_history(n, 2001) for n in (1, 2, 3, 5, 10, 10000)}
 fig = convergence_figure(curves, [r.n for r in rows], [r.relative_error for r in rows])

@@ -20,8 +20,12 @@ result = elastic_impact(steel1, steel2, 5e-3, 7.5e-3)
 for key in ("contact_time", "delta_max", "force_max", "d1_final", "d2_final"):
     print(f"{key:13s} {result.summary[key]:.5g}")
 
-fig = impact_figure(result.history(points=401), "Paper sec. 4.3: steel, 20 mm and 40 mm",
-                    model=result.model, summary=result.summary)
+fig = impact_figure(
+    result.history(points=401),
+    "Paper sec. 4.3: steel, 20 mm and 40 mm",
+    model=result.model,
+    summary=result.summary,
+)
 
 # %%
 # Seen from a frame in which both spheres move the same way at about 100 m/s, the impact

@@ -14,12 +14,15 @@ steel1 = Sphere.from_material(0.02, "steel")
 steel2 = Sphere.from_material(0.04, "steel")
 result = elastoplastic_impact(steel1, steel2, 0.25, 0.75)
 summary = result.summary
-print(f"e = {summary['restitution']:.5f}, t_c = {summary['contact_time'] * 1e6:.3f} us, "
-      f"delta_res = {summary['delta_res'] * 1e6:.4f} um")
+print(
+    f"e = {summary['restitution']:.5f}, t_c = {summary['contact_time'] * 1e6:.3f} us, "
+    f"delta_res = {summary['delta_res'] * 1e6:.4f} um"
+)
 
 history = result.history(points=401)
-fig = impact_figure(history, "Paper sec. 4.4: Du & Wang contact", model=result.model,
-                    summary=summary)
+fig = impact_figure(
+    history, "Paper sec. 4.4: Du & Wang contact", model=result.model, summary=summary
+)
 
 # %%
 # Where the kinetic energy goes: each sphere's kinetic energy, the stored strain energy

@@ -21,7 +21,9 @@ first_plastic = v0[out["plastic"] > 0][0]
 print(f"first plastic impact of the sweep at V0 = {first_plastic:.3f} m/s")
 
 fig = restitution_figure(
-    v0, out["restitution"], out["contact_time"],
+    v0,
+    out["restitution"],
+    out["contact_time"],
     {"total": out["delta_res"], "sphere 1": out["delta1_res"], "sphere 2": out["delta2_res"]},
     title="Restitution of the sec. 4.4 spheres (Du & Wang)",
     first_yield_velocity=reference_yield_velocity(steel1, steel2),
