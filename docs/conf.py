@@ -68,7 +68,7 @@ sphinx_gallery_conf = {
     "gallery_dirs": "gallery",
     "filename_pattern": r"/plot_",
     "image_scrapers": ("matplotlib", "gallery_figures.scraper"),
-    "within_subsection_order": "FileNameSortKey",
+    "within_subsection_order": "gallery_figures.GalleryOrder",
     "download_all_examples": False,
     "write_computation_times": False,
     "remove_config_comments": True,

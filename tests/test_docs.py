@@ -166,6 +166,12 @@ def test_the_gallery_has_the_papers_figures_and_the_benchmarks():
     assert {"plot_elastic_4_3", "plot_elastoplastic_4_4", "plot_collide2d_4_5",
             "plot_convergence", "plot_compare_laws", "plot_calibration",
             "plot_chung_ooi"} <= names  # fmt: skip
+    sys.path.insert(0, str(DOCS / "_ext"))
+    try:
+        from gallery_figures import ORDER
+    finally:
+        sys.path.remove(str(DOCS / "_ext"))
+    assert set(ORDER) <= {p.name for p in EXAMPLES}  # the gallery's order names no stale script
     for script in EXAMPLES:
         text = script.read_text()
         title = text.split('"""')[1].strip().splitlines()

@@ -1,4 +1,5 @@
-"""A sphinx-gallery image scraper for the figures of :mod:`impactcli.plots`.
+"""sphinx-gallery helpers: the gallery's order, and an image scraper for the figures of
+:mod:`impactcli.plots`.
 
 The library's figure functions return a :class:`matplotlib.figure.Figure` without pyplot
 (a library must not touch pyplot's global state), so sphinx-gallery's matplotlib scraper,
@@ -40,3 +41,31 @@ def scraper(block, block_vars, gallery_conf) -> str:
         _SCRAPED.add(fig)
         paths.append(path)
     return figure_rst(paths, gallery_conf["src_dir"])
+
+
+#: The gallery's scripts in the order of the paper, then the comparisons and benchmarks;
+#: a script not listed comes after them, by name.
+ORDER = [
+    "plot_convergence.py",
+    "plot_elastic_4_3.py",
+    "plot_elastoplastic_4_4.py",
+    "plot_collide2d_4_5.py",
+    "plot_restitution.py",
+    "plot_compare_laws.py",
+    "plot_calibration.py",
+    "plot_chung_ooi.py",
+]
+
+
+class GalleryOrder:
+    """Sort key of the scripts within the gallery (sphinx-gallery's
+    ``within_subsection_order``): :data:`ORDER`, then the rest by file name."""
+
+    def __init__(self, src_dir: str) -> None:
+        self.src_dir = src_dir
+
+    def __call__(self, filename: str) -> tuple[int, str]:
+        from pathlib import Path
+
+        name = Path(filename).name
+        return (ORDER.index(name) if name in ORDER else len(ORDER), name)
