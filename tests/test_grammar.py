@@ -32,7 +32,7 @@ def _option_line(text: str, option: str) -> str:
     lines joined."""
     lines = text[text.index("\nOptions:\n") :].splitlines()
     for i, line in enumerate(lines):
-        if re.match(rf"\s+(-\w, )?{re.escape(option)}\b", line):
+        if re.match(rf"\s+(-\w, )?{re.escape(option)}(?=\s|$)", line):
             entry = [line]
             for more in lines[i + 1 :]:
                 if re.match(r"\s+-", more) or not more.strip():
@@ -65,6 +65,11 @@ def _option_line(text: str, option: str) -> str:
         ("elastoplastic", "--py", "PRESSURE"),
         ("elastoplastic", "--k-load", "STIFFNESS"),
         ("tables", "--format", "[table|csv|json]"),
+        ("elastoplastic", "--interpolation", "[linear|pchip]"),
+        ("collide3d", "--interpolation", "[linear|pchip]"),
+        ("batch", "--scheduler", "NAME|ADDRESS"),
+        ("yield-limit", "--sphere", "[1|2]"),
+        ("yield-limit", "--resize", "[1|2]"),
     ],
 )
 def test_each_option_names_its_value_or_lists_its_choices(command, option, metavar):
@@ -77,10 +82,8 @@ def test_no_option_of_any_command_shows_text_for_a_number_or_a_choice():
 
     for command in COMMAND_MODULES:
         for line in _help(command).splitlines():
-            match = re.match(r"\s+(?:-\w, )?(--[\w-]+) TEXT\b", line)
-            # TEXT is left to free text: the Dask scheduler's name or address, a law's
-            # interpolation (a choice of the law registry)
-            assert match is None or match[1] in ("--scheduler", "--interpolation"), line
+            # no exemption: a free text names what it holds (--scheduler NAME|ADDRESS)
+            assert not re.match(r"\s+(?:-\w, )?(--[\w-]+) TEXT\b", line), line
 
 
 # --- usage errors in the form of every other error -----------------------------------------
@@ -334,3 +337,32 @@ def test_contact_radius_warning_names_no_law_and_reads_above_its_limit():
                         "--law", "thornton", "-f", "csv")  # fmt: skip
     assert "contact radius / R" in result.stderr and "Du & Wang" not in result.stderr
     assert DATA.exists()
+
+
+# --- text as written: no Rich markup -------------------------------------------------------
+
+
+@pytest.mark.parametrize("power", [-15, -12, -9, -6, -3, 0, 3, 6, 9])
+def test_a_unit_in_brackets_is_printed_in_every_title_header_caption_and_cell(power):
+    """Rich read '[mJ]' and '[nJ]' as style tags and dropped them (the energy table of
+    impact collide3d): the consoles print text as written, for every SI prefix."""
+    from impactcli.cli.common import console, quantity_table
+    from impactcli.formatting import unit_scale
+
+    unit = unit_scale([10.0**power * 2.5], "J").unit
+    table = quantity_table(f"Energy dissipated [{unit}]", ("", f"value [{unit}]"),
+                           [(f"[{unit}] [bold]x[/bold]", "1.5")])  # fmt: skip
+    table.caption = f"in [{unit}]"
+    stream = io.StringIO()
+    console(stream).print(table)
+    text = stream.getvalue()
+    assert text.count(f"[{unit}]") == 4, text
+    assert "[bold]x[/bold]" in text
+
+
+def test_collide3d_energy_table_keeps_its_unit():
+    args = ["collide3d", "--d1", "20mm", "--material", "steel", "--d2", "inf", "--m2", "inf",
+            "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1", "--v1", "1m/s@45deg", "--mu", "0.3",
+            "-f", "table"]  # fmt: skip
+    screen = run_impact(*args, env={"COLUMNS": "160"}).stdout
+    assert "Energy dissipated [mJ]" in screen

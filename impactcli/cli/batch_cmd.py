@@ -127,6 +127,7 @@ def batch(
     scheduler: Optional[str] = typer.Option(
         None,
         "--scheduler",
+        metavar="NAME|ADDRESS",
         help="Dask engine: threads (default), processes, synchronous, local (a LocalCluster) "
         "or the address of a distributed scheduler (tcp://host:8786).",
     ),

@@ -94,7 +94,11 @@ def check_summary_file(path: str | None, output: str | None) -> None:
 
 
 def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.console.Console
-    """A Rich console on ``stream`` (stdout by default, or stderr). Imported on demand."""
+    """A Rich console on ``stream`` (stdout by default, or stderr). Imported on demand.
+
+    The stdout consoles read no Rich markup: every title, caption, header and cell is
+    printed as written, so that a unit in brackets (``Energy dissipated [mJ]``,
+    ``rho [kg/m^3]``) or a user's text is never taken for a style tag."""
     from rich.console import Console as RichConsole
 
     from impactcli.errors import StdoutClosed
@@ -107,8 +111,8 @@ def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.con
     if stderr:
         return Console(stderr=True, highlight=False)
     if stream is None or stream is sys.stdout:
-        return Console(highlight=False)
-    return Console(file=stream, highlight=False, width=160, color_system=None)
+        return Console(highlight=False, markup=False)
+    return Console(file=stream, highlight=False, markup=False, width=160, color_system=None)
 
 
 def __getattr__(name: str):

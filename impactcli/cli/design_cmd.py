@@ -59,7 +59,10 @@ def _speed(text: str, name: str) -> float:
 def yield_limit(
     spheres: SphereOptions = None,
     sphere: Annotated[
-        int, typer.Option("--sphere", min=1, max=2, help="The sphere that must stay elastic.")
+        int,
+        typer.Option(
+            "--sphere", min=1, max=2, metavar="[1|2]", help="The sphere that must stay elastic."
+        ),
     ] = 1,
     v0: Annotated[
         Optional[str],
@@ -73,7 +76,13 @@ def yield_limit(
     ] = None,
     resize: Annotated[
         Optional[int],
-        typer.Option("--resize", min=1, max=2, help="With --v0: the sphere whose size is sought."),
+        typer.Option(
+            "--resize",
+            min=1,
+            max=2,
+            metavar="[1|2]",
+            help="With --v0: the sphere whose size is sought.",
+        ),
     ] = None,
     law: Annotated[
         YieldLaw,

@@ -1005,13 +1005,11 @@ def materials(fmt: OutputFormat = None, output: OUT = None) -> None:
                     ]
                 )
         else:
-            from rich.markup import escape
-
             from impactcli.cli.common import Table
 
             table = Table(title="Built-in materials (typical values; measure yours if it matters)")
             for h in ("name", "E [GPa]", "nu", "rho [kg/m^3]", "sigma_y [MPa]", "source"):
-                table.add_column(escape(h))  # [kg/m^3] would read as Rich markup
+                table.add_column(h)  # the console reads no markup: [kg/m^3] stays
             for m in MATERIALS.values():
                 table.add_row(
                     m.name,

@@ -105,8 +105,8 @@ def _unit(metavar: str, help_text: str) -> str:
         if "angular velocity" in lowered:
             return "rad/s"
         return "m/s" if "velocity" in lowered else "m"
-    if metavar in ("FILE", "TABLE") or metavar.startswith("["):  # a path or a choice
-        return ""
+    if metavar in ("FILE", "TABLE") or metavar.startswith(("[", "NAME")):
+        return ""  # a path, a choice or a name has no unit
     if metavar == "ALPHA":
         return alpha_units()
     if metavar in METAVAR_UNITS:

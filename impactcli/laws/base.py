@@ -260,6 +260,7 @@ class Parameter:
         required or derived
     description : one line, including how a missing value is derived
     required : the law cannot run without it
+    choices : the accepted values of a parameter of kind ``choice``
     """
 
     name: str
@@ -273,6 +274,8 @@ class Parameter:
     yield_factor: float | None = None
     #: accepted range, as text (for listings)
     valid: str = "> 0"
+    #: the accepted values of a parameter of kind ``choice`` (its option lists them)
+    choices: tuple[str, ...] = ()
 
     @property
     def option(self) -> str:

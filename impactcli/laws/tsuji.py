@@ -68,7 +68,7 @@ class TsujiDamping(DampedHertz):
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Parameter(
             "alpha",
-            "dimensionless",
+            "-",
             "dimensionless",
             None,
             "damping ratio: c = alpha sqrt(m K) delta^(1/4); e depends on alpha only",
