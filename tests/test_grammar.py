@@ -97,8 +97,15 @@ def test_no_option_of_any_command_shows_text_for_a_number_or_a_choice():
         (["elastic", "--method", "xx"], "impact: error: --method: 'xx' is not one of"),
         (["collide2d", "--m1", "1"], "impact: error: missing --m2: it is required"),
         (["elastic", "--materail", "steel"], "did you mean --material"),
+        (["collide3d", "--rows"],
+         "impact: error: --rows needs a value (see 'impact collide3d --help')"),
+        (["batch"], "impact: error: missing IN: it is required (see 'impact batch --help')"),
+        (["fit"], "impact: error: missing DATA: it is required"),
+        (["elastic", "a", "b"],
+         "impact: error: unexpected arguments a b: it takes options only (see 'impact elastic"),
+        (["batch", "a.csv", "b"], "impact: error: unexpected argument b: it takes IN and"),
     ],
-)
+)  # fmt: skip
 def test_usage_errors_are_one_line_impact_error_exit_2(args, expected):
     result = run_impact(*args)
     assert result.returncode == 2
@@ -106,6 +113,20 @@ def test_usage_errors_are_one_line_impact_error_exit_2(args, expected):
     lines = result.stderr.splitlines()
     assert len(lines) == 1 and lines[0].startswith("impact: error: "), result.stderr
     assert expected in lines[0]
+
+
+def test_damping_errors_name_what_was_given_and_the_model_s_own_dependence():
+    base = ["collide2d", "--m1", "1", "--m2", "1", "--v1", "1,0", "--p1=0,0", "--p2=1,0",
+            "--damping", "tsuji", "--alpha", "0.1"]  # fmt: skip
+    plastic = run_impact(*base, "--model", "elastoplastic").stderr
+    assert plastic.endswith("not --model elastoplastic\n") and "--e" not in plastic
+    assert run_impact(*base, "--e", "0.5").stderr.endswith("not --e\n")
+    for name, words in (("hunt-crossley", "alpha V0"),
+                        ("viscoelastic", "alpha (K/m)^(2/5) V0^(1/5)")):  # fmt: skip
+        assert DAMPING_LAWS[name].restitution_depends_on == words
+        result = run_impact("restitution", *SEC_44, "--damping", name, "--e", "0.8")
+        assert result.returncode == 2 and f"its e depends on {words}," in result.stderr
+        assert f"'impact elastic --damping {name} --e E'" in result.stderr
 
 
 # --- help that says what happens ------------------------------------------------------------

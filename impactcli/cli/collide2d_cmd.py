@@ -184,7 +184,10 @@ def collide2d(
         raise InputError("give either --model or --e, not both")
     damping_law, alpha, _, separation = damping.parse()
     if damping_law is not None and (e is not None or model is Model.elastoplastic):
-        raise InputError("--damping goes with --model elastic (Hertz with damping), not --e")
+        clash = "--e" if e is not None else "--model elastoplastic"
+        raise InputError(
+            f"--damping goes with --model elastic (Hertz with damping), not {clash}"
+        )
     chosen = None
     if law.names or law.given:
         if model is not Model.elastoplastic:

@@ -68,7 +68,9 @@ def damping_help() -> dict[str, str]:
         "e_sweep": "Coefficient of restitution in (0, 1] instead of --alpha, with "
         f"{' or '.join(f'--damping {name}' for name in similar)} only (its e is the same at "
         "every V0): alpha is solved for exactly by the model (FILM, same n and separation) "
-        f"and printed. {' and '.join(others)}: e depends on V0, give --alpha.",
+        "and printed. "
+        + "; ".join(f"{n}: e depends on {models[n].restitution_depends_on}" for n in others)
+        + ", give --alpha.",
         "separation": "When the contact ends. overlap (default): when the indentation returns "
         "to 0; the damping force may then pull, as DEM codes integrate it and as the published "
         "alpha(e) relations assume. force: when the total force returns to 0 (no "

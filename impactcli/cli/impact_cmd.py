@@ -694,10 +694,12 @@ def restitution(
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
     if damping is not None and damping.given:
         if damping.e is not None and not DAMPING_LAWS[damping.damping].self_similar:
+            model = DAMPING_LAWS[damping.damping]
             raise InputError(
-                f"impact restitution --damping {damping.damping} --e: its e depends on alpha "
-                "V0, so no alpha gives one e at every V0; give --alpha (the alpha of e at one "
-                "V0: 'impact elastic --damping ... --e E')"
+                f"impact restitution --damping {damping.damping} --e: its e depends on "
+                f"{model.restitution_depends_on}, so no alpha gives one e at every V0; give "
+                f"--alpha (the alpha of e at one V0: 'impact elastic --damping "
+                f"{damping.damping} --e E')"
             )
         if law is not None and (law.names or law.given):
             raise InputError(

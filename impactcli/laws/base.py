@@ -206,6 +206,8 @@ class DampedHertz:
     reference: ClassVar[Reference]
     validity: ClassVar[str]
     self_similar: ClassVar[bool]
+    #: what e depends on, in words: ``"alpha only"``, ``"alpha V0"``
+    restitution_depends_on: ClassVar[str]
     #: the kind of contact model, as the registry lists it
     kind: ClassVar[str] = "damping"
 

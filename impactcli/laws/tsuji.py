@@ -55,6 +55,8 @@ class TsujiDamping(DampedHertz):
     )
     #: e does not depend on V0, m or K (the model is self-similar)
     self_similar: ClassVar[bool] = True
+    #: what its coefficient of restitution depends on
+    restitution_depends_on: ClassVar[str] = "alpha only"
     reference: ClassVar[Reference] = Reference(
         "Y. Tsuji, T. Tanaka, T. Ishida",
         1992,
