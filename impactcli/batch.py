@@ -60,6 +60,7 @@ from impactcli.contact import (
 )
 from impactcli.film import hertz_loading_time, solve_stage
 from impactcli.impact import (
+    DAMPED_DEFAULT_N,
     PLASTIC_SUMMARY_KEYS,
     Split,
     impact_summary,
@@ -609,7 +610,7 @@ def batch_damped_impacts(
     damping: str,
     alpha: ArrayLike = np.nan,
     restitution: ArrayLike = np.nan,
-    n: int = 25,
+    n: int = DAMPED_DEFAULT_N,
     split: Split = "mass",
     separation: str = "overlap",
 ) -> dict[str, NDArray]:
@@ -620,7 +621,9 @@ def batch_damped_impacts(
     ``hunt-crossley``: Hunt & Crossley 1975, J. Appl. Mech. 42:440-445,
     doi:10.1115/1.3423596, alpha [s/m]) with each row's ``alpha``, or the alpha that gives
     each row's target ``restitution`` at its V0 (:func:`impactcli.damping.
-    damping_for_restitution`; give one of the two per row). FILM with n segments per stage,
+    damping_for_restitution`; give one of the two per row). FILM with n segments per stage
+    (:data:`~impactcli.impact.DAMPED_DEFAULT_N` by default, as :func:`impactcli.impact.
+    damped_impact`),
     :func:`impactcli.damping.solve_damped_impact`, vectorised over the rows; the summary by
     :func:`impactcli.impact.impact_summary` with the indentation at separation in place of
     delta_res (0 for ``overlap``). Arguments otherwise as :func:`batch_impacts`.

@@ -35,7 +35,7 @@ def _option_line(text: str, option: str) -> str:
         if re.match(rf"\s+(-\w, )?{re.escape(option)}(?=\s|$)", line):
             entry = [line]
             for more in lines[i + 1 :]:
-                if re.match(r"\s+-", more) or not more.strip():
+                if re.match(r" {1,2}-", more) or not more.strip():
                     break
                 entry.append(more)
             return " ".join(" ".join(entry).split())
@@ -132,6 +132,24 @@ def test_damping_errors_name_what_was_given_and_the_model_s_own_dependence():
 # --- help that says what happens ------------------------------------------------------------
 
 
+def test_collide2d_takes_a_law_alone_as_collide3d_does():
+    """--law thornton implies the model in collide2d as in collide3d (it asked for --model
+    elastoplastic); both helps word the default the same."""
+    pair = ["collide2d", "--m1", "0.05", "--m2", "0.05", "--v1", "1,0", "--p1=0,0",
+            "--p2=0.02,0", "--d1", "20mm", "--d2", "20mm", "--material", "steel", "-f", "json"]
+    alone = run_impact(*pair, "--law", "thornton")
+    both = run_impact(*pair, "--law", "thornton", "--model", "elastoplastic")
+    assert alone.returncode == 0, alone.stderr
+    assert json.loads(alone.stdout) == json.loads(both.stdout)
+    assert json.loads(alone.stdout)["inputs"]["law"] == "thornton"
+    assert 0 < json.loads(alone.stdout)["summary"]["restitution"] < 1
+    clash = run_impact(*pair, "--law", "thornton", "--model", "elastic")
+    assert clash.returncode == 2 and "give one normal law" in clash.stderr
+    for command in ("collide2d", "collide3d"):
+        text = " ".join(_option_line(_help(command), "--law").split())
+        assert "Default: hertz, e = 1; du-wang with --model elastoplastic." in text, command
+
+
 def test_law_default_is_what_runs_without_law():
     assert "Default: du-wang." not in " ".join(_help("collide2d").split())
     assert "Default: hertz, e = 1" in " ".join(_help("collide3d").split())
@@ -149,6 +167,8 @@ def test_law_default_is_what_runs_without_law():
 def test_restitution_target_e_works_for_tsuji_and_says_why_not_for_hunt_crossley():
     text = " ".join(_help("restitution").split())
     assert "with --damping tsuji only" in text
+    # --e means another thing in collide2d and collide3d, and every help of it says so
+    assert "impact collide2d's and collide3d's --e is another thing" in text
     result = run_impact("restitution", *SEC_44, "--v-max", "1m/s", "--count", "4",
                         "--damping", "tsuji", "--e", "0.8", "-f", "csv")  # fmt: skip
     assert result.returncode == 0, result.stderr
@@ -166,6 +186,35 @@ def test_restitution_format_help_says_what_its_csv_holds():
     assert "csv (one row per impact velocity)" in line
 
 
+def test_d2_is_required_and_the_helps_say_so():
+    for command in ("elastic", "elastoplastic", "restitution", "collide3d", "compare-laws",
+                    "fit"):  # fmt: skip
+        assert "Required." in _option_line(_help(command), "--d2"), command
+    assert "Required, unless --v0" in _option_line(_help("yield-limit"), "--d2")
+    assert "a copy of sphere 1" in _option_line(_help("timestep"), "--d2")
+    result = run_impact("yield-limit", "--d1", "20mm", "--material", "steel")
+    assert result.returncode == 2 and "missing --d2" in result.stderr
+
+
+def test_batch_help_lists_the_law_and_damping_columns_of_the_registry():
+    from impactcli.laws.registry import LAWS, parameter_laws
+
+    text = " ".join(_help("batch").split())
+    assert f"law ({', '.join(LAWS)};" in text
+    for name in parameter_laws():
+        assert re.search(rf"[ (]{name} \(", text), name
+    assert f"damping ({', '.join(DAMPING_LAWS)};" in text and "target e" in text
+
+
+def test_v0_and_v1_helps_say_which_velocity_each_is():
+    assert "V0 = V1 + V2 is the velocity of approach" in " ".join(
+        _option_line(_help("elastic"), "--v1").split()
+    )
+    for command in ("yield-limit", "timestep"):
+        text = " ".join(_option_line(_help(command), "--v0").split())
+        assert "V0 = V1 + V2" in text and "not a sphere's --v1" in text, command
+
+
 def test_v2_defaults_to_rest_in_every_command():
     for command in ("elastic", "elastoplastic", "collide2d", "collide3d"):
         assert "at rest" in " ".join(_option_line(_help(command), "--v2").split()), command
@@ -180,12 +229,33 @@ def test_v2_defaults_to_rest_in_every_command():
     assert json.loads(default.stdout)["summary"] == json.loads(given.stdout)["summary"]
 
 
-def test_damped_default_n_differs_between_fit_and_the_others_and_both_helps_say_so():
-    for command in ("elastic", "restitution"):
+def test_damped_default_n_is_400_everywhere_but_fit_and_the_helps_say_so(tmp_path):
+    """compare-laws and batch ran a damped impact with n = 25 (e = 0.754213) where elastic
+    runs 400 (0.754181): one default, impactcli.impact.DAMPED_DEFAULT_N."""
+    from impactcli.cli.common import DAMPED_DEFAULT_N as CLI_DEFAULT
+    from impactcli.impact import DAMPED_DEFAULT_N
+
+    assert CLI_DEFAULT == DAMPED_DEFAULT_N == 400
+    damped = ["--damping", "tsuji", "--alpha", "0.2"]
+    one = json.loads(run_impact("elastic", *SEC_44, "--v1", "0.25", *damped, "-f", "json").stdout)
+    e = one["summary"]["restitution"]
+    assert e == pytest.approx(0.754181, abs=1e-6)
+    compared = run_impact("compare-laws", *SEC_44, "--v1", "0.25", *damped, "-f", "json")
+    document = json.loads(compared.stdout)
+    assert document["laws"]["hertz+tsuji"]["restitution"] == e
+    assert document["inputs"]["n"] == 25 and document["inputs"]["damping_n"] == 400
+    rows = tmp_path / "rows.csv"
+    rows.write_text("d1,d2,v1,v2,material,model,damping,alpha\n"
+                    "20mm,40mm,0.25,0,steel,elastic,tsuji,0.2\n")  # fmt: skip
+    batch = run_impact("batch", str(rows))
+    assert float(next(csv.DictReader(io.StringIO(batch.stdout)))["restitution"]) == e
+    explicit = run_impact("batch", str(rows), "--n", "25")
+    assert float(next(csv.DictReader(io.StringIO(explicit.stdout)))["restitution"]) != e
+    for command in ("elastic", "restitution", "compare-laws", "batch"):
         text = " ".join(_option_line(_help(command), "--n").split())
-        assert "400 with --damping" in text and "impact fit takes 50" in text
-    text = " ".join(_help("fit").split())
-    assert "50 with --damping" in text and "n = 400" in text
+        assert "Default 25, 400 " in text and "impact fit takes 50" in text, command
+    text = " ".join(_option_line(_help("fit"), "--n").split())
+    assert "50 with --damping, for speed" in text and "take 400 with damping" in text
 
 
 @pytest.mark.parametrize("name, alphas", [("tsuji", [0.01, 0.1, 0.5, 0.8]),

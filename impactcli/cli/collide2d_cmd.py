@@ -22,9 +22,16 @@ from impactcli.cli.common import (
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.errors import InputError
-from impactcli.laws.registry import DEFAULT_LAW
+from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.validation import check_restitution
+
+#: --e of impact collide2d and collide3d: a given e (impact elastic's --e is a target).
+E_GIVEN_HELP = (
+    "instead of a normal law (--law, --model, --damping): a given e, used as it is. (impact "
+    "elastic's and restitution's --e is another thing: the e that --damping is to give, "
+    "its alpha solved for.)"
+)
 
 CONVENTIONS = {
     False: "angles counter-clockwise from +x",
@@ -33,9 +40,7 @@ CONVENTIONS = {
 }
 
 
-@with_law_options(
-    default=f"none, e = 1 (elastic); {DEFAULT_LAW} with --model elastoplastic, which --law needs"
-)
+@with_law_options(default=f"{ELASTIC_LAW}, e = 1; {DEFAULT_LAW} with --model elastoplastic")
 @with_damping_options(target_e=False)  # collide2d's --e is a given e, not a target of alpha
 def collide2d(
     m1: str = typer.Option(..., "--m1", help="Mass of sphere 1, e.g. 50g or 0.05 (kg)."),
@@ -81,27 +86,36 @@ def collide2d(
     model: Optional[Model] = typer.Option(
         None,
         "--model",
-        help="Contact model giving the coefficient of restitution: elastic (e = 1), or "
-        "elastoplastic (e from the FILM run of --law, Du & Wang by default, at the normal "
-        "impact velocity; needs --d1, --d2, a material and what the law needs). Default: "
-        "elastic, unless --e is given.",
+        help=f"Normal law when --law is not given: elastic ({ELASTIC_LAW}, e = 1, the default) "
+        f"or elastoplastic ({DEFAULT_LAW}: e from its FILM run at the normal approach "
+        "velocity; needs --d1, --d2, a material and what the law needs).",
     ),
     law: LawOptions = None,
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     d1: Optional[str] = typer.Option(
-        None, "--d1", help="Diameter of sphere 1 [m] (elastoplastic)."
+        None,
+        "--d1",
+        help="Diameter of sphere 1 [m]: needed by --law, --model elastoplastic and --damping "
+        "(which run the normal impact), and to draw the spheres and to check the advice of "
+        "an elastic impact.",
     ),
     d2: Optional[str] = typer.Option(
-        None, "--d2", help="Diameter of sphere 2 [m] (elastoplastic)."
+        None, "--d2", help="Diameter of sphere 2 [m], as --d1; 'inf' is a flat target."
     ),
     material: Optional[str] = typer.Option(
-        None, "--material", help="Material of both spheres (elastoplastic; see impact materials)."
+        None,
+        "--material",
+        help="Material of both spheres (see 'impact materials'), as --d1.",
     ),
     material1: Optional[str] = typer.Option(None, "--material1", help="Material of sphere 1."),
     material2: Optional[str] = typer.Option(None, "--material2", help="Material of sphere 2."),
-    sy: Optional[str] = typer.Option(None, "--sy", help="Yield strength [Pa] (elastoplastic)."),
+    sy: Optional[str] = typer.Option(
+        None, "--sy", help="Yield strength of both spheres [Pa] (of an elastoplastic law)."
+    ),
     e: Optional[float] = typer.Option(
-        None, "--e", help="Coefficient of restitution 0 <= e <= 1, instead of --model."
+        None,
+        "--e",
+        help=f"Coefficient of restitution 0 <= e <= 1 {E_GIVEN_HELP}",
     ),
     paper_angles: bool = typer.Option(
         False,
@@ -189,10 +203,15 @@ def collide2d(
             f"--damping goes with --model elastic (Hertz with damping), not {clash}"
         )
     chosen = None
-    if law.names or law.given:
-        if model is not Model.elastoplastic:
-            raise InputError("--law and its parameters go with --model elastoplastic")
-    if model is Model.elastoplastic:
+    if law.names or law.given:  # the law implies the model, as in impact collide3d
+        clash = [name for name, given in (("--e", e is not None),
+                 ("--damping", damping_law is not None),
+                 ("--model elastic", model is Model.elastic)) if given]  # fmt: skip
+        if clash:
+            raise InputError(f"give one normal law: --law or {clash[0]}, not both")
+        default = DEFAULT_LAW if model is Model.elastoplastic else ELASTIC_LAW
+        (chosen,) = resolve_laws(law, default=(default,))
+    elif model is Model.elastoplastic:
         (chosen,) = resolve_laws(law)
     if e is not None:
         try:
@@ -200,18 +219,25 @@ def collide2d(
         except ValueError as exc:
             raise InputError(str(exc)) from None
         restitution, model_name = e, "given e"
+    elif chosen is not None:
+        kind = get_law(chosen.name).kind
+        restitution, model_name = 1.0, "elastic" if kind == "elastic" else "elastoplastic"
     else:
         restitution, model_name = 1.0, (model or Model.elastic).value
     v_rel_n = float(approach_velocity(vel1, vel2, pos1, pos2))
     contact = None
-    if model is Model.elastoplastic:
+    if chosen is not None:
         contact = ContactModel(chosen.name, chosen.params)
     elif damping_law is not None:
         contact = ContactModel(damping=damping_law, alpha=alpha, separation=separation)
         model_name = f"{model_name} with {damping_law} damping (alpha = {alpha:g})"
     if contact is not None and v_rel_n > 0.0:
         if d1 is None or d2 is None or (material is None and None in (material1, material2)):
-            which = "--model elastoplastic" if damping_law is None else "--damping"
+            which = (
+                "--damping" if damping_law is not None
+                else "--law" if law.names or law.given
+                else "--model elastoplastic"
+            )  # fmt: skip
             raise InputError(
                 f"{which} needs --d1, --d2 and --material (or --material1/--material2)"
             )

@@ -8,6 +8,7 @@ from typing import IO, Any, Optional
 
 import typer
 
+from impactcli.cli.collide2d_cmd import E_GIVEN_HELP
 from impactcli.cli.common import (
     Format,
     Model,
@@ -99,7 +100,9 @@ def collide3d(
     ),
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     e: Optional[float] = typer.Option(
-        None, "--e", help="Coefficient of restitution 0 <= e <= 1 instead of a law (rigid only)."
+        None,
+        "--e",
+        help=f"Coefficient of restitution 0 <= e <= 1 (--tangential rigid only) {E_GIVEN_HELP}",
     ),
     mu: float = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0."),
     tangential: Tangential = typer.Option(

@@ -10,7 +10,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from impactcli.cli.common import Format, OutputFile, console, resolve_format
+from impactcli.cli.common import Format, OutputFile, OutputFormat, console, resolve_format
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW
@@ -55,7 +55,14 @@ def _speed(text: str, name: str) -> float:
     return parse_quantity(text, "velocity", name)
 
 
-@with_sphere_options(velocities=False)
+@with_sphere_options(
+    velocities=False,
+    helps={
+        f"d{i}": f"Diameter of sphere {i} [m]{'; inf is a flat target' if i == 2 else ''}. "
+        f"Required, unless --v0 asks for it (--resize {i}, or --sphere {i} without --resize)."
+        for i in (1, 2)
+    },
+)
 def yield_limit(
     spheres: SphereOptions = None,
     sphere: Annotated[
@@ -68,7 +75,8 @@ def yield_limit(
         Optional[str],
         typer.Option(
             "--v0",
-            help="Impact velocity V0 [m/s]: then the largest diameter of the sphere of "
+            help="Impact velocity V0 = V1 + V2 [m/s] (the velocity of approach, not a sphere's "
+            "--v1): then the largest diameter of the sphere of "
             "--resize (default --sphere) at which --sphere stays elastic; its --d option may "
             "be left out. No default (impact timestep's --v0 is 1 m/s): without it, the "
             "first-yield velocity.",
@@ -184,20 +192,25 @@ def yield_limit(
             stream.write(line + "\n")
 
 
-@with_sphere_options(velocities=False)
+@with_sphere_options(
+    velocities=False,
+    helps={
+        "d2": "Diameter of sphere 2 [m]; 'inf' is a flat target. Default: sphere 2 is a copy "
+        "of sphere 1 when no sphere-2 option is given."
+    },
+)
 def timestep(
     spheres: SphereOptions = None,
     v0: Annotated[
         str,
         typer.Option(
             "--v0",
-            help="Impact velocity V0 for the Hertz contact time [m/s] (impact yield-limit's "
-            "--v0 has no default: it asks for a diameter).",
+            help="Impact velocity V0 = V1 + V2 for the Hertz contact time [m/s] (the velocity "
+            "of approach, not a sphere's --v1; impact yield-limit's --v0 has no default: it "
+            "asks for a diameter).",
         ),
     ] = "1",
-    fmt: Annotated[
-        Optional[Format], typer.Option("--format", "-f", help="table, csv or json.")
-    ] = None,
+    fmt: OutputFormat = None,
     output: OutputFile = None,
 ) -> None:
     """The Rayleigh time step of the particles and the Hertz contact time at V0, with the
