@@ -457,3 +457,23 @@ def test_collide3d_energy_table_keeps_its_unit():
             "-f", "table"]  # fmt: skip
     screen = run_impact(*args, env={"COLUMNS": "160"}).stdout
     assert "Energy dissipated [mJ]" in screen
+
+
+def test_collide3d_and_collide2d_give_the_advice_of_elastic_for_the_same_normal_impact():
+    """5 m/s steel on steel, head on: elastic warns of first yield and of a contact radius
+    beyond 0.1 R; collide3d gave the first only, collide2d (the spheres known) neither."""
+    elastic = run_impact("elastic", *SEC_44, "--v1", "5", "-f", "csv").stderr
+    spheres = run_impact("collide3d", *SEC_44, "--p1", "0,0,0", "--p2", "0,0,0.03",
+                         "--v1", "0,0,5", "-f", "csv").stderr  # fmt: skip
+    plane = run_impact("collide2d", "--m1", "32.67g", "--m2", "261.4g", *SEC_44,
+                       "--v1", "5,0", "--p1=0,0", "--p2=0.03,0", "-f", "csv").stderr  # fmt: skip
+    radius = "contact radius / R = 0.11 > 0.1 from"
+    assert radius in elastic and radius in spheres and radius in plane
+    first = "exceeds the first-yield velocity 0.07846 m/s"
+    assert first in elastic and first in spheres
+    assert "(v1 - v2).n = 5 m/s exceeds the first-yield velocity" in plane
+    assert "use --model elastoplastic (or --law)" in plane
+    # without the spheres' properties, e = 1 needs the masses alone and says nothing
+    bare = run_impact("collide2d", "--m1", "1", "--m2", "1", "--v1", "5,0", "--p1=0,0",
+                      "--p2=1,0", "-f", "csv")  # fmt: skip
+    assert bare.returncode == 0 and bare.stderr == ""

@@ -98,3 +98,32 @@ def test_results_carry_the_warnings_the_command_line_prints(command, call):
     warned = [line.removeprefix("impact: warning: ") for line in printed.splitlines()
               if line.startswith("impact: warning: ")]  # fmt: skip
     assert warned == list(result.warnings)
+
+
+def test_a_3d_collision_carries_the_warnings_of_its_normal_impact():
+    """normal_restitution_and_history gives (e, history) with the warnings of the normal
+    impact; oblique_collision_3d(warnings=) carries them; impact collide3d prints them from
+    there; none of them sends a Python caller to a command only."""
+    from impactcli.collision3d import normal_restitution_and_history
+
+    s1 = impactcli.Sphere.from_material(0.02, "steel")
+    s2 = impactcli.Sphere.from_material(0.04, "steel")
+    normal = normal_restitution_and_history(s1, s2, 5.0)
+    e, history = normal
+    assert e == normal.restitution and history is None and len(normal.warnings) == 2
+    c = impactcli.oblique_collision_3d(s1.total_mass, s2.total_mass, (0, 0, 5.0), (0, 0, 0),
+                                       (0, 0, 0), (0, 0, 0.03), 0.02, 0.04, restitution=e,
+                                       warnings=normal.warnings)  # fmt: skip
+    assert c.warnings == normal.warnings
+    assert impactcli.oblique_collision_3d(s1.total_mass, s2.total_mass, (0, 0, 5.0), (0, 0, 0),
+                                          (0, 0, 0), (0, 0, 0.03), 0.02, 0.04).warnings == ()
+    printed = run_impact("collide3d", *SEC_44, "--p1", "0,0,0", "--p2", "0,0,0.03", "--v1",
+                         "0,0,5", "-f", "csv").stderr  # fmt: skip
+    assert [line.removeprefix("impact: warning: ") for line in printed.splitlines()] == list(
+        c.warnings
+    )
+    assert "law='du-wang' in Python" in c.warnings[0]
+    damped = normal_restitution_and_history(s1, s2, 5.0, damping="tsuji", alpha=0.1)
+    assert any("first-yield" in w for w in damped.warnings)
+    plain = impactcli.elastic_impact(s1, s2, 5.0, 0.0).warnings[0]
+    assert "elastoplastic_impact in Python" in plain

@@ -245,6 +245,8 @@ def collide2d(
             restitution = _normal_restitution(v_rel_n, contact, *spheres_from_options(spheres))
         except ValueError as exc:
             raise InputError(str(exc)) from None
+    elif e is None and v_rel_n > 0.0:  # Hertz, e = 1: its advice when the spheres are known
+        _elastic_advice(v_rel_n, spheres)
     try:  # the spheres must approach along the line of centres
         result = oblique_collision(mass1, mass2, vel1, vel2, pos1, pos2, restitution)
     except ValueError as exc:
@@ -288,13 +290,49 @@ def collide2d(
         _plot(plot, result, vel1, vel2, pos1, pos2, radii, model_name, restitution)
 
 
+#: What the warnings of collide2d call the normal impact's velocity, and what they advise.
+NORMAL_VELOCITY = "the approach velocity (v1 - v2).n"
+ELASTOPLASTIC_ADVICE = "--model elastoplastic (or --law)"
+
+
 def _normal_restitution(normal_velocity: float, model, sphere1, sphere2) -> float:
     """e of the normal impact at the approach velocity (v1 - v2).n [m/s] under the contact
     model ``model`` (:class:`~impactcli.impact.ContactModel`): the FILM run, sphere 2 at
-    rest."""
+    rest; its warnings (first yield of Hertz, damped or not; a contact radius beyond 0.1 R)
+    as impact collide3d gives them."""
     from impactcli.impact import impact
+    from impactcli.laws.registry import get_law
 
-    return float(impact(sphere1, sphere2, normal_velocity, 0.0, model).summary["restitution"])
+    result = impact(sphere1, sphere2, normal_velocity, 0.0, model)
+    elastic = model.damping is not None or get_law(model.law).name == ELASTIC_LAW
+    _warn_all(normal_velocity, result.summary["delta_max"], elastic, sphere1, sphere2)
+    return float(result.summary["restitution"])
+
+
+def _elastic_advice(normal_velocity: float, spheres) -> None:
+    """The warnings of the elastic (Hertz, e = 1) normal impact when the spheres are known
+    (--d1, --d2 and their materials): above the first-yield velocity, a contact radius
+    beyond 0.1 R, as impact elastic gives them for the same normal impact."""
+    from impactcli.impact import impact
+    from impactcli.spheres import spheres_from_options
+
+    try:
+        sphere1, sphere2 = spheres_from_options(spheres)
+    except InputError:  # the spheres are not all given: e = 1 needs only the masses
+        return
+    result = impact(sphere1, sphere2, normal_velocity, 0.0)
+    _warn_all(normal_velocity, result.summary["delta_max"], True, sphere1, sphere2)
+
+
+def _warn_all(normal_velocity: float, delta_max: float, elastic: bool, sphere1, sphere2) -> None:
+    from impactcli.cli.common import warn
+    from impactcli.collision3d import normal_law_warnings
+
+    for message in normal_law_warnings(
+        sphere1, sphere2, normal_velocity, delta_max, elastic, NORMAL_VELOCITY,
+        ELASTOPLASTIC_ADVICE,
+    ):  # fmt: skip
+        warn(message)
 
 
 def _radii(spheres) -> tuple[float, float] | None:

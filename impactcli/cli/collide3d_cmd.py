@@ -22,6 +22,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
     screen_value,
+    warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
@@ -217,8 +218,8 @@ def collide3d(
         s1, s2, vectors, law_name, params, (damping_law, alpha, separation), e, mu, tangential,
         points,
     )  # fmt: skip
-    if law_name == ELASTIC_LAW and damping_law is None and e is None:
-        _first_yield(s1, s2, summary["approach_velocity"])
+    for message in result.warnings:  # the library's, as a Python caller gets them
+        warn(message)
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -236,27 +237,6 @@ def collide3d(
         from impactcli.plots import tangential_force_figure
 
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
-
-
-def _first_yield(sphere1, sphere2, approach_velocity: float) -> None:
-    """The warning of ``impact elastic`` for the same normal impact (Hertz, at the normal
-    approach velocity of the contact point [m/s]) above its first-yield velocity."""
-    from impactcli.cli.common import warn
-    from impactcli.contact import first_yield_velocity
-    from impactcli.impact import effective_properties, weaker_yield_strength
-    from impactcli.validation import first_yield_warning
-
-    yield_strength = weaker_yield_strength(sphere1, sphere2)
-    if yield_strength is None or not approach_velocity > 0.0:
-        return
-    m, r, modulus = effective_properties(sphere1, sphere2)
-    message = first_yield_warning(
-        approach_velocity,
-        float(first_yield_velocity(m, r, modulus, yield_strength)),
-        advice="--model elastoplastic",
-    )
-    if message:
-        warn(message.replace("V0 = ", "the normal approach velocity u_n = ", 1))
 
 
 def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
@@ -396,11 +376,14 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
     mindlin = tangential is Tangential.mindlin
     history = shear = None
     try:
+        warned: tuple[str, ...] = ()
         if e is None:
-            restitution, history = normal_restitution_and_history(
+            normal = normal_restitution_and_history(
                 s1, s2, u_n, law=law, params=params, damping=damping, alpha=alpha,
                 points=points if mindlin else None, separation=separation,
             )  # fmt: skip
+            restitution, history = normal
+            warned = normal.warnings
         else:
             restitution = e
         if mindlin:
@@ -410,6 +393,7 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
         result = oblique_collision_3d(
             s1.total_mass, s2.total_mass, v1, v2, p1, p2, s1.diameter, s2.diameter, w1, w2,
             restitution, mu, tangential.value, history=history, shear_modulus=shear,
+            warnings=warned,
         )  # fmt: skip
     except ValueError as exc:
         raise InputError(str(exc)) from None
