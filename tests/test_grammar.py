@@ -477,3 +477,50 @@ def test_collide3d_and_collide2d_give_the_advice_of_elastic_for_the_same_normal_
     bare = run_impact("collide2d", "--m1", "1", "--m2", "1", "--v1", "5,0", "--p1=0,0",
                       "--p2=1,0", "-f", "csv")  # fmt: skip
     assert bare.returncode == 0 and bare.stderr == ""
+
+
+# --- one SI-prefix rule, no rounding noise, whole units --------------------------------------
+
+
+def test_collide2d_uses_the_si_prefixes_of_collide3d():
+    screen = run_impact("collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s@30deg",
+                        "--v2", "2m/s@50deg", "--p1=-1,2", "--p2=2,-2", "--paper-angles",
+                        "-f", "table", env={"COLUMNS": "120"}).stdout  # fmt: skip
+    assert "│ 240.988 │ mN s │" in screen and "0.240988" not in screen
+    assert re.search(r"momentum x\s+│\s+322\.74 │\s+322\.74 │ mN s", screen)
+    assert "kg m/s" not in screen and re.search(r"energy\s+│\s+525 │\s+525 │ mJ", screen)
+
+
+def test_rounding_noise_reads_0_and_the_helps_say_below_what():
+    """Chung & Ooi's test 4 sticks: the slip after, the tangential restitution and the
+    rebound angle are 0 to rounding (2.2e-16 m/s, -1.1e-16, 3.8e-15 deg on main)."""
+    from impactcli.cli.common import NOISE_RTOL
+
+    args = ["collide3d", "--d1", "5mm", "--E1", "380GPa", "--nu1", "0.23", "--rho1", "4000",
+            "--d2", "inf", "--m2", "inf", "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1",
+            "--v1", "3.9m/s@30deg", "--mu", "0.092"]  # fmt: skip
+    screen = run_impact(*args, "-f", "table", env={"COLUMNS": "120"}).stdout
+    assert not re.search(r"\de-1\d", screen), screen
+    for label in ("slip u_t' along the initial slip", "tangential restitution",
+                  "rebound angle at the contact"):  # fmt: skip
+        assert re.search(rf"{re.escape(label)}\s+│\s+0 │", screen), label
+    summary = json.loads(run_impact(*args, "-f", "json").stdout)["summary"]
+    assert 0 < abs(summary["rebound_angle"]) < 1e-12  # CSV and JSON keep every digit
+    for command in ("collide2d", "collide3d"):
+        text = " ".join(_help(command).split())
+        assert f"a value below {NOISE_RTOL:g} of its scale" in text, command
+
+
+@pytest.mark.parametrize("width", [44, 52, 60, 68, 76])
+def test_a_narrow_terminal_keeps_each_unit_of_a_header_whole(width):
+    """At 60 columns the history header read 'v2 (mm/s' over ')'."""
+    screen = run_impact("elastic", *SEC_44, "--v1", "5mm/s", "--v2", "7.5mm/s", "-f", "table",
+                        env={"COLUMNS": str(width)}).stdout  # fmt: skip
+    lines = screen.splitlines()
+    top = next(i for i, line in enumerate(lines) if line.lstrip().startswith("┏"))
+    rule = next(i for i, line in enumerate(lines) if line.lstrip().startswith("┡"))
+    columns = zip(*(line.strip().strip("┃").split("┃") for line in lines[top + 1 : rule]))
+    for cells in columns:
+        header = " ".join(" ".join(cell.split()) for cell in cells).strip()
+        assert header.count("(") == header.count(")"), header
+        assert re.fullmatch(r"\w+( \((µs|µm|N|mm/s|m/s|nm|mm|s|m)\))?", header), header

@@ -152,10 +152,12 @@ def collide2d(
     impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s@30deg --v2 2m/s@50deg
     --p1=-1,2 --p2=2,-2 --paper-angles
 
-    CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"}.
-    --plot draws the centres at contact with each sphere's velocity before and after (the
-    spheres too when --d1 and --d2 are given), and the four velocities from one origin with
-    the normal and the tangent; angles counter-clockwise from +x.
+    On screen each value has its SI prefix (mN s, mJ), and a value below 1e-12 of its scale
+    (the speeds; 180 deg for an angle) is rounding noise and reads 0 (CSV and JSON keep
+    every digit). CSV: one header line of the summary keys and one row; JSON: {"inputs",
+    "summary"}. --plot draws the centres at contact with each sphere's velocity before and
+    after (the spheres too when --d1 and --d2 are given), and the four velocities from one
+    origin with the normal and the tangent; angles counter-clockwise from +x.
     """
     import numpy as np
 
@@ -445,14 +447,20 @@ def _pair(vector) -> str:
 def _print_tables(
     stream: IO[str] | None, inputs: dict, s: dict[str, float], paper_angles: bool
 ) -> None:
-    from impactcli.cli.common import Table
-
-    def f(value: float) -> str:
-        return f"{value:.6g}"
+    """The tables of one collision, each value with the SI prefix of its row (one prefix
+    for all the velocities), as impact collide3d prints them
+    (:func:`impactcli.cli.common.screen_values`); rounding noise, below
+    :data:`~impactcli.cli.common.NOISE_RTOL` of the speeds (of 180 deg for an angle),
+    reads 0."""
+    from impactcli.cli.common import Table, screen_values
 
     out = console(stream)
+    both = {**inputs, **s}
+    speeds = [both[f"{i}_{key}"] for i in ("v1", "v2") for key in ("speed", "final_speed")]
+    top = max(speeds)
+    restitution = screen_values([inputs["restitution"]], "")[0][0]
     velocities = Table(
-        title=f"Oblique collision ({inputs['model']}, e = {f(inputs['restitution'])})",
+        title=f"Oblique collision ({inputs['model']}, e = {restitution})",
         caption=f"{CONVENTIONS[paper_angles]}; normal along n from sphere 1 to sphere 2, "
         "tangential along n turned 90° counter-clockwise",
     )
@@ -467,41 +475,52 @@ def _print_tables(
         "normal": ("normal", "final_normal", "m/s"),
         "tangential": ("tangential", "final_tangential", "m/s"),
     }
-    both = {**inputs, **s}
     for label, (before, after, unit) in rows.items():
-        cells = [f(both[f"{i}_{key}"]) for i in ("v1", "v2") for key in (before, after)]
-        velocities.add_row(label, *cells, unit)
+        values = [both[f"{i}_{key}"] for i in ("v1", "v2") for key in (before, after)]
+        scale = 180.0 if unit == "deg" else top
+        cells, shown = screen_values(values, unit, scale, prefix_from=speeds)
+        velocities.add_row(label, *cells, shown)
     out.print(velocities)
 
+    approach = s["approach_velocity"]
+    energy = s["kinetic_energy_before"]
     collision = quantity_table(
         "Line of centres and impulse",
         ("", "value", "unit"),
         (
-            (label, f(s[key]), unit)
-            for label, key, unit in (
-                ("line of centres angle", "line_of_centres_angle", "deg"),
-                ("approach velocity (v1 - v2).n", "approach_velocity", "m/s"),
-                ("separation velocity (v2' - v1').n", "separation_velocity", "m/s"),
-                ("coefficient of restitution", "restitution", ""),
-                ("normal impulse on sphere 2", "normal_impulse", "N s"),
-                ("energy dissipated", "energy_dissipated", "J"),
+            (label, *_one(screen_values([s[key]], unit, scale)))
+            for label, key, unit, scale in (
+                ("line of centres angle", "line_of_centres_angle", "deg", 180.0),
+                ("approach velocity (v1 - v2).n", "approach_velocity", "m/s", None),
+                ("separation velocity (v2' - v1').n", "separation_velocity", "m/s", approach),
+                ("coefficient of restitution", "restitution", "", None),
+                ("normal impulse on sphere 2", "normal_impulse", "N s", None),
+                ("energy dissipated", "energy_dissipated", "J", energy),
             )
         ),
     )
     out.print(collision)
-    totals = quantity_table(
-        "Conservation (eqs. 17a-c)",
-        ("", "before", "after", "unit"),
-        (
-            (label, f(s[f"{key}_before"]), f(s[f"{key}_after"]), unit)
-            for label, key, unit in (
-                ("momentum x", "momentum_x", "kg m/s"),
-                ("momentum y", "momentum_y", "kg m/s"),
-                ("kinetic energy", "kinetic_energy", "J"),
-            )
-        ),
-    )
+    momenta = [s[f"momentum_{a}_{when}"] for a in "xy" for when in ("before", "after")]
+    rows_out = []
+    for label, key, unit in (
+        ("momentum x", "momentum_x", "N s"),
+        ("momentum y", "momentum_y", "N s"),
+        ("kinetic energy", "kinetic_energy", "J"),
+    ):
+        values = [s[f"{key}_before"], s[f"{key}_after"]]
+        if unit == "N s":  # one prefix and one scale for both components
+            cells, shown = screen_values(values, unit, max(map(abs, momenta)), prefix_from=momenta)
+        else:
+            cells, shown = screen_values(values, unit)
+        rows_out.append((label, *cells, shown))
+    totals = quantity_table("Conservation (eqs. 17a-c)", ("", "before", "after", "unit"), rows_out)
     out.print(totals)
+
+
+def _one(shown: tuple[list[str], str]) -> tuple[str, str]:
+    """(text, unit) of one value of :func:`impactcli.cli.common.screen_values`."""
+    (text,), unit = shown
+    return text, unit
 
 
 def register(app: typer.Typer) -> None:

@@ -17,11 +17,10 @@ from impactcli.cli.common import (
     PlotFile,
     check_plot,
     console,
-    no_negative_zero,
     quantity_table,
     resolve_format,
     save_plot,
-    screen_value,
+    screen_values,
     warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
@@ -163,10 +162,12 @@ def collide3d(
     impact collide3d --d1 5mm --E1 380GPa --nu1 0.23 --rho1 4000 --d2 inf --m2 inf --E2 inf
     --p1 0,0,0 --p2=0,0,-1 --v1 3.9m/s@30deg --mu 0.092 --tangential mindlin
 
-    CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"} (with
-    the tangential force history for mindlin). --plot draws the velocities before and after
-    in the plane of the impact (horizontal: the initial slip direction t, vertical: n),
-    projected on it; --plot-force the mindlin tangential force history.
+    On screen each value has its SI prefix (mN s, mJ), and a value below 1e-12 of its scale
+    (the speeds; 180 deg for an angle) is rounding noise and reads 0 (CSV and JSON keep
+    every digit). CSV: one header line of the summary keys and one row; JSON: {"inputs",
+    "summary"} (with the tangential force history for mindlin). --plot draws the velocities
+    before and after in the plane of the impact (horizontal: the initial slip direction t,
+    vertical: n), projected on it; --plot-force the mindlin tangential force history.
     """
     from impactcli.spheres import check_options, spheres_from_options
 
@@ -447,74 +448,60 @@ def summary(c) -> dict[str, float]:
 
 def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> None:
     """The tables of one collision: each value with its own SI prefix, each vector with one
-    prefix for its components (:func:`impactcli.cli.common.screen_value`), no ``-0``; the
-    quantities a fixed target leaves undefined (its momentum) are left out, and said so."""
+    prefix for its components (:func:`impactcli.cli.common.screen_values`), no ``-0``;
+    rounding noise, below :data:`~impactcli.cli.common.NOISE_RTOL` of its scale (the
+    value it goes with: the slip before, the normal impulse, 180 deg for an angle), reads
+    0; the quantities a fixed target leaves undefined (its momentum) are left out, and said
+    so."""
     import numpy as np
 
-    from impactcli.formatting import unit_scale
+    def one(values, unit: str, scale: float | None = None, pick: int = 0) -> tuple[str, str]:
+        cells, shown = screen_values(values, unit, scale)
+        return cells[pick], shown
 
-    def f(value: float) -> str:
-        return no_negative_zero(f"{value:.6g}")
-
-    def scalar(key: str, unit: str) -> tuple[str, str]:
-        if key == "slip_speed_final":  # in the unit of the slip before: 0 reads as 0
-            scale = unit_scale([s["slip_speed"], s[key]], unit)
-            return f(s[key] / scale.factor), scale.unit
-        return screen_value(s[key], unit)
-
-    def vector(values, unit: str) -> tuple[str, str]:
-        values = np.asarray(values, dtype=float)
-        if not unit or unit == "rad/s":
-            return "(" + ", ".join(f(x) for x in values) + ")", unit
-        scale = unit_scale(values, unit)
-        return "(" + ", ".join(f(x / scale.factor) for x in values) + ")", scale.unit
+    def vector(values, unit: str, scale: float | None = None, prefix_from=None):
+        cells, shown = screen_values(values, unit, scale, prefix_from=prefix_from)
+        return "(" + ", ".join(cells) + ")", shown
 
     def triple(key: str) -> list[float]:
         return [s[f"{key}_{a}"] for a in "xyz"]
 
     out = console(stream)
     title = (
-        f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = {f(s['restitution'])}; "
-        f"{inputs['tangential_model']} tangential, mu = {f(inputs['mu'])})"
+        f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = "
+        f"{one([s['restitution']], '')[0]}; {inputs['tangential_model']} tangential, mu = "
+        f"{one([inputs['mu']], '')[0]})"
     )
     rows = []
     for label, unit in (("v1", "m/s"), ("w1", "rad/s"), ("v2", "m/s"), ("w2", "rad/s")):
         before, after = inputs[label], triple(f"{label}_final")
-        scale = unit_scale([before, after], unit) if unit == "m/s" else None
-        factor, shown = (scale.factor, scale.unit) if scale else (1.0, unit)
-        rows.append(
-            (
-                label,
-                vector(np.divide(before, factor), "")[0],
-                vector(np.divide(after, factor), "")[0],
-                shown,
-            )
-        )
+        both = [*before, *after]
+        scale = float(np.nanmax(np.abs(both)))
+        first, shown = vector(before, unit, scale, both)
+        rows.append((label, first, vector(after, unit, scale, both)[0], shown))
     out.print(quantity_table(title, ("", "before", "after", "unit"), rows))
 
     contact = quantity_table(
         "Contact",
         ("", "value", "unit"),
         [
-            *(
-                (label, f(s[key]), unit) if unit == "deg" else (label, *scalar(key, unit))
-                for label, key, unit in (
-                    ("approach velocity u_n", "approach_velocity", "m/s"),
-                    ("slip speed |u_t| before", "slip_speed", "m/s"),
-                    ("slip u_t' along the initial slip", "slip_speed_final", "m/s"),
-                    ("normal restitution", "normal_restitution", ""),
-                    ("tangential restitution", "tangential_restitution", ""),
-                    ("incident angle at the contact", "incident_angle", "deg"),
-                    ("rebound angle at the contact", "rebound_angle", "deg"),
-                    ("rebound angle of the centres", "centre_rebound_angle", "deg"),
-                    ("stuck (1) or slid throughout (0)", "stuck", ""),
-                    ("normal impulse on sphere 2", "normal_impulse", "N s"),
-                    ("tangential impulse on sphere 2", "tangential_impulse", "N s"),
-                )
-            ),
-            ("normal n (sphere 1 to 2)", *vector(triple("normal"), "")),
+            ("approach velocity u_n", *one([s["approach_velocity"]], "m/s")),
+            ("slip speed |u_t| before", *one([s["slip_speed"]], "m/s")),
+            # in the unit of the slip before, so that 0 reads as 0
+            ("slip u_t' along the initial slip",
+             *one([s["slip_speed"], s["slip_speed_final"]], "m/s", pick=1)),
+            ("normal restitution", *one([s["normal_restitution"]], "")),
+            ("tangential restitution", *one([s["tangential_restitution"]], "", 1.0)),
+            ("incident angle at the contact", *one([s["incident_angle"]], "deg", 180.0)),
+            ("rebound angle at the contact", *one([s["rebound_angle"]], "deg", 180.0)),
+            ("rebound angle of the centres", *one([s["centre_rebound_angle"]], "deg", 180.0)),
+            ("stuck (1) or slid throughout (0)", *one([s["stuck"]], "")),
+            ("normal impulse on sphere 2", *one([s["normal_impulse"]], "N s")),
+            ("tangential impulse on sphere 2",
+             *one([s["tangential_impulse"]], "N s", abs(s["normal_impulse"]))),
+            ("normal n (sphere 1 to 2)", *vector(triple("normal"), "", 1.0)),
             ("contact point", *vector(triple("contact_point"), "m")),
-        ],
+        ],  # fmt: skip
     )
     out.print(contact)
 
@@ -530,24 +517,13 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
         if not np.all(np.isfinite(before + after)):
             undefined.append(label)
             continue
-        scale = unit_scale([before, after], unit)
-        rows.append(
-            (
-                label,
-                vector(np.divide(before, scale.factor), "")[0],
-                vector(np.divide(after, scale.factor), "")[0],
-                scale.unit,
-            )
-        )
-    energy_scale = unit_scale([s["kinetic_energy_before"], s["kinetic_energy_after"]], "J")
-    rows.append(
-        (
-            "kinetic energy",
-            f(s["kinetic_energy_before"] / energy_scale.factor),
-            f(s["kinetic_energy_after"] / energy_scale.factor),
-            energy_scale.unit,
-        )
-    )
+        both = before + after
+        scale = max(map(abs, both))
+        first, shown = vector(before, unit, scale, both)
+        rows.append((label, first, vector(after, unit, scale, both)[0], shown))
+    energies = [s["kinetic_energy_before"], s["kinetic_energy_after"]]
+    cells, unit = screen_values(energies, "J")
+    rows.append(("kinetic energy", *cells, unit))
     checks = quantity_table("Conservation and energy", ("", "before", "after", "unit"), rows)
     if undefined:
         checks.caption = (
@@ -558,14 +534,11 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
     keys = [("total", "energy_dissipated"), ("sphere 1", "energy_dissipated1"),
             ("sphere 2", "energy_dissipated2")]  # fmt: skip
     values = [s[f"{key}_{part}"] for _, key in keys for part in ("normal", "friction")]
-    scale = unit_scale(values, "J")
+    cells, unit = screen_values(values, "J", max(map(abs, [*values, *energies])))
     energy = quantity_table(
-        f"Energy dissipated [{scale.unit}]",
+        f"Energy dissipated [{unit}]",
         ("", "normal law", "friction"),
-        [
-            (label, f(s[f"{key}_normal"] / scale.factor), f(s[f"{key}_friction"] / scale.factor))
-            for label, key in keys
-        ],
+        [(label, cells[2 * k], cells[2 * k + 1]) for k, (label, _) in enumerate(keys)],
     )
     out.print(energy)
 

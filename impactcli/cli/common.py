@@ -157,7 +157,8 @@ def narrow_layout(
     """The widths of a table's columns on a terminal of ``width`` characters, and how many
     of the leading columns are kept: ``(None, all)`` when every cell fits on one line; else
     each kept column gets at least its longest word or number (so that nothing is cut) and
-    the rest of the width goes to the columns whose text wraps.
+    the rest of the width goes to the columns whose text wraps. A header wraps between its
+    words, never inside one (a unit stays whole).
 
     >>> narrow_layout(["a", "b"], [["1.25", "2"], ["some words", "x"]], 40)
     (None, 2)
@@ -167,7 +168,11 @@ def narrow_layout(
     natural = [max([len(h), *(len(c) for c in column)]) for h, column in zip(headers, cells)]
     if sum(natural) + 3 * len(natural) + 1 <= width:
         return None, len(natural)
-    least = [max([1, *(len(word) for c in column for word in c.split())]) for column in cells]
+    # a header wraps between words but keeps each word whole: 'v2 (mm/s)', not 'v2 (mm/s' ')'
+    least = [
+        max([1, *(len(word) for c in [header, *column] for word in c.split())])
+        for header, column in zip(headers, cells)
+    ]
     kept = fitting_columns(least, width)
     widths = least[:kept]
     spare = width - (sum(widths) + 3 * kept + 1)
@@ -224,6 +229,46 @@ def screen_value(value: float, unit: str, digits: int = 6) -> tuple[str, str]:
         value, unit = value * 1e3, "g"
     scale = unit_scale([value], unit)
     return no_negative_zero(f"{value / scale.factor:.{digits}g}"), scale.unit
+
+
+#: On screen, a value smaller than this fraction of its scale (the largest value it is
+#: shown with, or the scale its command names: the speeds of a collision, 180 deg for an
+#: angle) is rounding noise and reads 0, never -1.11022e-16 or -3.67e-15 deg. CSV and JSON
+#: keep every digit.
+NOISE_RTOL = 1e-12
+
+#: Units shown without an SI prefix.
+_NO_PREFIX = ("", "deg", "rad/s", "rad")
+
+
+def screen_values(
+    values, unit: str, scale: float | None = None, digits: int = 6, prefix_from=None
+) -> tuple[list[str], str]:
+    """Several values [SI ``unit``] as text with one SI prefix (none for a dimensionless
+    value, an angle or rad/s; that of ``prefix_from``, values shown in the same unit, when
+    given), ``digits`` significant digits, no ``-0``; a value below :data:`NOISE_RTOL` of
+    ``scale`` (default: the largest finite |value|) reads 0.
+
+    >>> screen_values([0.240988, 0.0], "N s")
+    (['240.988', '0'], 'mN s')
+    >>> screen_values([1.95, -1.11022e-16], "m/s"), screen_values([-3.67e-15], "deg", 180.0)
+    ((['1.95', '0'], 'm/s'), (['0'], 'deg'))
+    """
+    import numpy as np
+
+    from impactcli.formatting import unit_scale
+
+    array = np.asarray(values, dtype=float).reshape(-1)
+    finite = np.abs(array[np.isfinite(array)])
+    if scale is None:
+        scale = float(finite.max()) if finite.size else 0.0
+    with np.errstate(invalid="ignore"):
+        array = np.where(np.abs(array) < NOISE_RTOL * abs(scale), 0.0, array)
+    factor, shown = 1.0, unit
+    if unit not in _NO_PREFIX:
+        prefixed = unit_scale(array if prefix_from is None else prefix_from, unit)
+        factor, shown = prefixed.factor, prefixed.unit
+    return [no_negative_zero(f"{v / factor:.{digits}g}") for v in array], shown
 
 
 def no_negative_zero(text: str) -> str:
