@@ -4,16 +4,16 @@ from __future__ import annotations
 
 import enum
 import math
-from typing import IO, Any, Optional
+from typing import IO, Annotated, Any, Optional
 
 import typer
 
 from impactcli.cli.collide2d_cmd import E_GIVEN_HELP
 from impactcli.cli.common import (
+    FORMAT_HELP,
     Format,
     Model,
     OutputFile,
-    OutputFormat,
     PlotFile,
     check_plot,
     console,
@@ -35,6 +35,27 @@ from impactcli.validation import check_friction, check_restitution
 
 #: --model -> the law of the library it names.
 MODEL_LAWS = {Model.elastic: ELASTIC_LAW, Model.elastoplastic: DEFAULT_LAW}
+
+
+class Collide3dFormat(enum.StrEnum):
+    """``-f`` of impact collide3d: the formats of one collision, and parquet for --rows."""
+
+    table = "table"
+    csv = "csv"
+    json = "json"
+    parquet = "parquet"
+
+
+FORMAT_3D_HELP = FORMAT_HELP.replace(
+    "csv or json.",
+    "csv or json; with --rows csv or parquet (the table of collisions, as impact batch "
+    "writes it).",
+    1,
+).replace(
+    "(JSON for a .json file).",
+    "(JSON for a .json file; with --rows CSV, or Parquet for -o OUT.parquet).",
+    1,
+)
 
 
 class Tangential(enum.StrEnum):
@@ -127,7 +148,9 @@ def collide3d(
         "impact batch); writes its columns and the results (-o OUT.csv or .parquet, else "
         "stdout as CSV); a bad row gets its reason in the error column.",
     ),
-    fmt: OutputFormat = None,
+    fmt: Annotated[
+        Optional[Collide3dFormat], typer.Option("--format", "-f", help=FORMAT_3D_HELP)
+    ] = None,
     output: OutputFile = None,
     plot: PlotFile = None,
     plot_force: Optional[str] = typer.Option(
@@ -200,6 +223,11 @@ def collide3d(
     for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2)):
         if value is None:
             raise InputError(f"missing {name} (or give --rows TABLE for many collisions)")
+    if fmt is Collide3dFormat.parquet:
+        raise InputError(
+            "-f parquet writes the table of --rows; one collision is written as table, csv "
+            "or json"
+        )
     from impactcli.units import parse_vector3
 
     positions = {
@@ -221,7 +249,7 @@ def collide3d(
     )  # fmt: skip
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
-    kind = resolve_format(fmt, output)
+    kind = resolve_format(None if fmt is None else Format(fmt.value), output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
             write_csv(stream, tuple(summary), [((), [list(summary.values())])])
@@ -313,9 +341,11 @@ def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
             f"--rows reads the collisions from the table: {', '.join(single)} belong in its "
             "columns (v1_x, ..., d1, material, ...)"
         )
-    if fmt not in (None, Format.csv):
-        raise InputError("--rows writes a table: CSV, or Parquet with -o OUT.parquet")
-    table = table_format(None, output, "impact collide3d --rows")
+    if fmt not in (None, Collide3dFormat.csv, Collide3dFormat.parquet):
+        raise InputError(
+            f"--rows writes a table: -f csv or parquet (or -o OUT.parquet), not {fmt.value}"
+        )
+    table = table_format(None if fmt is None else fmt.value, output, "impact collide3d --rows")
     report = run_collisions3d(path, output, table, **options)
     for line in report.lines:
         warn(line)

@@ -10,7 +10,15 @@ from typing import Annotated, Optional
 
 import typer
 
-from impactcli.cli.common import Format, OutputFile, OutputFormat, console, resolve_format
+from impactcli.cli.common import (
+    FORMAT_HELP,
+    Format,
+    OutputFile,
+    OutputFormat,
+    console,
+    resolve_format,
+    warn,
+)
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW
@@ -45,8 +53,19 @@ YieldLaw = enum.StrEnum("YieldLaw", {name.replace("-", "_"): name for name in _y
 
 
 class LineFormat(enum.StrEnum):
-    text = "text"
+    """``-f`` of impact yield-limit: the shared formats; ``text``, the name of ``table``
+    before 0.2, still works (with a deprecation warning) and goes in 0.3."""
+
+    table = "table"
+    csv = "csv"
     json = "json"
+    text = "text"
+
+
+YIELD_FORMAT_HELP = FORMAT_HELP.replace(
+    "table (Rich, on a terminal)", "table (the answer in one line, on a terminal)", 1
+).replace("csv or json.", "csv (a header and one row) or json; text, the former name of "
+          "table, still works in this release.", 1)  # fmt: skip
 
 
 def _speed(text: str, name: str) -> float:
@@ -104,8 +123,10 @@ def yield_limit(
         float, typer.Option("--p0-factor", help=_pressure_factor_help())
     ] = _pressure_factor().default,
     fmt: Annotated[
-        LineFormat, typer.Option("--format", "-f", help="text (one line) or json.")
-    ] = LineFormat.text,
+        Optional[LineFormat],
+        typer.Option("--format", "-f", metavar="[table|csv|json]", help=YIELD_FORMAT_HELP),
+    ] = None,
+    output: OutputFile = None,
 ) -> None:
     """The largest impact velocity at which a chosen sphere stays elastic; or, given --v0,
     the largest diameter of one sphere (Kharaz & Gorham 2000: design an experiment in which
@@ -122,6 +143,11 @@ def yield_limit(
     from impactcli.formatting import format_quantity
     from impactcli.impact import effective_properties
     from impactcli.spheres import spheres_from_options
+
+    if fmt is LineFormat.text:
+        warn("-f text is deprecated (it goes in 0.3): write -f table, the name every command uses")
+        fmt = LineFormat.table
+    kind = resolve_format(None if fmt is None else Format(fmt.value), output)
 
     try:
         factor = law_pressure_factor(law.value, p0_factor)
@@ -146,7 +172,9 @@ def yield_limit(
     doc: dict[str, object] = {
         "sphere": sphere,
         "law": law.value,
-        "pressure_factor": factor,
+        # the contact pressure / sigma_y at which the sphere first yields under the law
+        # (1.6 for Hertz, --p0-factor for du-wang): not du-wang's p0_factor alone
+        "first_yield_pressure_factor": factor,
         "yield_strength": sigma,
     }
     if velocity is None:
@@ -185,9 +213,15 @@ def yield_limit(
         else:
             size = f"for D{resized} up to {format_quantity(limit, 'm')}"
         line = f"sphere {sphere} stays elastic {at} {size} ({how})"
-    with atomic_output(None) as stream:
-        if fmt is LineFormat.json:
+    with atomic_output(output) as stream:
+        if kind is Format.json:
             write_json(stream, doc)
+        elif kind is Format.csv:
+            import csv
+
+            writer = csv.writer(stream, lineterminator="\n")
+            writer.writerow(doc)
+            writer.writerow(repr(v) if isinstance(v, float) else v for v in doc.values())
         else:
             stream.write(line + "\n")
 
