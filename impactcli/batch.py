@@ -78,6 +78,7 @@ from impactcli.validation import (
     needs_yield_strength,
     pair_problems,
     plastic_range_problems,
+    renamed_p0_factor,
     sphere_names,
     sphere_problems,
     without_float_warnings,
@@ -368,9 +369,11 @@ def batch_impacts(
     plastic: ArrayLike = False,
     n: int = 25,
     split: Split = "mass",
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
     law: str | None = None,
     law_params: Mapping[str, Any] | None = None,
+    *,
+    pressure_factor: float | None = None,
 ) -> dict[str, NDArray]:
     """Summaries of many impacts of two spheres, one per row; arrays broadcast.
 
@@ -393,9 +396,10 @@ def batch_impacts(
     split : share of the indentation between the spheres: ``mass``, ``compliance`` or
         ``yield`` (the permanent part to the weaker sphere, :func:`impactcli.energy.
         permanent_fractions`)
-    pressure_factor : p0 / sigma_y of the elastoplastic model, [-]
+    p0_factor : p0 / sigma_y of the elastoplastic model, [-] (``pressure_factor``, its
+        former name, works until 0.3 with a DeprecationWarning)
     law : a law of :data:`impactcli.laws.registry.LAWS` for every row (``plastic`` and
-        ``pressure_factor`` are then ignored; rows of several laws: one call per law, e.g.
+        ``p0_factor`` are then ignored; rows of several laws: one call per law, e.g.
         on the groups of a ``law`` column); None: Du & Wang where ``plastic``, else Hertz
     law_params : the law's parameters by name, scalars or one value per row (SI)
 
@@ -415,6 +419,7 @@ def batch_impacts(
     >>> (out["contact_time"] * 1e6).round(3), out["restitution"].round(5)
     (array([171.319,  75.988]), array([1.     , 0.85611]))
     """
+    pressure_factor = renamed_p0_factor("batch_impacts", p0_factor, pressure_factor, 5)
     n = check_size("n", n, MAX_SEGMENTS)
     if not (np.isfinite(pressure_factor) and pressure_factor > 0):
         raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")

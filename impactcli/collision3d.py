@@ -258,6 +258,15 @@ class Collision3D:
         the normal history, [s], [N] (``mindlin`` only, else ``None``)
     warnings : what ``impact collide3d`` prints for this collision: the warnings of its
         normal impact (:attr:`NormalLaw.warnings`, given to :func:`oblique_collision_3d`)
+
+    Examples
+    --------
+    The result of :func:`oblique_collision_3d`: a 5 mm sphere on a fixed plane.
+
+    >>> c = oblique_collision_3d(2.6e-4, np.inf, (1.0, 0.0, -2.0), (0, 0, 0), (0, 0, 0),
+    ...                          (0, 0, -1), 5e-3, np.inf, mu=0.1)
+    >>> c.model, bool(c.stuck), round(float(c.v1_final[2]), 6), c.warnings
+    ('rigid', True, 2.0, ())
     """
 
     m1: Array

@@ -40,6 +40,7 @@ __all__ = [
     "ELASTOPLASTIC_ADVICE",
     "first_yield_warning",
     "normal_impact_warnings",
+    "renamed_p0_factor",
     "mass_split_warning",
     "materials_differ",
     "finite_float",
@@ -405,6 +406,29 @@ def first_yield_warning(
         f"({criterion}), up to which {advice} gives this same Hertz result; "
         "the local yield is in neither model"
     )
+
+
+def renamed_p0_factor(
+    function: str, p0_factor: float, pressure_factor: float | None, stacklevel: int = 4
+) -> float:
+    """The p0 / sigma_y [-] of a call of ``function``: ``p0_factor``, or the value given by
+    its former name ``pressure_factor`` (works in this release with a DeprecationWarning;
+    goes in 0.3). One name for the parameter everywhere: ``--p0-factor``, the law parameter
+    and batch column ``p0_factor``. ``stacklevel``: the caller's frame, past ``function``
+    and its wrappers."""
+    if pressure_factor is None:
+        return p0_factor
+    if p0_factor != DU_WANG_PRESSURE_FACTOR:
+        raise TypeError("give p0_factor or the deprecated pressure_factor, not both")
+    import warnings
+
+    warnings.warn(
+        f"{function}(pressure_factor=) is deprecated and goes in 0.3: write p0_factor=, the "
+        "name of the law parameter (--p0-factor, the p0_factor column)",
+        DeprecationWarning,
+        stacklevel=stacklevel,
+    )
+    return pressure_factor
 
 
 def normal_impact_warnings(

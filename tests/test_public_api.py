@@ -20,7 +20,9 @@ def test_the_public_api_is_exported_from_the_package():
     assert len(impactcli.__all__) >= 10
     for name in ("Sphere", "elastic_impact", "elastoplastic_impact", "law_impact",
                  "damped_impact", "oblique_collision", "oblique_collision_3d",
-                 "batch_impacts", "restitution_sweep", "material", "InputError"):  # fmt: skip
+                 "batch_impacts", "restitution_sweep", "material", "InputError",
+                 "ImpactResult", "DampedImpactResult", "ObliqueCollision",
+                 "Collision3D"):  # fmt: skip
         assert name in impactcli.__all__, name
         assert getattr(impactcli, name) is not None
     assert set(impactcli.__all__) <= set(dir(impactcli))
@@ -127,3 +129,38 @@ def test_a_3d_collision_carries_the_warnings_of_its_normal_impact():
     assert any("first-yield" in w for w in damped.warnings)
     plain = impactcli.elastic_impact(s1, s2, 5.0, 0.0).warnings[0]
     assert "elastoplastic_impact in Python" in plain
+
+
+def test_every_result_type_a_public_function_returns_is_exported():
+    import typing
+
+    for name in impactcli.__all__:
+        thing = getattr(impactcli, name)
+        if inspect.isfunction(thing):
+            returned = typing.get_type_hints(thing).get("return")
+            if isinstance(returned, type) and returned.__module__.startswith("impactcli"):
+                assert returned.__name__ in impactcli.__all__, (name, returned)
+
+
+def test_p0_factor_is_one_name_and_pressure_factor_is_deprecated():
+    """--p0-factor, the law parameter p0_factor and the batch column: one name in Python
+    too (elastoplastic_impact, restitution_sweep, batch_impacts took pressure_factor=)."""
+    s1 = impactcli.Sphere.from_material(0.02, "steel")
+    s2 = impactcli.Sphere.from_material(0.04, "steel")
+    calls = {
+        "elastoplastic_impact": lambda **kw: impactcli.elastoplastic_impact(
+            s1, s2, 2.0, 1.0, **kw).summary["restitution"],
+        "restitution_sweep": lambda **kw: float(impactcli.restitution_sweep(
+            s1, s2, [3.0], **kw)["restitution"][0]),
+        "batch_impacts": lambda **kw: float(impactcli.batch_impacts(
+            0.02, 0.04, 2.0, 1.0, 210e9, 0.3, 210e9, 0.3, rho1=7800.0, rho2=7800.0,
+            sy1=1e9, sy2=1e9, plastic=True, **kw)["restitution"][0]),
+    }  # fmt: skip
+    for name, call in calls.items():
+        assert "p0_factor" in inspect.signature(getattr(impactcli, name)).parameters
+        new = call(p0_factor=2.0)
+        assert new != call()
+        with pytest.warns(DeprecationWarning, match=rf"{name}\(pressure_factor=\)"):
+            assert call(pressure_factor=2.0) == new
+        with pytest.raises((TypeError, impactcli.InputError), match="not both"):
+            call(p0_factor=3.0, pressure_factor=2.0)
