@@ -56,9 +56,10 @@ BY_NATURE = {
     "--m1": "collide2d takes the masses (required); the others take diameters and densities "
     "and compute the masses unless given",
     "--m2": "as --m1",
-    "--d1": "collide2d takes the masses, and the diameters only for --model elastoplastic and "
-    "to draw the spheres; the others need --d1",
-    "--d2": "as --d1",
+    "--d1": "collide2d takes the masses, and the diameters only to run the normal impact "
+    "(--law, --model elastoplastic, --damping), for its warnings and to draw the spheres; "
+    "the others need them (yield-limit: unless --v0 asks for that diameter)",
+    "--d2": "as --d1 (timestep: sphere 2 copies sphere 1 without any sphere-2 option)",
     "--model": "elastic (Hertz, e = 1) or elastoplastic (Du & Wang); batch fills empty cells "
     "of its model column with it",
 }
@@ -322,8 +323,9 @@ def options_markdown() -> str:
         "",
         "A bare number is SI, in the unit of the last column; a unit may be given "
         "(`20mm`, `7.5 mm/s`). An option of one name means the same in every command that "
-        "takes it; where its value or default differs, the table at the end says how, and "
-        "the helps of both commands say so.",
+        "takes it, but for the one in the table \"Same name, different meaning\"; where its "
+        "value or default differs, the table at the end says how, and the helps of both "
+        "commands say so.",
         "",
         "Spelling: an option is written with hyphens (`--k-load`, `--p0-factor`), as "
         "`impact laws` and the screen tables name it; the same parameter is a key with "
