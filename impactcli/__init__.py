@@ -5,9 +5,14 @@ files; the ``impact`` command line (:mod:`impactcli.cli`) is a thin layer over i
 
 The public API, one set of names: a pair of spheres is ``sphere1, sphere2, v1, v2`` (SI,
 diameters, velocities toward the other sphere) or, for the vectorised functions, the
-columns of ``impact batch`` (``d1, d2, v1, v2, E1, nu1, ...``); a law's parameters are
-``law_params``; friction is ``mu``; every result carries the ``warnings`` the command line
-prints. Each name is imported on first use, so that ``impact --help`` stays light.
+columns of ``impact batch`` (``d1, d2, v1, v2, E1, nu1, rho1, sy1, ...``, the names of the
+command-line options ``--E1``...); a :class:`Sphere` names its properties in words
+(``youngs_modulus``, ``poisson_ratio``, ``density``, ``yield_strength``, as
+:meth:`Material.properties` gives them). A law's parameters are ``law_params`` with the keys
+of the law (``p0_factor``, ``k_load``: the option ``--p0-factor``, ``--k-load`` with ``_``
+for ``-``); friction is ``mu``; every result carries the ``warnings`` the command line
+prints, and every result type is exported. Each name is imported on first use, so that
+``impact --help`` stays light.
 
 >>> import impactcli
 >>> s1 = impactcli.Sphere.from_material(0.02, "steel")
@@ -25,13 +30,16 @@ __version__ = "0.1.0"
 _PUBLIC: dict[str, str] = {
     "Sphere": "impactcli.impact",
     "ImpactResult": "impactcli.impact",
+    "DampedImpactResult": "impactcli.impact",
     "elastic_impact": "impactcli.impact",
     "elastoplastic_impact": "impactcli.impact",
     "law_impact": "impactcli.impact",
     "damped_impact": "impactcli.impact",
     "impact_warnings": "impactcli.impact",
     "oblique_collision": "impactcli.collision2d",
+    "ObliqueCollision": "impactcli.collision2d",
     "oblique_collision_3d": "impactcli.collision3d",
+    "Collision3D": "impactcli.collision3d",
     "batch_impacts": "impactcli.batch",
     "restitution_sweep": "impactcli.sweep",
     "Material": "impactcli.materials",

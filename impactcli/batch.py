@@ -60,6 +60,7 @@ from impactcli.contact import (
 )
 from impactcli.film import hertz_loading_time, solve_stage
 from impactcli.impact import (
+    DAMPED_DEFAULT_N,
     PLASTIC_SUMMARY_KEYS,
     Split,
     impact_summary,
@@ -77,6 +78,7 @@ from impactcli.validation import (
     needs_yield_strength,
     pair_problems,
     plastic_range_problems,
+    renamed_p0_factor,
     sphere_names,
     sphere_problems,
     without_float_warnings,
@@ -367,9 +369,11 @@ def batch_impacts(
     plastic: ArrayLike = False,
     n: int = 25,
     split: Split = "mass",
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
     law: str | None = None,
     law_params: Mapping[str, Any] | None = None,
+    *,
+    pressure_factor: float | None = None,
 ) -> dict[str, NDArray]:
     """Summaries of many impacts of two spheres, one per row; arrays broadcast.
 
@@ -392,9 +396,10 @@ def batch_impacts(
     split : share of the indentation between the spheres: ``mass``, ``compliance`` or
         ``yield`` (the permanent part to the weaker sphere, :func:`impactcli.energy.
         permanent_fractions`)
-    pressure_factor : p0 / sigma_y of the elastoplastic model, [-]
+    p0_factor : p0 / sigma_y of the elastoplastic model, [-] (``pressure_factor``, its
+        former name, works until 0.3 with a DeprecationWarning)
     law : a law of :data:`impactcli.laws.registry.LAWS` for every row (``plastic`` and
-        ``pressure_factor`` are then ignored; rows of several laws: one call per law, e.g.
+        ``p0_factor`` are then ignored; rows of several laws: one call per law, e.g.
         on the groups of a ``law`` column); None: Du & Wang where ``plastic``, else Hertz
     law_params : the law's parameters by name, scalars or one value per row (SI)
 
@@ -414,6 +419,7 @@ def batch_impacts(
     >>> (out["contact_time"] * 1e6).round(3), out["restitution"].round(5)
     (array([171.319,  75.988]), array([1.     , 0.85611]))
     """
+    pressure_factor = renamed_p0_factor("batch_impacts", p0_factor, pressure_factor, 5)
     n = check_size("n", n, MAX_SEGMENTS)
     if not (np.isfinite(pressure_factor) and pressure_factor > 0):
         raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
@@ -609,7 +615,7 @@ def batch_damped_impacts(
     damping: str,
     alpha: ArrayLike = np.nan,
     restitution: ArrayLike = np.nan,
-    n: int = 25,
+    n: int = DAMPED_DEFAULT_N,
     split: Split = "mass",
     separation: str = "overlap",
 ) -> dict[str, NDArray]:
@@ -620,7 +626,9 @@ def batch_damped_impacts(
     ``hunt-crossley``: Hunt & Crossley 1975, J. Appl. Mech. 42:440-445,
     doi:10.1115/1.3423596, alpha [s/m]) with each row's ``alpha``, or the alpha that gives
     each row's target ``restitution`` at its V0 (:func:`impactcli.damping.
-    damping_for_restitution`; give one of the two per row). FILM with n segments per stage,
+    damping_for_restitution`; give one of the two per row). FILM with n segments per stage
+    (:data:`~impactcli.impact.DAMPED_DEFAULT_N` by default, as :func:`impactcli.impact.
+    damped_impact`),
     :func:`impactcli.damping.solve_damped_impact`, vectorised over the rows; the summary by
     :func:`impactcli.impact.impact_summary` with the indentation at separation in place of
     delta_res (0 for ``overlap``). Arguments otherwise as :func:`batch_impacts`.

@@ -207,6 +207,14 @@ class ObliqueCollision:
     v1_final, v2_final : velocities after the impact, [m/s]
     normal : unit normal n_hat from sphere 1 to sphere 2 along the line of centres, [-]
     restitution : coefficient of restitution e, [-]
+
+    Examples
+    --------
+    The result of :func:`oblique_collision` (the paper's sec. 4.5.3):
+
+    >>> c = oblique_collision(0.05, 0.15, (2.598, -1.5), (1.2856, 1.5321), (-1, 2), (2, -2))
+    >>> round(float(np.hypot(*c.v1_final)), 3), c.normal.round(1).tolist()
+    (2.374, [0.6, -0.8])
     """
 
     m1: Array

@@ -98,7 +98,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.collision2d import line_of_centres
 from impactcli.errors import InputError
-from impactcli.laws.registry import ELASTIC_LAW
+from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
 from impactcli.validation import check_friction, check_restitution, check_vectors, input_errors
 from impactcli.validation import where_first as _where
 
@@ -111,7 +111,9 @@ __all__ = [
     "collision_summary",
     "contact_distance_problem",
     "NormalHistory",
+    "NormalLaw",
     "effective_shear_modulus",
+    "normal_law_warnings",
     "normal_restitution_and_history",
     "oblique_collision_3d",
     "oblique_impact",
@@ -254,6 +256,17 @@ class Collision3D:
     model : ``rigid`` or ``mindlin``
     times, tangential_force : the tangential force on sphere 2 along t_hat at the times of
         the normal history, [s], [N] (``mindlin`` only, else ``None``)
+    warnings : what ``impact collide3d`` prints for this collision: the warnings of its
+        normal impact (:attr:`NormalLaw.warnings`, given to :func:`oblique_collision_3d`)
+
+    Examples
+    --------
+    The result of :func:`oblique_collision_3d`: a 5 mm sphere on a fixed plane.
+
+    >>> c = oblique_collision_3d(2.6e-4, np.inf, (1.0, 0.0, -2.0), (0, 0, 0), (0, 0, 0),
+    ...                          (0, 0, -1), 5e-3, np.inf, mu=0.1)
+    >>> c.model, bool(c.stuck), round(float(c.v1_final[2]), 6), c.warnings
+    ('rigid', True, 2.0, ())
     """
 
     m1: Array
@@ -283,6 +296,7 @@ class Collision3D:
     model: str
     times: Array | None = field(default=None, repr=False)
     tangential_force: Array | None = field(default=None, repr=False)
+    warnings: tuple[str, ...] = field(default=(), repr=False)
 
     # -- masses ------------------------------------------------------------------------
     @property
@@ -515,6 +529,71 @@ def velocity_from_angles(
     return np.asarray(speed, dtype=float)[..., None] * direction
 
 
+class NormalLaw(tuple):
+    """``(e, history)`` of :func:`normal_restitution_and_history`, which unpacks as the pair
+    it always was, with the ``warnings`` of the normal impact: above the first-yield
+    velocity of an elastic normal law (Hertz, damped or not), a contact radius beyond
+    0.1 R (:func:`impactcli.validation.normal_impact_warnings`). Give them to
+    :func:`oblique_collision_3d` (``warnings=``) and the collision carries them.
+
+    Attributes
+    ----------
+    restitution : the coefficient of restitution e, [-]
+    history : the :class:`NormalHistory`, or None
+    warnings : one sentence per warning, in the words ``impact collide3d`` prints
+    """
+
+    warnings: tuple[str, ...]
+
+    def __new__(
+        cls, restitution: float, history: NormalHistory | None, warnings: Sequence[str] = ()
+    ) -> NormalLaw:
+        out = super().__new__(cls, (restitution, history))
+        out.warnings = tuple(warnings)
+        return out
+
+    @property
+    def restitution(self) -> float:
+        return self[0]
+
+    @property
+    def history(self) -> NormalHistory | None:
+        return self[1]
+
+
+#: What a warning of :func:`normal_restitution_and_history` advises above the yield
+#: velocity, for the command line and for Python.
+ELASTOPLASTIC_NORMAL_LAW = (
+    f"the elastoplastic normal law ('impact collide3d --model elastoplastic'; "
+    f"law={DEFAULT_LAW!r} in Python)"
+)
+
+
+def normal_law_warnings(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    u_n: float,
+    delta_max: float,
+    elastic: bool,
+    velocity: str = "the normal approach velocity u_n",
+    advice: str = ELASTOPLASTIC_NORMAL_LAW,
+) -> tuple[str, ...]:
+    """The warnings of the normal impact of two spheres at u_n [m/s] whose maximum
+    indentation is delta_max [m] (:func:`impactcli.validation.normal_impact_warnings`);
+    ``elastic``: an elastic (Hertz) normal law, whose first yield is worth a warning;
+    ``velocity`` names u_n and ``advice`` the elastoplastic law in the messages."""
+    from impactcli.impact import effective_properties, weaker_yield_strength
+    from impactcli.laws.hertz import first_yield_velocity
+    from impactcli.validation import normal_impact_warnings
+
+    m, radius, modulus = effective_properties(sphere1, sphere2)
+    sigma_y = weaker_yield_strength(sphere1, sphere2)
+    first_yield = None
+    if elastic and sigma_y is not None:
+        first_yield = float(first_yield_velocity(m, radius, modulus, sigma_y))
+    return normal_impact_warnings(u_n, delta_max, radius, first_yield, velocity, advice)
+
+
 @input_errors
 def normal_restitution_and_history(
     sphere1: Sphere,
@@ -527,7 +606,7 @@ def normal_restitution_and_history(
     points: int | None = None,
     n: int = 25,
     separation: str = "overlap",
-) -> tuple[float, NormalHistory | None]:
+) -> NormalLaw:
     r"""The normal law of an oblique impact: e and, if asked, the normal history.
 
     The normal law is run as a head-on impact at the normal approach velocity u_n of the
@@ -553,14 +632,16 @@ def normal_restitution_and_history(
 
     Returns
     -------
-    (e, history)
-        The coefficient of restitution [-] and the :class:`NormalHistory` of shape (1, K)
-        (None when ``points`` is None). A damped history is the FILM closed form evaluated
-        at ``points`` even times (:meth:`impactcli.damping.DampedImpact.evaluate`), its force
-        F_n = max(F, 0): where the damping force pulls near separation (``overlap``) the
-        Coulomb limit mu F_n is 0, and the history's ``impulse``, the integral of F_n dt,
-        is (1 + e_force) m u_n > J_n, e_force the restitution of the ``force`` rule (the
-        rate at which the total force first returns to 0).
+    NormalLaw
+        ``(e, history)``: the coefficient of restitution [-] and the :class:`NormalHistory`
+        of shape (1, K) (None when ``points`` is None), with the ``warnings`` of the normal
+        impact (first yield of Hertz, damped or not; contact radius beyond 0.1 R). A damped
+        history is the FILM closed form evaluated at ``points`` even times
+        (:meth:`impactcli.damping.DampedImpact.evaluate`), its force F_n = max(F, 0): where
+        the damping force pulls near separation (``overlap``) the Coulomb limit mu F_n is
+        0, and the history's ``impulse``, the integral of F_n dt, is (1 + e_force) m u_n >
+        J_n, e_force the restitution of the ``force`` rule (the rate at which the total
+        force first returns to 0).
 
     Raises
     ------
@@ -591,7 +672,9 @@ def normal_restitution_and_history(
         impact = law_impact(sphere1, sphere2, v1, float(u_n) - v1, law, params, n=n)
         e = float(impact.summary["restitution"])
         history = None if points is None else NormalHistory.from_impacts([impact], int(points))
-        return e, history
+        elastic = get_law(law).name == ELASTIC_LAW  # Hertz: its first yield, as law_impact
+        delta_max = float(impact.summary["delta_max"])
+        return NormalLaw(e, history, normal_law_warnings(sphere1, sphere2, u_n, delta_max, elastic))
 
     from impactcli.damping import (
         check_alpha,
@@ -600,7 +683,6 @@ def normal_restitution_and_history(
         solve_damped_impact,
     )
     from impactcli.laws import hertz_stiffness
-    from impactcli.laws.registry import get_law
 
     if get_law(law).name != ELASTIC_LAW or params:
         raise ValueError(
@@ -615,8 +697,9 @@ def normal_restitution_and_history(
     contact = make_damping_law(damping, float(hertz_stiffness(modulus, radius)), m, alpha)
     solution = solve_damped_impact(contact, float(u_n), m, separation=separation)
     e = float(solution.restitution)
+    warned = normal_law_warnings(sphere1, sphere2, u_n, float(solution.delta_max), True)
     if points is None:
-        return e, None
+        return NormalLaw(e, None, warned)
     t_c = float(solution.contact_time)
     if not (np.isfinite(t_c) and e > 0.0):
         raise ValueError(
@@ -634,7 +717,8 @@ def normal_restitution_and_history(
     if separation == "overlap":
         pushing = solve_damped_impact(contact, float(u_n), m, separation="force")
     impulse = (1.0 + float(pushing.restitution)) * m * float(u_n)
-    return e, NormalHistory(t[None], delta[None], delta_dot[None], force[None], [impulse])
+    history = NormalHistory(t[None], delta[None], delta_dot[None], force[None], [impulse])
+    return NormalLaw(e, history, warned)
 
 
 @input_errors
@@ -656,6 +740,8 @@ def oblique_collision_3d(
     inertia2: ArrayLike | None = None,
     history: NormalHistory | None = None,
     shear_modulus: ArrayLike | None = None,
+    *,
+    warnings: Sequence[str] = (),
 ) -> Collision3D:
     r"""Velocities and spins after the oblique collision of two rough spheres, in 3-D.
 
@@ -699,12 +785,15 @@ def oblique_collision_3d(
         does not turn)
     history : the normal history (``mindlin`` only), consistent with u_n and e to 1e-6
     shear_modulus : G* of :func:`effective_shear_modulus`, [Pa] (``mindlin`` only)
+    warnings : the warnings of the normal law that gave e (:attr:`NormalLaw.warnings` of
+        :func:`normal_restitution_and_history`), carried by the result
 
     Returns
     -------
     Collision3D
         Velocities, spins, impulses, restitution and rebound angles after the impact, with
-        the momenta and energies before and after (:func:`collision_summary`).
+        the momenta and energies before and after (:func:`collision_summary`) and the
+        ``warnings`` given.
 
     Raises
     ------
@@ -725,11 +814,14 @@ def oblique_collision_3d(
     >>> bool(r.stuck), round(float(r.v1_final[0]), 6), round(float(r.w1_final[1]), 3)
     (False, 3.018699, 358.8)
     """
-    return _oblique(
+    result = _oblique(
         m1, m2, 0.5 * np.asarray(d1, dtype=float), 0.5 * np.asarray(d2, dtype=float), p1, p2,
         v1, v2, w1, w2, restitution, mu, tangential, inertia1, inertia2, history,
         shear_modulus,
     )  # fmt: skip
+    if warnings:
+        object.__setattr__(result, "warnings", tuple(warnings))
+    return result
 
 
 @input_errors

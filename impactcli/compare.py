@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.impact import (
+    DAMPED_DEFAULT_N,
     ContactModel,
     ImpactResult,
     Sphere,
@@ -80,7 +81,7 @@ def compare_impacts(
     v1: float,
     v2: float,
     laws: Sequence[Law | ContactModel],
-    n: int = 25,
+    n: int | None = None,
     split: str = "mass",
 ) -> dict[str, ImpactResult]:
     """The same impact under each law: law name -> :class:`~impactcli.impact.ImpactResult`
@@ -93,7 +94,9 @@ def compare_impacts(
     laws : (name, parameters) of each law, parameters in SI (files for a tabulated law), or
         a :class:`~impactcli.impact.ContactModel` (e.g. Hertz with a damping model), keyed
         by its ``name``
-    n : FILM segments per stage
+    n : FILM segments per stage; None: each model's default, 25 for a law and
+        :data:`~impactcli.impact.DAMPED_DEFAULT_N` (400) for a damping model
+        (:func:`impactcli.impact.impact`)
 
     Raises
     ------
@@ -122,9 +125,10 @@ def restitution_curves(
     sphere2: Sphere,
     velocities: ArrayLike,
     laws: Sequence[Law | ContactModel],
-    n: int = 25,
+    n: int | None = None,
 ) -> dict[str, NDArray]:
-    """e [-] of each law at each impact velocity V0 [m/s]: law name -> array.
+    """e [-] of each law at each impact velocity V0 [m/s]: law name -> array (n: as for
+    :func:`compare_impacts`).
 
     One FILM sweep per law (:func:`impactcli.sweep.restitution_sweep`, vectorised over V0).
     Velocities a tabulated law's curves cannot take (the impact goes beyond them) get NaN.
@@ -138,8 +142,9 @@ def restitution_curves(
     for model in map(_model, laws):
         if model.damping is not None:
             out[model.name] = damped_restitution_sweep(
-                sphere1, sphere2, v0, model.damping, model.alpha, n, model.separation
-            )["restitution"]
+                sphere1, sphere2, v0, model.damping, model.alpha,
+                DAMPED_DEFAULT_N if n is None else n, model.separation,
+            )["restitution"]  # fmt: skip
             continue
         name, params = model.law, model.law_params
         contact = get_law(name).contact(r, e, sigma_y, **dict(params))
@@ -150,7 +155,8 @@ def restitution_curves(
         values = np.full(v0.shape, np.nan)
         if np.any(within):
             values[within] = restitution_sweep(
-                sphere1, sphere2, v0[within], n, law=name, law_params=dict(params)
+                sphere1, sphere2, v0[within], 25 if n is None else n, law=name,
+                law_params=dict(params),
             )["restitution"]
         out[name] = values
     return out

@@ -60,6 +60,7 @@ from impactcli.validation import (
     pair_problems,
     plastic_range_problems,
     raise_first,
+    renamed_p0_factor,
     sphere_problems,
     yield_scale_problems,
 )
@@ -1102,8 +1103,10 @@ def elastoplastic_impact(
     n: int = 25,
     split: Split = "mass",
     yield_strength: float | None = None,
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
     method: Method = "film",
+    *,
+    pressure_factor: float | None = None,
 ) -> ImpactResult:
     """Elastoplastic impact (Du & Wang contact, paper eq. 16, sec. 4.4; docs/method.md §7).
 
@@ -1118,7 +1121,8 @@ def elastoplastic_impact(
     v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
     n, split : as for :func:`elastic_impact` (``split`` also ``yield``)
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
-    pressure_factor : p0 / sigma_y, [-]
+    p0_factor : p0 / sigma_y, [-] (``pressure_factor``, its former name, works until 0.3
+        with a DeprecationWarning)
     method : ``film`` or ``ode``, as for :func:`elastic_impact` (``table`` only below the
         yield velocity)
 
@@ -1136,6 +1140,7 @@ def elastoplastic_impact(
     >>> round(r.summary["restitution"], 5), round(r.summary["contact_time"] * 1e6, 3)
     (0.85611, 75.988)
     """
+    pressure_factor = renamed_p0_factor("elastoplastic_impact", p0_factor, pressure_factor)
     _validate(sphere1, sphere2, v1, v2, n, split, method)
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
@@ -1275,6 +1280,19 @@ class DampedImpactResult(ImpactResult):
     by ``film`` or ``ode`` (there are no normalised tables for damped laws); the force
     column is the total force F(delta, delta'), which may pull (F < 0) at the end of an
     ``overlap`` contact: the force-indentation curve is a loop.
+
+    Attributes
+    ----------
+    law : the damping model with its K [N/m^1.5], m [kg] and alpha (:mod:`impactcli.laws`)
+    alpha : the damping parameter, [-] (tsuji), [s/m] (hunt-crossley), [s] (viscoelastic)
+    separation : ``overlap`` or ``force``, the rule that ends the contact
+
+    Examples
+    --------
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> r = damped_impact(s1, s2, 0.25, 0.75, "tsuji", 0.3)
+    >>> type(r).__name__, r.alpha, r.separation, round(r.summary["restitution"], 4)
+    ('DampedImpactResult', 0.3, 'overlap', 0.6536)
     """
 
     law: Any = None

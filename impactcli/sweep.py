@@ -25,7 +25,12 @@ from impactcli.impact import (
 )
 from impactcli.laws.registry import DEFAULT_LAW, get_law, plan_groups
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
-from impactcli.validation import input_errors, plastic_range_problems, raise_first
+from impactcli.validation import (
+    input_errors,
+    plastic_range_problems,
+    raise_first,
+    renamed_p0_factor,
+)
 
 __all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
 
@@ -50,15 +55,17 @@ def restitution_sweep(
     velocities: ArrayLike,
     n: int = 25,
     yield_strength: float | None = None,
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
     split: str = "mass",
     law: str | None = None,
     law_params: dict[str, Any] | None = None,
+    *,
+    pressure_factor: float | None = None,
 ) -> dict[str, NDArray]:
     """Elastoplastic impact quantities for each impact velocity V0 [m/s] (docs/method.md §7).
 
     ``law``: any law of :mod:`impactcli.laws` with its ``law_params`` instead of Du & Wang
-    (``pressure_factor`` is then ignored); ``plastic`` is 1 past the law's yield point.
+    (``p0_factor`` is then ignored); ``plastic`` is 1 past the law's yield point.
     Without ``law`` and without any yield strength (neither ``yield_strength`` nor the
     spheres'), the impacts are elastic (Hertz): e = 1, no permanent indentation.
     ``split``: ``mass``, ``compliance`` or ``yield`` (the permanent indentation to the
@@ -70,7 +77,8 @@ def restitution_sweep(
     velocities : impact velocities V0 = V1 + V2, > 0, [m/s]
     n : FILM segments per stage
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
-    pressure_factor : p0 / sigma_y of Du & Wang's law, [-]
+    p0_factor : p0 / sigma_y of Du & Wang's law, [-] (``pressure_factor``, its former
+        name, works until 0.3 with a DeprecationWarning)
     split : ``mass``, ``compliance`` or ``yield``
     law : a law of ``impact laws``, or None for Du & Wang
     law_params : the law's parameters by name, SI (as for
@@ -92,6 +100,7 @@ def restitution_sweep(
     >>> out["restitution"].round(5).tolist(), out["plastic"].tolist()
     ([1.0, 0.85611], [0.0, 1.0])
     """
+    pressure_factor = renamed_p0_factor("restitution_sweep", p0_factor, pressure_factor)
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
         raise ValueError("impact velocities must be a non-empty list of positive numbers")

@@ -37,7 +37,10 @@ __all__ = [
     "check_vectors",
     "du_wang_yield_velocity",
     "contact_radius_warning",
+    "ELASTOPLASTIC_ADVICE",
     "first_yield_warning",
+    "normal_impact_warnings",
+    "renamed_p0_factor",
     "mass_split_warning",
     "materials_differ",
     "finite_float",
@@ -363,18 +366,26 @@ def du_wang_yield_velocity(
     return first_yield_velocity * ratio**2.5
 
 
+#: The elastoplastic model a warning advises, in words for both its readers: the command
+#: line and a Python caller (the library's results carry the command line's warnings).
+ELASTOPLASTIC_ADVICE = (
+    "the elastoplastic model ('impact elastoplastic'; elastoplastic_impact in Python)"
+)
+
+
 def first_yield_warning(
     impact_velocity: float,
     first_yield_velocity: float,
     yield_velocity: float | None = None,
     pressure_factor: float | None = None,
-    advice: str = "'impact elastoplastic'",
+    advice: str = ELASTOPLASTIC_ADVICE,
 ) -> str | None:
     """The warning of an elastic impact above the first-yield velocity V_Y [m/s] (Hertz peak
     pressure 1.6 sigma_y), else None. Its advice agrees with :func:`below_yield_note`: it
-    says to use ``advice`` (``impact elastoplastic``) only above Du & Wang's yield velocity
-    V_y [m/s] (``yield_velocity``; by default from V_Y with :func:`du_wang_yield_velocity`);
-    between V_Y and V_y both give this Hertz result."""
+    says to use ``advice`` (the elastoplastic model, named for the command line and for
+    Python: :data:`ELASTOPLASTIC_ADVICE`) only above Du & Wang's yield velocity V_y [m/s]
+    (``yield_velocity``; by default from V_Y with :func:`du_wang_yield_velocity`); between
+    V_Y and V_y both give this Hertz result."""
     if not impact_velocity > first_yield_velocity:
         return None
     if yield_velocity is None:
@@ -395,6 +406,57 @@ def first_yield_warning(
         f"({criterion}), up to which {advice} gives this same Hertz result; "
         "the local yield is in neither model"
     )
+
+
+def renamed_p0_factor(
+    function: str, p0_factor: float, pressure_factor: float | None, stacklevel: int = 4
+) -> float:
+    """The p0 / sigma_y [-] of a call of ``function``: ``p0_factor``, or the value given by
+    its former name ``pressure_factor`` (works in this release with a DeprecationWarning;
+    goes in 0.3). One name for the parameter everywhere: ``--p0-factor``, the law parameter
+    and batch column ``p0_factor``. ``stacklevel``: the caller's frame, past ``function``
+    and its wrappers."""
+    if pressure_factor is None:
+        return p0_factor
+    if p0_factor != DU_WANG_PRESSURE_FACTOR:
+        raise TypeError("give p0_factor or the deprecated pressure_factor, not both")
+    import warnings
+
+    warnings.warn(
+        f"{function}(pressure_factor=) is deprecated and goes in 0.3: write p0_factor=, the "
+        "name of the law parameter (--p0-factor, the p0_factor column)",
+        DeprecationWarning,
+        stacklevel=stacklevel,
+    )
+    return pressure_factor
+
+
+def normal_impact_warnings(
+    approach_velocity: float,
+    delta_max: float,
+    radius: float,
+    first_yield_velocity: float | None = None,
+    velocity: str = "the normal approach velocity u_n",
+    advice: str = ELASTOPLASTIC_ADVICE,
+) -> tuple[str, ...]:
+    """The warnings of the normal impact of an oblique collision, in the words of the head-on
+    ones (:func:`first_yield_warning`, :func:`contact_radius_warning`), its velocity named
+    ``velocity``: above the first-yield velocity [m/s] of an elastic normal law (None: not
+    elastic, or no yield strength), and a contact radius sqrt(delta_max R) beyond 0.1 R
+    (``delta_max``, ``radius`` R [m]).
+
+    >>> normal_impact_warnings(1.0, 1e-5, 0.01)
+    ()
+    >>> normal_impact_warnings(0.2, 1e-5, 0.01, 0.1)[0][:52]
+    'the normal approach velocity u_n = 0.2 m/s exceeds t'
+    """
+    found = [
+        None
+        if first_yield_velocity is None
+        else first_yield_warning(approach_velocity, first_yield_velocity, advice=advice),
+        contact_radius_warning(approach_velocity, delta_max, radius),
+    ]
+    return tuple(m.replace("V0 = ", f"{velocity} = ", 1) for m in found if m)
 
 
 def below_yield_note(

@@ -277,12 +277,14 @@ def test_bad_curve_file_is_one_line(impact, tmp_path):
     )
 
 
-def test_law_options_need_model_elastoplastic_in_collide2d(impact):
+def test_a_law_in_collide2d_needs_the_spheres(impact):
+    """--law alone runs that law (the law implies the model, as in collide3d); it needs
+    the spheres to run the normal impact."""
     done = impact(
         "collide2d", "--m1", "1", "--m2", "1", "--v1", "1,0", "--v2", "0,0", "--p1=0,0",
         "--p2=1,0", "--law", "thornton",
     )  # fmt: skip
-    one_line_error(done, "--law and its parameters go with --model elastoplastic")
+    one_line_error(done, "--law needs --d1, --d2 and --material")
 
 
 @pytest.mark.parametrize("command", ["elastoplastic", "restitution", "collide2d", "compare-laws"])

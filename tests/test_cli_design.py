@@ -78,8 +78,30 @@ def test_yield_limit_velocity_of_the_weaker_sphere(cli):
     assert code == 0 and doc["quantity"] == "impact_velocity"
     assert doc["value"] == pytest.approx(math.sqrt(2 / m * 0.4 * k_h * delta_y**2.5), rel=1e-12)
     code, out, _ = cli("yield-limit", "--d1", "3mm", "--material1", "aluminium", *STEEL_WALL,
-                       "--sphere", "1")  # fmt: skip
+                       "--sphere", "1", "-f", "table")  # fmt: skip
     assert code == 0 and out.count("\n") == 1 and "sphere 1 stays elastic up to V0 =" in out
+
+
+def test_yield_limit_writes_the_shared_formats_and_says_what_its_factor_is(cli, tmp_path):
+    """-f table|csv|json and -o FILE as every command (it had -f text|json, no -o); text
+    is a deprecated name of table; the JSON key of the factor says it is the first-yield
+    one (pressure_factor read as du-wang's p0_factor)."""
+    args = ["yield-limit", "--d1", "3mm", "--material1", "aluminium", *STEEL_WALL]
+    code, table, _ = cli(*args, "-f", "table")
+    code_text, text, warned = cli(*args, "-f", "text")
+    assert code == code_text == 0 and text == table
+    assert "-f text is deprecated" in warned and "write -f table" in warned
+    code, out, _ = cli(*args)  # piped: CSV, as every command
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert code == 0 and len(rows) == 1 and rows[0]["quantity"] == "impact_velocity"
+    assert float(rows[0]["first_yield_pressure_factor"]) == 1.6
+    document = json.loads(cli(*args, "--law", "du-wang", "-f", "json")[1])
+    assert document["first_yield_pressure_factor"] == 2.57 and "pressure_factor" not in document
+    target = tmp_path / "limit.json"
+    code, out, _ = cli(*args, "-o", str(target))
+    assert code == 0 and out == "" and json.loads(target.read_text())["value"] == float(
+        rows[0]["value"]
+    )
 
 
 def test_yield_limit_du_wang_is_its_yield_velocity(cli):

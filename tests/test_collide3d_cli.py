@@ -457,3 +457,23 @@ def test_rows_carry_the_damped_friction_budget(impact, tmp_path):
     j_t, j_n = float(row["tangential_impulse"]), float(row["normal_impulse"])
     assert j_t == pytest.approx(one["tangential_impulse"], rel=1e-10)
     assert 1.009 < j_t / (0.2 * j_n) < 1.011
+
+
+def test_rows_write_parquet_when_asked_as_batch_does(impact, tmp_path):
+    """-f parquet was refused with --rows; it writes Parquet as impact batch does (to a
+    file of any name), and a single collision says what it writes."""
+    from pyarrow import parquet as pq
+
+    source = tmp_path / "in.csv"
+    source.write_text("p1_x,p1_y,p1_z,p2_x,p2_y,p2_z,v1_x,v1_y,v1_z,d1,d2,m2,E2,material1\n"
+                      "0,0,0,0,0,-1,1,0,-2,5mm,inf,inf,inf,steel\n")  # fmt: skip
+    out = tmp_path / "out"
+    done = impact("collide3d", "--rows", str(source), "-f", "parquet", "-o", str(out))
+    assert done.returncode == 0, done.stderr
+    assert pq.read_table(out).num_rows == 1
+    refused = impact("collide3d", "--rows", str(source), "-f", "json")
+    assert refused.returncode == 2 and "-f csv or parquet" in refused.stderr
+    single = impact("collide3d", "--d1", "5mm", "--material", "steel", "--d2", "inf", "--m2",
+                    "inf", "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1", "--v1", "0,0,-1",
+                    "-f", "parquet")  # fmt: skip
+    assert single.returncode == 2 and "-f parquet writes the table of --rows" in single.stderr

@@ -13,7 +13,7 @@ S1, S2 = Sphere(0.02, **STEEL), Sphere(0.04, **STEEL)
 
 def du_wang(params, v0):
     return restitution_sweep(
-        S1, S2, v0, 25, yield_strength=params["sy"], pressure_factor=params.get("p0_factor", 2.57)
+        S1, S2, v0, 25, yield_strength=params["sy"], p0_factor=params.get("p0_factor", 2.57)
     )
 
 

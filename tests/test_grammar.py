@@ -32,10 +32,10 @@ def _option_line(text: str, option: str) -> str:
     lines joined."""
     lines = text[text.index("\nOptions:\n") :].splitlines()
     for i, line in enumerate(lines):
-        if re.match(rf"\s+(-\w, )?{re.escape(option)}\b", line):
+        if re.match(rf"\s+(-\w, )?{re.escape(option)}(?=\s|$)", line):
             entry = [line]
             for more in lines[i + 1 :]:
-                if re.match(r"\s+-", more) or not more.strip():
+                if re.match(r" {1,2}-", more) or not more.strip():
                     break
                 entry.append(more)
             return " ".join(" ".join(entry).split())
@@ -65,6 +65,11 @@ def _option_line(text: str, option: str) -> str:
         ("elastoplastic", "--py", "PRESSURE"),
         ("elastoplastic", "--k-load", "STIFFNESS"),
         ("tables", "--format", "[table|csv|json]"),
+        ("elastoplastic", "--interpolation", "[linear|pchip]"),
+        ("collide3d", "--interpolation", "[linear|pchip]"),
+        ("batch", "--scheduler", "NAME|ADDRESS"),
+        ("yield-limit", "--sphere", "[1|2]"),
+        ("yield-limit", "--resize", "[1|2]"),
     ],
 )
 def test_each_option_names_its_value_or_lists_its_choices(command, option, metavar):
@@ -77,10 +82,8 @@ def test_no_option_of_any_command_shows_text_for_a_number_or_a_choice():
 
     for command in COMMAND_MODULES:
         for line in _help(command).splitlines():
-            match = re.match(r"\s+(?:-\w, )?(--[\w-]+) TEXT\b", line)
-            # TEXT is left to free text: the Dask scheduler's name or address, a law's
-            # interpolation (a choice of the law registry)
-            assert match is None or match[1] in ("--scheduler", "--interpolation"), line
+            # no exemption: a free text names what it holds (--scheduler NAME|ADDRESS)
+            assert not re.match(r"\s+(?:-\w, )?(--[\w-]+) TEXT\b", line), line
 
 
 # --- usage errors in the form of every other error -----------------------------------------
@@ -94,8 +97,15 @@ def test_no_option_of_any_command_shows_text_for_a_number_or_a_choice():
         (["elastic", "--method", "xx"], "impact: error: --method: 'xx' is not one of"),
         (["collide2d", "--m1", "1"], "impact: error: missing --m2: it is required"),
         (["elastic", "--materail", "steel"], "did you mean --material"),
+        (["collide3d", "--rows"],
+         "impact: error: --rows needs a value (see 'impact collide3d --help')"),
+        (["batch"], "impact: error: missing IN: it is required (see 'impact batch --help')"),
+        (["fit"], "impact: error: missing DATA: it is required"),
+        (["elastic", "a", "b"],
+         "impact: error: unexpected arguments a b: it takes options only (see 'impact elastic"),
+        (["batch", "a.csv", "b"], "impact: error: unexpected argument b: it takes IN and"),
     ],
-)
+)  # fmt: skip
 def test_usage_errors_are_one_line_impact_error_exit_2(args, expected):
     result = run_impact(*args)
     assert result.returncode == 2
@@ -105,7 +115,39 @@ def test_usage_errors_are_one_line_impact_error_exit_2(args, expected):
     assert expected in lines[0]
 
 
+def test_damping_errors_name_what_was_given_and_the_model_s_own_dependence():
+    base = ["collide2d", "--m1", "1", "--m2", "1", "--v1", "1,0", "--p1=0,0", "--p2=1,0",
+            "--damping", "tsuji", "--alpha", "0.1"]  # fmt: skip
+    plastic = run_impact(*base, "--model", "elastoplastic").stderr
+    assert plastic.endswith("not --model elastoplastic\n") and "--e" not in plastic
+    assert run_impact(*base, "--e", "0.5").stderr.endswith("not --e\n")
+    for name, words in (("hunt-crossley", "alpha V0"),
+                        ("viscoelastic", "alpha (K/m)^(2/5) V0^(1/5)")):  # fmt: skip
+        assert DAMPING_LAWS[name].restitution_depends_on == words
+        result = run_impact("restitution", *SEC_44, "--damping", name, "--e", "0.8")
+        assert result.returncode == 2 and f"its e depends on {words}," in result.stderr
+        assert f"'impact elastic --damping {name} --e E'" in result.stderr
+
+
 # --- help that says what happens ------------------------------------------------------------
+
+
+def test_collide2d_takes_a_law_alone_as_collide3d_does():
+    """--law thornton implies the model in collide2d as in collide3d (it asked for --model
+    elastoplastic); both helps word the default the same."""
+    pair = ["collide2d", "--m1", "0.05", "--m2", "0.05", "--v1", "1,0", "--p1=0,0",
+            "--p2=0.02,0", "--d1", "20mm", "--d2", "20mm", "--material", "steel", "-f", "json"]
+    alone = run_impact(*pair, "--law", "thornton")
+    both = run_impact(*pair, "--law", "thornton", "--model", "elastoplastic")
+    assert alone.returncode == 0, alone.stderr
+    assert json.loads(alone.stdout) == json.loads(both.stdout)
+    assert json.loads(alone.stdout)["inputs"]["law"] == "thornton"
+    assert 0 < json.loads(alone.stdout)["summary"]["restitution"] < 1
+    clash = run_impact(*pair, "--law", "thornton", "--model", "elastic")
+    assert clash.returncode == 2 and "give one normal law" in clash.stderr
+    for command in ("collide2d", "collide3d"):
+        text = " ".join(_option_line(_help(command), "--law").split())
+        assert "Default: hertz, e = 1; du-wang with --model elastoplastic." in text, command
 
 
 def test_law_default_is_what_runs_without_law():
@@ -125,6 +167,8 @@ def test_law_default_is_what_runs_without_law():
 def test_restitution_target_e_works_for_tsuji_and_says_why_not_for_hunt_crossley():
     text = " ".join(_help("restitution").split())
     assert "with --damping tsuji only" in text
+    # --e means another thing in collide2d and collide3d, and every help of it says so
+    assert "impact collide2d's and collide3d's --e is another thing" in text
     result = run_impact("restitution", *SEC_44, "--v-max", "1m/s", "--count", "4",
                         "--damping", "tsuji", "--e", "0.8", "-f", "csv")  # fmt: skip
     assert result.returncode == 0, result.stderr
@@ -142,6 +186,35 @@ def test_restitution_format_help_says_what_its_csv_holds():
     assert "csv (one row per impact velocity)" in line
 
 
+def test_d2_is_required_and_the_helps_say_so():
+    for command in ("elastic", "elastoplastic", "restitution", "collide3d", "compare-laws",
+                    "fit"):  # fmt: skip
+        assert "Required." in _option_line(_help(command), "--d2"), command
+    assert "Required, unless --v0" in _option_line(_help("yield-limit"), "--d2")
+    assert "a copy of sphere 1" in _option_line(_help("timestep"), "--d2")
+    result = run_impact("yield-limit", "--d1", "20mm", "--material", "steel")
+    assert result.returncode == 2 and "missing --d2" in result.stderr
+
+
+def test_batch_help_lists_the_law_and_damping_columns_of_the_registry():
+    from impactcli.laws.registry import LAWS, parameter_laws
+
+    text = " ".join(_help("batch").split())
+    assert f"law ({', '.join(LAWS)};" in text
+    for name in parameter_laws():
+        assert re.search(rf"[ (]{name} \(", text), name
+    assert f"damping ({', '.join(DAMPING_LAWS)};" in text and "target e" in text
+
+
+def test_v0_and_v1_helps_say_which_velocity_each_is():
+    assert "V0 = V1 + V2 is the velocity of approach" in " ".join(
+        _option_line(_help("elastic"), "--v1").split()
+    )
+    for command in ("yield-limit", "timestep"):
+        text = " ".join(_option_line(_help(command), "--v0").split())
+        assert "V0 = V1 + V2" in text and "not a sphere's --v1" in text, command
+
+
 def test_v2_defaults_to_rest_in_every_command():
     for command in ("elastic", "elastoplastic", "collide2d", "collide3d"):
         assert "at rest" in " ".join(_option_line(_help(command), "--v2").split()), command
@@ -156,12 +229,33 @@ def test_v2_defaults_to_rest_in_every_command():
     assert json.loads(default.stdout)["summary"] == json.loads(given.stdout)["summary"]
 
 
-def test_damped_default_n_differs_between_fit_and_the_others_and_both_helps_say_so():
-    for command in ("elastic", "restitution"):
+def test_damped_default_n_is_400_everywhere_but_fit_and_the_helps_say_so(tmp_path):
+    """compare-laws and batch ran a damped impact with n = 25 (e = 0.754213) where elastic
+    runs 400 (0.754181): one default, impactcli.impact.DAMPED_DEFAULT_N."""
+    from impactcli.cli.common import DAMPED_DEFAULT_N as CLI_DEFAULT
+    from impactcli.impact import DAMPED_DEFAULT_N
+
+    assert CLI_DEFAULT == DAMPED_DEFAULT_N == 400
+    damped = ["--damping", "tsuji", "--alpha", "0.2"]
+    one = json.loads(run_impact("elastic", *SEC_44, "--v1", "0.25", *damped, "-f", "json").stdout)
+    e = one["summary"]["restitution"]
+    assert e == pytest.approx(0.754181, abs=1e-6)
+    compared = run_impact("compare-laws", *SEC_44, "--v1", "0.25", *damped, "-f", "json")
+    document = json.loads(compared.stdout)
+    assert document["laws"]["hertz+tsuji"]["restitution"] == e
+    assert document["inputs"]["n"] == 25 and document["inputs"]["damping_n"] == 400
+    rows = tmp_path / "rows.csv"
+    rows.write_text("d1,d2,v1,v2,material,model,damping,alpha\n"
+                    "20mm,40mm,0.25,0,steel,elastic,tsuji,0.2\n")  # fmt: skip
+    batch = run_impact("batch", str(rows))
+    assert float(next(csv.DictReader(io.StringIO(batch.stdout)))["restitution"]) == e
+    explicit = run_impact("batch", str(rows), "--n", "25")
+    assert float(next(csv.DictReader(io.StringIO(explicit.stdout)))["restitution"]) != e
+    for command in ("elastic", "restitution", "compare-laws", "batch"):
         text = " ".join(_option_line(_help(command), "--n").split())
-        assert "400 with --damping" in text and "impact fit takes 50" in text
-    text = " ".join(_help("fit").split())
-    assert "50 with --damping" in text and "n = 400" in text
+        assert "Default 25, 400 " in text and "impact fit takes 50" in text, command
+    text = " ".join(_option_line(_help("fit"), "--n").split())
+    assert "50 with --damping, for speed" in text and "take 400 with damping" in text
 
 
 @pytest.mark.parametrize("name, alphas", [("tsuji", [0.01, 0.1, 0.5, 0.8]),
@@ -334,3 +428,99 @@ def test_contact_radius_warning_names_no_law_and_reads_above_its_limit():
                         "--law", "thornton", "-f", "csv")  # fmt: skip
     assert "contact radius / R" in result.stderr and "Du & Wang" not in result.stderr
     assert DATA.exists()
+
+
+# --- text as written: no Rich markup -------------------------------------------------------
+
+
+@pytest.mark.parametrize("power", [-15, -12, -9, -6, -3, 0, 3, 6, 9])
+def test_a_unit_in_brackets_is_printed_in_every_title_header_caption_and_cell(power):
+    """Rich read '[mJ]' and '[nJ]' as style tags and dropped them (the energy table of
+    impact collide3d): the consoles print text as written, for every SI prefix."""
+    from impactcli.cli.common import console, quantity_table
+    from impactcli.formatting import unit_scale
+
+    unit = unit_scale([10.0**power * 2.5], "J").unit
+    table = quantity_table(f"Energy dissipated [{unit}]", ("", f"value [{unit}]"),
+                           [(f"[{unit}] [bold]x[/bold]", "1.5")])  # fmt: skip
+    table.caption = f"in [{unit}]"
+    stream = io.StringIO()
+    console(stream).print(table)
+    text = stream.getvalue()
+    assert text.count(f"[{unit}]") == 4, text
+    assert "[bold]x[/bold]" in text
+
+
+def test_collide3d_energy_table_keeps_its_unit():
+    args = ["collide3d", "--d1", "20mm", "--material", "steel", "--d2", "inf", "--m2", "inf",
+            "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1", "--v1", "1m/s@45deg", "--mu", "0.3",
+            "-f", "table"]  # fmt: skip
+    screen = run_impact(*args, env={"COLUMNS": "160"}).stdout
+    assert "Energy dissipated [mJ]" in screen
+
+
+def test_collide3d_and_collide2d_give_the_advice_of_elastic_for_the_same_normal_impact():
+    """5 m/s steel on steel, head on: elastic warns of first yield and of a contact radius
+    beyond 0.1 R; collide3d gave the first only, collide2d (the spheres known) neither."""
+    elastic = run_impact("elastic", *SEC_44, "--v1", "5", "-f", "csv").stderr
+    spheres = run_impact("collide3d", *SEC_44, "--p1", "0,0,0", "--p2", "0,0,0.03",
+                         "--v1", "0,0,5", "-f", "csv").stderr  # fmt: skip
+    plane = run_impact("collide2d", "--m1", "32.67g", "--m2", "261.4g", *SEC_44,
+                       "--v1", "5,0", "--p1=0,0", "--p2=0.03,0", "-f", "csv").stderr  # fmt: skip
+    radius = "contact radius / R = 0.11 > 0.1 from"
+    assert radius in elastic and radius in spheres and radius in plane
+    first = "exceeds the first-yield velocity 0.07846 m/s"
+    assert first in elastic and first in spheres
+    assert "(v1 - v2).n = 5 m/s exceeds the first-yield velocity" in plane
+    assert "use --model elastoplastic (or --law)" in plane
+    # without the spheres' properties, e = 1 needs the masses alone and says nothing
+    bare = run_impact("collide2d", "--m1", "1", "--m2", "1", "--v1", "5,0", "--p1=0,0",
+                      "--p2=1,0", "-f", "csv")  # fmt: skip
+    assert bare.returncode == 0 and bare.stderr == ""
+
+
+# --- one SI-prefix rule, no rounding noise, whole units --------------------------------------
+
+
+def test_collide2d_uses_the_si_prefixes_of_collide3d():
+    screen = run_impact("collide2d", "--m1", "0.05kg", "--m2", "0.15kg", "--v1", "3m/s@30deg",
+                        "--v2", "2m/s@50deg", "--p1=-1,2", "--p2=2,-2", "--paper-angles",
+                        "-f", "table", env={"COLUMNS": "120"}).stdout  # fmt: skip
+    assert "│ 240.988 │ mN s │" in screen and "0.240988" not in screen
+    assert re.search(r"momentum x\s+│\s+322\.74 │\s+322\.74 │ mN s", screen)
+    assert "kg m/s" not in screen and re.search(r"energy\s+│\s+525 │\s+525 │ mJ", screen)
+
+
+def test_rounding_noise_reads_0_and_the_helps_say_below_what():
+    """Chung & Ooi's test 4 sticks: the slip after, the tangential restitution and the
+    rebound angle are 0 to rounding (2.2e-16 m/s, -1.1e-16, 3.8e-15 deg on main)."""
+    from impactcli.cli.common import NOISE_RTOL
+
+    args = ["collide3d", "--d1", "5mm", "--E1", "380GPa", "--nu1", "0.23", "--rho1", "4000",
+            "--d2", "inf", "--m2", "inf", "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1",
+            "--v1", "3.9m/s@30deg", "--mu", "0.092"]  # fmt: skip
+    screen = run_impact(*args, "-f", "table", env={"COLUMNS": "120"}).stdout
+    assert not re.search(r"\de-1\d", screen), screen
+    for label in ("slip u_t' along the initial slip", "tangential restitution",
+                  "rebound angle at the contact"):  # fmt: skip
+        assert re.search(rf"{re.escape(label)}\s+│\s+0 │", screen), label
+    summary = json.loads(run_impact(*args, "-f", "json").stdout)["summary"]
+    assert 0 < abs(summary["rebound_angle"]) < 1e-12  # CSV and JSON keep every digit
+    for command in ("collide2d", "collide3d"):
+        text = " ".join(_help(command).split())
+        assert f"a value below {NOISE_RTOL:g} of its scale" in text, command
+
+
+@pytest.mark.parametrize("width", [44, 52, 60, 68, 76])
+def test_a_narrow_terminal_keeps_each_unit_of_a_header_whole(width):
+    """At 60 columns the history header read 'v2 (mm/s' over ')'."""
+    screen = run_impact("elastic", *SEC_44, "--v1", "5mm/s", "--v2", "7.5mm/s", "-f", "table",
+                        env={"COLUMNS": str(width)}).stdout  # fmt: skip
+    lines = screen.splitlines()
+    top = next(i for i, line in enumerate(lines) if line.lstrip().startswith("┏"))
+    rule = next(i for i, line in enumerate(lines) if line.lstrip().startswith("┡"))
+    columns = zip(*(line.strip().strip("┃").split("┃") for line in lines[top + 1 : rule]))
+    for cells in columns:
+        header = " ".join(" ".join(cell.split()) for cell in cells).strip()
+        assert header.count("(") == header.count(")"), header
+        assert re.fullmatch(r"\w+( \((µs|µm|N|mm/s|m/s|nm|mm|s|m)\))?", header), header

@@ -228,7 +228,7 @@ def _public_api() -> dict[str, tuple]:
                                 density=7800.0, yield_strength=1e9),
                    lambda s: [s.total_mass, s.radius, s.compliance]),  # fmt: skip
         "elastic_impact": (elastic_impact, dict(pair), impact_keys),
-        "elastoplastic_impact": (elastoplastic_impact, dict(pair, pressure_factor=2.57),
+        "elastoplastic_impact": (elastoplastic_impact, dict(pair, p0_factor=2.57),
                                  impact_keys),  # fmt: skip
         "law_impact": (lambda **kw: law_impact(**kw, law="thornton"), dict(pair), impact_keys),
         "damped_impact": (lambda **kw: damped_impact(**kw, damping="tsuji"),

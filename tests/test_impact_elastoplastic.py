@@ -335,7 +335,7 @@ def test_the_lower_yield_strength_governs():
     assert out["delta_y"] == pytest.approx(DuWangReference(s1, s2, 400e6).delta_y, rel=1e-14)
     given = elastoplastic_impact(s1, s2, 2.0, 1.0, yield_strength=700e6).summary
     assert given["delta_y"] == pytest.approx(DuWangReference(s1, s2, 700e6).delta_y, rel=1e-14)
-    factor = elastoplastic_impact(s1, s2, 2.0, 1.0, pressure_factor=2.0).summary
+    factor = elastoplastic_impact(s1, s2, 2.0, 1.0, p0_factor=2.0).summary
     assert factor["delta_y"] == pytest.approx(out["delta_y"] * (2.0 / 2.57) ** 2, rel=1e-13)
 
 
@@ -348,7 +348,7 @@ def test_missing_or_bad_yield_strength_raises():
         with pytest.raises(ValueError, match="yield strength"):
             elastoplastic_impact(s1, s2, 1.0, 0.0, yield_strength=bad)
     with pytest.raises(ValueError, match="pressure factor"):
-        elastoplastic_impact(s1, s2, 1.0, 0.0, yield_strength=1e9, pressure_factor=0.0)
+        elastoplastic_impact(s1, s2, 1.0, 0.0, yield_strength=1e9, p0_factor=0.0)
     with pytest.raises(ValueError, match="do not approach"):
         elastoplastic_impact(s1, s2, 1.0, -1.0, yield_strength=1e9)
 

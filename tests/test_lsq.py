@@ -40,7 +40,7 @@ def scipy_solver(fun, x0, lower, upper, *, rel_step, xtol, ftol, gtol, max_nfev)
 
 def du_wang(params, v0):
     return restitution_sweep(
-        S1, S2, v0, 25, yield_strength=params["sy"], pressure_factor=params.get("p0_factor", 2.57)
+        S1, S2, v0, 25, yield_strength=params["sy"], p0_factor=params.get("p0_factor", 2.57)
     )
 
 

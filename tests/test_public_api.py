@@ -20,7 +20,9 @@ def test_the_public_api_is_exported_from_the_package():
     assert len(impactcli.__all__) >= 10
     for name in ("Sphere", "elastic_impact", "elastoplastic_impact", "law_impact",
                  "damped_impact", "oblique_collision", "oblique_collision_3d",
-                 "batch_impacts", "restitution_sweep", "material", "InputError"):  # fmt: skip
+                 "batch_impacts", "restitution_sweep", "material", "InputError",
+                 "ImpactResult", "DampedImpactResult", "ObliqueCollision",
+                 "Collision3D"):  # fmt: skip
         assert name in impactcli.__all__, name
         assert getattr(impactcli, name) is not None
     assert set(impactcli.__all__) <= set(dir(impactcli))
@@ -98,3 +100,67 @@ def test_results_carry_the_warnings_the_command_line_prints(command, call):
     warned = [line.removeprefix("impact: warning: ") for line in printed.splitlines()
               if line.startswith("impact: warning: ")]  # fmt: skip
     assert warned == list(result.warnings)
+
+
+def test_a_3d_collision_carries_the_warnings_of_its_normal_impact():
+    """normal_restitution_and_history gives (e, history) with the warnings of the normal
+    impact; oblique_collision_3d(warnings=) carries them; impact collide3d prints them from
+    there; none of them sends a Python caller to a command only."""
+    from impactcli.collision3d import normal_restitution_and_history
+
+    s1 = impactcli.Sphere.from_material(0.02, "steel")
+    s2 = impactcli.Sphere.from_material(0.04, "steel")
+    normal = normal_restitution_and_history(s1, s2, 5.0)
+    e, history = normal
+    assert e == normal.restitution and history is None and len(normal.warnings) == 2
+    c = impactcli.oblique_collision_3d(s1.total_mass, s2.total_mass, (0, 0, 5.0), (0, 0, 0),
+                                       (0, 0, 0), (0, 0, 0.03), 0.02, 0.04, restitution=e,
+                                       warnings=normal.warnings)  # fmt: skip
+    assert c.warnings == normal.warnings
+    assert impactcli.oblique_collision_3d(s1.total_mass, s2.total_mass, (0, 0, 5.0), (0, 0, 0),
+                                          (0, 0, 0), (0, 0, 0.03), 0.02, 0.04).warnings == ()
+    printed = run_impact("collide3d", *SEC_44, "--p1", "0,0,0", "--p2", "0,0,0.03", "--v1",
+                         "0,0,5", "-f", "csv").stderr  # fmt: skip
+    assert [line.removeprefix("impact: warning: ") for line in printed.splitlines()] == list(
+        c.warnings
+    )
+    assert "law='du-wang' in Python" in c.warnings[0]
+    damped = normal_restitution_and_history(s1, s2, 5.0, damping="tsuji", alpha=0.1)
+    assert any("first-yield" in w for w in damped.warnings)
+    plain = impactcli.elastic_impact(s1, s2, 5.0, 0.0).warnings[0]
+    assert "elastoplastic_impact in Python" in plain
+
+
+def test_every_result_type_a_public_function_returns_is_exported():
+    import typing
+
+    for name in impactcli.__all__:
+        thing = getattr(impactcli, name)
+        if inspect.isfunction(thing):
+            returned = typing.get_type_hints(thing).get("return")
+            if isinstance(returned, type) and returned.__module__.startswith("impactcli"):
+                assert returned.__name__ in impactcli.__all__, (name, returned)
+
+
+def test_p0_factor_is_one_name_and_pressure_factor_is_deprecated():
+    """--p0-factor, the law parameter p0_factor and the batch column: one name in Python
+    too (elastoplastic_impact, restitution_sweep, batch_impacts took pressure_factor=)."""
+    s1 = impactcli.Sphere.from_material(0.02, "steel")
+    s2 = impactcli.Sphere.from_material(0.04, "steel")
+    calls = {
+        "elastoplastic_impact": lambda **kw: impactcli.elastoplastic_impact(
+            s1, s2, 2.0, 1.0, **kw).summary["restitution"],
+        "restitution_sweep": lambda **kw: float(impactcli.restitution_sweep(
+            s1, s2, [3.0], **kw)["restitution"][0]),
+        "batch_impacts": lambda **kw: float(impactcli.batch_impacts(
+            0.02, 0.04, 2.0, 1.0, 210e9, 0.3, 210e9, 0.3, rho1=7800.0, rho2=7800.0,
+            sy1=1e9, sy2=1e9, plastic=True, **kw)["restitution"][0]),
+    }  # fmt: skip
+    for name, call in calls.items():
+        assert "p0_factor" in inspect.signature(getattr(impactcli, name)).parameters
+        new = call(p0_factor=2.0)
+        assert new != call()
+        with pytest.warns(DeprecationWarning, match=rf"{name}\(pressure_factor=\)"):
+            assert call(pressure_factor=2.0) == new
+        with pytest.raises((TypeError, impactcli.InputError), match="not both"):
+            call(p0_factor=3.0, pressure_factor=2.0)

@@ -6,6 +6,7 @@ matplotlib) inside the function that needs them, so ``impact --help`` starts fas
 
 from __future__ import annotations
 
+import re
 import sys
 from importlib import import_module
 
@@ -105,11 +106,17 @@ _TYPE_WORDS = {
 }
 
 
-def usage_message(exc: BaseException) -> str:
+def usage_message(exc: BaseException, command: str | None = None) -> str:
     """The one line of a Typer/Click usage error, in the words of every other error
-    (``impact: error: ...``): the option first, then what is wrong, then where to look."""
+    (``impact: error: ...``): the option first, then what is wrong, then where to look (the
+    help of the command, ``command`` when Click does not say which it is).
+
+    >>> import click
+    >>> usage_message(click.BadOptionUsage("--rows", "requires an argument"), "impact collide3d")
+    "--rows needs a value (see 'impact collide3d --help')"
+    """
     ctx = getattr(exc, "ctx", None)
-    command = ctx.command_path if ctx is not None else "impact"
+    command = ctx.command_path if ctx is not None else (command or "impact")
     see = f" (see '{command} --help')"
     name = type(exc).__name__
     if name == "NoSuchOption":
@@ -119,12 +126,14 @@ def usage_message(exc: BaseException) -> str:
         close = difflib.get_close_matches(exc.option_name, known, n=3, cutoff=0.75)
         hint = f"; did you mean {' or '.join(close)}?" if close else ""
         return f"no such option {exc.option_name} for '{command}'{hint}{see}"
+    if name == "BadOptionUsage" and "requires an argument" in str(exc.message):
+        return f"{exc.option_name} needs a value{see}"
     if name in ("BadParameter", "MissingParameter") and getattr(exc, "param", None) is not None:
         param = exc.param
         option = (
             max(param.opts, key=len)
             if param.param_type_name == "option"
-            else (param.name or "").upper()
+            else param.metavar or (param.name or "").upper()
         )
         if name == "MissingParameter":
             return f"missing {option}: it is required{see}"
@@ -135,13 +144,26 @@ def usage_message(exc: BaseException) -> str:
         return f"{option}: {message}{see}"
     message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
     message = " ".join(message.split()).removesuffix(".")
-    return f"{message}{see}"
+    extra = re.fullmatch(r"Got unexpected extra arguments?(?:\(s\))? \((.*)\)", message)
+    if extra:
+        params = ctx.command.params if ctx is not None else []
+        arguments = [p for p in params if p.param_type_name == "argument"]
+        takes = (
+            f"it takes {' '.join(p.metavar or (p.name or '').upper() for p in arguments)} and "
+            "options"
+            if arguments
+            else "it takes options only"
+        )
+        plural = "s" if len(extra[1].split()) > 1 else ""
+        return f"unexpected argument{plural} {extra[1]}: {takes}{see}"
+    return f"{message[:1].lower()}{message[1:]}{see}"
 
 
-def _usage_error(exc: BaseException) -> int | None:
+def _usage_error(exc: BaseException, command: str | None = None) -> int | None:
     """Typer/Click usage errors (bad option values, unknown options) as one line
     ``impact: error: ...``, exit 2, as every other error; ``impact`` alone prints the help,
-    exit 0. None for any other exception."""
+    exit 0. None for any other exception. ``command``: the command line's command
+    (``impact collide3d``), for an error that Click does not place."""
     if isinstance(exc, typer.Abort):
         return 130
     if not isinstance(exc, typer.TyperException):
@@ -150,7 +172,7 @@ def _usage_error(exc: BaseException) -> int | None:
     if type(exc).__name__ == "NoArgsIsHelpError":
         print(ctx.get_help() if ctx else exc)
         return 0
-    print(f"impact: error: {usage_message(exc)}", file=sys.stderr)
+    print(f"impact: error: {usage_message(exc, command)}", file=sys.stderr)
     return 2
 
 
@@ -161,6 +183,11 @@ def main(argv: list[str] | None = None) -> None:
     from impactcli.cli.runner import run
 
     args = sys.argv[1:] if argv is None else list(argv)
-    app = build_app(args[0] if args and args[0] in COMMAND_MODULES else None)
-    status = run(lambda: app(args=args, prog_name="impact", standalone_mode=False), _usage_error)
+    command = args[0] if args and args[0] in COMMAND_MODULES else None
+    app = build_app(command)
+    where = f"impact {command}" if command else "impact"
+    status = run(
+        lambda: app(args=args, prog_name="impact", standalone_mode=False),
+        lambda exc: _usage_error(exc, where),
+    )
     sys.exit(status)

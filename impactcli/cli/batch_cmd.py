@@ -12,11 +12,19 @@ import sys
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import Optional
+from typing import Annotated, Optional
 
 import typer
 
-from impactcli.cli.common import Model, OutputFile, Segments, Split, note, warn
+from impactcli.cli.common import (
+    Model,
+    OutputFile,
+    Split,
+    damped_segments_help,
+    note,
+    segments_option,
+    warn,
+)
 from impactcli.errors import InputError
 from impactcli.io.writers import TableFormat, table_format
 from impactcli.limits import MAX_CHUNK_ROWS
@@ -96,7 +104,7 @@ def batch(
         help="Output csv or parquet. Default: from OUT's extension (.parquet, .pq, .parq), "
         "else CSV; another extension than .csv is refused.",
     ),
-    n: Segments = 25,
+    n: Annotated[Optional[int], segments_option(damped_segments_help("on damped rows"))] = None,
     split: Split = typer.Option(
         Split.mass,
         "--split",
@@ -127,6 +135,7 @@ def batch(
     scheduler: Optional[str] = typer.Option(
         None,
         "--scheduler",
+        metavar="NAME|ADDRESS",
         help="Dask engine: threads (default), processes, synchronous, local (a LocalCluster) "
         "or the address of a distributed scheduler (tcp://host:8786).",
     ),
@@ -144,6 +153,8 @@ def batch(
     elastoplastic rows; optional m1, m2. Values are SI numbers or strings with units (20mm,
     7.5 mm/s, 210GPa); d2 = inf is a flat target, m2 = inf a fixed one, E = inf rigid.
     Velocities are positive toward the other sphere. Other columns are carried through.
+
+    LAW_COLUMNS
 
     Output: each input row with its columns, then the summary of 'impact elastic' /
     'impact elastoplastic' in SI (the elastoplastic keys empty on elastic rows), then
@@ -177,6 +188,29 @@ def batch(
         warn(report.summary())
     if sys.stderr.isatty():  # the closing line of an interactive run
         note(_closing_line(report.rows, report.invalid, time.monotonic() - start))
+
+
+def _law_columns() -> str:
+    """The paragraph of ``impact batch --help`` on the law and damping columns, from the
+    registry: every law, parameter column and damping model the rows may name."""
+    from impactcli.io.table import DAMPING_COLUMNS, SPLITS, law_parameter_columns
+    from impactcli.laws.base import SEPARATIONS
+    from impactcli.laws.registry import DAMPING_LAWS, LAWS, alpha_units
+
+    parameters = ", ".join(
+        f"{column} ({laws})" for column, (_, laws) in law_parameter_columns().items()
+    )
+    alpha, e = DAMPING_COLUMNS
+    return (
+        f"Optional: law ({', '.join(LAWS)}; it wins over model) with its parameter columns, "
+        f"named as its options with _ for - ({parameters}); damping "
+        f"({', '.join(DAMPING_LAWS)}; on elastic rows) with {alpha} [{alpha_units()}] or a "
+        f"target {e}, and separation ({' or '.join(SEPARATIONS)}); split "
+        f"({', '.join(SPLITS)}). An empty cell takes the option's default."
+    )
+
+
+batch.__doc__ = (batch.__doc__ or "").replace("LAW_COLUMNS", _law_columns())
 
 
 def _closing_line(rows: int, invalid: int, seconds: float) -> str:

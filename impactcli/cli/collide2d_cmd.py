@@ -22,9 +22,16 @@ from impactcli.cli.common import (
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.errors import InputError
-from impactcli.laws.registry import DEFAULT_LAW
+from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.validation import check_restitution
+
+#: --e of impact collide2d and collide3d: a given e (impact elastic's --e is a target).
+E_GIVEN_HELP = (
+    "instead of a normal law (--law, --model, --damping): a given e, used as it is. (impact "
+    "elastic's and restitution's --e is another thing: the e that --damping is to give, "
+    "its alpha solved for.)"
+)
 
 CONVENTIONS = {
     False: "angles counter-clockwise from +x",
@@ -33,9 +40,7 @@ CONVENTIONS = {
 }
 
 
-@with_law_options(
-    default=f"none, e = 1 (elastic); {DEFAULT_LAW} with --model elastoplastic, which --law needs"
-)
+@with_law_options(default=f"{ELASTIC_LAW}, e = 1; {DEFAULT_LAW} with --model elastoplastic")
 @with_damping_options(target_e=False)  # collide2d's --e is a given e, not a target of alpha
 def collide2d(
     m1: str = typer.Option(..., "--m1", help="Mass of sphere 1, e.g. 50g or 0.05 (kg)."),
@@ -81,27 +86,36 @@ def collide2d(
     model: Optional[Model] = typer.Option(
         None,
         "--model",
-        help="Contact model giving the coefficient of restitution: elastic (e = 1), or "
-        "elastoplastic (e from the FILM run of --law, Du & Wang by default, at the normal "
-        "impact velocity; needs --d1, --d2, a material and what the law needs). Default: "
-        "elastic, unless --e is given.",
+        help=f"Normal law when --law is not given: elastic ({ELASTIC_LAW}, e = 1, the default) "
+        f"or elastoplastic ({DEFAULT_LAW}: e from its FILM run at the normal approach "
+        "velocity; needs --d1, --d2, a material and what the law needs).",
     ),
     law: LawOptions = None,
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     d1: Optional[str] = typer.Option(
-        None, "--d1", help="Diameter of sphere 1 [m] (elastoplastic)."
+        None,
+        "--d1",
+        help="Diameter of sphere 1 [m]: needed by --law, --model elastoplastic and --damping "
+        "(which run the normal impact), and to draw the spheres and to check the advice of "
+        "an elastic impact.",
     ),
     d2: Optional[str] = typer.Option(
-        None, "--d2", help="Diameter of sphere 2 [m] (elastoplastic)."
+        None, "--d2", help="Diameter of sphere 2 [m], as --d1; 'inf' is a flat target."
     ),
     material: Optional[str] = typer.Option(
-        None, "--material", help="Material of both spheres (elastoplastic; see impact materials)."
+        None,
+        "--material",
+        help="Material of both spheres (see 'impact materials'), as --d1.",
     ),
     material1: Optional[str] = typer.Option(None, "--material1", help="Material of sphere 1."),
     material2: Optional[str] = typer.Option(None, "--material2", help="Material of sphere 2."),
-    sy: Optional[str] = typer.Option(None, "--sy", help="Yield strength [Pa] (elastoplastic)."),
+    sy: Optional[str] = typer.Option(
+        None, "--sy", help="Yield strength of both spheres [Pa] (of an elastoplastic law)."
+    ),
     e: Optional[float] = typer.Option(
-        None, "--e", help="Coefficient of restitution 0 <= e <= 1, instead of --model."
+        None,
+        "--e",
+        help=f"Coefficient of restitution 0 <= e <= 1 {E_GIVEN_HELP}",
     ),
     paper_angles: bool = typer.Option(
         False,
@@ -138,10 +152,12 @@ def collide2d(
     impact collide2d --m1 0.05kg --m2 0.15kg --v1 3m/s@30deg --v2 2m/s@50deg
     --p1=-1,2 --p2=2,-2 --paper-angles
 
-    CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"}.
-    --plot draws the centres at contact with each sphere's velocity before and after (the
-    spheres too when --d1 and --d2 are given), and the four velocities from one origin with
-    the normal and the tangent; angles counter-clockwise from +x.
+    On screen each value has its SI prefix (mN s, mJ), and a value below 1e-12 of its scale
+    (the speeds; 180 deg for an angle) is rounding noise and reads 0 (CSV and JSON keep
+    every digit). CSV: one header line of the summary keys and one row; JSON: {"inputs",
+    "summary"}. --plot draws the centres at contact with each sphere's velocity before and
+    after (the spheres too when --d1 and --d2 are given), and the four velocities from one
+    origin with the normal and the tangent; angles counter-clockwise from +x.
     """
     import numpy as np
 
@@ -184,12 +200,20 @@ def collide2d(
         raise InputError("give either --model or --e, not both")
     damping_law, alpha, _, separation = damping.parse()
     if damping_law is not None and (e is not None or model is Model.elastoplastic):
-        raise InputError("--damping goes with --model elastic (Hertz with damping), not --e")
+        clash = "--e" if e is not None else "--model elastoplastic"
+        raise InputError(
+            f"--damping goes with --model elastic (Hertz with damping), not {clash}"
+        )
     chosen = None
-    if law.names or law.given:
-        if model is not Model.elastoplastic:
-            raise InputError("--law and its parameters go with --model elastoplastic")
-    if model is Model.elastoplastic:
+    if law.names or law.given:  # the law implies the model, as in impact collide3d
+        clash = [name for name, given in (("--e", e is not None),
+                 ("--damping", damping_law is not None),
+                 ("--model elastic", model is Model.elastic)) if given]  # fmt: skip
+        if clash:
+            raise InputError(f"give one normal law: --law or {clash[0]}, not both")
+        default = DEFAULT_LAW if model is Model.elastoplastic else ELASTIC_LAW
+        (chosen,) = resolve_laws(law, default=(default,))
+    elif model is Model.elastoplastic:
         (chosen,) = resolve_laws(law)
     if e is not None:
         try:
@@ -197,18 +221,25 @@ def collide2d(
         except ValueError as exc:
             raise InputError(str(exc)) from None
         restitution, model_name = e, "given e"
+    elif chosen is not None:
+        kind = get_law(chosen.name).kind
+        restitution, model_name = 1.0, "elastic" if kind == "elastic" else "elastoplastic"
     else:
         restitution, model_name = 1.0, (model or Model.elastic).value
     v_rel_n = float(approach_velocity(vel1, vel2, pos1, pos2))
     contact = None
-    if model is Model.elastoplastic:
+    if chosen is not None:
         contact = ContactModel(chosen.name, chosen.params)
     elif damping_law is not None:
         contact = ContactModel(damping=damping_law, alpha=alpha, separation=separation)
         model_name = f"{model_name} with {damping_law} damping (alpha = {alpha:g})"
     if contact is not None and v_rel_n > 0.0:
         if d1 is None or d2 is None or (material is None and None in (material1, material2)):
-            which = "--model elastoplastic" if damping_law is None else "--damping"
+            which = (
+                "--damping" if damping_law is not None
+                else "--law" if law.names or law.given
+                else "--model elastoplastic"
+            )  # fmt: skip
             raise InputError(
                 f"{which} needs --d1, --d2 and --material (or --material1/--material2)"
             )
@@ -216,6 +247,8 @@ def collide2d(
             restitution = _normal_restitution(v_rel_n, contact, *spheres_from_options(spheres))
         except ValueError as exc:
             raise InputError(str(exc)) from None
+    elif e is None and v_rel_n > 0.0:  # Hertz, e = 1: its advice when the spheres are known
+        _elastic_advice(v_rel_n, spheres)
     try:  # the spheres must approach along the line of centres
         result = oblique_collision(mass1, mass2, vel1, vel2, pos1, pos2, restitution)
     except ValueError as exc:
@@ -259,13 +292,49 @@ def collide2d(
         _plot(plot, result, vel1, vel2, pos1, pos2, radii, model_name, restitution)
 
 
+#: What the warnings of collide2d call the normal impact's velocity, and what they advise.
+NORMAL_VELOCITY = "the approach velocity (v1 - v2).n"
+ELASTOPLASTIC_ADVICE = "--model elastoplastic (or --law)"
+
+
 def _normal_restitution(normal_velocity: float, model, sphere1, sphere2) -> float:
     """e of the normal impact at the approach velocity (v1 - v2).n [m/s] under the contact
     model ``model`` (:class:`~impactcli.impact.ContactModel`): the FILM run, sphere 2 at
-    rest."""
+    rest; its warnings (first yield of Hertz, damped or not; a contact radius beyond 0.1 R)
+    as impact collide3d gives them."""
     from impactcli.impact import impact
+    from impactcli.laws.registry import get_law
 
-    return float(impact(sphere1, sphere2, normal_velocity, 0.0, model).summary["restitution"])
+    result = impact(sphere1, sphere2, normal_velocity, 0.0, model)
+    elastic = model.damping is not None or get_law(model.law).name == ELASTIC_LAW
+    _warn_all(normal_velocity, result.summary["delta_max"], elastic, sphere1, sphere2)
+    return float(result.summary["restitution"])
+
+
+def _elastic_advice(normal_velocity: float, spheres) -> None:
+    """The warnings of the elastic (Hertz, e = 1) normal impact when the spheres are known
+    (--d1, --d2 and their materials): above the first-yield velocity, a contact radius
+    beyond 0.1 R, as impact elastic gives them for the same normal impact."""
+    from impactcli.impact import impact
+    from impactcli.spheres import spheres_from_options
+
+    try:
+        sphere1, sphere2 = spheres_from_options(spheres)
+    except InputError:  # the spheres are not all given: e = 1 needs only the masses
+        return
+    result = impact(sphere1, sphere2, normal_velocity, 0.0)
+    _warn_all(normal_velocity, result.summary["delta_max"], True, sphere1, sphere2)
+
+
+def _warn_all(normal_velocity: float, delta_max: float, elastic: bool, sphere1, sphere2) -> None:
+    from impactcli.cli.common import warn
+    from impactcli.collision3d import normal_law_warnings
+
+    for message in normal_law_warnings(
+        sphere1, sphere2, normal_velocity, delta_max, elastic, NORMAL_VELOCITY,
+        ELASTOPLASTIC_ADVICE,
+    ):  # fmt: skip
+        warn(message)
 
 
 def _radii(spheres) -> tuple[float, float] | None:
@@ -378,14 +447,20 @@ def _pair(vector) -> str:
 def _print_tables(
     stream: IO[str] | None, inputs: dict, s: dict[str, float], paper_angles: bool
 ) -> None:
-    from impactcli.cli.common import Table
-
-    def f(value: float) -> str:
-        return f"{value:.6g}"
+    """The tables of one collision, each value with the SI prefix of its row (one prefix
+    for all the velocities), as impact collide3d prints them
+    (:func:`impactcli.cli.common.screen_values`); rounding noise, below
+    :data:`~impactcli.cli.common.NOISE_RTOL` of the speeds (of 180 deg for an angle),
+    reads 0."""
+    from impactcli.cli.common import Table, screen_values
 
     out = console(stream)
+    both = {**inputs, **s}
+    speeds = [both[f"{i}_{key}"] for i in ("v1", "v2") for key in ("speed", "final_speed")]
+    top = max(speeds)
+    restitution = screen_values([inputs["restitution"]], "")[0][0]
     velocities = Table(
-        title=f"Oblique collision ({inputs['model']}, e = {f(inputs['restitution'])})",
+        title=f"Oblique collision ({inputs['model']}, e = {restitution})",
         caption=f"{CONVENTIONS[paper_angles]}; normal along n from sphere 1 to sphere 2, "
         "tangential along n turned 90° counter-clockwise",
     )
@@ -400,41 +475,52 @@ def _print_tables(
         "normal": ("normal", "final_normal", "m/s"),
         "tangential": ("tangential", "final_tangential", "m/s"),
     }
-    both = {**inputs, **s}
     for label, (before, after, unit) in rows.items():
-        cells = [f(both[f"{i}_{key}"]) for i in ("v1", "v2") for key in (before, after)]
-        velocities.add_row(label, *cells, unit)
+        values = [both[f"{i}_{key}"] for i in ("v1", "v2") for key in (before, after)]
+        scale = 180.0 if unit == "deg" else top
+        cells, shown = screen_values(values, unit, scale, prefix_from=speeds)
+        velocities.add_row(label, *cells, shown)
     out.print(velocities)
 
+    approach = s["approach_velocity"]
+    energy = s["kinetic_energy_before"]
     collision = quantity_table(
         "Line of centres and impulse",
         ("", "value", "unit"),
         (
-            (label, f(s[key]), unit)
-            for label, key, unit in (
-                ("line of centres angle", "line_of_centres_angle", "deg"),
-                ("approach velocity (v1 - v2).n", "approach_velocity", "m/s"),
-                ("separation velocity (v2' - v1').n", "separation_velocity", "m/s"),
-                ("coefficient of restitution", "restitution", ""),
-                ("normal impulse on sphere 2", "normal_impulse", "N s"),
-                ("energy dissipated", "energy_dissipated", "J"),
+            (label, *_one(screen_values([s[key]], unit, scale)))
+            for label, key, unit, scale in (
+                ("line of centres angle", "line_of_centres_angle", "deg", 180.0),
+                ("approach velocity (v1 - v2).n", "approach_velocity", "m/s", None),
+                ("separation velocity (v2' - v1').n", "separation_velocity", "m/s", approach),
+                ("coefficient of restitution", "restitution", "", None),
+                ("normal impulse on sphere 2", "normal_impulse", "N s", None),
+                ("energy dissipated", "energy_dissipated", "J", energy),
             )
         ),
     )
     out.print(collision)
-    totals = quantity_table(
-        "Conservation (eqs. 17a-c)",
-        ("", "before", "after", "unit"),
-        (
-            (label, f(s[f"{key}_before"]), f(s[f"{key}_after"]), unit)
-            for label, key, unit in (
-                ("momentum x", "momentum_x", "kg m/s"),
-                ("momentum y", "momentum_y", "kg m/s"),
-                ("kinetic energy", "kinetic_energy", "J"),
-            )
-        ),
-    )
+    momenta = [s[f"momentum_{a}_{when}"] for a in "xy" for when in ("before", "after")]
+    rows_out = []
+    for label, key, unit in (
+        ("momentum x", "momentum_x", "N s"),
+        ("momentum y", "momentum_y", "N s"),
+        ("kinetic energy", "kinetic_energy", "J"),
+    ):
+        values = [s[f"{key}_before"], s[f"{key}_after"]]
+        if unit == "N s":  # one prefix and one scale for both components
+            cells, shown = screen_values(values, unit, max(map(abs, momenta)), prefix_from=momenta)
+        else:
+            cells, shown = screen_values(values, unit)
+        rows_out.append((label, *cells, shown))
+    totals = quantity_table("Conservation (eqs. 17a-c)", ("", "before", "after", "unit"), rows_out)
     out.print(totals)
+
+
+def _one(shown: tuple[list[str], str]) -> tuple[str, str]:
+    """(text, unit) of one value of :func:`impactcli.cli.common.screen_values`."""
+    (text,), unit = shown
+    return text, unit
 
 
 def register(app: typer.Typer) -> None:

@@ -4,23 +4,24 @@ from __future__ import annotations
 
 import enum
 import math
-from typing import IO, Any, Optional
+from typing import IO, Annotated, Any, Optional
 
 import typer
 
+from impactcli.cli.collide2d_cmd import E_GIVEN_HELP
 from impactcli.cli.common import (
+    FORMAT_HELP,
     Format,
     Model,
     OutputFile,
-    OutputFormat,
     PlotFile,
     check_plot,
     console,
-    no_negative_zero,
     quantity_table,
     resolve_format,
     save_plot,
-    screen_value,
+    screen_values,
+    warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
@@ -34,6 +35,27 @@ from impactcli.validation import check_friction, check_restitution
 
 #: --model -> the law of the library it names.
 MODEL_LAWS = {Model.elastic: ELASTIC_LAW, Model.elastoplastic: DEFAULT_LAW}
+
+
+class Collide3dFormat(enum.StrEnum):
+    """``-f`` of impact collide3d: the formats of one collision, and parquet for --rows."""
+
+    table = "table"
+    csv = "csv"
+    json = "json"
+    parquet = "parquet"
+
+
+FORMAT_3D_HELP = FORMAT_HELP.replace(
+    "csv or json.",
+    "csv or json; with --rows csv or parquet (the table of collisions, as impact batch "
+    "writes it).",
+    1,
+).replace(
+    "(JSON for a .json file).",
+    "(JSON for a .json file; with --rows CSV, or Parquet for -o OUT.parquet).",
+    1,
+)
 
 
 class Tangential(enum.StrEnum):
@@ -99,7 +121,9 @@ def collide3d(
     ),
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     e: Optional[float] = typer.Option(
-        None, "--e", help="Coefficient of restitution 0 <= e <= 1 instead of a law (rigid only)."
+        None,
+        "--e",
+        help=f"Coefficient of restitution 0 <= e <= 1 (--tangential rigid only) {E_GIVEN_HELP}",
     ),
     mu: float = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0."),
     tangential: Tangential = typer.Option(
@@ -124,7 +148,9 @@ def collide3d(
         "impact batch); writes its columns and the results (-o OUT.csv or .parquet, else "
         "stdout as CSV); a bad row gets its reason in the error column.",
     ),
-    fmt: OutputFormat = None,
+    fmt: Annotated[
+        Optional[Collide3dFormat], typer.Option("--format", "-f", help=FORMAT_3D_HELP)
+    ] = None,
     output: OutputFile = None,
     plot: PlotFile = None,
     plot_force: Optional[str] = typer.Option(
@@ -159,10 +185,12 @@ def collide3d(
     impact collide3d --d1 5mm --E1 380GPa --nu1 0.23 --rho1 4000 --d2 inf --m2 inf --E2 inf
     --p1 0,0,0 --p2=0,0,-1 --v1 3.9m/s@30deg --mu 0.092 --tangential mindlin
 
-    CSV: one header line of the summary keys and one row; JSON: {"inputs", "summary"} (with
-    the tangential force history for mindlin). --plot draws the velocities before and after
-    in the plane of the impact (horizontal: the initial slip direction t, vertical: n),
-    projected on it; --plot-force the mindlin tangential force history.
+    On screen each value has its SI prefix (mN s, mJ), and a value below 1e-12 of its scale
+    (the speeds; 180 deg for an angle) is rounding noise and reads 0 (CSV and JSON keep
+    every digit). CSV: one header line of the summary keys and one row; JSON: {"inputs",
+    "summary"} (with the tangential force history for mindlin). --plot draws the velocities
+    before and after in the plane of the impact (horizontal: the initial slip direction t,
+    vertical: n), projected on it; --plot-force the mindlin tangential force history.
     """
     from impactcli.spheres import check_options, spheres_from_options
 
@@ -195,6 +223,11 @@ def collide3d(
     for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2)):
         if value is None:
             raise InputError(f"missing {name} (or give --rows TABLE for many collisions)")
+    if fmt is Collide3dFormat.parquet:
+        raise InputError(
+            "-f parquet writes the table of --rows; one collision is written as table, csv "
+            "or json"
+        )
     from impactcli.units import parse_vector3
 
     positions = {
@@ -214,9 +247,9 @@ def collide3d(
         s1, s2, vectors, law_name, params, (damping_law, alpha, separation), e, mu, tangential,
         points,
     )  # fmt: skip
-    if law_name == ELASTIC_LAW and damping_law is None and e is None:
-        _first_yield(s1, s2, summary["approach_velocity"])
-    kind = resolve_format(fmt, output)
+    for message in result.warnings:  # the library's, as a Python caller gets them
+        warn(message)
+    kind = resolve_format(None if fmt is None else Format(fmt.value), output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
             write_csv(stream, tuple(summary), [((), [list(summary.values())])])
@@ -233,27 +266,6 @@ def collide3d(
         from impactcli.plots import tangential_force_figure
 
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
-
-
-def _first_yield(sphere1, sphere2, approach_velocity: float) -> None:
-    """The warning of ``impact elastic`` for the same normal impact (Hertz, at the normal
-    approach velocity of the contact point [m/s]) above its first-yield velocity."""
-    from impactcli.cli.common import warn
-    from impactcli.contact import first_yield_velocity
-    from impactcli.impact import effective_properties, weaker_yield_strength
-    from impactcli.validation import first_yield_warning
-
-    yield_strength = weaker_yield_strength(sphere1, sphere2)
-    if yield_strength is None or not approach_velocity > 0.0:
-        return
-    m, r, modulus = effective_properties(sphere1, sphere2)
-    message = first_yield_warning(
-        approach_velocity,
-        float(first_yield_velocity(m, r, modulus, yield_strength)),
-        advice="--model elastoplastic",
-    )
-    if message:
-        warn(message.replace("V0 = ", "the normal approach velocity u_n = ", 1))
 
 
 def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
@@ -329,9 +341,11 @@ def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
             f"--rows reads the collisions from the table: {', '.join(single)} belong in its "
             "columns (v1_x, ..., d1, material, ...)"
         )
-    if fmt not in (None, Format.csv):
-        raise InputError("--rows writes a table: CSV, or Parquet with -o OUT.parquet")
-    table = table_format(None, output, "impact collide3d --rows")
+    if fmt not in (None, Collide3dFormat.csv, Collide3dFormat.parquet):
+        raise InputError(
+            f"--rows writes a table: -f csv or parquet (or -o OUT.parquet), not {fmt.value}"
+        )
+    table = table_format(None if fmt is None else fmt.value, output, "impact collide3d --rows")
     report = run_collisions3d(path, output, table, **options)
     for line in report.lines:
         warn(line)
@@ -393,11 +407,14 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
     mindlin = tangential is Tangential.mindlin
     history = shear = None
     try:
+        warned: tuple[str, ...] = ()
         if e is None:
-            restitution, history = normal_restitution_and_history(
+            normal = normal_restitution_and_history(
                 s1, s2, u_n, law=law, params=params, damping=damping, alpha=alpha,
                 points=points if mindlin else None, separation=separation,
             )  # fmt: skip
+            restitution, history = normal
+            warned = normal.warnings
         else:
             restitution = e
         if mindlin:
@@ -407,6 +424,7 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
         result = oblique_collision_3d(
             s1.total_mass, s2.total_mass, v1, v2, p1, p2, s1.diameter, s2.diameter, w1, w2,
             restitution, mu, tangential.value, history=history, shear_modulus=shear,
+            warnings=warned,
         )  # fmt: skip
     except ValueError as exc:
         raise InputError(str(exc)) from None
@@ -460,74 +478,60 @@ def summary(c) -> dict[str, float]:
 
 def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> None:
     """The tables of one collision: each value with its own SI prefix, each vector with one
-    prefix for its components (:func:`impactcli.cli.common.screen_value`), no ``-0``; the
-    quantities a fixed target leaves undefined (its momentum) are left out, and said so."""
+    prefix for its components (:func:`impactcli.cli.common.screen_values`), no ``-0``;
+    rounding noise, below :data:`~impactcli.cli.common.NOISE_RTOL` of its scale (the
+    value it goes with: the slip before, the normal impulse, 180 deg for an angle), reads
+    0; the quantities a fixed target leaves undefined (its momentum) are left out, and said
+    so."""
     import numpy as np
 
-    from impactcli.formatting import unit_scale
+    def one(values, unit: str, scale: float | None = None, pick: int = 0) -> tuple[str, str]:
+        cells, shown = screen_values(values, unit, scale)
+        return cells[pick], shown
 
-    def f(value: float) -> str:
-        return no_negative_zero(f"{value:.6g}")
-
-    def scalar(key: str, unit: str) -> tuple[str, str]:
-        if key == "slip_speed_final":  # in the unit of the slip before: 0 reads as 0
-            scale = unit_scale([s["slip_speed"], s[key]], unit)
-            return f(s[key] / scale.factor), scale.unit
-        return screen_value(s[key], unit)
-
-    def vector(values, unit: str) -> tuple[str, str]:
-        values = np.asarray(values, dtype=float)
-        if not unit or unit == "rad/s":
-            return "(" + ", ".join(f(x) for x in values) + ")", unit
-        scale = unit_scale(values, unit)
-        return "(" + ", ".join(f(x / scale.factor) for x in values) + ")", scale.unit
+    def vector(values, unit: str, scale: float | None = None, prefix_from=None):
+        cells, shown = screen_values(values, unit, scale, prefix_from=prefix_from)
+        return "(" + ", ".join(cells) + ")", shown
 
     def triple(key: str) -> list[float]:
         return [s[f"{key}_{a}"] for a in "xyz"]
 
     out = console(stream)
     title = (
-        f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = {f(s['restitution'])}; "
-        f"{inputs['tangential_model']} tangential, mu = {f(inputs['mu'])})"
+        f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = "
+        f"{one([s['restitution']], '')[0]}; {inputs['tangential_model']} tangential, mu = "
+        f"{one([inputs['mu']], '')[0]})"
     )
     rows = []
     for label, unit in (("v1", "m/s"), ("w1", "rad/s"), ("v2", "m/s"), ("w2", "rad/s")):
         before, after = inputs[label], triple(f"{label}_final")
-        scale = unit_scale([before, after], unit) if unit == "m/s" else None
-        factor, shown = (scale.factor, scale.unit) if scale else (1.0, unit)
-        rows.append(
-            (
-                label,
-                vector(np.divide(before, factor), "")[0],
-                vector(np.divide(after, factor), "")[0],
-                shown,
-            )
-        )
+        both = [*before, *after]
+        scale = float(np.nanmax(np.abs(both)))
+        first, shown = vector(before, unit, scale, both)
+        rows.append((label, first, vector(after, unit, scale, both)[0], shown))
     out.print(quantity_table(title, ("", "before", "after", "unit"), rows))
 
     contact = quantity_table(
         "Contact",
         ("", "value", "unit"),
         [
-            *(
-                (label, f(s[key]), unit) if unit == "deg" else (label, *scalar(key, unit))
-                for label, key, unit in (
-                    ("approach velocity u_n", "approach_velocity", "m/s"),
-                    ("slip speed |u_t| before", "slip_speed", "m/s"),
-                    ("slip u_t' along the initial slip", "slip_speed_final", "m/s"),
-                    ("normal restitution", "normal_restitution", ""),
-                    ("tangential restitution", "tangential_restitution", ""),
-                    ("incident angle at the contact", "incident_angle", "deg"),
-                    ("rebound angle at the contact", "rebound_angle", "deg"),
-                    ("rebound angle of the centres", "centre_rebound_angle", "deg"),
-                    ("stuck (1) or slid throughout (0)", "stuck", ""),
-                    ("normal impulse on sphere 2", "normal_impulse", "N s"),
-                    ("tangential impulse on sphere 2", "tangential_impulse", "N s"),
-                )
-            ),
-            ("normal n (sphere 1 to 2)", *vector(triple("normal"), "")),
+            ("approach velocity u_n", *one([s["approach_velocity"]], "m/s")),
+            ("slip speed |u_t| before", *one([s["slip_speed"]], "m/s")),
+            # in the unit of the slip before, so that 0 reads as 0
+            ("slip u_t' along the initial slip",
+             *one([s["slip_speed"], s["slip_speed_final"]], "m/s", pick=1)),
+            ("normal restitution", *one([s["normal_restitution"]], "")),
+            ("tangential restitution", *one([s["tangential_restitution"]], "", 1.0)),
+            ("incident angle at the contact", *one([s["incident_angle"]], "deg", 180.0)),
+            ("rebound angle at the contact", *one([s["rebound_angle"]], "deg", 180.0)),
+            ("rebound angle of the centres", *one([s["centre_rebound_angle"]], "deg", 180.0)),
+            ("stuck (1) or slid throughout (0)", *one([s["stuck"]], "")),
+            ("normal impulse on sphere 2", *one([s["normal_impulse"]], "N s")),
+            ("tangential impulse on sphere 2",
+             *one([s["tangential_impulse"]], "N s", abs(s["normal_impulse"]))),
+            ("normal n (sphere 1 to 2)", *vector(triple("normal"), "", 1.0)),
             ("contact point", *vector(triple("contact_point"), "m")),
-        ],
+        ],  # fmt: skip
     )
     out.print(contact)
 
@@ -543,24 +547,13 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
         if not np.all(np.isfinite(before + after)):
             undefined.append(label)
             continue
-        scale = unit_scale([before, after], unit)
-        rows.append(
-            (
-                label,
-                vector(np.divide(before, scale.factor), "")[0],
-                vector(np.divide(after, scale.factor), "")[0],
-                scale.unit,
-            )
-        )
-    energy_scale = unit_scale([s["kinetic_energy_before"], s["kinetic_energy_after"]], "J")
-    rows.append(
-        (
-            "kinetic energy",
-            f(s["kinetic_energy_before"] / energy_scale.factor),
-            f(s["kinetic_energy_after"] / energy_scale.factor),
-            energy_scale.unit,
-        )
-    )
+        both = before + after
+        scale = max(map(abs, both))
+        first, shown = vector(before, unit, scale, both)
+        rows.append((label, first, vector(after, unit, scale, both)[0], shown))
+    energies = [s["kinetic_energy_before"], s["kinetic_energy_after"]]
+    cells, unit = screen_values(energies, "J")
+    rows.append(("kinetic energy", *cells, unit))
     checks = quantity_table("Conservation and energy", ("", "before", "after", "unit"), rows)
     if undefined:
         checks.caption = (
@@ -571,14 +564,11 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
     keys = [("total", "energy_dissipated"), ("sphere 1", "energy_dissipated1"),
             ("sphere 2", "energy_dissipated2")]  # fmt: skip
     values = [s[f"{key}_{part}"] for _, key in keys for part in ("normal", "friction")]
-    scale = unit_scale(values, "J")
+    cells, unit = screen_values(values, "J", max(map(abs, [*values, *energies])))
     energy = quantity_table(
-        f"Energy dissipated [{scale.unit}]",
+        f"Energy dissipated [{unit}]",
         ("", "normal law", "friction"),
-        [
-            (label, f(s[f"{key}_normal"] / scale.factor), f(s[f"{key}_friction"] / scale.factor))
-            for label, key in keys
-        ],
+        [(label, cells[2 * k], cells[2 * k + 1]) for k, (label, _) in enumerate(keys)],
     )
     out.print(energy)
 

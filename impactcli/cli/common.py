@@ -94,7 +94,11 @@ def check_summary_file(path: str | None, output: str | None) -> None:
 
 
 def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.console.Console
-    """A Rich console on ``stream`` (stdout by default, or stderr). Imported on demand."""
+    """A Rich console on ``stream`` (stdout by default, or stderr). Imported on demand.
+
+    The stdout consoles read no Rich markup: every title, caption, header and cell is
+    printed as written, so that a unit in brackets (``Energy dissipated [mJ]``,
+    ``rho [kg/m^3]``) or a user's text is never taken for a style tag."""
     from rich.console import Console as RichConsole
 
     from impactcli.errors import StdoutClosed
@@ -107,8 +111,8 @@ def console(stream: IO[str] | None = None, stderr: bool = False):  # -> rich.con
     if stderr:
         return Console(stderr=True, highlight=False)
     if stream is None or stream is sys.stdout:
-        return Console(highlight=False)
-    return Console(file=stream, highlight=False, width=160, color_system=None)
+        return Console(highlight=False, markup=False)
+    return Console(file=stream, highlight=False, markup=False, width=160, color_system=None)
 
 
 def __getattr__(name: str):
@@ -153,7 +157,8 @@ def narrow_layout(
     """The widths of a table's columns on a terminal of ``width`` characters, and how many
     of the leading columns are kept: ``(None, all)`` when every cell fits on one line; else
     each kept column gets at least its longest word or number (so that nothing is cut) and
-    the rest of the width goes to the columns whose text wraps.
+    the rest of the width goes to the columns whose text wraps. A header wraps between its
+    words, never inside one (a unit stays whole).
 
     >>> narrow_layout(["a", "b"], [["1.25", "2"], ["some words", "x"]], 40)
     (None, 2)
@@ -163,7 +168,11 @@ def narrow_layout(
     natural = [max([len(h), *(len(c) for c in column)]) for h, column in zip(headers, cells)]
     if sum(natural) + 3 * len(natural) + 1 <= width:
         return None, len(natural)
-    least = [max([1, *(len(word) for c in column for word in c.split())]) for column in cells]
+    # a header wraps between words but keeps each word whole: 'v2 (mm/s)', not 'v2 (mm/s' ')'
+    least = [
+        max([1, *(len(word) for c in [header, *column] for word in c.split())])
+        for header, column in zip(headers, cells)
+    ]
     kept = fitting_columns(least, width)
     widths = least[:kept]
     spare = width - (sum(widths) + 3 * kept + 1)
@@ -220,6 +229,46 @@ def screen_value(value: float, unit: str, digits: int = 6) -> tuple[str, str]:
         value, unit = value * 1e3, "g"
     scale = unit_scale([value], unit)
     return no_negative_zero(f"{value / scale.factor:.{digits}g}"), scale.unit
+
+
+#: On screen, a value smaller than this fraction of its scale (the largest value it is
+#: shown with, or the scale its command names: the speeds of a collision, 180 deg for an
+#: angle) is rounding noise and reads 0, never -1.11022e-16 or -3.67e-15 deg. CSV and JSON
+#: keep every digit.
+NOISE_RTOL = 1e-12
+
+#: Units shown without an SI prefix.
+_NO_PREFIX = ("", "deg", "rad/s", "rad")
+
+
+def screen_values(
+    values, unit: str, scale: float | None = None, digits: int = 6, prefix_from=None
+) -> tuple[list[str], str]:
+    """Several values [SI ``unit``] as text with one SI prefix (none for a dimensionless
+    value, an angle or rad/s; that of ``prefix_from``, values shown in the same unit, when
+    given), ``digits`` significant digits, no ``-0``; a value below :data:`NOISE_RTOL` of
+    ``scale`` (default: the largest finite |value|) reads 0.
+
+    >>> screen_values([0.240988, 0.0], "N s")
+    (['240.988', '0'], 'mN s')
+    >>> screen_values([1.95, -1.11022e-16], "m/s"), screen_values([-3.67e-15], "deg", 180.0)
+    ((['1.95', '0'], 'm/s'), (['0'], 'deg'))
+    """
+    import numpy as np
+
+    from impactcli.formatting import unit_scale
+
+    array = np.asarray(values, dtype=float).reshape(-1)
+    finite = np.abs(array[np.isfinite(array)])
+    if scale is None:
+        scale = float(finite.max()) if finite.size else 0.0
+    with np.errstate(invalid="ignore"):
+        array = np.where(np.abs(array) < NOISE_RTOL * abs(scale), 0.0, array)
+    factor, shown = 1.0, unit
+    if unit not in _NO_PREFIX:
+        prefixed = unit_scale(array if prefix_from is None else prefix_from, unit)
+        factor, shown = prefixed.factor, prefixed.unit
+    return [no_negative_zero(f"{v / factor:.{digits}g}") for v in array], shown
 
 
 def no_negative_zero(text: str) -> str:
@@ -291,6 +340,22 @@ OutputFile = Annotated[
 PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
 
 SEGMENTS_HELP = f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}."
+
+#: FILM segments per stage of a damped impact when --n is not given, in every command but
+#: ``impact fit``: :data:`impactcli.impact.DAMPED_DEFAULT_N` (not imported, so that
+#: ``--help`` stays light; a test holds the two equal).
+DAMPED_DEFAULT_N = 400
+#: Why :data:`DAMPED_DEFAULT_N`: what it buys.
+DAMPED_N_REASON = "e and the contact time within 1e-6 of SciPy integration of the same law"
+
+
+def damped_segments_help(where: str) -> str:
+    """The --n help of a command that runs damped impacts: 'Default 25, 400 ``where``
+    (why; impact fit ...)'. ``where``: 'with --damping', 'on damped rows', ..."""
+    return (
+        f"Default 25, {DAMPED_DEFAULT_N} {where} ({DAMPED_N_REASON}; impact fit takes 50 "
+        "with --damping, for speed, as its help says)."
+    )
 
 
 def segments_option(more: str = ""):  # -> typer.models.OptionInfo

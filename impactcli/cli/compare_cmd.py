@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import IO, Annotated
+from typing import IO, Annotated, Optional
 
 import numpy as np
 import typer
@@ -12,11 +12,12 @@ from impactcli.cli.common import (
     OutputFile,
     OutputFormat,
     PlotFile,
-    Segments,
     check_plot,
     console,
+    damped_segments_help,
     resolve_format,
     save_plot,
+    segments_option,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.impact_cmd import POINTS, SUMMARY_UNITS
@@ -49,7 +50,9 @@ def compare_laws(
     spheres: SphereOptions,
     law: LawOptions = None,
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
-    n: Segments = 25,
+    n: Annotated[
+        Optional[int], segments_option(damped_segments_help("for the row of --damping"))
+    ] = None,
     points: POINTS = 401,
     ratio_min: Annotated[
         float, typer.Option("--ratio-min", help="Lowest V0/V_y of the e panel (--plot).")
@@ -114,6 +117,7 @@ def compare_laws(
         results = compare_impacts(s1, s2, v1, v2, laws, n)
     except ValueError as exc:
         raise InputError(str(exc)) from None
+    segments = _segments(results)
     table = {name: comparison_row(r) for name, r in results.items()}
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
@@ -124,14 +128,39 @@ def compare_laws(
                 [((name,), np.array([list(row.values())])) for name, row in table.items()],
             )
         elif kind is Format.json:
-            inputs = _inputs(s1, s2, v1, v2, n, choices)
+            inputs = _inputs(s1, s2, v1, v2, segments.get("laws", 25), choices)
             if damping_law is not None:
-                inputs.update(damping=damping_law, alpha=alpha, separation=separation)
+                inputs.update(
+                    damping=damping_law, alpha=alpha, separation=separation,
+                    damping_n=segments["damped"],
+                )  # fmt: skip
             write_json(stream, {"inputs": inputs, "laws": table})
         else:
-            _print(stream if output not in (None, "-") else None, table, v1 + v2, n)
+            _print(stream if output not in (None, "-") else None, table, v1 + v2, segments)
     if plot:
-        _plot(plot, results, laws, spheres, s1, s2, n, points, ratio_min, ratio_max, count)
+        _plot(
+            plot, results, laws, spheres, s1, s2, n, segments, points, ratio_min, ratio_max,
+            count,
+        )  # fmt: skip
+
+
+def _segments(results: dict) -> dict[str, int]:
+    """The FILM segments per stage the laws ran with (``laws``) and the damped row
+    (``damped``), each present when there is such a row."""
+    out = {}
+    for result in results.values():
+        out["damped" if hasattr(result, "separation") else "laws"] = result.n
+    return out
+
+
+def _segments_text(segments: dict[str, int]) -> str:
+    """'n = 25', 'n = 25; damped row n = 400' or 'n = 400' (the damped row alone)."""
+    parts = []
+    if "laws" in segments:
+        parts.append(f"n = {segments['laws']}")
+    if "damped" in segments and segments["damped"] != segments.get("laws"):
+        parts.append(("damped row " if parts else "") + f"n = {segments['damped']}")
+    return "; ".join(parts)
 
 
 def _inputs(s1, s2, v1: float, v2: float, n: int, choices: list[LawChoice]) -> dict:
@@ -146,14 +175,15 @@ def _inputs(s1, s2, v1: float, v2: float, n: int, choices: list[LawChoice]) -> d
     }
 
 
-def _print(stream: IO[str] | None, table: dict, v0: float, n: int) -> None:
+def _print(stream: IO[str] | None, table: dict, v0: float, segments: dict[str, int]) -> None:
     from rich import box
 
     from impactcli.cli.common import Table
     from impactcli.formatting import format_quantity, unit_scale
 
     out = Table(
-        title=f"Contact laws compared at V0 = {format_quantity(v0, 'm/s')} (FILM, n = {n})",
+        title=f"Contact laws compared at V0 = {format_quantity(v0, 'm/s')} "
+        f"(FILM, {_segments_text(segments)})",
         caption="V_y: the law's own yield velocity (nan: none); -f csv for all keys",
         box=box.SIMPLE_HEAD,
         collapse_padding=True,
@@ -181,7 +211,8 @@ def _plot(
     spheres: SphereOptions,
     s1,
     s2,
-    n: int,
+    n: int | None,
+    segments: dict[str, int],
     points: int,
     ratio_min: float,
     ratio_max: float,
@@ -231,7 +262,7 @@ def _plot(
         loops,
         ratio,
         {titles[name]: e for name, e in curves.items()},
-        title=f"Contact laws compared (FILM, n = {n}): " + ", ".join(parts),
+        title=f"Contact laws compared (FILM, {_segments_text(segments)}): " + ", ".join(parts),
         ratio_label=label,
         impact_ratio=v0 / reference,
         residual={titles[name]: comparison_row(r)["delta_res"] for name, r in results.items()},

@@ -30,6 +30,13 @@ class Separation(enum.StrEnum):
     force = "force"
 
 
+#: How the --e of a target e says that collide2d's and collide3d's --e differs.
+E_TARGET_OTHER = (
+    "(impact collide2d's and collide3d's --e is another thing: a given e that replaces the "
+    "normal law.)"
+)
+
+
 def _models() -> dict:
     """The damping models of the registry, by name."""
     from impactcli.laws.registry import DAMPING_LAWS
@@ -64,11 +71,15 @@ def damping_help() -> dict[str, str]:
         "or --e with it.",
         "alpha": f"Damping parameter alpha >= 0: {units} (units accepted: 0.5s/m, 0.5ms/mm).",
         "e": "Coefficient of restitution in (0, 1] to reach at this V0 instead of --alpha: alpha "
-        "is solved for exactly by the model (FILM, same n and separation) and printed.",
+        "is solved for exactly by the model (FILM, same n and separation) and printed. "
+        + E_TARGET_OTHER,
         "e_sweep": "Coefficient of restitution in (0, 1] instead of --alpha, with "
         f"{' or '.join(f'--damping {name}' for name in similar)} only (its e is the same at "
         "every V0): alpha is solved for exactly by the model (FILM, same n and separation) "
-        f"and printed. {' and '.join(others)}: e depends on V0, give --alpha.",
+        "and printed. "
+        + "; ".join(f"{n}: e depends on {models[n].restitution_depends_on}" for n in others)
+        + ", give --alpha. "
+        + E_TARGET_OTHER,
         "separation": "When the contact ends. overlap (default): when the indentation returns "
         "to 0; the damping force may then pull, as DEM codes integrate it and as the published "
         "alpha(e) relations assume. force: when the total force returns to 0 (no "

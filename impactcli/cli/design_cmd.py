@@ -10,7 +10,15 @@ from typing import Annotated, Optional
 
 import typer
 
-from impactcli.cli.common import Format, OutputFile, console, resolve_format
+from impactcli.cli.common import (
+    FORMAT_HELP,
+    Format,
+    OutputFile,
+    OutputFormat,
+    console,
+    resolve_format,
+    warn,
+)
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW
@@ -45,8 +53,19 @@ YieldLaw = enum.StrEnum("YieldLaw", {name.replace("-", "_"): name for name in _y
 
 
 class LineFormat(enum.StrEnum):
-    text = "text"
+    """``-f`` of impact yield-limit: the shared formats; ``text``, the name of ``table``
+    before 0.2, still works (with a deprecation warning) and goes in 0.3."""
+
+    table = "table"
+    csv = "csv"
     json = "json"
+    text = "text"
+
+
+YIELD_FORMAT_HELP = FORMAT_HELP.replace(
+    "table (Rich, on a terminal)", "table (the answer in one line, on a terminal)", 1
+).replace("csv or json.", "csv (a header and one row) or json; text, the former name of "
+          "table, still works in this release.", 1)  # fmt: skip
 
 
 def _speed(text: str, name: str) -> float:
@@ -55,17 +74,28 @@ def _speed(text: str, name: str) -> float:
     return parse_quantity(text, "velocity", name)
 
 
-@with_sphere_options(velocities=False)
+@with_sphere_options(
+    velocities=False,
+    helps={
+        f"d{i}": f"Diameter of sphere {i} [m]{'; inf is a flat target' if i == 2 else ''}. "
+        f"Required, unless --v0 asks for it (--resize {i}, or --sphere {i} without --resize)."
+        for i in (1, 2)
+    },
+)
 def yield_limit(
     spheres: SphereOptions = None,
     sphere: Annotated[
-        int, typer.Option("--sphere", min=1, max=2, help="The sphere that must stay elastic.")
+        int,
+        typer.Option(
+            "--sphere", min=1, max=2, metavar="[1|2]", help="The sphere that must stay elastic."
+        ),
     ] = 1,
     v0: Annotated[
         Optional[str],
         typer.Option(
             "--v0",
-            help="Impact velocity V0 [m/s]: then the largest diameter of the sphere of "
+            help="Impact velocity V0 = V1 + V2 [m/s] (the velocity of approach, not a sphere's "
+            "--v1): then the largest diameter of the sphere of "
             "--resize (default --sphere) at which --sphere stays elastic; its --d option may "
             "be left out. No default (impact timestep's --v0 is 1 m/s): without it, the "
             "first-yield velocity.",
@@ -73,7 +103,13 @@ def yield_limit(
     ] = None,
     resize: Annotated[
         Optional[int],
-        typer.Option("--resize", min=1, max=2, help="With --v0: the sphere whose size is sought."),
+        typer.Option(
+            "--resize",
+            min=1,
+            max=2,
+            metavar="[1|2]",
+            help="With --v0: the sphere whose size is sought.",
+        ),
     ] = None,
     law: Annotated[
         YieldLaw,
@@ -87,8 +123,10 @@ def yield_limit(
         float, typer.Option("--p0-factor", help=_pressure_factor_help())
     ] = _pressure_factor().default,
     fmt: Annotated[
-        LineFormat, typer.Option("--format", "-f", help="text (one line) or json.")
-    ] = LineFormat.text,
+        Optional[LineFormat],
+        typer.Option("--format", "-f", metavar="[table|csv|json]", help=YIELD_FORMAT_HELP),
+    ] = None,
+    output: OutputFile = None,
 ) -> None:
     """The largest impact velocity at which a chosen sphere stays elastic; or, given --v0,
     the largest diameter of one sphere (Kharaz & Gorham 2000: design an experiment in which
@@ -105,6 +143,11 @@ def yield_limit(
     from impactcli.formatting import format_quantity
     from impactcli.impact import effective_properties
     from impactcli.spheres import spheres_from_options
+
+    if fmt is LineFormat.text:
+        warn("-f text is deprecated (it goes in 0.3): write -f table, the name every command uses")
+        fmt = LineFormat.table
+    kind = resolve_format(None if fmt is None else Format(fmt.value), output)
 
     try:
         factor = law_pressure_factor(law.value, p0_factor)
@@ -129,7 +172,9 @@ def yield_limit(
     doc: dict[str, object] = {
         "sphere": sphere,
         "law": law.value,
-        "pressure_factor": factor,
+        # the contact pressure / sigma_y at which the sphere first yields under the law
+        # (1.6 for Hertz, --p0-factor for du-wang): not du-wang's p0_factor alone
+        "first_yield_pressure_factor": factor,
         "yield_strength": sigma,
     }
     if velocity is None:
@@ -168,27 +213,38 @@ def yield_limit(
         else:
             size = f"for D{resized} up to {format_quantity(limit, 'm')}"
         line = f"sphere {sphere} stays elastic {at} {size} ({how})"
-    with atomic_output(None) as stream:
-        if fmt is LineFormat.json:
+    with atomic_output(output) as stream:
+        if kind is Format.json:
             write_json(stream, doc)
+        elif kind is Format.csv:
+            import csv
+
+            writer = csv.writer(stream, lineterminator="\n")
+            writer.writerow(doc)
+            writer.writerow(repr(v) if isinstance(v, float) else v for v in doc.values())
         else:
             stream.write(line + "\n")
 
 
-@with_sphere_options(velocities=False)
+@with_sphere_options(
+    velocities=False,
+    helps={
+        "d2": "Diameter of sphere 2 [m]; 'inf' is a flat target. Default: sphere 2 is a copy "
+        "of sphere 1 when no sphere-2 option is given."
+    },
+)
 def timestep(
     spheres: SphereOptions = None,
     v0: Annotated[
         str,
         typer.Option(
             "--v0",
-            help="Impact velocity V0 for the Hertz contact time [m/s] (impact yield-limit's "
-            "--v0 has no default: it asks for a diameter).",
+            help="Impact velocity V0 = V1 + V2 for the Hertz contact time [m/s] (the velocity "
+            "of approach, not a sphere's --v1; impact yield-limit's --v0 has no default: it "
+            "asks for a diameter).",
         ),
     ] = "1",
-    fmt: Annotated[
-        Optional[Format], typer.Option("--format", "-f", help="table, csv or json.")
-    ] = None,
+    fmt: OutputFormat = None,
     output: OutputFile = None,
 ) -> None:
     """The Rayleigh time step of the particles and the Hertz contact time at V0, with the

@@ -10,6 +10,7 @@ import numpy as np
 import typer
 
 from impactcli.cli.common import (
+    DAMPED_DEFAULT_N,
     Format,
     OutputFile,
     OutputFormat,
@@ -21,6 +22,7 @@ from impactcli.cli.common import (
     check_plot,
     check_summary_file,
     console,
+    damped_segments_help,
     format_option,
     no_negative_zero,
     note,
@@ -64,14 +66,7 @@ def _opt(help_text: str, *names: str, **kw: Any):
 
 
 #: --n of the commands that take --damping: its default depends on it.
-N_DAMPED = Annotated[
-    Optional[int],
-    segments_option(
-        "Default 25; 400 with --damping (e and the contact time within 1e-6 of SciPy "
-        "integration of the same law; impact fit takes 50 for its damping models, within "
-        "1e-4 for e >= 0.3, to fit up to 100,000 points)."
-    ),
-]
+N_DAMPED = Annotated[Optional[int], segments_option(damped_segments_help("with --damping"))]
 POINTS = Annotated[
     int,
     typer.Option(
@@ -579,7 +574,7 @@ def elastic(
     --material steel
     """
     if n is None:
-        n = 400 if damping is not None and damping.given else 25
+        n = DAMPED_DEFAULT_N if damping is not None and damping.given else 25
     own = None if curve is None else LawChoice(CURVE_LAW, {"curve": curve})
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
@@ -694,10 +689,12 @@ def restitution(
         raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
     if damping is not None and damping.given:
         if damping.e is not None and not DAMPING_LAWS[damping.damping].self_similar:
+            model = DAMPING_LAWS[damping.damping]
             raise InputError(
-                f"impact restitution --damping {damping.damping} --e: its e depends on alpha "
-                "V0, so no alpha gives one e at every V0; give --alpha (the alpha of e at one "
-                "V0: 'impact elastic --damping ... --e E')"
+                f"impact restitution --damping {damping.damping} --e: its e depends on "
+                f"{model.restitution_depends_on}, so no alpha gives one e at every V0; give "
+                f"--alpha (the alpha of e at one V0: 'impact elastic --damping "
+                f"{damping.damping} --e E')"
             )
         if law is not None and (law.names or law.given):
             raise InputError(
@@ -706,7 +703,8 @@ def restitution(
             )
         velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
         _damped_sweep(
-            damping, spheres, velocities, n=400 if n is None else n, split=split, fmt=fmt,
+            damping, spheres, velocities, n=DAMPED_DEFAULT_N if n is None else n, split=split,
+            fmt=fmt,
             output=output, plot=plot, linear=linear,
         )  # fmt: skip
         return
@@ -1005,13 +1003,11 @@ def materials(fmt: OutputFormat = None, output: OUT = None) -> None:
                     ]
                 )
         else:
-            from rich.markup import escape
-
             from impactcli.cli.common import Table
 
             table = Table(title="Built-in materials (typical values; measure yours if it matters)")
             for h in ("name", "E [GPa]", "nu", "rho [kg/m^3]", "sigma_y [MPa]", "source"):
-                table.add_column(escape(h))  # [kg/m^3] would read as Rich markup
+                table.add_column(h)  # the console reads no markup: [kg/m^3] stays
             for m in MATERIALS.values():
                 table.add_row(
                     m.name,

@@ -61,8 +61,15 @@ class LawChoice:
 
 
 #: A parameter's kind -> the word ``--help`` shows for its value (else the kind itself:
-#: ``--py PRESSURE``, ``--k-load STIFFNESS``).
-_METAVARS = {"file": "FILE", "choice": "TEXT", "dimensionless": "NUMBER"}
+#: ``--py PRESSURE``, ``--k-load STIFFNESS``; a choice lists its values, ``[linear|pchip]``).
+_METAVARS = {"file": "FILE", "dimensionless": "NUMBER"}
+
+
+def _metavar(param) -> str:
+    """The word ``--help`` shows for the value of law parameter ``param``."""
+    if param.choices:
+        return f"[{'|'.join(param.choices)}]"
+    return _METAVARS.get(param.kind, param.kind.upper())
 
 
 def _law_help(multiple: bool, default: str | None = None) -> str:
@@ -80,7 +87,7 @@ def _law_help(multiple: bool, default: str | None = None) -> str:
 
 
 def _parameter_help(param, owners: tuple[str, ...]) -> str:
-    unit = "" if param.unit in ("-", "file") else f" [{param.unit}]"
+    unit = "" if param.unit in ("-", "file") or param.choices else f" [{param.unit}]"
     default = ""
     if param.default is not None:
         default = f" Default {param.default:g}." if isinstance(param.default, float) else (
@@ -106,7 +113,7 @@ def _parameters(multiple: bool, default: str | None = None) -> list[inspect.Para
         )
     ]
     for name, (param, owners) in parameter_laws().items():
-        metavar = _METAVARS.get(param.kind, param.kind.upper())
+        metavar = _metavar(param)
         out.append(
             inspect.Parameter(
                 f"{_PREFIX}{name}",

@@ -15,6 +15,7 @@ CSV_COLUMNS = (
     "law",
     "kind",
     "parameter",
+    "option",
     "unit",
     "parameter_kind",
     "default",
@@ -34,17 +35,19 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
     """List the contact laws and damping models FILM can run: name, kind, parameters (unit,
     default) and the published reference of each (authors, year, journal, DOI, equations).
 
-    CSV: one row per parameter (a law without parameters has one row with an empty
-    parameter); columns law,kind,parameter,unit,parameter_kind,default,required,
-    parameter_description,reference,doi,validity. An empty default that is not required is
-    derived (see the description). The damping models (kind ``damping``: Hertz plus a
+    The table names each parameter by its option (--k-load [N/m]); CSV and JSON by its key
+    (k_load: the batch column and the key of law_params and of the JSON law_parameters) and
+    its option. CSV: one row per parameter (a law without parameters has one row with an
+    empty parameter); columns law,kind,parameter,option,unit,parameter_kind,default,
+    required,parameter_description,reference,doi,validity. An empty default that is not
+    required is derived (see the description). The damping models (kind ``damping``: Hertz plus a
     viscous term, ``--damping NAME --alpha A``) are listed after the normal laws."""
     from impactcli.laws.registry import MODELS
 
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.json:
-            write_json(stream, {"laws": [spec.describe() for spec in MODELS.values()]})
+            write_json(stream, {"laws": [_described(spec) for spec in MODELS.values()]})
         elif kind is Format.csv:
             writer = csv.writer(stream, lineterminator="\n")
             writer.writerow(CSV_COLUMNS)
@@ -53,10 +56,11 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
                 cite = f"{ref.authors} ({ref.year}), {ref.journal}; {ref.equations}"
                 for p in spec.parameters or (None,):
                     fields = (
-                        ("", "", "", "", "", "")
+                        ("", "", "", "", "", "", "")
                         if p is None
                         else (
                             p.name,
+                            p.option,
                             p.unit,
                             p.kind,
                             _default(p.default),
@@ -69,18 +73,26 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
             _print_laws(stream if output not in (None, "-") else None)
 
 
-def _print_laws(stream: IO[str] | None) -> None:
-    from rich.markup import escape
+def _described(spec) -> dict:
+    """The registry's description of a model, each parameter with its option too."""
+    out = spec.describe()
+    out["parameters"] = [
+        {"name": p.name, "option": p.option, **{k: v for k, v in d.items() if k != "name"}}
+        for p, d in zip(spec.parameters, out["parameters"])
+    ]
+    return out
 
+
+def _print_laws(stream: IO[str] | None) -> None:
     from impactcli.cli.common import Table
     from impactcli.laws.registry import MODELS
 
     table = Table(title="Contact laws (impact laws; --format json for everything)")
-    for header in ("law", "kind", "parameters [unit] = default", "reference"):
-        table.add_column(escape(header), overflow="fold")
+    for header in ("law", "kind", "options [unit] = default", "reference"):
+        table.add_column(header, overflow="fold")
     for spec in MODELS.values():
         params = "\n".join(
-            f"{p.name} [{p.unit}]"
+            f"{p.option} [{'|'.join(p.choices) or p.unit}]"
             + (f" = {_default(p.default)}" if p.default is not None else "")
             + (" (required)" if p.required else "")
             + f": {p.description}"
@@ -90,7 +102,7 @@ def _print_laws(stream: IO[str] | None) -> None:
         table.add_row(
             spec.name,
             spec.kind,
-            escape(params) or "(none)",
+            params or "(none)",
             f"{ref.authors} ({ref.year}), {ref.journal}, doi:{ref.doi}",
         )
     console(stream).print(table)

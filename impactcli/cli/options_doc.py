@@ -13,7 +13,15 @@ from dataclasses import dataclass
 
 from impactcli.laws.registry import alpha_units
 
-__all__ = ["OptionRow", "differences", "option_rows", "options_markdown"]
+__all__ = [
+    "MEANINGS",
+    "OptionRow",
+    "differences",
+    "meaning_problems",
+    "meanings",
+    "option_rows",
+    "options_markdown",
+]
 
 #: The unit of the value an option's metavar names (SI; a unit may be given on the line).
 METAVAR_UNITS = {
@@ -40,19 +48,152 @@ BY_NATURE = {
     "(collide2d, angle from +x) or in space (collide3d, angle from the normal); see each help",
     "--v2": "as --v1; at rest unless given, in every command",
     "--format": "each command lists the formats it writes",
-    "--n": "FILM segments per stage, 25 unless --damping (400; impact fit: 50, both helps "
-    "say so); convergence takes a list of them",
+    "--n": "FILM segments per stage: 25, and 400 for a damped impact in every command that "
+    "runs one (e within 1e-6 of SciPy), but impact fit, which takes 50 with --damping for "
+    "speed (e within 1e-4 for e >= 0.3), as the helps say; convergence takes a list of them",
     "--law": "the contact law; yield-limit asks for the yield point of one of three laws",
     "--p0-factor": "2.57 everywhere (Du & Wang)",
     "--m1": "collide2d takes the masses (required); the others take diameters and densities "
     "and compute the masses unless given",
     "--m2": "as --m1",
-    "--d1": "collide2d takes the masses, and the diameters only for --model elastoplastic and "
-    "to draw the spheres; the others need --d1",
-    "--d2": "as --d1",
+    "--d1": "collide2d takes the masses, and the diameters only to run the normal impact "
+    "(--law, --model elastoplastic, --damping), for its warnings and to draw the spheres; "
+    "the others need them (yield-limit: unless --v0 asks for that diameter)",
+    "--d2": "as --d1 (timestep: sphere 2 copies sphere 1 without any sphere-2 option)",
     "--model": "elastic (Hertz, e = 1) or elastoplastic (Du & Wang); batch fills empty cells "
     "of its model column with it",
 }
+
+
+#: What an option means, for each option whose help is not word for word the same in every
+#: command that takes it: option -> {meaning: the commands where it means that}. An option
+#: may be worded for its command and keep one meaning; an option of two meanings is listed
+#: in the page's "Same name, different meaning" table, and each command's help of it names
+#: a command of the other meaning. tests/test_options_doc.py fails when an option's helps
+#: differ and it is not declared here, so a second meaning cannot come in unsaid.
+MEANINGS: dict[str, dict[str, tuple[str, ...]]] = {
+    "--n": {
+        "FILM segments per stage (convergence: a list of them)": (
+            "tables", "convergence", "elastic", "elastoplastic", "restitution", "batch",
+            "compare-laws", "fit",
+        ),
+    },
+    "--format": {"the output format": (
+        "tables", "convergence", "elastic", "elastoplastic", "restitution", "materials",
+        "collide2d", "collide3d", "batch", "laws", "compare-laws", "fit", "yield-limit",
+        "timestep",
+    )},
+    "--d1": {"diameter of sphere 1": (
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "fit", "yield-limit", "timestep",
+    )},
+    "--d2": {"diameter of sphere 2": (
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "fit", "yield-limit", "timestep",
+    )},
+    "--v1": {"velocity of sphere 1 before the impact": (
+        "elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws",
+    )},
+    "--v2": {"velocity of sphere 2 before the impact": (
+        "elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws",
+    )},
+    "--material": {"material of both spheres": (
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "fit", "yield-limit", "timestep",
+    )},
+    "--m1": {"mass of sphere 1": (
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "fit", "yield-limit", "timestep",
+    )},
+    "--m2": {"mass of sphere 2": (
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "fit", "yield-limit", "timestep",
+    )},
+    "--sy": {"yield strength of both spheres": (
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "fit", "yield-limit", "timestep",
+    )},
+    "--damping": {"the damping model added to Hertz": (
+        "elastic", "restitution", "collide2d", "collide3d", "compare-laws", "fit",
+    )},
+    "--e": {
+        "a target e of --damping: the alpha that gives it is solved for": (
+            "elastic", "restitution",
+        ),
+        "a given e, used in place of the normal law": ("collide2d", "collide3d"),
+    },
+    "--points": {"points of a time history": (
+        "elastic", "elastoplastic", "collide3d", "compare-laws",
+    )},
+    "--split": {"the share of the indentation between the spheres": (
+        "elastic", "elastoplastic", "restitution", "batch",
+    )},
+    "--curve": {"the loading curve of the law of a user's curve": (
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+    )},
+    "--law": {"the contact law (fit: to fit; yield-limit: whose yield point is asked)": (
+        "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws", "fit",
+        "yield-limit",
+    )},
+    "--p0-factor": {"p0 / sigma_y of the default elastoplastic law": (
+        "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "yield-limit",
+    )},
+    "--count": {"the number of impact velocities of a sweep": ("restitution", "compare-laws")},
+    "--p1": {"centre of sphere 1 at contact": ("collide2d", "collide3d")},
+    "--p2": {"centre of sphere 2 at contact": ("collide2d", "collide3d")},
+    "--model": {"the contact model, elastic or elastoplastic": (
+        "collide2d", "collide3d", "batch",
+    )},
+    "--v0": {"the impact velocity V0": ("yield-limit", "timestep")},
+}  # fmt: skip
+
+
+def meanings(rows: list[OptionRow] | None = None) -> dict[str, dict[str, tuple[str, ...]]]:
+    """Each option of every command -> {meaning: commands}: as :data:`MEANINGS` declares,
+    else its one help (word for word the same everywhere)."""
+    rows = option_rows() if rows is None else rows
+    out: dict[str, dict[str, tuple[str, ...]]] = {}
+    for row in rows:
+        name = _long(row)
+        if name in MEANINGS:
+            out[name] = MEANINGS[name]
+            continue
+        group = out.setdefault(name, {})
+        group[row.help] = (*group.get(row.help, ()), row.command)
+    return out
+
+
+def meaning_problems(rows: list[OptionRow] | None = None) -> list[str]:
+    """What keeps the options' meanings from being said: an option whose helps differ
+    between commands but that :data:`MEANINGS` does not declare (or declares for other
+    commands than those that take it), and a command's help of an option of two meanings
+    that names no command of the other meaning. Empty when all is said."""
+    rows = option_rows() if rows is None else rows
+    by_name: dict[str, list[OptionRow]] = {}
+    for row in rows:
+        by_name.setdefault(_long(row), []).append(row)
+    problems = []
+    for name, group in by_name.items():
+        takers = sorted(r.command for r in group)
+        if name not in MEANINGS:
+            if len({r.help for r in group}) > 1:
+                problems.append(f"{name}: the helps of {', '.join(takers)} differ; declare its "
+                                "meaning in MEANINGS")  # fmt: skip
+            continue
+        declared = MEANINGS[name]
+        if sorted(c for commands in declared.values() for c in commands) != takers:
+            problems.append(f"{name}: MEANINGS names other commands than {', '.join(takers)}")
+            continue
+        if len(declared) < 2:
+            continue
+        for row in group:
+            others = [c for commands in declared.values() if row.command not in commands
+                      for c in commands]  # fmt: skip
+            if not any(f"impact {c}" in row.help for c in others):
+                problems.append(f"{name} of impact {row.command}: its help names no command "
+                                "where it means another thing")  # fmt: skip
+    return problems
 
 
 @dataclass(frozen=True)
@@ -87,11 +228,15 @@ def _default(param) -> str:
         return ""
     if re.search(r"\bRequired\.", text) and "Required by that law" not in text:
         return "required"
+    unless = re.search(r"\bRequired, unless ([^.]+)\.", text)
+    if unless:
+        return f"required, unless {unless[1]}"
     for pattern in (
         r"\bDefault:? (.+?)(?:[.;:](?:\s|$)|$| \()",
         r"\((?:the )?default (?!--)([^)]+)\)",
         r"[;,] default (.+?)(?: \(|[.;](?:\s|$)|$)",
         r"(\w+) \([^)]*\bthe default\)",
+        r"(\w+) \(default\)",
     ):
         found = re.search(pattern, text)
         if found:
@@ -105,8 +250,8 @@ def _unit(metavar: str, help_text: str) -> str:
         if "angular velocity" in lowered:
             return "rad/s"
         return "m/s" if "velocity" in lowered else "m"
-    if metavar in ("FILE", "TABLE") or metavar.startswith("["):  # a path or a choice
-        return ""
+    if metavar in ("FILE", "TABLE") or metavar.startswith(("[", "NAME")):
+        return ""  # a path, a choice or a name has no unit
     if metavar == "ALPHA":
         return alpha_units()
     if metavar in METAVAR_UNITS:
@@ -178,8 +323,16 @@ def options_markdown() -> str:
         "",
         "A bare number is SI, in the unit of the last column; a unit may be given "
         "(`20mm`, `7.5 mm/s`). An option of one name means the same in every command that "
-        "takes it; where its value or default differs, the table at the end says how, and "
-        "the helps of both commands say so.",
+        "takes it, but for the one in the table \"Same name, different meaning\"; where its "
+        "value or default differs, the table at the end says how, and the helps of both "
+        "commands say so.",
+        "",
+        "Spelling: an option is written with hyphens (`--k-load`, `--p0-factor`), as "
+        "`impact laws` and the screen tables name it; the same parameter is a key with "
+        "underscores (`k_load`, `p0_factor`) wherever a program reads it: CSV and JSON keys, "
+        "the columns of `impact batch`, `impact fit`'s CSV and JSON, the JSON "
+        "`law_parameters` and the Python `law_params`. `impact fit --param` and `--fix` take "
+        "either spelling.",
         "",
         "| command | option | value | default | unit |",
         "|---|---|---|---|---|",
@@ -189,6 +342,19 @@ def options_markdown() -> str:
             f"| {row.command} | `{row.names}` | {_cell(row.metavar)} | {_cell(row.default)} "
             f"| {_cell(row.unit)} |"
         )
+    out += [
+        "",
+        "## Same name, different meaning",
+        "",
+        "Each command's help of such an option names a command of the other meaning.",
+        "",
+        "| option | meaning | commands |",
+        "|---|---|---|",
+    ]
+    for name, group in sorted(meanings(rows).items()):
+        if len(group) > 1:
+            for meaning, commands in group.items():
+                out.append(f"| `{name}` | {_cell(meaning)} | {', '.join(commands)} |")
     out += [
         "",
         "## Same name, different value or default",

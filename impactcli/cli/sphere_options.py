@@ -24,8 +24,9 @@ __all__ = ["SPHERE_METAVARS", "SPHERE_OPTIONS", "pair_inputs", "with_sphere_opti
 #: Option name -> help text, in the order of ``--help``.
 SPHERE_OPTIONS: dict[str, str] = {
     "d1": "Diameter of sphere 1 [m]. Required.",
-    "d2": "Diameter of sphere 2 [m]; 'inf' is a flat target.",
-    "v1": "Velocity of sphere 1 toward sphere 2 [m/s]. Required.",
+    "d2": "Diameter of sphere 2 [m]; 'inf' is a flat target. Required.",
+    "v1": "Velocity of sphere 1 toward sphere 2 [m/s] (a sphere's velocity; V0 = V1 + V2 is "
+    "the velocity of approach). Required.",
     "v2": "Velocity of sphere 2 toward sphere 1 [m/s]. Default 0 (at rest).",
     "material": "Material of both spheres (see 'impact materials').",
     "material1": "Material of sphere 1.",
@@ -59,25 +60,31 @@ SPHERE_METAVARS: dict[str, str] = {
 }
 
 
-def _parameter(name: str) -> inspect.Parameter:
-    option = typer.Option(f"--{name}", metavar=SPHERE_METAVARS[name], help=SPHERE_OPTIONS[name])
+def _parameter(name: str, help_text: str | None = None) -> inspect.Parameter:
+    text = SPHERE_OPTIONS[name] if help_text is None else help_text
+    option = typer.Option(f"--{name}", metavar=SPHERE_METAVARS[name], help=text)
     annotation = Annotated[Optional[str], option]
     return inspect.Parameter(
         name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=None, annotation=annotation
     )
 
 
-def with_sphere_options(velocities: bool = True) -> Callable[[Callable], Callable]:
+def with_sphere_options(
+    velocities: bool = True, helps: dict[str, str] | None = None
+) -> Callable[[Callable], Callable]:
     """Decorate a command whose signature has a ``spheres`` parameter: the sphere options
     (without --v1, --v2 unless ``velocities``) take its place in the command's options,
-    and the command receives them as ``spheres=SphereOptions(...)``."""
+    and the command receives them as ``spheres=SphereOptions(...)``. ``helps``: the help of
+    an option whose use differs in this command (option name -> text), e.g. a --d2 that
+    is not required."""
     names = [n for n in SPHERE_OPTIONS if velocities or n not in ("v1", "v2")]
+    helps = helps or {}
 
     def decorate(command: Callable) -> Callable:
         signature = inspect.signature(command, eval_str=True)
         params = list(signature.parameters.values())
         where = [p.name for p in params].index("spheres")
-        params[where : where + 1] = [_parameter(n) for n in names]
+        params[where : where + 1] = [_parameter(n, helps.get(n)) for n in names]
 
         @functools.wraps(command)
         def wrapper(**kwargs: Any) -> Any:

@@ -318,7 +318,7 @@ def _text_column(
 @without_float_warnings
 def compute_frame(
     frame,
-    n: int = 25,
+    n: int | None = None,
     split: str = "mass",
     model: str | None = None,
     faults: np.ndarray | None = None,
@@ -330,7 +330,8 @@ def compute_frame(
     frame : the chunk, a mapping of column name -> 1-D array or a pandas DataFrame
         (:func:`table_columns`); columns as :data:`QUANTITY_COLUMNS` (numbers in SI or
         strings with units) and :data:`TEXT_COLUMNS`; others are ignored
-    n : FILM segments per stage
+    n : FILM segments per stage; None: 25, and :data:`impactcli.impact.DAMPED_DEFAULT_N`
+        (400) on damped rows, as every command and :func:`impactcli.impact.damped_impact`
     split : ``mass``, ``compliance`` or ``yield`` share of the indentation between the
         spheres, for rows whose ``split`` cell is empty (:func:`_sphere_shares`)
     model : model of the rows whose ``model`` cell is empty (or of all, without the column)
@@ -365,6 +366,10 @@ def compute_frame(
         batch_impacts,
         material_properties,
     )
+    from impactcli.impact import DAMPED_DEFAULT_N
+
+    n_damped = DAMPED_DEFAULT_N if n is None else n
+    n = 25 if n is None else n
 
     columns, size = table_columns(frame)
     errors = Problems(size)
@@ -427,7 +432,7 @@ def compute_frame(
     for rows, name, rule in _damping_groups(damped, damping, ~errors.bad):
         out = batch_damped_impacts(
             *(a[rows] for a in args[:-1]), damping=name, alpha=damping["alpha"][rows],
-            restitution=damping["e"][rows], n=n, separation=rule,
+            restitution=damping["e"][rows], n=n_damped, separation=rule,
         )  # fmt: skip
         for k in BATCH_KEYS:
             result[k][rows] = out[k]
@@ -683,7 +688,8 @@ def _law_rows(rows: np.ndarray, name: str, params: dict, args: tuple, n: int):
 
 
 def dask_partition(
-    part, n: int = 25, split: str = "mass", model: str | None = None, strict: bool = False,
+    part, n: int | None = None, split: str = "mass", model: str | None = None,
+    strict: bool = False,
     partition_info: dict | None = None, faults: np.ndarray | None = None,
 ):  # fmt: skip
     """One Dask partition: its input columns followed by :func:`compute_frame`'s.
@@ -714,7 +720,7 @@ def dask_partition(
 
 
 def dask_csv_block(
-    block: bytes, names: list[str], header: bool, number: int, n: int = 25,
+    block: bytes, names: list[str], header: bool, number: int, n: int | None = None,
     split: str = "mass", model: str | None = None, strict: bool = False,
 ):  # fmt: skip
     """One block of a CSV file (whole lines; the file's header first when ``header``) as

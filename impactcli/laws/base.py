@@ -206,6 +206,8 @@ class DampedHertz:
     reference: ClassVar[Reference]
     validity: ClassVar[str]
     self_similar: ClassVar[bool]
+    #: what e depends on, in words: ``"alpha only"``, ``"alpha V0"``
+    restitution_depends_on: ClassVar[str]
     #: the kind of contact model, as the registry lists it
     kind: ClassVar[str] = "damping"
 
@@ -260,6 +262,7 @@ class Parameter:
         required or derived
     description : one line, including how a missing value is derived
     required : the law cannot run without it
+    choices : the accepted values of a parameter of kind ``choice``
     """
 
     name: str
@@ -273,6 +276,8 @@ class Parameter:
     yield_factor: float | None = None
     #: accepted range, as text (for listings)
     valid: str = "> 0"
+    #: the accepted values of a parameter of kind ``choice`` (its option lists them)
+    choices: tuple[str, ...] = ()
 
     @property
     def option(self) -> str:

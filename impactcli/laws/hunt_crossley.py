@@ -43,6 +43,8 @@ class HuntCrossleyDamping(DampedHertz):
     )
     #: e depends on alpha V0: not self-similar
     self_similar: ClassVar[bool] = False
+    #: what its coefficient of restitution depends on
+    restitution_depends_on: ClassVar[str] = "alpha V0"
     reference: ClassVar[Reference] = Reference(
         "K. H. Hunt, F. R. E. Crossley",
         1975,

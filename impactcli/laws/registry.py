@@ -187,7 +187,7 @@ def alpha_label(name: str, alpha: float, digits: int = 6) -> str:
     """
     check_damping(name)
     (parameter,) = DAMPING_LAWS[name].parameters
-    unit = "" if parameter.unit == "dimensionless" else f" {parameter.unit}"
+    unit = "" if parameter.kind == "dimensionless" else f" {parameter.unit}"
     return f"{parameter.name} = {alpha:.{digits}g}{unit}"
 
 

@@ -26,9 +26,19 @@ from impactcli.laws.base import (
     energy_velocity,
 )
 
-__all__ = ["SPEC", "TabulatedContact", "TabulatedLaw", "UnloadingCurves", "UnloadingLaw"]
+__all__ = [
+    "INTERPOLATIONS",
+    "SPEC",
+    "TabulatedContact",
+    "TabulatedLaw",
+    "UnloadingCurves",
+    "UnloadingLaw",
+]
 
 Array = NDArray[np.float64]
+
+#: How a tabulated curve is interpolated: the choices of ``--interpolation``.
+INTERPOLATIONS = ("linear", "pchip")
 
 
 class TabulatedLaw:
@@ -54,7 +64,7 @@ class TabulatedLaw:
             raise ValueError("a tabulated curve needs two 1-D arrays of equal length >= 2")
         if not (np.all(np.diff(d) > 0) and np.all(np.diff(f) > 0)):
             raise ValueError("a tabulated curve must increase strictly in delta and force")
-        if interpolation not in ("linear", "pchip"):
+        if interpolation not in INTERPOLATIONS:
             raise ValueError(f"interpolation must be linear or pchip, got {interpolation!r}")
         self.delta, self.values, self.interpolation = d, f, interpolation
         self.slope = np.diff(f) / np.diff(d)
@@ -342,7 +352,7 @@ class TabulatedContact:
 def _build(_radius, _modulus, _sy, params) -> TabulatedContact:
     curve = params["curve"]
     kind = params["interpolation"]
-    if kind not in ("linear", "pchip"):
+    if kind not in INTERPOLATIONS:
         raise ValueError(f"interpolation of law 'tabulated' must be linear or pchip, got {kind!r}")
     if isinstance(curve, TabulatedLaw):
         loading = curve
@@ -382,6 +392,7 @@ SPEC = LawSpec(
             "choice",
             "linear",
             "linear (exact on tabulated segments) or pchip (monotone cubic)",
+            choices=INTERPOLATIONS,
         ),
     ),
     reference=Reference(

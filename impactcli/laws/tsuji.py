@@ -55,6 +55,8 @@ class TsujiDamping(DampedHertz):
     )
     #: e does not depend on V0, m or K (the model is self-similar)
     self_similar: ClassVar[bool] = True
+    #: what its coefficient of restitution depends on
+    restitution_depends_on: ClassVar[str] = "alpha only"
     reference: ClassVar[Reference] = Reference(
         "Y. Tsuji, T. Tanaka, T. Ishida",
         1992,
@@ -68,7 +70,7 @@ class TsujiDamping(DampedHertz):
     parameters: ClassVar[tuple[Parameter, ...]] = (
         Parameter(
             "alpha",
-            "dimensionless",
+            "-",
             "dimensionless",
             None,
             "damping ratio: c = alpha sqrt(m K) delta^(1/4); e depends on alpha only",

@@ -105,6 +105,8 @@ class ViscoelasticDamping(DampedHertz):
     )
     #: e depends on A (K/m)^(2/5) V0^(1/5): not self-similar
     self_similar: ClassVar[bool] = False
+    #: what its coefficient of restitution depends on
+    restitution_depends_on: ClassVar[str] = "alpha (K/m)^(2/5) V0^(1/5)"
     reference: ClassVar[Reference] = Reference(
         "N. V. Brilliantov, F. Spahn, J.-M. Hertzsch, T. Poeschel",
         1996,
