@@ -396,7 +396,7 @@ def batch_impacts(
     split : share of the indentation between the spheres: ``mass``, ``compliance`` or
         ``yield`` (the permanent part to the weaker sphere, :func:`impactcli.energy.
         permanent_fractions`)
-    p0_factor : p0 / sigma_y of the elastoplastic model, [-] (``pressure_factor``, its
+    p0_factor : p0 / sigma_y of the elastoplastic model, [-] (``pressure_factor=``, its
         former name, works until 0.3 with a DeprecationWarning)
     law : a law of :data:`impactcli.laws.registry.LAWS` for every row (``plastic`` and
         ``p0_factor`` are then ignored; rows of several laws: one call per law, e.g.

@@ -1121,7 +1121,7 @@ def elastoplastic_impact(
     v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
     n, split : as for :func:`elastic_impact` (``split`` also ``yield``)
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
-    p0_factor : p0 / sigma_y, [-] (``pressure_factor``, its former name, works until 0.3
+    p0_factor : p0 / sigma_y, [-] (``pressure_factor=``, its former name, works until 0.3
         with a DeprecationWarning)
     method : ``film`` or ``ode``, as for :func:`elastic_impact` (``table`` only below the
         yield velocity)
@@ -1283,6 +1283,10 @@ class DampedImpactResult(ImpactResult):
 
     Attributes
     ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]
+    plan, film, n, split, model, summary, method, contact, warnings : as for
+        :class:`ImpactResult` (``plan`` None; ``film`` the damped FILM solution)
     law : the damping model with its K [N/m^1.5], m [kg] and alpha (:mod:`impactcli.laws`)
     alpha : the damping parameter, [-] (tsuji), [s/m] (hunt-crossley), [s] (viscoelastic)
     separation : ``overlap`` or ``force``, the rule that ends the contact

@@ -77,7 +77,7 @@ def restitution_sweep(
     velocities : impact velocities V0 = V1 + V2, > 0, [m/s]
     n : FILM segments per stage
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
-    p0_factor : p0 / sigma_y of Du & Wang's law, [-] (``pressure_factor``, its former
+    p0_factor : p0 / sigma_y of Du & Wang's law, [-] (``pressure_factor=``, its former
         name, works until 0.3 with a DeprecationWarning)
     split : ``mass``, ``compliance`` or ``yield``
     law : a law of ``impact laws``, or None for Du & Wang
