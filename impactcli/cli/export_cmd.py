@@ -191,7 +191,8 @@ def export(
             a, b, _, c, d = velocities
             text = out.script(a, b, c, d)
     except ValueError as exc:
-        raise InputError(str(exc).replace("v_range (--v-range", "--v-range (")) from None
+        raise InputError(str(exc).replace("v_range (--v-range VMIN..VMAX)",
+                                          "--v-range VMIN..VMAX")) from None
     if text is not None:
         with atomic_output(script) as stream:
             stream.write(text)

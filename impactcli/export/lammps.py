@@ -322,8 +322,8 @@ class LammpsInput:
         the other, as ``impact elastic`` takes them) or x, y, z in that frame.
 
         The script runs until the spheres part (``fix halt``) and prints, and writes to
-        the file of the LAMMPS variable ``summary`` (default ``summary``), one line per
-        quantity: its name, LAMMPS's value and this library's for the same contact
+        the file of the LAMMPS variable ``summary`` (default: the argument ``summary``),
+        one line per quantity: its name, LAMMPS's value and this library's for the same contact
         (``restitution``, ``contact_time``, ``delta_max``, ``delta_separation`` for the
         ``force`` rule, and the velocities and spins after the impact). The time step is
         the LAMMPS variable ``dt`` (``lmp -var dt 1e-8 -in FILE`` overrides it).
@@ -1125,7 +1125,11 @@ def _load_lammps():
 
 def read_lammps_summary(path: str | Path) -> dict[str, tuple[float, float]]:
     """The summary a script of :meth:`LammpsInput.script` writes: quantity -> (LAMMPS's
-    value, impactcli's for the same contact).
+    value, impactcli's for the same contact), SI.
+
+    Parameters
+    ----------
+    path : the summary file (``quantity LAMMPS impactcli unit`` per line, ``#`` comments)
 
     >>> import tempfile, os
     >>> with tempfile.TemporaryDirectory() as d:
@@ -1179,9 +1183,9 @@ def run_lammps(
 
 
 def with_yield_strength(sphere1, sphere2, yield_strength: float):
-    """The pair with a fitted yield strength (``impact fit``'s ``sy``, the yield strength of
-    the sphere that yields) given to both spheres: the laws take the weaker of the two,
-    which is then the fitted one whatever the spheres had."""
+    """The pair with a fitted yield strength [Pa] (``impact fit``'s ``sy``, the yield
+    strength of the sphere that yields) given to both spheres: the laws take the weaker of
+    the two, which is then the fitted one whatever the spheres had."""
     return (
         replace(sphere1, yield_strength=float(yield_strength)),
         replace(sphere2, yield_strength=float(yield_strength)),
