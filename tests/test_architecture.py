@@ -57,6 +57,8 @@ LIBRARY = (
     "impactcli.curves",
     "impactcli.damping",
     "impactcli.collision3d",
+    "impactcli.export",
+    "impactcli.export.lammps",
     "impactcli.compare",
     "impactcli.energy",
     "impactcli.design",

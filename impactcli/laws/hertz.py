@@ -26,6 +26,7 @@ from impactcli.laws.base import (
 
 __all__ = [
     "FIRST_YIELD_PRESSURE_FACTOR",
+    "LAMMPS_NORMAL_MODEL",
     "SPEC",
     "Hertz",
     "HertzContact",
@@ -39,6 +40,9 @@ Array = NDArray[np.float64]
 
 #: Yield starts when the Hertz peak pressure reaches 1.6 sigma_y (Johnson 1985; Stronge 2000).
 FIRST_YIELD_PRESSURE_FACTOR = 1.6
+
+#: LAMMPS's normal model of this law from E and nu (``pair_style granular``; docs/export.md).
+LAMMPS_NORMAL_MODEL = "hertz/material"
 
 
 def hertz_stiffness(effective_modulus: ArrayLike, effective_radius: ArrayLike) -> NDArray:

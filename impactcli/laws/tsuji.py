@@ -48,6 +48,8 @@ class TsujiDamping(DampedHertz):
     alpha: ArrayLike
 
     name: ClassVar[str] = "tsuji"
+    #: LAMMPS's name of this damping (``pair_style granular``; docs/export.md)
+    lammps_damping: ClassVar[str] = "tsuji"
     label: ClassVar[str] = "Tsuji"
     summary: ClassVar[str] = (
         "F = K delta^1.5 + alpha sqrt(m K) delta^(1/4) delta' (Tsuji et al. 1992; e depends "

@@ -98,6 +98,8 @@ class ViscoelasticDamping(DampedHertz):
     alpha: ArrayLike
 
     name: ClassVar[str] = "viscoelastic"
+    #: LAMMPS's name of this damping (``pair_style granular``; docs/export.md)
+    lammps_damping: ClassVar[str] = "viscoelastic"
     label: ClassVar[str] = "Viscoelastic"
     summary: ClassVar[str] = (
         "F = K (delta^1.5 + 1.5 alpha delta^(1/2) delta') (Brilliantov et al. 1996, alpha = A "
