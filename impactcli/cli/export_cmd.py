@@ -85,7 +85,8 @@ def export(
         "--e",
         help="Coefficient of restitution 0 < e <= 1 instead of a law, as impact collide3d "
         "takes it: LAMMPS's damping coeff_restitution (Hertz with Tsuji's damping that gives "
-        "this e at every V0).",
+        "this e at every V0). (impact elastic's and restitution's --e is another thing: the e "
+        "that --damping is to give, its alpha solved for.)",
     ),
     mu: float = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0."),
     tangential: Tangential = typer.Option(

@@ -85,42 +85,42 @@ MEANINGS: dict[str, dict[str, tuple[str, ...]]] = {
     )},
     "--d1": {"diameter of sphere 1": (
         "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep",
+        "fit", "yield-limit", "timestep", "export",
     )},
     "--d2": {"diameter of sphere 2": (
         "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep",
+        "fit", "yield-limit", "timestep", "export",
     )},
     "--v1": {"velocity of sphere 1 before the impact": (
-        "elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws",
+        "elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws", "export",
     )},
     "--v2": {"velocity of sphere 2 before the impact": (
-        "elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws",
+        "elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws", "export",
     )},
     "--material": {"material of both spheres": (
         "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep",
+        "fit", "yield-limit", "timestep", "export",
     )},
     "--m1": {"mass of sphere 1": (
         "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep",
+        "fit", "yield-limit", "timestep", "export",
     )},
     "--m2": {"mass of sphere 2": (
         "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep",
+        "fit", "yield-limit", "timestep", "export",
     )},
     "--sy": {"yield strength of both spheres": (
         "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep",
+        "fit", "yield-limit", "timestep", "export",
     )},
     "--damping": {"the damping model added to Hertz": (
-        "elastic", "restitution", "collide2d", "collide3d", "compare-laws", "fit",
+        "elastic", "restitution", "collide2d", "collide3d", "compare-laws", "fit", "export",
     )},
     "--e": {
         "a target e of --damping: the alpha that gives it is solved for": (
             "elastic", "restitution",
         ),
-        "a given e, used in place of the normal law": ("collide2d", "collide3d"),
+        "a given e, used in place of the normal law": ("collide2d", "collide3d", "export"),
     },
     "--points": {"points of a time history": (
         "elastic", "elastoplastic", "collide3d", "compare-laws",
@@ -130,14 +130,15 @@ MEANINGS: dict[str, dict[str, tuple[str, ...]]] = {
     )},
     "--curve": {"the loading curve of the law of a user's curve": (
         "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "export",
     )},
     "--law": {"the contact law (fit: to fit; yield-limit: whose yield point is asked)": (
         "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws", "fit",
-        "yield-limit",
+        "yield-limit", "export",
     )},
     "--p0-factor": {"p0 / sigma_y of the default elastoplastic law": (
         "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "yield-limit",
+        "yield-limit", "export",
     )},
     "--count": {"the number of impact velocities of a sweep": ("restitution", "compare-laws")},
     "--p1": {"centre of sphere 1 at contact": ("collide2d", "collide3d")},
@@ -146,6 +147,8 @@ MEANINGS: dict[str, dict[str, tuple[str, ...]]] = {
         "collide2d", "collide3d", "batch",
     )},
     "--v0": {"the impact velocity V0": ("yield-limit", "timestep")},
+    "--w1": {"angular velocity of sphere 1 before the impact": ("collide3d", "export")},
+    "--tangential": {"the tangential (friction) model": ("collide3d", "export")},
 }  # fmt: skip
 
 
