@@ -48,10 +48,11 @@ from impactcli.contact import (
     sphere_mass,
 )
 from impactcli.errors import InputError
-from impactcli.film import FilmSolution, FilmStage, solve_stage
+from impactcli.film import FilmSolution
 from impactcli.laws import hertz_stiffness
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
+from impactcli.solution import solve_plan
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     finite_float,
@@ -604,26 +605,6 @@ def _nan(value: float | None) -> float:
 def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
     return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
-
-
-def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:
-    """Solve every stage of ``plan`` by FILM with n segments, chained in time."""
-    stages: list[FilmStage] = []
-    t_start: ArrayLike = np.zeros_like(np.asarray(plan.delta_max, dtype=float))
-    for stage in plan.stages:
-        film = solve_stage(
-            stage.law,
-            stage.delta_start,
-            stage.delta_end,
-            stage.speed_start,
-            mass,
-            n,
-            t_start,
-            end_at_rest=stage.end_at_rest,
-        )
-        stages.append(film)
-        t_start = film.end_time
-    return tuple(stages)
 
 
 def _validate(
@@ -1319,7 +1300,7 @@ class DampedImpactResult(ImpactResult):
         from impactcli.energy import kinetic_energy
 
         if method == "ode":
-            dissipated = self.ode.dissipated(h["t"])
+            dissipated = self.ode.dissipated_at(h["t"])
         else:
             dissipated = self.film.dissipated_at(h["t"])  # type: ignore[attr-defined]
         strain = self.law.elastic_work(0.0, h["delta"])

@@ -53,6 +53,7 @@ LIBRARY = (
     "impactcli.io.readers",
     "impactcli.io.writers",
     "impactcli.ode",
+    "impactcli.solution",
     "impactcli.lawlib",
     "impactcli.curves",
     "impactcli.damping",
