@@ -302,9 +302,13 @@ class DampedImpact:
         """The indentation at separation, [m] (:attr:`delta_separation`)."""
         return self.delta_separation
 
-    def force(self, t: ArrayLike, delta: ArrayLike, delta_dot: ArrayLike) -> Array:
+    def force(
+        self, t: ArrayLike, delta: ArrayLike, delta_dot: ArrayLike | None = None
+    ) -> Array:
         """Total contact force F(delta, delta') of the law, [N] (``t`` [s] unused: the
-        law is the same at every time)."""
+        law is the same at every time; ``delta_dot`` [m/s] is needed)."""
+        if delta_dot is None:
+            raise ValueError("the force of a damped contact needs the indentation rate")
         return self._law().force(delta, delta_dot)
 
     def energy(self, t: ArrayLike, delta: ArrayLike, index: int = 0) -> tuple[Array, Array]:

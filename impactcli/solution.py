@@ -96,9 +96,12 @@ class ContactSolution(Protocol):
         """Indentation [m] and its rate [m/s] at times ``t`` [s], clamped to the contact."""
         ...
 
-    def force(self, t: ArrayLike, delta: ArrayLike, delta_dot: ArrayLike) -> Array:
+    def force(
+        self, t: ArrayLike, delta: ArrayLike, delta_dot: ArrayLike | None = None
+    ) -> Array:
         """Contact force [N] at times ``t`` [s] in the state ``delta`` [m], ``delta_dot``
-        [m/s] (the law of the stage each time falls in, or F(delta, delta'))."""
+        [m/s] (the law of the stage each time falls in, or F(delta, delta'), which needs
+        ``delta_dot``)."""
         ...
 
     def energy(self, t: ArrayLike, delta: ArrayLike) -> tuple[Array, Array]:

@@ -54,6 +54,7 @@ LIBRARY = (
     "impactcli.io.writers",
     "impactcli.ode",
     "impactcli.solution",
+    "impactcli.model",
     "impactcli.lawlib",
     "impactcli.curves",
     "impactcli.damping",
