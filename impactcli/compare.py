@@ -29,8 +29,7 @@ from impactcli.impact import (
     impact,
     weaker_yield_strength,
 )
-from impactcli.laws.hertz import hertz_stiffness
-from impactcli.laws.registry import DAMPING_LAWS, get_law
+from impactcli.laws.registry import get_law
 
 __all__ = [
     "COMPARISON_KEYS",
@@ -173,21 +172,9 @@ def published_restitution(
     sec. 4.4 value instead (e = 0.85611 at V0 = 1 m/s for its steel spheres).
     """
     v0 = np.asarray(velocities, dtype=float)
-    m, r, e = effective_properties(sphere1, sphere2)
-    sigma_y = weaker_yield_strength(sphere1, sphere2)
     out: dict[str, tuple[NDArray, NDArray]] = {}
     for model in map(_model, laws):
-        if model.damping is not None:
-            form = getattr(DAMPING_LAWS[model.damping], "closed_form", None)
-            found = None if form is None else form(
-                float(hertz_stiffness(e, r)), m, model.alpha, v0, model.separation
-            )
-            if found is not None:
-                out[found[0]] = (v0, found[1])
-            continue
-        spec = get_law(model.law)
-        if spec.closed_form is not None:
-            contact = spec.contact(r, e, sigma_y, **dict(model.law_params))
-            label, restitution = spec.closed_form(contact, m, v0)
-            out[label] = (v0, restitution)
+        found = model.for_spheres(sphere1, sphere2).closed_form(v0)
+        if found is not None:
+            out[found[0]] = (v0, found[1])
     return out

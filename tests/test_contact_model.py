@@ -203,3 +203,38 @@ def test_a_model_of_the_registry_by_name():
     assert ContactModel.named("thornton", {"py": 2e9}, 1e9) == ContactModel(
         "thornton", {"py": 2e9}, yield_strength=1e9
     )
+
+
+@pytest.mark.parametrize("name", list(DAMPING_LAWS))
+def test_a_fit_takes_a_damping_model_by_its_declared_fitting(name):
+    """The fit asks the registry how to take a model (Fitting), a damping model as a normal
+    law: its alpha, started from the pair's Hertz stiffness, no yield point."""
+    from impactcli.impact import effective_properties
+    from impactcli.laws import hertz_stiffness
+    from impactcli.laws.registry import fitting
+
+    m, r, e = effective_properties(S1, S2)
+    declared = fitting(name)
+    assert declared.default == ("alpha",) and declared.yield_onset == "none"
+    assert declared.starts_are_defaults and declared.run_parameters({"alpha": 0.2}) == {
+        "alpha": 0.2
+    }
+    ((unit, *start),) = declared.starts(m, r, e, 1e9, 1.3, {}).values()
+    assert tuple(start) == DAMPING_LAWS[name].fit_start(1.3, float(hertz_stiffness(e, r)), m)
+    (alpha,) = DAMPING_LAWS[name].parameters
+    assert unit == ("-" if alpha.kind == "dimensionless" else alpha.unit)
+
+
+def test_callers_build_contact_models_from_the_pair():
+    """fit, compare, the 3-D collisions and the impact commands ask a ContactModel (or the
+    registry) for a damping model: none computes a Hertz stiffness to build one."""
+    from pathlib import Path
+
+    import impactcli
+
+    package = Path(impactcli.__file__).parent
+    for name in ("fit.py", "compare.py", "collision3d.py", "io/collisions3d.py",
+                 "cli/impact_cmd.py", "impact.py"):  # fmt: skip
+        source = (package / name).read_text()
+        assert "hertz_stiffness" not in source, name
+        assert "make_damping_law" not in source, name
