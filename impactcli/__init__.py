@@ -15,6 +15,13 @@ prints. Each name is imported on first use, so that ``impact --help`` stays ligh
 >>> round(impactcli.elastic_impact(s1, s2, 5e-3, 7.5e-3).summary["contact_time"] * 1e6, 2)
 171.32
 
+Every contact model goes through one call, :func:`impact` with a :class:`ContactModel` (a
+law of the registry, or Hertz with a damping model):
+
+>>> r = impactcli.impact(s1, s2, 0.25, 0.75, impactcli.ContactModel("thornton"))
+>>> r.model, round(r.summary["restitution"], 5)
+('elastoplastic', 0.62143)
+
 Reference: A. Big-Alabo, "Rigid Body Motions and Local Compliance Response during Impact of
 Two Deformable Spheres", Mechanical Engineering Research 8(1), 2018, doi:10.5539/mer.v8n1p1.
 """
@@ -24,6 +31,8 @@ __version__ = "0.1.0"
 #: Public name -> the module that defines it.
 _PUBLIC: dict[str, str] = {
     "Sphere": "impactcli.impact",
+    "ContactModel": "impactcli.model",
+    "impact": "impactcli.impact",
     "ImpactResult": "impactcli.impact",
     "elastic_impact": "impactcli.impact",
     "elastoplastic_impact": "impactcli.impact",
@@ -47,7 +56,9 @@ def __getattr__(name: str):
     if name in _PUBLIC:
         from importlib import import_module
 
-        return getattr(import_module(_PUBLIC[name]), name)
+        value = getattr(import_module(_PUBLIC[name]), name)
+        # importing impactcli.impact binds the package's "impact" to that (callable) module
+        return globals().get(name, value)
     raise AttributeError(f"module 'impactcli' has no attribute {name!r}")
 
 

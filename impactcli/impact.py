@@ -28,10 +28,32 @@ delta_p(t) being the residual indentation of the largest indentation reached so 
 Energy (docs/method.md §12): the histories carry each sphere's kinetic energy, the stored
 (recoverable) strain energy and the dissipated energy, whose sum is the initial kinetic
 energy at every time (:mod:`impactcli.energy`).
+
+The module is callable as its function :func:`impact`: the package exports ``impact``, and
+a package's attribute of a submodule's name is that submodule once it is imported, so
+``impactcli.impact(...)`` calls :func:`impact` whichever of the two it is.
+
+Parameters
+----------
+sphere1, sphere2 : the spheres (:class:`Sphere`, SI)
+v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
+model : the contact model (:class:`ContactModel`; default Hertz)
+n, split, method : as for :func:`impact`
+
+Examples
+--------
+>>> import impactcli
+>>> s1 = impactcli.Sphere.from_material(0.02, "steel")
+>>> s2 = impactcli.Sphere.from_material(0.04, "steel")
+>>> r = impactcli.impact(s1, s2, 0.25, 0.75, impactcli.ContactModel("du-wang"))
+>>> r.model, round(r.summary["restitution"], 5)
+('elastoplastic', 0.85611)
 """
 
 from __future__ import annotations
 
+import sys
+import types
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
@@ -1418,3 +1440,13 @@ def __getattr__(name: str):
         )
         return ImpactResult
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+class _CallableModule(types.ModuleType):
+    """:mod:`impactcli.impact`, callable as :func:`impact` (module docstring)."""
+
+    def __call__(self, *args: Any, **kwargs: Any) -> ImpactResult:
+        return impact(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallableModule
