@@ -46,6 +46,7 @@ Everything is SI (or any consistent units) and broadcasts over collisions.
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -69,6 +70,9 @@ from impactcli.laws.tsuji import (
 )
 from impactcli.limits import MAX_SEGMENTS, check_size
 from impactcli.validation import input_errors
+
+if TYPE_CHECKING:
+    from impactcli.ode import OdeSolution
 
 #: The protocol of a damping model, by its former name.
 ViscoelasticLaw = DampingModel
@@ -316,7 +320,7 @@ class DampedImpact:
         by damping up to times ``t`` [s] (:meth:`dissipated_at`), [J]."""
         return self._law().elastic_work(0.0, delta), self.dissipated_at(t, index)
 
-    def integrate(self, index: int = 0):
+    def integrate(self, index: int = 0) -> OdeSolution:
         """SciPy integration of the same law, V0, m and separation rule
         (:func:`impactcli.ode.integrate`): the reference of one impact."""
         from impactcli.ode import integrate
@@ -976,7 +980,7 @@ def damped_ode_solution(
     mass: float,
     separation: Separation = "overlap",
     rtol: float = 1e-12,
-):
+) -> OdeSolution:
     """:func:`damped_impact_ode` with its dense output: :func:`impactcli.ode.integrate` of
     the law, an :class:`impactcli.ode.OdeSolution` (``summary``, ``evaluate(t)``,
     ``dissipated_at(t)``)."""

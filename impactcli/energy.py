@@ -26,8 +26,13 @@ Each is written as two pairs of fractions, ``elastic`` (of delta - delta_p) and
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from impactcli.laws.base import ImpactPlan, NormalContact
 
 __all__ = [
     "YIELD_TIE_TOLERANCE",
@@ -278,8 +283,8 @@ def strain_and_dissipated(
 
 
 def plan_energy(
-    plan,
-    contact,
+    plan: ImpactPlan,
+    contact: NormalContact,
     t: ArrayLike,
     delta: ArrayLike,
     contact_work: ArrayLike,

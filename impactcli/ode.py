@@ -278,8 +278,8 @@ def _solve(stage: _Stage, tau: float, state: NDArray, rtol: float):
     funs = []
     for event in stage.events:
         fun = event.fun
-        fun.terminal = event.terminal  # type: ignore[attr-defined]
-        fun.direction = event.direction  # type: ignore[attr-defined]
+        fun.terminal = event.terminal
+        fun.direction = event.direction
         funs.append(fun)
     return solve_ivp(
         stage.rhs,

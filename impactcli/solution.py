@@ -30,6 +30,7 @@ from impactcli.film import FilmSolution, FilmStage, solve_stage
 
 if TYPE_CHECKING:
     from impactcli.laws.base import ImpactPlan, NormalContact
+    from impactcli.ode import OdeSolution
 
 __all__ = ["ContactSolution", "PlanSolution", "solve_plan"]
 
@@ -252,7 +253,7 @@ class PlanSolution(FilmSolution):
         delta, _ = self.evaluate(t)
         return self.energy(t, delta)[1]
 
-    def integrate(self):
+    def integrate(self) -> OdeSolution:
         """SciPy integration of the same plan (:func:`impactcli.ode.integrate_plan`)."""
         from impactcli.ode import integrate_plan
 

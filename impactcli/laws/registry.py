@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 from impactcli.laws import du_wang, hertz, tabulated, thornton, walton_braun
 from impactcli.laws.base import (
     SEPARATIONS,
+    DampingModel,
     Fitting,
     ImpactPlan,
     LawSpec,
@@ -219,7 +220,7 @@ def make_damping_law(name: str, stiffness: ArrayLike, mass: ArrayLike, alpha: Ar
 
 def damping_model(
     name: str, radius: ArrayLike, modulus: ArrayLike, mass: ArrayLike, alpha: ArrayLike
-):
+) -> DampingModel:
     """The model called ``name`` (a key of :data:`DAMPING_LAWS`) for a pair of spheres:
     effective radius R [m], modulus E* [Pa], mass m [kg] and alpha; its Hertz stiffness
     K = (4/3) E* sqrt(R) (:meth:`~impactcli.laws.base.DampedHertz.for_pair`)."""
