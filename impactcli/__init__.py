@@ -20,6 +20,13 @@ prints, and every result type is exported. Each name is imported on first use, s
 >>> round(impactcli.elastic_impact(s1, s2, 5e-3, 7.5e-3).summary["contact_time"] * 1e6, 2)
 171.32
 
+Every contact model goes through one call, :func:`solve_impact` with a :class:`ContactModel` (a
+law of the registry, or Hertz with a damping model):
+
+>>> r = impactcli.solve_impact(s1, s2, 0.25, 0.75, impactcli.ContactModel("thornton"))
+>>> r.model, round(r.summary["restitution"], 5)
+('elastoplastic', 0.62143)
+
 Reference: A. Big-Alabo, "Rigid Body Motions and Local Compliance Response during Impact of
 Two Deformable Spheres", Mechanical Engineering Research 8(1), 2018, doi:10.5539/mer.v8n1p1.
 """
@@ -29,8 +36,9 @@ __version__ = "0.1.0"
 #: Public name -> the module that defines it.
 _PUBLIC: dict[str, str] = {
     "Sphere": "impactcli.impact",
+    "ContactModel": "impactcli.model",
+    "solve_impact": "impactcli.impact",
     "ImpactResult": "impactcli.impact",
-    "DampedImpactResult": "impactcli.impact",
     "elastic_impact": "impactcli.impact",
     "elastoplastic_impact": "impactcli.impact",
     "law_impact": "impactcli.impact",

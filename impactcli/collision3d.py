@@ -610,11 +610,13 @@ def normal_restitution_and_history(
     r"""The normal law of an oblique impact: e and, if asked, the normal history.
 
     The normal law is run as a head-on impact at the normal approach velocity u_n of the
-    contact (docs/collision3d.md): by FILM for a law of :mod:`impactcli.laws`
-    (:func:`impactcli.impact.law_impact`: ``hertz``, ``du-wang``, ``thornton``,
-    ``walton-braun``, ``tabulated``), or, with ``damping``, for Hertz elasticity plus viscous
-    damping (:func:`impactcli.damping.solve_damped_impact`: ``tsuji`` or ``hunt-crossley``,
-    damping parameter ``alpha``; the contact ends by the rule ``separation``).
+    contact (docs/collision3d.md), the pair checked as :func:`impactcli.impact.solve_impact` checks
+    it: the :class:`~impactcli.model.ContactModel` of a law of :mod:`impactcli.laws`
+    (``hertz``, ``du-wang``, ``thornton``, ``walton-braun``, ``tabulated``), or, with
+    ``damping``, of Hertz elasticity plus viscous damping (``tsuji`` or ``hunt-crossley``,
+    damping parameter ``alpha``; the contact ends by the rule ``separation``), solved by
+    FILM (:meth:`impactcli.model.PairModel.solve`). A damped contact that never ends
+    (overdamped) has e = 0.
 
     Parameters
     ----------
@@ -625,8 +627,8 @@ def normal_restitution_and_history(
     damping : None, ``tsuji`` or ``hunt-crossley``
     alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
     points : time points of the history (>= 3) for the ``mindlin`` model; None: no history
-    n : FILM segments per stage of a law of :mod:`impactcli.laws` (damped Hertz uses the
-        400 of :func:`impactcli.damping.solve_damped_impact`)
+    n : FILM segments per stage of a law of :mod:`impactcli.laws` (damped Hertz uses
+        :data:`impactcli.model.DAMPED_DEFAULT_N`, 400)
     separation : with ``damping``: ``overlap`` (the contact ends when delta returns to 0) or
         ``force`` (when the total force does; the spheres part at delta_separation > 0)
 
@@ -647,7 +649,8 @@ def normal_restitution_and_history(
     ------
     ValueError
         A bad law, parameter, damping law or alpha; a law other than ``hertz`` with damping;
-        a damped contact that never ends (e = 0) when a history is asked.
+        a pair of spheres the impact refuses (:func:`impactcli.impact.check_pair`); a damped
+        contact that never ends (e = 0) when a history is asked.
 
     Examples
     --------
@@ -658,7 +661,10 @@ def normal_restitution_and_history(
     >>> round(e, 4)
     0.7542
     """
-    from impactcli.impact import effective_properties, law_impact
+    from impactcli.damping import check_alpha, check_damping
+    from impactcli.impact import check_pair
+    from impactcli.limits import MAX_SEGMENTS, check_size
+    from impactcli.model import ContactModel
 
     if points is not None and int(points) < 3:
         raise ValueError(f"the normal history needs at least 3 time points, got {points}")
@@ -667,37 +673,27 @@ def normal_restitution_and_history(
     if damping is None:
         if alpha is not None:
             raise ValueError("alpha is the parameter of a damping law: give damping too")
-        # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
-        v1 = 0.0 if np.isinf(sphere1.total_mass) else float(u_n)
-        impact = law_impact(sphere1, sphere2, v1, float(u_n) - v1, law, params, n=n)
-        e = float(impact.summary["restitution"])
-        history = None if points is None else NormalHistory.from_impacts([impact], int(points))
-        elastic = get_law(law).name == ELASTIC_LAW  # Hertz: its first yield, as law_impact
-        delta_max = float(impact.summary["delta_max"])
-        return NormalLaw(e, history, normal_law_warnings(sphere1, sphere2, u_n, delta_max, elastic))
-
-    from impactcli.damping import (
-        check_alpha,
-        check_damping,
-        make_damping_law,
-        solve_damped_impact,
-    )
-    from impactcli.laws import hertz_stiffness
-
-    if get_law(law).name != ELASTIC_LAW or params:
-        raise ValueError(
-            f"damping {damping!r} is viscous damping on Hertz elasticity: its law is "
-            f"{ELASTIC_LAW}, got {law!r}" + (" with parameters" if params else "")
-        )
-    if alpha is None:
-        raise ValueError(f"damping {damping!r} needs its parameter alpha")
-    check_alpha(alpha)
-    check_damping(damping, separation)
-    m, radius, modulus = effective_properties(sphere1, sphere2)
-    contact = make_damping_law(damping, float(hertz_stiffness(modulus, radius)), m, alpha)
-    solution = solve_damped_impact(contact, float(u_n), m, separation=separation)
+    else:
+        if get_law(law).name != ELASTIC_LAW or params:
+            raise ValueError(
+                f"damping {damping!r} is viscous damping on Hertz elasticity: its law is "
+                f"{ELASTIC_LAW}, got {law!r}" + (" with parameters" if params else "")
+            )
+        if alpha is None:
+            raise ValueError(f"damping {damping!r} needs its parameter alpha")
+        check_alpha(alpha)
+        check_damping(damping, separation)
+    model = ContactModel(law, dict(params or {}), damping, alpha, separation=separation)
+    segments = n if damping is None else model.default_n
+    # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
+    v1 = 0.0 if np.isinf(sphere1.total_mass) else float(u_n)
+    check_size("n", segments, MAX_SEGMENTS)
+    check_pair(sphere1, sphere2, v1, float(u_n) - v1)
+    pair = model.for_spheres(sphere1, sphere2)
+    solution = pair.solve(float(u_n), segments, must_end=False)
     e = float(solution.restitution)
-    warned = normal_law_warnings(sphere1, sphere2, u_n, float(solution.delta_max), True)
+    elastic = get_law(law).name == ELASTIC_LAW  # Hertz, damped or not: its first yield
+    warned = normal_law_warnings(sphere1, sphere2, u_n, float(solution.delta_max), elastic)
     if points is None:
         return NormalLaw(e, None, warned)
     t_c = float(solution.contact_time)
@@ -709,15 +705,12 @@ def normal_restitution_and_history(
     t = np.linspace(0.0, t_c, int(points))
     delta, delta_dot = solution.evaluate(t)
     delta = np.maximum(delta, 0.0)
-    force = np.maximum(contact.force(delta, delta_dot), 0.0)
-    # The impulse of max(F, 0): the total force pushes until it first returns to 0, where
-    # the ``force`` rule separates at -e_force u_n, and pulls from there on (F < 0 stays
-    # negative: F'' = 0 on F = 0 while delta falls), so its integral is (1 + e_force) m u_n.
-    pushing = solution
-    if separation == "overlap":
-        pushing = solve_damped_impact(contact, float(u_n), m, separation="force")
-    impulse = (1.0 + float(pushing.restitution)) * m * float(u_n)
-    history = NormalHistory(t[None], delta[None], delta_dot[None], force[None], [impulse])
+    force = np.maximum(solution.force(t, delta, delta_dot), 0.0)
+    # The impulse of max(F, 0): J_n unless the force pulls (a damped contact near separation).
+    impulse = pair.pushing_impulse(solution, float(u_n), segments)
+    history = NormalHistory(
+        t[None], delta[None], delta_dot[None], force[None], None if impulse is None else [impulse]
+    )
     return NormalLaw(e, history, warned)
 
 

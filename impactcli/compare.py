@@ -27,11 +27,10 @@ from impactcli.impact import (
     Sphere,
     damped_restitution_sweep,
     effective_properties,
-    impact,
+    solve_impact,
     weaker_yield_strength,
 )
-from impactcli.laws.hertz import hertz_stiffness
-from impactcli.laws.registry import DAMPING_LAWS, get_law
+from impactcli.laws.registry import get_law
 
 __all__ = [
     "COMPARISON_KEYS",
@@ -96,7 +95,7 @@ def compare_impacts(
         by its ``name``
     n : FILM segments per stage; None: each model's default, 25 for a law and
         :data:`~impactcli.impact.DAMPED_DEFAULT_N` (400) for a damping model
-        (:func:`impactcli.impact.impact`)
+        (:func:`impactcli.impact.solve_impact`)
 
     Raises
     ------
@@ -104,7 +103,7 @@ def compare_impacts(
         Bad input of a law, or an impact beyond a tabulated curve (one line each).
     """
     models = [_model(entry) for entry in laws]
-    return {model.name: impact(sphere1, sphere2, v1, v2, model, n, split) for model in models}
+    return {m.name: solve_impact(sphere1, sphere2, v1, v2, m, n, split) for m in models}
 
 
 def reference_yield_velocity(
@@ -179,21 +178,9 @@ def published_restitution(
     sec. 4.4 value instead (e = 0.85611 at V0 = 1 m/s for its steel spheres).
     """
     v0 = np.asarray(velocities, dtype=float)
-    m, r, e = effective_properties(sphere1, sphere2)
-    sigma_y = weaker_yield_strength(sphere1, sphere2)
     out: dict[str, tuple[NDArray, NDArray]] = {}
     for model in map(_model, laws):
-        if model.damping is not None:
-            form = getattr(DAMPING_LAWS[model.damping], "closed_form", None)
-            found = None if form is None else form(
-                float(hertz_stiffness(e, r)), m, model.alpha, v0, model.separation
-            )
-            if found is not None:
-                out[found[0]] = (v0, found[1])
-            continue
-        spec = get_law(model.law)
-        if spec.closed_form is not None:
-            contact = spec.contact(r, e, sigma_y, **dict(model.law_params))
-            label, restitution = spec.closed_form(contact, m, v0)
-            out[label] = (v0, restitution)
+        found = model.for_spheres(sphere1, sphere2).closed_form(v0)
+        if found is not None:
+            out[found[0]] = (v0, found[1])
     return out

@@ -46,6 +46,7 @@ Everything is SI (or any consistent units) and broadcasts over collisions.
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -70,6 +71,9 @@ from impactcli.laws.tsuji import (
 from impactcli.limits import MAX_SEGMENTS, check_size
 from impactcli.validation import input_errors
 
+if TYPE_CHECKING:
+    from impactcli.ode import OdeSolution
+
 #: The protocol of a damping model, by its former name.
 ViscoelasticLaw = DampingModel
 
@@ -77,7 +81,6 @@ __all__ = [
     "DAMPING_LAWS",
     "SEPARATIONS",
     "DampedImpact",
-    "DampedOdeSolution",
     "HuntCrossleyDamping",
     "LawParameter",
     "TsujiDamping",
@@ -271,6 +274,11 @@ class DampedImpact:
     mass, impact_velocity : m [kg] and V0 [m/s]
     separation : the separation rule
     loading, restitution : the two stages (flattened batch, shape (N, ...))
+    law : the damping model solved (F(delta, delta'), its elastic work)
+
+    For one impact it is a :class:`~impactcli.solution.ContactSolution`: the quantities
+    above, and :meth:`evaluate`, :meth:`force`, :meth:`energy`, :meth:`dissipated_at` and
+    :meth:`integrate` (of collision ``index`` of a batch, default the first).
     """
 
     restitution: Array
@@ -286,11 +294,50 @@ class DampedImpact:
     separation: str
     loading: DampedStage
     restitution_stage: DampedStage
+    law: DampingModel | None = None
 
     @property
     def end_time(self) -> Array:
         """The time of separation, [s] (:attr:`contact_time`; the histories end there)."""
         return self.contact_time
+
+    @property
+    def delta_end(self) -> Array:
+        """The indentation at separation, [m] (:attr:`delta_separation`)."""
+        return self.delta_separation
+
+    def force(
+        self, t: ArrayLike, delta: ArrayLike, delta_dot: ArrayLike | None = None
+    ) -> Array:
+        """Total contact force F(delta, delta') of the law, [N] (``t`` [s] unused: the
+        law is the same at every time; ``delta_dot`` [m/s] is needed)."""
+        if delta_dot is None:
+            raise ValueError("the force of a damped contact needs the indentation rate")
+        return self._law().force(delta, delta_dot)
+
+    def energy(self, t: ArrayLike, delta: ArrayLike, index: int = 0) -> tuple[Array, Array]:
+        """Stored elastic energy W_e(0, delta) = (2/5) K delta^2.5 and the energy dissipated
+        by damping up to times ``t`` [s] (:meth:`dissipated_at`), [J]."""
+        return self._law().elastic_work(0.0, delta), self.dissipated_at(t, index)
+
+    def integrate(self, index: int = 0) -> OdeSolution:
+        """SciPy integration of the same law, V0, m and separation rule
+        (:func:`impactcli.ode.integrate`): the reference of one impact."""
+        from impactcli.ode import integrate
+
+        if np.size(self.impact_velocity) != 1:
+            raise ValueError("integrate() takes a single impact; solve one collision")
+        return integrate(
+            self._law(),
+            float(self.mass),
+            float(self.impact_velocity),
+            self.separation,
+        )
+
+    def _law(self) -> DampingModel:
+        if self.law is None:
+            raise ValueError("this solution was made without its law")
+        return self.law
 
     def _segments(self, index: int) -> dict[str, Array]:
         """The segments of collision ``index`` in time order (both stages), as arrays."""
@@ -690,6 +737,7 @@ def solve_damped_impact(
         separation=separation,
         loading=load,
         restitution_stage=unload,
+        law=law,
     )
 
 
@@ -904,33 +952,6 @@ def _refine_alpha(
 # -- reference: SciPy integration of the same law ---------------------------------------------
 
 
-@dataclass(frozen=True)
-class DampedOdeSolution:
-    """SciPy integration of one damped impact (:func:`damped_ode_solution`).
-
-    Attributes
-    ----------
-    summary : restitution, contact_time, delta_separation, delta_max, t_max, force_max,
-        dissipated, stored (SI), as :func:`damped_impact_ode` returns them
-    end_time : the time of separation, [s]
-    """
-
-    summary: dict[str, float]
-    end_time: float
-    _dense: object
-
-    def evaluate(self, t: ArrayLike) -> tuple[Array, Array]:
-        """Indentation [m] and rate [m/s] at times ``t`` [s], clamped to [0, end_time]."""
-        tt = np.clip(np.asarray(t, dtype=float), 0.0, self.end_time)
-        y = np.asarray(self._dense(np.ravel(tt)))  # type: ignore[operator]
-        return y[0].reshape(tt.shape), y[1].reshape(tt.shape)
-
-    def dissipated(self, t: ArrayLike) -> Array:
-        """Energy dissipated by damping up to times ``t`` [s], [J]."""
-        tt = np.clip(np.asarray(t, dtype=float), 0.0, self.end_time)
-        return np.asarray(self._dense(np.ravel(tt)))[2].reshape(tt.shape)  # type: ignore
-
-
 def damped_impact_ode(
     law,
     impact_velocity: float,
@@ -940,13 +961,15 @@ def damped_impact_ode(
 ) -> dict[str, float]:
     """One damped impact by SciPy ``solve_ivp`` (DOP853) with events; the FILM reference.
 
-    Integrates m delta'' = -F(delta, delta') with the dissipated energy D' = c(delta) delta'^2;
-    events: delta' = 0 (maximum indentation), delta = 0 (end of contact), and for ``force``
-    the total force returning to 0 (its sign from ``law.reduced_force``). The maximum force
-    is refined on the dense output with a bounded scalar search.
+    :func:`impactcli.ode.integrate` of the law: m delta'' = -F(delta, delta') with the
+    dissipated energy D' = c(delta) delta'^2; events: delta' = 0 (maximum indentation),
+    delta = 0 (end of contact), and for ``force`` the total force returning to 0 (its sign
+    from ``law.reduced_force``). The maximum force is refined on the dense output with a
+    bounded scalar search.
 
     Returns a dict with restitution, contact_time, delta_separation, delta_max, t_max,
-    force_max, dissipated, stored (SI); :func:`damped_ode_solution` also gives the histories.
+    force_max, dissipated, stored (SI); :func:`impactcli.ode.integrate` also gives the
+    histories.
     """
     return damped_ode_solution(law, impact_velocity, mass, separation, rtol).summary
 
@@ -957,79 +980,28 @@ def damped_ode_solution(
     mass: float,
     separation: Separation = "overlap",
     rtol: float = 1e-12,
-) -> DampedOdeSolution:
-    """:func:`damped_impact_ode` with its dense output: the summary and the histories."""
-    from scipy.integrate import solve_ivp
-    from scipy.optimize import minimize_scalar
+) -> OdeSolution:
+    """:func:`damped_impact_ode` with its dense output: :func:`impactcli.ode.integrate` of
+    the law, an :class:`impactcli.ode.OdeSolution` (``summary``, ``evaluate(t)``,
+    ``dissipated_at(t)``)."""
+    from impactcli.ode import integrate
 
-    v0, m = float(impact_velocity), float(mass)
-    k = float(np.asarray(law.stiffness))
-    delta_h = (5.0 * m * v0 * v0 / (4.0 * k)) ** 0.4
-    t_h = 2.9432752 * delta_h / v0
+    return integrate(law, mass, impact_velocity, separation, rtol)
 
-    def rhs(_t, y):
-        d, v = y[0], y[1]
-        return [v, -float(law.force(d, v)) / m, float(law.damping_coefficient(d)) * v * v]
 
-    def top(_t, y):
-        return y[1]
+def __getattr__(name: str):
+    """``DampedOdeSolution``, the former type of a damped integration, is
+    :class:`impactcli.ode.OdeSolution` (deprecated name; it goes in 0.3)."""
+    if name == "DampedOdeSolution":
+        import warnings
 
-    top.direction = -1
+        from impactcli.ode import OdeSolution
 
-    def overlap(_t, y):
-        return y[0]
-
-    overlap.terminal = True
-    overlap.direction = -1
-
-    def force(_t, y):
-        return float(law.reduced_force(y[0], y[1])) if y[1] < 0.0 else 1.0
-
-    force.terminal = True
-    force.direction = -1
-    events = [top, overlap] + ([force] if separation == "force" else [])
-    sol = solve_ivp(
-        rhs,
-        (0.0, 50.0 * t_h),
-        [0.0, v0, 0.0],
-        method="DOP853",
-        rtol=rtol,
-        atol=[rtol * delta_h, rtol * v0, rtol * 0.5 * m * v0 * v0],
-        events=events,
-        dense_output=True,
-    )
-    t_max = float(sol.t_events[0][0])
-    d_max = float(sol.y_events[0][0][0])
-    ends = [(ev[0], ye[0]) for ev, ye in zip(sol.t_events[1:], sol.y_events[1:]) if ev.size]
-    if not ends:
-        from impactcli.errors import InputError
-
-        alpha = float(np.ravel(np.asarray(law.alpha, dtype=float))[0])
-        raise InputError(
-            f"alpha = {alpha:.4g}: SciPy integration finds no end of contact within 50 Hertz "
-            "contact times (the indentation creeps back toward 0, as when overdamped; FILM's "
-            "segments end the creep with a tiny e): use the FILM method or a smaller alpha"
+        warnings.warn(
+            "impactcli.damping.DampedOdeSolution is deprecated and goes in 0.3: the "
+            "integration of every contact model is impactcli.ode.OdeSolution",
+            DeprecationWarning,
+            stacklevel=2,
         )
-    t_c, y_c = min(ends, key=lambda p: p[0])
-    grid = np.linspace(0.0, t_max, 2001)
-    f_grid = np.array([float(law.force(*sol.sol(t)[:2])) for t in grid])
-    j = int(np.argmax(f_grid))
-    lo, hi = grid[max(j - 1, 0)], grid[min(j + 1, grid.size - 1)]
-    res = minimize_scalar(
-        lambda t: -float(law.force(*sol.sol(t)[:2])),
-        bounds=(lo, hi),
-        method="bounded",
-        options={"xatol": 1e-14 * t_max},
-    )
-    d_sep = max(float(y_c[0]), 0.0)
-    summary = {
-        "restitution": -float(y_c[1]) / v0,
-        "contact_time": float(t_c),
-        "delta_separation": d_sep,
-        "delta_max": d_max,
-        "t_max": t_max,
-        "force_max": max(-float(res.fun), float(f_grid[j])),
-        "dissipated": float(y_c[2]),
-        "stored": float(law.elastic_work(0.0, d_sep)),
-    }
-    return DampedOdeSolution(summary, float(t_c), sol.sol)
+        return OdeSolution
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -26,17 +26,25 @@ Each is written as two pairs of fractions, ``elastic`` (of delta - delta_p) and
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+if TYPE_CHECKING:
+    from impactcli.laws.base import ImpactPlan, NormalContact
+
 __all__ = [
     "YIELD_TIE_TOLERANCE",
+    "energy_columns",
     "energy_history",
     "film_contact_work",
     "kinetic_energy",
     "loading_work",
     "permanent_fractions",
+    "plan_energy",
     "sphere_shares",
+    "strain_and_dissipated",
     "yield_shares",
 ]
 
@@ -235,6 +243,122 @@ def loading_work(laws, bounds, delta: ArrayLike) -> NDArray:
     return work
 
 
+def strain_and_dissipated(
+    t: ArrayLike,
+    contact_work: ArrayLike,
+    t_max: float,
+    loading: ArrayLike,
+    recoverable: ArrayLike,
+    recoverable_max: float,
+    loading_max: float,
+) -> tuple[NDArray, NDArray]:
+    """Stored (recoverable) strain energy and dissipated energy of a rate-independent law at
+    times ``t`` [s], [J] (module docstring).
+
+    While loading (t <= t_max) the dissipated energy is the loading work W(0, delta) less what
+    unloading from delta would give back; after the turning point it stays at its value at
+    delta_max; the strain energy is the rest of the contact work W(t).
+
+    Parameters
+    ----------
+    t : times, [s]
+    contact_work : work done by the contact force up to each time, W(t), [J]
+    t_max : time of the maximum indentation, [s]
+    loading : exact loading work W(0, delta) at each time's delta, [J]
+    recoverable : work that unloading from each time's delta (taken as the maximum) would
+        give back, [J]
+    recoverable_max, loading_max : the same at delta_max, [J]
+
+    Returns
+    -------
+    (strain_energy, dissipated), [J]
+    """
+    t = np.asarray(t, dtype=float)
+    w = np.asarray(contact_work, dtype=float)
+    during = np.asarray(loading, dtype=float) - np.asarray(recoverable, dtype=float)
+    dissipated = np.where(t <= t_max, during, loading_max - recoverable_max)
+    # rounding of loading - recoverable (an elastic law) is not dissipation
+    dissipated = np.where(dissipated > 1e-12 * abs(loading_max), dissipated, 0.0)
+    return w - dissipated, dissipated
+
+
+def plan_energy(
+    plan: ImpactPlan,
+    contact: NormalContact,
+    t: ArrayLike,
+    delta: ArrayLike,
+    contact_work: ArrayLike,
+    t_max: float,
+    delta_max: float,
+) -> tuple[NDArray, NDArray]:
+    """:func:`strain_and_dissipated` of an impact of a normal law, [J].
+
+    Parameters
+    ----------
+    plan : the impact's :class:`~impactcli.laws.base.ImpactPlan` (its loading stages: all
+        but the last)
+    contact : its contact model (``recoverable_work(delta)`` [J])
+    t, delta : times [s] and indentation [m] of the history
+    contact_work : W(t) along the solution (FILM's or an integration's), [J]
+    t_max, delta_max : the solution's turning point, [s], [m]
+    """
+    stages = plan.stages[:-1]  # the loading stages; the last one unloads
+    laws = [stage.law for stage in stages]
+    bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
+    delta = np.asarray(delta, dtype=float)
+    return strain_and_dissipated(
+        t,
+        contact_work,
+        t_max,
+        loading_work(laws, bounds, delta),
+        np.reshape(contact.recoverable_work(delta), np.shape(delta)),
+        _first(contact.recoverable_work(np.array([delta_max]))),
+        _first(loading_work(laws, bounds, np.array([delta_max]))),
+    )
+
+
+def _first(value: ArrayLike) -> float:
+    """The one value of a scalar or shape-(1,) array."""
+    return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
+
+
+def energy_columns(
+    masses: tuple[float, float],
+    velocities: tuple[ArrayLike, ArrayLike],
+    strain: ArrayLike,
+    dissipated: ArrayLike,
+    shares: tuple[tuple[float, float], tuple[float, float]],
+) -> dict[str, NDArray]:
+    """The energy columns of a history, [J]: each sphere's kinetic energy and share of the
+    strain energy (by the ``elastic`` fractions) and of the dissipated energy (by the
+    ``permanent`` ones).
+
+    Parameters
+    ----------
+    masses : m_1, m_2, [kg]
+    velocities : d_1', d_2' at each time, [m/s], toward the other sphere
+    strain, dissipated : the stored strain energy and the dissipated energy, [J]
+    shares : ``(elastic, permanent)`` fraction pairs (:func:`sphere_shares`)
+
+    Returns
+    -------
+    dict
+        ``ke1``, ``ke2``, ``strain_energy``, ``strain_energy1``, ``strain_energy2``,
+        ``dissipated``, ``dissipated1``, ``dissipated2``, [J].
+    """
+    (e1, e2), (p1, p2) = shares
+    return {
+        "ke1": kinetic_energy(masses[0], velocities[0]),
+        "ke2": kinetic_energy(masses[1], velocities[1]),
+        "strain_energy": strain,
+        "strain_energy1": e1 * strain,
+        "strain_energy2": e2 * strain,
+        "dissipated": dissipated,
+        "dissipated1": p1 * dissipated,
+        "dissipated2": p2 * dissipated,
+    }
+
+
 def energy_history(
     t: ArrayLike,
     delta: ArrayLike,
@@ -271,21 +395,7 @@ def energy_history(
         ``ke1``, ``ke2``, ``strain_energy``, ``strain_energy1``, ``strain_energy2``,
         ``dissipated``, ``dissipated1``, ``dissipated2``, [J].
     """
-    t = np.asarray(t, dtype=float)
-    w = np.asarray(contact_work, dtype=float)
-    during = np.asarray(loading, dtype=float) - np.asarray(recoverable, dtype=float)
-    dissipated = np.where(t <= t_max, during, loading_max - recoverable_max)
-    # rounding of loading - recoverable (an elastic law) is not dissipation
-    dissipated = np.where(dissipated > 1e-12 * abs(loading_max), dissipated, 0.0)
-    strain = w - dissipated
-    (e1, e2), (p1, p2) = shares
-    return {
-        "ke1": kinetic_energy(masses[0], velocities[0]),
-        "ke2": kinetic_energy(masses[1], velocities[1]),
-        "strain_energy": strain,
-        "strain_energy1": e1 * strain,
-        "strain_energy2": e2 * strain,
-        "dissipated": dissipated,
-        "dissipated1": p1 * dissipated,
-        "dissipated2": p2 * dissipated,
-    }
+    strain, dissipated = strain_and_dissipated(
+        t, contact_work, t_max, loading, recoverable, recoverable_max, loading_max
+    )
+    return energy_columns(masses, velocities, strain, dissipated, shares)

@@ -17,11 +17,12 @@ Akaike information criterion of a Gaussian least-squares fit, AIC = N ln(RSS/N) 
 its small-sample correction AICc = AIC + 2p(p+1)/(N-p-1) (Burnham & Anderson 2002, sec.
 2.2).
 
-The models (:func:`law_model`): every normal law of :mod:`impactcli.laws` that declares how
-a fit takes it (:class:`~impactcli.laws.base.Fitting`) through
-:func:`impactcli.sweep.restitution_sweep`, and every damping model through
-:func:`impactcli.damping.solve_damped_impact`; their starting values and bounds come from
-the laws and the spheres (:func:`law_parameters`), :func:`fit_named_law`
+The models (:func:`law_model`): every contact model of :mod:`impactcli.laws` that declares
+how a fit takes it (:class:`~impactcli.laws.base.Fitting`: a normal law's, or a damping
+model's alpha), run as a :class:`~impactcli.model.ContactModel` for the pair
+(:meth:`impactcli.model.PairModel.restitution`: :func:`impactcli.sweep.restitution_sweep`
+of a normal law, the damped FILM of a damping model); their starting values and bounds come
+from the laws and the spheres (:func:`law_parameters`), :func:`fit_named_law`
 fits one, :func:`rank_fits` ranks several and :func:`prediction_band` gives the fitted
 curve's confidence band.
 
@@ -40,8 +41,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.hertz import hertz_stiffness
-from impactcli.laws.registry import DAMPING_LAWS, LAWS
+from impactcli.laws.base import Fitting
+from impactcli.laws.registry import DAMPING_LAWS, LAWS, MODELS, fitting
 from impactcli.lsq import bounded_least_squares, student_t_quantile
 from impactcli.validation import input_errors
 
@@ -379,12 +380,13 @@ def rank_fits(results: Sequence[FitResult]) -> list[tuple[FitResult, float, floa
 
 # -- the models of the library's laws ------------------------------------------------------
 
-#: The laws a fit can take: the normal laws of :mod:`impactcli.laws` that declare how a fit
-#: takes them (:class:`~impactcli.laws.base.Fitting`), and every damping model.
-#: The parameters fitted when none is named: law -> names.
+#: The laws a fit can take: the contact models of :mod:`impactcli.laws` that declare how a
+#: fit takes them (:class:`~impactcli.laws.base.Fitting`: the normal laws that have one, and
+#: every damping model). The parameters fitted when none is named: law -> names.
 DEFAULT_FIT: dict[str, tuple[str, ...]] = {
-    **{name: spec.fitting.default for name, spec in LAWS.items() if spec.fitting is not None},
-    **{name: ("alpha",) for name in DAMPING_LAWS},
+    name: declared.default
+    for name, declared in ((name, fitting(name)) for name in MODELS)
+    if declared is not None
 }
 FIT_LAWS: tuple[str, ...] = tuple(DEFAULT_FIT)
 
@@ -399,6 +401,13 @@ def _check_law(law: str) -> str:
         extra = " (it has no numeric parameter)" if key in LAWS else ""
         raise ValueError(f"cannot fit law {law!r}{extra}; accepted: {', '.join(FIT_LAWS)}")
     return key
+
+
+def _fitting(law: str) -> Fitting:
+    """How a fit takes ``law`` (a name of :data:`FIT_LAWS`)."""
+    declared = fitting(law)
+    assert declared is not None
+    return declared
 
 
 def _pair(sphere1, sphere2) -> tuple[float, float, float, float]:
@@ -450,13 +459,7 @@ def law_parameters(
     m, r, e_star, sy = _pair(sphere1, sphere2)
     sy = fixed.get("sy", sy if math.isfinite(sy) else 1e9)
     v_ref = float(reference_velocity)
-    if law in DAMPING_LAWS:
-        model = DAMPING_LAWS[law]
-        (alpha,) = model.parameters
-        unit = "-" if alpha.kind == "dimensionless" else alpha.unit
-        start = model.fit_start(v_ref, float(hertz_stiffness(e_star, r)), m)
-        return {"alpha": FitParameter("alpha", unit, *start)}
-    starts = LAWS[law].fitting.starts(m, r, e_star, sy, v_ref, fixed)
+    starts = _fitting(law).starts(m, r, e_star, sy, v_ref, fixed)
     return {name: FitParameter(name, *start) for name, start in starts.items()}
 
 
@@ -488,11 +491,11 @@ def law_model(
     """The :data:`Model` of ``law`` for this pair of spheres: (parameters, V0 [m/s]) ->
     ``restitution`` [-] and ``contact_time`` [s], vectorised over V0.
 
-    The normal laws run through :func:`impactcli.sweep.restitution_sweep` (elastoplastic
-    FILM, docs/method.md §7, §9) with the parameters their
-    :attr:`~impactcli.laws.base.Fitting.run_parameters` take from the fit's; the damping
-    models through :func:`impactcli.damping.solve_damped_impact` (FILM for rate-dependent
-    laws, ``overlap`` separation) with their ``alpha``.
+    Each run is the :class:`~impactcli.model.ContactModel` of the law with the parameters
+    its :attr:`~impactcli.laws.base.Fitting.run_parameters` take from the fit's (and the
+    fit's sy), for the pair (:meth:`impactcli.model.PairModel.restitution`): a normal law
+    through :func:`impactcli.sweep.restitution_sweep` (elastoplastic FILM, docs/method.md
+    §7, §9), a damping model through the damped FILM (``overlap`` separation).
 
     Parameters
     ----------
@@ -512,10 +515,10 @@ def law_model(
     from impactcli.limits import MAX_SEGMENTS, check_size
 
     segments = check_size("n", n if n is not None else DEFAULT_SEGMENTS.get(law, 25), MAX_SEGMENTS)
-    m, r, e_star, sy = _pair(sphere1, sphere2)
+    _pair(sphere1, sphere2)
+    declared = _fitting(law)
     base: dict[str, float] = {}
-    damped = law in DAMPING_LAWS
-    if damped or LAWS[law].fitting.starts_are_defaults:
+    if declared.starts_are_defaults:
         starts = law_parameters(sphere1, sphere2, law, fixed=fixed)
         base = {name: p.initial for name, p in starts.items()}
     base.update(fixed or {})
@@ -530,21 +533,12 @@ def law_model(
             raise ValueError(
                 f"law {law!r} has no parameter {sorted(unknown)[0]!r} (accepted: {accepted})"
             )
-        v = np.asarray(v0, dtype=float)
-        if damped:
-            from impactcli.damping import make_damping_law, solve_damped_impact
+        from impactcli.model import ContactModel
 
-            model = make_damping_law(law, hertz_stiffness(e_star, r), m, p["alpha"])
-            out = solve_damped_impact(model, v, m, segments)
-            return {"restitution": out.restitution, "contact_time": out.contact_time}
-        from impactcli.sweep import restitution_sweep
-
-        law_params = LAWS[law].fitting.run_parameters(p)
-        sweep = restitution_sweep(
-            sphere1, sphere2, v, segments, yield_strength=p.get("sy"), law=law,
-            law_params=law_params,
-        )  # fmt: skip
-        return {"restitution": sweep["restitution"], "contact_time": sweep["contact_time"]}
+        contact = ContactModel.named(law, declared.run_parameters(p), p.get("sy"))
+        pair = contact.for_spheres(sphere1, sphere2)
+        e, t_c = pair.restitution(np.asarray(v0, dtype=float), segments)
+        return {"restitution": e, "contact_time": t_c}
 
     return model
 
@@ -611,26 +605,28 @@ def law_yield_velocity(sphere1, sphere2, law: str, params: Mapping[str, float]) 
     from impactcli.sweep import sweep_yield_velocity
 
     law = _check_law(law)
-    onset = "none" if law in DAMPING_LAWS else LAWS[law].fitting.yield_onset
+    onset = _fitting(law).yield_onset
     if onset == "none":
         return math.nan
     if onset == "first touch":
         return 0.0
-    extra = LAWS[law].fitting.run_parameters(params)
+    extra = _fitting(law).run_parameters(params)
     return sweep_yield_velocity(
         sphere1, sphere2, yield_strength=params.get("sy"), law=law, law_params=extra
     )
 
 
-def _data_starts(law: str, data: FitData, stiffness: float, mass: float) -> dict[str, float]:
-    """Starting values read off the data, where the law gives them: a damping model's
-    alpha from the measured e (its ``data_start``, e.g. the exact inverse of a closed-form
-    e(alpha), or an estimate for e near 1)."""
-    if law not in DAMPING_LAWS:
+def _data_starts(law: str, data: FitData, sphere1, sphere2) -> dict[str, float]:
+    """Starting values read off the data, where the law gives them
+    (:attr:`~impactcli.laws.base.Fitting.data_starts`): a damping model's alpha from the
+    measured e (its ``data_start``, e.g. the exact inverse of a closed-form e(alpha), or an
+    estimate for e near 1)."""
+    data_starts = _fitting(law).data_starts
+    if data_starts is None:
         return {}
+    m, r, e_star, _ = _pair(sphere1, sphere2)
     e = np.clip(data.restitution, 1e-3, 1.0 - 1e-6)
-    model = DAMPING_LAWS[law]
-    return {"alpha": model.data_start(e, data.impact_velocity, stiffness, mass)}
+    return data_starts(e, data.impact_velocity, m, r, e_star)
 
 
 @input_errors
@@ -676,9 +672,7 @@ def fit_named_law(
     both = [name for name in names if name in fixed]
     if both:
         raise ValueError(f"{both[0]} of law {law!r} is both fitted and held fixed")
-    m, r, e_star, _ = _pair(sphere1, sphere2)
-    k = float(hertz_stiffness(e_star, r))
-    for name, guess in _data_starts(law, data, k, m).items():
+    for name, guess in _data_starts(law, data, sphere1, sphere2).items():
         if name in available:
             p = available[name]
             available[name] = FitParameter(name, p.unit, guess, p.lower, p.upper)

@@ -1,9 +1,14 @@
 """Dimensional impact of two spheres: each sphere's motion and indentation (paper sec. 2-4).
 
-:func:`elastic_impact` and :func:`elastoplastic_impact` take the two spheres' sizes,
-materials and velocities in SI and return an :class:`ImpactResult`: the summary of the
-impact and its histories at any times, by FILM (closed form), by the normalised tables
-(elastic), or by SciPy integration of eqs. 1a,b.
+:func:`solve_impact` takes the two spheres' sizes, materials and velocities in SI and a
+:class:`ContactModel` (a normal law of the registry, or Hertz with a damping model) and
+returns an :class:`ImpactResult`: the summary of the impact and its histories at any
+times, by FILM, by the normalised tables (the elastic Hertz impact), or by SciPy
+integration of eqs. 1a,b (:mod:`impactcli.ode`). The model solves the impact
+(:mod:`impactcli.model`); the result reads its solution through one protocol
+(:class:`~impactcli.solution.ContactSolution`), whatever the model. :func:`elastic_impact`,
+:func:`elastoplastic_impact`, :func:`law_impact` and :func:`damped_impact` call
+:func:`solve_impact` with one kind of model each.
 
 Sign convention (docs/method.md §1): velocities along the line of centres, positive toward the
 other sphere; V0 = V1 + V2 > 0. Rigid-body motion of each centre (eq. 12, docs/method.md §2):
@@ -23,12 +28,20 @@ delta_p(t) being the residual indentation of the largest indentation reached so 
 Energy (docs/method.md §12): the histories carry each sphere's kinetic energy, the stored
 (recoverable) strain energy and the dissipated energy, whose sum is the initial kinetic
 energy at every time (:mod:`impactcli.energy`).
+
+Examples
+--------
+>>> import impactcli
+>>> s1 = impactcli.Sphere.from_material(0.02, "steel")
+>>> s2 = impactcli.Sphere.from_material(0.04, "steel")
+>>> r = impactcli.solve_impact(s1, s2, 0.25, 0.75, impactcli.ContactModel("du-wang"))
+>>> r.model, round(r.summary["restitution"], 5)
+('elastoplastic', 0.85611)
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -37,8 +50,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
     DU_WANG_PRESSURE_FACTOR,
-    DuWangContact,
-    HertzContact,
     ImpactPlan,
     effective_mass,
     effective_modulus,
@@ -48,25 +59,23 @@ from impactcli.contact import (
     sphere_mass,
 )
 from impactcli.errors import InputError
-from impactcli.film import FilmSolution, FilmStage, solve_stage
-from impactcli.laws import hertz_stiffness
-from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
+from impactcli.film import FilmSolution
+from impactcli.laws.registry import DEFAULT_LAW
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
+from impactcli.model import DAMPED_DEFAULT_N, ContactModel, DampedPair, PairModel
+from impactcli.solution import ContactSolution, PlanSolution, solve_plan
 from impactcli.validation import (
-    YIELD_STRENGTH_NEEDED,
     finite_float,
     input_errors,
-    needs_yield_strength,
     pair_problems,
-    plastic_range_problems,
     raise_first,
     renamed_p0_factor,
     sphere_problems,
-    yield_scale_problems,
 )
 
 if TYPE_CHECKING:
-    from impactcli.ode import OdeSolution
+    from impactcli.contact import DuWangContact
+    from impactcli.laws.base import NormalContact
 
 __all__ = [
     "HISTORY_COLUMNS",
@@ -80,7 +89,6 @@ __all__ = [
     "DAMPED_SWEEP_COLUMNS",
     "DAMPED_SUMMARY_KEYS",
     "ContactModel",
-    "DampedImpactResult",
     "Sphere",
     "ImpactResult",
     "check_pair",
@@ -91,11 +99,11 @@ __all__ = [
     "elastoplastic_impact",
     "energy_summary",
     "impact_summary",
-    "impact",
     "impact_warnings",
     "integrate_impact",
     "law_impact",
     "plastic_summary",
+    "solve_impact",
     "solve_plan",
     "split_fractions",
     "weaker_yield_strength",
@@ -295,26 +303,38 @@ class Sphere:
 
 @dataclass(frozen=True)
 class ImpactResult:
-    """One impact: its plan, FILM solution, summary and histories.
+    """One impact under any contact model: its solution, summary and histories.
 
     ``summary`` is FILM's, or the SciPy integration's when ``method == "ode"``
     (:func:`integrate_impact`); :attr:`ode` holds that integration, done once on first use.
     Use :meth:`history` for the columns of :data:`HISTORY_COLUMNS` at any times, by any
-    method (default ``method``). Made by :func:`elastic_impact`,
-    :func:`elastoplastic_impact`, :func:`law_impact` and :func:`damped_impact`.
+    method (default ``method``), and :meth:`energy` for the energy partition. Made by
+    :func:`solve_impact` (and :func:`elastic_impact`, :func:`elastoplastic_impact`,
+    :func:`law_impact`, :func:`damped_impact`, which call it).
 
     Parameters
     ----------
     sphere1, sphere2 : the spheres (SI)
     v1, v2 : velocities of the centres toward the other sphere, [m/s]
-    plan, film : the stages of the impact and their FILM solution
+    solution : the FILM solution of the impact
+        (:class:`~impactcli.solution.ContactSolution`: :class:`~impactcli.solution.PlanSolution`
+        for a normal law, :class:`~impactcli.damping.DampedImpact` with damping)
     n : FILM segments per stage
     split : how the indentation is shared (``mass``, ``compliance``, ``yield``)
-    model : ``elastic``, ``elastoplastic`` or the law's name
+    model : what the impact was: ``elastic``, ``elastoplastic``, the law's name, or
+        ``damped-<model>`` (:meth:`impactcli.model.PairModel.kind`)
+    contact : the contact model of the pair that solved it
+        (:class:`~impactcli.model.PairModel`; its :class:`~impactcli.model.ContactModel` is
+        ``contact.model``)
     summary : the summary, SI (:data:`ELASTIC_SUMMARY_KEYS`, ...)
     method : ``film``, ``table`` or ``ode``
-    contact : the contact model that planned the stages
     warnings : what ``impact`` prints for this impact (:func:`impact_warnings`)
+
+    Notes
+    -----
+    With a damping model the force column is the total force F(delta, delta'), which may
+    pull (F < 0) at the end of an ``overlap`` contact: the force-indentation curve is a
+    loop; there are no normalised tables (``method`` film or ode).
 
     Examples
     --------
@@ -330,14 +350,13 @@ class ImpactResult:
     sphere2: Sphere
     v1: float
     v2: float
-    plan: ImpactPlan
-    film: FilmSolution
+    solution: ContactSolution
     n: int
     split: Split
     model: str
+    contact: PairModel
     summary: dict[str, float] = field(default_factory=dict)
     method: Method = "film"
-    contact: Any = None
     #: The warnings ``impact`` prints for this impact (:func:`impact_warnings`): above the
     #: first-yield velocity of an elastic impact, a contact radius beyond 0.1 R, the mass
     #: split between different materials.
@@ -395,14 +414,54 @@ class ImpactResult:
         r1, r2 = self.mass_ratios  # m/m1 = m2/(m1+m2)... written to allow m2 = inf
         return r2 * self.v1 - r1 * self.v2
 
-    @cached_property
-    def ode(self) -> OdeSolution:
-        """SciPy integration of this impact's plan (:func:`impactcli.ode.integrate_plan`),
-        computed once, on first use."""
-        from impactcli.ode import integrate_plan
+    # -- the model and its solution ------------------------------------------------------
+    @property
+    def film(self) -> ContactSolution:
+        """FILM's solution (:attr:`solution`): a :class:`~impactcli.film.FilmSolution` of
+        the plan's stages for a normal law, a :class:`~impactcli.damping.DampedImpact`
+        with damping."""
+        return self.solution
 
-        mass = float(effective_mass(self.m1, self.m2))
-        return integrate_plan(self.plan, mass, self.impact_velocity)
+    @property
+    def plan(self) -> ImpactPlan:
+        """The stages of a normal law's impact (:class:`~impactcli.laws.base.ImpactPlan`);
+        an AttributeError with damping (its FILM has no plan)."""
+        if not isinstance(self.solution, PlanSolution):
+            raise AttributeError("a damped impact has no plan: its FILM runs segment by segment")
+        return self.solution.plan
+
+    @property
+    def contact_model(self) -> NormalContact:
+        """The normal contact model of this impact (residual indentation, recoverable
+        work): the law's, or Hertz under a damping model."""
+        return self.contact.normal_contact
+
+    @property
+    def law(self) -> Any:
+        """The damping model solved (F(delta, delta')), or None for a normal law."""
+        return self.contact.damping_law(self.solution)
+
+    @property
+    def alpha(self) -> float | None:
+        """The damping parameter used, in the model's unit ([-] for ``tsuji``, [s/m] for
+        ``hunt-crossley``, [s] for ``viscoelastic``); None without damping."""
+        law = self.law
+        return None if law is None else float(law.alpha)
+
+    @property
+    def separation(self) -> str | None:
+        """A damped contact's separation rule (``overlap`` or ``force``); None without."""
+        return self.contact.separation
+
+    @cached_property
+    def ode(self) -> ContactSolution:
+        """SciPy integration of this impact (:func:`impactcli.ode.integrate`: the plan's
+        stages, or the damping model), computed once, on first use."""
+        return self.solution.integrate()
+
+    def _solution(self, method: str) -> ContactSolution:
+        """The solution of ``method``: the integration's for ``ode``, else FILM's."""
+        return self.ode if method == "ode" else self.solution
 
     def times(self, points: int = 201, method: Method | None = None) -> NDArray:
         """``points`` evenly spaced times over the whole contact of ``method``, [s]: FILM's
@@ -410,8 +469,7 @@ class ImpactResult:
         (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
         points = check_size("points", points, MAX_POINTS, minimum=2)
         method = self.method if method is None else method
-        end = self.ode.end_time if method == "ode" else self.film.end_time
-        return np.linspace(0.0, end, points)
+        return np.linspace(0.0, float(self._solution(method).end_time), points)
 
     # -- histories ---------------------------------------------------------------------
     def history(
@@ -429,20 +487,35 @@ class ImpactResult:
             method the result was computed with
         """
         method = self.method if method is None else method
-        if method not in ("film", "table", "ode"):
-            raise ValueError(f"method must be film, table or ode, got {method!r}")
+        if method not in self.contact.methods:
+            raise ValueError(self.contact.method_error(method))
         t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
+        source = self._solution(method)
+        t = np.clip(t, 0.0, float(source.end_time))  # d_i must match the clamped delta(t)
         if method == "table":
-            t = np.clip(t, 0.0, self.film.end_time)
             delta, delta_dot = self._table_state(t)
-            return self._columns(t, delta, delta_dot, self.force(t, delta), method)
-        if method == "ode":
-            t = np.clip(t, 0.0, self.ode.end_time)
-            delta, delta_dot = self.ode.evaluate(t)
-            return self._columns(t, delta, delta_dot, self.ode.force(t, delta), method)
-        t = np.clip(t, 0.0, self.film.end_time)  # d_i must match the clamped delta(t)
-        delta, delta_dot = self.film.evaluate(t)
-        return self._columns(t, delta, delta_dot, self.force(t, delta), method)
+        else:
+            delta, delta_dot = source.evaluate(t)
+        return self._columns(t, delta, delta_dot, source.force(t, delta, delta_dot), source)
+
+    def energy(
+        self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
+    ) -> dict[str, NDArray]:
+        """Energy partition over the contact (:data:`DAMPED_ENERGY_COLUMNS`: the time and
+        :data:`ENERGY_COLUMNS`, [J]; ``t`` [s]), as :meth:`history` gives it.
+
+        ke_i = (1/2) m_i d_i'^2 (:func:`impactcli.energy.kinetic_energy`, frame of the
+        inputs); ``strain_energy`` what unloading would give back (for a damping model the
+        elastic part, (2/5) K delta^2.5); ``dissipated`` the rest of the contact work
+        (plastic work; the integral of c(delta) delta'^2 dt with damping). Each sphere's
+        share of the strain energy is its share of the indentation (``split``), of the
+        dissipated energy its share of the permanent indentation. ke1 + ke2 +
+        strain_energy + dissipated is the initial kinetic energy (to rounding for FILM of
+        a normal law, to O(1/n^2) with damping; tests/test_energy.py,
+        tests/test_damping_cli.py).
+        """
+        h = self.history(t, points, method)
+        return {name: h[name] for name in DAMPED_ENERGY_COLUMNS}
 
     def dataframe(
         self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
@@ -452,44 +525,30 @@ class ImpactResult:
 
         return pd.DataFrame(self.history(t, points, method))
 
-    def force(self, t: ArrayLike, delta: ArrayLike) -> NDArray:
-        """Contact force F(delta) of the FILM stage each time falls in, [N]."""
-        t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
-        ends = [float(stage.end_time) for stage in self.film.stages]
-        stage = np.minimum(np.searchsorted(ends, t, side="left"), len(ends) - 1)
-        return self.plan.force(stage, delta)
+    def force(
+        self, t: ArrayLike, delta: ArrayLike, delta_dot: ArrayLike | None = None
+    ) -> NDArray:
+        """Contact force of FILM's solution, [N]: F(delta) of the stage each time [s] falls
+        in for a normal law, F(delta, delta') with damping (``delta`` [m], ``delta_dot``
+        [m/s])."""
+        return self.solution.force(t, delta, delta_dot)
 
     # -- energy and the permanent part ------------------------------------------------
-    @property
-    def contact_model(self) -> Any:
-        """The contact model of this impact (residual indentation, recoverable work)."""
-        if self.contact is not None:
-            return self.contact
-        from impactcli.laws.hertz import HertzLawContact
-
-        _, r, e = effective_properties(self.sphere1, self.sphere2)
-        return HertzLawContact(r, e)
-
-    def _turning_point(self, method: str) -> tuple[float, float]:
-        """Time [s] and value [m] of the maximum indentation of ``method``."""
-        if method == "ode":
-            return self.ode.t_max, self.ode.delta_max
-        if self.plan is None:  # a damped impact: its FILM solution has the turning point
-            film: Any = self.film
-            return float(np.ravel(film.t_max)[0]), float(np.ravel(film.delta_max)[0])
-        return float(self.film.stages[-2].end_time), float(np.reshape(self.plan.delta_max, -1)[0])
-
-    def permanent_indentation(self, t: NDArray, delta: NDArray, method: str) -> NDArray:
+    def permanent_indentation(
+        self, t: NDArray, delta: NDArray, source: ContactSolution
+    ) -> NDArray:
         """delta_p(t): the residual indentation of the largest indentation reached by time
-        ``t`` [s] (delta [m] while loading, delta_max after), [m]."""
-        t_max, delta_max = self._turning_point(method)
+        ``t`` [s] (delta [m] while loading, delta_max after) along ``source``, [m]."""
+        t_max, delta_max = float(source.t_max), float(source.delta_max)
         reached = np.where(t <= t_max, delta, delta_max)
         return np.reshape(self.contact_model.residual_indentation(reached), np.shape(t))
 
-    def _permanent_rate(self, t: NDArray, delta: NDArray, delta_dot: NDArray, method: str):
+    def _permanent_rate(
+        self, t: NDArray, delta: NDArray, delta_dot: NDArray, source: ContactSolution
+    ) -> NDArray:
         """d(delta_p)/dt, [m/s]: (d delta_res / d delta_m) delta' while loading (a central
         difference of the contact's residual_indentation), zero while unloading."""
-        t_max, delta_max = self._turning_point(method)
+        t_max, delta_max = float(source.t_max), float(source.delta_max)
         h = 1e-7 * delta_max
         model = self.contact_model
         up = np.reshape(model.residual_indentation(delta + h), np.shape(delta))
@@ -497,45 +556,13 @@ class ImpactResult:
         slope = (up - down) / (delta + h - np.maximum(delta - h, 0.0))
         return np.where(t <= t_max, slope * delta_dot, 0.0)
 
-    def contact_work(self, t: NDArray, method: str) -> NDArray:
-        """W(t): work of the contact force up to time ``t``, [J]. FILM's (and the table
-        method's) is :func:`impactcli.energy.film_contact_work`; the integration's is the
-        exact work of each stage's law along the integrated path."""
-        if method == "ode":
-            return self.ode.contact_work(t)
-        from impactcli.energy import film_contact_work
-
-        laws = [stage.law for stage in self.plan.stages]
-        return film_contact_work(self.film.stages, laws, t)
-
-    def energy_columns(
-        self, t: NDArray, delta: NDArray, v1: NDArray, v2: NDArray, method: str
-    ) -> dict[str, NDArray]:
-        """The energy columns (:data:`ENERGY_COLUMNS`, [J]) at times ``t`` [s] where the
-        indentation is ``delta`` [m] and the spheres move at ``v1``, ``v2`` [m/s]."""
-        from impactcli.energy import energy_history, loading_work
-
-        t_max, delta_max = self._turning_point(method)
-        stages = self.plan.stages[:-1]  # the loading stages; the last one unloads
-        laws = [stage.law for stage in stages]
-        bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
-        model = self.contact_model
-        shares = (self.split_fractions, self.permanent_fractions)
-        columns = energy_history(
-            t,
-            delta,
-            self.contact_work(t, method),
-            t_max,
-            delta_max,
-            loading_work(laws, bounds, delta),
-            np.reshape(model.recoverable_work(delta), np.shape(delta)),
-            _first(model.recoverable_work(np.array([delta_max]))),
-            _first(loading_work(laws, bounds, np.array([delta_max]))),
-            (self.m1, self.m2),
-            (v1, v2),
-            shares,
-        )
-        return columns
+    @property
+    def energy_shares(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """Each sphere's share of the strain energy and of the dissipated energy, [-]: the
+        split fractions, and the permanent fractions where the contact leaves a permanent
+        indentation (a damped contact dissipates where it deforms)."""
+        shares = self.split_fractions
+        return shares, (self.permanent_fractions if self.contact.permanent else shares)
 
     def _columns(
         self,
@@ -543,9 +570,12 @@ class ImpactResult:
         delta: NDArray,
         delta_dot: NDArray,
         force: NDArray,
-        method: str | None = None,
+        source: ContactSolution,
     ) -> dict[str, NDArray]:
-        """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4."""
+        """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4, and the
+        energy of ``source`` (:meth:`~impactcli.solution.ContactSolution.energy`)."""
+        from impactcli.energy import energy_columns
+
         v0 = self.impact_velocity
         r1, r2 = self.mass_ratios
         e1, e2 = self.split_fractions
@@ -561,11 +591,12 @@ class ImpactResult:
             delta1, delta2 = e1 * delta, e2 * delta
             delta1_dot, delta2_dot = e1 * delta_dot, e2 * delta_dot
         else:  # split yield: delta_i = e_i (delta - delta_p) + p_i delta_p
-            dp = self.permanent_indentation(t, delta, method)
-            dp_dot = self._permanent_rate(t, delta, delta_dot, method)
+            dp = self.permanent_indentation(t, delta, source)
+            dp_dot = self._permanent_rate(t, delta, delta_dot, source)
             delta1, delta2 = e1 * (delta - dp) + p1_ * dp, e2 * (delta - dp) + p2_ * dp
             delta1_dot = e1 * (delta_dot - dp_dot) + p1_ * dp_dot
             delta2_dot = e2 * (delta_dot - dp_dot) + p2_ * dp_dot
+        strain, dissipated = source.energy(t, delta)
         return {
             "t": t,
             "delta": delta,
@@ -581,8 +612,9 @@ class ImpactResult:
             "delta2_dot": delta2_dot,
             "p1": p1,
             "p2": p2,
-            # a damped impact (no plan) has its own energy() (DampedImpactResult)
-            **({} if method is None else self.energy_columns(t, delta, v1, v2, method)),
+            **energy_columns(
+                (self.m1, self.m2), (v1, v2), strain, dissipated, self.energy_shares
+            ),
         }
 
     def _table_state(self, t: NDArray) -> tuple[NDArray, NDArray]:
@@ -592,7 +624,7 @@ class ImpactResult:
             raise ValueError("the table method is for elastic impacts only")
         from impactcli.tables import normalised_elastic
 
-        v0, delta_m = self.impact_velocity, float(self.plan.delta_max)
+        v0, delta_m = self.impact_velocity, float(self.solution.delta_max)
         d_bar, v_bar = FilmSolution(normalised_elastic(self.n)).evaluate(t * v0 / delta_m)
         return d_bar * delta_m, v_bar * v0
 
@@ -605,26 +637,6 @@ def _nan(value: float | None) -> float:
 def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
     return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
-
-
-def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:
-    """Solve every stage of ``plan`` by FILM with n segments, chained in time."""
-    stages: list[FilmStage] = []
-    t_start: ArrayLike = np.zeros_like(np.asarray(plan.delta_max, dtype=float))
-    for stage in plan.stages:
-        film = solve_stage(
-            stage.law,
-            stage.delta_start,
-            stage.delta_end,
-            stage.speed_start,
-            mass,
-            n,
-            t_start,
-            end_at_rest=stage.end_at_rest,
-        )
-        stages.append(film)
-        t_start = film.end_time
-    return tuple(stages)
 
 
 def _validate(
@@ -856,16 +868,37 @@ def _summarise(
     return {key: float(value) for key, value in summary.items()}
 
 
+def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[str, float]:
+    """The summary of ``result``'s impact from ``solution`` (FILM's or the integration's):
+    the elastic keys (:func:`impact_summary`, with the indentation at separation as
+    delta_res), then the keys of the model's kind (:meth:`impactcli.model.PairModel.summary`)."""
+    m, r, e = effective_properties(result.sphere1, result.sphere2)
+    values = ImpactPlan(
+        (),
+        np.asarray(solution.delta_max),
+        np.asarray(solution.force_max),
+        np.asarray(solution.delta_end),
+        np.asarray(solution.restitution),
+    )
+    pair = result.contact
+    out = _summarise(
+        result, r, e, values, solution.t_max, solution.end_time, permanent=pair.permanent
+    )
+    out.update(pair.summary(result, solution))
+    return out
+
+
 @input_errors
 def integrate_impact(result: ImpactResult) -> dict[str, float]:
-    """The summary of ``result``'s impact (same keys) by SciPy integration of its plan.
+    """The summary of ``result``'s impact (same keys) by SciPy integration.
 
     The turning point (t_max, delta_max, force_max) and separation (contact_time, delta at
-    separation, e = -delta'(t_c)/V0) are events of :func:`impactcli.ode.integrate_plan`;
-    the final displacements and velocities follow from them by eq. 12a,b, the residual
-    indentations and the energy dissipated from delta and e at separation. Quantities of the
-    inputs alone (effective properties, delta_y, yield velocities) are the closed forms.
-    The integration is :attr:`ImpactResult.ode`, done once per result.
+    separation, e = -delta'(t_c)/V0) are events of :func:`impactcli.ode.integrate`; the
+    final displacements and velocities follow from them by eq. 12a,b, the residual
+    indentations and the energy dissipated from delta and e at separation (or, with
+    damping, the integrated damping work). Quantities of the inputs alone (effective
+    properties, delta_y, yield velocities) are the closed forms. The integration is
+    :attr:`ImpactResult.ode`, done once per result.
 
     Examples
     --------
@@ -874,32 +907,20 @@ def integrate_impact(result: ImpactResult) -> dict[str, float]:
     >>> round(integrate_impact(r)["contact_time"] * 1e6, 3)
     171.32
     """
-    ode = result.ode
-    plan = replace(
-        result.plan,
-        delta_max=np.asarray(ode.delta_max),
-        force_max=np.asarray(ode.force_max),
-        delta_res=np.asarray(ode.delta_end),
-        restitution=np.asarray(ode.restitution),
-    )
-    m, r, e = effective_properties(result.sphere1, result.sphere2)
-    out = _summarise(result, r, e, plan, ode.t_max, ode.end_time)
-    out.update(energy_summary(result, "ode"))
-    if "delta_res" in result.summary:  # elastoplastic keys (PLASTIC_SUMMARY_KEYS)
-        f1, f2 = result.permanent_fractions
-        out.update(
-            delta_y=result.summary["delta_y"],
-            yield_velocity=result.summary["yield_velocity"],
-            delta_res=ode.delta_end,
-            delta1_res=f1 * ode.delta_end,
-            delta2_res=f2 * ode.delta_end,
-            energy_dissipated=0.5 * m * result.impact_velocity**2 * (1.0 - ode.restitution**2),
-        )
+    out = _solution_summary(result, result.ode)
     return {key: out[key] for key in result.summary if key in out}
 
 
 def energy_summary(result: ImpactResult, method: str = "film") -> dict[str, float]:
-    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact, SI (docs/method.md §12).
+    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact, SI (docs/method.md §12), of
+    FILM's solution or (``method="ode"``) the integration's: :func:`solution_energy_summary`.
+    """
+    return solution_energy_summary(result, result.ode if method == "ode" else result.solution)
+
+
+def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> dict[str, float]:
+    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact from ``solution``, SI
+    (docs/method.md §12).
 
     Kinetic energy of each sphere before and at separation [J]; the energy dissipated in
     each sphere, p_i (1/2) m V0^2 (1 - e^2) [J]; the share of the initial relative kinetic
@@ -915,10 +936,7 @@ def energy_summary(result: ImpactResult, method: str = "film") -> dict[str, floa
     m, r, e_star = effective_properties(result.sphere1, result.sphere2)
     v0 = result.impact_velocity
     relative = 0.5 * m * v0 * v0
-    if method == "ode":
-        restitution, delta_max = result.ode.restitution, result.ode.delta_max
-    else:
-        restitution, delta_max = _first(result.plan.restitution), _first(result.plan.delta_max)
+    restitution, delta_max = _first(solution.restitution), _first(solution.delta_max)
     e1, e2 = result.split_fractions
     p1, p2 = result.permanent_fractions
     r1, r2 = result.mass_ratios
@@ -948,23 +966,15 @@ def energy_summary(result: ImpactResult, method: str = "film") -> dict[str, floa
 def _check_yield_split(result: ImpactResult) -> None:
     """``split="yield"`` on an impact that leaves a permanent indentation needs a sphere
     that can yield (:func:`impactcli.energy.yield_shares`)."""
-    if result.split != "yield" or not _first(result.plan.delta_res) > 0.0:
+    if result.split != "yield" or not result.contact.permanent:
+        return
+    if not _first(result.solution.delta_end) > 0.0:
         return
     if result.sphere1.yield_strength is None and result.sphere2.yield_strength is None:
         raise ValueError(
             "split 'yield' gives the permanent indentation to the sphere that yields, but "
             "neither sphere has a yield strength: give sy1 or sy2 (or a material with one)"
         )
-
-
-def _finish(result: ImpactResult, summary: dict[str, float]) -> ImpactResult:
-    """Fill ``result.summary``: FILM's, or the integration's for ``method="ode"``."""
-    _check_yield_split(result)
-    result.summary.update(summary)
-    result.summary.update(energy_summary(result, "film"))
-    if result.method == "ode":
-        result.summary.update(integrate_impact(result))
-    return result
 
 
 def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[str, ...]:
@@ -1019,33 +1029,84 @@ def _warned(result: ImpactResult, first_yield: bool = False) -> ImpactResult:
     return result
 
 
-def _film_impact(
+# -- the one entry point ------------------------------------------------------------------------
+
+
+@input_errors
+def solve_impact(
     sphere1: Sphere,
     sphere2: Sphere,
     v1: float,
     v2: float,
-    n: int,
-    split: Split,
-    method: Method,
-    plan: ImpactPlan,
-    contact: Any,
-    model: str,
-    plastic: bool = False,
+    model: ContactModel | None = None,
+    n: int | None = None,
+    split: Split = "mass",
+    method: Method = "film",
 ) -> ImpactResult:
-    """The impact of ``plan`` by FILM with n segments per stage: the result of ``model``
-    and its summary (:func:`_summarise`; with ``plastic`` also :func:`plastic_summary` of
-    ``contact``), finished by :func:`_finish`. The last step of :func:`elastic_impact`,
-    :func:`elastoplastic_impact` and :func:`law_impact`."""
-    m, r, e = effective_properties(sphere1, sphere2)
-    film = FilmSolution(solve_plan(plan, m, n))
+    """Impact of two spheres under any contact model of the library, by FILM.
+
+    The one implementation: the model is checked (:meth:`ContactModel.check`), bound to
+    the pair (:meth:`ContactModel.for_spheres`) and solved (:meth:`impactcli.model.
+    PairModel.solve`: FILM of a normal law's stages in closed form, or FILM of a damped
+    law segment by segment); the summary, histories and energy come from that solution the
+    same way for every model. :func:`elastic_impact`, :func:`elastoplastic_impact`,
+    :func:`law_impact` and :func:`damped_impact` call it with one kind of model each. Each
+    sphere's motion follows from delta(t) by the rigid-body relations of eq. 12
+    (docs/method.md §2).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
+    model : the contact model (default: Hertz, :class:`ContactModel`)
+    n : FILM segments per stage (default 25; :data:`DAMPED_DEFAULT_N` with damping)
+    split : how delta is shared between the spheres: ``mass`` (the paper's contact plane),
+        ``compliance`` (Hertz) or ``yield`` (the permanent part to the sphere that yields)
+    method : where the summary and the default history come from: ``film``, ``table``
+        (FILM's normalised Tables A1/A2: the elastic Hertz impact only) or ``ode`` (SciPy
+        integration, :func:`integrate_impact`)
+
+    Returns
+    -------
+    ImpactResult
+        ``summary`` holds the keys of the model's kind: :data:`PLASTIC_SUMMARY_KEYS` and
+        :data:`ENERGY_SUMMARY_KEYS` for a normal law (:data:`ELASTIC_SUMMARY_KEYS` and the
+        energy keys for :meth:`ContactModel.elastic`), :data:`DAMPED_SUMMARY_KEYS` with
+        damping; ``warnings`` what ``impact`` prints.
+
+    Raises
+    ------
+    ValueError
+        Bad spheres, velocities, law, parameters or damping (an
+        :class:`~impactcli.errors.InputError`, one line).
+
+    Examples
+    --------
+    >>> steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0,
+    ...              yield_strength=1e9)
+    >>> s1, s2 = Sphere(0.02, **steel), Sphere(0.04, **steel)
+    >>> r = solve_impact(s1, s2, 0.25, 0.75, ContactModel("du-wang"))
+    >>> r.model, round(r.summary["restitution"], 5)
+    ('elastoplastic', 0.85611)
+    >>> r = solve_impact(s1, s2, 0.25, 0.75, ContactModel(damping="tsuji", alpha=0.3))
+    >>> r.model, round(r.summary["restitution"], 6)
+    ('damped-tsuji', 0.653551)
+    """
+    model = ContactModel() if model is None else model
+    model.check(method)
+    n = model.default_n if n is None else n
+    _validate(sphere1, sphere2, v1, v2, n, split, method)
+    pair = model.for_spheres(sphere1, sphere2)
+    solution = pair.solve(v1 + v2, n)
     result = ImpactResult(
-        sphere1, sphere2, v1, v2, plan, film, int(n), split, model, method=method, contact=contact
-    )
-    summary = _summarise(result, r, e, plan, film.stages[-2].end_time, film.end_time)
-    if plastic:
-        extra = plastic_summary(contact, m, v1 + v2, plan, result.permanent_fractions)
-        summary.update({key: float(value) for key, value in extra.items()})
-    return _finish(result, summary)
+        sphere1, sphere2, v1, v2, solution, int(n), split, pair.kind(solution), pair,
+        method=method,
+    )  # fmt: skip
+    _check_yield_split(result)
+    result.summary.update(_solution_summary(result, solution))
+    if method == "ode":
+        result.summary.update(integrate_impact(result))
+    return _warned(result, first_yield=pair.first_yield)
 
 
 @input_errors
@@ -1059,6 +1120,8 @@ def elastic_impact(
     method: Method = "film",
 ) -> ImpactResult:
     """Elastic (Hertz) impact of two spheres by FILM (paper sec. 3, 4.2-4.3; docs/method.md §1-3).
+
+    :func:`solve_impact` with :meth:`ContactModel.elastic`.
 
     Parameters
     ----------
@@ -1084,14 +1147,7 @@ def elastic_impact(
     >>> round(r.summary["contact_time"] * 1e6, 2), round(r.summary["d1_final"] * 1e6, 4)
     (171.32, -1.0469)
     """
-    _validate(sphere1, sphere2, v1, v2, n, split, method)
-    m, r, e = effective_properties(sphere1, sphere2)
-    from impactcli.laws.hertz import HertzLawContact
-
-    plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
-    contact = HertzLawContact(r, e)
-    result = _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, "elastic")
-    return _warned(result, first_yield=True)
+    return solve_impact(sphere1, sphere2, v1, v2, ContactModel.elastic(), n, split, method)
 
 
 @input_errors
@@ -1113,7 +1169,7 @@ def elastoplastic_impact(
     FILM runs Hertz loading 0 -> delta_y, linear plastic loading delta_y -> delta_m and
     Hertz unloading delta_m -> delta_res; separation is at delta = delta_res. Below the
     yield velocity the impact is elastic and the result equals :func:`elastic_impact`
-    (``model == "elastic"``).
+    (``model == "elastic"``). :func:`solve_impact` with :meth:`ContactModel.elastoplastic`.
 
     Parameters
     ----------
@@ -1141,26 +1197,8 @@ def elastoplastic_impact(
     (0.85611, 75.988)
     """
     pressure_factor = renamed_p0_factor("elastoplastic_impact", p0_factor, pressure_factor)
-    _validate(sphere1, sphere2, v1, v2, n, split, method)
-    sigma_y = (
-        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
-    )
-    if sigma_y is None or needs_yield_strength(sigma_y, sigma_y):
-        raise ValueError(YIELD_STRENGTH_NEEDED)
-    if not (np.isfinite(pressure_factor) and pressure_factor > 0):
-        raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
-    m, r, e = effective_properties(sphere1, sphere2)
-    contact = DuWangContact(r, e, sigma_y, pressure_factor)
-    v0 = v1 + v2
-    with np.errstate(all="ignore"):
-        plan = contact.plan(v0, m)
-    elastic = len(plan.stages) == 2
-    if not elastic:
-        raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
-    model = "elastic" if elastic else "elastoplastic"
-    return _warned(
-        _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, True)
-    )
+    model = ContactModel.elastoplastic(yield_strength, pressure_factor)
+    return solve_impact(sphere1, sphere2, v1, v2, model, n, split, method)
 
 
 @input_errors
@@ -1180,6 +1218,7 @@ def law_impact(
 ) -> ImpactResult:
     """Impact of two spheres under any law of the library (:mod:`impactcli.laws`) by FILM.
 
+    :func:`solve_impact` with ``ContactModel(law, law_params, yield_strength=yield_strength)``.
     The stages come from the law's plan (loading, plastic loading, unloading from rest);
     ``summary`` holds :data:`PLASTIC_SUMMARY_KEYS` whatever the law (``delta_y`` and
     ``yield_velocity`` NaN for a law without a yield point). ``law="du-wang"`` gives the
@@ -1219,8 +1258,6 @@ def law_impact(
     >>> round(r.summary["restitution"], 5), r.model
     (0.62143, 'elastoplastic')
     """
-    from impactcli.laws import Hertz
-
     if params is not None:
         import warnings
 
@@ -1233,25 +1270,8 @@ def law_impact(
         if law_params is not None:
             raise TypeError("give law_params or the deprecated params, not both")
         law_params = params
-    _validate(sphere1, sphere2, v1, v2, n, split, method)
-    spec = get_law(law)
-    sigma_y = (
-        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
-    )
-    m, r, e = effective_properties(sphere1, sphere2)
-    contact = spec.contact(r, e, sigma_y, **(law_params or {}))
-    v0 = v1 + v2
-    plan = contact.plan(v0, m)
-    raise_first(plastic_range_problems(contact, v0, m, plan.delta_max))
-    hertz = len(plan.stages) == 2 and all(type(s.law) is Hertz for s in plan.stages)
-    if hertz and float(plan.delta_res) == 0.0:
-        model = "elastic"
-    elif bool(np.all(contact.yields(v0, m))):
-        model = "elastoplastic"
-    else:
-        model = spec.name
-    result = _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, model, True)
-    return _warned(result, first_yield=spec.name == ELASTIC_LAW)
+    model = ContactModel(law, dict(law_params or {}), yield_strength=yield_strength)
+    return solve_impact(sphere1, sphere2, v1, v2, model, n, split, method)
 
 
 #: Summary keys of :func:`damped_impact`: the elastic ones and the damping's.
@@ -1262,139 +1282,8 @@ DAMPED_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "energy_stored",
 )
 
-#: Columns of :meth:`DampedImpactResult.energy`: the time and :data:`ENERGY_COLUMNS`.
+#: Columns of :meth:`ImpactResult.energy`: the time and :data:`ENERGY_COLUMNS`.
 DAMPED_ENERGY_COLUMNS: tuple[str, ...] = ("t", *ENERGY_COLUMNS)
-
-#: FILM segments per stage that :func:`damped_impact` uses by default: e and the contact
-#: time within 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
-DAMPED_DEFAULT_N = 400
-
-
-@dataclass(frozen=True)
-class DampedImpactResult(ImpactResult):
-    """One impact under a viscoelastic law (:func:`damped_impact`).
-
-    As :class:`ImpactResult`, with ``film`` the :class:`~impactcli.damping.DampedImpact`
-    and ``plan`` ``None``; ``law`` is the damped law, ``alpha`` its parameter ([-] for
-    ``tsuji``, [s/m] for ``hunt-crossley``), ``separation`` the separation rule. Histories
-    by ``film`` or ``ode`` (there are no normalised tables for damped laws); the force
-    column is the total force F(delta, delta'), which may pull (F < 0) at the end of an
-    ``overlap`` contact: the force-indentation curve is a loop.
-
-    Attributes
-    ----------
-    sphere1, sphere2 : the spheres (SI)
-    v1, v2 : velocities of the centres toward the other sphere, [m/s]
-    plan, film, n, split, model, summary, method, contact, warnings : as for
-        :class:`ImpactResult` (``plan`` None; ``film`` the damped FILM solution)
-    law : the damping model with its K [N/m^1.5], m [kg] and alpha (:mod:`impactcli.laws`)
-    alpha : the damping parameter, [-] (tsuji), [s/m] (hunt-crossley), [s] (viscoelastic)
-    separation : ``overlap`` or ``force``, the rule that ends the contact
-
-    Examples
-    --------
-    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
-    >>> r = damped_impact(s1, s2, 0.25, 0.75, "tsuji", 0.3)
-    >>> type(r).__name__, r.alpha, r.separation, round(r.summary["restitution"], 4)
-    ('DampedImpactResult', 0.3, 'overlap', 0.6536)
-    """
-
-    law: Any = None
-    alpha: float = 0.0
-    separation: str = "overlap"
-
-    @cached_property
-    def ode(self):  # -> impactcli.damping.DampedOdeSolution
-        """SciPy integration of the same law (:func:`impactcli.damping.damped_ode_solution`),
-        computed once, on first use."""
-        from impactcli.damping import damped_ode_solution
-
-        mass = float(effective_mass(self.m1, self.m2))
-        return damped_ode_solution(self.law, self.impact_velocity, mass, self.separation)
-
-    def times(self, points: int = 201, method: Method | None = None) -> NDArray:
-        """``points`` evenly spaced times over the contact of ``method`` (film or ode), [s]
-        (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
-        points = check_size("points", points, MAX_POINTS, minimum=2)
-        method = self.method if method is None else method
-        end = self.ode.end_time if method == "ode" else float(self.film.end_time)
-        return np.linspace(0.0, end, points)
-
-    def history(
-        self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
-    ) -> dict[str, NDArray]:
-        """Histories over the contact (:data:`HISTORY_COLUMNS`, SI), by ``film`` (the
-        segments' closed forms) or ``ode`` (SciPy integration); times clamped to [0, t_c]."""
-        method = self.method if method is None else method
-        if method not in ("film", "ode"):
-            raise ValueError(f"method must be film or ode for a damped impact, got {method!r}")
-        t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
-        source = self.ode if method == "ode" else self.film
-        t = np.clip(t, 0.0, float(source.end_time))
-        delta, delta_dot = source.evaluate(t)
-        columns = self._columns(t, delta, delta_dot, self.law.force(delta, delta_dot))
-        columns.update(self._energy_columns(columns, method))
-        return columns
-
-    def _energy_columns(self, h: dict[str, NDArray], method: str) -> dict[str, NDArray]:
-        """The energy columns of :data:`ENERGY_COLUMNS` for the history ``h`` (:meth:`energy`)."""
-        from impactcli.energy import kinetic_energy
-
-        if method == "ode":
-            dissipated = self.ode.dissipated(h["t"])
-        else:
-            dissipated = self.film.dissipated_at(h["t"])  # type: ignore[attr-defined]
-        strain = self.law.elastic_work(0.0, h["delta"])
-        f1, f2 = self.split_fractions
-        return {
-            "ke1": kinetic_energy(self.m1, h["v1"]),
-            "ke2": kinetic_energy(self.m2, h["v2"]),
-            "strain_energy": strain,
-            "strain_energy1": f1 * strain,
-            "strain_energy2": f2 * strain,
-            "dissipated": dissipated,
-            "dissipated1": f1 * dissipated,
-            "dissipated2": f2 * dissipated,
-        }
-
-    def energy(
-        self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
-    ) -> dict[str, NDArray]:
-        """Energy partition over the contact (:data:`DAMPED_ENERGY_COLUMNS`, [J]; ``t`` [s]).
-
-        ke_i = (1/2) m_i d_i'^2 (:func:`impactcli.energy.kinetic_energy`, frame of the
-        inputs); ``strain_energy`` the elastic part, (2/5) K delta^2.5, the work of
-        K delta^1.5; ``dissipated`` the integral of c(delta) delta'^2 dt, from FILM's
-        segments (:meth:`impactcli.damping.DampedImpact.dissipated_at`) or the SciPy
-        integration. Each sphere's share of the strain and dissipated energy is its share of
-        the indentation (``split``). ke1 + ke2 + strain_energy + dissipated is the initial
-        kinetic energy, to O(1/n^2) for FILM (tests/test_damping_cli.py).
-        """
-        h = self.history(t, points, method)
-        return {name: h[name] for name in DAMPED_ENERGY_COLUMNS}
-
-
-def _damped_summary(
-    result: DampedImpactResult, values: dict[str, float], r: float, e: float
-) -> dict[str, float]:
-    """:data:`DAMPED_SUMMARY_KEYS` from the FILM or SciPy values of one damped impact."""
-    from types import SimpleNamespace
-
-    plan = SimpleNamespace(
-        delta_max=values["delta_max"],
-        force_max=values["force_max"],
-        delta_res=values["delta_separation"],
-        restitution=values["restitution"],
-    )
-    times = values["t_max"], values["contact_time"]
-    out = _summarise(result, r, e, plan, *times, permanent=False)  # type: ignore[arg-type]
-    out.update(
-        delta_separation=float(values["delta_separation"]),
-        alpha=float(result.alpha),
-        energy_dissipated=float(values["dissipated"]),
-        energy_stored=float(values["stored"]),
-    )
-    return out
 
 
 @input_errors
@@ -1410,13 +1299,15 @@ def damped_impact(
     separation: str = "overlap",
     split: Split = "mass",
     method: Method = "film",
-) -> DampedImpactResult:
+) -> ImpactResult:
     """Impact of two spheres under Hertz elasticity with viscous damping (docs/damping.md).
 
-    The contact law is F = K delta^1.5 + c(delta) delta' with K = (4/3) E* sqrt(R)
-    (:mod:`impactcli.damping`); FILM on each segment solves the damped linear oscillator in
-    closed form. Each sphere's motion follows from delta(t) by the rigid-body relations of
-    eq. 12 (docs/method.md §2), unchanged.
+    :func:`solve_impact` with ``ContactModel(damping=damping, alpha=alpha,
+    restitution=restitution, separation=separation)``. The contact law is
+    F = K delta^1.5 + c(delta) delta' with K = (4/3) E* sqrt(R) (:mod:`impactcli.damping`);
+    FILM on each segment solves the damped linear oscillator in closed form. Each sphere's
+    motion follows from delta(t) by the rigid-body relations of eq. 12 (docs/method.md
+    §2), unchanged.
 
     Parameters
     ----------
@@ -1435,11 +1326,12 @@ def damped_impact(
 
     Returns
     -------
-    DampedImpactResult
+    ImpactResult
         ``summary`` holds :data:`DAMPED_SUMMARY_KEYS`: the elastic keys, the indentation at
         separation ``delta_separation`` [m], ``alpha``, the energy dissipated by damping
         (integral of c delta'^2 dt) [J] and the elastic energy left in the contact at
-        separation ``energy_stored`` [J] (``force`` rule; 0 for ``overlap``).
+        separation ``energy_stored`` [J] (``force`` rule; 0 for ``overlap``); ``law``,
+        ``alpha`` and ``separation`` the damping's.
 
     Examples
     --------
@@ -1449,71 +1341,10 @@ def damped_impact(
     >>> round(r.summary["restitution"], 6)
     0.653551
     """
-    from impactcli.damping import (
-        check_alpha,
-        check_damping,
-        damping_for_restitution,
-        make_damping_law,
-        solve_damped_impact,
+    model = ContactModel(
+        damping=damping, alpha=alpha, restitution=restitution, separation=separation
     )
-
-    check_damping(damping, separation)
-    if method not in ("film", "ode"):
-        raise ValueError(
-            "method must be film or ode for a damped impact (the normalised tables are "
-            f"for Hertz without damping), got {method!r}"
-        )
-    if (alpha is None) == (restitution is None):
-        raise ValueError("give the damping as alpha or as a coefficient of restitution e, not both")
-    if alpha is not None:
-        check_alpha(alpha)
-    if restitution is not None and not (0.0 < restitution <= 1.0):
-        raise ValueError(
-            f"the coefficient of restitution e must lie in (0, 1], got {restitution:g}"
-        )
-    _validate(sphere1, sphere2, v1, v2, n, split, "film")
-    m, r, e = effective_properties(sphere1, sphere2)
-    k = float(hertz_stiffness(e, r))
-    v0 = v1 + v2
-    if alpha is None:
-        alpha = float(damping_for_restitution(damping, restitution, v0, k, m, n, separation))
-    law = make_damping_law(damping, k, m, float(alpha))
-    film = solve_damped_impact(law, v0, m, n, separation)  # type: ignore[arg-type]
-    if not np.isfinite(float(film.contact_time)):
-        raise ValueError(
-            f"alpha = {alpha:g}: the contact never ends (overdamped: the indentation creeps "
-            "back toward 0 without reaching it); give a smaller alpha"
-        )
-    result = DampedImpactResult(
-        sphere1,
-        sphere2,
-        v1,
-        v2,
-        None,  # type: ignore[arg-type]
-        film,  # type: ignore[arg-type]
-        int(n),
-        split,
-        f"damped-{damping}",
-        method=method,
-        law=law,
-        alpha=float(alpha),
-        separation=separation,
-    )
-    values = {
-        "restitution": film.restitution,
-        "contact_time": film.contact_time,
-        "delta_separation": film.delta_separation,
-        "delta_max": film.delta_max,
-        "t_max": film.t_max,
-        "force_max": film.force_max,
-        "dissipated": film.dissipated,
-        "stored": film.stored,
-    }
-    values = {key: float(value) for key, value in values.items()}
-    result.summary.update(_damped_summary(result, values, r, e))
-    if method == "ode":
-        result.summary.update(_damped_summary(result, result.ode.summary, r, e))
-    return _warned(result, first_yield=True)
+    return solve_impact(sphere1, sphere2, v1, v2, model, n, split, method)
 
 
 #: Columns of :func:`damped_restitution_sweep`: those of
@@ -1552,12 +1383,7 @@ def damped_restitution_sweep(
     damping's integral of c delta'^2 dt [J]; ``delta_separation`` the indentation at
     separation [m] (0 for ``overlap``).
     """
-    from impactcli.damping import (
-        check_alpha,
-        check_damping,
-        make_damping_law,
-        solve_damped_impact,
-    )
+    from impactcli.damping import check_alpha, check_damping, solve_damped_impact
     from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS
 
     v0 = np.asarray(velocities, dtype=float)
@@ -1569,9 +1395,11 @@ def damped_restitution_sweep(
     check_size("the number of velocities x n", v0.size * int(n), MAX_SWEEP_SEGMENTS)
     split_fractions(split, 1.0, 1.0, 1.0, 1.0)  # refuses anything but mass or compliance
     check_pair(sphere1, sphere2, v0, 0.0)
-    m, r, e = effective_properties(sphere1, sphere2)
-    law = make_damping_law(damping, float(hertz_stiffness(e, r)), m, float(alpha))
-    sol = solve_damped_impact(law, v0, m, n, separation)  # type: ignore[arg-type]
+    pair = ContactModel(damping=damping, alpha=alpha, separation=separation).for_spheres(
+        sphere1, sphere2
+    )
+    assert isinstance(pair, DampedPair)
+    sol = solve_damped_impact(pair.law(float(alpha)), v0, pair.mass, n, pair.separation)
     if not np.all(np.isfinite(sol.contact_time)):
         raise ValueError(
             f"alpha = {alpha:g}: the contact never ends (overdamped: the indentation creeps "
@@ -1592,90 +1420,17 @@ def damped_restitution_sweep(
     }
 
 
-# -- one entry point for any contact model --------------------------------------------------
+def __getattr__(name: str):
+    """``DampedImpactResult``, the former type of a damped impact's result, is
+    :class:`ImpactResult` (deprecated name; it goes in 0.3)."""
+    if name == "DampedImpactResult":
+        import warnings
 
-
-@dataclass(frozen=True)
-class ContactModel:
-    """A contact model: a normal law of the registry with its parameters, and optionally a
-    damping model on it (Hertz elasticity plus a viscous term, :mod:`impactcli.laws`).
-
-    Attributes
-    ----------
-    law : the normal law's name (:data:`impactcli.laws.registry.LAWS`); Hertz by default
-    law_params : its parameters by name, SI (files for a tabulated law)
-    damping : a damping model's name (:data:`impactcli.laws.registry.DAMPING_LAWS`), or
-        None; a damping model acts on Hertz elasticity, so ``law`` is then Hertz
-    alpha : the damping model's parameter, in its unit (see ``impact laws``)
-    restitution : instead of ``alpha``, the coefficient of restitution in (0, 1] that the
-        damping is to give at the impact's V0 (alpha is solved for)
-    separation : ``overlap`` or ``force``: when a damped contact ends
-
-    Examples
-    --------
-    >>> ContactModel("thornton").name, ContactModel(damping="tsuji", alpha=0.3).name
-    ('thornton', 'hertz+tsuji')
-    """
-
-    law: str = ELASTIC_LAW
-    law_params: Mapping[str, Any] = field(default_factory=dict)
-    damping: str | None = None
-    alpha: float | None = None
-    restitution: float | None = None
-    separation: str = "overlap"
-
-    @property
-    def name(self) -> str:
-        """The law's name, ``law+damping`` with a damping model."""
-        return self.law if self.damping is None else f"{self.law}+{self.damping}"
-
-
-@input_errors
-def impact(
-    sphere1: Sphere,
-    sphere2: Sphere,
-    v1: float,
-    v2: float,
-    model: ContactModel | None = None,
-    n: int | None = None,
-    split: Split = "mass",
-    method: Method = "film",
-) -> ImpactResult:
-    """Impact of two spheres under any contact model of the library, by FILM.
-
-    The one entry point: a normal law of the registry (:func:`law_impact`), or Hertz with
-    a damping model (:func:`damped_impact`). :func:`elastic_impact`,
-    :func:`elastoplastic_impact`, :func:`law_impact` and :func:`damped_impact` are the same
-    computations for one kind of model each.
-
-    Parameters
-    ----------
-    sphere1, sphere2 : the spheres (SI)
-    v1, v2 : velocities of the centres toward the other sphere, [m/s]
-    model : the contact model (default: Hertz)
-    n : FILM segments per stage (default 25; :data:`DAMPED_DEFAULT_N` with damping)
-    split, method : as for :func:`elastic_impact`
-
-    Examples
-    --------
-    >>> steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
-    >>> s1, s2 = Sphere(0.02, **steel), Sphere(0.04, **steel)
-    >>> round(impact(s1, s2, 0.25, 0.75, ContactModel(damping="tsuji", alpha=0.3))
-    ...       .summary["restitution"], 6)
-    0.653551
-    """
-    model = ContactModel() if model is None else model
-    if model.damping is None:
-        return law_impact(
-            sphere1, sphere2, v1, v2, model.law, dict(model.law_params), 25 if n is None else n,
-            split, method=method,
-        )  # fmt: skip
-    if get_law(model.law).name != ELASTIC_LAW or model.law_params:
-        raise ValueError(
-            f"damping {model.damping!r} is viscous damping on Hertz elasticity: its law is "
-            f"{ELASTIC_LAW}, got {model.law!r}" + (" with parameters" if model.law_params else "")
+        warnings.warn(
+            "impactcli.impact.DampedImpactResult is deprecated and goes in 0.3: every impact "
+            "gives an ImpactResult",
+            DeprecationWarning,
+            stacklevel=2,
         )
-    return damped_impact(
-        sphere1, sphere2, v1, v2, model.damping, model.alpha, model.restitution,
-        DAMPED_DEFAULT_N if n is None else n, model.separation, split, method,
-    )  # fmt: skip
+        return ImpactResult
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -53,6 +53,8 @@ LIBRARY = (
     "impactcli.io.readers",
     "impactcli.io.writers",
     "impactcli.ode",
+    "impactcli.solution",
+    "impactcli.model",
     "impactcli.lawlib",
     "impactcli.curves",
     "impactcli.damping",

@@ -570,6 +570,17 @@ def test_damped_history_is_the_damped_solution():
                                        alpha=0.3)  # fmt: skip
 
 
+@pytest.mark.parametrize("damping", [None, "tsuji"])
+def test_the_normal_law_refuses_a_pair_that_cannot_collide_with_or_without_damping(damping):
+    """Two fixed bodies cannot collide. The undamped normal law always said so; the damped
+    one returned e = 0, as if the contact never ended, because it skipped the checks of the
+    pair: both now go through the same model and the same checks."""
+    wall = Sphere(np.inf, 210e9, 0.3, mass=np.inf)
+    alpha = None if damping is None else 0.2
+    with pytest.raises(ValueError, match="at most one sphere can have an infinite"):
+        normal_restitution_and_history(wall, PLANE, 3.0, damping=damping, alpha=alpha)
+
+
 def _damped_sliding_scipy(alpha: float, u_n: float, v_t: float, mu: float) -> dict:
     """A solid alumina sphere on a rigid plane, Tsuji damping with the overlap rule and the
     Mindlin spring with Coulomb's cap mu max(F, 0), by SciPy (DOP853), in two phases: the

@@ -1,4 +1,4 @@
-"""One entry point for an impact of any contact model: ``impact(s1, s2, v1, v2, model)``,
+"""One entry point for an impact of any contact model: ``solve_impact(s1, s2, v1, v2, model)``,
 and the commands that run a contact model through it (collide2d, compare-laws)."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from impactcli.compare import COMPARISON_KEYS, compare_impacts, comparison_row
-from impactcli.impact import ContactModel, Sphere, damped_impact, impact, law_impact
+from impactcli.impact import ContactModel, Sphere, damped_impact, law_impact, solve_impact
 from impactcli.laws.registry import DAMPING_LAWS, LAWS, MODELS
 
 STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
@@ -25,7 +25,7 @@ def test_the_registry_is_one_list_of_both_kinds():
 @pytest.mark.parametrize("law", ["hertz", "du-wang", "thornton"])
 def test_a_normal_law_through_the_entry_point_is_law_impact(law):
     old = law_impact(S1, S2, 0.25, 0.75, law)
-    new = impact(S1, S2, 0.25, 0.75, ContactModel(law))
+    new = solve_impact(S1, S2, 0.25, 0.75, ContactModel(law))
     np.testing.assert_equal(new.summary, old.summary)  # NaN equals NaN here
     assert new.model == old.model
 
@@ -33,14 +33,14 @@ def test_a_normal_law_through_the_entry_point_is_law_impact(law):
 @pytest.mark.parametrize("name, alpha", [("tsuji", 0.3), ("hunt-crossley", 0.5)])
 def test_a_damping_model_through_the_entry_point_is_damped_impact(name, alpha):
     old = damped_impact(S1, S2, 0.25, 0.75, name, alpha)
-    new = impact(S1, S2, 0.25, 0.75, ContactModel(damping=name, alpha=alpha))
+    new = solve_impact(S1, S2, 0.25, 0.75, ContactModel(damping=name, alpha=alpha))
     assert new.summary == old.summary
     assert ContactModel(damping=name, alpha=alpha).name == f"hertz+{name}"
 
 
 def test_damping_acts_on_hertz_only():
     with pytest.raises(ValueError, match="viscous damping on Hertz elasticity"):
-        impact(S1, S2, 0.25, 0.75, ContactModel("thornton", damping="tsuji", alpha=0.3))
+        solve_impact(S1, S2, 0.25, 0.75, ContactModel("thornton", damping="tsuji", alpha=0.3))
 
 
 def test_a_damped_comparison_row_has_no_yield_point_and_no_permanent_indentation():
@@ -106,3 +106,136 @@ def test_every_damping_model_has_its_similar_alpha(name):
     same = float(model.similar_alpha(alpha, k, m, v0))
     unit = solve_damped_impact(make_damping_law(name, 1.0, 1.0, same), 1.0, 1.0, n=200)
     assert float(real.restitution) == pytest.approx(float(unit.restitution), rel=1e-9)
+
+
+# -- one implementation, one result type ---------------------------------------------------------
+
+
+def test_every_entry_point_gives_the_one_result_type():
+    from impactcli.impact import ImpactResult, elastic_impact, elastoplastic_impact
+
+    results = [
+        elastic_impact(S1, S2, 0.25, 0.75),
+        elastoplastic_impact(S1, S2, 0.25, 0.75),
+        law_impact(S1, S2, 0.25, 0.75, "thornton"),
+        damped_impact(S1, S2, 0.25, 0.75, "tsuji", 0.3),
+    ]
+    assert all(type(r) is ImpactResult for r in results)
+    damped = results[-1]
+    assert damped.law.name == "tsuji" and damped.alpha == 0.3 and damped.separation == "overlap"
+    assert results[2].law is None and results[2].alpha is None and results[2].separation is None
+    with pytest.raises(AttributeError, match="no plan"):
+        _ = damped.plan
+    assert results[2].plan.stages[-1].name == "unloading"
+
+
+def test_the_former_damped_result_type_is_a_deprecated_name():
+    import impactcli.impact as impact_module
+
+    with pytest.warns(DeprecationWarning, match="ImpactResult"):
+        assert impact_module.DampedImpactResult is impact_module.ImpactResult
+
+
+@pytest.mark.parametrize(
+    "wrapper, model",
+    [
+        (lambda: __import__("impactcli.impact").impact.elastic_impact(S1, S2, 0.25, 0.75),
+         ContactModel.elastic()),
+        (lambda: __import__("impactcli.impact").impact.elastoplastic_impact(
+            S1, S2, 0.25, 0.75, p0_factor=3.0), ContactModel.elastoplastic(None, 3.0)),
+        (lambda: law_impact(S1, S2, 0.25, 0.75, "walton-braun",
+                            {"k_load": 2e7, "k_unload": 8e7}),
+         ContactModel("walton-braun", {"k_load": 2e7, "k_unload": 8e7})),
+    ],
+)  # fmt: skip
+def test_the_wrappers_are_impact_with_their_model(wrapper, model):
+    old, new = wrapper(), solve_impact(S1, S2, 0.25, 0.75, model)
+    np.testing.assert_equal(new.summary, old.summary)
+    assert list(new.summary) == list(old.summary)
+    assert (new.model, new.warnings) == (old.model, old.warnings)
+
+
+def test_the_paper_models_keep_their_summary_keys():
+    from impactcli.impact import ELASTIC_SUMMARY_KEYS, ENERGY_SUMMARY_KEYS, PLASTIC_SUMMARY_KEYS
+
+    elastic = solve_impact(S1, S2, 0.25, 0.75, ContactModel.elastic())
+    assert list(elastic.summary) == [*ELASTIC_SUMMARY_KEYS, *ENERGY_SUMMARY_KEYS]
+    hertz = solve_impact(S1, S2, 0.25, 0.75, ContactModel("hertz"))
+    assert list(hertz.summary) == [*PLASTIC_SUMMARY_KEYS, *ENERGY_SUMMARY_KEYS]
+    for key in elastic.summary:
+        assert hertz.summary[key] == elastic.summary[key], key
+
+
+def test_a_model_solves_for_a_pair_of_spheres_as_impact_does():
+    for model in (ContactModel("thornton"), ContactModel(damping="hunt-crossley", alpha=0.5)):
+        solution = model.for_spheres(S1, S2).solve(1.0, model.default_n)
+        summary = solve_impact(S1, S2, 0.25, 0.75, model).summary
+        assert float(solution.restitution) == summary["restitution"]
+        assert float(solution.contact_time) == summary["contact_time"]
+
+
+def test_a_damping_model_is_built_from_the_pair():
+    from impactcli.impact import effective_properties
+    from impactcli.laws import hertz_stiffness
+    from impactcli.laws.registry import damping_model, make_damping_law
+
+    m, r, e = effective_properties(S1, S2)
+    for name in DAMPING_LAWS:
+        built = damping_model(name, r, e, m, 0.1)
+        assert built == make_damping_law(name, hertz_stiffness(e, r), m, 0.1)
+        assert built == DAMPING_LAWS[name].for_pair(r, e, m, 0.1)
+
+
+def test_the_normalised_elastic_plan_is_declared_by_its_law():
+    """An impact is the one of the normalised tables when its stages' force laws say so
+    (Hertz's normalised_tables), not by a type test outside the law's module."""
+    from impactcli.impact import effective_properties
+
+    m, r, e = effective_properties(S1, S2)
+    assert LAWS["hertz"].contact(r, e).plan(1.0, m).is_normalised()
+    assert LAWS["du-wang"].contact(r, e, 1e9).plan(0.1, m).is_normalised()  # below V_y
+    assert not LAWS["du-wang"].contact(r, e, 1e9).plan(1.0, m).is_normalised()
+    curve = (np.array([0.0, 1e-5, 4e-5]), np.array([0.0, 100.0, 800.0]))
+    assert not LAWS["tabulated"].contact(r, e, curve=curve).plan(0.1, m).is_normalised()
+
+
+def test_a_model_of_the_registry_by_name():
+    assert ContactModel.named("tsuji", {"alpha": 0.2}) == ContactModel(damping="tsuji", alpha=0.2)
+    assert ContactModel.named("thornton", {"py": 2e9}, 1e9) == ContactModel(
+        "thornton", {"py": 2e9}, yield_strength=1e9
+    )
+
+
+@pytest.mark.parametrize("name", list(DAMPING_LAWS))
+def test_a_fit_takes_a_damping_model_by_its_declared_fitting(name):
+    """The fit asks the registry how to take a model (Fitting), a damping model as a normal
+    law: its alpha, started from the pair's Hertz stiffness, no yield point."""
+    from impactcli.impact import effective_properties
+    from impactcli.laws import hertz_stiffness
+    from impactcli.laws.registry import fitting
+
+    m, r, e = effective_properties(S1, S2)
+    declared = fitting(name)
+    assert declared.default == ("alpha",) and declared.yield_onset == "none"
+    assert declared.starts_are_defaults and declared.run_parameters({"alpha": 0.2}) == {
+        "alpha": 0.2
+    }
+    ((unit, *start),) = declared.starts(m, r, e, 1e9, 1.3, {}).values()
+    assert tuple(start) == DAMPING_LAWS[name].fit_start(1.3, float(hertz_stiffness(e, r)), m)
+    (alpha,) = DAMPING_LAWS[name].parameters
+    assert unit == ("-" if alpha.kind == "dimensionless" else alpha.unit)
+
+
+def test_callers_build_contact_models_from_the_pair():
+    """fit, compare, the 3-D collisions and the impact commands ask a ContactModel (or the
+    registry) for a damping model: none computes a Hertz stiffness to build one."""
+    from pathlib import Path
+
+    import impactcli
+
+    package = Path(impactcli.__file__).parent
+    for name in ("fit.py", "compare.py", "collision3d.py", "io/collisions3d.py",
+                 "cli/impact_cmd.py", "impact.py"):  # fmt: skip
+        source = (package / name).read_text()
+        assert "hertz_stiffness" not in source, name
+        assert "make_damping_law" not in source, name

@@ -276,7 +276,7 @@ def summary_rows(script: str) -> dict[str, float]:
 
 
 def test_the_script_holds_the_collision_and_this_tool_s_values():
-    from impactcli.impact import impact
+    from impactcli.impact import solve_impact
 
     out = lammps_input(STEEL, STEEL40, ContactModel(damping="tsuji", alpha=0.3))
     script = out.script(0.25, 0.75)
@@ -286,7 +286,7 @@ def test_the_script_holds_the_collision_and_this_tool_s_values():
     assert "fix             integrate all nve/sphere" in script
     assert "\n".join(out.lines) in script
     rows = summary_rows(script)
-    reference = impact(STEEL, STEEL40, 0.25, 0.75, ContactModel(damping="tsuji", alpha=0.3))
+    reference = solve_impact(STEEL, STEEL40, 0.25, 0.75, ContactModel(damping="tsuji", alpha=0.3))
     assert rows["restitution"] == pytest.approx(reference.summary["restitution"], rel=1e-9)
     assert rows["contact_time"] == pytest.approx(reference.summary["contact_time"], rel=1e-9)
     assert rows["v1_final_z"] == pytest.approx(-reference.summary["v1_final"], rel=1e-9)

@@ -34,7 +34,7 @@ from impactcli.export.lammps import (  # noqa: E402
     lammps_input,
     run_lammps,
 )
-from impactcli.impact import ContactModel, Sphere, impact  # noqa: E402
+from impactcli.impact import ContactModel, Sphere, solve_impact  # noqa: E402
 from tests.conftest import run_impact  # noqa: E402
 
 #: The multiple of the step-halving error estimates allowed.
@@ -63,7 +63,7 @@ def head_on(sphere1, sphere2, v1, v2, model, n=400) -> tuple[dict, dict]:
     of the script's frame (n = (0, 0, -1))."""
     out = []
     for segments in (n, 2 * n):
-        s = dict(impact(sphere1, sphere2, v1, v2, model, n=segments).summary)
+        s = dict(solve_impact(sphere1, sphere2, v1, v2, model, n=segments).summary)
         s["v1_final_z"] = -s["v1_final"]
         s["v2_final_z"] = s["v2_final"]
         out.append(s)

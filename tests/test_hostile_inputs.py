@@ -209,7 +209,14 @@ def _public_api() -> dict[str, tuple]:
     from impactcli.damping import damping_for_restitution
     from impactcli.design import hertz_contact_time, rayleigh_time_step, yield_limit_diameter
     from impactcli.fit import law_model
-    from impactcli.impact import Sphere, damped_impact, integrate_impact, law_impact
+    from impactcli.impact import (
+        ContactModel,
+        Sphere,
+        damped_impact,
+        integrate_impact,
+        law_impact,
+        solve_impact,
+    )
     from impactcli.sweep import restitution_sweep
     from impactcli.tables import normalised_contact_duration, normalised_table
 
@@ -233,6 +240,12 @@ def _public_api() -> dict[str, tuple]:
         "law_impact": (lambda **kw: law_impact(**kw, law="thornton"), dict(pair), impact_keys),
         "damped_impact": (lambda **kw: damped_impact(**kw, damping="tsuji"),
                           dict(pair, alpha=0.3), impact_keys),  # fmt: skip
+        "solve_impact": (lambda **kw: solve_impact(**kw, model=ContactModel("thornton")),
+                         dict(pair), impact_keys),  # fmt: skip
+        "solve_impact(damping)": (
+            lambda alpha, **kw: solve_impact(
+                **kw, model=ContactModel(damping="tsuji", alpha=alpha)),
+            dict(pair, alpha=0.3), impact_keys),  # fmt: skip
         "integrate_impact": (lambda **kw: integrate_impact(elastic_impact(**kw)), dict(pair),
                              lambda r: [r["restitution"], r["contact_time"]]),  # fmt: skip
         "restitution_sweep": (lambda v, **kw: restitution_sweep(s1, s2, [v, 1.0], **kw),

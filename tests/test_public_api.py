@@ -21,7 +21,7 @@ def test_the_public_api_is_exported_from_the_package():
     for name in ("Sphere", "elastic_impact", "elastoplastic_impact", "law_impact",
                  "damped_impact", "oblique_collision", "oblique_collision_3d",
                  "batch_impacts", "restitution_sweep", "material", "InputError",
-                 "ImpactResult", "DampedImpactResult", "ObliqueCollision",
+                 "ImpactResult", "ContactModel", "solve_impact", "ObliqueCollision",
                  "Collision3D"):  # fmt: skip
         assert name in impactcli.__all__, name
         assert getattr(impactcli, name) is not None

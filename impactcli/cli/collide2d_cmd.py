@@ -302,10 +302,10 @@ def _normal_restitution(normal_velocity: float, model, sphere1, sphere2) -> floa
     model ``model`` (:class:`~impactcli.impact.ContactModel`): the FILM run, sphere 2 at
     rest; its warnings (first yield of Hertz, damped or not; a contact radius beyond 0.1 R)
     as impact collide3d gives them."""
-    from impactcli.impact import impact
+    from impactcli.impact import solve_impact
     from impactcli.laws.registry import get_law
 
-    result = impact(sphere1, sphere2, normal_velocity, 0.0, model)
+    result = solve_impact(sphere1, sphere2, normal_velocity, 0.0, model)
     elastic = model.damping is not None or get_law(model.law).name == ELASTIC_LAW
     _warn_all(normal_velocity, result.summary["delta_max"], elastic, sphere1, sphere2)
     return float(result.summary["restitution"])
@@ -315,14 +315,14 @@ def _elastic_advice(normal_velocity: float, spheres) -> None:
     """The warnings of the elastic (Hertz, e = 1) normal impact when the spheres are known
     (--d1, --d2 and their materials): above the first-yield velocity, a contact radius
     beyond 0.1 R, as impact elastic gives them for the same normal impact."""
-    from impactcli.impact import impact
+    from impactcli.impact import solve_impact
     from impactcli.spheres import spheres_from_options
 
     try:
         sphere1, sphere2 = spheres_from_options(spheres)
     except InputError:  # the spheres are not all given: e = 1 needs only the masses
         return
-    result = impact(sphere1, sphere2, normal_velocity, 0.0)
+    result = solve_impact(sphere1, sphere2, normal_velocity, 0.0)
     _warn_all(normal_velocity, result.summary["delta_max"], True, sphere1, sphere2)
 
 

@@ -183,8 +183,8 @@ def _summary_units(result) -> dict[str, tuple[str, str]]:
 def _damped_title(result) -> str | None:
     """'Hertz with Tsuji damping (alpha = 0.3, overlap separation)', or None when the
     impact has no damping."""
-    law = getattr(result, "law", None)
-    if law is not None and hasattr(result, "separation"):
+    law = result.law
+    if law is not None:
         from impactcli.damping import alpha_label, damping_label
 
         return (
@@ -220,9 +220,8 @@ def _run(
     from impactcli.impact import (
         ELASTIC_SUMMARY_KEYS,
         ENERGY_SUMMARY_KEYS,
-        damped_impact,
-        elastic_impact,
-        law_impact,
+        ContactModel,
+        solve_impact,
     )
     from impactcli.spheres import spheres_from_options, velocities_from_options
     from impactcli.validation import (
@@ -241,18 +240,16 @@ def _run(
         raise InputError("--damping adds damping to Hertz; it does not combine with --curve")
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
+    if damping_law is not None:
+        contact = ContactModel(
+            damping=damping_law, alpha=alpha, restitution=target, separation=separation
+        )
+    elif law is None:
+        contact = ContactModel.elastic()
+    else:
+        contact = ContactModel(law.name, dict(law.params or {}))
     try:
-        if damping_law is not None:
-            result = damped_impact(
-                s1, s2, v1, v2, damping_law, alpha, target, n, separation, split.value,
-                method.value,
-            )  # fmt: skip
-        elif law is None:
-            result = elastic_impact(s1, s2, v1, v2, n, split.value, method.value)
-        else:
-            result = law_impact(
-                s1, s2, v1, v2, law.name, law.params, n, split.value, method=method.value
-            )
+        result = solve_impact(s1, s2, v1, v2, contact, n, split.value, method.value)
     except ValueError as exc:
         raise InputError(str(exc)) from None
     if model == "elastic" and law is not None:  # a user's curve: the elastic summary keys
@@ -830,17 +827,15 @@ def _damped_sweep(
     assert law is not None
     s1, s2 = spheres_from_options(spheres)
     if alpha is None:  # tsuji --e: its e is the same at every V0 (docs/damping.md)
-        from impactcli.damping import alpha_label, damping_for_restitution
-        from impactcli.impact import effective_properties
-        from impactcli.laws import hertz_stiffness
+        from impactcli.damping import alpha_label
+        from impactcli.model import ContactModel, DampedPair
 
         assert target is not None
         try:
-            m, r, modulus = effective_properties(s1, s2)
-            stiffness = float(hertz_stiffness(modulus, r))
-            alpha = float(
-                damping_for_restitution(law, target, velocities[0], stiffness, m, n, separation)
-            )
+            model = ContactModel(damping=law, restitution=target, separation=separation)
+            pair = model.for_spheres(s1, s2)
+            assert isinstance(pair, DampedPair)
+            alpha = pair.alpha(velocities[0], n)
         except ValueError as exc:
             raise InputError(str(exc)) from None
         note(f"{alpha_label(law, alpha, digits=10)} gives e = {target:g} at every V0")

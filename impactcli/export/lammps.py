@@ -855,7 +855,7 @@ def _expected(inp: LammpsInput, v1, v2, w1, w2) -> _Expected:
         normal_restitution_and_history,
         oblique_collision_3d,
     )
-    from impactcli.impact import impact
+    from impactcli.impact import solve_impact
 
     s1, s2 = inp.sphere1, inp.sphere2
     n = SCRIPT_NORMAL
@@ -869,7 +869,7 @@ def _expected(inp: LammpsInput, v1, v2, w1, w2) -> _Expected:
     if fixed and (np.any(v2 != 0.0) or np.any(w2 != 0.0)):
         raise ValueError("a fixed target (m2 = inf) cannot move: give v2 = 0 and w2 = 0")
     model = inp.model
-    head_on = impact(s1, s2, u_n if fixed else float(np.dot(v1, n)),
+    head_on = solve_impact(s1, s2, u_n if fixed else float(np.dot(v1, n)),
                      0.0 if fixed else float(-np.dot(v2, n)), model, n=REFERENCE_N)  # fmt: skip
     summary = head_on.summary
     values = {

@@ -349,9 +349,10 @@ def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n, separation)
         )  # fmt: skip
         return out["restitution"], out["error"]
     from impactcli.batch import DAMPED_BLOCK
-    from impactcli.damping import make_damping_law, solve_damped_impact
+    from impactcli.damping import solve_damped_impact
+    from impactcli.laws.registry import damping_model
 
-    m, stiffness, reasons = _damped_scales(s1, s2, u_n, rows)
+    m, radius, modulus, reasons = _damped_pairs(s1, s2, u_n, rows)
     e = np.full(rows.size, np.nan)
     good = np.flatnonzero(reasons == "")
     # FILM on (rows, segments) arrays, solve_damped_impact's 400 segments a stage: blocks of
@@ -359,26 +360,26 @@ def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n, separation)
     block = max(1, DAMPED_BLOCK // 401)
     for start in range(0, good.size, block):
         part = good[start : start + block]
-        contact = make_damping_law(damping, stiffness[part], m[part], alpha)
+        contact = damping_model(damping, radius[part], modulus[part], m[part], alpha)
         with np.errstate(all="ignore"):
             solution = solve_damped_impact(contact, u_n[rows][part], m[part], separation=separation)
         e[part] = solution.restitution
     return e, reasons
 
 
-def _damped_scales(s1, s2, u_n, rows):
-    """(effective mass [kg], Hertz stiffness [N/m^1.5], reasons) of ``rows``: the reason of
-    a row whose Hertz scales leave double precision
-    (:func:`impactcli.batch.hertz_scale_problems`), ``""`` elsewhere."""
+def _damped_pairs(s1, s2, u_n, rows):
+    """(effective mass [kg], radius [m], modulus [Pa], reasons) of ``rows``: the reason of
+    a row whose Hertz scales (those of the elastic law the damping acts on) leave double
+    precision (:func:`impactcli.batch.hertz_scale_problems`), ``""`` elsewhere."""
     from impactcli.batch import hertz_scale_problems
     from impactcli.contact import effective_mass, effective_modulus, effective_radius
-    from impactcli.laws import hertz_stiffness
+    from impactcli.laws.hertz import HertzLawContact
 
     m = effective_mass(s1["mass"][rows], s2["mass"][rows])
     radius = effective_radius(0.5 * s1["d"][rows], 0.5 * s2["d"][rows])
     modulus = effective_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows], s2["nu"][rows])
-    stiffness = hertz_stiffness(modulus, radius)
-    return m, stiffness, hertz_scale_problems(m, stiffness, u_n[rows])
+    stiffness = HertzLawContact(radius, modulus).stiffness
+    return m, radius, modulus, hertz_scale_problems(m, stiffness, u_n[rows])
 
 
 def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separation):
@@ -397,7 +398,7 @@ def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separa
         return None if np.isnan(x) else float(x)
 
     if damping is not None:
-        reasons[:] = _damped_scales(s1, s2, u_n, rows)[2]
+        reasons[:] = _damped_pairs(s1, s2, u_n, rows)[3]
     for k, row in enumerate(rows.tolist()):
         if reasons[k]:
             continue

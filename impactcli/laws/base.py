@@ -92,6 +92,16 @@ class ImpactPlan:
     delta_res: NDArray
     restitution: NDArray
 
+    def is_normalised(self) -> bool:
+        """True for the elastic impact of the normalised Tables A1/A2 (one impact): a
+        loading and an unloading stage whose force laws declare ``normalised_tables``
+        (:class:`~impactcli.laws.hertz.Hertz`), and no residual indentation."""
+        return (
+            len(self.stages) == 2
+            and all(getattr(s.law, "normalised_tables", False) for s in self.stages)
+            and float(self.delta_res) == 0.0
+        )
+
     def force(self, stage: ArrayLike, delta: ArrayLike) -> NDArray:
         """Contact force [N] at indentations ``delta`` [m], each by the law of its stage:
         ``stage`` holds the index into :attr:`stages` of each indentation (broadcast to
@@ -164,6 +174,8 @@ class DampingModel(Protocol):
     and ``data_start(e, V0, K, m)`` (alpha read off measured points),
     ``similar_alpha(alpha, K, m, V0)`` (the alpha of the same e at K = m = V0 = 1); optionally
     ``closed_form(K, m, alpha, V0, separation)`` -> (label, e) or None, a published e(V0).
+    :class:`DampedHertz` gives every model ``for_pair(R, E*, m, alpha)`` (K from the pair) and
+    ``fitting()`` (how :mod:`impactcli.fit` takes it).
     """
 
     name: ClassVar[str]
@@ -212,6 +224,42 @@ class DampedHertz:
     kind: ClassVar[str] = "damping"
 
     @classmethod
+    def for_pair(
+        cls, radius: ArrayLike, modulus: ArrayLike, mass: ArrayLike, alpha: ArrayLike
+    ) -> Any:
+        """The model for a pair of spheres: effective radius R [m], modulus E* [Pa] and mass
+        m [kg], damping parameter alpha (the model's unit); the Hertz stiffness
+        K = (4/3) E* sqrt(R) [N/m^1.5] (:func:`impactcli.laws.hertz.hertz_stiffness`).
+        Arrays broadcast (one entry per collision)."""
+        return cls.of(_hertz_stiffness(modulus, radius), mass, alpha)
+
+    @classmethod
+    def fitting(cls) -> Fitting:
+        """How :mod:`impactcli.fit` takes the model: its alpha, started by ``fit_start``
+        with the pair's K, read off measured points by ``data_start``; no yield point."""
+        (alpha,) = cls.parameters
+        unit = "-" if alpha.kind == "dimensionless" else alpha.unit
+
+        def starts(mass, radius, modulus, _sy, reference_velocity, _fixed) -> dict:
+            stiffness = float(_hertz_stiffness(modulus, radius))
+            start = cls.fit_start(reference_velocity, stiffness, mass)
+            return {alpha.name: (unit, *start)}
+
+        def data_starts(restitution, impact_velocity, mass, radius, modulus) -> dict:
+            stiffness = float(_hertz_stiffness(modulus, radius))
+            start = cls.data_start(restitution, impact_velocity, stiffness, mass)
+            return {alpha.name: start}
+
+        return Fitting(
+            default=(alpha.name,),
+            starts=starts,
+            run_parameters=lambda params: {alpha.name: params[alpha.name]},
+            starts_are_defaults=True,
+            yield_onset="none",
+            data_starts=data_starts,
+        )
+
+    @classmethod
     def describe(cls) -> dict[str, Any]:
         """JSON-ready description, as :meth:`LawSpec.describe`: name, kind, parameters,
         reference, validity."""
@@ -242,6 +290,32 @@ class DampedHertz:
 
     def damping_coefficient(self, delta: ArrayLike) -> Array:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    @classmethod
+    def of(cls, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike) -> Any:
+        """The model with K [N/m^1.5], effective mass m [kg] and alpha (each model's)."""
+        raise NotImplementedError  # pragma: no cover - abstract
+
+    @classmethod
+    def fit_start(
+        cls, reference_velocity: float, stiffness: float, mass: float
+    ) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of alpha (each model's)."""
+        raise NotImplementedError  # pragma: no cover - abstract
+
+    @classmethod
+    def data_start(
+        cls, restitution: NDArray, impact_velocity: NDArray, stiffness: float, mass: float
+    ) -> float:
+        """alpha read off measured e(V0) (each model's)."""
+        raise NotImplementedError  # pragma: no cover - abstract
+
+
+def _hertz_stiffness(modulus: ArrayLike, radius: ArrayLike) -> NDArray:
+    """K = (4/3) E* sqrt(R), [N/m^1.5] (:func:`impactcli.laws.hertz.hertz_stiffness`)."""
+    from impactcli.laws.hertz import hertz_stiffness
+
+    return hertz_stiffness(modulus, radius)
 
 
 # --------------------------------------------------------------------------------------
@@ -324,6 +398,8 @@ class Fitting:
         (rather than the law's own default)
     yield_onset : ``"law"``: the fitted law's V_y; ``"none"``: no yield point (NaN);
         ``"first touch"``: plastic from the first touch (V_y = 0)
+    data_starts : ``data_starts(e, V0, m, R, E*)`` -> name -> a start read off measured
+        points (e [-] clipped to (0, 1), V0 [m/s]; m [kg], R [m], E* [Pa]), or None
     """
 
     default: tuple[str, ...]
@@ -331,6 +407,7 @@ class Fitting:
     run_parameters: Callable[[Mapping[str, float]], dict[str, float]] = _no_parameters
     starts_are_defaults: bool = False
     yield_onset: str = "law"
+    data_starts: Callable[..., dict[str, float]] | None = None
 
 
 @dataclass(frozen=True)

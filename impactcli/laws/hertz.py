@@ -10,6 +10,7 @@ the onset of yield in an elastic impact (:func:`first_yield_velocity`, Hertz pea
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -87,6 +88,9 @@ class Hertz:
 
     stiffness: ArrayLike
     offset: ArrayLike = 0.0
+    #: An impact whose stages all have this law and that leaves no residual indentation is
+    #: the Hertz impact of the normalised Tables A1/A2 (:meth:`ImpactPlan.is_normalised`).
+    normalised_tables: ClassVar[bool] = True
 
     def force(self, delta: ArrayLike) -> NDArray:
         """F = K_h (delta - offset)^1.5 for delta >= offset, else 0, [N]."""

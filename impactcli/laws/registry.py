@@ -15,7 +15,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws import du_wang, hertz, tabulated, thornton, walton_braun
-from impactcli.laws.base import SEPARATIONS, ImpactPlan, LawSpec, NormalContact, Parameter
+from impactcli.laws.base import (
+    SEPARATIONS,
+    DampingModel,
+    Fitting,
+    ImpactPlan,
+    LawSpec,
+    NormalContact,
+    Parameter,
+)
 from impactcli.laws.hunt_crossley import HuntCrossleyDamping
 from impactcli.laws.tsuji import TsujiDamping
 from impactcli.laws.viscoelastic import ViscoelasticDamping
@@ -33,6 +41,8 @@ __all__ = [
     "check_damping",
     "comparison_laws",
     "damping_label",
+    "damping_model",
+    "fitting",
     "get_law",
     "law_names",
     "make_damping_law",
@@ -206,3 +216,22 @@ def make_damping_law(name: str, stiffness: ArrayLike, mass: ArrayLike, alpha: Ar
     alpha."""
     check_damping(name)
     return DAMPING_LAWS[name].of(stiffness, mass, alpha)
+
+
+def damping_model(
+    name: str, radius: ArrayLike, modulus: ArrayLike, mass: ArrayLike, alpha: ArrayLike
+) -> DampingModel:
+    """The model called ``name`` (a key of :data:`DAMPING_LAWS`) for a pair of spheres:
+    effective radius R [m], modulus E* [Pa], mass m [kg] and alpha; its Hertz stiffness
+    K = (4/3) E* sqrt(R) (:meth:`~impactcli.laws.base.DampedHertz.for_pair`)."""
+    check_damping(name)
+    return DAMPING_LAWS[name].for_pair(radius, modulus, mass, alpha)
+
+
+def fitting(name: str) -> Fitting | None:
+    """How :mod:`impactcli.fit` takes the model called ``name``: a normal law's
+    :attr:`~impactcli.laws.base.LawSpec.fitting` (None: it cannot be fitted) or a damping
+    model's (its alpha)."""
+    if name in DAMPING_LAWS:
+        return DAMPING_LAWS[name].fitting()
+    return get_law(name).fitting

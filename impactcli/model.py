@@ -1,0 +1,615 @@
+"""A contact model, and the one call that turns an impact into its solution.
+
+:class:`ContactModel` names a normal law of the registry with its parameters
+(:data:`impactcli.laws.registry.LAWS`), or Hertz elasticity with a damping model
+(:data:`impactcli.laws.registry.DAMPING_LAWS`). :meth:`ContactModel.for_spheres` binds it
+to a pair of spheres (effective radius R, modulus E*, mass m and the yield strength of the
+weaker one) as a :class:`PairModel`, whose :meth:`~PairModel.solve` turns an impact
+velocity V0 and n FILM segments into a :class:`~impactcli.solution.ContactSolution`:
+
+- a normal law (:class:`LawPair`): its contact model plans the stages
+  (:meth:`impactcli.laws.base.LawSpec.contact`), FILM solves them in closed form
+  (:class:`~impactcli.solution.PlanSolution`);
+- Hertz with a damping model (:class:`DampedPair`): the model for the pair's Hertz
+  stiffness (:meth:`impactcli.laws.base.DampedHertz.for_pair`), its alpha given or solved
+  for a coefficient of restitution, FILM segment by segment
+  (:func:`impactcli.damping.solve_damped_impact`).
+
+:func:`impactcli.impact.solve_impact` does the rest the same way for every model: the summary
+keys of the model's kind (:meth:`PairModel.summary`), the histories and the energy of the
+solution. Everything is SI.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING, Any, ClassVar, Protocol, cast
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.laws.base import Separation
+from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR
+from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW, get_law
+
+if TYPE_CHECKING:
+    from impactcli.impact import ImpactResult, Sphere
+    from impactcli.laws.base import ImpactPlan, LawSpec, NormalContact
+    from impactcli.solution import ContactSolution, PlanSolution
+
+__all__ = [
+    "DAMPED_DEFAULT_N",
+    "DEFAULT_N",
+    "ContactModel",
+    "DampedPair",
+    "LawPair",
+    "PairModel",
+]
+
+#: FILM segments per stage of a normal law by default (the paper's n = 25).
+DEFAULT_N = 25
+
+#: FILM segments per stage of a damped impact by default: e and the contact time within
+#: 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
+DAMPED_DEFAULT_N = 400
+
+
+@dataclass(frozen=True)
+class ContactModel:
+    """A contact model: a normal law of the registry with its parameters, or Hertz
+    elasticity with a damping model (a viscous term), :mod:`impactcli.laws`.
+
+    Attributes
+    ----------
+    law : the normal law's name (:data:`impactcli.laws.registry.LAWS`); Hertz by default
+    law_params : its parameters by name, SI (files for a tabulated law)
+    damping : a damping model's name (:data:`impactcli.laws.registry.DAMPING_LAWS`), or
+        None; a damping model acts on Hertz elasticity, so ``law`` is then Hertz
+    alpha : the damping model's parameter: [-] (tsuji), [s/m] (hunt-crossley), [s]
+        (viscoelastic) (see ``impact laws``)
+    restitution : instead of ``alpha``, the coefficient of restitution in (0, 1], [-], that the
+        damping is to give at the impact's V0 (alpha is solved for by the model)
+    separation : ``overlap`` or ``force``: when a damped contact ends
+    yield_strength : sigma_y of the contact, [Pa]; default the lower of the spheres'
+
+    Examples
+    --------
+    >>> ContactModel("thornton").name, ContactModel(damping="tsuji", alpha=0.3).name
+    ('thornton', 'hertz+tsuji')
+    >>> from impactcli.impact import Sphere
+    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> solution = ContactModel("du-wang").for_spheres(*steel).solve(1.0, 25)
+    >>> round(solution.restitution, 5), round(solution.contact_time * 1e6, 3)
+    (0.85611, 75.988)
+    """
+
+    law: str = ELASTIC_LAW
+    law_params: Mapping[str, Any] = field(default_factory=dict)
+    damping: str | None = None
+    alpha: float | None = None
+    restitution: float | None = None
+    separation: str = "overlap"
+    yield_strength: float | None = None
+
+    @property
+    def name(self) -> str:
+        """The law's name, ``law+damping`` with a damping model."""
+        return self.law if self.damping is None else f"{self.law}+{self.damping}"
+
+    @property
+    def default_n(self) -> int:
+        """FILM segments per stage when none is given: :data:`DEFAULT_N`, or
+        :data:`DAMPED_DEFAULT_N` with a damping model."""
+        return DEFAULT_N if self.damping is None else DAMPED_DEFAULT_N
+
+    @classmethod
+    def named(
+        cls,
+        name: str,
+        params: Mapping[str, Any] | None = None,
+        yield_strength: float | None = None,
+    ) -> ContactModel:
+        """The model called ``name`` in the registry: a normal law with ``params``, or a
+        damping model on Hertz with ``params["alpha"]``."""
+        params = dict(params or {})
+        if name in DAMPING_LAWS:
+            return cls(damping=name, alpha=params.get("alpha"))
+        return cls(name, params, yield_strength=yield_strength)
+
+    @classmethod
+    def elastic(cls) -> ContactModel:
+        """Hertz as the paper's elastic impact (sec. 3, :func:`impactcli.impact.elastic_impact`):
+        the elastic summary keys only, the stages checked by FILM itself."""
+        return _ElasticModel()
+
+    @classmethod
+    def elastoplastic(
+        cls, yield_strength: float | None = None, pressure_factor: float | None = None
+    ) -> ContactModel:
+        """Du & Wang as the paper's elastoplastic impact (sec. 4.4,
+        :func:`impactcli.impact.elastoplastic_impact`): sigma_y [Pa] (default the weaker
+        sphere's) and p0 / sigma_y [-] (default 2.57) checked first."""
+        factor = DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
+        return _DuWangModel(yield_strength=yield_strength, pressure_factor=factor)
+
+    def check(self, method: str = "film") -> None:
+        """The checks of the model alone, before any sphere: a damping model's name, law,
+        separation rule, ``method`` and alpha or e (ValueError, one line). A normal law is
+        checked with the spheres (:meth:`for_spheres`)."""
+        if self.damping is None:
+            return
+        from impactcli.laws.registry import check_alpha, check_damping
+
+        if get_law(self.law).name != ELASTIC_LAW or self.law_params:
+            raise ValueError(
+                f"damping {self.damping!r} is viscous damping on Hertz elasticity: its law is "
+                f"{ELASTIC_LAW}, got {self.law!r}"
+                + (" with parameters" if self.law_params else "")
+            )
+        check_damping(self.damping, self.separation)
+        if method not in ("film", "ode"):
+            raise ValueError(
+                "method must be film or ode for a damped impact (the normalised tables are "
+                f"for Hertz without damping), got {method!r}"
+            )
+        if (self.alpha is None) == (self.restitution is None):
+            raise ValueError(
+                "give the damping as alpha or as a coefficient of restitution e, not both"
+            )
+        if self.alpha is not None:
+            check_alpha(self.alpha)
+        if self.restitution is not None and not (0.0 < self.restitution <= 1.0):
+            raise ValueError(
+                f"the coefficient of restitution e must lie in (0, 1], got {self.restitution:g}"
+            )
+
+    def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
+        """The model for this pair of spheres (:class:`~impactcli.impact.Sphere`): its
+        effective mass, radius and modulus and the yield strength (the model's, else the
+        weaker sphere's). An unknown law is a ValueError; its parameters are checked when
+        the contact is first used."""
+        from impactcli.impact import effective_properties, weaker_yield_strength
+
+        if self.damping is None:
+            spec = get_law(self.law)
+            sigma_y = (
+                self.yield_strength
+                if self.yield_strength is not None
+                else weaker_yield_strength(sphere1, sphere2)
+            )
+            m, r, e = effective_properties(sphere1, sphere2)
+            return LawPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+        m, r, e = effective_properties(sphere1, sphere2)
+        return DampedPair(self, sphere1, sphere2, m, r, e)
+
+
+class PairModel(Protocol):
+    """A contact model bound to a pair of spheres: what :func:`impactcli.impact.solve_impact`
+    and the commands use of it.
+
+    Attributes: ``model`` (the :class:`ContactModel`), ``mass`` m [kg], ``radius`` R [m],
+    ``modulus`` E* [Pa], ``normal_contact`` (the normal contact model: residual
+    indentation and recoverable work, :class:`~impactcli.laws.base.NormalContact`),
+    ``permanent`` (a permanent indentation, shared by the permanent fractions),
+    ``first_yield`` (an elastic contact: V0 above the first-yield velocity is worth a
+    warning), ``methods`` (film, table, ode), ``separation``.
+    """
+
+    model: ContactModel
+    mass: float
+    radius: float
+    modulus: float
+    permanent: ClassVar[bool]
+    methods: ClassVar[tuple[str, ...]]
+
+    @property
+    def normal_contact(self) -> NormalContact: ...
+
+    @property
+    def first_yield(self) -> bool: ...
+
+    @property
+    def separation(self) -> str | None: ...
+
+    def solve(self, impact_velocity: float, n: int, must_end: bool = True) -> ContactSolution:
+        """FILM solution of the impact at V0 [m/s] with n segments per stage."""
+        ...
+
+    def kind(self, solution: Any) -> str:
+        """What the impact was: ``elastic``, ``elastoplastic``, the law's name, or
+        ``damped-<model>``."""
+        ...
+
+    def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
+        """The summary keys of the model's kind beyond the elastic ones, SI."""
+        ...
+
+    def method_error(self, method: str) -> str:
+        """The message for a history method the model does not have."""
+        ...
+
+    def damping_law(self, solution: Any) -> Any:
+        """The damping model of the solution (None for a normal law)."""
+        ...
+
+    def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
+        """e [-] and contact time [s] at each V0 [m/s], vectorised FILM."""
+        ...
+
+    def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
+        """A published closed form of e at each V0 [m/s]: (label, e), or None."""
+        ...
+
+    def pushing_impulse(self, solution: Any, impact_velocity: float, n: int) -> float | None:
+        """The impulse of the pushing force max(F, 0) over the contact [N s], or None when
+        the force never pulls (it is then (1 + e) m V0)."""
+        ...
+
+
+# -- a normal law -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class LawPair:
+    """A normal law of the registry for one pair of spheres.
+
+    Attributes
+    ----------
+    model : the :class:`ContactModel`
+    spec : the law (:class:`~impactcli.laws.base.LawSpec`)
+    sphere1, sphere2 : the spheres
+    mass, radius, modulus : effective m [kg], R [m], E* [Pa]
+    yield_strength : sigma_y, [Pa], or None
+    """
+
+    model: ContactModel
+    spec: LawSpec
+    sphere1: Any
+    sphere2: Any
+    mass: float
+    radius: float
+    modulus: float
+    yield_strength: float | None
+
+    permanent: ClassVar[bool] = True
+    methods: ClassVar[tuple[str, ...]] = ("film", "table", "ode")
+
+    @cached_property
+    def normal_contact(self) -> NormalContact:
+        """The law's contact model for the pair (built on first use: the law's parameters
+        and the yield strength are checked then)."""
+        return self.spec.contact(
+            self.radius, self.modulus, self.yield_strength, **dict(self.model.law_params)
+        )
+
+    @property
+    def first_yield(self) -> bool:
+        """The elastic law (Hertz): V0 above the first-yield velocity is worth a warning."""
+        return self.spec.name == ELASTIC_LAW
+
+    @property
+    def separation(self) -> None:
+        """A normal law separates where its unloading force returns to 0: no rule."""
+        return None
+
+    def plan(self, impact_velocity: float) -> ImpactPlan:
+        """The stages of the impact at V0 [m/s] (the law's plan)."""
+        return self.normal_contact.plan(impact_velocity, self.mass)
+
+    def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
+        """A plan past the law's yield point must resolve its elastic stage in double
+        precision (:func:`impactcli.validation.plastic_range_problems`)."""
+        from impactcli.validation import plastic_range_problems, raise_first
+
+        contact = self.normal_contact
+        raise_first(plastic_range_problems(contact, impact_velocity, self.mass, plan.delta_max))
+
+    def solve(self, impact_velocity: float, n: int, must_end: bool = True) -> PlanSolution:
+        """Plan the impact at V0 [m/s], check the plan and solve its stages by FILM with n
+        segments each (:class:`~impactcli.solution.PlanSolution`)."""
+        from impactcli.solution import PlanSolution
+
+        plan = self.plan(impact_velocity)
+        self.check_plan(plan, impact_velocity)
+        return PlanSolution.of_plan(plan, self.normal_contact, impact_velocity, self.mass, n)
+
+    def kind(self, solution: Any) -> str:
+        """``elastic`` for the Hertz impact of the normalised tables, ``elastoplastic`` past
+        the law's yield point, else the law's name."""
+        v0 = solution.impact_velocity
+        if solution.plan.is_normalised():
+            return "elastic"
+        if bool(np.all(self.normal_contact.yields(v0, self.mass))):
+            return "elastoplastic"
+        return self.spec.name
+
+    def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
+        """The plastic keys (:data:`impactcli.impact.PLASTIC_SUMMARY_KEYS` beyond the
+        elastic ones) and the energy keys (:data:`impactcli.impact.ENERGY_SUMMARY_KEYS`)."""
+        from impactcli.impact import solution_energy_summary
+
+        out = self._plastic_summary(result, solution)
+        out.update(solution_energy_summary(result, solution))
+        return out
+
+    def _plastic_summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
+        """delta_y and V_y of the contact (closed forms), the residual indentation of the
+        pair and of each sphere (shared by the permanent fractions), and the energy
+        dissipated, (1/2) m V0^2 (1 - e^2)."""
+        contact = self.normal_contact
+        f1, f2 = result.permanent_fractions
+        delta_res = solution.delta_end
+        values = {
+            "delta_y": contact.yield_indentation,
+            "yield_velocity": contact.yield_velocity(np.asarray(self.mass, dtype=float)),
+            "delta_res": delta_res,
+            "delta1_res": f1 * np.asarray(delta_res, dtype=float),
+            "delta2_res": f2 * np.asarray(delta_res, dtype=float),
+            "energy_dissipated": solution.dissipated,
+        }
+        return {key: float(value) for key, value in values.items()}
+
+    def method_error(self, method: str) -> str:
+        return f"method must be film, table or ode, got {method!r}"
+
+    def damping_law(self, solution: Any) -> None:
+        """No damping model: None."""
+        return None
+
+    def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
+        """e [-] and contact time [s] at each V0 [m/s]: :func:`impactcli.sweep.restitution_sweep`
+        of the law (FILM, the elastic and the plastic impacts each one batch)."""
+        from impactcli.sweep import restitution_sweep
+
+        sweep = restitution_sweep(
+            self.sphere1, self.sphere2, velocities, n, yield_strength=self.model.yield_strength,
+            law=self.spec.name, law_params=dict(self.model.law_params),
+        )  # fmt: skip
+        return sweep["restitution"], sweep["contact_time"]
+
+    def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
+        """The law's published e(V0) (:attr:`~impactcli.laws.base.LawSpec.closed_form`)."""
+        if self.spec.closed_form is None:
+            return None
+        v0 = np.asarray(velocities, dtype=float)
+        return self.spec.closed_form(self.normal_contact, self.mass, v0)
+
+    def pushing_impulse(self, solution: Any, impact_velocity: float, n: int) -> None:
+        """A normal law's force never pulls: None (the impulse is (1 + e) m V0)."""
+        return None
+
+
+@dataclass(frozen=True)
+class _ElasticModel(ContactModel):
+    """Hertz as :func:`impactcli.impact.elastic_impact` runs it."""
+
+    def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
+        from impactcli.impact import effective_properties, weaker_yield_strength
+
+        spec = get_law(ELASTIC_LAW)
+        sigma_y = weaker_yield_strength(sphere1, sphere2)
+        m, r, e = effective_properties(sphere1, sphere2)
+        return _ElasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+
+
+@dataclass(frozen=True)
+class _ElasticPair(LawPair):
+    """The paper's elastic impact: the Hertz plan of K_h = (4/3) E* sqrt(R), checked by FILM
+    itself; kind ``elastic``; the elastic summary keys (no plastic ones)."""
+
+    @cached_property
+    def normal_contact(self) -> NormalContact:
+        from impactcli.laws.hertz import HertzLawContact
+
+        return HertzLawContact(self.radius, self.modulus)
+
+    def plan(self, impact_velocity: float) -> ImpactPlan:
+        from impactcli.laws.hertz import HertzContact, hertz_stiffness
+
+        stiffness = float(hertz_stiffness(self.modulus, self.radius))
+        return HertzContact(stiffness).plan(impact_velocity, self.mass)
+
+    def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
+        return None
+
+    def kind(self, solution: Any) -> str:
+        return "elastic"
+
+    def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
+        from impactcli.impact import solution_energy_summary
+
+        return solution_energy_summary(result, solution)
+
+
+@dataclass(frozen=True)
+class _DuWangModel(ContactModel):
+    """Du & Wang as :func:`impactcli.impact.elastoplastic_impact` runs it: sigma_y and the
+    pressure factor p0 / sigma_y checked with the spheres, in its words."""
+
+    law: str = DEFAULT_LAW
+    pressure_factor: float = DU_WANG_PRESSURE_FACTOR
+
+    def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
+        from impactcli.impact import effective_properties, weaker_yield_strength
+        from impactcli.validation import YIELD_STRENGTH_NEEDED, needs_yield_strength
+
+        sigma_y = (
+            self.yield_strength
+            if self.yield_strength is not None
+            else weaker_yield_strength(sphere1, sphere2)
+        )
+        if sigma_y is None or needs_yield_strength(sigma_y, sigma_y):
+            raise ValueError(YIELD_STRENGTH_NEEDED)
+        factor = self.pressure_factor
+        if not (np.isfinite(factor) and factor > 0):
+            raise ValueError(f"the pressure factor must be positive, got {factor}")
+        m, r, e = effective_properties(sphere1, sphere2)
+        spec = get_law(self.law)
+        return _DuWangPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
+
+
+@dataclass(frozen=True)
+class _DuWangPair(LawPair):
+    """The paper's elastoplastic impact: Du & Wang's contact with the model's p0 / sigma_y;
+    a plastic plan's elastic stage checked in double precision; kind ``elastic`` or
+    ``elastoplastic``."""
+
+    pressure_factor: float = DU_WANG_PRESSURE_FACTOR
+
+    @cached_property
+    def normal_contact(self) -> NormalContact:
+        from impactcli.contact import DuWangContact
+
+        return DuWangContact(self.radius, self.modulus, self.yield_strength, self.pressure_factor)
+
+    def plan(self, impact_velocity: float) -> ImpactPlan:
+        with np.errstate(all="ignore"):
+            return self.normal_contact.plan(impact_velocity, self.mass)
+
+    def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
+        from impactcli.validation import raise_first, yield_scale_problems
+
+        if len(plan.stages) != 2:
+            raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
+
+    def kind(self, solution: Any) -> str:
+        return "elastic" if len(solution.plan.stages) == 2 else "elastoplastic"
+
+
+# -- Hertz with a damping model -------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class DampedPair:
+    """Hertz with a damping model for one pair of spheres (docs/damping.md).
+
+    Attributes
+    ----------
+    model : the :class:`ContactModel` (its ``damping``, ``alpha`` or ``restitution`` and
+        ``separation``)
+    sphere1, sphere2 : the spheres
+    mass, radius, modulus : effective m [kg], R [m], E* [Pa]
+    """
+
+    model: ContactModel
+    sphere1: Any
+    sphere2: Any
+    mass: float
+    radius: float
+    modulus: float
+
+    permanent: ClassVar[bool] = False
+    methods: ClassVar[tuple[str, ...]] = ("film", "ode")
+    first_yield: ClassVar[bool] = True
+
+    @property
+    def stiffness(self) -> float:
+        """Hertz stiffness K = (4/3) E* sqrt(R) of the pair, [N/m^1.5]."""
+        from impactcli.laws.hertz import hertz_stiffness
+
+        return float(hertz_stiffness(self.modulus, self.radius))
+
+    @cached_property
+    def normal_contact(self) -> NormalContact:
+        """The elastic part: Hertz, no yield, no permanent indentation."""
+        from impactcli.laws.hertz import HertzLawContact
+
+        return HertzLawContact(self.radius, self.modulus)
+
+    @property
+    def separation(self) -> Separation:
+        """``overlap`` or ``force``: when the contact ends."""
+        return cast(Separation, self.model.separation)
+
+    def law(self, alpha: ArrayLike) -> Any:
+        """The damping model with this alpha, for the pair's K and m
+        (:func:`impactcli.laws.registry.make_damping_law`)."""
+        from impactcli.laws.registry import make_damping_law
+
+        return make_damping_law(str(self.model.damping), self.stiffness, self.mass, alpha)
+
+    def alpha(self, impact_velocity: float, n: int) -> float:
+        """The model's alpha, or the one that gives its coefficient of restitution at V0
+        [m/s] by FILM with n segments (:func:`impactcli.damping.damping_for_restitution`)."""
+        if self.model.alpha is not None:
+            return float(self.model.alpha)
+        from impactcli.damping import damping_for_restitution
+
+        return float(
+            damping_for_restitution(
+                str(self.model.damping), self.model.restitution, impact_velocity,
+                self.stiffness, self.mass, n, self.separation,
+            )
+        )  # fmt: skip
+
+    def solve(self, impact_velocity: float, n: int, must_end: bool = True) -> ContactSolution:
+        """FILM of the damped impact at V0 [m/s] with n segments per stage
+        (:class:`~impactcli.damping.DampedImpact`). ``must_end``: a contact that never ends
+        (overdamped) is a ValueError; else its e is 0 and its contact time inf."""
+        from impactcli.damping import solve_damped_impact
+
+        alpha = self.alpha(impact_velocity, n)
+        law = self.law(alpha)
+        solution = solve_damped_impact(law, impact_velocity, self.mass, n, self.separation)
+        if must_end and not np.isfinite(float(solution.contact_time)):
+            raise ValueError(
+                f"alpha = {alpha:g}: the contact never ends (overdamped: the indentation creeps "
+                "back toward 0 without reaching it); give a smaller alpha"
+            )
+        return solution
+
+    def kind(self, solution: Any) -> str:
+        return f"damped-{self.model.damping}"
+
+    def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
+        """The indentation at separation [m], alpha, the energy dissipated by damping [J]
+        and the elastic energy left at separation [J]
+        (:data:`impactcli.impact.DAMPED_SUMMARY_KEYS` beyond the elastic ones)."""
+        return {
+            "delta_separation": float(solution.delta_end),
+            "alpha": float(solution.law.alpha),
+            "energy_dissipated": float(solution.dissipated),
+            "energy_stored": float(solution.stored),
+        }
+
+    def method_error(self, method: str) -> str:
+        return f"method must be film or ode for a damped impact, got {method!r}"
+
+    def damping_law(self, solution: Any) -> Any:
+        """The damping model the solution solved."""
+        return solution.law
+
+    def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
+        """e [-] and contact time [s] at each V0 [m/s]: the damped FILM of the model's
+        alpha, vectorised (e = 0 and an infinite time for a contact that never ends)."""
+        from impactcli.damping import solve_damped_impact
+        from impactcli.laws.registry import damping_model
+
+        law = damping_model(
+            str(self.model.damping), self.radius, self.modulus, self.mass, self.model.alpha
+        )
+        out = solve_damped_impact(law, velocities, self.mass, n, self.separation)
+        return out.restitution, out.contact_time
+
+    def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
+        """The model's published e(V0) for its separation rule, or None."""
+        form = getattr(DAMPING_LAWS[str(self.model.damping)], "closed_form", None)
+        if form is None:
+            return None
+        v0 = np.asarray(velocities, dtype=float)
+        return form(self.stiffness, self.mass, self.model.alpha, v0, self.separation)
+
+    def pushing_impulse(self, solution: Any, impact_velocity: float, n: int) -> float:
+        """(1 + e_force) m V0: the total force pushes until it first returns to 0, where
+        the ``force`` rule separates at -e_force V0, and pulls from there on (F < 0 stays
+        negative: F'' = 0 on F = 0 while delta falls), [N s]."""
+        pushing = solution
+        if self.separation == "overlap":
+            from impactcli.damping import solve_damped_impact
+
+            pushing = solve_damped_impact(
+                solution.law, impact_velocity, self.mass, n, separation="force"
+            )
+        return (1.0 + float(pushing.restitution)) * self.mass * float(impact_velocity)
