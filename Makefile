@@ -93,6 +93,7 @@ test-slow: $(VENV)/.test-installed
 ##       theory, the API reference from the docstrings, the CLI reference from the commands'
 ##       --help, and the gallery, whose scripts it runs; a warning fails the build
 docs: $(VENV)/.docs-installed
+	rm -rf docs/reference/generated   # the API pages are generated anew: none of a removed name
 	$(BIN)/python -m sphinx -b html -E -W --keep-going docs docs/_build/html
 	@echo "The site: docs/_build/html/index.html"
 
