@@ -505,7 +505,7 @@ def _general_fields(x: np.ndarray, precision: int) -> tuple[np.ndarray, np.ndarr
     lengths, pieces, _, _ = _general_layouts(precision)
     order = np.argsort(layout.astype(np.int16), kind="stable")
     counts = np.bincount(layout, minlength=lengths.size)
-    source = source[order]
+    source = np.take(source, order, axis=0)  # np.take: row gathers many times faster
     grouped = np.zeros((x.size, int(lengths.max()) + 1), dtype=np.uint8)
     start = 0
     for kind in np.flatnonzero(counts).tolist():
@@ -517,9 +517,9 @@ def _general_fields(x: np.ndarray, precision: int) -> tuple[np.ndarray, np.ndarr
             else:
                 rows[:, position : position + count] = text[:, what : what + count]
         start = end
-    fields = np.empty_like(grouped)
-    fields[order] = grouped
-    return fields, lengths[layout]
+    back = np.empty_like(order)
+    back[order] = np.arange(order.size)
+    return np.take(grouped, back, axis=0), lengths[layout]
 
 
 def _format_rows(values: np.ndarray, precision: int, lead: str = "") -> str:
@@ -535,8 +535,8 @@ def _format_rows(values: np.ndarray, precision: int, lead: str = "") -> str:
     for start in range(0, rows, step):
         chunk = values[start : start + step].ravel()
         fields, lengths = _general_fields(chunk, precision)
-        fields[np.arange(chunk.size), lengths] = separators[: chunk.size]
         flat = fields.ravel()
+        flat[np.arange(0, flat.size, fields.shape[1]) + lengths] = separators[: chunk.size]
         parts.append(flat[flat != 0].tobytes())
     text = b"".join(parts).decode("ascii")
     if lead:
