@@ -30,9 +30,10 @@ issue 25 and whether it is MET. NOT MET rows are what to speed up next.
     rows per second (target 2 x 10^5), and its time against pyarrow alone reading the same
     input and writing the same output table as CSV in a new process (target: within 1.5x).
 (e) ``impact collide3d --rows`` with ``--tangential mindlin`` (alumina spheres on a plane
-    at 3.9 m/s, Chung & Ooi 2011 test 4): rows per second between two sizes (start-up
-    excluded; target 10^4), and the peak RSS of each run, extrapolated to 10^6 rows (not
-    run; target: under 1 GB, memory bounded by the block size).
+    at 3.9 m/s, Chung & Ooi 2011 test 4) on one chunk of rows (10,000: it works a chunk at
+    a time) and on two: rows per second between the two (start-up excluded; target 10^4),
+    and the peak RSS of each run, extrapolated linearly to 10^6 rows (not run; target:
+    under 1 GB, memory bounded by the block size).
 (f) ``impact tables --n 1000000 -o t.csv``, against pyarrow writing the same table of
     floats as CSV (issue 25 sets no target).
 (g) Start-up of every command without ``--plot`` (with units, as typed), each against
@@ -61,7 +62,7 @@ import sys
 import tempfile
 import time
 import timeit
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -149,17 +150,34 @@ def _env() -> dict[str, str]:
     return {**os.environ, "PYTHONPATH": str(ROOT) + (os.pathsep + path if path else "")}
 
 
-def run_command(cmd: list[str], **kwargs) -> tuple[float, int]:
-    """Wall time [s] and peak RSS [bytes] of a command in a new process."""
-    start = time.perf_counter()
-    process = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, **kwargs)
-    _, status, usage = os.wait4(process.pid, 0)
-    elapsed = time.perf_counter() - start
-    process.returncode = os.waitstatus_to_exitcode(status)
-    error = process.stderr.read().decode(errors="replace") if process.stderr else ""
-    if process.returncode != 0:
-        raise SystemExit(f"{' '.join(cmd)} failed ({process.returncode}):\n{error}")
-    return elapsed, usage.ru_maxrss * 1024
+#: Runs a command as its own child and writes the child's peak RSS [KiB] to a file: started
+#: from this small process, the child's RSS does not count the pages of a large parent that
+#: it would otherwise be forked from.
+PEAK_RSS = """
+import resource, subprocess, sys
+code = subprocess.call(sys.argv[2:])
+with open(sys.argv[1], "w") as f:
+    f.write(str(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss))
+sys.exit(code)
+"""
+
+
+def run_command(cmd: list[str], memory: bool = False, **kwargs) -> tuple[float, int]:
+    """Wall time [s] of a command in a new process, and with ``memory`` its peak RSS
+    [bytes] (else 0)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        rss = Path(tmp) / "rss"
+        if memory:
+            cmd = [sys.executable, "-c", PEAK_RSS, str(rss), *cmd]
+        with (Path(tmp) / "stderr").open("w+b") as stderr:
+            start = time.perf_counter()
+            code = subprocess.call(cmd, stdout=subprocess.DEVNULL, stderr=stderr, **kwargs)
+            elapsed = time.perf_counter() - start
+            if code != 0:
+                stderr.seek(0)
+                message = stderr.read().decode(errors="replace")
+                raise SystemExit(f"{' '.join(cmd)} failed ({code}):\n{message}")
+        return elapsed, int(rss.read_text()) * 1024 if memory else 0
 
 
 def median_wall(cmd: list[str], runs: int) -> float:
@@ -553,13 +571,6 @@ def _times(ratio: float) -> str:
 # -- (d) batches ------------------------------------------------------------------------------
 
 
-def batch_n() -> int:
-    """The n of ``impact batch`` (its --n default)."""
-    from impactcli.cli.batch_cmd import batch
-
-    return int(inspect.signature(batch).parameters["n"].default)
-
-
 def random_spheres(size: int, seed: int = 0) -> dict[str, np.ndarray]:
     """Steel spheres of 1-50 mm and 1-100 mm at 0.5-6 m/s."""
     rng = np.random.default_rng(seed)
@@ -571,18 +582,35 @@ def random_spheres(size: int, seed: int = 0) -> dict[str, np.ndarray]:
     }
 
 
+def batch_option(name: str) -> int:
+    """The default of an option of ``impact batch``: ``n``, ``chunk_size``."""
+    from impactcli.cli.batch_cmd import batch
+
+    default = inspect.signature(batch).parameters[name].default
+    return int(getattr(default, "default", default))
+
+
+def chunks(rows: dict[str, np.ndarray], size: int) -> Iterator[dict[str, np.ndarray]]:
+    """``rows`` in chunks of ``size``, as ``impact batch`` gives them to the kernel."""
+    total = len(next(iter(rows.values())))
+    for start in range(0, total, size):
+        yield {key: value[start : start + size] for key, value in rows.items()}
+
+
 def throughput(compute: Callable[[dict], dict], budget: float, most: int) -> tuple[float, int]:
     """Rows per second of ``compute`` on as many rows as take about ``budget`` seconds (at
-    most ``most``), and that number."""
-    size = 1000
+    most ``most``), in chunks of ``impact batch``'s chunk size, and that number."""
+    size, chunk = 1000, batch_option("chunk_size")
+    compute(random_spheres(100, seed=1))  # first calls: imports and caches
     while True:
         rows = random_spheres(size)
         start = time.perf_counter()
-        out = compute(rows)
+        for part in chunks(rows, chunk):
+            out = compute(part)
+            bad = np.flatnonzero(out["error"] != "")
+            if bad.size:
+                raise SystemExit(f"bench: {bad.size} rows failed: {out['error'][bad[0]]}")
         elapsed = time.perf_counter() - start
-        bad = np.flatnonzero(out["error"] != "")
-        if bad.size:
-            raise SystemExit(f"bench: {bad.size} rows failed: {out['error'][bad[0]]}")
         if elapsed >= budget / 4 or size >= most:
             return size / elapsed, size
         size = min(most, int(size * min(100.0, budget / max(elapsed, 1e-3))))
@@ -594,7 +622,7 @@ def bench_batch(rows: list[Row], quick: bool) -> None:
     steel = dict(E1=210e9, nu1=0.3, E2=210e9, nu2=0.3, rho1=7800.0, rho2=7800.0, sy1=1e9,
                  sy2=1e9)  # fmt: skip
     budget, most = (0.5, 10**5) if quick else (2.0, 10**6)
-    n = batch_n()
+    n = batch_option("n")
     params = {"walton-braun": WALTON_BRAUN, "tabulated": {"curve": CURVE}}
     for name, _, _ in laws():
 
@@ -607,8 +635,8 @@ def bench_batch(rows: list[Row], quick: bool) -> None:
         if name == "hertz" and DEFAULT_ALLOCATOR:
             before, size = DEFAULT_ALLOCATOR
             rows.append(Row(
-                f"(d) batch_impacts, law hertz, {size:,} rows, n = {n}, compute only, with "
-                "glibc's default allocator settings (impact batch raises its thresholds)",
+                f"(d) batch_impacts, law hertz, {size:,} rows as above, glibc's "
+                "default allocator settings (impact batch raises its thresholds)",
                 rate(before), "", "", "", "", "",
             ))  # fmt: skip
     for name, alpha in damping_cases():
@@ -628,23 +656,23 @@ DEFAULT_ALLOCATOR: tuple[float, int] | None = None
 
 
 def default_allocator_rate(quick: bool) -> tuple[float, int]:
-    """Hertz rows per second with glibc's default allocator settings (run before they
-    change: the change cannot be undone within the process), best of three."""
+    """Hertz rows per second with glibc's default allocator settings, as the first hertz
+    row of (d) measures them (run first: the change cannot be undone within the process)."""
     from impactcli.batch import batch_impacts
 
-    size = 10**5
-    r = random_spheres(size)
-    best = math.inf
-    for _ in range(1 if quick else 3):
-        start = time.perf_counter()
+    size, chunk, n = (10**5 if quick else 10**6), batch_option("chunk_size"), batch_option("n")
+    rows = random_spheres(size)
+    start = time.perf_counter()
+    for r in chunks(rows, chunk):
         batch_impacts(r["d1"], r["d2"], r["v1"], r["v2"], 210e9, 0.3, 210e9, 0.3, 7800.0,
-                      7800.0, n=batch_n(), law="hertz")  # fmt: skip
-        best = min(best, time.perf_counter() - start)
-    return size / best, size
+                      7800.0, sy1=1e9, sy2=1e9, n=n, law="hertz")  # fmt: skip
+    return size / (time.perf_counter() - start), size
 
 
 def _batch_row(label: str, size: int, n: int, value: float) -> Row:
-    return Row(f"{label}, {size:,} rows, n = {n}, compute only", rate(value), "", "", "",
+    chunk = batch_option("chunk_size")
+    return Row(f"{label}, {size:,} rows in chunks of {chunk:,}, n = {n}, compute only",
+               rate(value), "", "", "",
                f">= {TARGET_BATCH:,.0f} rows/s", verdict(value >= TARGET_BATCH))  # fmt: skip
 
 
@@ -719,7 +747,11 @@ def collision_rows(path: Path, size: int) -> None:
 
 
 def bench_collide3d(rows: list[Row], quick: bool) -> None:
-    sizes = (50, 200) if quick else (250, 1000)
+    from impactcli.io.collisions3d import run_collisions3d
+
+    # one chunk of rows and two: memory beyond the first chunk is what grows with the rows
+    chunk = int(inspect.signature(run_collisions3d).parameters["rows"].default)
+    sizes = (300, 600) if quick else (chunk, 2 * chunk)
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         for size in sizes:
@@ -727,7 +759,7 @@ def bench_collide3d(rows: list[Row], quick: bool) -> None:
             collision_rows(source, size)
             cmd = [sys.executable, "-m", "impactcli", "collide3d", "--rows", str(source), "-o",
                    str(target), "--tangential", "mindlin", "--mu", "0.092"]  # fmt: skip
-            results.append(run_command(cmd, cwd=ROOT, env=_env()))
+            results.append(run_command(cmd, memory=True, cwd=ROOT, env=_env()))
             assert sum(1 for _ in target.open()) == size + 1
     (t1, m1), (t2, m2) = results
     value = (sizes[1] - sizes[0]) / (t2 - t1)
@@ -741,7 +773,8 @@ def bench_collide3d(rows: list[Row], quick: bool) -> None:
         verdict(value >= TARGET_COLLIDE3D),
     ))  # fmt: skip
     rows.append(Row(
-        f"{label}: peak RSS at 10^6 rows, extrapolated (not run) from {m1 / 1e6:,.0f} MB at "
+        f"{label}: peak RSS at 10^6 rows, extrapolated linearly (not run) from "
+        f"{m1 / 1e6:,.0f} MB at "
         f"{sizes[0]:,} rows and {m2 / 1e6:,.0f} MB at {sizes[1]:,}",
         f"{million / 1e9:,.3g} GB ({per_row / 1e6:.3g} MB a row)", "", "", "",
         f"< {TARGET_COLLIDE3D_MEMORY / 1e9:g} GB", verdict(million < TARGET_COLLIDE3D_MEMORY),
