@@ -3,8 +3,8 @@ r"""Oblique 3-D collision of two spheres with Coulomb friction and spin.
 The smooth collision of :mod:`impactcli.collision2d` (paper sec. 4.5) extended to rough
 spheres in three dimensions. The spheres are rigid bodies during the short contact
 (impulsive approximation: the positions do not change); the contact deforms only through
-the normal law, which supplies the coefficient of restitution e, and, for the ``mindlin``
-model, through a tangential spring.
+the normal law, which supplies the coefficient of restitution e, and, for the spring models
+(``mindlin`` and its variants), through a tangential spring.
 
 Kinematics
 ----------
@@ -39,7 +39,7 @@ masses
 
 The normal law gives J_n = (1 + e) m u_n (paper eq. 20 for any e). Normal and tangential
 motions are uncoupled for spheres, and the tangential impulse stays along the initial slip
-direction t_hat = u_t/|u_t| in both models below.
+direction t_hat = u_t/|u_t| in every model below.
 
 Tangential models
 -----------------
@@ -50,21 +50,23 @@ J_t = mu J_n t_hat. For a solid sphere on a fixed plane (m_t = 2 m / 7) in gross
 v_t' = v_t - mu (1 + e) v_n and |omega'| = (5/2) mu (1 + e) v_n / R, and the contact sticks
 when tan(theta) = |u_t|/u_n <= (7/2) mu (1 + e).
 
-``mindlin``: the tangential compliance of Mindlin (1949) with Coulomb slip, in the simplified
-incremental form used in DEM (Thornton & Yin 1991; Di Renzo & Di Maio 2004; Thornton, Cummins
-& Cleary 2011): a tangential spring of the no-slip Mindlin stiffness
+The spring models (``mindlin``, ``mindlin-force``, ``mindlin-displacement``,
+``mindlin-rescale``) and ``mindlin-deresiewicz``: the tangential compliance of Mindlin
+(1949) with Coulomb slip, as DEM codes implement it (:mod:`impactcli.laws.tangential` has
+each model's equations and the codes that use it): a tangential spring of the no-slip
+Mindlin stiffness
 
 .. math::
 
     k_t = 8 G^* a, \qquad a = \sqrt{R \delta}, \qquad
     \frac{1}{G^*} = \frac{2 - \nu_1}{G_1} + \frac{2 - \nu_2}{G_2},
 
-loaded incrementally, dF_t = k_t u_t dt, capped by Coulomb's law |F_t| <= mu F_n (gross
-slip), and, while the contact shrinks (k_t decreasing), scaled down with the stiffness,
-F_t <- F_t k_t,new / k_t,old, so that the spring never returns more energy than it stored.
-It is integrated over the normal history delta(t), F_n(t) of the normal law (FILM). Partial
-slip inside the contact (the Mindlin-Deresiewicz annulus) is not resolved: the spring is
-elastic up to the Coulomb limit, then slides.
+capped by Coulomb's law |F_t| <= mu F_n, integrated over the normal history delta(t),
+F_n(t) of the normal law (FILM) by :mod:`impactcli.tangential` (second order in the time
+step). ``mindlin`` (LAMMPS ``mindlin_rescale/force``; Thornton, Cummins & Cleary 2011)
+loads the force incrementally, dF_t = k_t u_t dt, and scales it down with the stiffness
+while the contact shrinks, so that the spring never returns more energy than it stored.
+``mindlin-deresiewicz`` resolves the partial slip of the contact (Thornton & Yin 1991).
 
 Every function broadcasts over a leading batch shape S: scalars of shape S, vectors of
 shape S + (3,), histories of shape S + (K,).
@@ -99,6 +101,7 @@ from numpy.typing import ArrayLike, NDArray
 from impactcli.collision2d import line_of_centres
 from impactcli.errors import InputError
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
+from impactcli.laws.tangential import get_tangential, tangential_names
 from impactcli.validation import check_friction, check_restitution, check_vectors, input_errors
 from impactcli.validation import where_first as _where
 
@@ -126,8 +129,8 @@ if TYPE_CHECKING:
 
 Array = NDArray[np.float64]
 
-#: The tangential models of :func:`oblique_collision_3d`.
-TANGENTIAL_MODELS: tuple[str, ...] = ("rigid", "mindlin")
+#: The tangential models of :func:`oblique_collision_3d` (:mod:`impactcli.laws.tangential`).
+TANGENTIAL_MODELS: tuple[str, ...] = tangential_names()
 
 #: Relative tolerance on the agreement of a normal history with u_n and e.
 _HISTORY_RTOL = 1e-6
@@ -885,8 +888,7 @@ def _oblique(
     shear_modulus: ArrayLike | None = None,
 ) -> Collision3D:
     """:func:`oblique_collision_3d` with radii [m] and friction mu [-]."""
-    if tangential not in TANGENTIAL_MODELS:
-        raise ValueError(f"the tangential model must be rigid or mindlin, got {tangential!r}")
+    spec = get_tangential(tangential)
     m1, m2, r1, r2, e, mu = (
         np.asarray(x, dtype=float) for x in (m1, m2, r1, r2, restitution, friction)
     )
@@ -938,7 +940,7 @@ def _oblique(
         rot1.shape,
         rot2.shape,
         u_n.shape,
-        () if history is None or tangential != "mindlin" else history.t.shape[:-1],
+        () if history is None or not spec.needs_history else history.t.shape[:-1],
     )
     m1, m2, r1, r2, e, mu, rot1, rot2, u_n = (
         np.broadcast_to(a, shape) for a in (m1, m2, r1, r2, e, mu, rot1, rot2, u_n)
@@ -970,13 +972,14 @@ def _oblique(
         j_t = np.where(stuck, j_stick, mu * j_n)
     else:
         if history is None or shear_modulus is None:
-            raise ValueError("the mindlin model needs the normal history and G*")
+            raise ValueError(f"the {tangential} model needs the normal history and G*")
         g = np.broadcast_to(np.asarray(shear_modulus, dtype=float), shape)
         bad = ~(g > 0.0)
         if np.any(bad):
             raise ValueError("the effective shear modulus G* must be > 0" + _where(bad))
         radius = 1.0 / (1.0 / r1 + 1.0 / r2)
-        j_t, stuck, force = _mindlin(history, shape, u_n, e, j_n, slip, m_t, mu, g, radius)
+        j_t, stuck, force = _spring(spec.name, history, shape, u_n, e, j_n, slip, m_t, mu, g,
+                                    radius)  # fmt: skip
         times = np.broadcast_to(history.t, force.shape)
 
     impulse_t = j_t[..., None] * t_hat  # on sphere 2
@@ -1067,7 +1070,8 @@ def check_contact_distance(
         )
 
 
-def _mindlin(
+def _spring(
+    model: str,
     history: NormalHistory,
     shape: tuple[int, ...],
     u_n: Array,
@@ -1079,8 +1083,11 @@ def _mindlin(
     g: Array,
     radius: Array,
 ) -> tuple[Array, NDArray[np.bool_], Array]:
-    """Tangential impulse, stick flag and force history of the Mindlin spring (see
-    :func:`oblique_collision_3d`). One vectorised step per interval of the history."""
+    """Tangential impulse, stick flag and force history of a tangential model with a spring
+    (see :func:`oblique_collision_3d`), by :func:`impactcli.tangential.integrate_tangential`
+    on every collision at once."""
+    from impactcli.tangential import history_steps, integrate_tangential
+
     k_points = history.t.shape[-1]
     hist = {
         key: np.broadcast_to(getattr(history, key), shape + (k_points,))
@@ -1093,10 +1100,10 @@ def _mindlin(
     bad = ~np.isclose(-end, e * u_n, rtol=_HISTORY_RTOL, atol=_HISTORY_RTOL * u_n)
     if np.any(bad):
         raise ValueError("the normal history must end at delta' = -e u_n" + _where(bad))
-    # Share of the impulse of F_n = max(F, 0) in each interval: the trapezoid of F_n dt,
-    # scaled to sum to the history's impulse (J_n where the normal force never pulls) to
-    # rounding, so gross slip gives J_t = mu * that impulse to rounding. (Between FILM
-    # nodes delta' is not monotonic to rounding, so its differences are not used.)
+    # The Coulomb budget: mu times the impulse of F_n = max(F, 0), J_n where the normal
+    # force never pulls; each interval's share of it is the trapezoid of F_n dt scaled to
+    # it, so gross slip gives J_t = mu * that impulse to rounding. (Between FILM nodes
+    # delta' is not monotonic to rounding, so its differences are not used.)
     impulse = j_n
     if history.impulse is not None:
         impulse = np.broadcast_to(history.impulse, shape)
@@ -1107,50 +1114,25 @@ def _mindlin(
                 "(the integral of max(F, 0) dt)" + _where(bad)
             )
     f_n = hist["force"]
-    area = 0.5 * (f_n[..., 1:] + f_n[..., :-1]) * np.diff(hist["t"], axis=-1)
-    total = np.sum(area, axis=-1)
+    total = np.sum(0.5 * (f_n[..., 1:] + f_n[..., :-1]) * np.diff(hist["t"], axis=-1), axis=-1)
     bad = ~(total > 0.0)
     if np.any(bad):
         raise ValueError("the normal history has no contact force" + _where(bad))
-    d_jn = impulse[..., None] * area / total[..., None]
-    stiffness = 8.0 * g[..., None] * np.sqrt(radius[..., None] * hist["delta"])
-    cap = mu[..., None] * hist["force"]
-    dt = np.diff(hist["t"], axis=-1)
-    # What does not depend on the slip and the force, for every interval at once: the
-    # interval's spring (the mean of its ends' stiffness), its rotation omega dt, the
-    # largest sliding impulse mu dJ (Coulomb's mu F_n integrated over the interval), and
-    # the scale of a shrinking contact's force.
-    k_old, k = stiffness[..., :-1], stiffness[..., 1:]
-    k_mid = 0.5 * (k_old + k)
-    omega_dt = np.sqrt(k_mid / np.asarray(m_t)[..., None]) * dt
-    cos, sinc = np.cos(omega_dt), np.sinc(omega_dt / np.pi)
-    dj_most = mu[..., None] * d_jn
-    with np.errstate(invalid="ignore", divide="ignore"):  # 1 where the contact grows
-        scale = np.where(k < k_old, k / np.where(k_old > 0.0, k_old, 1.0), 1.0)
-    s = slip.copy()  # slip speed along t_hat
-    f = np.zeros(shape)  # tangential force on sphere 2 along t_hat
-    j_t = np.zeros(shape)
-    forces = np.zeros(shape + (k_points,))
-    stuck = np.zeros(shape, dtype=bool)
-    steps = zip(*(np.moveaxis(a, -1, 0) for a in (cos, sinc, dt, k_mid, dj_most, scale)),
-                np.moveaxis(cap, -1, 0)[1:], np.moveaxis(-cap, -1, 0)[1:])  # fmt: skip
-    for j, (cos_j, sinc_j, dt_j, k_j, most_j, scale_j, cap_j, low_j) in enumerate(steps):
-        s_trial = s * cos_j - f * dt_j * sinc_j / m_t
-        f_trial = f * cos_j + k_j * s * dt_j * sinc_j
-        # Coulomb: where the spring would end above mu F_n the step slides, with the
-        # impulse mu dJ, but never more than the elastic step's (the force is bounded by
-        # both); the end force is held within mu F_n.
-        dj_elastic = m_t * (s - s_trial)
-        slides = np.abs(f_trial) >= cap_j
-        dj_slide = np.sign(dj_elastic) * np.minimum(most_j, np.abs(dj_elastic))
-        dj = np.where(slides, dj_slide, dj_elastic)
-        s = np.where(slides, s - dj / m_t, s_trial)
-        # A shrinking contact scales the force with the stiffness (Thornton et al. 2011).
-        f = f_trial.clip(low_j, cap_j) * scale_j
-        j_t = j_t + dj
-        forces[..., j + 1] = f
-        stuck |= ~slides
-    return j_t, stuck, forces
+
+    def flat(a: ArrayLike) -> Array:
+        return np.reshape(np.broadcast_to(a, shape), -1)
+
+    rows = (-1, k_points)
+    steps = history_steps(
+        np.reshape(hist["t"], rows), np.reshape(hist["delta"], rows), np.reshape(f_n, rows),
+        flat(impulse), flat(g), flat(radius),
+    )  # fmt: skip
+    out = integrate_tangential(model, steps, flat(slip), flat(m_t), flat(mu), record=True)
+    return (
+        np.reshape(out.impulse, shape),
+        np.reshape(out.stuck, shape),
+        np.reshape(out.force, shape + (k_points,)),
+    )
 
 
 def _contact_velocity(v1, v2, w1, w2, r1, r2, normal) -> Array:
