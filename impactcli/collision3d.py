@@ -107,6 +107,7 @@ from impactcli.validation import where_first as _where
 
 __all__ = [
     "CONTACT_DISTANCE_RTOL",
+    "HISTORY_N",
     "SUMMARY_KEYS",
     "TANGENTIAL_MODELS",
     "Collision3D",
@@ -119,10 +120,13 @@ __all__ = [
     "normal_law_warnings",
     "normal_restitution_and_history",
     "oblique_collision_3d",
+    "restitution_damping",
     "oblique_impact",
     "reference_tangent",
     "velocity_from_angles",
 ]
+
+from impactcli.tangential import Steps
 
 if TYPE_CHECKING:
     from impactcli.impact import ImpactResult, Sphere
@@ -177,16 +181,16 @@ class NormalHistory:
     """The normal contact history of each collision, from the normal law (FILM).
 
     Arrays have the batch shape S followed by K >= 2 time points, from first contact to
-    separation. The ``mindlin`` model takes one tangential step per interval, so K sets its
-    resolution (a few thousand points resolve the tangential oscillation).
+    separation. A tangential spring takes one step per interval (second order in it), so K
+    sets its resolution (4001 points: within 1e-6 of the converged answer, docs/collision3d.md).
 
     Attributes
     ----------
     t : times, increasing, [s]
     delta : total indentation delta(t), [m]
     delta_dot : indentation rate delta'(t), [m/s]; delta'(0) = u_n, at separation -e u_n
-    force : compressive normal force F_n(t) = max(F(t), 0), [N]: the Coulomb limit of the
-        ``mindlin`` model is mu F_n
+    force : compressive normal force F_n(t) = max(F(t), 0), [N]: the Coulomb limit of a
+        tangential spring is mu F_n
     impulse : the integral of F_n dt over the contact, [N s], batch shape S: the most
         impulse friction can take is mu times it. ``None`` (the default): J_n = (1 + e) m u_n,
         right when the normal force never pulls (F >= 0 throughout: every law of the
@@ -253,14 +257,17 @@ class Collision3D:
     friction : Coulomb friction coefficient mu, [-]
     normal_impulse : J_n = (1 + e) m u_n, on sphere 2 along n_hat, [N s]
     tangential_impulse : J_t . t_hat, on sphere 2 along t_hat, [N s] (>= 0)
-    stuck : True where the contact stuck (rigid: m_t |u_t| <= mu J_n; mindlin: the spring
-        was below the Coulomb limit during part of the contact), False where it slid
+    stuck : True where the contact stuck (rigid: m_t |u_t| <= mu J_n; a spring: it was
+        below the Coulomb limit during part of the contact), False where it slid
         throughout at |F_t| = mu F_n, [-]
-    model : ``rigid`` or ``mindlin``
+    model : the tangential model (:data:`TANGENTIAL_MODELS`)
     times, tangential_force : the tangential force on sphere 2 along t_hat at the times of
-        the normal history, [s], [N] (``mindlin`` only, else ``None``)
+        the normal history, [s], [N] (a tangential spring only, else ``None``)
     warnings : what ``impact collide3d`` prints for this collision: the warnings of its
         normal impact (:attr:`NormalLaw.warnings`, given to :func:`oblique_collision_3d`)
+    geometry : ``frozen`` (the line of centres of first contact throughout, the impulsive
+        approximation) or ``moving`` (the spheres moved during the contact,
+        :func:`impactcli.moving.moving_collision_3d`)
 
     Examples
     --------
@@ -300,6 +307,7 @@ class Collision3D:
     times: Array | None = field(default=None, repr=False)
     tangential_force: Array | None = field(default=None, repr=False)
     warnings: tuple[str, ...] = field(default=(), repr=False)
+    geometry: str = "frozen"
 
     # -- masses ------------------------------------------------------------------------
     @property
@@ -452,8 +460,8 @@ class Collision3D:
         """Energy lost to friction, m_t (|u_t|^2 - |u_t'|^2) / 2, [J] (>= 0).
 
         Normal and tangential motions are uncoupled for spheres, so the kinetic energy lost
-        is the sum of this and :attr:`energy_dissipated_normal` (the tangential spring of
-        ``mindlin`` is unloaded at separation, F_n = 0)."""
+        is the sum of this and :attr:`energy_dissipated_normal` (a tangential spring is
+        unloaded at separation, F_n = 0)."""
         u_t = self.contact_velocity - self.approach_velocity[..., None] * self.normal
         u_t_final = self.contact_velocity_final + self.separation_velocity[..., None] * self.normal
         return 0.5 * self.tangential_mass * (_dot(u_t, u_t) - _dot(u_t_final, u_t_final))
@@ -597,6 +605,36 @@ def normal_law_warnings(
     return normal_impact_warnings(u_n, delta_max, radius, first_yield, velocity, advice)
 
 
+def restitution_damping(restitution: float) -> tuple[str | None, float | None]:
+    """The normal law of a given e for a tangential spring: Hertz with the Tsuji damping
+    that gives e at every impact velocity (LAMMPS's ``damping coeff_restitution``, solved
+    exactly here): ``("tsuji", alpha)``, or ``(None, None)`` (Hertz) for e = 1.
+
+    >>> name, alpha = restitution_damping(0.98)
+    >>> name, round(alpha, 6)
+    ('tsuji', 0.014379)
+    """
+    from impactcli.damping import damping_for_restitution
+
+    e = float(restitution)
+    check_restitution(e)
+    if e == 1.0:
+        return None, None
+    if not e > 0.0:
+        raise ValueError("e = 0 has no normal force history (the damped contact never ends)")
+    from impactcli.laws.tsuji import TsujiDamping
+
+    # Tsuji's damping scales with sqrt(m K): its alpha for e is that of any m, K and V0.
+    name = TsujiDamping.name
+    return name, float(damping_for_restitution(name, e, 1.0, 1.0, 1.0))
+
+
+#: FILM segments per stage of a normal history (``points`` given) when ``n`` is not: the
+#: tangential integration inherits the history's error, 1e-5 of the converged answer at 100
+#: (docs/collision3d.md); e alone keeps the 25 of impact elastic/elastoplastic.
+HISTORY_N = 100
+
+
 @input_errors
 def normal_restitution_and_history(
     sphere1: Sphere,
@@ -607,7 +645,7 @@ def normal_restitution_and_history(
     damping: str | None = None,
     alpha: float | None = None,
     points: int | None = None,
-    n: int = 25,
+    n: int | None = None,
     separation: str = "overlap",
 ) -> NormalLaw:
     r"""The normal law of an oblique impact: e and, if asked, the normal history.
@@ -629,9 +667,9 @@ def normal_restitution_and_history(
     params : the law's parameters by name (SI)
     damping : None, ``tsuji`` or ``hunt-crossley``
     alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
-    points : time points of the history (>= 3) for the ``mindlin`` model; None: no history
-    n : FILM segments per stage of a law of :mod:`impactcli.laws` (damped Hertz uses
-        :data:`impactcli.model.DAMPED_DEFAULT_N`, 400)
+    points : time points of the history (>= 3) for a tangential spring; None: no history
+    n : FILM segments per stage; default 25 for e alone, :data:`HISTORY_N` (100) with a
+        history, and :data:`impactcli.model.DAMPED_DEFAULT_N` (400) with damping
     separation : with ``damping``: ``overlap`` (the contact ends when delta returns to 0) or
         ``force`` (when the total force does; the spheres part at delta_separation > 0)
 
@@ -687,7 +725,12 @@ def normal_restitution_and_history(
         check_alpha(alpha)
         check_damping(damping, separation)
     model = ContactModel(law, dict(params or {}), damping, alpha, separation=separation)
-    segments = n if damping is None else model.default_n
+    if n is not None:
+        segments = n
+    elif damping is not None:
+        segments = model.default_n
+    else:
+        segments = 25 if points is None else HISTORY_N
     # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
     v1 = 0.0 if np.isinf(sphere1.total_mass) else float(u_n)
     check_size("n", segments, MAX_SEGMENTS)
@@ -703,7 +746,7 @@ def normal_restitution_and_history(
     if not (np.isfinite(t_c) and e > 0.0):
         raise ValueError(
             f"the damped contact never ends (alpha = {alpha:g}: overdamped), so it has no "
-            "normal history for the mindlin model"
+            "normal history for a tangential spring"
         )
     t = np.linspace(0.0, t_c, int(points))
     delta, delta_dot = solution.evaluate(t)
@@ -738,6 +781,7 @@ def oblique_collision_3d(
     shear_modulus: ArrayLike | None = None,
     *,
     warnings: Sequence[str] = (),
+    steps: Steps | None = None,
 ) -> Collision3D:
     r"""Velocities and spins after the oblique collision of two rough spheres, in 3-D.
 
@@ -750,16 +794,18 @@ def oblique_collision_3d(
     - ``rigid``: J_t = m_t |u_t| (stick) if that is <= mu J_n, else mu J_n (gross slip),
       along the slip direction t_hat (Brach 1991; Stronge 2000).
     - ``mindlin``: incremental Mindlin spring k_t = 8 G* sqrt(R delta) with the Coulomb cap
-      mu F_n, scaled down while the contact shrinks (Thornton, Cummins & Cleary 2011),
-      integrated over ``history``. Each interval is solved exactly as a harmonic oscillator
-      of stiffness k_t (the mean of its ends) and mass m_t; where the spring would end
-      above mu F_n the interval slides with the impulse mu dJ (dJ: the interval's share of
-      the integral of F_n dt, the trapezoid of F_n dt scaled to the history's ``impulse``),
-      but no more than the elastic interval's, and ends at |F_t| = mu F_n. In gross slip
+      mu F_n, scaled down while the contact shrinks (Thornton, Cummins & Cleary 2011; LAMMPS
+      ``mindlin_rescale/force``), integrated over ``history``; its variants
+      ``mindlin-force``, ``mindlin-displacement``, ``mindlin-rescale`` (LAMMPS's other
+      Mindlin springs) and ``mindlin-deresiewicz`` (partial slip, Thornton & Yin 1991) as
+      :mod:`impactcli.laws.tangential` defines them, by :mod:`impactcli.tangential` (second
+      order in the time step of the history). Where the spring would go beyond mu F_n the
+      interval slides with the impulse mu dJ (dJ: the interval's share of the integral of
+      F_n dt, the trapezoid of F_n dt scaled to the history's ``impulse``). In gross slip
       throughout J_t = mu times the impulse of F_n = max(F, 0) to rounding: mu J_n where
       the normal force never pulls.
 
-    With mu = 0 both models give the smooth collision of
+    With mu = 0 every model gives the smooth collision of
     :func:`impactcli.collision2d.oblique_collision` (exactly, for planar input with z = 0).
 
     Parameters
@@ -775,14 +821,21 @@ def oblique_collision_3d(
     restitution : normal coefficient of restitution e in [0, 1], [-], from the normal law
         (elastic: 1; elastoplastic: the FILM run at the normal approach velocity u_n)
     mu : Coulomb friction coefficient mu >= 0, [-] (``--mu`` of ``impact collide3d``)
-    tangential : ``rigid`` or ``mindlin``
+    tangential : a model of :data:`TANGENTIAL_MODELS`: ``rigid`` (the default), ``mindlin``,
+        ``mindlin-force``, ``mindlin-displacement``, ``mindlin-rescale``,
+        ``mindlin-deresiewicz``
     inertia1, inertia2 : moments of inertia, [kg m^2]; default a solid sphere,
         I = (2/5) m R^2 (R^2/I = 5/(2 m); 0 for a fixed body and for a flat one, which
         does not turn)
-    history : the normal history (``mindlin`` only), consistent with u_n and e to 1e-6
-    shear_modulus : G* of :func:`effective_shear_modulus`, [Pa] (``mindlin`` only)
+    history : the normal history (every model but ``rigid``), consistent with u_n and e to
+        1e-6
+    shear_modulus : G* of :func:`effective_shear_modulus`, [Pa] (every model but ``rigid``)
     warnings : the warnings of the normal law that gave e (:attr:`NormalLaw.warnings` of
         :func:`normal_restitution_and_history`), carried by the result
+    steps : instead of ``history`` and ``shear_modulus``, the normal histories as the
+        tangential integration takes them (:func:`impactcli.tangential.hertz_steps`: a batch
+        of Hertz impacts from one normalised history, memory O(batch + points)); the
+        result then has no force history
 
     Returns
     -------
@@ -796,7 +849,7 @@ def oblique_collision_3d(
     ValueError
         Masses, diameters, e, mu or vectors out of range, coincident centres, centres of
         two spheres with friction not at contact distance, spheres not approaching
-        (u_n <= 0), an unknown model, or a ``mindlin`` call without a history consistent
+        (u_n <= 0), an unknown model, or a spring model without a history consistent
         with u_n and e. For a batch the message names the first bad collision.
 
     Examples
@@ -813,7 +866,7 @@ def oblique_collision_3d(
     result = _oblique(
         m1, m2, 0.5 * np.asarray(d1, dtype=float), 0.5 * np.asarray(d2, dtype=float), p1, p2,
         v1, v2, w1, w2, restitution, mu, tangential, inertia1, inertia2, history,
-        shear_modulus,
+        shear_modulus, steps,
     )  # fmt: skip
     if warnings:
         object.__setattr__(result, "warnings", tuple(warnings))
@@ -886,6 +939,7 @@ def _oblique(
     inertia2: ArrayLike | None = None,
     history: NormalHistory | None = None,
     shear_modulus: ArrayLike | None = None,
+    steps: Steps | None = None,
 ) -> Collision3D:
     """:func:`oblique_collision_3d` with radii [m] and friction mu [-]."""
     spec = get_tangential(tangential)
@@ -941,6 +995,7 @@ def _oblique(
         rot2.shape,
         u_n.shape,
         () if history is None or not spec.needs_history else history.t.shape[:-1],
+        () if steps is None or not spec.needs_history else (steps.rows,),
     )
     m1, m2, r1, r2, e, mu, rot1, rot2, u_n = (
         np.broadcast_to(a, shape) for a in (m1, m2, r1, r2, e, mu, rot1, rot2, u_n)
@@ -970,6 +1025,13 @@ def _oblique(
         j_stick = m_t * slip
         stuck = j_stick <= mu * j_n
         j_t = np.where(stuck, j_stick, mu * j_n)
+    elif steps is not None:
+        from impactcli.tangential import integrate_tangential
+
+        if shape != (steps.rows,):
+            raise ValueError(f"steps has {steps.rows} rows for a batch of shape {shape}")
+        out = integrate_tangential(spec, steps, slip, m_t, mu)
+        j_t, stuck = out.impulse, out.stuck
     else:
         if history is None or shear_modulus is None:
             raise ValueError(f"the {tangential} model needs the normal history and G*")

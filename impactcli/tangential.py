@@ -90,6 +90,11 @@ class Steps:
     share : each interval's share of the impulse of F_n (sums to 1 on every row), [-]
     time_scale : [s]; stiffness_scale: k_t at delta = delta_scale, [N/m];
     force_scale : [N]; impulse : the impulse of F_n of each row, [N s]
+    slip_bound : where known (Hertz), the slip velocity per unit of mu above which every
+        spring model slides throughout, mu E* u_n/(4 G*) divided by mu, [m/s]: a spring
+        loaded from first contact keeps up with the Coulomb limit of a Hertz contact while
+        k_t u_t >= mu F_n', i.e. u_t >= mu E* delta'/(4 G*) (delta' <= u_n), and while the
+        contact shrinks for any u_t >= 0; None else
     """
 
     time: Array
@@ -100,6 +105,7 @@ class Steps:
     stiffness_scale: Array
     force_scale: Array
     impulse: Array
+    slip_bound: Array | None = None
 
     @property
     def rows(self) -> int:
@@ -112,6 +118,21 @@ class Steps:
     def times(self) -> Array:
         """The node times of every row, [s], shape (rows, K)."""
         return self.time_scale[:, None] * self.time
+
+    def take(self, index: ArrayLike) -> Steps:
+        """The rows ``index`` of the batch."""
+
+        def rows(a: Array | None) -> Array | None:
+            return None if a is None else a[index]
+
+        def nodes(a: Array) -> Array:
+            return a if a.shape[0] == 1 else a[index]
+
+        return Steps(
+            nodes(self.time), nodes(self.stiffness), nodes(self.force), nodes(self.share),
+            rows(self.time_scale), rows(self.stiffness_scale), rows(self.force_scale),
+            rows(self.impulse), rows(self.slip_bound),
+        )  # fmt: skip
 
 
 def _shares(time: Array, force: Array) -> Array:
@@ -204,6 +225,7 @@ def hertz_steps(
         stiffness_scale=np.ravel(8.0 * g * np.sqrt(r * delta_m)),
         force_scale=np.ravel(m * v0**2 / delta_m),
         impulse=np.ravel((1.0 + e) * m * v0),
+        slip_bound=np.ravel(e_star * v0 / (4.0 * g)),
     )
     return steps, np.full(np.shape(m), e)
 
@@ -288,45 +310,107 @@ def _spring_coefficients(steps: Steps, spring: str, rescale: bool):
 
 
 def _spring(spec: TangentialModel, steps: Steps, s0, m_t, mu, record: bool) -> TangentialResult:
-    phi, g1, g2, rho = _spring_coefficients(steps, spec.spring, spec.rescale)
-    k, tau, force_scale = steps.stiffness_scale, steps.time_scale, steps.force_scale
-    quarter = 0.25 * k * tau * tau / m_t  # L/4
-    cross_s = tau / m_t  # M
-    cross_f = k * tau  # N
-    cap_scale = mu * force_scale
-    slide_scale = mu * steps.impulse / m_t
-    cap, share = steps.force, steps.share
+    """The spring models (module docstring): the rows that need it integrated, the others
+    closed: no friction or no slip (J_t = 0) and, for Hertz histories, gross slip
+    throughout (J_t = mu times the impulse of F_n; :attr:`Steps.slip_bound`)."""
     rows, points = steps.rows, steps.points
-    s = s0.copy()
+    slide_scale = mu * steps.impulse / m_t  # the slip velocity mu J/m_t friction can take
+    impulse = np.zeros(rows)
+    slip = s0.copy()
+    stuck = (mu > 0.0) & (s0 == 0.0)  # no slip: nothing moves, under the limit
+    forces = np.zeros((rows, points)) if record else None
+    busy = (mu > 0.0) & (s0 > 0.0)
+    if steps.slip_bound is not None and not record:
+        # Gross slip throughout, the exact answer (docs/collision3d.md): the slip left at
+        # separation is fast enough for the spring to stay on the limit at every time.
+        sliding = busy & (s0 - slide_scale >= mu * steps.slip_bound)
+        impulse[sliding] = m_t[sliding] * slide_scale[sliding]
+        slip[sliding] = s0[sliding] - slide_scale[sliding]
+        busy &= ~sliding
+    index = np.flatnonzero(busy)
+    if index.size == 0:
+        return TangentialResult(impulse, slip, stuck, forces)
+    part = steps if index.size == rows else steps.take(index)
+    lost, s_end, stuck_part, recorded = _spring_loop(
+        spec, part, s0[index], m_t[index], mu[index], slide_scale[index], record
+    )
+    impulse[index] = m_t[index] * lost
+    slip[index] = s_end
+    stuck[index] = stuck_part
+    if forces is not None:
+        forces[index] = recorded
+    return TangentialResult(impulse, slip, stuck, forces)
+
+
+def _spring_loop(spec, steps: Steps, s0, m_t, mu, slide_scale, record: bool):
+    """The loop over the intervals, on rows with mu > 0 and slip > 0. The slip is counted
+    in units of mu J/m_t (``slide_scale``) and the force in units of mu F_scale, so that
+    the Coulomb limit and each slide are the normalised history's own numbers."""
+    phi, g1, g2, rho = _spring_coefficients(steps, spec.spring, spec.rescale)
+    k, tau = steps.stiffness_scale, steps.time_scale
+    cap_scale = mu * steps.force_scale
+    quarter = 0.25 * k * tau * tau / m_t
+    to_slip = (tau / m_t) * cap_scale / slide_scale  # force -> slip rate, scaled units
+    to_force = (k * tau) * slide_scale / cap_scale  # slip -> force, scaled units
+    rows, points = steps.rows, steps.points
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        s = s0 / slide_scale
     lost = np.zeros(rows)
     f = np.zeros(rows)
     sign = np.zeros(rows)
-    stuck = np.zeros(rows, dtype=bool)
+    always = np.ones(rows, dtype=bool)  # on the limit at every step so far
     forces = np.zeros((rows, points)) if record else None
+    buffers = [np.empty(rows) for _ in range(6)]
+    q, inverse, s_trial, f_trial, delta, work = buffers
+    # (beyond the range of a float, an extreme row's numbers are inf or NaN, which the
+    # caller's checks of the result refuse)
+    with np.errstate(over="ignore", invalid="ignore"):
+        return _spring_steps(
+            phi, g1, g2, rho, quarter, to_slip, to_force, cap_scale, slide_scale, steps, s, f,
+            lost, sign, always, forces, q, inverse, s_trial, f_trial, delta, work,
+        )  # fmt: skip
+
+
+def _spring_steps(phi, g1, g2, rho, quarter, to_slip, to_force, cap_scale, slide_scale,
+                  steps, s, f, lost, sign, always, forces, q, inverse, s_trial, f_trial,
+                  delta, work):  # fmt: skip
+    """The loop of :func:`_spring_loop`."""
+    cap, share, points = steps.force, steps.share, steps.points
     for j in range(points - 1):
-        q = quarter * phi[..., j]
-        inverse = 1.0 / (1.0 + q)
-        keep = 1.0 - q
-        s_trial = (keep * s - cross_s * g1[..., j] * f) * inverse
-        f_trial = (cross_f * g2[..., j] * s + keep * rho[..., j] * f) * inverse
-        limit = cap_scale * cap[..., j + 1]
+        np.multiply(quarter, phi[..., j], out=q)
+        np.add(q, 1.0, out=inverse)
+        np.reciprocal(inverse, out=inverse)
+        np.subtract(1.0, q, out=q)  # q: the keep factor 1 - L phi/4 from here on
+        # the spring's step, the Magnus-Cayley propagator
+        np.multiply(q, s, out=s_trial)
+        np.multiply(to_slip * g1[..., j], f, out=work)
+        s_trial -= work
+        s_trial *= inverse
+        np.multiply(to_force * g2[..., j], s, out=f_trial)
+        np.multiply(q * rho[..., j], f, out=work)
+        f_trial += work
+        f_trial *= inverse
+        limit = cap[..., j + 1]
+        sliding = sign != 0.0
+        np.abs(f_trial, out=work)
         # beyond the limit; on it where it was sliding (F = 0 at separation ends a slide,
         # not a stick)
-        over = np.where(sign != 0.0, np.abs(f_trial) >= limit, np.abs(f_trial) > limit)
-        # Slides: by the interval's share of mu times the impulse of F_n, where it was
+        over = (work > limit) | (sliding & (work == limit))
+        # Slides: by the interval's share of mu times the impulse of F_n where it was
         # sliding; where the slide begins, by no more than the spring's own step.
-        decrement = slide_scale * share[..., j]
-        decrement = np.where(sign != 0.0, decrement, np.minimum(decrement, np.abs(s - s_trial)))
+        np.subtract(s, s_trial, out=delta)
+        np.abs(delta, out=work)
+        decrement = np.where(sliding, share[..., j], np.minimum(share[..., j], work))
         direction = np.where(f_trial == 0.0, sign, np.sign(f_trial))
-        change = np.where(over, direction * decrement, s - s_trial)
+        change = np.where(over, direction * decrement, delta)
         lost += change  # (summed apart from s: J_t = mu J_n to rounding in gross slip)
-        s = s - change
+        s -= change
         f = np.where(over, direction * limit, f_trial)
-        sign = np.where(over, direction, 0.0)
-        stuck |= ~over & (limit > 0.0)
+        sign = direction * over
+        always &= over | (limit == 0.0)
         if forces is not None:
-            forces[:, j + 1] = f
-    return TangentialResult(m_t * lost, s, stuck, forces)
+            forces[:, j + 1] = f * cap_scale
+    return lost * slide_scale, s * slide_scale, ~always, forces
 
 
 def _partial_slip(steps: Steps, s0, m_t, mu, record: bool) -> TangentialResult:

@@ -39,6 +39,7 @@ LIBRARY = (
     "impactcli.sweep",
     "impactcli.batch",
     "impactcli.collision2d",
+    "impactcli.tangential",
     "impactcli.tables",
     "impactcli.materials",
     "impactcli.validation",

@@ -80,7 +80,7 @@ def test_table_output(impact):
         (["--v1=1,-3"], "three components"),
         (["--v1=1,0,3"], "not approaching"),
         (["--v1=1,0,-3", "--w1", "a,b,c"], "--w1"),
-        (["--v1=1,0,-3", "--e", "0.5", "--tangential", "mindlin"], "--e"),
+        (["--v1=1,0,-3", "--e", "0", "--tangential", "mindlin"], "--e 0"),
         (["--v1=1,0,-3", "--w2", "0,1,0"], "flat target cannot spin"),
     ],
 )

@@ -10,6 +10,7 @@ import typer
 
 from impactcli.cli.collide2d_cmd import E_GIVEN_HELP
 from impactcli.cli.common import (
+    DAMPED_DEFAULT_N,
     FORMAT_HELP,
     Format,
     Model,
@@ -21,6 +22,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
     screen_values,
+    segments_option,
     warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
@@ -28,6 +30,7 @@ from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW
+from impactcli.laws.tangential import get_tangential, tangential_names
 from impactcli.limits import MAX_POINTS, check_size
 from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
 from impactcli.spheres import SphereOptions
@@ -58,9 +61,37 @@ FORMAT_3D_HELP = FORMAT_HELP.replace(
 )
 
 
-class Tangential(enum.StrEnum):
-    rigid = "rigid"
-    mindlin = "mindlin"
+#: --tangential: the models of impactcli.laws.tangential, by name.
+Tangential = enum.StrEnum(  # type: ignore[misc]
+    "Tangential", {name.replace("-", "_"): name for name in tangential_names()}
+)
+
+
+class Geometry(enum.StrEnum):
+    """``--geometry``: the line of centres fixed during the contact, or moving with the
+    spheres."""
+
+    frozen = "frozen"
+    moving = "moving"
+
+
+#: FILM segments per stage of the normal law when --n is not given: rigid takes the e of
+#: impact elastic/elastoplastic (25); a tangential spring runs over the history, whose
+#: error it inherits: 100 puts it within 1e-5 of the converged answer (docs/collision3d.md).
+RIGID_N = 25
+HISTORY_N = 100
+
+TANGENTIAL_HELP = (
+    "rigid: impulse model, stick or gross slip (Brach; Stronge). The others are Mindlin's "
+    "spring k_t = 8 G* a capped by Coulomb over the FILM normal history, as DEM codes name "
+    "them: mindlin (incremental force, scaled down while the contact shrinks; LAMMPS "
+    "mindlin_rescale/force; Thornton, Cummins & Cleary 2011), mindlin-force (never scaled; "
+    "LAMMPS mindlin/force), mindlin-displacement (the current stiffness times the "
+    "accumulated displacement; LAMMPS mindlin, the form of Chung & Ooi's 2011 curves), "
+    "mindlin-rescale (the displacement scaled down; LAMMPS mindlin_rescale), "
+    "mindlin-deresiewicz (partial slip with loading history, Thornton & Yin 1991). "
+    "docs/collision3d.md has each one's equations."
+)
 
 
 VELOCITY_HELP = (
@@ -123,21 +154,35 @@ def collide3d(
     e: Optional[float] = typer.Option(
         None,
         "--e",
-        help=f"Coefficient of restitution 0 <= e <= 1 (--tangential rigid only) {E_GIVEN_HELP}",
+        help=f"Coefficient of restitution 0 <= e <= 1 {E_GIVEN_HELP} With a tangential spring, "
+        "which needs the normal force history: Hertz with Tsuji's damping that gives this e "
+        "(LAMMPS's damping coeff_restitution), 0 < e <= 1.",
     ),
     mu: float = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0."),
     tangential: Tangential = typer.Option(
-        Tangential.rigid,
-        "--tangential",
-        help="rigid: impulse model, stick or gross slip (Brach; Stronge). mindlin: tangential "
-        "spring k_t = 8 G* a with Coulomb slip over the FILM normal history (Thornton, "
-        "Cummins & Cleary 2011).",
+        Tangential.rigid, "--tangential", metavar="MODEL", help=TANGENTIAL_HELP
     ),
     points: int = typer.Option(
         4001,
         "--points",
-        help=f"Time points of the normal history for --tangential mindlin, 3 to {MAX_POINTS:,} "
+        help=f"Time points of the normal history for a tangential spring, 3 to {MAX_POINTS:,} "
         "(impact elastic's --points, 201, are the points of its history table).",
+    ),
+    n: Annotated[
+        Optional[int],
+        segments_option(
+            f"Default {RIGID_N} with --tangential rigid (the e of impact elastic and "
+            f"elastoplastic), {HISTORY_N} with a tangential spring (the history within 1e-5 of "
+            f"the converged answer), {DAMPED_DEFAULT_N} with --damping."
+        ),
+    ] = None,
+    geometry: Geometry = typer.Option(
+        Geometry.frozen,
+        "--geometry",
+        help="frozen: the line of centres stays that of first contact (the impulsive "
+        "approximation). moving: the spheres move during the contact, as a DEM code moves "
+        "them, and the normal turns with the line of centres (two free spheres with a "
+        "tangential spring, or mu = 0; the normal law Hertz, damped or not).",
     ),
     rows: Optional[str] = typer.Option(
         None,
@@ -157,8 +202,8 @@ def collide3d(
         None,
         "--plot-force",
         metavar="FILE",
-        help="With --tangential mindlin: draw the tangential force history and its Coulomb "
-        "limit mu F_n to FILE (.png, .svg or .pdf).",
+        help="With a tangential spring (--tangential mindlin, ...): draw the tangential force "
+        "history and its Coulomb limit mu F_n to FILE (.png, .svg or .pdf).",
     ),
 ) -> None:
     """Oblique 3-D collision of two rough, spinning spheres (or a sphere and a flat target).
@@ -174,23 +219,25 @@ def collide3d(
       rigid:   J_t = min(m_t |u_t|, mu J_n),
                1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
       mindlin: dF_t = 8 G* a u_t dt, |F_t| <= mu F_n, a = sqrt(R delta),
-               over the contact
+               over the contact (and its variants, --tangential)
 
     Spheres are solid (I = 2/5 m R^2). A flat target: --d2 inf --m2 inf (--E2 inf for a
     rigid one). Units: a bare number is SI, angular velocities in rad/s (or rpm, deg/s),
     angles of SPEED@THETA@PHI in degrees. Output is SI, angles in degrees. mu = 0 gives the
     smooth collision of impact collide2d.
 
-    Example (Chung & Ooi 2011, test 4: alumina sphere on a rigid plane, 3.9 m/s at 30 deg):
+    Example (Chung & Ooi 2011, test 4: alumina sphere on a rigid plane, 3.9 m/s at 30 deg,
+    e_n = 0.98, the spring of their curves):
     impact collide3d --d1 5mm --E1 380GPa --nu1 0.23 --rho1 4000 --d2 inf --m2 inf --E2 inf
-    --p1 0,0,0 --p2=0,0,-1 --v1 3.9m/s@30deg --mu 0.092 --tangential mindlin
+    --p1 0,0,0 --p2=0,0,-1 --v1 3.9m/s@30deg --mu 0.092 --e 0.98
+    --tangential mindlin-displacement
 
     On screen each value has its SI prefix (mN s, mJ), and a value below 1e-12 of its scale
     (the speeds; 180 deg for an angle) is rounding noise and reads 0 (CSV and JSON keep
     every digit). CSV: one header line of the summary keys and one row; JSON: {"inputs",
-    "summary"} (with the tangential force history for mindlin). --plot draws the velocities
+    "summary"} (with the tangential force history of a spring). --plot draws the velocities
     before and after in the plane of the impact (horizontal: the initial slip direction t,
-    vertical: n), projected on it; --plot-force the mindlin tangential force history.
+    vertical: n), projected on it; --plot-force the spring's tangential force history.
     """
     from impactcli.spheres import check_options, spheres_from_options
 
@@ -200,15 +247,23 @@ def collide3d(
             check_restitution(e, "--e")
     except ValueError as exc:
         raise InputError(str(exc)) from None
+    spring = get_tangential(tangential.value).needs_history
     law_name, params, (damping_law, alpha, separation) = _normal_law(
-        law, model, damping, e, tangential
+        law, model, damping, e, spring
     )
+    if n is None:
+        n = DAMPED_DEFAULT_N if damping_law is not None else (HISTORY_N if spring else RIGID_N)
     check_size("--points", points, MAX_POINTS, minimum=3)
     check_plot(plot, output)
     check_plot(plot_force, output)
     check_distinct_outputs(plot, plot_force)
-    if plot_force is not None and tangential is not Tangential.mindlin:
-        raise InputError("--plot-force draws the mindlin force history: add --tangential mindlin")
+    if plot_force is not None and not spring:
+        raise InputError(
+            "--plot-force draws the force history of a tangential spring: add --tangential "
+            "mindlin (or another spring)"
+        )
+    if geometry is Geometry.moving and rows is not None:
+        raise InputError("--geometry moving runs one collision: give it without --rows")
     check_options(spheres)  # every sphere option given is checked, used or not
     if rows is not None:
         single = [name for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2),
@@ -218,7 +273,7 @@ def collide3d(
         single += [f"--{k}" for k, value in vars(spheres).items() if value is not None]
         _rows(rows, output, fmt, single, law=law_name, params=params,
               damping=damping_law, alpha=alpha, separation=separation, restitution=e, mu=mu,
-              tangential=tangential.value, points=points)  # fmt: skip
+              tangential=tangential.value, points=points, n=n)  # fmt: skip
         return
     for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2)):
         if value is None:
@@ -245,7 +300,7 @@ def collide3d(
     s1, s2 = spheres_from_options(spheres)
     result, summary, inputs, force, limit = _solve(
         s1, s2, vectors, law_name, params, (damping_law, alpha, separation), e, mu, tangential,
-        points,
+        points, n, geometry.value,
     )  # fmt: skip
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
@@ -268,21 +323,26 @@ def collide3d(
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
 
 
-def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
+def _normal_law(law: LawOptions, model, damping: DampingOptions, e, spring: bool):
     """(law name, parameters in SI, (damping law, alpha in SI, separation rule)) of the
     normal law from --law and its parameters (:func:`impactcli.cli.law_options.resolve_laws`),
     --model, the damping options (:meth:`DampingOptions.parse`) and --e, with one line for
-    each clash. Without --law: hertz, du-wang for --model elastoplastic."""
+    each clash. Without --law: hertz, du-wang for --model elastoplastic. With a tangential
+    spring, --e is Hertz with the Tsuji damping that gives it (alpha solved for)."""
     given = [name for name, value in (("--law", law.names or None), ("--model", model),
              ("--damping", damping.damping), ("--e", e)) if value is not None]  # fmt: skip
     if len(given) > 1:
         raise InputError(f"give one normal law: {' or '.join(given)}, not both")
-    if e is not None and tangential is Tangential.mindlin:
-        raise InputError(
-            "--e cannot drive --tangential mindlin, which needs the normal force history: "
-            "use --law, --model or --damping"
-        )
     damping_law, alpha, _, separation = damping.parse()
+    if e is not None and spring:
+        from impactcli.collision3d import restitution_damping
+
+        if not e > 0.0:
+            raise InputError(
+                "--e 0 has no normal force history for a tangential spring (the damped "
+                "contact never ends): give 0 < e <= 1, or --tangential rigid"
+            )
+        damping_law, alpha = restitution_damping(e)
     default = MODEL_LAWS[model] if model is not None else ELASTIC_LAW
     (choice,) = resolve_laws(law, default=(default,))
     return choice.name, choice.params, (damping_law, alpha, separation)
@@ -383,8 +443,8 @@ def _plot(path: str, c, inputs: dict) -> None:
     save_plot(fig, path)
 
 
-def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
-    """The collision, its summary, inputs, mindlin force history and Coulomb limit;
+def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points, n, geometry):
+    """The collision, its summary, inputs, spring force history and Coulomb limit;
     ``damped`` is (damping law or None, alpha, separation rule)."""
     import numpy as np
 
@@ -395,48 +455,70 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
     )
 
     v1, v2, w1, w2, p1, p2 = (np.array(x) for x in vectors.values())
-    n = _normal(p1, p2)
-    u_n = float(np.dot(v1 - v2, n))
+    normal_direction = _normal(p1, p2)
+    u_n = float(np.dot(v1 - v2, normal_direction))
     if not u_n > 0.0:
+        x, y, z = normal_direction
         raise InputError(
             f"the spheres are not approaching along the line of centres: (v1 - v2).n = "
-            f"{u_n:.6g} m/s with n = ({n[0]:.6g}, {n[1]:.6g}, {n[2]:.6g}) from sphere 1 to "
+            f"{u_n:.6g} m/s with n = ({x:.6g}, {y:.6g}, {z:.6g}) from sphere 1 to "
             "sphere 2 (an impact needs > 0)"
         )
     damping, alpha, separation = damped
-    mindlin = tangential is Tangential.mindlin
+    spring = get_tangential(tangential.value).needs_history
+    given_e = e is not None and not spring  # used as it is (rigid)
     history = shear = None
     try:
         warned: tuple[str, ...] = ()
-        if e is None:
+        if not given_e:
             normal = normal_restitution_and_history(
                 s1, s2, u_n, law=law, params=params, damping=damping, alpha=alpha,
-                points=points if mindlin else None, separation=separation,
+                points=points if spring else None, n=n, separation=separation,
             )  # fmt: skip
             restitution, history = normal
             warned = normal.warnings
         else:
             restitution = e
-        if mindlin:
+        if spring:
             shear = effective_shear_modulus(
                 s1.youngs_modulus, s1.poisson_ratio, s2.youngs_modulus, s2.poisson_ratio
             )
-        result = oblique_collision_3d(
-            s1.total_mass, s2.total_mass, v1, v2, p1, p2, s1.diameter, s2.diameter, w1, w2,
-            restitution, mu, tangential.value, history=history, shear_modulus=shear,
-            warnings=warned,
-        )  # fmt: skip
+        if geometry == "moving":
+            from impactcli.model import ContactModel
+            from impactcli.moving import moving_collision_3d
+
+            if given_e:
+                raise ValueError(
+                    "--geometry moving integrates the normal law in time: give --law, "
+                    "--damping, or --e with a tangential spring, not a given e with rigid"
+                )
+            result = moving_collision_3d(
+                s1, s2, v1, v2, p1, p2, w1, w2,
+                ContactModel(law, dict(params or {}), damping, alpha, separation=separation),
+                mu=mu, tangential=tangential.value, points=points, n=n, warnings=warned,
+            )  # fmt: skip
+        else:
+            result = oblique_collision_3d(
+                s1.total_mass, s2.total_mass, v1, v2, p1, p2, s1.diameter, s2.diameter, w1,
+                w2, restitution, mu, tangential.value, history=history, shear_modulus=shear,
+                warnings=warned,
+            )  # fmt: skip
     except ValueError as exc:
         raise InputError(str(exc)) from None
     limit = force = None
-    if mindlin:
+    if spring:
         result = _first(result)
         force = {"t": result.times.tolist(), "force": result.tangential_force.tolist()}
         limit = mu * history.force[0]
     rule = "" if separation == "overlap" else f", {separation} separation"
-    normal_law = "given e" if e is not None else (
-        f"{damping} damping (alpha = {alpha:g}{rule})" if damping is not None else law
-    )  # fmt: skip
+    if given_e:
+        normal_law = "given e"
+    elif e is not None and damping is not None:
+        normal_law = f"{damping} damping for e = {e:g} (alpha = {alpha:.6g})"
+    elif damping is not None:
+        normal_law = f"{damping} damping (alpha = {alpha:g}{rule})"
+    else:
+        normal_law = law
     inputs = {
         **{k.lstrip("-"): list(map(float, v)) for k, v in vectors.items()},
         "m1": s1.total_mass,
@@ -446,6 +528,7 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
         "normal_model": normal_law,
         "tangential_model": tangential.value,
         "mu": mu,
+        "geometry": geometry,
     }
     if e is None and damping is None:
         from impactcli.cli.law_options import LawChoice, law_inputs
@@ -456,7 +539,7 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
 
 
 def _first(result):
-    """A batch of one (the mindlin history adds a leading axis) as a single collision."""
+    """A batch of one (a spring's history adds a leading axis) as a single collision."""
     import dataclasses
 
     import numpy as np
@@ -500,7 +583,7 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
     title = (
         f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = "
         f"{one([s['restitution']], '')[0]}; {inputs['tangential_model']} tangential, mu = "
-        f"{one([inputs['mu']], '')[0]})"
+        f"{one([inputs['mu']], '')[0]}; {inputs['geometry']} geometry)"
     )
     rows = []
     for label, unit in (("v1", "m/s"), ("w1", "rad/s"), ("v2", "m/s"), ("w2", "rad/s")):

@@ -117,7 +117,7 @@ def compute_collisions3d(
     alpha: float | None = None,
     restitution: float | None = None,
     points: int = 4001,
-    n: int = 25,
+    n: int | None = None,
     faults: np.ndarray | None = None,
     separation: str = "overlap",
 ) -> dict[str, np.ndarray]:
@@ -129,12 +129,16 @@ def compute_collisions3d(
         :func:`impactcli.io.table.table_columns`): numbers in SI or text with units, read
         as ``impact batch`` reads them; columns as the module docstring
     mu : Coulomb friction of rows without a ``mu`` cell, [-]
-    tangential : ``rigid`` or ``mindlin``, every row
+    tangential : a model of :mod:`impactcli.laws.tangential` (``rigid``, ``mindlin``, ...),
+        every row
     law, params : the normal law of every row and its parameters (SI)
     damping, alpha : damped Hertz instead (``tsuji`` or ``hunt-crossley``) and its alpha
-    restitution : e of rows without an ``e`` cell instead of the law (``rigid`` only)
-    points : time points of each normal history (``mindlin``)
-    n : FILM segments per stage of the normal law
+    restitution : e of rows without an ``e`` cell instead of the law; with a tangential
+        spring, Hertz with the Tsuji damping that gives e
+        (:func:`impactcli.collision3d.restitution_damping`)
+    points : time points of each normal history (a tangential spring)
+    n : FILM segments per stage of the normal law; default 25 for rigid, 100 with a spring
+        (:data:`impactcli.collision3d.HISTORY_N`), 400 with damping
     faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
         CSV line), which becomes its error
     separation : the separation rule of damped Hertz (``overlap`` or ``force``)
@@ -162,18 +166,14 @@ def compute_collisions3d(
     'the spheres are not approaching along the line of centres ((v1 - v2) . n_hat <= 0)'
     """
     from impactcli.batch import material_properties
-    from impactcli.collision3d import (
-        CONTACT_DISTANCE_RTOL,
-        TANGENTIAL_MODELS,
-        contact_distance_problem,
-    )
+    from impactcli.collision3d import CONTACT_DISTANCE_RTOL, contact_distance_problem
     from impactcli.contact import total_mass
     from impactcli.io.table import _quantity_column, _text_column, table_columns
+    from impactcli.laws.tangential import get_tangential
     from impactcli.spheres import missing_properties, resolve_properties
     from impactcli.validation import Problems, sphere_names, sphere_problems
 
-    if tangential not in TANGENTIAL_MODELS:
-        raise ValueError(f"the tangential model must be rigid or mindlin, got {tangential!r}")
+    spring = get_tangential(tangential).needs_history
     columns, size = table_columns(frame)
     if size == 0:
         return {key: np.zeros(0) for key in output_columns3d()[:-1]} | {
@@ -229,9 +229,9 @@ def compute_collisions3d(
                            q["e"])  # fmt: skip
         errors.add(~np.isnan(given_e) & ~((given_e >= 0) & (given_e <= 1)),
                    "e must be in [0, 1], got {:g}", given_e)  # fmt: skip
-        if tangential == "mindlin":
-            errors.add(~np.isnan(given_e), "a given e cannot drive the mindlin model, which "
-                       "needs the normal force history of a law")  # fmt: skip
+        if spring:
+            errors.add(~np.isnan(given_e) & ~(given_e > 0.0), "e = 0 has no normal force "
+                       "history for a tangential spring (its contact never ends)")  # fmt: skip
         for i, s in ((1, s1), (2, s2)):
             errors.add(np.isinf(s["d"]) & np.any(vectors[f"w{i}"] != 0.0, axis=-1),
                        f"a flat target cannot spin: w{i} must be 0")  # fmt: skip
@@ -254,14 +254,16 @@ def compute_collisions3d(
     e = np.full(size, np.nan)
     law_rows = ok[np.isnan(given_e[ok])]
     e[ok] = given_e[ok]
-    if law_rows.size and tangential == "rigid":
+    if law_rows.size and not spring:
         e[law_rows], reasons = _restitutions(s1, s2, u_n, law_rows, law, params, damping,
-                                             alpha, n, separation)  # fmt: skip
+                                             alpha, 25 if n is None else n,
+                                             separation)  # fmt: skip
         errors.add_messages(_scatter(reasons, law_rows, size))
     ok = np.flatnonzero(~errors.bad)
     blocks = [ok] if ok.size else []
-    if tangential == "mindlin":  # (rows, points) histories: blocks of HISTORY_BLOCK points
-        rows_per_block = max(1, HISTORY_BLOCK // max(int(points), 2))
+    if spring:  # one normalised Hertz history: ROW_BLOCK rows; else HISTORY_BLOCK points
+        rows_per_block = ROW_BLOCK if _self_similar(law, params, damping) else max(
+            1, HISTORY_BLOCK // max(int(points), 2))  # fmt: skip
         blocks = [ok[i : i + rows_per_block] for i in range(0, ok.size, rows_per_block)]
     for rows in blocks:
         _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result,
@@ -276,16 +278,32 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
     then :func:`impactcli.collision3d.oblique_collision_3d`; the results written into
     ``result``, each refused row's reason into ``errors``."""
     from impactcli.collision3d import (
+        HISTORY_N,
         NormalHistory,
         collision_summary,
         effective_shear_modulus,
         oblique_collision_3d,
     )
+    from impactcli.laws.tangential import get_tangential
+    from impactcli.tangential import hertz_steps
 
-    shear = history = None
-    if tangential == "mindlin":
+    shear = history = steps = None
+    spring = get_tangential(tangential).needs_history
+    if spring and _self_similar(law, params, damping) and np.all(np.isnan(e[rows])):
+        # Hertz: one normalised history scaled to every row (tangential.hertz_steps)
+        m, radius, modulus, reasons = _damped_pairs(s1, s2, u_n, rows)
+        errors.add_messages(_scatter(reasons, rows, size))
+        good = reasons == ""
+        rows = rows[good]
+        if not rows.size:
+            return
+        shear = effective_shear_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows],
+                                        s2["nu"][rows])  # fmt: skip
+        steps, e[rows] = hertz_steps(m[good], u_n[rows], modulus[good], radius[good], shear,
+                                     HISTORY_N if n is None else n, points)  # fmt: skip
+    elif spring:
         e[rows], histories, reasons = _histories(s1, s2, u_n, rows, law, params, damping,
-                                                 alpha, points, n, separation)  # fmt: skip
+                                                 alpha, points, n, separation, e)  # fmt: skip
         errors.add_messages(_scatter(reasons, rows, size))
         rows = rows[reasons == ""]  # the rows that ran, in the order of their histories
         if not rows.size:
@@ -300,7 +318,7 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
             s1["mass"][rows], s2["mass"][rows], vectors["v1"][rows], vectors["v2"][rows],
             vectors["p1"][rows], vectors["p2"][rows], s1["d"][rows], s2["d"][rows],
             vectors["w1"][rows], vectors["w2"][rows], e[rows], friction[rows], tangential,
-            history=history, shear_modulus=shear,
+            history=history, shear_modulus=None if steps is not None else shear, steps=steps,
         )  # fmt: skip
         summary = collision_summary(collision)
     finite = np.logical_and.reduce([np.isfinite(summary[k]) for k in _FINITE_KEYS])
@@ -311,10 +329,22 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
         result[key][rows] = np.where(finite, value, np.nan)
 
 
-#: History points (rows x ``points``) per block of ``--tangential mindlin`` rows: each row's
-#: normal history and the tangential spring integrated over a block of rows at once; memory
-#: does not grow with the number of rows (one row a block when ``points`` is larger).
+#: History points (rows x ``points``) per block of rows with a tangential spring whose normal
+#: law is not self-similar (every law but undamped Hertz): each row's normal history and the
+#: tangential spring integrated over a block of rows at once; memory does not grow with the
+#: number of rows (one row a block when ``points`` is larger).
 HISTORY_BLOCK = 1_048_576
+#: Rows per block with a tangential spring on undamped Hertz: every row's normal history is
+#: one normalised history scaled (self-similar), so a block holds O(ROW_BLOCK + points)
+#: numbers (about 40 arrays of ROW_BLOCK floats: 2.6 MB), whatever the number of rows.
+ROW_BLOCK = 8192
+
+
+def _self_similar(law: str, params: Mapping[str, Any] | None, damping: str | None) -> bool:
+    """True where every row's normal history is the normalised Hertz one, scaled."""
+    from impactcli.laws.registry import get_law
+
+    return damping is None and not params and get_law(law).name == ELASTIC_LAW
 
 #: The error of a row whose collision cannot be computed in double precision.
 _OUT_OF_RANGE = (
@@ -382,11 +412,12 @@ def _damped_pairs(s1, s2, u_n, rows):
     return m, radius, modulus, hertz_scale_problems(m, stiffness, u_n[rows])
 
 
-def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separation):
-    """e and the normal history of each of ``rows`` (one FILM run per row). Returns (e,
-    (t, delta, delta_dot, force) of the rows that ran, shape (k, points), and their
-    impulse, shape (k,), NaN where it is J_n), reasons)."""
-    from impactcli.collision3d import normal_restitution_and_history
+def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separation, row_e):
+    """e and the normal history of each of ``rows`` (one FILM run per row; a given e (not
+    NaN in ``row_e``) is Hertz with the Tsuji damping that gives it). Returns (e, (t,
+    delta, delta_dot, force) of the rows that ran, shape (k, points), and their impulse,
+    shape (k,), NaN where it is J_n), reasons)."""
+    from impactcli.collision3d import normal_restitution_and_history, restitution_damping
     from impactcli.impact import Sphere
 
     e = np.full(rows.size, np.nan)
@@ -409,9 +440,15 @@ def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separa
                            given(s["rho"][row]), given(s["m"][row]), given(s["sy"][row]))
                     for s in (s1, s2)
                 ]  # fmt: skip
+                row_law, row_params, row_damping, row_alpha = law, params, damping, alpha
+                if not np.isnan(row_e[row]):
+                    row_law, row_params = ELASTIC_LAW, None
+                    row_damping, row_alpha = restitution_damping(float(row_e[row]))
                 e[k], history = normal_restitution_and_history(
-                    *pair, float(u_n[row]), law=law, params=dict(params or {}),
-                    damping=damping, alpha=alpha, points=points, n=n, separation=separation,
+                    *pair, float(u_n[row]), law=row_law, params=dict(row_params or {}),
+                    damping=row_damping, alpha=row_alpha, points=points,
+                    n=n if row_damping is None or row_damping == damping else None,
+                    separation=separation,
                 )  # fmt: skip
         except (ValueError, InputError, ArithmeticError) as exc:
             reasons[k] = str(exc).splitlines()[0]
