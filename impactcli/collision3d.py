@@ -268,6 +268,8 @@ class Collision3D:
     geometry : ``frozen`` (the line of centres of first contact throughout, the impulsive
         approximation) or ``moving`` (the spheres moved during the contact,
         :func:`impactcli.moving.moving_collision_3d`)
+    p1_final, p2_final : with the moving geometry, the centres at separation, [m] (the
+        angular momenta after the impact are taken there); else ``None``
 
     Examples
     --------
@@ -308,6 +310,8 @@ class Collision3D:
     tangential_force: Array | None = field(default=None, repr=False)
     warnings: tuple[str, ...] = field(default=(), repr=False)
     geometry: str = "frozen"
+    p1_final: Array | None = field(default=None, repr=False)
+    p2_final: Array | None = field(default=None, repr=False)
 
     # -- masses ------------------------------------------------------------------------
     @property
@@ -418,6 +422,9 @@ class Collision3D:
         )[i - 1]
         v = getattr(self, f"v{i}_final" if final else f"v{i}")
         w = getattr(self, f"w{i}_final" if final else f"w{i}")
+        moved = self.p1_final if i == 1 else self.p2_final
+        if final and moved is not None:  # where the spheres were at separation
+            p = moved
         with np.errstate(invalid="ignore", divide="ignore"):
             inertia = r * r / rot
             spin = np.where(np.isfinite(inertia)[..., None], inertia[..., None] * w, np.nan)

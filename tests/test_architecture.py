@@ -40,6 +40,7 @@ LIBRARY = (
     "impactcli.batch",
     "impactcli.collision2d",
     "impactcli.tangential",
+    "impactcli.moving",
     "impactcli.tables",
     "impactcli.materials",
     "impactcli.validation",

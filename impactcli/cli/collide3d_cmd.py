@@ -264,6 +264,11 @@ def collide3d(
         )
     if geometry is Geometry.moving and rows is not None:
         raise InputError("--geometry moving runs one collision: give it without --rows")
+    if geometry is Geometry.moving and plot_force is not None:
+        raise InputError(
+            "--plot-force draws the force history of the frozen geometry: give it without "
+            "--geometry moving"
+        )
     check_options(spheres)  # every sphere option given is checked, used or not
     if rows is not None:
         single = [name for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2),
@@ -506,7 +511,7 @@ def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points, n, g
     except ValueError as exc:
         raise InputError(str(exc)) from None
     limit = force = None
-    if spring:
+    if spring and geometry == "frozen":
         result = _first(result)
         force = {"t": result.times.tolist(), "force": result.tangential_force.tolist()}
         limit = mu * history.force[0]
