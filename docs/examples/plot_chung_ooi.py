@@ -3,47 +3,22 @@ Chung & Ooi (2011) benchmark, tests 4 and 5
 ===========================================
 
 Chung & Ooi's benchmark of DEM codes at the particle level (Granular Matter 13:643-656,
-doi:10.1007/s10035-011-0277-0): a sphere (R = 2.5 mm) of alumina or an aluminium alloy on a
-rigid plane, mu = 0.092, elastic normal law. Test 4 keeps the speed at 3.9 m/s and turns
-the incident angle, test 5 keeps the normal velocity at 5 m/s. The curves are the centre's
-tangential restitution, the spin after the impact and the rebound angle at the contact
-patch, for the rigid (impulse) and the mindlin (tangential spring) models, with the rigid
-model's closed forms dotted. The sweeps are those of ``benchmarks/chung_ooi.py``, which
-``make run`` runs.
+doi:10.1007/s10035-011-0277-0). Test 4: a sphere (R = 2.5 mm) of alumina or an aluminium
+alloy on a rigid plane at 3.9 m/s, mu = 0.092, e_n = 0.98, the incident angle turned; the
+curves are the centre's tangential restitution, the spin after the impact and the rebound
+angle at the contact patch, for the rigid (impulse) model, ``mindlin`` and
+``mindlin-displacement`` (the spring of Chung & Ooi's curves), with the rigid model's
+closed forms dotted and the published points. The sweeps are those of
+``benchmarks/chung_ooi.py``, which ``make run`` runs; ``make validate`` runs all eight
+tests with every tangential model (the validation page).
 """
 
-import numpy as np
-from chung_ooi import MATERIALS, closed_form, sweep  # benchmarks/chung_ooi.py
+from chung_ooi import test4_figure, test5_figure  # benchmarks/chung_ooi.py
 
-from impactcli.plots import oblique_impact_figure
-
-theta = np.radians(np.arange(1.0, 89.5, 2.0))
-v_n = 3.9 * np.cos(theta)
-curves = {
-    f"{material}, {model}": sweep(material, theta, v_n, model)
-    for material in MATERIALS
-    for model in ("rigid", "mindlin")
-}
-test4 = oblique_impact_figure(
-    np.degrees(theta),
-    curves,
-    closed_form=closed_form(theta, v_n),
-    title="Chung & Ooi test 4: sphere on a rigid plane at 3.9 m/s, mu = 0.092, e = 1",
-)
+test4 = test4_figure()
 
 # %%
-# Test 5: the normal velocity stays 5 m/s, the tangential one is 5 tan(theta).
+# Test 5: steel and polyethylene spheres (R = 10 um), the normal velocity 5 m/s, the
+# tangential one psi mu u_n, mu = 0.3, e_n = 1; normalised as Chung & Ooi plot it.
 
-theta = np.radians(np.arange(1.0, 85.5, 2.0))
-v_n = np.full_like(theta, 5.0)
-curves = {
-    f"{material}, {model}": sweep(material, theta, v_n, model)
-    for material in MATERIALS
-    for model in ("rigid", "mindlin")
-}
-test5 = oblique_impact_figure(
-    np.degrees(theta),
-    curves,
-    closed_form=closed_form(theta, v_n),
-    title="Chung & Ooi test 5: v_n = 5 m/s, v_t = v_n tan(theta), mu = 0.092, e = 1",
-)
+test5 = test5_figure()
