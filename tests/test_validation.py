@@ -21,6 +21,7 @@ def _module(name: str):
     try:
         spec = importlib.util.spec_from_file_location(name, BENCHMARKS / f"{name}.py")
         module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module  # (its dataclasses look their module up)
         spec.loader.exec_module(module)
         return module
     finally:
