@@ -11,7 +11,7 @@ velocity V0 and n FILM segments into a :class:`~impactcli.solution.ContactSoluti
   (:meth:`impactcli.laws.base.LawSpec.contact`), FILM solves them in closed form
   (:class:`~impactcli.solution.PlanSolution`);
 - Hertz with a damping model (:class:`DampedPair`): the model for the pair's Hertz
-  stiffness (:meth:`impactcli.laws.base.DampedHertz.for_pair`), its alpha given or solved
+  stiffness (:meth:`impactcli.laws.viscous.DampingSpec.for_pair`), its alpha given or solved
   for a coefficient of restitution, FILM segment by segment
   (:func:`impactcli.damping.solve_damped_impact`).
 
@@ -506,17 +506,14 @@ class DampedPair:
 
     @property
     def stiffness(self) -> float:
-        """Hertz stiffness K = (4/3) E* sqrt(R) of the pair, [N/m^1.5]."""
-        from impactcli.laws.hertz import hertz_stiffness
-
-        return float(hertz_stiffness(self.modulus, self.radius))
+        """Hertz stiffness K = (4/3) E* sqrt(R) of the pair, [N/m^1.5]
+        (:meth:`~impactcli.laws.viscous.DampingSpec.stiffness`)."""
+        return float(DAMPING_LAWS[str(self.model.damping)].stiffness(self.radius, self.modulus))
 
     @cached_property
     def normal_contact(self) -> NormalContact:
-        """The elastic part: Hertz, no yield, no permanent indentation."""
-        from impactcli.laws.hertz import HertzLawContact
-
-        return HertzLawContact(self.radius, self.modulus)
+        """The elastic part: the elastic law (Hertz), no yield, no permanent indentation."""
+        return get_law(ELASTIC_LAW).contact(self.radius, self.modulus)
 
     @property
     def separation(self) -> Separation:
