@@ -92,13 +92,14 @@ class ImpactPlan:
     restitution: NDArray
 
     def is_normalised(self) -> bool:
-        """True for the elastic impact of the normalised Tables A1/A2 (one impact): a
-        loading and an unloading stage whose force laws declare ``normalised_tables``
-        (:class:`~impactcli.laws.hertz.Hertz`), and no residual indentation."""
+        """True for the elastic impact of the normalised Tables A1/A2 (one impact, or every
+        impact of a batch): a loading and an unloading stage whose force laws declare
+        ``normalised_tables`` (:class:`~impactcli.laws.hertz.Hertz`), and no residual
+        indentation."""
         return (
             len(self.stages) == 2
             and all(getattr(s.law, "normalised_tables", False) for s in self.stages)
-            and float(self.delta_res) == 0.0
+            and bool(np.all(np.asarray(self.delta_res) == 0.0))
         )
 
     def force(self, stage: ArrayLike, delta: ArrayLike) -> NDArray:
@@ -301,11 +302,23 @@ class YieldOnset:
         / sigma_y, [-], with the law's parameters (SI, by name) as given
     words : ``words(factor)`` -> how a result names the criterion
     help : one line of ``--help``
+    criterion : ``criterion(factor)`` -> how a warning or a note names the criterion
+        (``'Hertz peak pressure 1.6 sigma_y'``)
+    mark : how a figure labels the onset velocity (matplotlib mathtext)
+    velocity : ``velocity(V_Y, factor)`` -> the onset velocity [m/s] from the first-yield
+        velocity V_Y [m/s] of the same spheres (the elastic law's onset) and the factor;
+        None: the law's onset is the first yield itself
+    factor_of : ``factor_of(V_Y, V)`` -> the factor [-] whose onset velocity is V [m/s]
+        (the inverse of ``velocity``, to 4 significant digits); None as ``velocity``
     """
 
     pressure_factor: Callable[[Mapping[str, float]], float]
     words: Callable[[float], str]
     help: str
+    criterion: Callable[[float], str]
+    mark: str = ""
+    velocity: Callable[[float, float], float] | None = None
+    factor_of: Callable[[float, float], float] | None = None
 
 
 @dataclass(frozen=True)
@@ -333,6 +346,9 @@ class LawSpec:
     yield_onset: YieldOnset | None = field(default=None, repr=False)
     #: the published closed form of e: ``closed_form(contact, m, V0)`` -> (label, e [-])
     closed_form: Callable[..., tuple[str, Array]] | None = field(default=None, repr=False)
+    #: the closed-form duration of an impact: ``contact_time(m, R, E*, V0)`` -> t_c [s]
+    #: (an elastic law's; None: the law has none)
+    contact_time: Callable[..., Array] | None = field(default=None, repr=False)
 
     def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """The parameters with defaults filled in (also for NaN entries of per-row arrays);

@@ -11,6 +11,7 @@ damping model").
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -40,6 +41,7 @@ __all__ = [
     "DAMPING_LAWS",
     "CURVE_LAW",
     "DEFAULT_LAW",
+    "DEFAULT_LAW_PARAMETERS",
     "ELASTIC_LAW",
     "LAWS",
     "MODELS",
@@ -90,6 +92,11 @@ DAMPING_LAWS: dict[str, DampingSpec] = {
 #: The law of ``impact elastoplastic``, ``restitution`` and ``collide2d --model
 #: elastoplastic`` when none is named: Du & Wang, the paper's (eq. 16a-c).
 DEFAULT_LAW = "du-wang"
+#: The parameters of :data:`DEFAULT_LAW` when none is given, by name (its declared
+#: defaults: p0 / sigma_y = 2.57): the defaults of the functions that take them one by one.
+DEFAULT_LAW_PARAMETERS: dict[str, Any] = {
+    p.name: p.default for p in LAWS[DEFAULT_LAW].parameters if p.default is not None
+}
 #: The law of elastic impacts (``impact elastic``, ``--model elastic``) and of the first
 #: yield of an elastic contact: Hertz.
 ELASTIC_LAW = "hertz"
