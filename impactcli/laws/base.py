@@ -38,6 +38,7 @@ __all__ = [
     "Reference",
     "StagePlan",
     "YieldOnset",
+    "describe_model",
 ]
 
 Array = NDArray[np.float64]
@@ -438,12 +439,19 @@ class LawSpec:
 
     def describe(self) -> dict[str, Any]:
         """JSON-ready description: name, kind, parameters, reference, validity."""
-        return {
-            "name": self.name,
-            "kind": self.kind,
-            "description": self.description,
-            "parameters": [vars(p).copy() for p in self.parameters],
-            "reference": vars(self.reference).copy(),
-            "validity": self.validity,
-            "needs_yield_strength": self.needs_yield_strength,
-        }
+        return describe_model(self, self.description, self.needs_yield_strength)
+
+
+def describe_model(model: Any, description: str, needs_yield_strength: bool) -> dict[str, Any]:
+    """The JSON-ready description of a model of the registry (``impact laws -f json``):
+    its ``name``, ``kind``, ``parameters``, ``reference`` and ``validity``, with its one-line
+    ``description`` and whether it ``needs_yield_strength``."""
+    return {
+        "name": model.name,
+        "kind": model.kind,
+        "description": description,
+        "parameters": [vars(p).copy() for p in model.parameters],
+        "reference": vars(model.reference).copy(),
+        "validity": model.validity,
+        "needs_yield_strength": needs_yield_strength,
+    }

@@ -159,17 +159,16 @@ def hertz_contact_time(
 
     Parameters
     ----------
-    mass : effective mass m, [kg]
-    radius : effective radius R, [m]
-    modulus : effective modulus E*, [Pa]
-    impact_velocity : V0 > 0, [m/s]
+    mass, radius, modulus : effective m [kg], R [m] and E* [Pa] of the pair
+    impact_velocity : V0, [m/s]
 
     Examples
     --------
-    The paper's sec. 4.3 impact (steel, D1 = 20 mm, D2 = 40 mm, V0 = 12.5 mm/s):
+    In normalised units (m = R = V0 = 1, E* = 15/16: K_h = 5/4 and delta_m = 1), t_c is the
+    factor itself:
 
-    >>> round(float(hertz_contact_time(0.0290423, 0.02 / 3, 115.385e9, 0.0125)) * 1e6, 2)
-    171.32
+    >>> round(float(hertz_contact_time(1.0, 1.0, 0.9375, 1.0)), 7)
+    2.9432752
     """
     v0 = np.asarray(impact_velocity, dtype=float)
     stiffness = hertz_stiffness(np.asarray(modulus, dtype=float), np.asarray(radius, float))

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import Parameter, Reference
-from impactcli.laws.viscous import DampedHertz, DampingSpec, RestitutionTable
+from impactcli.laws.base import Reference
+from impactcli.laws.viscous import DampedHertz, DampingSpec, RestitutionTable, alpha_parameter
 
 __all__ = ["SPEC", "HuntCrossleyDamping", "hunt_crossley_alpha_published"]
 
@@ -50,6 +50,31 @@ class HuntCrossleyDamping(DampedHertz):
         """F / delta^1.5 = K (1 + 1.5 alpha delta'), [N/m^1.5]: the sign of F, for delta > 0."""
         return self.stiffness * (1.0 + 1.5 * np.asarray(self.alpha, dtype=float) * delta_dot)
 
+    @staticmethod
+    def alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
+        """A first guess of alpha for e at V0: Hunt & Crossley's (1 - e)/V0, at least
+        1e-6/V0, [s/m]."""
+        v0 = np.asarray(impact_velocity, dtype=float)
+        guess = hunt_crossley_alpha_published(restitution, v0)["hunt-crossley"]
+        return np.maximum(guess, 1e-6 / v0)
+
+    @staticmethod
+    def similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
+        """alpha V0: e depends on alpha V0 only."""
+        return np.asarray(alpha, dtype=float) * np.asarray(impact_velocity, dtype=float)
+
+    @staticmethod
+    def fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of alpha [s/m]: Hunt & Crossley's (1 - e)/V_ref with
+        e = 0.8 at the data's typical V_ref [m/s], within (1e-6, 1e3)."""
+        return 0.2 / reference_velocity, 1e-6, 1e3
+
+    @staticmethod
+    def data_start(restitution, impact_velocity, stiffness, mass) -> float:
+        """alpha [s/m] read off measured e: the median of (1 - e)/V0 (their estimate for e near
+        1)."""
+        return float(np.clip(np.median((1.0 - restitution) / impact_velocity), 1e-5, 1e2))
+
 
 def hunt_crossley_alpha_published(restitution: ArrayLike, impact_velocity: ArrayLike) -> dict:
     """Published alpha(e, V0) for F = K delta^1.5 (1 + (3/2) alpha delta'), [s/m].
@@ -69,30 +94,6 @@ def hunt_crossley_alpha_published(restitution: ArrayLike, impact_velocity: Array
         "lankarani-nikravesh": (1.0 - e * e) / (2.0 * v0),
         "flores": 16.0 * (1.0 - e) / (15.0 * e * v0),
     }
-
-
-def _alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
-    """A first guess of alpha for e at V0: Hunt & Crossley's (1 - e)/V0, at least
-    1e-6/V0, [s/m]."""
-    v0 = np.asarray(impact_velocity, dtype=float)
-    return np.maximum(hunt_crossley_alpha_published(restitution, v0)["hunt-crossley"], 1e-6 / v0)
-
-
-def _similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
-    """alpha V0: e depends on alpha V0 only."""
-    return np.asarray(alpha, dtype=float) * np.asarray(impact_velocity, dtype=float)
-
-
-def _fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
-    """(start, lower, upper) of a fit of alpha [s/m]: Hunt & Crossley's (1 - e)/V_ref with
-    e = 0.8 at the data's typical V_ref [m/s], within (1e-6, 1e3)."""
-    return 0.2 / reference_velocity, 1e-6, 1e3
-
-
-def _data_start(restitution, impact_velocity, stiffness, mass) -> float:
-    """alpha [s/m] read off measured e: the median of (1 - e)/V0 (their estimate for e near
-    1)."""
-    return float(np.clip(np.median((1.0 - restitution) / impact_velocity), 1e-5, 1e2))
 
 
 def _published(name: str):
@@ -132,16 +133,9 @@ SPEC = DampingSpec(
     summary=(
         "F = K delta^1.5 (1 + 1.5 alpha delta') (Hunt & Crossley 1975; e depends on alpha V0)"
     ),
-    parameters=(
-        Parameter(
-            "alpha",
-            "s/m",
-            "inverse velocity",
-            None,
-            "damping factor: F = K delta^1.5 (1 + 1.5 alpha delta'); e depends on alpha V0",
-            required=True,
-            valid=">= 0 (alpha = 0: Hertz)",
-        ),
+    parameters=alpha_parameter(
+        "s/m", "inverse velocity",
+        "damping factor: F = K delta^1.5 (1 + 1.5 alpha delta'); e depends on alpha V0",
     ),
     reference=Reference(
         "K. H. Hunt, F. R. E. Crossley",
@@ -153,9 +147,5 @@ SPEC = DampingSpec(
     ),
     validity="Hertz contact with viscous damping; e near 1 falls with alpha V0",
     restitution_depends_on="alpha V0",
-    alpha_estimate=_alpha_estimate,
-    similar_alpha=_similar_alpha,
-    fit_start=_fit_start,
-    data_start=_data_start,
     tables=TABLES,
 )

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import Parameter, Reference
-from impactcli.laws.viscous import DampedHertz, DampingSpec, RestitutionTable
+from impactcli.laws.base import Reference
+from impactcli.laws.viscous import DampedHertz, DampingSpec, RestitutionTable, alpha_parameter
 
 __all__ = [
     "SPEC",
@@ -73,6 +73,37 @@ class TsujiDamping(DampedHertz):
         d = np.maximum(np.asarray(delta, dtype=float), 0.0)
         return self.stiffness * d * np.sqrt(np.sqrt(d)) + self._scale() * delta_dot
 
+    @staticmethod
+    def alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
+        """A first guess of alpha for e: the DEM polynomial (:func:`tsuji_alpha_dem`), at least
+        1e-3, [-]."""
+        return np.maximum(tsuji_alpha_dem(restitution), 1e-3)
+
+    @staticmethod
+    def similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
+        """alpha itself, [-]: e depends on alpha only."""
+        return np.asarray(alpha, dtype=float) + 0.0 * np.asarray(impact_velocity, dtype=float)
+
+    @staticmethod
+    def fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of alpha [-]: 0.3, within (1e-4, 2.2), below sqrt(5),
+        where e reaches 0 (docs/damping.md)."""
+        return 0.3, 1e-4, 2.2
+
+    @staticmethod
+    def data_start(restitution, impact_velocity, stiffness, mass) -> float:
+        """alpha [-] read off measured e: the exact inverse of the ``overlap`` e(alpha)
+        (:func:`tsuji_alpha_hertz_mindlin`) at the mean e."""
+        return float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(restitution)), 1e-3, 2.0))
+
+    @staticmethod
+    def closed_form(stiffness, mass, alpha, impact_velocity, separation):
+        """The published e of the ``overlap`` rule at every V0 (:func:`tsuji_restitution_overlap`);
+        None for the ``force`` rule."""
+        if separation != "overlap":
+            return None
+        e = tsuji_restitution_overlap(alpha)
+        return "Tsuji: Antypov & Elliott (2011) closed form", np.full(np.shape(impact_velocity), e)
 
 
 def tsuji_alpha_dem(restitution: ArrayLike) -> Array:
@@ -116,38 +147,6 @@ def tsuji_alpha_hertz_mindlin(restitution: ArrayLike) -> Array:
     """
     log_e = np.log(np.asarray(restitution, dtype=float))
     return np.sqrt(5.0) * -log_e / np.sqrt(log_e**2 + np.pi**2)
-
-
-def _alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
-    """A first guess of alpha for e: the DEM polynomial (:func:`tsuji_alpha_dem`), at least
-    1e-3, [-]."""
-    return np.maximum(tsuji_alpha_dem(restitution), 1e-3)
-
-
-def _similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
-    """alpha itself, [-]: e depends on alpha only."""
-    return np.asarray(alpha, dtype=float) + 0.0 * np.asarray(impact_velocity, dtype=float)
-
-
-def _fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
-    """(start, lower, upper) of a fit of alpha [-]: 0.3, within (1e-4, 2.2), below sqrt(5),
-    where e reaches 0 (docs/damping.md)."""
-    return 0.3, 1e-4, 2.2
-
-
-def _data_start(restitution, impact_velocity, stiffness, mass) -> float:
-    """alpha [-] read off measured e: the exact inverse of the ``overlap`` e(alpha)
-    (:func:`tsuji_alpha_hertz_mindlin`) at the mean e."""
-    return float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(restitution)), 1e-3, 2.0))
-
-
-def _closed_form(stiffness, mass, alpha, impact_velocity, separation):
-    """The published e of the ``overlap`` rule at every V0 (:func:`tsuji_restitution_overlap`);
-    None for the ``force`` rule."""
-    if separation != "overlap":
-        return None
-    e = tsuji_restitution_overlap(alpha)
-    return "Tsuji: Antypov & Elliott (2011) closed form", np.full(np.shape(impact_velocity), e)
 
 
 _TARGETS = (0.95, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1)
@@ -199,16 +198,9 @@ SPEC = DampingSpec(
         "F = K delta^1.5 + alpha sqrt(m K) delta^(1/4) delta' (Tsuji et al. 1992; e depends "
         "on alpha only)"
     ),
-    parameters=(
-        Parameter(
-            "alpha",
-            "-",
-            "dimensionless",
-            None,
-            "damping ratio: c = alpha sqrt(m K) delta^(1/4); e depends on alpha only",
-            required=True,
-            valid=">= 0 (alpha = 0: Hertz)",
-        ),
+    parameters=alpha_parameter(
+        "-", "dimensionless",
+        "damping ratio: c = alpha sqrt(m K) delta^(1/4); e depends on alpha only",
     ),
     reference=Reference(
         "Y. Tsuji, T. Tanaka, T. Ishida",
@@ -222,11 +214,6 @@ SPEC = DampingSpec(
     validity="Hertz contact with viscous damping; e independent of V0",
     restitution_depends_on="alpha only",
     self_similar=True,
-    alpha_estimate=_alpha_estimate,
-    similar_alpha=_similar_alpha,
-    fit_start=_fit_start,
-    data_start=_data_start,
-    closed_form=_closed_form,
     lammps_damping="tsuji",
     tables=TABLES,
 )

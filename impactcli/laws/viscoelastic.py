@@ -28,8 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import Parameter, Reference
-from impactcli.laws.viscous import DampedHertz, DampingSpec
+from impactcli.laws.base import Reference
+from impactcli.laws.viscous import DampedHertz, DampingSpec, alpha_parameter
 
 __all__ = [
     "RESTITUTION_C1",
@@ -117,41 +117,42 @@ class ViscoelasticDamping(DampedHertz):
         d = np.maximum(np.asarray(delta, dtype=float), 0.0)
         return self.stiffness * (d + 1.5 * np.asarray(self.alpha, dtype=float) * delta_dot)
 
+    @staticmethod
+    def alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
+        """A first guess of A for e at V0: the first-order series, A = (1 - e) / (C1 (3/2)
+        (K/m)^(2/5) V0^(1/5)), at least 1e-12 of it for e = 0, [s]."""
+        e = np.minimum(np.asarray(restitution, dtype=float), 1.0 - 1e-12)
+        per_alpha = viscoelastic_beta(1.0, stiffness, mass) * np.asarray(impact_velocity) ** 0.2
+        return (1.0 - e) / (RESTITUTION_C1 * per_alpha)
 
-def _alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
-    """A first guess of A for e at V0: the first-order series, A = (1 - e) / (C1 (3/2)
-    (K/m)^(2/5) V0^(1/5)), at least 1e-12 of it for e = 0, [s]."""
-    e = np.minimum(np.asarray(restitution, dtype=float), 1.0 - 1e-12)
-    per_alpha = viscoelastic_beta(1.0, stiffness, mass) * np.asarray(impact_velocity) ** 0.2
-    return (1.0 - e) / (RESTITUTION_C1 * per_alpha)
+    @staticmethod
+    def similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
+        """A (K/m)^(2/5) V0^(1/5): e depends on it only (scale delta by (m V0^2 / K)^(2/5) and t
+        by that over V0)."""
+        beta = viscoelastic_beta(alpha, stiffness, mass)
+        return beta / 1.5 * np.asarray(impact_velocity, float) ** 0.2
 
+    @staticmethod
+    def fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of A [s]: the A giving e = 0.8 at V_ref to first
+        order, within 1e-6 and 1e3 times it."""
+        guess = ViscoelasticDamping.alpha_estimate(0.8, reference_velocity, stiffness, mass)
+        return float(guess), float(guess) * 1e-6, float(guess) * 1e3
 
-def _similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
-    """A (K/m)^(2/5) V0^(1/5): e depends on it only (scale delta by (m V0^2 / K)^(2/5) and t
-    by that over V0)."""
-    beta = viscoelastic_beta(alpha, stiffness, mass)
-    return beta / 1.5 * np.asarray(impact_velocity, float) ** 0.2
+    @staticmethod
+    def data_start(restitution, impact_velocity, stiffness, mass) -> float:
+        """A [s] read off measured e: the median of the first-order series' A."""
+        guesses = ViscoelasticDamping.alpha_estimate(restitution, impact_velocity, stiffness, mass)
+        return float(np.median(guesses))
 
-
-def _fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
-    """(start, lower, upper) of a fit of A [s]: the A giving e = 0.8 at V_ref to first
-    order, within 1e-6 and 1e3 times it."""
-    guess = float(_alpha_estimate(0.8, reference_velocity, stiffness, mass))
-    return guess, guess * 1e-6, guess * 1e3
-
-
-def _data_start(restitution, impact_velocity, stiffness, mass) -> float:
-    """A [s] read off measured e: the median of the first-order series' A."""
-    return float(np.median(_alpha_estimate(restitution, impact_velocity, stiffness, mass)))
-
-
-def _closed_form(stiffness, mass, alpha, impact_velocity, separation):
-    """The series of Ramírez et al. (1999), ``overlap`` rule (contact ends at delta = 0, as
-    they integrate it); None for the ``force`` rule."""
-    if separation != "overlap":
-        return None
-    e = viscoelastic_restitution_series(alpha, impact_velocity, stiffness, mass)
-    return "Viscoelastic: Ramírez et al. (1999) series", e
+    @staticmethod
+    def closed_form(stiffness, mass, alpha, impact_velocity, separation):
+        """The series of Ramírez et al. (1999), ``overlap`` rule (contact ends at delta = 0, as
+        they integrate it); None for the ``force`` rule."""
+        if separation != "overlap":
+            return None
+        e = viscoelastic_restitution_series(alpha, impact_velocity, stiffness, mass)
+        return "Viscoelastic: Ramírez et al. (1999) series", e
 
 
 #: The registry entry of the model.
@@ -163,17 +164,10 @@ SPEC = DampingSpec(
         "F = K (delta^1.5 + 1.5 alpha delta^(1/2) delta') (Brilliantov et al. 1996, alpha = A "
         "[s]; e falls with alpha (K/m)^(2/5) V0^(1/5))"
     ),
-    parameters=(
-        Parameter(
-            "alpha",
-            "s",
-            "time",
-            None,
-            "dissipative constant A: F = K (delta^1.5 + 1.5 A delta^0.5 delta'); LAMMPS's "
-            "damping viscoelastic has eta_n0 = 2 E* A / m_eff",
-            required=True,
-            valid=">= 0 (alpha = 0: Hertz)",
-        ),
+    parameters=alpha_parameter(
+        "s", "time",
+        "dissipative constant A: F = K (delta^1.5 + 1.5 A delta^0.5 delta'); LAMMPS's "
+        "damping viscoelastic has eta_n0 = 2 E* A / m_eff",
     ),
     reference=Reference(
         "N. V. Brilliantov, F. Spahn, J.-M. Hertzsch, T. Poeschel",
@@ -189,10 +183,5 @@ SPEC = DampingSpec(
         "yield; e falls with V0"
     ),
     restitution_depends_on="alpha (K/m)^(2/5) V0^(1/5)",
-    alpha_estimate=_alpha_estimate,
-    similar_alpha=_similar_alpha,
-    fit_start=_fit_start,
-    data_start=_data_start,
-    closed_form=_closed_form,
     lammps_damping="viscoelastic",
 )

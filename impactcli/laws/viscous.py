@@ -23,10 +23,10 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import Fitting, Parameter, Reference
+from impactcli.laws.base import Fitting, Parameter, Reference, describe_model
 from impactcli.laws.hertz import hertz_stiffness
 
-__all__ = ["DampedHertz", "DampingSpec", "RestitutionTable"]
+__all__ = ["DampedHertz", "DampingSpec", "RestitutionTable", "alpha_parameter"]
 
 Array = NDArray[np.float64]
 
@@ -38,7 +38,9 @@ class DampedHertz:
     ``stiffness`` K [N/m^1.5], ``mass`` m [kg] when its c(delta) needs it, and ``alpha``;
     and defines ``damping_coefficient`` c(delta) [N s/m], ``mean_damping`` (the mean of c
     over [start, end]) and ``reduced_force`` (F divided by a positive power of delta: its
-    sign, continuous at delta = 0). Its :class:`DampingSpec` binds itself as ``spec``.
+    sign, continuous at delta = 0), and its e relations as static methods:
+    ``alpha_estimate``, ``similar_alpha``, ``fit_start``, ``data_start`` and, where one is
+    published, ``closed_form``. Its :class:`DampingSpec` binds itself as ``spec``.
     """
 
     stiffness: ArrayLike
@@ -46,20 +48,11 @@ class DampedHertz:
     #: the registry entry of the model (set by :class:`DampingSpec`)
     spec: ClassVar[DampingSpec]
 
-    @property
-    def name(self) -> str:
-        """The model's name in the registry (``--damping NAME``)."""
-        return self.spec.name
-
-    @property
-    def label(self) -> str:
-        """How titles name the model (``'<label> damping'``)."""
-        return self.spec.label
-
-    @property
-    def parameters(self) -> tuple[Parameter, ...]:
-        """Its one parameter alpha (unit, kind, range)."""
-        return self.spec.parameters
+    name = property(lambda self: self.spec.name, doc="Its name in the registry (--damping).")
+    label = property(lambda self: self.spec.label, doc="How titles name it ('<label> damping').")
+    parameters = property(
+        lambda self: self.spec.parameters, doc="Its one parameter alpha (unit, kind, range)."
+    )
 
     def elastic_force(self, delta: ArrayLike) -> Array:
         """F_e = K delta^1.5 (0 for delta <= 0), [N]."""
@@ -87,6 +80,46 @@ class DampedHertz:
     def reduced_force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array:  # pragma: no cover
         """F / delta^p for some p >= 0: the sign of F for delta > 0 (each model's)."""
         raise NotImplementedError
+
+    @staticmethod
+    def alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:  # pragma: no cover
+        """A first guess of alpha for e [-] at V0 [m/s] with K [N/m^1.5] and m [kg]: where
+        the search for the alpha of a target e starts, > 0 (each model's)."""
+        raise NotImplementedError
+
+    @staticmethod
+    def similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:  # pragma: no cover
+        """The alpha giving the same e at K = m = V0 = 1: the law in its own units (each
+        model's)."""
+        raise NotImplementedError
+
+    @staticmethod
+    def fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of alpha at a typical V0 [m/s] of the data (each
+        model's)."""
+        raise NotImplementedError  # pragma: no cover
+
+    @staticmethod
+    def data_start(restitution, impact_velocity, stiffness, mass) -> float:  # pragma: no cover
+        """alpha read off measured e [-] at V0 [m/s] (each model's)."""
+        raise NotImplementedError
+
+    @staticmethod
+    def closed_form(stiffness, mass, alpha, impact_velocity, separation) -> Any:
+        """(label, e [-] at each V0 [m/s]) of a published e(V0) for the separation rule, or
+        None: none is published (a model that has one says so)."""
+        return None
+
+
+def alpha_parameter(unit: str, kind: str, description: str) -> tuple[Parameter]:
+    """The one parameter of a damping model, alpha >= 0 (alpha = 0: Hertz), required, in its
+    ``unit`` (``-`` when dimensionless), of ``kind`` (for unit parsing: dimensionless,
+    time, ...), with a one-line ``description``: :attr:`DampingSpec.parameters`."""
+    return (
+        Parameter(
+            "alpha", unit, kind, None, description, required=True, valid=">= 0 (alpha = 0: Hertz)"
+        ),
+    )
 
 
 @dataclass(frozen=True)
@@ -128,7 +161,7 @@ class RestitutionTable:
 
 @dataclass(frozen=True)
 class DampingSpec:
-    """A damping model of the registry: its description and its e relations.
+    """A damping model of the registry: its description, and its model's e relations.
 
     Attributes
     ----------
@@ -137,20 +170,13 @@ class DampingSpec:
         when c(delta) needs it, ``mass``)
     label : how titles name it (``'<label> damping'``)
     summary : one line of ``--help`` and ``impact laws``
-    parameters : its one parameter alpha (unit, kind for unit parsing, range)
+    parameters : its one parameter alpha (unit, kind for unit parsing, range:
+        :func:`alpha_parameter`)
     reference : the published model
     validity : where it holds, in words
     restitution_depends_on : what its e depends on, in words (``"alpha only"``,
         ``"alpha V0"``)
     self_similar : e depends on alpha only, not on V0, m or K
-    alpha_estimate : ``alpha_estimate(e, V0, K, m)`` -> a first guess of alpha for e at V0
-        (where the alpha search starts), > 0
-    similar_alpha : ``similar_alpha(alpha, K, m, V0)`` -> the alpha giving the same e at
-        K = m = V0 = 1 (the law in its own units)
-    fit_start : ``fit_start(V_ref, K, m)`` -> (start, lower, upper) of a fit of alpha
-    data_start : ``data_start(e, V0, K, m)`` -> alpha read off measured points
-    closed_form : ``closed_form(K, m, alpha, V0, separation)`` -> (label, e) of a published
-        e(V0) for that separation rule, or None; None: the model has none
     lammps_damping : LAMMPS's name of this damping (``pair_style granular``; docs/export.md),
         or None where LAMMPS has none
     tables : its tables of ``python -m impactcli.damping_tables``
@@ -164,12 +190,7 @@ class DampingSpec:
     reference: Reference
     validity: str
     restitution_depends_on: str
-    alpha_estimate: Callable[..., Array] = field(repr=False)
-    similar_alpha: Callable[..., Array] = field(repr=False)
-    fit_start: Callable[..., tuple[float, float, float]] = field(repr=False)
-    data_start: Callable[..., float] = field(repr=False)
     self_similar: bool = False
-    closed_form: Callable[..., tuple[str, Array] | None] | None = field(default=None, repr=False)
     lammps_damping: str | None = None
     tables: tuple[RestitutionTable, ...] = field(default=(), repr=False)
     #: the kind of contact model, as the registry lists it
@@ -177,6 +198,34 @@ class DampingSpec:
 
     def __post_init__(self) -> None:
         self.model.spec = self  # the model's instances name their registry entry
+
+    # The e relations of the model (static methods of its class, :class:`DampedHertz`).
+
+    @property
+    def alpha_estimate(self) -> Callable[..., Array]:
+        """``alpha_estimate(e, V0, K, m)`` -> a first guess of alpha for e at V0, > 0."""
+        return self.model.alpha_estimate
+
+    @property
+    def similar_alpha(self) -> Callable[..., Array]:
+        """``similar_alpha(alpha, K, m, V0)`` -> the alpha of the same e at K = m = V0 = 1."""
+        return self.model.similar_alpha
+
+    @property
+    def fit_start(self) -> Callable[..., tuple[float, float, float]]:
+        """``fit_start(V_ref, K, m)`` -> (start, lower, upper) of a fit of alpha."""
+        return self.model.fit_start
+
+    @property
+    def data_start(self) -> Callable[..., float]:
+        """``data_start(e, V0, K, m)`` -> alpha read off measured points."""
+        return self.model.data_start
+
+    @property
+    def closed_form(self) -> Callable[..., tuple[str, Array] | None]:
+        """``closed_form(K, m, alpha, V0, separation)`` -> (label, e) of a published e(V0)
+        for that separation rule, or None."""
+        return self.model.closed_form
 
     @property
     def needs_mass(self) -> bool:
@@ -232,12 +281,4 @@ class DampingSpec:
     def describe(self) -> dict[str, Any]:
         """JSON-ready description, as :meth:`~impactcli.laws.base.LawSpec.describe`: name,
         kind, parameters, reference, validity."""
-        return {
-            "name": self.name,
-            "kind": self.kind,
-            "description": self.summary,
-            "parameters": [vars(p).copy() for p in self.parameters],
-            "reference": vars(self.reference).copy(),
-            "validity": self.validity,
-            "needs_yield_strength": False,
-        }
+        return describe_model(self, self.summary, needs_yield_strength=False)
