@@ -37,6 +37,7 @@ __all__ = [
     "check_friction",
     "check_restitution",
     "check_vectors",
+    "default_yield_velocity",
     "du_wang_yield_velocity",
     "contact_radius_warning",
     "ELASTOPLASTIC_ADVICE",
@@ -360,7 +361,15 @@ def _pressure_factor(pressure_factor: float | None) -> float:
     return DEFAULT_LAW_PARAMETERS["p0_factor"] if pressure_factor is None else pressure_factor
 
 
-def _yield_velocity(first_yield_velocity: float, pressure_factor: float | None) -> float:
+def default_yield_velocity(
+    first_yield_velocity: ArrayLike, pressure_factor: float | None = None
+) -> ArrayLike:
+    """The default law's yield velocity V_y [m/s] from the first-yield velocity [m/s], as
+    the law declares it (:attr:`~impactcli.laws.base.YieldOnset.velocity`; arrays too)."""
+    return _yield_velocity(first_yield_velocity, pressure_factor)
+
+
+def _yield_velocity(first_yield_velocity, pressure_factor: float | None):
     """The default law's yield velocity V_y [m/s] from the first-yield velocity [m/s]."""
     onset = _onset(DEFAULT_LAW)
     if onset.velocity is None:
