@@ -521,8 +521,20 @@ def _batch_law(
     block = max(1, FILM_BLOCK // (n + 1))
     for start in range(0, good.size, block):
         chunk = good[start : start + block]
-        sub = contact_of(chunk)
-        for rows, plan in _plan_groups_of(sub, v0[chunk], m[chunk], contact_of, chunk):
+        groups = list(_plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk))
+        # a plan beyond double precision (docs/method.md §7) is its row's error before FILM
+        # runs: its stages would stop the block
+        refused = np.zeros(v0.size, dtype=bool)
+        for rows, plan in groups:
+            scale = plastic_range_problems(contact_of(rows), v0[rows], m[rows], plan.delta_max)
+            errors[rows[scale.bad]] = scale.messages[scale.bad]
+            refused[rows[scale.bad]] = True
+        if refused[chunk].any():
+            chunk = chunk[~refused[chunk]]
+            groups = list(
+                _plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk)
+            )
+        for rows, plan in groups:
             values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)

@@ -1087,8 +1087,10 @@ def elastic_impact(
     m, r, e = effective_properties(sphere1, sphere2)
     from impactcli.laws.hertz import HertzLawContact
 
-    plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
+    with np.errstate(all="ignore"):
+        plan = HertzContact(float(hertz_stiffness(e, r))).plan(v1 + v2, m)
     contact = HertzLawContact(r, e)
+    raise_first(plastic_range_problems(contact, v1 + v2, m, plan.delta_max))  # as law_impact
     result = _film_impact(sphere1, sphere2, v1, v2, n, split, method, plan, contact, "elastic")
     return _warned(result, first_yield=True)
 

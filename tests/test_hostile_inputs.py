@@ -109,6 +109,26 @@ def test_an_indentation_that_underflows_is_named(impact, command):
     assert "nan" not in r.stderr
 
 
+@pytest.mark.parametrize("command", ["elastic", "elastoplastic"])
+@pytest.mark.parametrize("v1, shown", [("1e300", "inf"), ("1e-300", "0")])
+def test_an_indentation_beyond_double_precision_is_named_by_every_model(impact, command, v1,
+                                                                         shown):
+    """elastic at V0 = 1e300 and 1e-300 said "the contact force must increase strictly with
+    indentation on a stage" (FILM's check of its stages); it now says what elastoplastic
+    says."""
+    r = impact(command, "--d1", "20mm", "--d2", "40mm", "--v1", v1, "--material", "steel")
+    _one_line(r, f"out of range: the maximum indentation is {shown} m, beyond double precision")
+
+
+def test_a_density_whose_mass_overflows_is_refused():
+    """rho pi overflows before D^3 brings it back: the mass was inf, a fixed sphere that
+    moves, while the check computed rho (pi/6) D^3 and found it finite."""
+    from impactcli.impact import Sphere
+
+    with pytest.raises(InputError, match="give a mass of inf kg"):
+        Sphere(0.02, 210e9, 0.3, 1e308)
+
+
 def test_a_contact_radius_warning_has_a_few_digits():
     from impactcli.validation import contact_radius_warning
 
