@@ -212,6 +212,7 @@ def material_properties(
     names = np.asarray(names, dtype=object).reshape(-1)
     text = np.where(np.equal(names, None), "", names).astype(str)
     unique, inverse = np.unique(text, return_inverse=True)
+    from impactcli.errors import InputError
     from impactcli.materials import material
 
     props = np.full((unique.size, 4), np.nan)
@@ -221,8 +222,8 @@ def material_properties(
             continue
         try:
             found = material(name)
-        except KeyError as exc:
-            messages[i] = exc.args[0]
+        except InputError as exc:
+            messages[i] = str(exc)
             continue
         sy = found.yield_strength
         props[i] = (
