@@ -530,6 +530,11 @@ def _batch_law(
             scale = plastic_range_problems(contact_of(rows), v0[rows], m[rows], plan.delta_max)
             errors[rows[scale.bad]] = scale.messages[scale.bad]
             refused[rows[scale.bad]] = True
+            force = np.broadcast_to(plan.force_max, rows.shape)
+            with np.errstate(invalid="ignore"):
+                beyond = rows[~refused[rows] & ~(np.isfinite(force) & (force > 0.0))]
+            errors[beyond] = [OUT_OF_RANGE.format(float(v)) for v in v0[beyond]]
+            refused[beyond] = True
         if refused[chunk].any():
             chunk = chunk[~refused[chunk]]
             groups = list(

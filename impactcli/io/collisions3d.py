@@ -373,16 +373,32 @@ def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n, separation)
     """e of ``rows`` at u_n, vectorised: the batch kernel for a law of the library, the
     damped FILM for damped Hertz. Returns (e, reasons)."""
     from impactcli.batch import batch_impacts
+    from impactcli.io.readers import first_line
 
     if damping is None:
         # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
         v1 = np.where(np.isinf(s1["mass"][rows]), 0.0, u_n[rows])
-        out = batch_impacts(
-            s1["d"][rows], s2["d"][rows], v1, u_n[rows] - v1, s1["E"][rows], s1["nu"][rows],
-            s2["E"][rows], s2["nu"][rows], s1["rho"][rows], s2["rho"][rows], s1["m"][rows],
-            s2["m"][rows], s1["sy"][rows], s2["sy"][rows], n=n, law=law, law_params=params,
-        )  # fmt: skip
-        return out["restitution"], out["error"]
+        e = np.full(rows.size, np.nan)
+        reasons = np.full(rows.size, "", dtype=object)
+        pending = [np.arange(rows.size)]
+        while pending:  # a part the kernel refuses is halved down to the refused rows
+            part = pending.pop()
+            at = rows[part]
+            try:
+                out = batch_impacts(
+                    s1["d"][at], s2["d"][at], v1[part], u_n[at] - v1[part], s1["E"][at],
+                    s1["nu"][at], s2["E"][at], s2["nu"][at], s1["rho"][at], s2["rho"][at],
+                    s1["m"][at], s2["m"][at], s1["sy"][at], s2["sy"][at], n=n, law=law,
+                    law_params=params,
+                )  # fmt: skip
+            except ValueError as exc:
+                if part.size > 1:
+                    pending += [part[: part.size // 2], part[part.size // 2 :]]
+                else:
+                    reasons[part] = first_line(exc)
+                continue
+            e[part], reasons[part] = out["restitution"], out["error"]
+        return e, reasons
     from impactcli.batch import DAMPED_BLOCK
     from impactcli.damping import make_damping_law, solve_damped_impact
 
