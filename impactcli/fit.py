@@ -532,11 +532,21 @@ def law_model(
             )
         v = np.asarray(v0, dtype=float)
         if damped:
+            from impactcli.batch import DAMPED_BLOCK
             from impactcli.damping import make_damping_law, solve_damped_impact
 
             model = make_damping_law(law, hertz_stiffness(e_star, r), m, p["alpha"])
-            out = solve_damped_impact(model, v, m, segments)
-            return {"restitution": out.restitution, "contact_time": out.contact_time}
+            found = {key: np.full(v.shape, np.nan) for key in ("restitution", "contact_time")}
+            # the damped FILM on (velocities, segments) arrays, in blocks of about
+            # DAMPED_BLOCK values: memory does not grow with the number of data points
+            block = max(1, DAMPED_BLOCK // (segments + 1))
+            flat = v.reshape(-1)
+            for start in range(0, flat.size, block):
+                part = slice(start, start + block)
+                out = solve_damped_impact(model, flat[part], m, segments)
+                found["restitution"].reshape(-1)[part] = out.restitution
+                found["contact_time"].reshape(-1)[part] = out.contact_time
+            return found
         from impactcli.sweep import restitution_sweep
 
         law_params = LAWS[law].fitting.run_parameters(p)

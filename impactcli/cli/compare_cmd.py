@@ -23,7 +23,7 @@ from impactcli.cli.impact_cmd import POINTS, SUMMARY_UNITS
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
-from impactcli.limits import MAX_COUNT
+from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
@@ -64,7 +64,7 @@ def compare_laws(
             min=2,
             max=MAX_COUNT,
             help="Velocities of the e panel (--plot), as impact restitution --count (50) gives "
-            "the velocities of its sweep.",
+            f"the velocities of its sweep; --count x --n at most {MAX_SWEEP_SEGMENTS:,}.",
         ),
     ] = 80,
     fmt: OutputFormat = None,
@@ -77,7 +77,8 @@ def compare_laws(
 
     --law is given once per law (default: every elastoplastic law that needs no more than
     the spheres' properties: du-wang and thornton); each law's parameters as on 'impact
-    elastoplastic' (--py, --k-load, --k-unload, --curve, ...).
+    elastoplastic' (--py, --k-load, --k-unload, --curve, ...). The laws run one at a time;
+    laws x --n is at most 10,000,000.
 
     V_y of the e panel is one velocity for all laws: the first-yield velocity of the pair,
     where the Hertz peak pressure reaches 1.6 sigma_y (Thornton's V_y with his default p_y;
@@ -95,12 +96,14 @@ def compare_laws(
     steel --law du-wang --law thornton --law walton-braun --k-load 2e7 --k-unload 8e7
     --plot laws.png
     """
-    from impactcli.compare import COMPARISON_KEYS, compare_impacts, comparison_row
+    from impactcli.compare import COMPARISON_KEYS, summarise_laws
     from impactcli.impact import ContactModel
     from impactcli.laws.registry import comparison_laws
     from impactcli.spheres import spheres_from_options, velocities_from_options
 
     check_plot(plot, output)
+    if plot:  # the e panel: one sweep of --count velocities per law
+        check_size("--count x --n", count * n, MAX_SWEEP_SEGMENTS)
     if not 0 < ratio_min < ratio_max:
         raise InputError(f"need 0 < --ratio-min < --ratio-max, got {ratio_min:g}, {ratio_max:g}")
     choices = resolve_laws(law, default=comparison_laws())
@@ -111,10 +114,10 @@ def compare_laws(
     if damping_law is not None:
         laws.append(ContactModel(damping=damping_law, alpha=alpha, separation=separation))
     try:
-        results = compare_impacts(s1, s2, v1, v2, laws, n)
+        results = summarise_laws(s1, s2, v1, v2, laws, n, points=points if plot else None)
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    table = {name: comparison_row(r) for name, r in results.items()}
+    table = {name: r.row for name, r in results.items()}
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -131,7 +134,7 @@ def compare_laws(
         else:
             _print(stream if output not in (None, "-") else None, table, v1 + v2, n)
     if plot:
-        _plot(plot, results, laws, spheres, s1, s2, n, points, ratio_min, ratio_max, count)
+        _plot(plot, results, laws, spheres, s1, s2, v1 + v2, n, ratio_min, ratio_max, count)
 
 
 def _inputs(s1, s2, v1: float, v2: float, n: int, choices: list[LawChoice]) -> dict:
@@ -181,8 +184,8 @@ def _plot(
     spheres: SphereOptions,
     s1,
     s2,
+    v0: float,
     n: int,
-    points: int,
     ratio_min: float,
     ratio_max: float,
     count: int,
@@ -190,7 +193,6 @@ def _plot(
     """Loops of this impact and e against V0/V_y for the same laws, written to ``path``."""
     from impactcli.cli.impact_cmd import _material_parts
     from impactcli.compare import (
-        comparison_row,
         published_restitution,
         reference_yield_velocity,
         restitution_curves,
@@ -199,11 +201,7 @@ def _plot(
     from impactcli.plots import law_comparison_figure
 
     titles = {m.name: f"{m.name} ({_title(m)})" for m in models}
-    v0 = next(iter(results.values())).impact_velocity
-    loops = {}
-    for name, result in results.items():
-        history = result.history(points=points)
-        loops[titles[name]] = (history["delta"], history["force"])
+    loops = {titles[name]: (result.delta, result.force) for name, result in results.items()}
     reference = reference_yield_velocity(s1, s2)
     if np.isfinite(reference):
         label = (
@@ -234,7 +232,7 @@ def _plot(
         title=f"Contact laws compared (FILM, n = {n}): " + ", ".join(parts),
         ratio_label=label,
         impact_ratio=v0 / reference,
-        residual={titles[name]: comparison_row(r)["delta_res"] for name, r in results.items()},
+        residual={titles[name]: r.row["delta_res"] for name, r in results.items()},
         published={
             label: (velocities / reference, e) for label, (velocities, e) in published.items()
         },
