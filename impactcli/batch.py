@@ -212,6 +212,7 @@ def material_properties(
     names = np.asarray(names, dtype=object).reshape(-1)
     text = np.where(np.equal(names, None), "", names).astype(str)
     unique, inverse = np.unique(text, return_inverse=True)
+    from impactcli.errors import InputError
     from impactcli.materials import material
 
     props = np.full((unique.size, 4), np.nan)
@@ -221,8 +222,8 @@ def material_properties(
             continue
         try:
             found = material(name)
-        except KeyError as exc:
-            messages[i] = exc.args[0]
+        except InputError as exc:
+            messages[i] = str(exc)
             continue
         sy = found.yield_strength
         props[i] = (
@@ -540,8 +541,25 @@ def _batch_law(
     block = max(1, FILM_BLOCK // (n + 1))
     for start in range(0, good.size, block):
         chunk = good[start : start + block]
-        sub = contact_of(chunk)
-        for rows, plan in _plan_groups_of(sub, v0[chunk], m[chunk], contact_of, chunk):
+        groups = list(_plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk))
+        # a plan beyond double precision (docs/method.md §7) is its row's error before FILM
+        # runs: its stages would stop the block
+        refused = np.zeros(v0.size, dtype=bool)
+        for rows, plan in groups:
+            scale = plastic_range_problems(contact_of(rows), v0[rows], m[rows], plan.delta_max)
+            errors[rows[scale.bad]] = scale.messages[scale.bad]
+            refused[rows[scale.bad]] = True
+            force = np.broadcast_to(plan.force_max, rows.shape)
+            with np.errstate(invalid="ignore"):
+                beyond = rows[~refused[rows] & ~(np.isfinite(force) & (force > 0.0))]
+            errors[beyond] = [OUT_OF_RANGE.format(float(v)) for v in v0[beyond]]
+            refused[beyond] = True
+        if refused[chunk].any():
+            chunk = chunk[~refused[chunk]]
+            groups = list(
+                _plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk)
+            )
+        for rows, plan in groups:
             values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
