@@ -49,7 +49,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
-    DU_WANG_PRESSURE_FACTOR,
     ImpactPlan,
     effective_mass,
     effective_modulus,
@@ -60,7 +59,7 @@ from impactcli.contact import (
 )
 from impactcli.errors import InputError
 from impactcli.film import FilmSolution
-from impactcli.laws.registry import DEFAULT_LAW
+from impactcli.laws.registry import DEFAULT_LAW, DEFAULT_LAW_PARAMETERS
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.model import DAMPED_DEFAULT_N, ContactModel, DampedPair, PairModel
 from impactcli.solution import ContactSolution, PlanSolution, solve_plan
@@ -74,7 +73,6 @@ from impactcli.validation import (
 )
 
 if TYPE_CHECKING:
-    from impactcli.contact import DuWangContact
     from impactcli.laws.base import NormalContact
 
 __all__ = [
@@ -813,7 +811,7 @@ def impact_summary(
 
 
 def plastic_summary(
-    contact: DuWangContact,
+    contact: NormalContact,
     mass: ArrayLike,
     impact_velocity: ArrayLike,
     plan: ImpactPlan,
@@ -1003,6 +1001,8 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
     >>> impact_warnings(r, first_yield=True)[0][:60]
     'V0 = 0.2 m/s exceeds the first-yield velocity 0.07846 m/s (H'
     """
+    if not isinstance(result, ImpactResult):
+        raise InputError(f"impact_warnings takes an ImpactResult, got {type(result).__name__}")
     from impactcli.validation import (
         contact_radius_warning,
         first_yield_warning,
@@ -1159,7 +1159,7 @@ def elastoplastic_impact(
     n: int = 25,
     split: Split = "mass",
     yield_strength: float | None = None,
-    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     method: Method = "film",
     *,
     pressure_factor: float | None = None,

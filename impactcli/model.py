@@ -11,7 +11,7 @@ velocity V0 and n FILM segments into a :class:`~impactcli.solution.ContactSoluti
   (:meth:`impactcli.laws.base.LawSpec.contact`), FILM solves them in closed form
   (:class:`~impactcli.solution.PlanSolution`);
 - Hertz with a damping model (:class:`DampedPair`): the model for the pair's Hertz
-  stiffness (:meth:`impactcli.laws.base.DampedHertz.for_pair`), its alpha given or solved
+  stiffness (:meth:`impactcli.laws.viscous.DampingSpec.for_pair`), its alpha given or solved
   for a coefficient of restitution, FILM segment by segment
   (:func:`impactcli.damping.solve_damped_impact`).
 
@@ -31,8 +31,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws.base import Separation
-from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR
-from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW, get_law
+from impactcli.laws.registry import (
+    DAMPING_LAWS,
+    DEFAULT_LAW,
+    DEFAULT_LAW_PARAMETERS,
+    ELASTIC_LAW,
+    get_law,
+)
 
 if TYPE_CHECKING:
     from impactcli.impact import ImpactResult, Sphere
@@ -128,11 +133,12 @@ class ContactModel:
     def elastoplastic(
         cls, yield_strength: float | None = None, pressure_factor: float | None = None
     ) -> ContactModel:
-        """Du & Wang as the paper's elastoplastic impact (sec. 4.4,
-        :func:`impactcli.impact.elastoplastic_impact`): sigma_y [Pa] (default the weaker
-        sphere's) and p0 / sigma_y [-] (default 2.57) checked first."""
-        factor = DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
-        return _DuWangModel(yield_strength=yield_strength, pressure_factor=factor)
+        """The default law (:data:`~impactcli.laws.registry.DEFAULT_LAW`, Du & Wang) as the
+        paper's elastoplastic impact (sec. 4.4, :func:`impactcli.impact.elastoplastic_impact`):
+        sigma_y [Pa] (default the weaker sphere's) and p0 / sigma_y [-] (default the law's,
+        2.57) checked first."""
+        factor = _P0_FACTOR if pressure_factor is None else pressure_factor
+        return _ElastoplasticModel(yield_strength=yield_strength, pressure_factor=factor)
 
     def check(self, method: str = "film") -> None:
         """The checks of the model alone, before any sphere: a damping model's name, law,
@@ -397,22 +403,8 @@ class _ElasticModel(ContactModel):
 @dataclass(frozen=True)
 class _ElasticPair(LawPair):
     """The paper's elastic impact: the Hertz plan of K_h = (4/3) E* sqrt(R), checked by FILM
-    itself; kind ``elastic``; the elastic summary keys (no plastic ones)."""
-
-    @cached_property
-    def normal_contact(self) -> NormalContact:
-        from impactcli.laws.hertz import HertzLawContact
-
-        return HertzLawContact(self.radius, self.modulus)
-
-    def plan(self, impact_velocity: float) -> ImpactPlan:
-        from impactcli.laws.hertz import HertzContact, hertz_stiffness
-
-        stiffness = float(hertz_stiffness(self.modulus, self.radius))
-        return HertzContact(stiffness).plan(impact_velocity, self.mass)
-
-    def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
-        return None
+    itself; kind ``elastic``; the elastic summary keys (no plastic ones). Its plan is checked
+    in double precision as every law's is (:meth:`LawPair.check_plan`)."""
 
     def kind(self, solution: Any) -> str:
         return "elastic"
@@ -423,13 +415,17 @@ class _ElasticPair(LawPair):
         return solution_energy_summary(result, solution)
 
 
+#: p0 / sigma_y of the default law when none is given, [-].
+_P0_FACTOR: float = DEFAULT_LAW_PARAMETERS["p0_factor"]
+
+
 @dataclass(frozen=True)
-class _DuWangModel(ContactModel):
-    """Du & Wang as :func:`impactcli.impact.elastoplastic_impact` runs it: sigma_y and the
-    pressure factor p0 / sigma_y checked with the spheres, in its words."""
+class _ElastoplasticModel(ContactModel):
+    """The default law as :func:`impactcli.impact.elastoplastic_impact` runs it: sigma_y and
+    the pressure factor p0 / sigma_y checked with the spheres, in its words."""
 
     law: str = DEFAULT_LAW
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR
+    pressure_factor: float = _P0_FACTOR
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
         from impactcli.impact import effective_properties, weaker_yield_strength
@@ -447,22 +443,21 @@ class _DuWangModel(ContactModel):
             raise ValueError(f"the pressure factor must be positive, got {factor}")
         m, r, e = effective_properties(sphere1, sphere2)
         spec = get_law(self.law)
-        return _DuWangPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
+        return _ElastoplasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
 
 
 @dataclass(frozen=True)
-class _DuWangPair(LawPair):
-    """The paper's elastoplastic impact: Du & Wang's contact with the model's p0 / sigma_y;
-    a plastic plan's elastic stage checked in double precision; kind ``elastic`` or
-    ``elastoplastic``."""
+class _ElastoplasticPair(LawPair):
+    """The paper's elastoplastic impact: the default law's contact with the model's
+    p0 / sigma_y; a plastic plan's elastic stage checked in double precision; kind
+    ``elastic`` or ``elastoplastic``."""
 
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR
+    pressure_factor: float = _P0_FACTOR
 
     @cached_property
     def normal_contact(self) -> NormalContact:
-        from impactcli.contact import DuWangContact
-
-        return DuWangContact(self.radius, self.modulus, self.yield_strength, self.pressure_factor)
+        params = {"p0_factor": self.pressure_factor}  # checked by _ElastoplasticModel
+        return self.spec.build(self.radius, self.modulus, self.yield_strength, params)
 
     def plan(self, impact_velocity: float) -> ImpactPlan:
         with np.errstate(all="ignore"):
@@ -506,17 +501,14 @@ class DampedPair:
 
     @property
     def stiffness(self) -> float:
-        """Hertz stiffness K = (4/3) E* sqrt(R) of the pair, [N/m^1.5]."""
-        from impactcli.laws.hertz import hertz_stiffness
-
-        return float(hertz_stiffness(self.modulus, self.radius))
+        """Hertz stiffness K = (4/3) E* sqrt(R) of the pair, [N/m^1.5]
+        (:meth:`~impactcli.laws.viscous.DampingSpec.stiffness`)."""
+        return float(DAMPING_LAWS[str(self.model.damping)].stiffness(self.radius, self.modulus))
 
     @cached_property
     def normal_contact(self) -> NormalContact:
-        """The elastic part: Hertz, no yield, no permanent indentation."""
-        from impactcli.laws.hertz import HertzLawContact
-
-        return HertzLawContact(self.radius, self.modulus)
+        """The elastic part: the elastic law (Hertz), no yield, no permanent indentation."""
+        return get_law(ELASTIC_LAW).contact(self.radius, self.modulus)
 
     @property
     def separation(self) -> Separation:
@@ -584,14 +576,25 @@ class DampedPair:
     def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
         """e [-] and contact time [s] at each V0 [m/s]: the damped FILM of the model's
         alpha, vectorised (e = 0 and an infinite time for a contact that never ends)."""
+        from impactcli.batch import DAMPED_BLOCK
         from impactcli.damping import solve_damped_impact
         from impactcli.laws.registry import damping_model
 
         law = damping_model(
             str(self.model.damping), self.radius, self.modulus, self.mass, self.model.alpha
         )
-        out = solve_damped_impact(law, velocities, self.mass, n, self.separation)
-        return out.restitution, out.contact_time
+        v = np.asarray(velocities, dtype=float)
+        e, t_c = np.full(v.shape, np.nan), np.full(v.shape, np.nan)
+        # the damped FILM on (velocities, segments) arrays, in blocks of about DAMPED_BLOCK
+        # values: memory does not grow with the number of velocities
+        block = max(1, DAMPED_BLOCK // (int(n) + 1))
+        flat = v.reshape(-1)
+        for start in range(0, flat.size, block):
+            part = slice(start, start + block)
+            out = solve_damped_impact(law, flat[part], self.mass, n, self.separation)
+            e.reshape(-1)[part] = out.restitution
+            t_c.reshape(-1)[part] = out.contact_time
+        return e, t_c
 
     def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
         """The model's published e(V0) for its separation rule, or None."""

@@ -144,14 +144,14 @@ def row_warnings(
     each kind of warning are written together into that kind's wording
     (:func:`_warning_templates`), their numbers formatted by
     :func:`impactcli.output.format_general`."""
-    from impactcli.validation import SMALL_DEFORMATION_LIMIT, du_wang_yield_velocity
+    from impactcli.validation import SMALL_DEFORMATION_LIMIT, default_yield_velocity
 
     out = np.full(impact_velocity.size, "", dtype=object)
     with np.errstate(invalid="ignore", divide="ignore"):
         yields = elastic & (impact_velocity > first_yield_velocity)
         ratio = np.sqrt(delta_max / radius)
         large = ratio > SMALL_DEFORMATION_LIMIT
-    velocity = du_wang_yield_velocity(first_yield_velocity)  # V_y of the yielding rows
+    velocity = default_yield_velocity(first_yield_velocity)  # V_y of the yielding rows
     shown = np.full(impact_velocity.size, "", dtype=object)
     shown[large] = _shown_ratio(ratio[large])
     exceed, below, contact = _warning_templates()
