@@ -83,21 +83,21 @@ def spring(model: str, m: float, k_h: float, g: float, radius: float, mu: float,
         a = alpha(y[1])
         if phase == "stick":
 
-            def over(_t, yy, *_, aa=a):
-                return abs(force(yy, aa)) - mu * f_n(yy[0]) if _t > t + 1e-9 * t_c else -1.0
+            def over(_t, yy, *_, aa=a, t0=t):
+                return abs(force(yy, aa)) - mu * f_n(yy[0]) if _t > t0 + 1e-9 * t_c else -1.0
 
             over.terminal, over.direction = True, 1
             run = solve_ivp(stick, (t, 2 * t_c), y, args=(a,), events=(separate, turn, over),
                             **OPTIONS)  # fmt: skip
         else:
 
-            def under(_t, yy, *_, aa=a, s=sigma):
+            def under(_t, yy, *_, aa=a, s=sigma, t0=t):
                 delta, rate, u, _ = yy
                 k = k_t(delta)
                 limit = mu * f_n(delta)
                 rate_limit = mu * 1.5 * k_h * math.sqrt(max(delta, 0.0)) * rate
                 spring_rate = k * u + aa * (rate / (2 * delta) if delta > 0 else 0.0) * s * limit
-                return s * spring_rate - rate_limit if _t > t + 1e-9 * t_c else 1.0
+                return s * spring_rate - rate_limit if _t > t0 + 1e-9 * t_c else 1.0
 
             under.terminal, under.direction = True, -1
             run = solve_ivp(slide, (t, 2 * t_c), y, args=(sigma,),
@@ -169,13 +169,14 @@ def partial_slip(m: float, k_h: float, g: float, radius: float, mu: float, u_n: 
     for _ in range(1000):
         start = t
 
-        def turn(_t, yy, *_):
+        def turn(_t, yy, *_, sigma=sigma, start=start, branch=branch):
             return sigma * yy[2] if _t > start + 1e-9 * t_c else (1.0 if branch != 1 else -1.0)
 
         turn.terminal = True
         turn.direction = -1 if branch != 1 else 1
 
-        def reach(_t, yy, *_):  # the limit; reloading back to T*; unloading to -mu P
+        def reach(_t, yy, *_, start=start, branch=branch, sigma=sigma, capped=capped):
+            # the limit; reloading back to T*; unloading to -mu P
             if _t <= start + 1e-9 * t_c:
                 return -1.0
             p, p_rate = normal(yy)

@@ -565,7 +565,8 @@ def test_moving_geometry_tends_to_the_frozen_one_as_the_normal_stops_turning():
                                 big.poisson_ratio)  # fmt: skip
     frozen = oblique_collision_3d(ball.total_mass, math.inf, v, (0, 0, 0), p1, (0, 0, 0),
                                   ball.diameter, big.diameter, restitution=e, mu=0.3,
-                                  tangential="mindlin", history=history, shear_modulus=g)  # fmt: skip
+                                  tangential="mindlin", history=history,
+                                  shear_modulus=g)  # fmt: skip
     assert float(moving.w1_final[1]) == pytest.approx(float(frozen.w1_final[0, 1]), rel=1e-4)
 
 
