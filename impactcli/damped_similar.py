@@ -32,6 +32,8 @@ them with FILM at random alphas.
 
 from __future__ import annotations
 
+import bisect
+import math
 import sys
 import time
 from dataclasses import fields, replace
@@ -51,6 +53,7 @@ __all__ = [
     "build",
     "ranges",
     "summary",
+    "summary_one",
 ]
 
 Array = NDArray[np.float64]
@@ -91,6 +94,7 @@ class _Table:
     ) -> None:
         self.edges, self.upper, self.root, self.coef = edges, upper, root, coef
         self.by_output = np.ascontiguousarray(coef.transpose(0, 2, 1))  # (pieces, outputs, k)
+        self.edge_list: list[float] | None = None
         # A guide to the pieces: the first piece of each of 8 bins per piece on a uniform
         # grid, and how many edges at most a bin holds (a search in random order is slow).
         pieces = coef.shape[0]
@@ -134,6 +138,27 @@ class _Table:
         terms = np.take(self.by_output, p, axis=0)
         return np.einsum("rok,rk->ro", terms, _basis(x, self.coef.shape[1]))
 
+    def one(self, alpha: float) -> Array:
+        """The outputs at one alpha (the same numbers as :meth:`__call__`, in plain floats
+        where that is faster)."""
+        if self.edge_list is None:
+            self.edge_list = self.edges.tolist()
+        last = self.coef.shape[0] - 1
+        p = min(max(bisect.bisect_right(self.edge_list, alpha) - 1, 0), last)
+        if self.root[p] == 5:
+            s = -max(alpha, 0.0) ** 0.2
+        else:
+            s = math.sqrt(max(float(self.upper[p]) - alpha, 0.0))
+        lo, hi = float(self.s_lo[p]), float(self.s_hi[p])
+        x = min(max((2.0 * s - lo - hi) / (hi - lo), -1.0), 1.0)
+        basis = [1.0, x]
+        for _ in range(2, self.coef.shape[1]):
+            basis.append(2.0 * x * basis[-1] - basis[-2])
+        # the same contraction as :meth:`series` (so the same rounding as a batch's row)
+        out = np.einsum("rok,rk->ro", self.by_output[p : p + 1], np.array([basis]))[0]
+        out[self.per_alpha] *= alpha
+        return out
+
     def __call__(self, alpha: Array) -> Array:
         out = np.empty((alpha.size, self.coef.shape[2]))
         for start in range(0, alpha.size, _BLOCK):
@@ -171,14 +196,42 @@ def _series_and_slope(x: Array, coef: Array) -> tuple[Array, Array]:
     return value, slope
 
 
+def _invert_one(coef: list[float], target: float, x: float) -> float:
+    """x in [-1, 1] where sum c_k T_k(x) = target (rising in x), from x: Newton's method
+    safeguarded by bisection, as :func:`alpha_for_restitution` does on arrays."""
+    lo, hi = -1.0, 1.0
+    for _ in range(60):
+        t_prev, t, u_prev, u = 1.0, x, 0.0, 1.0
+        value, slope = coef[0] + coef[1] * x, coef[1]
+        for k in range(2, len(coef)):
+            t_prev, t = t, 2.0 * x * t - t_prev
+            u_prev, u = u, 2.0 * x * u - u_prev
+            value += coef[k] * t
+            slope += k * coef[k] * u
+        f = value - target
+        if f == 0.0:
+            return x
+        if f < 0.0:
+            lo = x
+        else:
+            hi = x
+        new = x - f / slope if slope != 0.0 else math.nan
+        if not lo < new < hi:
+            new = 0.5 * (lo + hi)
+        if abs(new - x) <= 1e-15:
+            return new
+        x = new
+    return x
+
+
 def _variable(alpha: Array, upper: Array, root: Array) -> Array:
     """The variable s of the pieces (:class:`_Table`), falling as alpha grows."""
-    with np.errstate(invalid="ignore"):
-        return np.where(
-            root == 5,
-            -np.maximum(alpha, 0.0) ** 0.2,
-            np.sqrt(np.maximum(upper - alpha, 0.0)),
-        )
+    alpha, upper, root = np.broadcast_arrays(alpha, upper, root)
+    s = np.sqrt(np.maximum(upper - alpha, 0.0))
+    fifth = root == 5
+    if np.any(fifth):
+        s[fifth] = -np.maximum(alpha[fifth], 0.0) ** 0.2
+    return s
 
 
 def _alpha_of(s: Array, upper: Array, root: Array) -> Array:
@@ -224,13 +277,32 @@ def summary(name: str, alpha: Array, separation: str) -> tuple[Array, NDArray[np
     if load is None or rest is None:
         return values, np.zeros(alpha.size, dtype=bool)
     inside = (alpha >= max(load.bottom, rest.bottom)) & (alpha <= min(load.top, rest.top))
-    a = alpha[inside]
+    every = bool(np.all(inside))
+    a = alpha if every else alpha[inside]
     if a.size:
         top, end = load(a), rest(a)
-        values[inside, 0], values[inside, 1], values[inside, 6] = end[:, 0], end[:, 1], end[:, 2]
-        values[inside, 2] = end[:, 3] if end.shape[1] > 3 else 0.0
-        values[inside, 3:6] = top
+        part = np.empty((a.size, 7))
+        part[:, 0:2], part[:, 6] = end[:, 0:2], end[:, 2]
+        part[:, 2] = end[:, 3] if end.shape[1] > 3 else 0.0
+        part[:, 3:6] = top
+        if every:
+            values = part
+        else:
+            values[inside] = part
     return values, inside
+
+
+def summary_one(name: str, alpha: float, separation: str) -> Array | None:
+    """:func:`summary` of one alpha: (7,) values, or None beyond the tables."""
+    tables = _tables()
+    load, rest = tables.get((name, "load")), tables.get((name, separation))
+    if load is None or rest is None:
+        return None
+    if not max(load.bottom, rest.bottom) <= alpha <= min(load.top, rest.top):
+        return None
+    top, end = load.one(alpha), rest.one(alpha)
+    d_sep = end[3] if end.size > 3 else 0.0
+    return np.array([end[0], end[1], d_sep, top[0], top[1], top[2], end[2]])
 
 
 def alpha_for_restitution(
@@ -261,9 +333,13 @@ def alpha_for_restitution(
     with np.errstate(divide="ignore", invalid="ignore"):
         x = np.where(span > 0.0, 2.0 * (target - ends[p + 1]) / span - 1.0, 0.0)
     x = np.clip(x, -1.0, 1.0)
+    if target.size == 1:  # one target: the same iteration in plain floats
+        x[0] = _invert_one(coef[0].tolist(), float(target[0]), float(x[0]))
+        todo = np.arange(0)
+    else:
+        todo = np.arange(target.size)
     x_lo, x_hi = -np.ones(target.size), np.ones(target.size)
-    todo = np.arange(target.size)
-    for _ in range(60):  # Newton's method safeguarded by bisection
+    for _ in range(60 if todo.size else 0):  # Newton's method safeguarded by bisection
         value, slope = _series_and_slope(x[todo], coef[todo])
         f = value - target[todo]
         x_lo[todo] = np.where(f < 0.0, x[todo], x_lo[todo])

@@ -216,3 +216,18 @@ def test_maximum_force_is_the_peak_along_the_segments():
         sampled = float(np.max(law.force(d0 + dy, w)))
         assert sampled <= summary[0, 5] * (1.0 + 1e-15)
         assert summary[0, 5] == pytest.approx(sampled, rel=1e-9)
+
+
+@pytest.mark.parametrize("rule", RULES)
+@pytest.mark.parametrize("name", MODELS)
+def test_one_impact_has_the_numbers_of_its_batch_row(name, rule):
+    # the single-impact path (plain floats) and a batch give the same numbers, bit for bit
+    rng = np.random.default_rng(11)
+    a = rng.uniform(0.001, 1.2, 40) * {"tsuji": 1.0, "hunt-crossley": 20.0}.get(name, 1e-5)
+    v, m, k = 10 ** rng.uniform(-3, 0.5, 40), 10 ** rng.uniform(-3, 0, 40), 1.3e10
+    batch = solve_damped_impact(make_damping_law(name, k, m, a), v, m, separation=rule)
+    for i in range(a.size):
+        law = make_damping_law(name, k, float(m[i]), float(a[i]))
+        one = solve_damped_impact(law, float(v[i]), float(m[i]), separation=rule)
+        for key in SUMMARY_KEYS + ("stored",):
+            assert float(getattr(one, key)) == float(getattr(batch, key)[i]), (key, i)
