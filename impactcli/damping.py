@@ -57,6 +57,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields, replace
+from functools import cache
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -834,6 +835,8 @@ def _one_from_tables(law, impact_velocity, mass, separation: str) -> DampedImpac
     scales = (length, time, energy, energy / length, m * v / length)
     if not all(math.isfinite(x) and x >= tiny for x in scales) or not math.isfinite(key):
         return None
+    if not _same_damping(law, np.array([key]), np.array([length]), one[2], one[3]):
+        return None
     from impactcli import damped_similar
 
     values = damped_similar.summary_one(model.name, key, separation)
@@ -929,9 +932,25 @@ def _similar(flat, mm: Array, v: Array) -> tuple[str, Array, Array] | None:
     if not all(np.all(np.isfinite(x) & (x >= tiny)) for x in scales):
         return None  # out of range: the march on the law as given says how
     key = np.broadcast_to(key, v.shape)
-    if not np.all(np.isfinite(key) & (key >= 0.0)):
+    if not np.all(np.isfinite(key) & (key >= 0.0)) or not _same_damping(flat, key, length, mm, v):
         return None
     return name, np.ascontiguousarray(key), length
+
+
+def _same_damping(law, key: Array, length: Array, mm: Array, v: Array) -> bool:
+    """Whether the law's damping, scaled, is that of the model at K = m = V0 = 1 with alpha
+    ``key``: its mean over [0, L] in units of m V0 / L against the unit law's over [0, 1]
+    (a law whose own mass is not the impact's, say, is not; then FILM marches)."""
+    with np.errstate(all="ignore"):
+        scaled = law.mean_damping(0.0, length) * length / (mm * v)
+        unit = key * _unit_mean_damping(law.name)
+        return bool(np.all(np.abs(scaled - unit) <= 1e-9 * np.abs(unit)))
+
+
+@cache
+def _unit_mean_damping(name: str) -> float:
+    """Mean damping over [0, 1] of the model ``name`` at K = m = 1 and alpha = 1."""
+    return float(make_damping_law(name, 1.0, 1.0, 1.0).mean_damping(0.0, 1.0))
 
 
 def _unit_law(name: str, alphas: Array):

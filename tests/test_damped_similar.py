@@ -231,3 +231,18 @@ def test_one_impact_has_the_numbers_of_its_batch_row(name, rule):
         one = solve_damped_impact(law, float(v[i]), float(m[i]), separation=rule)
         for key in SUMMARY_KEYS + ("stored",):
             assert float(getattr(one, key)) == float(getattr(batch, key)[i]), (key, i)
+
+
+def test_a_law_whose_mass_is_not_the_impacts_marches():
+    # Tsuji's damping holds its own mass: with another mass in the equation of motion the
+    # impact is not the model's similar one, and FILM marches it (single and batch alike)
+    law = make_damping_law("tsuji", 1.25e10, 0.05, 0.3)
+    flat = damping._flatten_law(law, (1,))
+    film = damping._march(flat, np.array([0.0125]), np.array([0.03]), 400, "overlap")[0][0]
+    for sol in (solve_damped_impact(law, 0.0125, 0.03),
+                solve_damped_impact(law, np.array([0.0125, 0.0125]), 0.03)):  # fmt: skip
+        assert np.ravel(sol.restitution)[0] == pytest.approx(film[0], rel=1e-13)
+        assert np.ravel(sol.contact_time)[0] == pytest.approx(film[1], rel=1e-13)
+    assert float(solve_damped_impact(law, 0.0125, 0.05).restitution) == pytest.approx(
+        0.653551476663643, rel=1e-13
+    )
