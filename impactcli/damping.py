@@ -45,7 +45,7 @@ Self-similarity
 Each model of the registry depends, in units of L = (m V0^2/K)^(2/5) and L/V0, on one
 number (its ``similar_alpha``), and FILM scales the same way. At the default n = 400 the
 summary of an impact is therefore read from normalised tables of that number
-(:mod:`impactcli.damped_similar`, within 1e-13 of the march): microseconds instead of a
+(:mod:`impactcli.damped_similar`, within 1e-12 of the march): microseconds instead of a
 march over 800 segments; the stages, for the histories, are FILM's, made when first asked
 for. Another n, a number beyond the tables or a law outside the registry marches as above.
 
@@ -909,7 +909,7 @@ def _march(
 # delta_mH and of delta_max, its chords and mean dampings those of the scaled law. So FILM
 # of the law at K = m = V0 = 1 with that alpha, scaled, is FILM of every impact with it
 # (to rounding), and at the default n the summary comes from the precomputed tables of
-# :mod:`impactcli.damped_similar` (within 1e-13 of the march).
+# :mod:`impactcli.damped_similar` (within 1e-12 of the march).
 
 #: Values (collisions x (n + 1) nodes) per block of a march over many distinct parameters
 #: (as :data:`impactcli.batch.DAMPED_BLOCK`): memory does not grow with the collisions.
@@ -1150,8 +1150,8 @@ def damping_for_restitution(
     return alpha.reshape(shape)
 
 
-#: The relative accuracy of alpha from the tables' inverse at their n (the tables are
-#: within 1e-13 of FILM); a smaller ``rtol`` of :func:`damping_for_restitution` refines it
+#: The relative accuracy of alpha from the tables' inverse at their n (the tables give e
+#: within 1e-14 of FILM); a smaller ``rtol`` of :func:`damping_for_restitution` is reached
 #: by FILM.
 TABLE_RTOL = 1e-12
 
