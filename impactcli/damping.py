@@ -800,7 +800,7 @@ def _one_from_tables(law, impact_velocity, mass, separation: str) -> DampedImpac
     if not all(isinstance(x, (float, int, np.floating, np.integer)) for x in values):
         return None  # arrays (even of one value) keep the general path
     model = DAMPING_LAWS.get(getattr(law, "name", None))
-    if model is None or type(law) is not model or not hasattr(model, "similar_alpha"):
+    if model is None or type(law) is not model.model:
         return None
     if any(np.ndim(getattr(law, f.name)) for f in fields(law)):
         return None
@@ -902,7 +902,7 @@ def _similar(flat, mm: Array, v: Array) -> tuple[str, Array, Array] | None:
     scales are normal doubles, or None (then FILM runs on the law as given)."""
     name = getattr(flat, "name", None)
     model = DAMPING_LAWS.get(name) if isinstance(name, str) else None
-    if model is None or type(flat) is not model or not hasattr(model, "similar_alpha"):
+    if model is None or type(flat) is not model.model:
         return None
     k = np.asarray(flat.stiffness, dtype=float)
     with np.errstate(all="ignore"):
