@@ -629,10 +629,10 @@ def restitution_damping(restitution: float) -> tuple[str | None, float | None]:
         return None, None
     if not e > 0.0:
         raise ValueError("e = 0 has no normal force history (the damped contact never ends)")
-    from impactcli.laws.tsuji import SPEC
+    from impactcli.laws.registry import DAMPING_LAWS, RESTITUTION_DAMPING
 
-    # Tsuji's damping scales with sqrt(m K): its alpha for e is that of any m, K and V0.
-    name = SPEC.name
+    # The damping scales with sqrt(m K): its alpha for e is that of any m, K and V0.
+    name = DAMPING_LAWS[RESTITUTION_DAMPING].name
     return name, float(damping_for_restitution(name, e, 1.0, 1.0, 1.0))
 
 

@@ -197,14 +197,14 @@ class _Contact:
     """The two spheres and their contact, stepped in time (module docstring)."""
 
     def __init__(self, s1, s2, radius, modulus, shear, damper, separation, mu, spec):
-        from impactcli.laws.hertz import hertz_stiffness
+        from impactcli.laws.viscous import DampingSpec
 
         self.r1, self.r2 = s1.radius, s2.radius
         self.m1, self.m2 = s1.total_mass, s2.total_mass
         self.i1 = 0.4 * self.m1 * self.r1**2
         self.i2 = 0.4 * self.m2 * self.r2**2
         self.fixed = math.isinf(self.m2)
-        self.stiffness = float(hertz_stiffness(modulus, radius))
+        self.stiffness = float(DampingSpec.stiffness(radius, modulus))  # Hertz's K
         self.k_scale = 8.0 * shear * math.sqrt(radius)
         self.radius = radius
         self.damper = damper

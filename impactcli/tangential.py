@@ -327,6 +327,17 @@ def _spring(spec: TangentialModel, steps: Steps, s0, m_t, mu, record: bool) -> T
         impulse[sliding] = m_t[sliding] * slide_scale[sliding]
         slip[sliding] = s0[sliding] - slide_scale[sliding]
         busy &= ~sliding
+    # A slip beyond the range of a float in units of mu J/m_t (mu near the smallest
+    # double, mu J/m_t perhaps 0): the Coulomb limit is reached at once and the contact
+    # slides throughout, J_t = mu J to rounding.
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        beyond = busy & np.isfinite(s0) & ~np.isfinite(s0 / slide_scale)
+    impulse[beyond] = m_t[beyond] * slide_scale[beyond]
+    slip[beyond] = s0[beyond] - slide_scale[beyond]
+    if forces is not None:
+        forces[beyond] = (mu * steps.force_scale)[beyond, None] * np.broadcast_to(
+            steps.force, (rows, points))[beyond]
+    busy &= ~beyond
     index = np.flatnonzero(busy)
     if index.size == 0:
         return TangentialResult(impulse, slip, stuck, forces)

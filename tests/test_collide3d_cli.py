@@ -289,6 +289,37 @@ def test_rows_equal_single_collisions(impact, tmp_path, model):
             assert float(row[key]) == pytest.approx(single[key], rel=1e-10, abs=1e-12)  # 12 digits
 
 
+def test_rows_name_their_own_tangential_model(impact, tmp_path):
+    """A ``tangential`` column gives each row its model by the names of --tangential (an
+    empty cell: the command's); each row has the numbers of the command run with its model,
+    and an unknown name is that row's error, naming the accepted ones."""
+    pytest.importorskip("pyarrow")
+    models = ["mindlin-displacement", "rigid", "", "mindlin-deresiewicz", "mindlin-rescal"]
+    lines = _rows_table([10.0] * len(models)).splitlines()
+    table = tmp_path / "in.csv"
+    table.write_text("\n".join([lines[0] + ",tangential"]
+                               + [f"{line},{m}" for line, m in zip(lines[1:], models)]) + "\n")
+    out = tmp_path / "out.csv"
+    r = impact("collide3d", "--rows", str(table), "-o", str(out), "--mu", "0.092",
+               "--tangential", "mindlin-force", "--points", "801")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    got = list(csv.DictReader(out.open()))
+    assert [row["tangential"] for row in got] == models
+    assert "unknown tangential model 'mindlin-rescal'; accepted: rigid, mindlin" in got[4]["error"]
+    vt, vn = 3.9 * float(np.sin(np.radians(10.0))), 3.9 * float(np.cos(np.radians(10.0)))
+    spins = set()
+    for row, model in zip(got[:4], ["mindlin-displacement", "rigid", "mindlin-force",
+                                    "mindlin-deresiewicz"]):  # fmt: skip
+        assert row["error"] == ""
+        one = impact(*ALUMINA_ON_PLANE, f"--v1={vt!r},0,{-vn!r}", "--tangential", model,
+                     "--points", "801", "-f", "csv")  # fmt: skip
+        single = rows(one.stdout)
+        for key in ("v1_final_x", "w1_final_y", "tangential_restitution"):
+            assert float(row[key]) == pytest.approx(single[key], rel=1e-10, abs=1e-12)
+        spins.add(round(float(row["w1_final_y"]), 3))
+    assert len(spins) == 4  # four models, four answers
+
+
 def test_rows_refuses_single_options_and_bad_headers(impact, tmp_path):
     pytest.importorskip("pyarrow")
     table = tmp_path / "in.csv"

@@ -145,3 +145,28 @@ def test_no_friction_no_slip_and_a_rigid_model_are_closed_without_integration():
     assert list(out.stuck) == [False, True]
     with pytest.raises(ValueError, match="no spring"):
         integrate_tangential("rigid", steps, [1.0, 0.0], 2 * M / 7, 0.1)
+
+
+@pytest.mark.parametrize("model", SPRING_MODELS)
+def test_a_friction_near_the_smallest_double_slides_throughout(model):
+    """mu = 5e-324 over a FILM history (no Hertz shortcut): the slip in units of mu J/m_t
+    is beyond the range of a float, so the contact slides throughout and J_t = mu J_n to
+    rounding (0 where mu J_n underflows), with the force on the limit; it was NaN, and the
+    collision refused as out of range."""
+    import dataclasses
+
+    steps, _ = hertz_steps(M, 3.0, E_STAR, R, G, 100, 401)
+    plain = dataclasses.replace(steps, slip_bound=None)
+    m_t = M / 3.5
+    for mu in (5e-324, 1e-310):
+        out = integrate_tangential(model, plain, np.array([2.0]), m_t, mu, record=True)
+        expected = m_t * (mu * float(steps.impulse[0]) / m_t)
+        assert float(out.impulse[0]) == expected and float(out.slip[0]) == 2.0 - expected / m_t
+        assert not out.stuck[0]
+        np.testing.assert_array_equal(out.force[0], mu * steps.force_scale[0] * steps.force[0])
+    v = velocity_from_angles(SPEED, np.radians(30.0), 0.0, (0.0, 0.0, -1.0))
+    e, history = normal_restitution_and_history(BALL, PLANE, float(-v[2]), points=401)
+    r = oblique_collision_3d(M, np.inf, v, (0, 0, 0), (0, 0, 0), (0, 0, -1), 2 * R, np.inf,
+                             restitution=e, mu=5e-324, tangential=model, history=history,
+                             shear_modulus=G)  # fmt: skip
+    assert float(r.tangential_impulse[0]) == 0.0

@@ -13,7 +13,17 @@ closed forms dotted and the published points. The sweeps are those of
 tests with every tangential model (the validation page).
 """
 
+import numpy as np
 from chung_ooi import test4_figure, test5_figure  # benchmarks/chung_ooi.py
+
+from impactcli import Sphere, oblique_collision_3d
+from impactcli.collision3d import (
+    effective_shear_modulus,
+    normal_restitution_and_history,
+    restitution_damping,
+    velocity_from_angles,
+)
+from impactcli.laws.tangential import tangential_names
 
 test4 = test4_figure()
 
@@ -22,3 +32,21 @@ test4 = test4_figure()
 # tangential one psi mu u_n, mu = 0.3, e_n = 1; normalised as Chung & Ooi plot it.
 
 test5 = test5_figure()
+
+# %%
+# The same models through the Python API: test 4's alumina sphere at 10 deg, the spin
+# after the impact [rad/s] of every tangential model by name (the names of
+# ``impact collide3d --tangential``).
+
+ball = Sphere(5e-3, 380e9, 0.23, 4000.0)
+plane = Sphere(np.inf, np.inf, 0.0, mass=np.inf)
+v1 = velocity_from_angles(3.9, np.radians(10.0), 0.0, (0.0, 0.0, -1.0))
+damping, alpha = restitution_damping(0.98)  # e_n = 0.98: Tsuji's damping that gives it
+e, history = normal_restitution_and_history(ball, plane, float(-v1[2]), damping=damping,
+                                            alpha=alpha, points=4001)
+for name in tangential_names():
+    c = oblique_collision_3d(ball.total_mass, np.inf, v1, (0, 0, 0), (0, 0, 0), (0, 0, -1),
+                             5e-3, np.inf, restitution=e, mu=0.092, tangential=name,
+                             history=history, shear_modulus=effective_shear_modulus(
+                                 380e9, 0.23, np.inf, 0.0))
+    print(f"{name:22s} spin {np.reshape(c.w1_final, -1)[1]:8.2f} rad/s")

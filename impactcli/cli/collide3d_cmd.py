@@ -189,8 +189,9 @@ def collide3d(
         "--rows",
         metavar="TABLE",
         help="Many collisions: a CSV or Parquet table, one collision per row (columns p1_x, "
-        "p1_y, p1_z, p2_*, v1_*, optional v2_*, w1_*, w2_*, mu, e; the sphere columns of "
-        "impact batch); writes its columns and the results (-o OUT.csv or .parquet, else "
+        "p1_y, p1_z, p2_*, v1_*, optional v2_*, w1_*, w2_*, mu, e, tangential (a model of "
+        "--tangential by name; an empty cell: the option's); the sphere columns of impact "
+        "batch); writes its columns and the results (-o OUT.csv or .parquet, else "
         "stdout as CSV); a bad row gets its reason in the error column.",
     ),
     fmt: Annotated[

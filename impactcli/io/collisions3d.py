@@ -3,8 +3,9 @@
 One row per collision: vector columns ``p1_x, p1_y, p1_z`` (centres at contact, required),
 ``v1_x...`` (required), ``v2_x...``, ``w1_x...``, ``w2_x...`` (default 0), the sphere columns
 of ``impact batch`` (:data:`impactcli.io.table.QUANTITY_COLUMNS` without ``v1``, ``v2``;
-``material``, ``material1``, ``material2``), and optionally ``mu`` and ``e`` per row (else
-the command's). Cells are SI numbers or text with units (:mod:`impactcli.units`; angular
+``material``, ``material1``, ``material2``), and optionally ``mu``, ``e`` and
+``tangential`` (a model of :mod:`impactcli.laws.tangential` by name) per row (else the
+command's). Cells are SI numbers or text with units (:mod:`impactcli.units`; angular
 velocities in rad/s, rpm, deg/s). The result columns are
 :data:`impactcli.collision3d.SUMMARY_KEYS` and ``error``.
 
@@ -74,7 +75,7 @@ def _scalar_columns() -> dict[str, tuple[str, bool]]:
 
 #: Scalar quantity columns: name -> (kind, inf allowed).
 SCALAR_COLUMNS: dict[str, tuple[str, bool]] = _scalar_columns()
-TEXT_COLUMNS: tuple[str, ...] = ("material", "material1", "material2")
+TEXT_COLUMNS: tuple[str, ...] = ("material", "material1", "material2", "tangential")
 #: Every column read; others are carried to the output unread.
 INPUT_COLUMNS: tuple[str, ...] = (
     *(f"{name}_{axis}" for name in VECTOR_COLUMNS for axis in "xyz"),
@@ -132,8 +133,8 @@ def compute_collisions3d(
         :func:`impactcli.io.table.table_columns`): numbers in SI or text with units, read
         as ``impact batch`` reads them; columns as the module docstring
     mu : Coulomb friction of rows without a ``mu`` cell, [-]
-    tangential : a model of :mod:`impactcli.laws.tangential` (``rigid``, ``mindlin``, ...),
-        every row
+    tangential : a model of :mod:`impactcli.laws.tangential` (``rigid``, ``mindlin``, ...)
+        of rows without a ``tangential`` cell
     law, params : the normal law of every row and its parameters (SI)
     damping, alpha : damped Hertz instead (``tsuji`` or ``hunt-crossley``) and its alpha
     restitution : e of rows without an ``e`` cell instead of the law; with a tangential
@@ -176,7 +177,7 @@ def compute_collisions3d(
     from impactcli.spheres import missing_properties, resolve_properties
     from impactcli.validation import Problems, sphere_names, sphere_problems
 
-    spring = get_tangential(tangential).needs_history
+    get_tangential(tangential)  # the command's model: a ValueError if unknown
     columns, size = table_columns(frame)
     if size == 0:
         return {key: np.zeros(0) for key in output_columns3d()[:-1]} | {
@@ -209,6 +210,7 @@ def compute_collisions3d(
         q[name], bad = quantity(name, kind, allow_inf)
         errors.add_messages(bad)
 
+    models, spring = _row_models(columns, size, tangential, errors)
     shared = _text_column(columns, "material", size)
     spheres = []
     for i in (1, 2):
@@ -233,9 +235,8 @@ def compute_collisions3d(
                            q["e"])  # fmt: skip
         errors.add(~np.isnan(given_e) & ~((given_e >= 0) & (given_e <= 1)),
                    "e must be in [0, 1], got {:g}", given_e)  # fmt: skip
-        if spring:
-            errors.add(~np.isnan(given_e) & ~(given_e > 0.0), "e = 0 has no normal force "
-                       "history for a tangential spring (its contact never ends)")  # fmt: skip
+        errors.add(spring & ~np.isnan(given_e) & ~(given_e > 0.0), "e = 0 has no normal "
+                   "force history for a tangential spring (its contact never ends)")  # fmt: skip
         for i, s in ((1, s1), (2, s2)):
             errors.add(np.isinf(s["d"]) & np.any(vectors[f"w{i}"] != 0.0, axis=-1),
                        f"a flat target cannot spin: w{i} must be 0")  # fmt: skip
@@ -259,24 +260,48 @@ def compute_collisions3d(
     result = {key: np.full(size, np.nan) for key in output_columns3d()[:-1]}
     ok = np.flatnonzero(~errors.bad)
     e = np.full(size, np.nan)
-    law_rows = ok[np.isnan(given_e[ok])]
+    law_rows = ok[np.isnan(given_e[ok]) & ~spring[ok]]
     e[ok] = given_e[ok]
-    if law_rows.size and not spring:
+    if law_rows.size:
         e[law_rows], reasons = _restitutions(s1, s2, u_n, law_rows, law, params, damping,
                                              alpha, 25 if n is None else n,
                                              separation)  # fmt: skip
         errors.add_messages(_scatter(reasons, law_rows, size))
     ok = np.flatnonzero(~errors.bad)
-    blocks = [ok] if ok.size else []
-    if spring:  # one normalised Hertz history: ROW_BLOCK rows; else HISTORY_BLOCK points
-        rows_per_block = ROW_BLOCK if _self_similar(law, params, damping) else max(
-            1, HISTORY_BLOCK // max(int(points), 2))  # fmt: skip
-        blocks = [ok[i : i + rows_per_block] for i in range(0, ok.size, rows_per_block)]
-    for rows in blocks:
-        _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result,
-                       tangential, law, params, damping, alpha, points, n, separation)  # fmt: skip
+    for model in dict.fromkeys(models[ok].tolist()):  # each row's model, in order of rows
+        chosen = ok[models[ok] == model]
+        blocks = [chosen]
+        if get_tangential(model).needs_history:
+            # one normalised Hertz history: ROW_BLOCK rows; else HISTORY_BLOCK points
+            rows_per_block = ROW_BLOCK if _self_similar(law, params, damping) else max(
+                1, HISTORY_BLOCK // max(int(points), 2))  # fmt: skip
+            blocks = [chosen[i : i + rows_per_block] for i in range(0, chosen.size,
+                                                                     rows_per_block)]  # fmt: skip
+        for rows in blocks:
+            _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result,
+                           model, law, params, damping, alpha, points, n, separation)  # fmt: skip
     result["error"] = errors.messages
     return result
+
+
+def _row_models(columns, size: int, tangential: str, errors) -> tuple[np.ndarray, np.ndarray]:
+    """Each row's tangential model (its ``tangential`` cell, else the command's) and
+    whether it needs the normal history (a spring); an unknown name is the row's error."""
+    from impactcli.io.table import _text_column
+    from impactcli.laws.tangential import get_tangential
+
+    given = _text_column(columns, "tangential", size, lower=True)
+    models = np.where(np.equal(given, None), tangential, given).astype(object)
+    spring = np.zeros(size, dtype=bool)
+    message = np.full(size, "", dtype=object)
+    for name in dict.fromkeys(models.tolist()):  # distinct names only
+        rows = models == name
+        try:
+            spring[rows] = get_tangential(name).needs_history
+        except ValueError as exc:
+            message[rows] = str(exc)
+    errors.add_messages(message)
+    return models, spring
 
 
 def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result,
