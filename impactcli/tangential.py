@@ -66,6 +66,7 @@ from impactcli.laws.tangential import TangentialModel, get_tangential
 __all__ = [
     "Steps",
     "TangentialResult",
+    "damped_steps",
     "hertz_steps",
     "history_steps",
     "integrate_tangential",
@@ -228,6 +229,95 @@ def hertz_steps(
         slip_bound=np.ravel(e_star * v0 / (4.0 * g)),
     )
     return steps, np.full(np.shape(m), e)
+
+
+@lru_cache(maxsize=16)
+def _normalised_damped(
+    damping: str, alpha: float, separation: str, n: int, points: int
+) -> tuple[Array, Array, Array, float, float]:
+    """The normalised damped impact (K = m = V0 = 1, the model's ``similar_alpha``) of
+    FILM with n segments per stage at ``points`` even times: (t, delta, F_n = max(F, 0), e,
+    the impulse of F_n), as :func:`impactcli.collision3d.normal_restitution_and_history`
+    builds a damped history."""
+    from impactcli.damping import solve_damped_impact
+    from impactcli.laws.registry import DAMPING_LAWS
+
+    law = DAMPING_LAWS[damping].of(1.0, 1.0, alpha)
+    solution = solve_damped_impact(law, 1.0, 1.0, n, separation)  # type: ignore[arg-type]
+    e, t_c = float(solution.restitution), float(solution.contact_time)
+    if not (np.isfinite(t_c) and e > 0.0):
+        raise ValueError(
+            "the damped contact never ends (overdamped), so it has no normal history for a "
+            "tangential spring"
+        )
+    t = np.linspace(0.0, t_c, points)
+    delta, rate = solution.evaluate(t)
+    delta = np.maximum(delta, 0.0)
+    force = np.maximum(solution.force(t, delta, rate), 0.0)
+    pushing = solution
+    if separation == "overlap":  # the force pulls before delta returns to 0
+        pushing = solve_damped_impact(law, 1.0, 1.0, n, separation="force")
+    for array in (t, delta, force):
+        array.flags.writeable = False
+    return t, delta, force, e, 1.0 + float(pushing.restitution)
+
+
+def damped_steps(
+    damping: str,
+    similar_alpha: float,
+    separation: str,
+    mass: ArrayLike,
+    approach_velocity: ArrayLike,
+    modulus: ArrayLike,
+    radius: ArrayLike,
+    shear_modulus: ArrayLike,
+    n: int,
+    points: int,
+) -> tuple[Steps, float]:
+    """:class:`Steps` of damped Hertz impacts whose damping is the same at K = m = V0 = 1
+    (the model's ``similar_alpha``: every damping model is self-similar in units of
+    L = (m V0^2/K)^(2/5) and L/V0, docs/damping.md): one normalised FILM history for all
+    rows, scaled by each row's L, L/V0 and m V0^2/L.
+
+    Parameters
+    ----------
+    damping : a damping model of the registry; similar_alpha : its alpha at K = m = V0 = 1
+    separation : ``overlap`` or ``force``
+    mass : effective masses m, [kg]; approach_velocity : u_n > 0, [m/s]
+    modulus : E*, [Pa]; radius : R, [m]; shear_modulus : G*, [Pa]
+    n : FILM segments per stage; points : time points of the history
+
+    Returns
+    -------
+    (Steps, e): e [-] is the restitution of every row.
+
+    Raises
+    ------
+    ValueError
+        A contact that never ends (overdamped).
+    """
+    from impactcli.laws.registry import DAMPING_LAWS
+
+    m, v0, e_star, r, g = np.broadcast_arrays(
+        *(np.asarray(x, dtype=float) for x in (mass, approach_velocity, modulus, radius,
+                                                shear_modulus))  # fmt: skip
+    )
+    t, delta, force, e, impulse = _normalised_damped(
+        damping, float(similar_alpha), separation, int(n), int(points)
+    )
+    k = DAMPING_LAWS[damping].stiffness(r, e_star)
+    length = (m * v0**2 / k) ** 0.4
+    steps = Steps(
+        time=t[None],
+        stiffness=np.sqrt(delta)[None],
+        force=force[None],
+        share=_shares(t[None], force[None]),
+        time_scale=np.ravel(length / v0),
+        stiffness_scale=np.ravel(8.0 * g * np.sqrt(r * length)),
+        force_scale=np.ravel(m * v0**2 / length),
+        impulse=np.ravel(impulse * m * v0),
+    )
+    return steps, e
 
 
 @dataclass(frozen=True)

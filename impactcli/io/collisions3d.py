@@ -16,8 +16,9 @@ batch kernel (:func:`impactcli.batch.batch_impacts`, any law of the library) or 
 :data:`impactcli.batch.DAMPED_BLOCK` rows x segments), then one call of
 :func:`impactcli.collision3d.oblique_collision_3d` for all rows. A tangential spring
 (``mindlin`` and the other models of :mod:`impactcli.laws.tangential`) needs each row's
-normal history: on undamped Hertz every row's is one normalised history scaled
-(:func:`impactcli.tangential.hertz_steps`), :data:`ROW_BLOCK` rows a block; on another
+normal history: on Hertz, damped or not, every row's is a normalised history scaled
+(:func:`impactcli.tangential.hertz_steps`, :func:`impactcli.tangential.damped_steps`: one
+per damping at K = m = V0 = 1), :data:`ROW_BLOCK` rows a block; on another
 normal law they are built row by row (:func:`impactcli.collision3d.normal_restitution_and_history`,
 a FILM run each), :data:`HISTORY_BLOCK` history points (rows x points) a block; the spring is
 integrated for a block of rows at once, so memory does not grow with the rows. As in
@@ -273,7 +274,7 @@ def compute_collisions3d(
         blocks = [chosen]
         if get_tangential(model).needs_history:
             # one normalised Hertz history: ROW_BLOCK rows; else HISTORY_BLOCK points
-            rows_per_block = ROW_BLOCK if _self_similar(law, params, damping) else max(
+            rows_per_block = ROW_BLOCK if _self_similar(law, params) else max(
                 1, HISTORY_BLOCK // max(int(points), 2))  # fmt: skip
             blocks = [chosen[i : i + rows_per_block] for i in range(0, chosen.size,
                                                                      rows_per_block)]  # fmt: skip
@@ -309,43 +310,126 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
     """The collisions of ``rows`` (valid so far): the normal histories of a spring,
     then :func:`impactcli.collision3d.oblique_collision_3d`; the results written into
     ``result``, each refused row's reason into ``errors``."""
-    from impactcli.collision3d import (
-        HISTORY_N,
-        NormalHistory,
-        collision_summary,
-        effective_shear_modulus,
-        oblique_collision_3d,
-    )
-    from impactcli.io.readers import first_line
+    from impactcli.collision3d import effective_shear_modulus
     from impactcli.laws.tangential import get_tangential
-    from impactcli.tangential import hertz_steps
 
-    shear = arrays = given = steps = None
-    spring = get_tangential(tangential).needs_history
-    if spring and _self_similar(law, params, damping) and np.all(np.isnan(e[rows])):
-        # Hertz: one normalised history scaled to every row (tangential.hertz_steps)
+    context = (size, s1, s2, vectors, e, friction, tangential, errors, result)
+    if not get_tangential(tangential).needs_history:
+        _collide_rows(rows, *context)
+        return
+    if _self_similar(law, params):
+        # Hertz, damped or not: one normalised history per group of rows with the same
+        # damping at K = m = V0 = 1 (tangential.hertz_steps, tangential.damped_steps)
         m, radius, modulus, reasons = _damped_pairs(s1, s2, u_n, rows)
         errors.add_messages(_scatter(reasons, rows, size))
         good = reasons == ""
-        rows = rows[good]
+        rows, m, radius, modulus = rows[good], m[good], radius[good], modulus[good]
         if not rows.size:
             return
         shear = effective_shear_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows],
                                         s2["nu"][rows])  # fmt: skip
+        keys, key_reasons = _similar_keys(rows, e, m, radius, modulus, u_n, damping, alpha, n,
+                                          separation)  # fmt: skip
+        errors.add_messages(_scatter(key_reasons, rows, size))
+        for key, at in keys:
+            steps, row_e, reason = _similar_steps(key, m[at], u_n[rows[at]], modulus[at],
+                                                  radius[at], shear[at], points)  # fmt: skip
+            if reason:
+                errors.add(_mask(rows[at], size), reason)
+                continue
+            e[rows[at]] = row_e
+            _collide_rows(rows[at], *context, steps=steps)
+        return
+    e[rows], histories, reasons = _histories(s1, s2, u_n, rows, law, params, damping, alpha,
+                                             points, n, separation, e)  # fmt: skip
+    errors.add_messages(_scatter(reasons, rows, size))
+    rows = rows[reasons == ""]  # the rows that ran, in the order of their histories
+    if not rows.size:
+        return
+    *arrays, given = histories
+    shear = effective_shear_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows],
+                                    s2["nu"][rows])  # fmt: skip
+    _collide_rows(rows, *context, arrays=arrays, given=given, shear=shear)
+
+
+def _mask(rows: np.ndarray, size: int) -> np.ndarray:
+    out = np.zeros(size, dtype=bool)
+    out[rows] = True
+    return out
+
+
+def _similar_keys(rows, e, m, radius, modulus, u_n, damping, alpha, n, separation):
+    """The rows' normalised histories: a list of (key, positions in ``rows``), the key
+    (damping model or None for Hertz, its alpha at K = m = V0 = 1, separation rule, n) as
+    :func:`_histories` would run each row: a given e is Hertz with the damping that gives it
+    (:func:`impactcli.collision3d.restitution_damping`), at that model's default n unless
+    it is the command's damping. Also the reasons of rows that have none."""
+    from impactcli.collision3d import HISTORY_N, restitution_damping
+    from impactcli.io.readers import first_line
+    from impactcli.laws.registry import DAMPING_LAWS
+    from impactcli.model import ContactModel
+
+    reasons = np.full(rows.size, "", dtype=object)
+    row_e = e[rows]
+    runs: dict[tuple, list[np.ndarray]] = {}  # (damping, alpha, n) -> positions
+    nan = np.isnan(row_e)
+    if nan.any():
+        runs[(damping, alpha, n)] = [np.flatnonzero(nan)]
+    for value in np.unique(row_e[~nan]).tolist():  # distinct e values only
+        at = np.flatnonzero(row_e == value)
+        try:
+            row_damping, row_alpha = restitution_damping(value)
+        except (ValueError, InputError) as exc:
+            reasons[at] = first_line(exc)
+            continue
+        row_n = n if row_damping is None or row_damping == damping else None
+        runs.setdefault((row_damping, row_alpha, row_n), []).append(at)
+    out: list[tuple[tuple, np.ndarray]] = []
+    for (row_damping, row_alpha, row_n), parts in runs.items():
+        at = np.sort(np.concatenate(parts))
+        if row_damping is None:
+            out.append(((None, None, None, HISTORY_N if row_n is None else int(row_n)), at))
+            continue
+        if row_n is None:
+            row_n = ContactModel(damping=row_damping, alpha=row_alpha).default_n
+        model = DAMPING_LAWS[row_damping]
+        with np.errstate(all="ignore"):  # a scale beyond double precision: the row's reason
+            similar = np.broadcast_to(model.similar_alpha(
+                row_alpha, model.stiffness(radius[at], modulus[at]), m[at], u_n[rows[at]]
+            ), at.shape)  # fmt: skip
+        finite = np.isfinite(similar)
+        reasons[at[~finite]] = _OUT_OF_RANGE
+        for value in np.unique(similar[finite]).tolist():
+            out.append(((row_damping, value, separation, int(row_n)), at[similar == value]))
+    return out, reasons
+
+
+def _similar_steps(key, m, u_n, modulus, radius, shear, points):
+    """The Steps of the rows of one key of :func:`_similar_keys`, their e and a reason
+    (``""``; else the reason of every one of them)."""
+    from impactcli.tangential import damped_steps, hertz_steps
+
+    name, similar, separation, n = key
+    try:
         with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
-            steps, e[rows] = hertz_steps(m[good], u_n[rows], modulus[good], radius[good],
-                                         shear, HISTORY_N if n is None else n, points)  # fmt: skip
-    elif spring:
-        e[rows], histories, reasons = _histories(s1, s2, u_n, rows, law, params, damping,
-                                                 alpha, points, n, separation, e)  # fmt: skip
-        errors.add_messages(_scatter(reasons, rows, size))
-        rows = rows[reasons == ""]  # the rows that ran, in the order of their histories
-        if not rows.size:
-            return
-        *arrays, impulse = histories
-        given = None if np.all(np.isnan(impulse)) else impulse  # None: J_n (no pull)
-        shear = effective_shear_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows],
-                                        s2["nu"][rows])  # fmt: skip
+            if name is None:
+                steps, e = hertz_steps(m, u_n, modulus, radius, shear, n, points)
+            else:
+                steps, e = damped_steps(name, similar, separation, m, u_n, modulus, radius,
+                                        shear, n, points)  # fmt: skip
+    except (ValueError, InputError) as exc:
+        return None, None, str(exc).splitlines()[0]
+    return steps, e, ""
+
+
+def _collide_rows(rows, size, s1, s2, vectors, e, friction, tangential, errors, result, *,
+                  arrays=None, given=None, shear=None, steps=None):  # fmt: skip
+    """:func:`impactcli.collision3d.oblique_collision_3d` on ``rows``, with their normal
+    histories row by row (``arrays``: t, delta, delta', F; ``given``: their impulses or
+    None, ``shear``: G*) or as normalised ones (``steps``); the results into ``result``."""
+    from impactcli.collision3d import NormalHistory, collision_summary, oblique_collision_3d
+    from impactcli.io.readers import first_line
+
     summaries: list[tuple[np.ndarray, dict[str, np.ndarray]]] = []
 
     def collide(start: int, stop: int) -> None:
@@ -364,14 +448,12 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
                     vectors["p1"][at], vectors["p2"][at], s1["d"][at], s2["d"][at],
                     vectors["w1"][at], vectors["w2"][at], e[at], friction[at], tangential,
                     history=history, steps=rows_steps,
-                    shear_modulus=None if shear is None or steps is not None else shear[part],
+                    shear_modulus=None if shear is None else shear[part],
                 )  # fmt: skip
                 summaries.append((at, collision_summary(collision)))
         except (InputError, ValueError) as exc:
             if stop - start == 1:
-                row = np.zeros(size, dtype=bool)
-                row[at] = True
-                errors.add(row, _FIRST_AT.sub("", first_line(exc)))
+                errors.add(_mask(at, size), _FIRST_AT.sub("", first_line(exc)))
                 return
             middle = (start + stop) // 2
             collide(start, middle)
@@ -391,21 +473,24 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
 
 
 #: History points (rows x ``points``) per block of rows with a tangential spring whose normal
-#: law is not self-similar (every law but undamped Hertz): each row's normal history and the
+#: law is not self-similar (every law but Hertz, damped or not): each row's normal history and the
 #: tangential spring integrated over a block of rows at once; memory does not grow with the
 #: number of rows (one row a block when ``points`` is larger).
 HISTORY_BLOCK = 1_048_576
-#: Rows per block with a tangential spring on undamped Hertz: every row's normal history is
-#: one normalised history scaled (self-similar), so a block holds O(ROW_BLOCK + points)
-#: numbers (about 40 arrays of ROW_BLOCK floats: 2.6 MB), whatever the number of rows.
+#: Rows per block with a tangential spring on Hertz, damped or not: every row's normal
+#: history is a normalised history scaled (self-similar), so a block holds O(ROW_BLOCK +
+#: points) numbers (about 40 arrays of ROW_BLOCK floats: 2.6 MB, and a normalised history of
+#: ``points`` for each distinct damping in it), whatever the number of rows.
 ROW_BLOCK = 8192
 
 
-def _self_similar(law: str, params: Mapping[str, Any] | None, damping: str | None) -> bool:
-    """True where every row's normal history is the normalised Hertz one, scaled."""
+def _self_similar(law: str, params: Mapping[str, Any] | None) -> bool:
+    """True where the rows' normal histories are normalised ones, scaled: Hertz, damped or
+    not (one history per damping at K = m = V0 = 1)."""
     from impactcli.laws.registry import get_law
 
-    return damping is None and not params and get_law(law).name == ELASTIC_LAW
+    return not params and get_law(law).name == ELASTIC_LAW
+
 
 #: The error of a row whose collision cannot be computed in double precision.
 _OUT_OF_RANGE = (
@@ -498,9 +583,10 @@ def _damped_pairs(s1, s2, u_n, rows):
 def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separation, row_e):
     """e and the normal history of each of ``rows`` (one FILM run per row; a given e (not
     NaN in ``row_e``) is Hertz with the Tsuji damping that gives it). Returns (e, (t,
-    delta, delta_dot, force) of the rows that ran, shape (k, points), and their impulse,
-    shape (k,), NaN where it is J_n), reasons)."""
+    delta, delta_dot, force) of the rows that ran, shape (k, points), and the impulse of
+    their F_n, shape (k,): J_n where the force never pulls), reasons)."""
     from impactcli.collision3d import normal_restitution_and_history, restitution_damping
+    from impactcli.contact import effective_mass
     from impactcli.impact import Sphere
 
     e = np.full(rows.size, np.nan)
@@ -543,7 +629,11 @@ def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separa
             continue
         for stack, array in zip(stacks, arrays):
             stack.append(array)
-        impulses.append(np.nan if history.impulse is None else float(history.impulse[0]))
+        if history.impulse is None:  # J_n = (1 + e) m u_n: the force never pulls
+            mass = effective_mass(s1["mass"][row], s2["mass"][row])
+            impulses.append(float((1.0 + e[k]) * mass * u_n[row]))
+        else:
+            impulses.append(float(history.impulse[0]))
     arrays = tuple(
         np.stack(s) if s else np.zeros((0, max(int(points), 2))) for s in stacks
     )
