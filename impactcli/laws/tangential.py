@@ -21,8 +21,10 @@ the initial slip direction, F_t the tangential force, m_t the tangential mass
   scaled; LAMMPS ``mindlin/force``.
 - ``mindlin-displacement``: the spring's displacement xi is integrated, xi' = u_t, and the
   force is the current stiffness times it, F_t = k_t xi (the force follows the stiffness up
-  and down); LAMMPS ``mindlin`` and the classic ``pair gran/hertz/history``. Chung & Ooi's
-  (2011) published curves of their test 4 are this form (docs/validation.md).
+  and down); LAMMPS ``mindlin`` and the classic ``pair gran/hertz/history``, LIGGGHTS's
+  ``tangential history`` and EDEM's Hertz-Mindlin (no slip), F_t = -S_t delta_t (both with
+  an optional tangential damping this tool does not have). Chung & Ooi's (2011) published
+  curves of their test 4 are this form (docs/validation.md).
 - ``mindlin-rescale``: F_t = k_t xi with the displacement scaled by a_new/a_old while the
   contact shrinks, xi' = u_t + min(a', 0) xi / a; LAMMPS ``mindlin_rescale``.
 - ``mindlin-deresiewicz``: Mindlin & Deresiewicz's (1953) partial slip with its loading
@@ -44,6 +46,9 @@ C. Thornton, S. J. Cummins, P. W. Cleary, Powder Technol. 210:189-197, 2011,
 doi:10.1016/j.powtec.2011.01.013.
 LAMMPS, src/GRANULAR/gran_sub_mod_tangential.cpp (GranSubModTangentialMindlin and its
 force and rescale variants), https://github.com/lammps/lammps.
+LIGGGHTS-PUBLIC, doc/gran_tangential_history (F_t = k_t u_t, u_t the integral of the
+tangential velocity at the contact point, capped by Coulomb), https://github.com/CFDEMproject.
+Altair EDEM, "Hertz-Mindlin (no slip) model" (F_t = -S_t delta_t, S_t = 8 G* sqrt(R* delta_n)).
 """
 
 from __future__ import annotations
@@ -132,6 +137,7 @@ TANGENTIAL_MODELS: dict[str, TangentialModel] = {
             "spring",
             "F_t = k_t xi, xi' = u_t, |F_t| <= mu F_n (xi = F_t/k_t in slip)",
             ("LAMMPS tangential mindlin", "LAMMPS pair gran/hertz/history",
+             "LIGGGHTS tangential history", "EDEM Hertz-Mindlin (no slip)",
              "Chung & Ooi 2011, test 4 reference curves"),  # fmt: skip
             lammps="mindlin",
             spring="displacement",
