@@ -45,8 +45,11 @@ CURVES_MODEL = "mindlin-displacement"
 #: Time points of each normal history: collide3d's default.
 POINTS = 4001
 #: How much a tabulated deviation may grow before the test fails (relative, and absolute in
-#: the quantity's own unit: rounding of the integration, not of the physics).
-GROWTH = (1e-6, 1e-9)
+#: the quantity's own unit: rounding of the integration, not of the physics). Relative 1e-4:
+#: Mindlin-Deresiewicz changes branch at the end of an interval, so an input changed at
+#: rounding level (Tsuji's alpha for e_n = 0.98 found from the damped tables instead of
+#: FILM) moved its deviations by up to 2e-5; the springs' moved by less than 1e-6.
+GROWTH = (1e-4, 1e-9)
 
 #: The materials of the tests: E [Pa], nu [-], rho [kg/m^3] (Chung & Ooi's Table 1).
 MATERIALS = {
