@@ -3,7 +3,8 @@
 ``make docs`` builds the site with warnings as errors (CI runs it); these tests hold what
 the build cannot see: every public name has an API page with numpydoc sections and units,
 every law module a page, every command a section of the CLI reference, each gallery script
-runs, the README's tables and the pages' copies agree, and CITATION.cff names this version.
+runs, each table the tests recompute is on one page only, and CITATION.cff names this
+version.
 """
 
 from __future__ import annotations
@@ -194,9 +195,10 @@ def test_each_gallery_script_runs_and_draws(script, monkeypatch):
     assert any(isinstance(value, Figure) for value in scope.values()), script.name
 
 
-# -- copies of the README's checked tables --------------------------------------------------
+# -- the checked tables, each on one page ----------------------------------------------------
 
-#: Marked blocks that the README's tests recompute, and the page that holds a copy.
+#: Marked blocks that tests recompute (or ``make bench WRITE=1`` writes), and the one page
+#: that holds each (the README, which held them all once, links to these pages).
 COPIES = {
     ("<!-- damping-tables:start -->", "<!-- damping-tables:end -->"): "guide/damping.md",
     ("<!-- law-restitution-table -->", "<!-- /law-restitution-table -->"): "guide/elastoplastic.md",
@@ -211,13 +213,14 @@ def _block(text: str, start: str, end: str) -> str | None:
 
 
 @pytest.mark.parametrize("markers,page", COPIES.items(), ids=list(COPIES.values()))
-def test_a_page_holds_the_readmes_checked_table_as_it_is(markers, page):
-    """While the README holds a table its tests recompute, the page's copy is the same."""
-    copy = _block((DOCS / page).read_text(), *markers)
-    assert copy is not None, page
-    original = _block((ROOT / "README.md").read_text(), *markers)
-    if original is not None:
-        assert copy == original, page
+def test_each_checked_table_is_on_its_page_and_nowhere_else(markers, page):
+    """The page holds the table its tests recompute; no other page and not the README holds
+    a copy that could drift from it."""
+    assert _block((DOCS / page).read_text(), *markers), page
+    others = [ROOT / "README.md", *(p for p in DOCS.rglob("*.md") if p != DOCS / page)]
+    for other in others:
+        if "_build" not in other.parts:
+            assert markers[0] not in other.read_text(), other
 
 
 # -- how to cite ------------------------------------------------------------------------------
@@ -239,13 +242,10 @@ def _layout_block(text: str) -> str:
     return text[start : text.index("```\n", start)]
 
 
-def test_the_layout_names_every_module_and_the_site_keeps_the_readmes_copy():
-    """README's '## Layout' and docs/about/layout.md hold the same block, and it names every
-    module and package of impactcli (a package's modules by their own line or its line)."""
-    readme = (ROOT / "README.md").read_text()
-    section = readme[readme.index("## Layout\n") :]
-    block = _layout_block(section)
-    assert block == _layout_block((DOCS / "about" / "layout.md").read_text())
+def test_the_layout_names_every_module():
+    """docs/about/layout.md (once the README's '## Layout') names every module and package
+    of impactcli (a package's modules by their own line or its line)."""
+    block = _layout_block((DOCS / "about" / "layout.md").read_text())
     package = ROOT / "impactcli"
     named = set()
     folder = None
