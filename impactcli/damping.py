@@ -1080,6 +1080,16 @@ def damping_for_restitution(
     Returns
     -------
     alpha, in the broadcast shape of the inputs ([-] or [s/m]).
+
+    Examples
+    --------
+    Tsuji's e depends on alpha alone, Hunt & Crossley's on alpha V0 (here at K = 1.25
+    N/m^1.5, m = 1 kg, where the Hertz maximum indentation is 1 m at V0 = 1 m/s):
+
+    >>> round(float(damping_for_restitution("tsuji", 0.8, 1.0, 1.25, 1.0)), 10)
+    0.1584261819
+    >>> round(float(damping_for_restitution("hunt-crossley", 0.8, 2.0, 1.25, 1.0)) * 2.0, 4)
+    0.2488
     """
     check_damping(name)
     e_t, v0, k, m = np.broadcast_arrays(

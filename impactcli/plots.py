@@ -119,11 +119,28 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = 150) -> No
     path : the target file; its extension chooses the format (:func:`figure_format`)
     dpi : resolution of a PNG, [1/inch]
 
+    Returns
+    -------
+    None
+        The file is written; nothing else is left beside it.
+
     Raises
     ------
     ValueError
         Unknown extension; or ``path`` is a folder or cannot be written
         (:class:`impactcli.errors.InputError`, from :func:`impactcli.output.atomic_output`).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from impactcli import Sphere, elastic_impact
+    >>> r = elastic_impact(Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel"),
+    ...                    5e-3, 7.5e-3)
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> save_figure(impact_figure(r.history(), "sec. 4.3"), folder / "sec43.svg")
+    >>> [(p.name, p.stat().st_size > 0) for p in folder.iterdir()]
+    [('sec43.svg', True)]
     """
     from impactcli.output import atomic_output
 
@@ -247,7 +264,10 @@ def impact_figure(
     (f) force against total indentation: one curve traversed twice when elastic, a loop
     ending at the permanent indentation when plastic, a loop through the origin (or ending
     at ``delta_separation``) under viscous damping, the force F(delta, delta') of the
-    history being higher while loading than while unloading.
+    history being higher while loading than while unloading. A third row, (g), draws the
+    energy partition against time when the history has its columns (``ke1``, ``ke2``,
+    ``strain_energy``, ``dissipated`` [J], as :meth:`impactcli.impact.ImpactResult.history`
+    gives them).
 
     Parameters
     ----------
@@ -270,6 +290,17 @@ def impact_figure(
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    The paper's sec. 4.3 impact (its Figs. 4-8, and the energy):
+
+    >>> from impactcli import Sphere, elastic_impact
+    >>> steel1, steel2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> r = elastic_impact(steel1, steel2, 5e-3, 7.5e-3)
+    >>> fig = impact_figure(r.history(), "sec. 4.3", summary=r.summary)
+    >>> len(fig.axes), fig.axes[5].get_title()
+    (7, '(f) Force against indentation')
     """
     h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
     ref = None if reference is None else {k: np.asarray(v, float) for k, v in reference.items()}

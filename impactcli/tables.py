@@ -114,7 +114,28 @@ def normalised_history(
 
 @input_errors
 def normalised_contact_duration(n: int, carry_velocity: bool = False) -> float:
-    """Normalised contact duration t_c V0/delta_m by FILM: loading plus restitution time."""
+    """Normalised contact duration t_c V0/delta_m by FILM: loading plus restitution time.
+
+    Parameters
+    ----------
+    n : FILM segments per stage
+    carry_velocity : start each segment with the velocity the one before ends with (the
+        scheme nearest the paper's printed n = 3 and 5, error falling as n^-2) instead of
+        the node velocities of the exact energy balance (eq. 13e)
+
+    Returns
+    -------
+    float
+        t_c V0 / delta_m, [-]: 2 (2/5) B(2/5, 1/2) = 2.9432752 in the limit of large n
+        (docs/method.md §5).
+
+    Examples
+    --------
+    >>> round(normalised_contact_duration(25), 5)
+    2.94325
+    >>> round(normalised_contact_duration(5, carry_velocity=True), 5)
+    2.93891
+    """
     return float(normalised_elastic(n, carry_velocity)[1].end_time)
 
 
@@ -127,6 +148,12 @@ def normalised_table(
     One row per node (delta_bar = r/n, r = 0..n in the stage's order), plus, if
     ``midpoint``, a row at the mid-time of the last loading segment (A1) or of the first
     restitution segment (A2), evaluated from that segment's closed form (eq. 7a,b).
+
+    Parameters
+    ----------
+    n : FILM segments per stage (the paper's tables: 25)
+    stage : ``loading`` (Table A1) or ``restitution`` (Table A2)
+    midpoint : add the paper's mid-segment row
 
     Returns
     -------

@@ -9,6 +9,8 @@ version.
 
 from __future__ import annotations
 
+import ast
+import importlib
 import inspect
 import re
 import runpy
@@ -39,10 +41,54 @@ def autosummary_entries(page: Path) -> list[str]:
     return names
 
 
+#: The functions of the task modules on the API reference (listed there as ``module.name``
+#: after the names of ``impactcli.__all__``), by their full dotted names.
+TASK_FUNCTIONS = [
+    f"impactcli.{n}" for n in autosummary_entries(DOCS / "reference" / "api.rst") if "." in n
+]
+
+
+def _resolve(name: str):
+    """``impactcli.NAME`` or, for a dotted name, the attribute of its module."""
+    if "." not in name:
+        return getattr(impactcli, name)
+    module, _, attribute = name.rpartition(".")
+    return getattr(importlib.import_module(module), attribute)
+
+
 def test_every_public_name_has_a_page_in_the_api_reference():
     listed = autosummary_entries(DOCS / "reference" / "api.rst")
-    assert sorted(listed) == sorted(impactcli.__all__)
+    assert sorted(n for n in listed if "." not in n) == sorted(impactcli.__all__)
     assert len(listed) == len(set(listed))
+    assert TASK_FUNCTIONS and all(n.startswith("impactcli.") for n in TASK_FUNCTIONS)
+
+
+def _imported_names(code: str) -> list[tuple[str, str]]:
+    """(module, name) of each ``from impactcli... import name`` of a block of Python."""
+    found = []
+    for node in ast.walk(ast.parse(code)):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("impactcli"):
+            found += [(node.module, alias.name) for alias in node.names]
+    return found
+
+
+def test_every_name_the_readme_and_the_guide_import_has_a_reference_page():
+    """A name the README, Getting started or a guide page imports from impactcli is one of
+    ``impactcli.__all__`` (under any module that defines it) or a task-module function of
+    the API reference: what the pages teach, the reference documents."""
+    from tests.test_readme import code_blocks
+
+    pages = [ROOT / "README.md", DOCS / "getting-started.md", *sorted(DOCS.glob("guide/*.md"))]
+    public = {id(getattr(impactcli, name)) for name in impactcli.__all__}
+    imported = set()
+    for page in pages:
+        for lang, _, body in code_blocks(page.read_text()):
+            if lang == "python":
+                imported.update(_imported_names("\n".join(body)))
+    assert len(imported) > 10
+    for module, name in sorted(imported):
+        thing = _resolve(f"{module}.{name}")
+        assert id(thing) in public or f"{module}.{name}" in TASK_FUNCTIONS, (module, name)
 
 
 def test_every_law_module_has_a_page():
@@ -93,9 +139,9 @@ QUANTITIES = {
 UNIT = re.compile(r"\[(-|m|m/s|kg|Pa|s|s/m|rad/s|kg/m\^3|kg m\^2|N|J)\]")
 
 
-@pytest.mark.parametrize("name", impactcli.__all__)
+@pytest.mark.parametrize("name", [*impactcli.__all__, *TASK_FUNCTIONS])
 def test_each_public_name_has_numpydoc_parameters_with_units_returns_and_examples(name):
-    thing = getattr(impactcli, name)
+    thing = _resolve(name)
     sections = numpydoc_sections(inspect.getdoc(thing) or "")
     assert "Examples" in sections and ">>> " in sections["Examples"], name
     # a result type documents its fields as Attributes
