@@ -593,11 +593,32 @@ def prediction_band(
     for N - p degrees of freedom (Seber & Wild 1989, Nonlinear Regression, sec. 5.1). NaN
     where the parameters are not determined.
 
+    Parameters
+    ----------
+    result : a fit (:func:`fit_law`, :func:`fit_named_law`)
+    model : the model it used (:func:`fit_named_law` returns it)
+    impact_velocity : V0 of the curve, [m/s]
+    fixed : values of parameters not fitted, SI (as for :func:`law_model`)
+    level : the confidence level of the band, [-]
+
     Returns
     -------
     dict
         ``impact_velocity`` [m/s], ``restitution``, ``lower``, ``upper`` [-] and
         ``contact_time`` [s]
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> v0 = np.array([0.5, 1.0, 2.0, 4.0])
+    >>> e = law_model(s1, s2, "du-wang")({"sy": 0.8e9}, v0)["restitution"]
+    >>> data = FitData(v0, e + [0.002, -0.003, 0.001, -0.002])
+    >>> fit, model = fit_named_law(s1, s2, "du-wang", data)
+    >>> band = prediction_band(fit, model, [1.0, 3.0])
+    >>> bool(np.all((band["lower"] < band["restitution"]) & (band["restitution"] < band["upper"])))
+    True
     """
     v0 = np.asarray(impact_velocity, dtype=float).reshape(-1)
     fixed = dict(fixed or {})

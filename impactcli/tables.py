@@ -100,6 +100,17 @@ def normalised_history(
     Returns
     -------
     (t V0/delta_m, delta/delta_m) [-], each of length ``points + 1`` with NaN at the break
+
+    Examples
+    --------
+    One segment per stage turns at delta/delta_m = 2/sqrt(5), short of the node 1 where
+    restitution starts:
+
+    >>> import numpy as np
+    >>> t, delta = normalised_history(1, 2001)
+    >>> loading = delta[: int(np.argmax(np.isnan(delta)))]  # up to the NaN at the break
+    >>> len(t), round(float(loading.max()), 3)
+    (2002, 0.894)
     """
     loading, restitution = normalised_elastic(n, carry_velocity)
     solution = FilmSolution((loading, restitution))
@@ -223,6 +234,18 @@ def convergence(ns: list[int], carry_velocity: bool = False) -> list[Convergence
 
     The observed order between successive n is log(e_prev/e)/log(n/n_prev) on the absolute
     errors; ``ns`` is used in the order given.
+
+    Parameters
+    ----------
+    ns : the segment counts n per stage, each >= 1
+    carry_velocity : as in :func:`normalised_contact_duration`
+
+    Returns
+    -------
+    list of ConvergenceRow
+        For each n: the loading time and the contact duration t V0/delta_m, [-], the
+        contact duration's error relative to the exact one, [-], and the observed order
+        (NaN for the first n).
 
     Examples
     --------

@@ -72,10 +72,11 @@ def _imported_names(code: str) -> list[tuple[str, str]]:
     return found
 
 
-def test_every_name_the_readme_and_the_guide_import_has_a_reference_page():
-    """A name the README, Getting started or a guide page imports from impactcli is one of
-    ``impactcli.__all__`` (under any module that defines it) or a task-module function of
-    the API reference: what the pages teach, the reference documents."""
+def test_every_name_the_readme_the_guide_and_the_gallery_import_has_a_reference_page():
+    """A name the README, Getting started, a guide page or a gallery script imports from
+    impactcli is one of ``impactcli.__all__`` (under any module that defines it) or a
+    task-module function of the API reference: what the pages teach, the reference
+    documents."""
     from tests.test_readme import code_blocks
 
     pages = [ROOT / "README.md", DOCS / "getting-started.md", *sorted(DOCS.glob("guide/*.md"))]
@@ -85,7 +86,9 @@ def test_every_name_the_readme_and_the_guide_import_has_a_reference_page():
         for lang, _, body in code_blocks(page.read_text()):
             if lang == "python":
                 imported.update(_imported_names("\n".join(body)))
-    assert len(imported) > 10
+    for script in EXAMPLES:
+        imported.update(_imported_names(script.read_text()))
+    assert len(imported) > 20
     for module, name in sorted(imported):
         thing = _resolve(f"{module}.{name}")
         assert id(thing) in public or f"{module}.{name}" in TASK_FUNCTIONS, (module, name)

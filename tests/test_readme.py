@@ -158,9 +158,11 @@ def _environment(work: Path) -> dict[str, str]:
 
 
 def test_the_readme_starts_with_make_run_and_make_test():
+    """The README's two commands; its test command is the one CI runs (.ci/run)."""
     assert [command.split("#")[0].strip() for _, command in COMMANDS[:2]] == [
         "make run", "make test"
     ]  # fmt: skip
+    assert re.search(r"^make test\s*$", (ROOT / ".ci" / "run").read_text(), re.M)
 
 
 def test_commands_were_found():
