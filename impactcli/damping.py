@@ -724,6 +724,16 @@ def solve_damped_impact(
     -----
     Accuracy is second order in 1/n for e, contact time, delta_max and t_max
     (tests/test_damping.py).
+
+    Examples
+    --------
+    Tsuji's damping with alpha = 0.3 (K = 1.25 N/m^1.5, m = 1 kg, V0 = 1 m/s: the Hertz
+    maximum indentation is 1 m), whose e is exp(-pi alpha / sqrt(5 - alpha^2)):
+
+    >>> from impactcli.laws.registry import DAMPING_LAWS
+    >>> sol = solve_damped_impact(DAMPING_LAWS["tsuji"].of(1.25, 1.0, 0.3), 1.0, 1.0)
+    >>> round(float(sol.restitution), 6), round(float(sol.contact_time), 4)
+    (0.653551, 3.0946)
     """
     n = check_size("n", n, MAX_SEGMENTS)
     check_damping(separation=separation)
