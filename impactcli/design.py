@@ -108,6 +108,11 @@ def rayleigh_time_step(
     poisson_ratio : nu, [-]
     density : rho, [kg/m^3]
 
+    Returns
+    -------
+    NDArray
+        T_R, [s], in the broadcast shape of the inputs.
+
     Examples
     --------
     A 2 mm steel sphere (E = 210 GPa, nu = 0.3, rho = 7800 kg/m^3):
@@ -141,6 +146,11 @@ def hertz_contact_time(
     radius : effective radius R, [m]
     modulus : effective modulus E*, [Pa]
     impact_velocity : V0 > 0, [m/s]
+
+    Returns
+    -------
+    NDArray
+        t_c, [s], in the broadcast shape of the inputs.
 
     Examples
     --------

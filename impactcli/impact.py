@@ -898,6 +898,16 @@ def integrate_impact(result: ImpactResult) -> dict[str, float]:
     properties, delta_y, yield velocities) are the closed forms. The integration is
     :attr:`ImpactResult.ode`, done once per result.
 
+    Parameters
+    ----------
+    result : an impact of this library (:func:`solve_impact`, any contact model)
+
+    Returns
+    -------
+    dict
+        The keys of ``result.summary``, in SI (times [s], lengths [m], velocities [m/s],
+        forces [N], energies [J], e [-]), from the integration.
+
     Examples
     --------
     >>> steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)

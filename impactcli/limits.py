@@ -1,7 +1,7 @@
 """Limits on the sizes of a run, so that every run fits in a few GB of memory.
 
-Measured peak memory (resident set) of one run at the limits below (README, "Limits on
-sizes"), about:
+Measured peak memory (resident set) of one run at the limits below (docs/about/guarantees.md,
+"Limits on sizes and memory"), about:
 
 - 650 bytes per FILM segment per stage for ``elastoplastic --n`` (6.5 GB at 10^7), 600 for
   ``elastic --damping`` (5.7 GB), 440 for ``elastic --n`` (4.4 GB), 260 for ``tables --n``
