@@ -63,6 +63,7 @@ from impactcli.film import FilmSolution
 from impactcli.laws.registry import DEFAULT_LAW
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.model import DAMPED_DEFAULT_N, ContactModel, DampedPair, PairModel
+from impactcli.pairs import SPLITS, SpherePairs, Split, split_fractions
 from impactcli.solution import ContactSolution, PlanSolution, solve_plan
 from impactcli.validation import (
     finite_float,
@@ -181,8 +182,6 @@ PLASTIC_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "energy_dissipated",
 )
 
-Split = Literal["mass", "compliance", "yield"]
-SPLITS: tuple[str, ...] = ("mass", "compliance", "yield")
 Method = Literal["film", "table", "ode"]
 
 
@@ -700,73 +699,30 @@ def weaker_yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
     return min(known) if known else None
 
 
-def split_fractions(
-    split: Split,
-    m1: ArrayLike,
-    m2: ArrayLike,
-    compliance1: ArrayLike,
-    compliance2: ArrayLike,
-    yield_strength1: ArrayLike = np.nan,
-    yield_strength2: ArrayLike = np.nan,
-    permanent: bool = False,
-) -> tuple[NDArray, NDArray]:
-    """delta_i / delta for each sphere, [-]; arrays broadcast.
-
-    ``mass``: the paper's contact plane, delta_i = (m/m_i) delta (eq. 4, docs/method.md §2);
-    ``compliance``: Hertz, delta_i proportional to (1 - nu_i^2)/E_i, [1/Pa];
-    ``yield``: the recoverable part delta - delta_p by compliance, the permanent part
-    delta_p to the sphere that yields, delta_i = e_i (delta - delta_p) + p_i delta_p
-    (docs/method.md §12). With ``permanent=False`` the shares e_i of the recoverable part
-    are returned, with ``permanent=True`` the shares p_i of delta_p
-    (:func:`impactcli.energy.permanent_fractions`: the weaker sphere; none to a sphere
-    without a yield strength, NaN; by compliance within 2 %). For ``mass`` and
-    ``compliance`` both are the same.
-    """
-    if split == "mass":
-        m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
-        m = effective_mass(m1, m2)
-        return m / m1, m / m2
-    c1, c2 = np.asarray(compliance1, dtype=float), np.asarray(compliance2, dtype=float)
-    if split == "compliance" or (split == "yield" and not permanent):
-        return c1 / (c1 + c2), c2 / (c1 + c2)
-    if split == "yield":
-        from impactcli.energy import permanent_fractions
-
-        return permanent_fractions(yield_strength1, yield_strength2, c1, c2)
-    raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
-
-
 def impact_summary(
-    v1: ArrayLike,
-    v2: ArrayLike,
-    m1: ArrayLike,
-    m2: ArrayLike,
-    radius: ArrayLike,
-    modulus: ArrayLike,
+    pairs: SpherePairs,
     plan: ImpactPlan,
     t_max: ArrayLike,
     contact_time: ArrayLike,
     fractions: tuple[ArrayLike, ArrayLike],
-    yield_strength: ArrayLike | None = None,
     permanent: tuple[ArrayLike, ArrayLike] | None = None,
 ) -> dict[str, NDArray]:
     """The summary of impacts (:data:`ELASTIC_SUMMARY_KEYS`), SI, from their plans and times.
 
-    Shared by :func:`elastic_impact` (floats) and :mod:`impactcli.batch` (one entry per
+    Shared by :func:`elastic_impact` (one pair) and :mod:`impactcli.batch` (one entry per
     collision); every argument broadcasts.
 
     Parameters
     ----------
-    v1, v2 : velocities toward the other sphere, [m/s]
-    m1, m2 : masses, [kg] (``inf`` for a fixed sphere)
-    radius, modulus : effective radius R [m] and modulus E* [Pa]
+    pairs : the spheres and their velocities toward each other
+        (:class:`~impactcli.pairs.SpherePairs`: masses [kg], ``inf`` for a fixed sphere;
+        effective radius R [m] and modulus E* [Pa]; sigma_y [Pa] of the first-yield
+        velocity, NaN where unknown)
     plan : closed-form values ``delta_max`` [m], ``force_max`` [N], ``delta_res`` [m] and
         ``restitution`` [-] (an :class:`~impactcli.contact.ImpactPlan`)
     t_max : time of maximum indentation (end of the last loading stage), [s]
     contact_time : time of separation, [s]
     fractions : delta_i / delta of each sphere (:func:`split_fractions`), [-]
-    yield_strength : sigma_y for the first-yield velocity, [Pa] (NaN where unknown); the key
-        is left out when ``None``
     permanent : shares p_i of the permanent indentation (``split="yield"``); default
         ``fractions``: then delta_i_max = f_i delta_max, else
         e_i (delta_max - delta_res) + p_i delta_res
@@ -776,10 +732,9 @@ def impact_summary(
     At separation delta = delta_res and delta' = -e V0 (exact node values, eq. 13e), so by
     eq. 12: d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
     """
-    v1, v2 = np.asarray(v1, dtype=float), np.asarray(v2, dtype=float)
-    m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
-    m = effective_mass(m1, m2)
-    r1, r2 = m / m1, m / m2
+    v1, v2 = pairs.v1, pairs.v2
+    m = pairs.m
+    r1, r2 = m / pairs.mass1, m / pairs.mass2
     f1, f2 = fractions
     v0 = v1 + v2
     t_c = np.asarray(contact_time, dtype=float)
@@ -800,15 +755,16 @@ def impact_summary(
         "delta2_max": f2 * delta_max,
         "restitution": restitution,
         "effective_mass": m,
-        "effective_radius": np.asarray(radius, dtype=float),
-        "effective_modulus": np.asarray(modulus, dtype=float),
+        "effective_radius": pairs.radius,
+        "effective_modulus": pairs.modulus,
     }
     if permanent is not None:
         p1, p2 = permanent
         summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
         summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
-    if yield_strength is not None:
-        summary["first_yield_velocity"] = first_yield_velocity(m, radius, modulus, yield_strength)
+    summary["first_yield_velocity"] = first_yield_velocity(
+        m, pairs.radius, pairs.modulus, pairs.sigma_y
+    )
     return summary
 
 
@@ -840,8 +796,6 @@ def plastic_summary(
 
 def _summarise(
     result: ImpactResult,
-    r: float,
-    e: float,
     plan: ImpactPlan,
     t_max: float,
     contact_time: float,
@@ -851,20 +805,17 @@ def _summarise(
     force_max, delta_res and e and the times t_max, t_c [s] of FILM or of the integration;
     delta_res shared by :attr:`ImpactResult.permanent_fractions` if ``permanent``, else as
     delta."""
+    pairs = SpherePairs.from_spheres(result.sphere1, result.sphere2, result.v1, result.v2)
     summary = impact_summary(
-        result.v1,
-        result.v2,
-        result.m1,
-        result.m2,
-        r,
-        e,
+        pairs,
         plan,
         t_max,
         contact_time,
         result.split_fractions,
-        weaker_yield_strength(result.sphere1, result.sphere2),
         result.permanent_fractions if permanent else None,
     )
+    if np.isnan(pairs.sigma_y):  # no yield strength: no first-yield velocity
+        del summary["first_yield_velocity"]
     return {key: float(value) for key, value in summary.items()}
 
 
@@ -872,7 +823,6 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     """The summary of ``result``'s impact from ``solution`` (FILM's or the integration's):
     the elastic keys (:func:`impact_summary`, with the indentation at separation as
     delta_res), then the keys of the model's kind (:meth:`impactcli.model.PairModel.summary`)."""
-    m, r, e = effective_properties(result.sphere1, result.sphere2)
     values = ImpactPlan(
         (),
         np.asarray(solution.delta_max),
@@ -882,7 +832,7 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     )
     pair = result.contact
     out = _summarise(
-        result, r, e, values, solution.t_max, solution.end_time, permanent=pair.permanent
+        result, values, solution.t_max, solution.end_time, permanent=pair.permanent
     )
     out.update(pair.summary(result, solution))
     return out

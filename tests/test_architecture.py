@@ -43,6 +43,7 @@ LIBRARY = (
     "impactcli.materials",
     "impactcli.validation",
     "impactcli.spheres",
+    "impactcli.pairs",
     "impactcli.errors",
     "impactcli.formatting",
     "impactcli.io.table",
