@@ -74,6 +74,8 @@ LIBRARY = (
     "impactcli.damping_tables",
     "impactcli.io.allocator",
     "impactcli.io.collisions3d",
+    "impactcli.io.partitions",
+    "impactcli.rows",
     "impactcli.output",
     "impactcli.plots",
 )
