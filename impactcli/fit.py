@@ -534,10 +534,11 @@ def law_model(
                 f"law {law!r} has no parameter {sorted(unknown)[0]!r} (accepted: {accepted})"
             )
         from impactcli.model import ContactModel
+        from impactcli.sweep import model_restitution
 
         contact = ContactModel.named(law, declared.run_parameters(p), p.get("sy"))
         pair = contact.for_spheres(sphere1, sphere2)
-        e, t_c = pair.restitution(np.asarray(v0, dtype=float), segments)
+        e, t_c = model_restitution(pair, np.asarray(v0, dtype=float), segments)
         return {"restitution": e, "contact_time": t_c}
 
     return model

@@ -52,8 +52,6 @@ from impactcli.contact import (
     DU_WANG_PRESSURE_FACTOR,
     ImpactPlan,
     effective_mass,
-    effective_modulus,
-    effective_radius,
     first_yield_velocity,
     sphere_compliance,
     sphere_mass,
@@ -62,8 +60,21 @@ from impactcli.errors import InputError
 from impactcli.film import FilmSolution
 from impactcli.laws.registry import DEFAULT_LAW
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
-from impactcli.model import DAMPED_DEFAULT_N, ContactModel, DampedPair, PairModel
-from impactcli.pairs import SPLITS, SpherePairs, Split, split_fractions
+from impactcli.model import (
+    DAMPED_DEFAULT_N,
+    ContactModel,
+    DampedPair,
+    PairModel,
+    solution_energy_summary,
+)
+from impactcli.pairs import (
+    SPLITS,
+    SpherePairs,
+    Split,
+    effective_properties,
+    split_fractions,
+    weaker_yield_strength,
+)
 from impactcli.solution import ContactSolution, PlanSolution, solve_plan
 from impactcli.validation import (
     finite_float,
@@ -677,28 +688,6 @@ def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -
     )
 
 
-def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
-    """Effective mass m [kg], radius R [m] and modulus E* [Pa] of the pair (paper eq. 2,
-    docs/method.md §1)."""
-    m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
-    r = float(effective_radius(sphere1.radius, sphere2.radius))
-    e = float(
-        effective_modulus(
-            sphere1.youngs_modulus,
-            sphere1.poisson_ratio,
-            sphere2.youngs_modulus,
-            sphere2.poisson_ratio,
-        )
-    )
-    return m, r, e
-
-
-def weaker_yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
-    """sigma_y of the sphere that yields first: the lower of the known ones."""
-    known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
-    return min(known) if known else None
-
-
 def impact_summary(
     pairs: SpherePairs,
     plan: ImpactPlan,
@@ -866,51 +855,6 @@ def energy_summary(result: ImpactResult, method: str = "film") -> dict[str, floa
     FILM's solution or (``method="ode"``) the integration's: :func:`solution_energy_summary`.
     """
     return solution_energy_summary(result, result.ode if method == "ode" else result.solution)
-
-
-def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> dict[str, float]:
-    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact from ``solution``, SI
-    (docs/method.md §12).
-
-    Kinetic energy of each sphere before and at separation [J]; the energy dissipated in
-    each sphere, p_i (1/2) m V0^2 (1 - e^2) [J]; the share of the initial relative kinetic
-    energy (1/2) m V0^2 that each sphere holds at maximum compression, as recoverable strain
-    energy (``stored_share``: e_i W_r(delta_max) / ((1/2) m V0^2); both add up to e^2) and
-    in all (``absorbed_share``: stored plus dissipated; both add up to 1) [-]; and the
-    impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
-    without a yield strength: :func:`impactcli.design.first_yield_velocities`).
-    """
-    from impactcli.design import first_yield_velocities
-    from impactcli.energy import kinetic_energy
-
-    m, r, e_star = effective_properties(result.sphere1, result.sphere2)
-    v0 = result.impact_velocity
-    relative = 0.5 * m * v0 * v0
-    restitution, delta_max = _first(solution.restitution), _first(solution.delta_max)
-    e1, e2 = result.split_fractions
-    p1, p2 = result.permanent_fractions
-    r1, r2 = result.mass_ratios
-    stored = min(_first(result.contact_model.recoverable_work(np.array([delta_max]))), relative)
-    lost = relative * (1.0 - restitution**2)
-    v1_final = result.v1 - r1 * (1.0 + restitution) * v0
-    v2_final = result.v2 - r2 * (1.0 + restitution) * v0
-    fy1, fy2 = first_yield_velocities(
-        m, r, e_star, result.sphere1.yield_strength, result.sphere2.yield_strength
-    )
-    return {
-        "kinetic_energy1_initial": float(kinetic_energy(result.m1, result.v1)),
-        "kinetic_energy2_initial": float(kinetic_energy(result.m2, result.v2)),
-        "kinetic_energy1_final": float(kinetic_energy(result.m1, v1_final)),
-        "kinetic_energy2_final": float(kinetic_energy(result.m2, v2_final)),
-        "energy_dissipated1": p1 * lost,
-        "energy_dissipated2": p2 * lost,
-        "stored_share1": e1 * stored / relative,
-        "stored_share2": e2 * stored / relative,
-        "absorbed_share1": (e1 * stored + p1 * (relative - stored)) / relative,
-        "absorbed_share2": (e2 * stored + p2 * (relative - stored)) / relative,
-        "first_yield_velocity1": float(fy1),
-        "first_yield_velocity2": float(fy2),
-    }
 
 
 def _check_yield_split(result: ImpactResult) -> None:

@@ -34,7 +34,14 @@ from impactcli.validation import flat_floats
 if TYPE_CHECKING:
     from impactcli.impact import Sphere
 
-__all__ = ["SPLITS", "Split", "SpherePairs", "split_fractions"]
+__all__ = [
+    "SPLITS",
+    "Split",
+    "SpherePairs",
+    "effective_properties",
+    "split_fractions",
+    "weaker_yield_strength",
+]
 
 #: How the indentation is shared between the spheres (docs/method.md §2, §12).
 Split = Literal["mass", "compliance", "yield"]
@@ -79,6 +86,29 @@ def split_fractions(
     if split == "yield":
         return permanent_fractions(yield_strength1, yield_strength2, c1, c2)
     raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
+
+
+def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
+    """Effective mass m [kg], radius R [m] and modulus E* [Pa] of the pair (paper eq. 2,
+    docs/method.md §1)."""
+    m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
+    r = float(effective_radius(sphere1.radius, sphere2.radius))
+    e = float(
+        effective_modulus(
+            sphere1.youngs_modulus,
+            sphere1.poisson_ratio,
+            sphere2.youngs_modulus,
+            sphere2.poisson_ratio,
+        )
+    )
+    return m, r, e
+
+
+def weaker_yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
+    """sigma_y of the sphere that yields first: the lower of the known ones."""
+    known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
+    return min(known) if known else None
+
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ Hertz impact: contact time, maximum indentation and force against V0 (e = 1).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -32,7 +32,10 @@ from impactcli.validation import (
     renamed_p0_factor,
 )
 
-__all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
+if TYPE_CHECKING:
+    from impactcli.model import PairModel
+
+__all__ = ["SWEEP_COLUMNS", "model_restitution", "restitution_sweep", "sweep_yield_velocity"]
 
 SWEEP_COLUMNS: tuple[str, ...] = (
     "impact_velocity",
@@ -150,6 +153,21 @@ def restitution_sweep(
     out["energy_dissipated"] = 0.5 * m * v0**2 * (1.0 - out["restitution"] ** 2)
     out["plastic"] = plastic.astype(float)
     return out
+
+
+def model_restitution(pair: PairModel, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
+    """e [-] and contact time [s] at each V0 [m/s] of a contact model bound to a pair of
+    spheres (:meth:`impactcli.model.ContactModel.for_spheres`), vectorised FILM with n
+    segments per stage: :func:`restitution_sweep` of a normal law (the elastic and the
+    plastic impacts each one batch), the damped FILM of a damping model (e = 0 and an
+    infinite time for a contact that never ends)."""
+    if pair.model.damping is not None:
+        return pair.restitution(velocities, n)
+    sweep = restitution_sweep(
+        pair.sphere1, pair.sphere2, velocities, n, yield_strength=pair.model.yield_strength,
+        law=pair.spec.name, law_params=dict(pair.model.law_params),
+    )  # fmt: skip
+    return sweep["restitution"], sweep["contact_time"]
 
 
 def sweep_yield_velocity(
