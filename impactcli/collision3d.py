@@ -89,7 +89,7 @@ particle impact level", Granular Matter 13:643-656, 2011, doi:10.1007/s10035-011
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -110,6 +110,7 @@ __all__ = [
     "check_contact_distance",
     "collision_summary",
     "contact_distance_problem",
+    "contact_normal",
     "NormalHistory",
     "NormalLaw",
     "effective_shear_modulus",
@@ -118,6 +119,7 @@ __all__ = [
     "oblique_collision_3d",
     "oblique_impact",
     "reference_tangent",
+    "sphere_collision_3d",
     "velocity_from_angles",
 ]
 
@@ -1283,3 +1285,101 @@ def collision_summary(c: Collision3D) -> dict[str, Array]:
         "energy_dissipated2_friction": energy2["friction"],
     }
     return {key: np.asarray(out[key], dtype=float) for key in SUMMARY_KEYS}
+
+
+@input_errors
+def sphere_collision_3d(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    motion: Mapping[str, ArrayLike],
+    normal_law: Mapping[str, Any] | None = None,
+    restitution: float | None = None,
+    mu: float = 0.0,
+    tangential: str = "rigid",
+    points: int = 4001,
+) -> tuple[Collision3D, NormalHistory | None]:
+    """One oblique collision of two :class:`~impactcli.impact.Sphere` (``impact collide3d``):
+    the normal law run as a head-on impact at the normal approach velocity u_n
+    (:func:`normal_restitution_and_history`), then :func:`oblique_collision_3d`.
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (masses, diameters, G* from E and nu)
+    motion : ``v1``, ``v2`` [m/s], ``p1``, ``p2`` [m] (centres at contact) and, optionally,
+        ``w1``, ``w2`` [rad/s] (default 0), each (x, y, z)
+    normal_law : the keywords of :func:`normal_restitution_and_history` (``law``,
+        ``params``, ``damping``, ``alpha``, ``separation``, ``n``); default Hertz
+    restitution : a given e [-] instead of the normal law (``rigid`` only)
+    mu : Coulomb friction coefficient, [-]
+    tangential : ``rigid`` or ``mindlin``
+    points : time points of the normal history of ``mindlin``
+
+    Returns
+    -------
+    tuple
+        The :class:`Collision3D` (one collision; with the normal law's ``warnings``) and
+        the :class:`NormalHistory` of ``mindlin`` (None for ``rigid``).
+
+    Raises
+    ------
+    ValueError
+        Spheres that do not approach along the line of centres (u_n <= 0, with n), and the
+        faults of the normal law and of :func:`oblique_collision_3d`.
+
+    Examples
+    --------
+    Chung & Ooi (2011), test 4: an alumina sphere on a rigid plane at 3.9 m/s, 30 deg.
+
+    >>> from impactcli.impact import Sphere
+    >>> ball = Sphere(5e-3, 380e9, 0.23, 4000.0)
+    >>> plane = Sphere(np.inf, np.inf, 0.0, mass=np.inf)
+    >>> s, c = np.sin(np.radians(30.0)), np.cos(np.radians(30.0))
+    >>> motion = {"v1": (3.9 * s, 0, -3.9 * c), "v2": (0, 0, 0), "p1": (0, 0, 0),
+    ...           "p2": (0, 0, -1)}
+    >>> collision, _ = sphere_collision_3d(ball, plane, motion, mu=0.092)
+    >>> bool(collision.stuck), round(float(collision.restitution), 6)
+    (True, 1.0)
+    """
+    v1, v2, p1, p2 = (np.asarray(motion[k], dtype=float) for k in ("v1", "v2", "p1", "p2"))
+    w1, w2 = (np.asarray(motion.get(k, (0.0, 0.0, 0.0)), dtype=float) for k in ("w1", "w2"))
+    n = contact_normal(p1, p2)
+    u_n = float(np.dot(v1 - v2, n))
+    if not u_n > 0.0:
+        raise ValueError(
+            f"the spheres are not approaching along the line of centres: (v1 - v2).n = "
+            f"{u_n:.6g} m/s with n = ({n[0]:.6g}, {n[1]:.6g}, {n[2]:.6g}) from sphere 1 to "
+            "sphere 2 (an impact needs > 0)"
+        )
+    mindlin = tangential == "mindlin"
+    history = shear = None
+    warned: tuple[str, ...] = ()
+    if restitution is None:
+        normal = normal_restitution_and_history(
+            sphere1, sphere2, u_n, **dict(normal_law or {}), points=points if mindlin else None
+        )
+        restitution, history = normal
+        warned = normal.warnings
+    if mindlin:
+        shear = effective_shear_modulus(
+            sphere1.youngs_modulus, sphere1.poisson_ratio, sphere2.youngs_modulus,
+            sphere2.poisson_ratio,
+        )  # fmt: skip
+    collision = oblique_collision_3d(
+        sphere1.total_mass, sphere2.total_mass, v1, v2, p1, p2, sphere1.diameter,
+        sphere2.diameter, w1, w2, restitution, mu, tangential, history=history,
+        shear_modulus=shear, warnings=warned,
+    )  # fmt: skip
+    return collision, history
+
+
+def contact_normal(p1: ArrayLike, p2: ArrayLike) -> NDArray:
+    """The unit normal n = (p2 - p1)/|p2 - p1| from sphere 1 to sphere 2, [-]; a ValueError
+    when the centres coincide.
+
+    >>> contact_normal((0, 0, 0), (0, 0, -2)).tolist()
+    [0.0, 0.0, -1.0]
+    """
+    d = np.subtract(np.asarray(p2, dtype=float), np.asarray(p1, dtype=float))
+    if not np.any(d != 0.0):
+        raise ValueError("the centres p1 and p2 coincide: no line of centres")
+    return d / np.linalg.norm(d)

@@ -106,6 +106,7 @@ __all__ = [
     "check_pair",
     "damped_impact",
     "damped_restitution_sweep",
+    "damping_alpha",
     "elastic_impact",
     "effective_properties",
     "elastoplastic_impact",
@@ -1312,6 +1313,38 @@ def damped_restitution_sweep(
         "plastic": zero.copy(),
         "delta_separation": np.asarray(sol.delta_separation, dtype=float),
     }
+
+
+@input_errors
+def damping_alpha(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    damping: str,
+    restitution: float,
+    impact_velocity: float,
+    n: int = DAMPED_DEFAULT_N,
+    separation: str = "overlap",
+) -> float:
+    """The alpha of the damping model ``damping`` that gives the coefficient of restitution
+    e [-] to the impact of this pair at V0 [m/s]: the pair's damped model solved for it by
+    FILM with n segments (:func:`impactcli.damping.damping_for_restitution`). For a model
+    whose e does not depend on V0 (``self_similar``) it is the alpha of e at every V0.
+
+    Returns
+    -------
+    float
+        alpha in the unit of the model ([-] for ``tsuji``, [s/m] for ``hunt-crossley``).
+
+    Examples
+    --------
+    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> round(damping_alpha(*steel, "tsuji", 0.8, 1.0), 6)
+    0.158426
+    """
+    model = ContactModel(damping=damping, restitution=restitution, separation=separation)
+    pair = model.for_spheres(sphere1, sphere2)
+    assert isinstance(pair, DampedPair)
+    return float(pair.alpha(impact_velocity, n))
 
 
 def __getattr__(name: str):

@@ -26,6 +26,7 @@ from impactcli.impact import (
 from impactcli.laws.registry import DEFAULT_LAW, get_law, plan_groups
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.validation import (
+    contact_radius_warning,
     input_errors,
     plastic_range_problems,
     raise_first,
@@ -35,7 +36,14 @@ from impactcli.validation import (
 if TYPE_CHECKING:
     from impactcli.model import PairModel
 
-__all__ = ["SWEEP_COLUMNS", "model_restitution", "restitution_sweep", "sweep_yield_velocity"]
+__all__ = [
+    "SWEEP_COLUMNS",
+    "model_restitution",
+    "restitution_sweep",
+    "sweep_contact_warning",
+    "sweep_is_elastic",
+    "sweep_yield_velocity",
+]
 
 SWEEP_COLUMNS: tuple[str, ...] = (
     "impact_velocity",
@@ -170,6 +178,16 @@ def model_restitution(pair: PairModel, velocities: ArrayLike, n: int) -> tuple[N
     return sweep["restitution"], sweep["contact_time"]
 
 
+def sweep_contact_warning(
+    sphere1: Sphere, sphere2: Sphere, velocities: ArrayLike, delta_max: ArrayLike
+) -> str | None:
+    """The warning of a sweep (``impact restitution``) whose contact radius sqrt(R delta_max)
+    leaves the small-deformation range at some V0 [m/s], delta_max [m] of each
+    (:func:`impactcli.validation.contact_radius_warning` with the pair's R), or None."""
+    _m, r, _e = effective_properties(sphere1, sphere2)
+    return contact_radius_warning(velocities, delta_max, r)
+
+
 def sweep_yield_velocity(
     sphere1: Sphere,
     sphere2: Sphere,
@@ -215,15 +233,35 @@ def _contact(
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
-    if law is not None and not (sigma_y is None and get_law(law).name == DEFAULT_LAW):
-        m, r, e = effective_properties(sphere1, sphere2)
-        return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     m, r, e = effective_properties(sphere1, sphere2)
-    if sigma_y is None:  # Du & Wang, nothing can yield: the elastic Hertz impact
+    if sweep_is_elastic(sphere1, sphere2, yield_strength, law):  # nothing can yield
         from impactcli.laws.hertz import HertzLawContact
 
         return HertzLawContact(r, e), m
+    if law is not None:
+        return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     return DuWangContact(r, e, sigma_y, pressure_factor), m
+
+
+def sweep_is_elastic(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    yield_strength: float | None = None,
+    law: str | None = None,
+) -> bool:
+    """Whether :func:`restitution_sweep` of the pair is of the elastic Hertz impact (e = 1):
+    the default elastoplastic law (``law`` None or its name) without any yield strength
+    [Pa] (neither ``yield_strength`` nor the spheres').
+
+    >>> from impactcli.impact import Sphere
+    >>> glass = Sphere.from_material(0.02, "glass")
+    >>> sweep_is_elastic(glass, glass), sweep_is_elastic(glass, glass, 1e9)
+    (True, False)
+    """
+    sigma_y = (
+        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
+    )
+    return sigma_y is None and (law is None or get_law(law).name == DEFAULT_LAW)
 
 
 def _nan(value: float | None) -> float:

@@ -289,13 +289,14 @@ def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
 
 
 def _normal(p1, p2):
-    """The unit normal from sphere 1 to sphere 2 (a one-line error when p1 = p2)."""
-    import numpy as np
+    """The unit normal from sphere 1 to sphere 2 (:func:`impactcli.collision3d.
+    contact_normal`; a one-line error when p1 = p2)."""
+    from impactcli.collision3d import contact_normal
 
-    d = np.subtract(p2, p1)
-    if not np.any(d != 0.0):
-        raise InputError("--p1 and --p2 coincide: the centres at contact must differ")
-    return d / np.linalg.norm(d)
+    try:
+        return contact_normal(p1, p2)
+    except ValueError:
+        raise InputError("--p1 and --p2 coincide: the centres at contact must differ") from None
 
 
 def _velocity(text: str, name: str, normal) -> tuple[float, float, float]:
@@ -384,48 +385,19 @@ def _plot(path: str, c, inputs: dict) -> None:
 
 
 def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
-    """The collision, its summary, inputs, mindlin force history and Coulomb limit;
-    ``damped`` is (damping law or None, alpha, separation rule)."""
-    import numpy as np
+    """The collision (:func:`impactcli.collision3d.sphere_collision_3d`), its summary,
+    inputs, mindlin force history and Coulomb limit; ``damped`` is (damping law or None,
+    alpha, separation rule)."""
+    from impactcli.collision3d import sphere_collision_3d
 
-    from impactcli.collision3d import (
-        effective_shear_modulus,
-        normal_restitution_and_history,
-        oblique_collision_3d,
-    )
-
-    v1, v2, w1, w2, p1, p2 = (np.array(x) for x in vectors.values())
-    n = _normal(p1, p2)
-    u_n = float(np.dot(v1 - v2, n))
-    if not u_n > 0.0:
-        raise InputError(
-            f"the spheres are not approaching along the line of centres: (v1 - v2).n = "
-            f"{u_n:.6g} m/s with n = ({n[0]:.6g}, {n[1]:.6g}, {n[2]:.6g}) from sphere 1 to "
-            "sphere 2 (an impact needs > 0)"
-        )
     damping, alpha, separation = damped
     mindlin = tangential is Tangential.mindlin
-    history = shear = None
+    motion = {k.lstrip("-"): v for k, v in vectors.items()}
+    normal = dict(law=law, params=params, damping=damping, alpha=alpha, separation=separation)
     try:
-        warned: tuple[str, ...] = ()
-        if e is None:
-            normal = normal_restitution_and_history(
-                s1, s2, u_n, law=law, params=params, damping=damping, alpha=alpha,
-                points=points if mindlin else None, separation=separation,
-            )  # fmt: skip
-            restitution, history = normal
-            warned = normal.warnings
-        else:
-            restitution = e
-        if mindlin:
-            shear = effective_shear_modulus(
-                s1.youngs_modulus, s1.poisson_ratio, s2.youngs_modulus, s2.poisson_ratio
-            )
-        result = oblique_collision_3d(
-            s1.total_mass, s2.total_mass, v1, v2, p1, p2, s1.diameter, s2.diameter, w1, w2,
-            restitution, mu, tangential.value, history=history, shear_modulus=shear,
-            warnings=warned,
-        )  # fmt: skip
+        result, history = sphere_collision_3d(
+            s1, s2, motion, normal, e, mu, tangential.value, points
+        )
     except ValueError as exc:
         raise InputError(str(exc)) from None
     limit = force = None

@@ -610,7 +610,7 @@ def restitution(
     from impactcli.cli.law_options import law_inputs
     from impactcli.impact import weaker_yield_strength
     from impactcli.spheres import spheres_from_options
-    from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
+    from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep, sweep_is_elastic
 
     check_plot(plot, output)
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
@@ -651,7 +651,7 @@ def restitution(
         raise InputError(str(exc)) from None
     _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
     _split_messages(split, s1, s2)
-    elastic_only = _elastic_sweep(choice, s1, s2)
+    elastic_only = sweep_is_elastic(s1, s2, law=choice.name)
     if elastic_only:
         note("no yield strength given: the sweep is of the elastic (Hertz) impact, e = 1")
     kind = resolve_format(fmt, output)
@@ -705,12 +705,6 @@ def restitution(
         _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear)
 
 
-def _elastic_sweep(law: LawChoice, s1, s2) -> bool:
-    """Du & Wang (the default law) without any yield strength: the elastic Hertz sweep
-    (:func:`impactcli.sweep.restitution_sweep`)."""
-    return law.name == DEFAULT_LAW and s1.yield_strength is None and s2.yield_strength is None
-
-
 def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
     """The elastic sweep on screen: V0, contact time, delta_max, force_max."""
     from impactcli.cli.common import Table
@@ -730,11 +724,10 @@ def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
 
 def _sweep_contact_warning(s1, s2, velocities: np.ndarray, delta_max: np.ndarray) -> None:
     """The warning of a sweep whose contact radius leaves the small-deformation range
-    (:func:`impactcli.validation.contact_radius_warning`), if any."""
-    from impactcli.contact import effective_radius
-    from impactcli.validation import contact_radius_warning
+    (:func:`impactcli.sweep.sweep_contact_warning`), if any."""
+    from impactcli.sweep import sweep_contact_warning
 
-    message = contact_radius_warning(velocities, delta_max, effective_radius(s1.radius, s2.radius))
+    message = sweep_contact_warning(s1, s2, velocities, delta_max)
     if message:
         warn(message)
 
@@ -760,14 +753,11 @@ def _damped_sweep(
     s1, s2 = spheres_from_options(spheres)
     if alpha is None:  # tsuji --e: its e is the same at every V0 (docs/damping.md)
         from impactcli.damping import alpha_label
-        from impactcli.model import ContactModel, DampedPair
+        from impactcli.impact import damping_alpha
 
         assert target is not None
         try:
-            model = ContactModel(damping=law, restitution=target, separation=separation)
-            pair = model.for_spheres(s1, s2)
-            assert isinstance(pair, DampedPair)
-            alpha = pair.alpha(velocities[0], n)
+            alpha = damping_alpha(s1, s2, law, target, velocities[0], n, separation)
         except ValueError as exc:
             raise InputError(str(exc)) from None
         note(f"{alpha_label(law, alpha, digits=10)} gives e = {target:g} at every V0")
@@ -844,14 +834,14 @@ def _plot_sweep(
     """e, contact time and permanent indentation against V0, written to ``path``."""
     from impactcli.formatting import format_quantity
     from impactcli.plots import restitution_figure
-    from impactcli.sweep import sweep_first_yield_velocity, sweep_yield_velocity
+    from impactcli.sweep import sweep_first_yield_velocity, sweep_is_elastic, sweep_yield_velocity
 
     parts = [
         f"D1 = {format_quantity(s1.diameter, 'm')}",
         f"D2 = {format_quantity(s2.diameter, 'm')}",
         *_material_parts(spheres, s1, s2),
     ]
-    if _elastic_sweep(law, s1, s2):
+    if sweep_is_elastic(s1, s2, law=law.name):
         from impactcli.plots import elastic_sweep_figure
 
         fig = elastic_sweep_figure(
