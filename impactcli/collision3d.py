@@ -96,14 +96,19 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.collision2d import line_of_centres
+from impactcli.collision2d import (
+    ELASTOPLASTIC_NORMAL_LAW,
+    line_of_centres,
+    normal_law_warnings,
+)
 from impactcli.errors import InputError
-from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
+from impactcli.laws.registry import ELASTIC_LAW, get_law
 from impactcli.validation import check_friction, check_restitution, check_vectors, input_errors
 from impactcli.validation import where_first as _where
 
 __all__ = [
     "CONTACT_DISTANCE_RTOL",
+    "ELASTOPLASTIC_NORMAL_LAW",
     "SUMMARY_KEYS",
     "TANGENTIAL_MODELS",
     "Collision3D",
@@ -561,39 +566,6 @@ class NormalLaw(tuple):
     @property
     def history(self) -> NormalHistory | None:
         return self[1]
-
-
-#: What a warning of :func:`normal_restitution_and_history` advises above the yield
-#: velocity, for the command line and for Python.
-ELASTOPLASTIC_NORMAL_LAW = (
-    f"the elastoplastic normal law ('impact collide3d --model elastoplastic'; "
-    f"law={DEFAULT_LAW!r} in Python)"
-)
-
-
-def normal_law_warnings(
-    sphere1: Sphere,
-    sphere2: Sphere,
-    u_n: float,
-    delta_max: float,
-    elastic: bool,
-    velocity: str = "the normal approach velocity u_n",
-    advice: str = ELASTOPLASTIC_NORMAL_LAW,
-) -> tuple[str, ...]:
-    """The warnings of the normal impact of two spheres at u_n [m/s] whose maximum
-    indentation is delta_max [m] (:func:`impactcli.validation.normal_impact_warnings`);
-    ``elastic``: an elastic (Hertz) normal law, whose first yield is worth a warning;
-    ``velocity`` names u_n and ``advice`` the elastoplastic law in the messages."""
-    from impactcli.impact import effective_properties, weaker_yield_strength
-    from impactcli.laws.hertz import first_yield_velocity
-    from impactcli.validation import normal_impact_warnings
-
-    m, radius, modulus = effective_properties(sphere1, sphere2)
-    sigma_y = weaker_yield_strength(sphere1, sphere2)
-    first_yield = None
-    if elastic and sigma_y is not None:
-        first_yield = float(first_yield_velocity(m, radius, modulus, sigma_y))
-    return normal_impact_warnings(u_n, delta_max, radius, first_yield, velocity, advice)
 
 
 @input_errors
