@@ -48,10 +48,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.contact import DU_WANG_PRESSURE_FACTOR, ImpactPlan
-from impactcli.film import hertz_loading_time, solve_stage
+from impactcli.contact import ImpactPlan
+from impactcli.film import solve_stage
 from impactcli.impact import DAMPED_DEFAULT_N, PLASTIC_SUMMARY_KEYS, impact_summary, plastic_summary
-from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW
+from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, DEFAULT_LAW_PARAMETERS, ELASTIC_LAW
 from impactcli.limits import MAX_SEGMENTS, check_size
 from impactcli.pairs import SpherePairs, Split
 from impactcli.validation import (
@@ -155,7 +155,8 @@ def plastic_stage_times(
     per impact only for the elastic loading:
 
     - elastic loading 0 -> delta_y: FILM on arrays of shape (impacts, n), the node
-      geometry shared (:func:`impactcli.film.hertz_loading_time`);
+      geometry shared (the stage law's ``loading_time``,
+      :func:`impactcli.laws.hertz.hertz_loading_time`);
     - plastic loading delta_y -> delta_m: the force is linear in delta, so FILM is exact on
       every segment (docs/method.md §4, item 5) and one segment gives the time of n;
     - unloading delta_m -> delta_res from rest: a Hertz restitution stage in
@@ -163,9 +164,7 @@ def plastic_stage_times(
       (delta_m - delta_res) / (e V0), e V0 being the speed at separation.
     """
     elastic, plastic_loading, _unloading = plan.stages
-    t_yield = hertz_loading_time(
-        elastic.delta_end, elastic.speed_start, elastic.law.stiffness[..., 0], mass, n
-    )
+    t_yield = elastic.law.loading_time(elastic.delta_end, elastic.speed_start, mass, n)
     second = solve_stage(
         plastic_loading.law,
         plastic_loading.delta_start,
@@ -278,7 +277,7 @@ def batch_impacts(
     plastic: ArrayLike = False,
     n: int = 25,
     split: Split = "mass",
-    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     law: str | None = None,
     law_params: Mapping[str, Any] | None = None,
     *,
@@ -343,7 +342,7 @@ def pair_impacts(
     *,
     n: int = 25,
     split: Split = "mass",
-    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     law: str | None = None,
     law_params: Mapping[str, Any] | None = None,
 ) -> dict[str, NDArray]:
@@ -433,27 +432,42 @@ def law_stage_times(
     """FILM time of maximum indentation and contact time [s] of a batch of impacts of any
     law (one plan), n segments per stage.
 
-    The fast paths when the plan allows: an elastic Hertz plan is the normalised solution
-    scaled (:func:`normalised_times`); Hertz, linear, Hertz-from-rest stages (Du & Wang,
-    Thornton) go through :func:`plastic_stage_times`. Any other plan is solved by
+    The fast paths, where the stage laws declare what they are: an elastic plan of the
+    normalised tables (:meth:`~impactcli.laws.base.ImpactPlan.is_normalised`) is the
+    normalised solution scaled (:func:`normalised_times`); a plan of a loading from 0 that
+    times itself (``loading_time``), a ``linear`` stage (FILM exact) and an unloading of
+    the normalised tables' law (Du & Wang, Thornton) goes through
+    :func:`plastic_stage_times`. Any other plan is solved by
     :func:`impactcli.impact.solve_plan` (callers pass blocks of about :data:`FILM_BLOCK`
     values).
     """
     from impactcli.impact import solve_plan
-    from impactcli.laws import DuWangPlastic, Hertz
 
     v0 = np.asarray(impact_velocity, dtype=float)
     m = np.broadcast_to(np.asarray(mass, dtype=float), v0.shape)
-    laws = [type(stage.law) for stage in plan.stages]
-    hertz_from_zero = laws[0] is Hertz and np.all(np.asarray(plan.stages[0].law.offset) == 0)
-    if hertz_from_zero and laws == [Hertz, Hertz] and np.all(plan.delta_res == 0):
+    if plan.is_normalised() and np.all(np.asarray(plan.stages[0].law.offset) == 0):
         t_bar_max, t_bar_c = normalised_times(n)
         scale = plan.delta_max / v0
         return t_bar_max * scale, t_bar_c * scale
-    if hertz_from_zero and laws == [Hertz, DuWangPlastic, Hertz]:
+    if _elastic_linear_elastic(plan):
         return plastic_stage_times(plan, m, v0, n)
     stages = solve_plan(plan, m, n)
     return stages[-2].end_time, stages[-1].end_time
+
+
+def _elastic_linear_elastic(plan: ImpactPlan) -> bool:
+    """Whether :func:`plastic_stage_times` solves ``plan``: three stages, a loading from 0
+    whose law times itself (``loading_time``), a ``linear`` law, and an unloading of the
+    normalised tables' law (``normalised_tables``), as the stage laws declare."""
+    if len(plan.stages) != 3:
+        return False
+    first, second, third = (stage.law for stage in plan.stages)
+    return (
+        hasattr(first, "loading_time")
+        and np.all(np.asarray(first.offset) == 0)
+        and getattr(second, "linear", False)
+        and getattr(third, "normalised_tables", False)
+    )
 
 
 def _batch_law(
@@ -721,9 +735,16 @@ def _damping_problems(
     if ok.size:  # rows whose Hertz scales leave double precision are their own error
         valid = pairs.take(ok)
         problems.add_messages(
-            _scatter(hertz_scale_problems(valid.m, valid.stiffness, valid.v0), ok, alpha.size)
+            _scatter(hertz_scale_problems(valid.m, _stiffness(damping, valid), valid.v0), ok,
+                     alpha.size)  # fmt: skip
         )
     return problems
+
+
+def _stiffness(damping: str, pairs: SpherePairs) -> NDArray:
+    """The Hertz stiffness K = (4/3) E* sqrt(R) [N/m^1.5] of each pair: the elastic part of
+    the damping model (:meth:`impactcli.laws.viscous.DampingSpec.stiffness`)."""
+    return DAMPING_LAWS[damping].stiffness(pairs.radius, pairs.modulus)
 
 
 def _damped_block(
@@ -740,7 +761,7 @@ def _damped_block(
     from impactcli.damping import damping_for_restitution, make_damping_law, solve_damped_impact
 
     damping, n, split, separation = options
-    m, stiffness, v0 = pairs.m, pairs.stiffness, pairs.v0
+    m, stiffness, v0 = pairs.m, _stiffness(damping, pairs), pairs.v0
     a = alpha[rows].copy()
     solve = np.flatnonzero(np.isnan(a))
     if solve.size:  # the alpha of the target e, exactly by the model (FILM, n)

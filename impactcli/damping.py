@@ -1,13 +1,10 @@
-"""FILM for rate-dependent (viscoelastic) contact laws: Hertz elasticity plus viscous damping.
+"""FILM for rate-dependent contact laws: Hertz elasticity plus viscous damping.
 
-The laws here have the form F(delta, delta') = F_e(delta) + c(delta) delta', with the Hertz
-elastic part F_e = K delta^1.5, K = (4/3) E* sqrt(R) (docs/method.md §3), and a damping coefficient
-c(delta) [N s/m]:
-
-- :class:`TsujiDamping`, Tsuji, Tanaka & Ishida (1992), Powder Technol. 71:239-250,
-  doi:10.1016/0032-5910(92)88030-L: c = alpha sqrt(m K) delta^(1/4), alpha [-];
-- :class:`HuntCrossleyDamping`, Hunt & Crossley (1975), J. Appl. Mech. 42:440-445,
-  doi:10.1115/1.3423596: c = (3/2) alpha K delta^(3/2), alpha [s/m].
+The damping models of the registry (:data:`impactcli.laws.registry.DAMPING_LAWS`, one module
+each in :mod:`impactcli.laws`) have the form F(delta, delta') = F_e(delta) + c(delta) delta',
+with the Hertz elastic part F_e = K delta^1.5, K = (4/3) E* sqrt(R) (docs/method.md §3), and
+a damping coefficient c(delta) [N s/m] (:class:`~impactcli.laws.viscous.DampedHertz`). This
+module solves any of them; it knows none by name.
 
 FILM on a damped segment
 ------------------------
@@ -53,7 +50,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws.base import SEPARATIONS, DampingModel, Separation
 from impactcli.laws.base import Parameter as LawParameter
-from impactcli.laws.hunt_crossley import HuntCrossleyDamping, hunt_crossley_alpha_published
 from impactcli.laws.registry import (
     DAMPING_LAWS,
     alpha_label,
@@ -62,29 +58,17 @@ from impactcli.laws.registry import (
     damping_label,
     make_damping_law,
 )
-from impactcli.laws.tsuji import (
-    TsujiDamping,
-    tsuji_alpha_dem,
-    tsuji_alpha_hertz_mindlin,
-    tsuji_restitution_overlap,
-)
 from impactcli.limits import MAX_SEGMENTS, check_size
 from impactcli.validation import input_errors
 
 if TYPE_CHECKING:
     from impactcli.ode import OdeSolution
 
-#: The protocol of a damping model, by its former name.
-ViscoelasticLaw = DampingModel
-
 __all__ = [
     "DAMPING_LAWS",
     "SEPARATIONS",
     "DampedImpact",
-    "HuntCrossleyDamping",
     "LawParameter",
-    "TsujiDamping",
-    "ViscoelasticLaw",
     "alpha_label",
     "check_alpha",
     "check_damping",
@@ -92,12 +76,8 @@ __all__ = [
     "damped_ode_solution",
     "damping_for_restitution",
     "damping_label",
-    "hunt_crossley_alpha_published",
     "make_damping_law",
     "solve_damped_impact",
-    "tsuji_alpha_dem",
-    "tsuji_alpha_hertz_mindlin",
-    "tsuji_restitution_overlap",
 ]
 
 
@@ -675,8 +655,9 @@ def solve_damped_impact(
 
     Parameters
     ----------
-    law : :class:`TsujiDamping` or :class:`HuntCrossleyDamping` (parameters broadcast
-        against the impact velocity)
+    law : a damping model (:class:`~impactcli.laws.base.DampingModel`, e.g.
+        ``DAMPING_LAWS[name].of(K, m, alpha)``; parameters broadcast against the impact
+        velocity)
     impact_velocity : V0 > 0, [m/s]
     mass : effective mass m, [kg]
     n : segments per stage (the loading uses the part of n steps of delta_mH/n it reaches)
@@ -815,7 +796,7 @@ def damping_for_restitution(
 
     Parameters
     ----------
-    name : ``tsuji`` ([-]) or ``hunt-crossley`` ([s/m])
+    name : a damping model of :data:`DAMPING_LAWS` (alpha in its unit: ``impact laws``)
     restitution : target e in (0, 1], [-]
     impact_velocity : V0, [m/s]
     stiffness : K = (4/3) E* sqrt(R), [N/m^1.5]
@@ -990,11 +971,26 @@ def damped_ode_solution(
 
 
 def __getattr__(name: str):
-    """``DampedOdeSolution``, the former type of a damped integration, is
-    :class:`impactcli.ode.OdeSolution` (deprecated name; it goes in 0.3)."""
-    if name == "DampedOdeSolution":
-        import warnings
+    """The names this module had before :mod:`impactcli.laws`: the public names of each
+    damping model's module (its model class and relations, e.g. ``TsujiDamping``), and the
+    deprecated ``DampedOdeSolution`` (:class:`impactcli.ode.OdeSolution`) and
+    ``ViscoelasticLaw`` (:class:`~impactcli.laws.base.DampingModel`), which go in 0.3."""
+    import sys
+    import warnings
 
+    for spec in DAMPING_LAWS.values():
+        module = sys.modules[spec.model.__module__]
+        if name in getattr(module, "__all__", ()) and name != "SPEC":
+            return getattr(module, name)
+    if name == "ViscoelasticLaw":
+        warnings.warn(
+            "impactcli.damping.ViscoelasticLaw is deprecated and goes in 0.3: the protocol of "
+            "every damping model is impactcli.laws.base.DampingModel",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return DampingModel
+    if name == "DampedOdeSolution":
         from impactcli.ode import OdeSolution
 
         warnings.warn(

@@ -49,7 +49,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
-    DU_WANG_PRESSURE_FACTOR,
     ImpactPlan,
     effective_mass,
     first_yield_velocity,
@@ -58,7 +57,7 @@ from impactcli.contact import (
 )
 from impactcli.errors import InputError
 from impactcli.film import FilmSolution
-from impactcli.laws.registry import DEFAULT_LAW
+from impactcli.laws.registry import DEFAULT_LAW, DEFAULT_LAW_PARAMETERS
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.model import (
     DAMPED_DEFAULT_N,
@@ -86,7 +85,6 @@ from impactcli.validation import (
 )
 
 if TYPE_CHECKING:
-    from impactcli.contact import DuWangContact
     from impactcli.laws.base import NormalContact
 
 __all__ = [
@@ -759,7 +757,7 @@ def impact_summary(
 
 
 def plastic_summary(
-    contact: DuWangContact,
+    contact: NormalContact,
     mass: ArrayLike,
     impact_velocity: ArrayLike,
     plan: ImpactPlan,
@@ -1054,7 +1052,7 @@ def elastoplastic_impact(
     n: int = 25,
     split: Split = "mass",
     yield_strength: float | None = None,
-    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     method: Method = "film",
     *,
     pressure_factor: float | None = None,

@@ -5,7 +5,7 @@ batch`` and ``impact collide3d --rows``, :func:`impactcli.impact.impact_summary`
 spheres as one object instead of fourteen columns: the diameters, velocities and
 properties of both spheres of every collision, SI NumPy arrays of one shape, with the
 per-collision constants of docs/method.md §1 (masses, effective mass, radius and modulus,
-compliances, the Hertz stiffness) computed from them on first use. It holds no results
+compliances) computed from them on first use. It holds no results
 and runs no physics beyond those constants; each sphere's share of the indentation
 (:func:`split_fractions`) is here too, since every summary needs it.
 """
@@ -28,7 +28,6 @@ from impactcli.contact import (
     total_mass,
 )
 from impactcli.energy import permanent_fractions
-from impactcli.laws.hertz import hertz_stiffness
 from impactcli.validation import flat_floats
 
 if TYPE_CHECKING:
@@ -137,8 +136,6 @@ class SpherePairs:
     ...                                  210e9, 0.3, 210e9, 0.3, rho1=7800.0, rho2=7800.0)
     >>> len(pairs), pairs.v0.tolist(), round(float(pairs.m[0]), 6)
     (2, [0.0125, 1.0], 0.029041)
-    >>> round(float(pairs.stiffness[0]) / 1e9, 3)  # K_h [N/m^1.5]
-    12.561
     """
 
     d1: NDArray
@@ -270,11 +267,6 @@ class SpherePairs:
     def v0(self) -> NDArray:
         """Impact velocity V0 = V1 + V2, [m/s]."""
         return self.v1 + self.v2
-
-    @property
-    def stiffness(self) -> NDArray:
-        """Hertz stiffness K_h = (4/3) E* sqrt(R), [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
 
     def fractions(self, split: Split) -> tuple[tuple[NDArray, NDArray], tuple[NDArray, NDArray]]:
         """Each sphere's share of the indentation and of its permanent part, [-]

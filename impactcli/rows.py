@@ -40,7 +40,7 @@ from impactcli.validation import (
     SMALL_DEFORMATION_LIMIT,
     Problems,
     contact_radius_warning,
-    du_wang_yield_velocity,
+    default_yield_velocity,
     first_yield_warning,
     materials_differ,
     without_float_warnings,
@@ -534,7 +534,7 @@ def row_warnings(
         yields = elastic & (impact_velocity > first_yield_velocity)
         ratio = np.sqrt(delta_max / radius)
         large = ratio > SMALL_DEFORMATION_LIMIT
-    velocity = du_wang_yield_velocity(first_yield_velocity)  # V_y of the yielding rows
+    velocity = default_yield_velocity(first_yield_velocity)  # V_y of the yielding rows
     shown = np.full(impact_velocity.size, "", dtype=object)
     shown[large] = _shown_ratio(ratio[large])
     exceed, below, contact = _warning_templates()

@@ -145,8 +145,8 @@ class PlanSolution(FilmSolution):
     The normalised Hertz impact (R = 1, E* = 15/16, so K_h = 5/4; m = V0 = delta_m = 1)
     with n = 25 lasts 2.9432487 (exact 2.9432752, docs/method.md §6):
 
-    >>> from impactcli.laws.hertz import HertzLawContact
-    >>> s = PlanSolution.solve(HertzLawContact(1.0, 0.9375), 1.0, 1.0, 25)
+    >>> from impactcli.laws.registry import get_law
+    >>> s = PlanSolution.solve(get_law("hertz").contact(1.0, 0.9375), 1.0, 1.0, 25)
     >>> s.restitution, round(s.contact_time, 7), round(s.t_max, 7)
     (1.0, 2.9432487, 1.4716277)
     """

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.batch import law_stage_times
-from impactcli.contact import DU_WANG_PRESSURE_FACTOR, DuWangContact, first_yield_velocity
+from impactcli.contact import first_yield_velocity
 from impactcli.impact import (
     Sphere,
     check_pair,
@@ -23,7 +23,14 @@ from impactcli.impact import (
     split_fractions,
     weaker_yield_strength,
 )
-from impactcli.laws.registry import DEFAULT_LAW, get_law, plan_groups
+from impactcli.laws.base import NormalContact
+from impactcli.laws.registry import (
+    DEFAULT_LAW,
+    DEFAULT_LAW_PARAMETERS,
+    ELASTIC_LAW,
+    get_law,
+    plan_groups,
+)
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.validation import (
     contact_radius_warning,
@@ -66,7 +73,7 @@ def restitution_sweep(
     velocities: ArrayLike,
     n: int = 25,
     yield_strength: float | None = None,
-    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     split: str = "mass",
     law: str | None = None,
     law_params: dict[str, Any] | None = None,
@@ -192,7 +199,7 @@ def sweep_yield_velocity(
     sphere1: Sphere,
     sphere2: Sphere,
     yield_strength: float | None = None,
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    pressure_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     law: str | None = None,
     law_params: dict[str, Any] | None = None,
 ) -> float:
@@ -227,20 +234,19 @@ def _contact(
     pressure_factor: float,
     law: str | None = None,
     law_params: dict[str, Any] | None = None,
-) -> tuple[DuWangContact, float]:
-    """The Du & Wang contact of the pair (or that of ``law``) and its effective mass m [kg];
-    the yield strength defaults to the weaker sphere's."""
+) -> tuple[NormalContact, float]:
+    """The contact of the default law (Du & Wang) for the pair (or that of ``law``) and its
+    effective mass m [kg]; the yield strength defaults to the weaker sphere's."""
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
     m, r, e = effective_properties(sphere1, sphere2)
     if sweep_is_elastic(sphere1, sphere2, yield_strength, law):  # nothing can yield
-        from impactcli.laws.hertz import HertzLawContact
-
-        return HertzLawContact(r, e), m
+        return get_law(ELASTIC_LAW).contact(r, e), m
     if law is not None:
         return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
-    return DuWangContact(r, e, sigma_y, pressure_factor), m
+    params = {"p0_factor": pressure_factor}  # as given: restitution_sweep checks it
+    return get_law(DEFAULT_LAW).build(r, e, sigma_y, params), m
 
 
 def sweep_is_elastic(

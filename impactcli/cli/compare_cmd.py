@@ -79,8 +79,8 @@ def compare_laws(
     indentation of each, and (--plot) their force-indentation loops on one figure with e
     against V0/V_y for the same laws.
 
-    --law is given once per law (default: every elastoplastic law that needs no more than
-    the spheres' properties: du-wang and thornton); each law's parameters as on 'impact
+    --law is given once per law (default: every elastoplastic law of 'impact laws' that
+    needs no more than the spheres' properties); each law's parameters as on 'impact
     elastoplastic' (--py, --k-load, --k-unload, --curve, ...).
 
     V_y of the e panel is one velocity for all laws: the first-yield velocity of the pair,
@@ -89,8 +89,8 @@ def compare_laws(
     this impact's V0. Open circles mark published closed forms (Thornton 1997's e(V_y/V0),
     Walton & Braun's sqrt(k_load/k_unload)).
 
-    --damping NAME --alpha A adds Hertz with that damping model to the comparison (row
-    hertz+NAME; no yield point, no permanent indentation).
+    --damping NAME --alpha A adds Hertz with that damping model to the comparison (its row
+    is named the elastic law +NAME; no yield point, no permanent indentation).
 
     Output: one row per law, columns law, restitution, contact_time, delta_max, force_max,
     delta_res, energy_dissipated, delta_y, yield_velocity (SI); JSON {"inputs", "laws"}.

@@ -373,12 +373,12 @@ def _damped_pairs(s1, s2, u_n, rows):
     precision (:func:`impactcli.batch.hertz_scale_problems`), ``""`` elsewhere."""
     from impactcli.batch import hertz_scale_problems
     from impactcli.contact import effective_mass, effective_modulus, effective_radius
-    from impactcli.laws.hertz import HertzLawContact
+    from impactcli.laws.viscous import DampingSpec
 
     m = effective_mass(s1["mass"][rows], s2["mass"][rows])
     radius = effective_radius(0.5 * s1["d"][rows], 0.5 * s2["d"][rows])
     modulus = effective_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows], s2["nu"][rows])
-    stiffness = HertzLawContact(radius, modulus).stiffness
+    stiffness = DampingSpec.stiffness(radius, modulus)
     return m, radius, modulus, hertz_scale_problems(m, stiffness, u_n[rows])
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -27,6 +28,7 @@ from impactcli.laws.base import (
     col,
 )
 from impactcli.laws.hertz import (
+    FIRST_YIELD_PRESSURE_FACTOR,
     Hertz,
     HertzContact,
     hertz_maximum_indentation,
@@ -34,7 +36,13 @@ from impactcli.laws.hertz import (
     hertz_velocity,
 )
 
-__all__ = ["DU_WANG_PRESSURE_FACTOR", "SPEC", "DuWangContact", "DuWangPlastic"]
+__all__ = [
+    "DU_WANG_PRESSURE_FACTOR",
+    "SPEC",
+    "DuWangContact",
+    "DuWangPlastic",
+    "du_wang_yield_velocity",
+]
 
 #: p0 = 2.57 sigma_y: mean contact pressure of fully plastic contact (Du & Wang 2009, eq. 16).
 DU_WANG_PRESSURE_FACTOR = 2.57
@@ -67,6 +75,8 @@ class DuWangPlastic:
     radius: ArrayLike
     mean_pressure: ArrayLike
     modulus: ArrayLike
+    #: F is linear in delta: FILM is exact on one segment (docs/method.md §4, item 5)
+    linear: ClassVar[bool] = True
 
     @property
     def slope(self) -> NDArray:
@@ -206,6 +216,28 @@ class DuWangContact:
         )
 
 
+def du_wang_yield_velocity(
+    first_yield_velocity: float, pressure_factor: float | None = None
+) -> float:
+    """Du & Wang's yield velocity V_y [m/s] from the first-yield velocity V_Y [m/s] of the same
+    spheres: both are Hertz impacts up to delta ~ p^2 (docs/method.md §7, §7.1), and
+    V ~ delta^(5/4), so V_y = V_Y (p0 / 1.6 sigma_y)^(5/2) (``pressure_factor``: p0 / sigma_y,
+    default 2.57).
+
+    >>> round(du_wang_yield_velocity(0.078463), 4)  # the paper's sec. 4.3 / 4.4 spheres
+    0.2566
+    """
+    factor = DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
+    return first_yield_velocity * (factor / FIRST_YIELD_PRESSURE_FACTOR) ** 2.5
+
+
+def _pressure_factor_of(first_yield_velocity: float, yield_velocity: float) -> float:
+    """p0 / sigma_y whose yield velocity is V_y, from the first-yield velocity V_Y (the
+    inverse of :func:`du_wang_yield_velocity`), to 4 significant digits, [-]."""
+    ratio = yield_velocity / first_yield_velocity
+    return float(f"{FIRST_YIELD_PRESSURE_FACTOR * ratio**0.4:.4g}")
+
+
 def _build(radius, modulus, sy, params) -> DuWangContact:
     return DuWangContact(radius, modulus, sy, params["p0_factor"])  # float or per-row array
 
@@ -266,5 +298,9 @@ SPEC = LawSpec(
         pressure_factor=_pressure_factor,
         words=lambda factor: f"Du & Wang V_y, p0 = {factor:g} sigma_y",
         help="its yield velocity V_y, mean pressure p0 = --p0-factor sigma_y",
+        criterion=lambda factor: f"Du & Wang's p0 = {factor:g} sigma_y",
+        mark="yield, $V_y$ (Du & Wang)",
+        velocity=lambda first_yield, factor: du_wang_yield_velocity(first_yield, factor),
+        factor_of=_pressure_factor_of,
     ),
 )
