@@ -1295,12 +1295,10 @@ def sphere_collision_3d(
     Raises
     ------
     ValueError
-        Spheres that do not approach along the line of centres (u_n <= 0, with n), and the
-        faults of the normal law and of :func:`oblique_collision_3d`.
+        Spheres not approaching (u_n <= 0), and the faults of the normal law and the collision.
 
     Examples
     --------
-    Chung & Ooi (2011), test 4: an alumina sphere on a rigid plane at 3.9 m/s, 30 deg.
 
     >>> from impactcli.impact import Sphere
     >>> ball = Sphere(5e-3, 380e9, 0.23, 4000.0)
