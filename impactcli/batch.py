@@ -52,7 +52,7 @@ from impactcli.contact import ImpactPlan
 from impactcli.film import solve_stage
 from impactcli.impact import DAMPED_DEFAULT_N, PLASTIC_SUMMARY_KEYS, impact_summary, plastic_summary
 from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, DEFAULT_LAW_PARAMETERS, ELASTIC_LAW
-from impactcli.limits import MAX_SEGMENTS, check_size
+from impactcli.limits import DAMPED_BLOCK, FILM_BLOCK, MAX_SEGMENTS, check_size
 from impactcli.pairs import SpherePairs, Split
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
@@ -87,16 +87,6 @@ __all__ = [
 #: Result columns of a batch, in order: the elastoplastic summary keys (SI).
 BATCH_KEYS: tuple[str, ...] = PLASTIC_SUMMARY_KEYS
 
-#: Values (rows x n segments) per block of the per-row FILM runs of elastoplastic rows above
-#: the yield velocity: 1 MiB work arrays (measured by ``make bench``: faster than blocks of
-#: 2048 rows, 1.5-2.6x for n = 25-100, and than smaller blocks for n in the hundreds).
-FILM_BLOCK = 131072
-#: Values (rows x (n + 1) segment nodes) per block of damped rows
-#: (:func:`batch_damped_impacts`): the damped FILM marches segment by segment over the rows
-#: of a block, so larger blocks than :data:`FILM_BLOCK` pay off (n = 1000, 1,300 rows: 8 s
-#: in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s unblocked); peak memory about
-#: 0.2 GB a block, whatever the number of rows.
-DAMPED_BLOCK = 524288
 
 
 #: Results every computed row must have as finite numbers, and those that must be > 0 (and
@@ -200,6 +190,7 @@ def material_properties(
     names = np.asarray(names, dtype=object).reshape(-1)
     text = np.where(np.equal(names, None), "", names).astype(str)
     unique, inverse = np.unique(text, return_inverse=True)
+    from impactcli.errors import InputError
     from impactcli.materials import material
 
     props = np.full((unique.size, 4), np.nan)
@@ -209,8 +200,8 @@ def material_properties(
             continue
         try:
             found = material(name)
-        except KeyError as exc:
-            messages[i] = exc.args[0]
+        except InputError as exc:
+            messages[i] = str(exc)
             continue
         sy = found.yield_strength
         props[i] = (
@@ -508,8 +499,25 @@ def _batch_law(
     block = max(1, FILM_BLOCK // (n + 1))
     for start in range(0, good.size, block):
         chunk = good[start : start + block]
-        sub = contact_of(chunk)
-        for rows, plan in _plan_groups_of(sub, v0[chunk], m[chunk], contact_of, chunk):
+        groups = list(_plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk))
+        # a plan beyond double precision (docs/method.md §7) is its row's error before FILM
+        # runs: its stages would stop the block
+        refused = np.zeros(v0.size, dtype=bool)
+        for rows, plan in groups:
+            scale = plastic_range_problems(contact_of(rows), v0[rows], m[rows], plan.delta_max)
+            errors[rows[scale.bad]] = scale.messages[scale.bad]
+            refused[rows[scale.bad]] = True
+            force = np.broadcast_to(plan.force_max, rows.shape)
+            with np.errstate(invalid="ignore"):
+                beyond = rows[~refused[rows] & ~(np.isfinite(force) & (force > 0.0))]
+            errors[beyond] = [OUT_OF_RANGE.format(float(v)) for v in v0[beyond]]
+            refused[beyond] = True
+        if refused[chunk].any():
+            chunk = chunk[~refused[chunk]]
+            groups = list(
+                _plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk)
+            )
+        for rows, plan in groups:
             values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)

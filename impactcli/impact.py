@@ -896,6 +896,8 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
     >>> impact_warnings(r, first_yield=True)[0][:60]
     'V0 = 0.2 m/s exceeds the first-yield velocity 0.07846 m/s (H'
     """
+    if not isinstance(result, ImpactResult):
+        raise InputError(f"impact_warnings takes an ImpactResult, got {type(result).__name__}")
     from impactcli.validation import (
         contact_radius_warning,
         first_yield_warning,

@@ -3,14 +3,20 @@
 Measured peak memory (resident set) of one run at the limits below (README, "Limits on
 sizes"), about:
 
-- 650 bytes per FILM segment per stage for ``elastoplastic --n`` (6.5 GB at 10^7), 440 for
-  ``elastic --n`` (4.4 GB), 260 for ``tables --n`` (2.6 GB), 210 for a ``convergence`` n;
-- 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7);
-- 0.55 GB for ``restitution --count`` x ``--n`` at 10^7;
+- 650 bytes per FILM segment per stage for ``elastoplastic --n`` (6.5 GB at 10^7), 600 for
+  ``elastic --damping`` (5.7 GB), 440 for ``elastic --n`` (4.4 GB), 260 for ``tables --n``
+  (2.6 GB), 210 for a ``convergence`` n;
+- 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7), 220
+  for ``collide3d --tangential mindlin --points`` (2.1 GB);
+- 1.7 GB for ``compare-laws`` at laws x ``--n`` = 10^7 (two laws at 5 x 10^6: one law at a
+  time);
+- 0.20 GB for ``restitution --count`` x ``--n`` at 10^7; 0.09 GB for ``fit`` at 10^5 data
+  rows x ``--n`` 100;
 - 0.08 GB for a curve file of 10^6 points.
 
-Work over many rows (``batch``, ``collide3d --rows``) is done in blocks
-(:data:`impactcli.batch.FILM_BLOCK`, :data:`impactcli.batch.DAMPED_BLOCK`,
+Work over many rows (``batch``, ``collide3d --rows``) or velocities (the sweeps of
+``restitution``, ``compare-laws --plot``, ``fit``) is done in blocks
+(:data:`FILM_BLOCK`, :data:`DAMPED_BLOCK`,
 :data:`impactcli.io.collisions3d.HISTORY_BLOCK`), so its memory does not grow with the
 number of rows. The checks live here once; the command line states the limits in
 ``--help`` and refuses larger values up front, the library entry points refuse them with
@@ -22,10 +28,13 @@ from __future__ import annotations
 from impactcli.errors import InputError
 
 __all__ = [
+    "DAMPED_BLOCK",
+    "FILM_BLOCK",
     "MAX_SEGMENTS",
     "MAX_POINTS",
     "MAX_COUNT",
     "MAX_SWEEP_SEGMENTS",
+    "MAX_COMPARISON_SEGMENTS",
     "MAX_CHUNK_ROWS",
     "MAX_CONVERGENCE_RUNS",
     "MAX_CURVE_POINTS",
@@ -40,8 +49,11 @@ MAX_SEGMENTS = 10_000_000
 MAX_POINTS = 10_000_000
 #: Impact velocities of a restitution sweep (``--count``).
 MAX_COUNT = 1_000_000
-#: Velocities times segments of a restitution sweep (``--count`` x ``--n``): 0.55 GB.
+#: Velocities times segments of a restitution sweep (``--count`` x ``--n``): 0.20 GB.
 MAX_SWEEP_SEGMENTS = 10_000_000
+#: Contact laws times segments of one ``impact compare-laws`` run (laws x ``--n``; each law
+#: is summarised and released before the next runs, so its memory is that of one law).
+MAX_COMPARISON_SEGMENTS = 10_000_000
 #: Rows per chunk of ``impact batch`` (``--chunk-size``).
 MAX_CHUNK_ROWS = 1_000_000
 #: Segment counts in one ``impact convergence`` run.
@@ -54,6 +66,18 @@ MAX_CURVE_POINTS = 1_000_000
 MAX_CURVE_BYTES = 64 * 2**20
 #: Characters of one line of a curve file.
 MAX_CURVE_LINE = 4096
+
+
+#: Values (rows x n segments) per block of the per-row FILM runs of elastoplastic rows above
+#: the yield velocity: 1 MiB work arrays (measured by ``make bench``: faster than blocks of
+#: 2048 rows, 1.5-2.6x for n = 25-100, and than smaller blocks for n in the hundreds).
+FILM_BLOCK = 131072
+#: Values (rows x (n + 1) segment nodes) per block of damped rows
+#: (:func:`impactcli.batch.batch_damped_impacts`): the damped FILM marches segment by
+#: segment over the rows of a block, so larger blocks than :data:`FILM_BLOCK` pay off
+#: (n = 1000, 1,300 rows: 8 s in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s
+#: unblocked); peak memory about 0.2 GB a block, whatever the number of rows.
+DAMPED_BLOCK = 524288
 
 
 def check_size(name: str, value: int, maximum: int, minimum: int = 1) -> int:

@@ -386,10 +386,8 @@ class _ElasticModel(ContactModel):
 @dataclass(frozen=True)
 class _ElasticPair(LawPair):
     """The paper's elastic impact: the Hertz plan of K_h = (4/3) E* sqrt(R), checked by FILM
-    itself; kind ``elastic``; the elastic summary keys (no plastic ones)."""
-
-    def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
-        return None
+    itself; kind ``elastic``; the elastic summary keys (no plastic ones). Its plan is checked
+    in double precision as every law's is (:meth:`LawPair.check_plan`)."""
 
     def kind(self, solution: Any) -> str:
         return "elastic"
@@ -560,12 +558,23 @@ class DampedPair:
         alpha, vectorised (e = 0 and an infinite time for a contact that never ends)."""
         from impactcli.damping import solve_damped_impact
         from impactcli.laws.registry import damping_model
+        from impactcli.limits import DAMPED_BLOCK
 
         law = damping_model(
             str(self.model.damping), self.radius, self.modulus, self.mass, self.model.alpha
         )
-        out = solve_damped_impact(law, velocities, self.mass, n, self.separation)
-        return out.restitution, out.contact_time
+        v = np.asarray(velocities, dtype=float)
+        e, t_c = np.full(v.shape, np.nan), np.full(v.shape, np.nan)
+        # the damped FILM on (velocities, segments) arrays, in blocks of about DAMPED_BLOCK
+        # values: memory does not grow with the number of velocities
+        block = max(1, DAMPED_BLOCK // (int(n) + 1))
+        flat = v.reshape(-1)
+        for start in range(0, flat.size, block):
+            part = slice(start, start + block)
+            out = solve_damped_impact(law, flat[part], self.mass, n, self.separation)
+            e.reshape(-1)[part] = out.restitution
+            t_c.reshape(-1)[part] = out.contact_time
+        return e, t_c
 
     def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
         """The model's published e(V0) for its separation rule, or None."""

@@ -191,6 +191,7 @@ def sphere_problems(
     with a density. ``names`` names the properties in the messages (:data:`SPHERE_NAMES`,
     :func:`sphere_names`). ``given`` marks rho, m, sy (keys as in ``names``) as given, so
     that NaN there is a fault, not "not given" (a :class:`~impactcli.impact.Sphere`)."""
+    from impactcli.contact import sphere_mass
     d, e, nu, rho, m, sy = flat_floats(
         diameter, youngs_modulus, poisson_ratio, density, mass, yield_strength
     )
@@ -210,7 +211,7 @@ def sphere_problems(
             f"give {names['m']}, or a finite {names['d']} and {names['rho']}",
         )
         with np.errstate(over="ignore", under="ignore"):
-            computed = rho * (np.pi / 6.0) * d**3
+            computed = sphere_mass(d, rho)  # as the mass is computed (rho pi may overflow)
         p.add(
             np.isnan(m) & np.isfinite(d) & ~((computed > 0.0) & np.isfinite(computed)),
             f"out of range: {names['d']} and {names['rho']} give a mass of {{:.3g}} kg, beyond "

@@ -746,8 +746,9 @@ def _damped_sweep(
     linear: bool,
 ) -> None:
     """``impact restitution --damping``: the damped sweep in every format, and its plot."""
-    from impactcli.impact import DAMPED_SWEEP_COLUMNS, damped_restitution_sweep
+    from impactcli.impact import DAMPED_SWEEP_COLUMNS
     from impactcli.spheres import spheres_from_options
+    from impactcli.sweep import damped_sweep
 
     law, alpha, target, separation = damping.parse()
     assert law is not None
@@ -763,7 +764,7 @@ def _damped_sweep(
             raise InputError(str(exc)) from None
         note(f"{alpha_label(law, alpha, digits=10)} gives e = {target:g} at every V0")
     try:
-        data = damped_restitution_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
+        data = damped_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
     except ValueError as exc:
         raise InputError(str(exc)) from None
     _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
