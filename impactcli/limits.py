@@ -17,7 +17,7 @@ sizes"), about:
 Work over many rows (``batch``, ``collide3d --rows``) or velocities (the sweeps of
 ``restitution``, ``compare-laws --plot``, ``fit``) is done in blocks
 (:data:`FILM_BLOCK`, :data:`DAMPED_BLOCK`,
-:data:`impactcli.io.collisions3d.HISTORY_BLOCK`), so its memory does not grow with the
+:data:`HISTORY_BLOCK`), so its memory does not grow with the
 number of rows. The checks live here once; the command line states the limits in
 ``--help`` and refuses larger values up front, the library entry points refuse them with
 the same message.
@@ -30,6 +30,7 @@ from impactcli.errors import InputError
 __all__ = [
     "DAMPED_BLOCK",
     "FILM_BLOCK",
+    "HISTORY_BLOCK",
     "MAX_SEGMENTS",
     "MAX_POINTS",
     "MAX_COUNT",
@@ -78,6 +79,11 @@ FILM_BLOCK = 131072
 #: (n = 1000, 1,300 rows: 8 s in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s
 #: unblocked); peak memory about 0.2 GB a block, whatever the number of rows.
 DAMPED_BLOCK = 524288
+#: History points (rows x ``points``) per block of ``collide3d --rows --tangential mindlin``
+#: rows: each row's normal history and the tangential spring integrated over a block of
+#: rows at once; memory does not grow with the number of rows (one row a block when
+#: ``points`` is larger).
+HISTORY_BLOCK = 1_048_576
 
 
 def check_size(name: str, value: int, maximum: int, minimum: int = 1) -> int:

@@ -77,6 +77,7 @@ LIBRARY = (
     "impactcli.io.collisions3d",
     "impactcli.io.partitions",
     "impactcli.rows",
+    "impactcli.rows3d",
     "impactcli.output",
     "impactcli.plots",
 )
@@ -514,7 +515,7 @@ LAW_NAMES_ALLOWED: dict[tuple[str, str], str] = {
     "impact, by definition",
     ("impactcli/batch.py", "hertz"): "the Hertz stiffness and scales of damped rows: Hertz is "
     "the elastic part of every damping model",
-    ("impactcli/io/collisions3d.py", "hertz"): "the Hertz scales of damped rows "
+    ("impactcli/rows3d.py", "hertz"): "the Hertz scales of damped rows "
     "(batch.hertz_scale_problems)",
     ("impactcli/damping.py", "hertz"): "the damped FILM bounds its loading by the Hertz "
     "maximum indentation of the elastic part",
@@ -674,7 +675,6 @@ IO_MAY_IMPORT = {
 }
 
 
-@pytest.mark.xfail(strict=True, reason="io.collisions3d still runs the collisions")
 def test_io_reads_and_writes_and_reaches_the_physics_through_the_rows_layer():
     """impactcli.io turns tables into arrays and back: every physics module it needs is
     behind the batch layer (impactcli.rows, impactcli.rows3d), none imported directly."""
