@@ -386,6 +386,12 @@ class ImpactResult:
         return self.v1 + self.v2
 
     @property
+    def relative_energy(self) -> float:
+        """(1/2) m V0^2, the kinetic energy of the relative motion, [J]: what the energy
+        partition shares out (``stored_share``, ``absorbed_share``)."""
+        return 0.5 * self.summary["effective_mass"] * self.impact_velocity**2
+
+    @property
     def mass_ratios(self) -> tuple[float, float]:
         """m/m_1 and m/m_2, [-] (eq. 12)."""
         m = float(effective_mass(self.m1, self.m2))

@@ -737,3 +737,25 @@ def test_every_result_has_its_unit_and_meaning_in_the_library():
         assert quantities["alpha"].unit == ("" if alpha.kind == "dimensionless" else alpha.unit)
     assert tuple(HISTORY_QUANTITIES) == HISTORY_COLUMNS
     assert all(q.description for q in HISTORY_QUANTITIES.values())
+
+
+#: The formulas of the physics: the command line asks the library functions that use them.
+PHYSICS_PRIMITIVES = {
+    "effective_mass", "effective_radius", "effective_modulus", "effective_properties",
+    "effective_shear_modulus", "hertz_stiffness", "first_yield_velocity",
+    "first_yield_velocities", "total_mass", "sphere_mass", "sphere_compliance",
+    "split_fractions", "kinetic_energy", "damping_for_restitution", "make_damping_law",
+}  # fmt: skip
+
+
+def test_the_command_line_computes_no_physics():
+    """A command parses, calls the library and formats: no module of cli/ imports the
+    formulas of a pair's effective properties, stiffness, first yield, masses or energy
+    (the library functions it calls use them)."""
+    found = []
+    for path in sorted((PACKAGE / "cli").glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom):
+                names = {a.name for a in node.names} & PHYSICS_PRIMITIVES
+                found += [f"{path.relative_to(ROOT)}:{node.lineno} {n}" for n in sorted(names)]
+    assert not found, "\n".join(found)

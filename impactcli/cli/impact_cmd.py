@@ -267,8 +267,9 @@ def _run(
         title = f"Energy partition, split {split.value}: " + _case_title(
             result, spheres, method, law
         )
-        relative = 0.5 * result.summary["effective_mass"] * result.impact_velocity**2
-        fig = energy_figure(history, title, summary=result.summary, relative_energy=relative)
+        fig = energy_figure(
+            history, title, summary=result.summary, relative_energy=result.relative_energy
+        )
         save_plot(fig, energy_plot)
 
 
