@@ -246,8 +246,6 @@ def _one(spheres: SphereOptions, texts: dict, normal_law: tuple, tangential_mode
          outputs: tuple) -> None:  # fmt: skip
     """One collision: its vectors read from the options' ``texts`` (--v1 ... --p2), solved
     (:func:`_solve`) and written in the format asked, with its figures."""
-    law_name, params, damped, e = normal_law
-    mu, tangential, points = tangential_model
     fmt, output, plot, plot_force = outputs
     for name in ("--v1", "--p1", "--p2"):
         if texts[name] is None:
@@ -270,9 +268,8 @@ def _one(spheres: SphereOptions, texts: dict, normal_law: tuple, tangential_mode
         **positions,
     }
     s1, s2 = spheres_from_options(spheres)
-    result, summary, inputs, force, limit = _solve(
-        s1, s2, vectors, law_name, params, damped, e, mu, tangential, points
-    )
+    result, summary, inputs, force, limit = _solve(s1, s2, vectors, normal_law,
+                                                   tangential_model)  # fmt: skip
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
     kind = resolve_format(None if fmt is None else Format(fmt.value), output)
@@ -412,13 +409,15 @@ def _plot(path: str, c, inputs: dict) -> None:
     save_plot(fig, path)
 
 
-def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
+def _solve(s1, s2, vectors: dict, normal_law: tuple, tangential_model: tuple):
     """The collision (:func:`impactcli.collision3d.sphere_collision_3d`), its summary,
-    inputs, mindlin force history and Coulomb limit; ``damped`` is (damping law or None,
-    alpha, separation rule)."""
+    inputs, mindlin force history and Coulomb limit; ``normal_law`` is (law, its
+    parameters, (damping law or None, alpha, separation rule), given e or None),
+    ``tangential_model`` (mu, tangential model, history points)."""
     from impactcli.collision3d import sphere_collision_3d
 
-    damping, alpha, separation = damped
+    law, params, (damping, alpha, separation), e = normal_law
+    mu, tangential, points = tangential_model
     mindlin = tangential is Tangential.mindlin
     motion = {k.lstrip("-"): v for k, v in vectors.items()}
     normal = dict(law=law, params=params, damping=damping, alpha=alpha, separation=separation)
