@@ -27,7 +27,10 @@ about :data:`FILM_BLOCK` values, each plan timed by :func:`law_stage_times`. Wit
   (:func:`plastic_stage_times`).
 - Any other plan: FILM on its stages (:func:`impactcli.impact.solve_plan`).
 - Damped (Hertz plus viscous damping) rows, :func:`batch_damped_impacts`: the damped FILM
-  (:func:`impactcli.damping.solve_damped_impact`) in blocks of about :data:`DAMPED_BLOCK`
+  (:func:`impactcli.damping.solve_damped_impact`). At the default n each row's summary is
+  a look-up in the normalised tables (:mod:`impactcli.damped_similar`; blocks of
+  :data:`DAMPED_TABLE_ROWS` rows); otherwise, and beyond the tables, FILM once per
+  distinct value of the model's one parameter, in blocks of about :data:`DAMPED_BLOCK`
   values (rows x (n + 1)).
 - Everything else (final displacements and velocities, each sphere's share of the
   indentation, residual indentation, dissipated energy) is
@@ -52,7 +55,13 @@ from impactcli.contact import ImpactPlan
 from impactcli.film import solve_stage
 from impactcli.impact import DAMPED_DEFAULT_N, PLASTIC_SUMMARY_KEYS, impact_summary, plastic_summary
 from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, DEFAULT_LAW_PARAMETERS, ELASTIC_LAW
-from impactcli.limits import DAMPED_BLOCK, FILM_BLOCK, MAX_SEGMENTS, check_size
+from impactcli.limits import (
+    DAMPED_BLOCK,
+    DAMPED_TABLE_ROWS,
+    FILM_BLOCK,
+    MAX_SEGMENTS,
+    check_size,
+)
 from impactcli.pairs import SpherePairs, Split
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
@@ -71,6 +80,7 @@ from impactcli.validation import (
 __all__ = [
     "BATCH_KEYS",
     "DAMPED_BLOCK",
+    "DAMPED_TABLE_ROWS",
     "FILM_BLOCK",
     "SpherePairs",
     "batch_damped_impacts",
@@ -701,14 +711,18 @@ def _damped_impacts(
     separation: str,
 ) -> dict[str, NDArray]:
     """:func:`damped_pair_impacts` of flat ``pairs``, its options checked: the rows that
-    can be computed by blocks of about :data:`DAMPED_BLOCK` values (rows x (n + 1)), so
-    memory does not grow with the number of rows."""
+    can be computed, in blocks so that memory does not grow with the number of rows. At
+    the tables' n a row's summary is a look-up (FILM marches, in blocks of its own, only
+    the rows beyond the tables): blocks of :data:`DAMPED_TABLE_ROWS` rows. Otherwise FILM
+    on (rows, n) arrays: blocks of about :data:`DAMPED_BLOCK` values (rows x (n + 1))."""
+    from impactcli.damped_similar import TABLE_N
+
     problems = _damping_problems(pairs, damping, alpha, e_target)
     out = {key: np.full(alpha.shape, np.nan) for key in BATCH_KEYS}
     out["alpha"] = np.full(alpha.shape, np.nan)
     stuck = np.zeros(problems.bad.size, dtype=object)  # "never" or "beyond" per row
     ok = np.flatnonzero(~problems.bad)
-    block = max(1, DAMPED_BLOCK // (n + 1))
+    block = DAMPED_TABLE_ROWS if n == TABLE_N else max(1, DAMPED_BLOCK // (n + 1))
     for start in range(0, ok.size, block):
         rows = ok[start : start + block]
         options = (damping, n, split, separation)

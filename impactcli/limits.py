@@ -16,7 +16,7 @@ sizes"), about:
 
 Work over many rows (``batch``, ``collide3d --rows``) or velocities (the sweeps of
 ``restitution``, ``compare-laws --plot``, ``fit``) is done in blocks
-(:data:`FILM_BLOCK`, :data:`DAMPED_BLOCK`,
+(:data:`FILM_BLOCK`, :data:`DAMPED_BLOCK`, :data:`DAMPED_TABLE_ROWS`,
 :data:`HISTORY_BLOCK`), so its memory does not grow with the
 number of rows. The checks live here once; the command line states the limits in
 ``--help`` and refuses larger values up front, the library entry points refuse them with
@@ -29,6 +29,7 @@ from impactcli.errors import InputError
 
 __all__ = [
     "DAMPED_BLOCK",
+    "DAMPED_TABLE_ROWS",
     "FILM_BLOCK",
     "HISTORY_BLOCK",
     "MAX_SEGMENTS",
@@ -79,6 +80,10 @@ FILM_BLOCK = 131072
 #: (n = 1000, 1,300 rows: 8 s in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s
 #: unblocked); peak memory about 0.2 GB a block, whatever the number of rows.
 DAMPED_BLOCK = 524288
+#: Rows per block of damped rows at the n of the normalised tables (400, the default;
+#: :mod:`impactcli.damped_similar`): a row's summary is a table look-up, some 100 values of
+#: work arrays a row (about 50 MB a block).
+DAMPED_TABLE_ROWS = 65536
 #: History points (rows x ``points``) per block of ``collide3d --rows --tangential mindlin``
 #: rows: each row's normal history and the tangential spring integrated over a block of
 #: rows at once; memory does not grow with the number of rows (one row a block when

@@ -60,6 +60,8 @@ LIBRARY = (
     "impactcli.lawlib",
     "impactcli.curves",
     "impactcli.damping",
+    "impactcli.damped_similar",
+    "impactcli.damped_similar_build",
     "impactcli.collision3d",
     "impactcli.export",
     "impactcli.export.lammps",
