@@ -279,7 +279,12 @@ def _models(laws: list[str], dampings: list[str], accepted: Sequence[str]) -> li
                 f"give --damping {key}"
             )
         elif key not in accepted:
-            extra = " (it has no numeric parameter)" if key in LAWS else ""
+            extra = ""
+            if key in LAWS:  # a law without a fitting: why, from its declaration
+                numeric = any(p.kind not in ("file", "choice") for p in LAWS[key].parameters)
+                extra = " (its module declares no fitting)" if numeric else (
+                    " (it has no numeric parameter)"
+                )
             choices = [k for k in accepted if k not in _DAMPING_AS_LAW]
             raise InputError(
                 f"--law {name}: cannot fit this law{extra}; accepted: {', '.join(choices)} "
