@@ -45,7 +45,7 @@ from impactcli.pairs import effective_properties
 from impactcli.validation import finite_float, input_errors
 
 if TYPE_CHECKING:
-    from impactcli.impact import Sphere
+    from impactcli.pairs import Sphere
 
 __all__ = [
     "HERTZ_CONTACT_TIME_FACTOR",

@@ -52,8 +52,6 @@ from impactcli.contact import (
     ImpactPlan,
     effective_mass,
     first_yield_velocity,
-    sphere_compliance,
-    sphere_mass,
 )
 from impactcli.errors import InputError
 from impactcli.film import FilmSolution
@@ -68,6 +66,7 @@ from impactcli.model import (
 )
 from impactcli.pairs import (
     SPLITS,
+    Sphere,
     SpherePairs,
     Split,
     effective_properties,
@@ -76,12 +75,10 @@ from impactcli.pairs import (
 )
 from impactcli.solution import ContactSolution, PlanSolution, solve_plan
 from impactcli.validation import (
-    finite_float,
     input_errors,
     pair_problems,
     raise_first,
     renamed_p0_factor,
-    sphere_problems,
 )
 
 if TYPE_CHECKING:
@@ -193,121 +190,6 @@ PLASTIC_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
 )
 
 Method = Literal["film", "table", "ode"]
-
-
-@dataclass(frozen=True)
-class Sphere:
-    """One sphere, SI.
-
-    Parameters
-    ----------
-    diameter : D, [m]; ``inf`` for a flat target
-    youngs_modulus : E, [Pa]; ``inf`` for a rigid body
-    poisson_ratio : nu, [-]
-    density : rho, [kg/m^3]
-    mass : m, [kg]; ``None`` for rho pi D^3 / 6, ``inf`` for a fixed target
-    yield_strength : sigma_y, [Pa], or ``None`` if unknown
-
-    Raises
-    ------
-    InputError
-        A property out of range, named (``diameter must be > 0 ...``).
-
-    Examples
-    --------
-    >>> s = Sphere(0.02, youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
-    >>> s.radius, round(s.total_mass, 6)
-    (0.01, 0.032673)
-    >>> Sphere.from_material(0.02, "steel") == Sphere(0.02, 210e9, 0.3, 7800.0, None, 1e9)
-    True
-    >>> wall = Sphere(float("inf"), float("inf"), 0.0, mass=float("inf"))  # rigid, fixed
-    """
-
-    diameter: float
-    youngs_modulus: float
-    poisson_ratio: float
-    density: float | None = None
-    mass: float | None = None
-    yield_strength: float | None = None
-
-    def __post_init__(self) -> None:
-        for key in ("diameter", "youngs_modulus", "poisson_ratio", "density", "mass",
-                    "yield_strength"):  # fmt: skip
-            value = getattr(self, key)
-            if value is not None:  # a number of float range (10**400 is not)
-                finite_float(key.replace("_", " "), value)
-        raise_first(
-            sphere_problems(
-                self.diameter,
-                self.youngs_modulus,
-                self.poisson_ratio,
-                np.nan if self.density is None else self.density,
-                np.nan if self.mass is None else self.mass,
-                np.nan if self.yield_strength is None else self.yield_strength,
-                given={
-                    "rho": self.density is not None,
-                    "m": self.mass is not None,
-                    "sy": self.yield_strength is not None,
-                },
-            )
-        )
-
-    @classmethod
-    def from_material(
-        cls,
-        diameter: float,
-        material: str | Any,
-        mass: float | None = None,
-        **properties: float | None,
-    ) -> Sphere:
-        """A sphere of ``diameter`` [m] of a built-in material (``impact materials``), or
-        of a :class:`~impactcli.materials.Material`; ``properties`` (``youngs_modulus``,
-        ``poisson_ratio``, ``density``, ``yield_strength``, SI) replace the material's.
-
-        ``Sphere(0.02, **material("steel").properties())`` is the same sphere.
-
-        Parameters
-        ----------
-        diameter : D, [m]; ``inf`` for a flat target
-        material : a name of :data:`impactcli.materials.MATERIALS` or a ``Material``
-        mass : m, [kg]; ``None`` for rho pi D^3 / 6, ``inf`` for a fixed target
-        properties : the material's values to replace, SI
-
-        Returns
-        -------
-        Sphere
-
-        Examples
-        --------
-        >>> s = Sphere.from_material(0.02, "steel")
-        >>> s.youngs_modulus, s.yield_strength, round(s.total_mass, 6)
-        (210000000000.0, 1000000000.0, 0.032673)
-        >>> Sphere.from_material(0.02, "steel", yield_strength=8e8).yield_strength
-        800000000.0
-        """
-        from impactcli.materials import Material
-        from impactcli.materials import material as named
-
-        chosen = material if isinstance(material, Material) else named(material)
-        values = {**chosen.properties(), **properties}
-        return cls(diameter, mass=mass, **values)
-
-    @property
-    def radius(self) -> float:
-        """R_i = D_i / 2, [m]."""
-        return 0.5 * self.diameter
-
-    @property
-    def total_mass(self) -> float:
-        """m_i, [kg]: as given, else rho pi D^3 / 6."""
-        if self.mass is not None:
-            return float(self.mass)
-        return float(sphere_mass(self.diameter, self.density))
-
-    @property
-    def compliance(self) -> float:
-        """(1 - nu^2)/E, [1/Pa]; zero for a rigid body (:func:`.sphere_compliance`)."""
-        return float(sphere_compliance(self.youngs_modulus, self.poisson_ratio))
 
 
 @dataclass(frozen=True)

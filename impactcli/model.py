@@ -43,8 +43,9 @@ from impactcli.laws.registry import (
 from impactcli.pairs import effective_properties, weaker_yield_strength
 
 if TYPE_CHECKING:
-    from impactcli.impact import ImpactResult, Sphere
+    from impactcli.impact import ImpactResult
     from impactcli.laws.base import ImpactPlan, LawSpec, NormalContact
+    from impactcli.pairs import Sphere
     from impactcli.solution import ContactSolution, PlanSolution
 
 __all__ = [
