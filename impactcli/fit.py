@@ -53,6 +53,7 @@ __all__ = [
     "FitData",
     "FitParameter",
     "FitResult",
+    "fit_curves",
     "fit_law",
     "fit_named_law",
     "law_model",
@@ -569,10 +570,11 @@ def law_model(
                 f"law {law!r} has no parameter {sorted(unknown)[0]!r} (accepted: {accepted})"
             )
         from impactcli.model import ContactModel
+        from impactcli.sweep import model_restitution
 
         contact = ContactModel.named(law, declared.run_parameters(p), p.get("sy"))
         pair = contact.for_spheres(sphere1, sphere2)
-        e, t_c = pair.restitution(np.asarray(v0, dtype=float), segments)
+        e, t_c = model_restitution(pair, np.asarray(v0, dtype=float), segments)
         return {"restitution": e, "contact_time": t_c}
 
     return model
@@ -652,6 +654,48 @@ def prediction_band(
         "upper": e + t * se,
         "contact_time": np.asarray(centre["contact_time"], dtype=float),
     }
+
+
+def fit_curves(
+    data: FitData,
+    fits: Sequence[tuple[FitResult, Model, Mapping[str, float]]],
+    best: FitResult,
+    points: int = 80,
+) -> tuple[list[dict[str, NDArray]], NDArray | None]:
+    """What a figure of fits to ``data`` draws (``impact fit --plot``).
+
+    Parameters
+    ----------
+    data : the measured points
+    fits : each fit as (its result, its model, the parameters it held fixed)
+    best : the best-ranked fit (:func:`rank_fits`), whose reduced chi-square s^2 sets the
+        error of the measured points
+    points : velocities of the curves over the measured range (geometric where it spans
+        more than a factor 3, linear otherwise), [-]; the measured V0 are added
+
+    Returns
+    -------
+    curves : list of dict
+        Each fit's :func:`prediction_band` on the grid of velocities and ``residuals``,
+        e_i - e(V0_i) of the fit at the measured points [-].
+    error : ndarray or None
+        sigma_i = s / sqrt(w_i) of each measured point [-] (None without weights).
+    """
+    v0 = data.impact_velocity
+    lo, hi = float(v0.min()), float(v0.max())
+    grid = np.geomspace(lo, hi, points) if hi > 3 * lo else np.linspace(lo, hi, points)
+    grid = np.unique(np.concatenate([grid, v0]))
+    curves = [
+        {
+            **prediction_band(result, model, grid, held),
+            "residuals": data.restitution - result.predicted["restitution"],
+        }
+        for result, model, held in fits
+    ]
+    error = None
+    if data.weight is not None:
+        error = np.sqrt(best.reduced_chi_square / data.weight)
+    return curves, error
 
 
 def law_yield_velocity(sphere1, sphere2, law: str, params: Mapping[str, float]) -> float:
