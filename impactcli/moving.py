@@ -57,7 +57,7 @@ def moving_collision_3d(
     points: int = 4001,
     n: int | None = None,
     *,
-    warnings: Sequence[str] = (),
+    warnings: Sequence[str] | None = (),
 ) -> Collision3D:
     """The collision of two spheres integrated in time with the spheres moving (module
     docstring), as a :class:`~impactcli.collision3d.Collision3D` with ``geometry =
@@ -78,7 +78,8 @@ def moving_collision_3d(
         mu = 0
     points : steps over the contact of the coarse run (the fine one takes twice as many)
     n : FILM segments per stage of the normal law's e (``restitution`` of the result)
-    warnings : carried by the result
+    warnings : carried by the result; None: those of the normal law
+        (:attr:`impactcli.collision3d.NormalLaw.warnings`, as ``impact collide3d`` prints them)
 
     Returns
     -------
@@ -156,10 +157,13 @@ def moving_collision_3d(
     damper = None
     if model.damping is not None:
         damper = damping_model(model.damping, radius, modulus, m, model.alpha)
-    e, history = normal_restitution_and_history(
+    normal = normal_restitution_and_history(
         sphere1, sphere2, u_n, law=model.law, damping=model.damping, alpha=model.alpha,
         points=3, n=n, separation=model.separation,
     )  # fmt: skip
+    e, history = normal
+    if warnings is None:
+        warnings = normal.warnings
     t_c = float(history.t[0, -1])
     contact = _Contact(sphere1, sphere2, radius, modulus, shear, damper, model.separation,
                        mu, spec)  # fmt: skip

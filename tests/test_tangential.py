@@ -186,7 +186,7 @@ def test_damped_rows_share_their_normalised_history(options, cells):
     e = 1 is undamped Hertz), for spheres of different sizes and speeds, several models.
     Before, under the row-by-row histories (a law other than Hertz), a row of e = 1 among
     rows of e < 1 was refused (its impulse of F_n was NaN)."""
-    from impactcli.io import collisions3d
+    from impactcli import rows3d
     from impactcli.io.collisions3d import compute_collisions3d
 
     size = len(cells)
@@ -203,13 +203,13 @@ def test_damped_rows_share_their_normalised_history(options, cells):
     }  # fmt: skip
     for model in ("mindlin", "mindlin-displacement", "mindlin-deresiewicz"):
         fast = compute_collisions3d(frame, mu=0.092, tangential=model, points=801, **options)
-        original = collisions3d._self_similar
+        original = rows3d.CollisionModel.self_similar
         try:  # every row by its own FILM history, as for a law that is not Hertz
-            collisions3d._self_similar = lambda *_: False
+            rows3d.CollisionModel.self_similar = property(lambda _: False)
             slow = compute_collisions3d(frame, mu=0.092, tangential=model, points=801,
                                         **options)  # fmt: skip
         finally:
-            collisions3d._self_similar = original
+            rows3d.CollisionModel.self_similar = original
         assert list(fast["error"]) == [""] * size == list(slow["error"])
         # (Mindlin-Deresiewicz locates its branch changes to the interval: a turn that
         # rounding moves by one interval changes J_t at first order in the step, 7e-4 here)
@@ -218,3 +218,4 @@ def test_damped_rows_share_their_normalised_history(options, cells):
             np.testing.assert_allclose(fast[key], slow[key], rtol=rtol, atol=0.0,
                                        err_msg=f"{model} {key}")  # fmt: skip
         assert np.ptp(fast["tangential_impulse"] / fast["normal_impulse"]) > 0.01  # not all slid
+

@@ -16,14 +16,8 @@ tests with every tangential model (the validation page).
 import numpy as np
 from chung_ooi import test4_figure, test5_figure  # benchmarks/chung_ooi.py
 
-from impactcli import Sphere, oblique_collision_3d
-from impactcli.collision3d import (
-    effective_shear_modulus,
-    normal_restitution_and_history,
-    restitution_damping,
-    velocity_from_angles,
-)
-from impactcli.laws.tangential import tangential_names
+from impactcli import Sphere
+from impactcli.collision3d import sphere_collision_3d
 
 test4 = test4_figure()
 
@@ -40,13 +34,12 @@ test5 = test5_figure()
 
 ball = Sphere(5e-3, 380e9, 0.23, 4000.0)
 plane = Sphere(np.inf, np.inf, 0.0, mass=np.inf)
-v1 = velocity_from_angles(3.9, np.radians(10.0), 0.0, (0.0, 0.0, -1.0))
-damping, alpha = restitution_damping(0.98)  # e_n = 0.98: Tsuji's damping that gives it
-e, history = normal_restitution_and_history(ball, plane, float(-v1[2]), damping=damping,
-                                            alpha=alpha, points=4001)
-for name in tangential_names():
-    c = oblique_collision_3d(ball.total_mass, np.inf, v1, (0, 0, 0), (0, 0, 0), (0, 0, -1),
-                             5e-3, np.inf, restitution=e, mu=0.092, tangential=name,
-                             history=history, shear_modulus=effective_shear_modulus(
-                                 380e9, 0.23, np.inf, 0.0))
+theta = np.radians(10.0)
+motion = {"v1": (3.9 * np.sin(theta), 0.0, -3.9 * np.cos(theta)), "v2": (0.0, 0.0, 0.0),
+          "p1": (0.0, 0.0, 0.0), "p2": (0.0, 0.0, -1.0)}  # fmt: skip
+models = ("rigid", "mindlin", "mindlin-force", "mindlin-displacement", "mindlin-rescale",
+          "mindlin-deresiewicz")  # fmt: skip
+for name in models:
+    # e_n = 0.98: with a spring, Hertz with Tsuji's damping that gives it
+    c, _ = sphere_collision_3d(ball, plane, motion, restitution=0.98, mu=0.092, tangential=name)
     print(f"{name:22s} spin {np.reshape(c.w1_final, -1)[1]:8.2f} rad/s")
