@@ -219,3 +219,33 @@ def test_damped_rows_share_their_normalised_history(options, cells):
                                        err_msg=f"{model} {key}")  # fmt: skip
         assert np.ptp(fast["tangential_impulse"] / fast["normal_impulse"]) > 0.01  # not all slid
 
+
+@pytest.mark.parametrize("model", ["mindlin", "mindlin-displacement"])
+def test_one_collision_with_a_given_e_and_a_spring_is_hertz_with_tsuji_s_damping(model):
+    """sphere_collision_3d (what impact collide3d runs) takes a given e with a spring as
+    Hertz with the Tsuji damping that gives it (restitution_damping), as --rows does: the
+    collision of that damped normal history, e to 1e-6 of the one asked; rigid uses e as
+    it is. (It refused to drive a spring from a given e before.)"""
+    from impactcli.collision3d import restitution_damping, sphere_collision_3d
+
+    ball, plane = Sphere(5e-3, 380e9, 0.23, 4000.0), Sphere(np.inf, np.inf, 0.0, mass=np.inf)
+    theta = np.radians(10.0)
+    motion = {"v1": (3.9 * np.sin(theta), 0.0, -3.9 * np.cos(theta)), "v2": (0.0, 0.0, 0.0),
+              "p1": (0.0, 0.0, 0.0), "p2": (0.0, 0.0, -1.0)}  # fmt: skip
+    got, history = sphere_collision_3d(ball, plane, motion, restitution=0.98, mu=0.092,
+                                       tangential=model, points=801)  # fmt: skip
+    damping, alpha = restitution_damping(0.98)
+    e, expected_history = normal_restitution_and_history(
+        ball, plane, 3.9 * np.cos(theta), damping=damping, alpha=alpha, points=801
+    )
+    expected = oblique_collision_3d(
+        ball.total_mass, np.inf, motion["v1"], motion["v2"], motion["p1"], motion["p2"], 5e-3,
+        np.inf, restitution=e, mu=0.092, tangential=model, history=expected_history,
+        shear_modulus=effective_shear_modulus(380e9, 0.23, np.inf, 0.0),
+    )  # fmt: skip
+    np.testing.assert_array_equal(history.force, expected_history.force)
+    for key in ("w1_final", "v1_final", "tangential_impulse", "restitution"):
+        np.testing.assert_allclose(getattr(got, key), getattr(expected, key), rtol=1e-14)
+    assert float(np.squeeze(got.restitution)) == pytest.approx(0.98, abs=1e-6)
+    rigid, none = sphere_collision_3d(ball, plane, motion, restitution=0.7, mu=0.092)
+    assert none is None and float(rigid.restitution) == 0.7
