@@ -149,7 +149,12 @@ def moving_collision_3d(
     normal0 = d / gap
     u_n = float(np.dot(u1 - u2, normal0))
     if not u_n > 0.0:
-        raise ValueError("the spheres are not approaching along the line of centres")
+        x, y, z = normal0
+        raise ValueError(
+            f"the spheres are not approaching along the line of centres: (v1 - v2).n = "
+            f"{u_n:.6g} m/s with n = ({x:.6g}, {y:.6g}, {z:.6g}) from sphere 1 to sphere 2 "
+            "(an impact needs > 0)"
+        )
     check_pair(sphere1, sphere2, u_n, 0.0)
     m, radius, modulus = effective_properties(sphere1, sphere2)
     shear = float(effective_shear_modulus(sphere1.youngs_modulus, sphere1.poisson_ratio,

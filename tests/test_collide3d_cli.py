@@ -610,6 +610,9 @@ def test_moving_geometry_tends_to_the_frozen_one_as_the_normal_stops_turning():
          "tangential spring"),
         ([*STEEL_PAIR[1:], "--v1", "1m/s@30deg", "--model", "elastoplastic", "--geometry",
           "moving"], "Hertz"),
+        # as the frozen geometry says it: u_n and the normal
+        ([*STEEL_PAIR[1:], "--v1=0,0,1", "--mu", "0.3", "--tangential", "mindlin",
+          "--geometry", "moving"], "(v1 - v2).n = -1 m/s with n = (0, 0, -1)"),
     ],
 )  # fmt: skip
 def test_moving_geometry_refuses_what_it_does_not_cover(impact, args, message):
