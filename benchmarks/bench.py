@@ -32,8 +32,10 @@ issue 25 and whether it is MET. NOT MET rows are what to speed up next.
 (e) ``impact collide3d --rows`` with ``--tangential mindlin`` (alumina spheres on a plane
     at 3.9 m/s, Chung & Ooi 2011 test 4) on one chunk of rows (10,000: it works a chunk at
     a time) and on two: rows per second between the two (start-up excluded; target 10^4),
-    and the peak RSS of each run, extrapolated linearly to 10^6 rows (not run; target:
-    under 1 GB, memory bounded by the block size).
+    and the peak RSS of a run of 10^6 rows (target: under 1 GB, memory bounded by the block
+    size). With ``--e 0.98`` (Tsuji's damping, the benchmark's e_n), in process: one
+    normalised damped history for all rows against one FILM history per row, rows per
+    second of each (issue 26 sets no target).
 (f) ``impact tables --n 1000000 -o t.csv``, against pyarrow writing the same table of
     floats as CSV (issue 25 sets no target).
 (g) Start-up of every command without ``--plot`` (with units, as typed), each against
@@ -752,19 +754,19 @@ def bench_collide3d(rows: list[Row], quick: bool) -> None:
     # one chunk of rows and two: memory beyond the first chunk is what grows with the rows
     chunk = int(inspect.signature(run_collisions3d).parameters["rows"].default)
     sizes = (300, 600) if quick else (chunk, 2 * chunk)
+    million = 3000 if quick else 10**6
     results = []
     with tempfile.TemporaryDirectory() as tmp:
-        for size in sizes:
+        for size in (*sizes, million):
             source, target = Path(tmp) / f"in{size}.csv", Path(tmp) / "out.csv"
             collision_rows(source, size)
             cmd = [sys.executable, "-m", "impactcli", "collide3d", "--rows", str(source), "-o",
                    str(target), "--tangential", "mindlin", "--mu", "0.092"]  # fmt: skip
             results.append(run_command(cmd, memory=True, cwd=ROOT, env=_env()))
             assert sum(1 for _ in target.open()) == size + 1
-    (t1, m1), (t2, m2) = results
+            source.unlink()
+    (t1, m1), (t2, m2), (t3, m3) = results
     value = (sizes[1] - sizes[0]) / (t2 - t1)
-    per_row = max(m2 - m1, 0) / (sizes[1] - sizes[0])
-    million = m2 + per_row * (10**6 - sizes[1])
     label = "(e) impact collide3d --rows -o out.csv --tangential mindlin --mu 0.092"
     rows.append(Row(
         f"{label}: rows/s between {sizes[0]:,} rows ({seconds(t1)}) and {sizes[1]:,} "
@@ -773,12 +775,62 @@ def bench_collide3d(rows: list[Row], quick: bool) -> None:
         verdict(value >= TARGET_COLLIDE3D),
     ))  # fmt: skip
     rows.append(Row(
-        f"{label}: peak RSS at 10^6 rows, extrapolated linearly (not run) from "
-        f"{m1 / 1e6:,.0f} MB at "
-        f"{sizes[0]:,} rows and {m2 / 1e6:,.0f} MB at {sizes[1]:,}",
-        f"{million / 1e9:,.3g} GB ({per_row / 1e6:.3g} MB a row)", "", "", "",
-        f"< {TARGET_COLLIDE3D_MEMORY / 1e9:g} GB", verdict(million < TARGET_COLLIDE3D_MEMORY),
+        f"{label}: peak RSS at {million:,} rows, run ({seconds(t3)}; {m1 / 1e6:,.0f} MB at "
+        f"{sizes[0]:,} rows, {m2 / 1e6:,.0f} MB at {sizes[1]:,}): blocks of 8,192 rows",
+        f"{m3 / 1e9:,.3g} GB", "", "", "",
+        f"< {TARGET_COLLIDE3D_MEMORY / 1e9:g} GB", verdict(m3 < TARGET_COLLIDE3D_MEMORY),
     ))  # fmt: skip
+    bench_collide3d_damped(rows, quick)
+
+
+def bench_collide3d_damped(rows: list[Row], quick: bool) -> None:
+    """Chung & Ooi's e_n = 0.98 (Hertz with the Tsuji damping that gives it): every row's
+    normal history one normalised damped history scaled, against the row-by-row FILM
+    histories (one FILM run per row, as for a law other than Hertz), in process; the
+    normalised history is built once (cached) before the timed run."""
+    from impactcli import rows3d
+    from impactcli.io import collisions3d
+
+    size, few = (512, 16) if quick else (8192, 128)
+    frame = _collision_frame(size)
+    part = {k: v[:: size // few] for k, v in frame.items()}
+    options = {"mu": 0.092, "tangential": "mindlin", "restitution": 0.98}
+    collisions3d.compute_collisions3d(part, **options)  # the normalised history, cached
+    start = time.perf_counter()
+    collisions3d.compute_collisions3d(frame, **options)
+    fast = time.perf_counter() - start
+    original = rows3d.CollisionModel.self_similar
+    try:  # every row's history by its own FILM run, as for a law other than Hertz
+        rows3d.CollisionModel.self_similar = property(lambda _: False)
+        start = time.perf_counter()
+        reference = collisions3d.compute_collisions3d(part, **options)
+        slow = time.perf_counter() - start
+    finally:
+        rows3d.CollisionModel.self_similar = original
+    ours = collisions3d.compute_collisions3d(part, **options)
+    error = float(np.max(np.abs(ours["tangential_impulse"] - reference["tangential_impulse"])
+                         / np.abs(reference["normal_impulse"])))  # fmt: skip
+    fast_rate, slow_rate = size / fast, part["d1"].size / slow
+    rows.append(Row(
+        f"(e) collide3d --rows --tangential mindlin --e 0.98 (Tsuji damping; in process, "
+        f"{size:,} rows): one normalised damped history for all rows",
+        rate(fast_rate), f"one FILM history per row ({part['d1'].size} rows): "
+        f"{rate(slow_rate)}", f"{fast_rate / slow_rate:,.0f}x",
+        f"J_t within {error:.1g} J_n of it", "none in issue 26", "",
+    ))  # fmt: skip
+
+
+def _collision_frame(size: int) -> dict[str, np.ndarray]:
+    """The rows of :func:`collision_rows` as columns of floats."""
+    angle = np.radians(np.linspace(1.0, 89.0, size))
+    zero = np.zeros(size)
+    return {
+        "p1_x": zero, "p1_y": zero, "p1_z": zero, "p2_x": zero, "p2_y": zero,
+        "p2_z": zero - 1.0, "v1_x": 3.9 * np.sin(angle), "v1_y": zero,
+        "v1_z": -3.9 * np.cos(angle), "d1": zero + 5e-3, "E1": zero + 380e9,
+        "nu1": zero + 0.23, "rho1": zero + 4000.0, "d2": zero + np.inf, "m2": zero + np.inf,
+        "E2": zero + np.inf,
+    }  # fmt: skip
 
 
 # -- (f) tables --------------------------------------------------------------------------------

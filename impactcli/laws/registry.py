@@ -45,6 +45,7 @@ __all__ = [
     "ELASTIC_LAW",
     "LAWS",
     "MODELS",
+    "RESTITUTION_DAMPING",
     "alpha_label",
     "alpha_units",
     "check_alpha",
@@ -100,6 +101,10 @@ DEFAULT_LAW_PARAMETERS: dict[str, Any] = {
 #: The law of elastic impacts (``impact elastic``, ``--model elastic``) and of the first
 #: yield of an elastic contact: Hertz.
 ELASTIC_LAW = "hertz"
+#: The damping that a given e stands for where the normal force history is needed (``impact
+#: collide3d --e`` with a tangential spring): Tsuji's, whose alpha for e is that of any pair
+#: and impact velocity (LAMMPS's ``damping tsuji`` with ``coeff_restitution``).
+RESTITUTION_DAMPING = "tsuji"
 #: The law of the user's own loading curve (``impact elastic --curve FILE``).
 CURVE_LAW = "tabulated"
 
