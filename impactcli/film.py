@@ -26,8 +26,10 @@ keeps the node times accurate to rounding for n up to millions (an ``arcsin`` of
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-from typing import Protocol
+from functools import lru_cache
+from typing import NamedTuple, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -38,7 +40,9 @@ __all__ = [
     "ContactLaw",
     "FilmStage",
     "FilmSolution",
+    "FilmSummary",
     "hertz_loading_time",
+    "segment_time",
     "solve_stage",
     "swept_angles",
 ]
@@ -60,6 +64,39 @@ class ContactLaw(Protocol):
     def work(self, start: ArrayLike, end: ArrayLike) -> Array:
         """Work integral of F from ``start`` to ``end``, [J]."""
         ...
+
+
+class FilmSummary(NamedTuple):
+    """One impact by FILM with n segments per stage, as floats (SI): its law's closed forms
+    and FILM's times, without the stage arrays (what a contact model's ``film_summary``
+    gives, :class:`impactcli.solution.PlanSolution`).
+
+    Attributes
+    ----------
+    delta_max : maximum indentation, [m]
+    force_max : maximum contact force, [N]
+    delta_res : residual indentation at separation, [m]
+    restitution : coefficient of restitution e, [-]
+    t_max : FILM time of the maximum indentation, [s]
+    end_time : FILM time of separation, [s]
+    delta_y : yield indentation of the contact, [m] (NaN: no yield point)
+    yield_velocity : V_y, [m/s] (NaN: no yield point)
+    recoverable_work : work unloading from delta_max gives back, [J]
+    normalised : the Hertz impact of the normalised Tables A1/A2
+    plastic : past the law's yield point
+    """
+
+    delta_max: float
+    force_max: float
+    delta_res: float
+    restitution: float
+    t_max: float
+    end_time: float
+    delta_y: float
+    yield_velocity: float
+    recoverable_work: float
+    normalised: bool
+    plastic: bool
 
 
 @dataclass(frozen=True)
@@ -297,6 +334,93 @@ def swept_angles(
     return swept, turning
 
 
+def _swept(x0: float, y0: float, h: float, turning: bool = False) -> float:
+    """:func:`swept_angles` of one segment, on floats, [rad]."""
+    x_end_sq = x0 * x0 - h * (2.0 * y0 + h)
+    if turning or x_end_sq <= 0.0:
+        return math.atan2(x0, y0)
+    x_end = math.sqrt(x_end_sq)
+    return math.atan2(h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end)), x0 * x_end + y0 * (y0 + h))
+
+
+def segment_time(
+    force_start: float,
+    force_end: float,
+    delta_start: float,
+    delta_end: float,
+    speed_start: float,
+    mass: float,
+    end_at_rest: bool = False,
+) -> float:
+    """FILM time [s] of a stage solved as one segment (:func:`solve_stage` with n = 1), on
+    floats: the whole stage's duration for a law that is linear on it (its chord is the
+    law, so FILM is exact on every segment and n segments take the time of one).
+
+    Parameters
+    ----------
+    force_start, force_end : the law's force at the two ends, [N]
+    delta_start, delta_end : the ends of the stage, [m]
+    speed_start : |delta'| at the start, [m/s]
+    mass : effective mass m, [kg]
+    end_at_rest : the stage ends at the oscillator's turning point
+
+    Examples
+    --------
+    A linear spring k = 4 N/m, m = 1 kg, loaded from rest position at 1 m/s: a quarter period.
+
+    >>> segment_time(0.0, 2.0, 0.0, 0.5, 1.0, 1.0, end_at_rest=True) == math.pi / 4
+    True
+    """
+    step = delta_end - delta_start
+    direction = 1.0 if step > 0.0 else -1.0
+    stiffness = (force_end - force_start) / step
+    omega = math.sqrt(stiffness / mass)
+    x0 = abs(speed_start) / omega
+    y0 = direction * force_start / stiffness
+    return _swept(x0, y0, abs(step), end_at_rest) / omega
+
+
+@lru_cache(maxsize=32)
+def _hertz_loading_geometry(n: int) -> tuple[tuple[float, ...], ...]:
+    """Per segment of :func:`hertz_loading_time` with n steps, on floats: (4/5) xi_r^2.5,
+    h (2 y0 + h), y0, y0 (2 y0 + h), y0 (y0 + h) and sqrt(k_r)."""
+    h = 1.0 / n
+    xi = [r / n for r in range(n + 1)]
+    force = [x * math.sqrt(x) for x in xi]
+    out = []
+    for r in range(n):
+        slope = (force[r + 1] - force[r]) * n
+        y0 = force[r] / slope
+        out.append(
+            (0.8 * force[r] * xi[r], h * (2.0 * y0 + h), y0, y0 * (2.0 * y0 + h),
+             y0 * (y0 + h), math.sqrt(slope))
+        )  # fmt: skip
+    return tuple(out)
+
+
+#: Largest n for which :func:`hertz_loading_time` of one impact runs on floats (a loop of
+#: n segments): beyond it the NumPy arrays of n segments are faster.
+SCALAR_SEGMENTS = 48
+
+
+def _hertz_loading_time_scalar(d: float, v: float, k: float, m: float, n: int) -> float:
+    """:func:`hertz_loading_time` of one impact, on floats (n <= :data:`SCALAR_SEGMENTS`)."""
+    a = m * (v * v) / (k * (d * d) * math.sqrt(d))
+    h = 1.0 / n
+    sqrt, atan2 = math.sqrt, math.atan2
+    total = 0.0
+    for energy, c1, y0, q, p, root in _hertz_loading_geometry(n):
+        rest = a - energy
+        x0 = sqrt(rest) / root if rest > 0.0 else 0.0
+        x_end_sq = x0 * x0 - c1
+        if x_end_sq <= 0.0:
+            total += atan2(x0, y0) / root
+        else:
+            x_end = sqrt(x_end_sq)
+            total += atan2(h * (x0 + q / (x0 + x_end)), x0 * x_end + p) / root
+    return total / sqrt(k * sqrt(d) / m)
+
+
 def hertz_loading_time(
     delta_end: ArrayLike,
     speed_start: ArrayLike,
@@ -321,6 +445,11 @@ def hertz_loading_time(
     mass : effective mass m, [kg]
     n : number of segments, >= 1
 
+    Returns
+    -------
+    The durations, [s]: a float for one impact given as floats (a loop over the n
+    segments up to :data:`SCALAR_SEGMENTS`, the same numbers to rounding).
+
     Notes
     -----
     With lengths in units of delta_end and Omega = sqrt(K_h delta_end^0.5 / m): chord slopes
@@ -338,6 +467,9 @@ def hertz_loading_time(
     0.96176108
     """
     n = check_size("n", n, MAX_SEGMENTS)
+    values = (delta_end, speed_start, stiffness, mass)
+    if n <= SCALAR_SEGMENTS and all(type(x) is float for x in values):  # one impact
+        return _hertz_loading_time_scalar(*values, n)  # type: ignore[arg-type, return-value]
     xi = np.arange(n + 1, dtype=float) / n
     force = xi * np.sqrt(xi)  # F / (K_h delta_end^1.5)
     slope = np.diff(force) * n  # k_r

@@ -41,6 +41,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
@@ -50,6 +51,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
     DU_WANG_PRESSURE_FACTOR,
+    FIRST_YIELD_PRESSURE_FACTOR,
     ImpactPlan,
     effective_mass,
     effective_modulus,
@@ -63,10 +65,20 @@ from impactcli.film import FilmSolution
 from impactcli.laws.registry import DEFAULT_LAW
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.model import DAMPED_DEFAULT_N, ContactModel, DampedPair, PairModel
-from impactcli.solution import ContactSolution, PlanSolution, solve_plan
+from impactcli.solution import (
+    ContactSolution,
+    PlanSolution,
+    history_solution,
+    history_times,
+    solve_plan,
+)
 from impactcli.validation import (
+    SMALL_DEFORMATION_LIMIT,
+    contact_radius_warning,
     finite_float,
+    first_yield_warning,
     input_errors,
+    mass_split_warning,
     pair_problems,
     raise_first,
     renamed_p0_factor,
@@ -227,6 +239,8 @@ class Sphere:
             value = getattr(self, key)
             if value is not None:  # a number of float range (10**400 is not)
                 finite_float(key.replace("_", " "), value)
+        if _plain_sphere(self):  # plainly valid numbers: nothing to word
+            return
         raise_first(
             sphere_problems(
                 self.diameter,
@@ -288,17 +302,42 @@ class Sphere:
         """R_i = D_i / 2, [m]."""
         return 0.5 * self.diameter
 
-    @property
+    @cached_property
     def total_mass(self) -> float:
         """m_i, [kg]: as given, else rho pi D^3 / 6."""
         if self.mass is not None:
             return float(self.mass)
         return float(sphere_mass(self.diameter, self.density))
 
-    @property
+    @cached_property
     def compliance(self) -> float:
         """(1 - nu^2)/E, [1/Pa]; zero for a rigid body (:func:`.sphere_compliance`)."""
         return float(sphere_compliance(self.youngs_modulus, self.poisson_ratio))
+
+
+def _plain_sphere(sphere: Sphere) -> bool:
+    """True when every property of ``sphere`` is a plain number that plainly passes the
+    checks of :func:`impactcli.validation.sphere_problems` (finite D > 0, E > 0,
+    -1 < nu < 0.5, rho, m, sigma_y > 0 where given, a mass of range): the common case, told
+    on floats. False sends the sphere through those checks, which word what is wrong."""
+    values = (sphere.diameter, sphere.youngs_modulus, sphere.poisson_ratio)
+    extra = (sphere.density, sphere.mass, sphere.yield_strength)
+    if not all(type(x) in (float, int) for x in values):
+        return False
+    if not all(x is None or (type(x) in (float, int) and 0.0 < x < math.inf) for x in extra):
+        return False
+    d, e, nu = values
+    if not (0.0 < d < math.inf and 0.0 < e <= math.inf and -1.0 < nu < 0.5):
+        return False
+    if sphere.mass is not None:
+        return True
+    if sphere.density is None:
+        return False
+    try:
+        mass = sphere.density * (math.pi / 6.0) * d**3
+    except OverflowError:
+        return False
+    return 1e-300 < mass < 1e300  # within range by a margin: the checks judge the edges
 
 
 @dataclass(frozen=True)
@@ -379,34 +418,48 @@ class ImpactResult:
     @property
     def mass_ratios(self) -> tuple[float, float]:
         """m/m_1 and m/m_2, [-] (eq. 12)."""
-        m = float(effective_mass(self.m1, self.m2))
-        return m / self.m1, m / self.m2
+        return self._shares()[0]
 
     @property
     def split_fractions(self) -> tuple[float, float]:
         """delta_i / delta for each sphere, [-]: by mass or by compliance; for ``yield``
         the shares e_i of the recoverable part delta - delta_p (:attr:`permanent_fractions`
         gives those of delta_p)."""
-        f1, f2 = split_fractions(
-            self.split, self.m1, self.m2, self.sphere1.compliance, self.sphere2.compliance
-        )
-        return float(f1), float(f2)
+        return self._shares()[1]
 
     @property
     def permanent_fractions(self) -> tuple[float, float]:
         """Shares p_i of the permanent indentation delta_p, [-] (equal to
         :attr:`split_fractions` for ``mass`` and ``compliance``)."""
-        f1, f2 = split_fractions(
-            self.split,
-            self.m1,
-            self.m2,
-            self.sphere1.compliance,
-            self.sphere2.compliance,
-            _nan(self.sphere1.yield_strength),
-            _nan(self.sphere2.yield_strength),
-            permanent=True,
-        )
-        return float(f1), float(f2)
+        return self._shares()[2]
+
+    def _shares(self) -> tuple[tuple[float, float], ...]:
+        """(:attr:`mass_ratios`, :attr:`split_fractions`, :attr:`permanent_fractions`),
+        worked out on first use and kept."""
+        shares = self.__dict__.get("_shares_")
+        if shares is not None:
+            return shares
+        m1, m2 = self.m1, self.m2
+        m = _effective(m1, m2)
+        ratios = (m / m1, m / m2)
+        c1, c2 = self.sphere1.compliance, self.sphere2.compliance
+        if self.split == "mass":
+            split = ratios
+        elif self.split in ("compliance", "yield") and c1 + c2 > 0.0:
+            split = (c1 / (c1 + c2), c2 / (c1 + c2))
+        else:
+            f1, f2 = split_fractions(self.split, m1, m2, c1, c2)
+            split = (float(f1), float(f2))
+        permanent = split
+        if self.split == "yield":
+            f1, f2 = split_fractions(
+                self.split, m1, m2, c1, c2,
+                _nan(self.sphere1.yield_strength), _nan(self.sphere2.yield_strength),
+                permanent=True,
+            )  # fmt: skip
+            permanent = (float(f1), float(f2))
+        shares = self.__dict__["_shares_"] = (ratios, split, permanent)
+        return shares
 
     @property
     def contact_plane_velocity(self) -> float:
@@ -469,7 +522,7 @@ class ImpactResult:
         (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
         points = check_size("points", points, MAX_POINTS, minimum=2)
         method = self.method if method is None else method
-        return np.linspace(0.0, float(self._solution(method).end_time), points)
+        return history_times(self._solution(method), points)
 
     # -- histories ---------------------------------------------------------------------
     def history(
@@ -490,8 +543,8 @@ class ImpactResult:
         if method not in self.contact.methods:
             raise ValueError(self.contact.method_error(method))
         t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
-        source = self._solution(method)
-        t = np.clip(t, 0.0, float(source.end_time))  # d_i must match the clamped delta(t)
+        t = np.clip(t, 0.0, float(self._solution(method).end_time))  # d_i match delta(t)
+        source = history_solution(self._solution(method))
         if method == "table":
             delta, delta_dot = self._table_state(t)
         else:
@@ -624,9 +677,18 @@ class ImpactResult:
             raise ValueError("the table method is for elastic impacts only")
         from impactcli.tables import normalised_elastic
 
-        v0, delta_m = self.impact_velocity, float(self.solution.delta_max)
+        v0, delta_m = self.impact_velocity, float(history_solution(self.solution).delta_max)
         d_bar, v_bar = FilmSolution(normalised_elastic(self.n)).evaluate(t * v0 / delta_m)
         return d_bar * delta_m, v_bar * v0
+
+
+def _effective(a: float, b: float) -> float:
+    """(1/a + 1/b)^-1 of two positive numbers (``inf`` for none), on floats
+    (:func:`impactcli.contact.effective_mass`)."""
+    try:
+        return 1.0 / (1.0 / a + 1.0 / b)
+    except ZeroDivisionError:
+        return float(effective_mass(a, b))
 
 
 def _nan(value: float | None) -> float:
@@ -664,6 +726,8 @@ def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -
     for name, sphere in (("sphere1", sphere1), ("sphere2", sphere2)):
         if not isinstance(sphere, Sphere):
             raise InputError(f"{name} must be a Sphere, got {type(sphere).__name__}")
+    if _plain_pair(sphere1, sphere2, v1, v2):  # plainly valid numbers: nothing to word
+        return
     raise_first(
         pair_problems(
             v1,
@@ -678,9 +742,40 @@ def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -
     )
 
 
+def _plain_pair(sphere1: Sphere, sphere2: Sphere, v1: object, v2: object) -> bool:
+    """True when two spheres of finite mass, size and modulus approach at finite velocities
+    V1, V2 [m/s] (plain numbers) with an effective mass and radius within range: the checks
+    of :func:`impactcli.validation.pair_problems` pass, told on floats. False sends the
+    pair through those checks, which word what is wrong."""
+    if type(v1) not in (float, int) or type(v2) not in (float, int):
+        return False
+    m1, m2 = sphere1.total_mass, sphere2.total_mass
+    d1, d2 = sphere1.diameter, sphere2.diameter
+    values = (v1, v2, m1, m2, d1, d2, sphere1.youngs_modulus, sphere2.youngs_modulus)
+    try:
+        if not (all(math.isfinite(x) for x in values) and v1 + v2 > 0.0):  # type: ignore[operator]
+            return False
+        m = 1.0 / (1.0 / m1 + 1.0 / m2)
+        r = 1.0 / (1.0 / (d1 / 2) + 1.0 / (d2 / 2))
+    except (OverflowError, ZeroDivisionError, TypeError):
+        return False
+    return 0.0 < m < math.inf and 0.0 < r < math.inf
+
+
 def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
     """Effective mass m [kg], radius R [m] and modulus E* [Pa] of the pair (paper eq. 2,
     docs/method.md §1)."""
+    try:  # on floats, the operations of the array functions below
+        nu1, nu2 = sphere1.poisson_ratio, sphere2.poisson_ratio
+        c1 = (1.0 - nu1 * nu1) * (1.0 / sphere1.youngs_modulus)
+        c2 = (1.0 - nu2 * nu2) * (1.0 / sphere2.youngs_modulus)
+        return (
+            1.0 / (1.0 / sphere1.total_mass + 1.0 / sphere2.total_mass),
+            1.0 / (1.0 / sphere1.radius + 1.0 / sphere2.radius),
+            1.0 / (c1 + c2),
+        )
+    except (ZeroDivisionError, OverflowError, TypeError):
+        pass
     m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
     r = float(effective_radius(sphere1.radius, sphere2.radius))
     e = float(
@@ -696,8 +791,10 @@ def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float
 
 def weaker_yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
     """sigma_y of the sphere that yields first: the lower of the known ones."""
-    known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
-    return min(known) if known else None
+    sy1, sy2 = sphere1.yield_strength, sphere2.yield_strength
+    if sy1 is None or sy2 is None:
+        return sy2 if sy1 is None else sy1
+    return min(sy1, sy2)
 
 
 def split_fractions(
@@ -872,20 +969,81 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     """The summary of ``result``'s impact from ``solution`` (FILM's or the integration's):
     the elastic keys (:func:`impact_summary`, with the indentation at separation as
     delta_res), then the keys of the model's kind (:meth:`impactcli.model.PairModel.summary`)."""
-    m, r, e = effective_properties(result.sphere1, result.sphere2)
-    values = ImpactPlan(
-        (),
-        np.asarray(solution.delta_max),
-        np.asarray(solution.force_max),
-        np.asarray(solution.delta_end),
-        np.asarray(solution.restitution),
-    )
     pair = result.contact
-    out = _summarise(
-        result, r, e, values, solution.t_max, solution.end_time, permanent=pair.permanent
-    )
+    values = (solution.delta_max, solution.force_max, solution.delta_end, solution.restitution)
+    try:  # on floats: impact_summary's operations, one impact
+        out = _summary_of_floats(
+            result, pair.radius, pair.modulus, *map(_float, values),
+            _float(solution.t_max), _float(solution.end_time), pair.permanent,
+        )  # fmt: skip
+    except (ArithmeticError, TypeError, ValueError):
+        m, r, e = effective_properties(result.sphere1, result.sphere2)
+        plan = ImpactPlan((), *(np.asarray(x) for x in values))
+        out = _summarise(
+            result, r, e, plan, solution.t_max, solution.end_time, permanent=pair.permanent
+        )
     out.update(pair.summary(result, solution))
     return out
+
+
+def _float(value: ArrayLike) -> float:
+    """A float, or the one value of a scalar or shape-(1,) array."""
+    return value if type(value) is float else _first(value)
+
+
+def _summary_of_floats(
+    result: ImpactResult,
+    r: float,
+    e: float,
+    delta_max: float,
+    force_max: float,
+    delta_res: float,
+    restitution: float,
+    t_max: float,
+    contact_time: float,
+    permanent: bool,
+) -> dict[str, float]:
+    """:func:`_summarise` on floats (the operations of :func:`impact_summary`, in order)."""
+    v1, v2 = float(result.v1), float(result.v2)
+    m1, m2 = result.m1, result.m2
+    m = 1.0 / (1.0 / m1 + 1.0 / m2)
+    r1, r2 = m / m1, m / m2
+    f1, f2 = result.split_fractions
+    v0, t_c = v1 + v2, contact_time
+    summary = {
+        "contact_time": t_c,
+        "delta_max": delta_max,
+        "force_max": force_max,
+        "t_max": t_max,
+        "v_cp": r2 * v1 - r1 * v2,
+        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_res),
+        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_res),
+        "v1_final": v1 - r1 * (1.0 + restitution) * v0,
+        "v2_final": v2 - r2 * (1.0 + restitution) * v0,
+        "delta1_max": f1 * delta_max,
+        "delta2_max": f2 * delta_max,
+        "restitution": restitution,
+        "effective_mass": m,
+        "effective_radius": r,
+        "effective_modulus": e,
+    }
+    if permanent:
+        p1, p2 = result.permanent_fractions
+        summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
+        summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
+    sigma_y = weaker_yield_strength(result.sphere1, result.sphere2)
+    if sigma_y is not None:
+        summary["first_yield_velocity"] = _first_yield_velocity(m, r, e, float(sigma_y))
+    return summary
+
+
+def _first_yield_velocity(m: float, r: float, e: float, sigma_y: float) -> float:
+    """:func:`impactcli.contact.first_yield_velocity` on floats, [m/s]: the Hertz impact
+    whose peak pressure reaches 1.6 sigma_y (docs/method.md §7.1)."""
+    p = FIRST_YIELD_PRESSURE_FACTOR * sigma_y
+    delta_y = math.pi**2 * r * (p * p) / (4.0 * (e * e))
+    k = 4.0 / 3.0 * e * math.sqrt(r)
+    return math.sqrt(2.0 / m * 0.4 * k * delta_y**2.5)
 
 
 @input_errors
@@ -930,37 +1088,66 @@ def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> 
     impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
     without a yield strength: :func:`impactcli.design.first_yield_velocities`).
     """
-    from impactcli.design import first_yield_velocities
-    from impactcli.energy import kinetic_energy
-
-    m, r, e_star = effective_properties(result.sphere1, result.sphere2)
+    pair = result.contact
+    m, r, e_star = pair.mass, pair.radius, pair.modulus  # effective_properties of the pair
     v0 = result.impact_velocity
     relative = 0.5 * m * v0 * v0
-    restitution, delta_max = _first(solution.restitution), _first(solution.delta_max)
+    restitution, delta_max = _float(solution.restitution), _float(solution.delta_max)
     e1, e2 = result.split_fractions
     p1, p2 = result.permanent_fractions
     r1, r2 = result.mass_ratios
-    stored = min(_first(result.contact_model.recoverable_work(np.array([delta_max]))), relative)
+    quantities = getattr(solution, "quantities", None)  # FILM's: the law's closed forms
+    if quantities is not None:
+        work = quantities.recoverable_work
+    else:
+        work = _first(result.contact_model.recoverable_work(np.array([delta_max])))
+    stored = min(work, relative)
     lost = relative * (1.0 - restitution**2)
     v1_final = result.v1 - r1 * (1.0 + restitution) * v0
     v2_final = result.v2 - r2 * (1.0 + restitution) * v0
-    fy1, fy2 = first_yield_velocities(
-        m, r, e_star, result.sphere1.yield_strength, result.sphere2.yield_strength
-    )
+    sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
+    try:  # on floats
+        fy1, fy2 = (
+            math.inf if sy is None or math.isnan(sy) else _first_yield_velocity(m, r, e_star, sy)
+            for sy in (sy1, sy2)
+        )
+        kinetic = [
+            _kinetic_energy(mass, v)
+            for mass, v in ((result.m1, result.v1), (result.m2, result.v2),
+                            (result.m1, v1_final), (result.m2, v2_final))
+        ]  # fmt: skip
+    except (ArithmeticError, TypeError, ValueError):
+        from impactcli.design import first_yield_velocities
+        from impactcli.energy import kinetic_energy
+
+        fy1, fy2 = map(float, first_yield_velocities(m, r, e_star, sy1, sy2))
+        kinetic = [
+            float(kinetic_energy(mass, v))
+            for mass, v in ((result.m1, result.v1), (result.m2, result.v2),
+                            (result.m1, v1_final), (result.m2, v2_final))
+        ]  # fmt: skip
     return {
-        "kinetic_energy1_initial": float(kinetic_energy(result.m1, result.v1)),
-        "kinetic_energy2_initial": float(kinetic_energy(result.m2, result.v2)),
-        "kinetic_energy1_final": float(kinetic_energy(result.m1, v1_final)),
-        "kinetic_energy2_final": float(kinetic_energy(result.m2, v2_final)),
+        "kinetic_energy1_initial": kinetic[0],
+        "kinetic_energy2_initial": kinetic[1],
+        "kinetic_energy1_final": kinetic[2],
+        "kinetic_energy2_final": kinetic[3],
         "energy_dissipated1": p1 * lost,
         "energy_dissipated2": p2 * lost,
         "stored_share1": e1 * stored / relative,
         "stored_share2": e2 * stored / relative,
         "absorbed_share1": (e1 * stored + p1 * (relative - stored)) / relative,
         "absorbed_share2": (e2 * stored + p2 * (relative - stored)) / relative,
-        "first_yield_velocity1": float(fy1),
-        "first_yield_velocity2": float(fy2),
+        "first_yield_velocity1": fy1,
+        "first_yield_velocity2": fy2,
     }
+
+
+def _kinetic_energy(mass: float, velocity: float) -> float:
+    """:func:`impactcli.energy.kinetic_energy` on floats: (1/2) m v^2, zero for a fixed
+    body at rest, [J]."""
+    if mass == math.inf and velocity == 0.0:
+        return 0.0
+    return 0.5 * mass * velocity * velocity
 
 
 def _check_yield_split(result: ImpactResult) -> None:
@@ -1003,24 +1190,43 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
     >>> impact_warnings(r, first_yield=True)[0][:60]
     'V0 = 0.2 m/s exceeds the first-yield velocity 0.07846 m/s (H'
     """
-    from impactcli.validation import (
-        contact_radius_warning,
-        first_yield_warning,
-        mass_split_warning,
-    )
-
     s, v0 = result.summary, result.impact_velocity
     s1, s2 = result.sphere1, result.sphere2
     found = [
         first_yield_warning(v0, s["first_yield_velocity"])
         if first_yield and "first_yield_velocity" in s
         else None,
-        contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),
-        mass_split_warning(
+        None
+        if _small_contact(s["delta_max"], s["effective_radius"])
+        else contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),
+        None
+        if result.split != "mass" or _same_material(s1, s2)
+        else mass_split_warning(
             result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
         ),
     ]
     return tuple(message for message in found if message)
+
+
+def _small_contact(delta_max: float, radius: float) -> bool:
+    """True when the contact radius sqrt(delta_max R) is plainly within
+    :data:`~impactcli.validation.SMALL_DEFORMATION_LIMIT` R (floats): no warning to word."""
+    try:
+        return math.sqrt(delta_max / radius) <= SMALL_DEFORMATION_LIMIT
+    except (ArithmeticError, TypeError, ValueError):
+        return False
+
+
+def _same_material(sphere1: Sphere, sphere2: Sphere) -> bool:
+    """True when the spheres' compliances and yield strengths are the same finite numbers
+    (or both unknown): :func:`~impactcli.validation.materials_differ` is False, told on
+    floats."""
+    c1, c2 = sphere1.compliance, sphere2.compliance
+    sy1, sy2 = sphere1.yield_strength, sphere2.yield_strength
+    same_yield = (sy1 is None and sy2 is None) or (
+        sy1 is not None and sy1 == sy2 and math.isfinite(sy1)
+    )
+    return c1 == c2 and math.isfinite(c1) and same_yield
 
 
 def _warned(result: ImpactResult, first_yield: bool = False) -> ImpactResult:

@@ -31,13 +31,22 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws.base import Separation
-from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR
+from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR, DuWangContact
+from impactcli.laws.hertz import HertzContact, HertzLawContact, hertz_stiffness
 from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW, get_law
+from impactcli.solution import PlanSolution
+from impactcli.validation import (
+    YIELD_STRENGTH_NEEDED,
+    needs_yield_strength,
+    plastic_range_problems,
+    raise_first,
+    yield_scale_problems,
+)
 
 if TYPE_CHECKING:
     from impactcli.impact import ImpactResult, Sphere
     from impactcli.laws.base import ImpactPlan, LawSpec, NormalContact
-    from impactcli.solution import ContactSolution, PlanSolution
+    from impactcli.solution import ContactSolution
 
 __all__ = [
     "DAMPED_DEFAULT_N",
@@ -54,6 +63,19 @@ DEFAULT_N = 25
 #: FILM segments per stage of a damped impact by default: e and the contact time within
 #: 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
 DAMPED_DEFAULT_N = 400
+
+
+_IMPACT: Any = None
+
+
+def _impact() -> Any:
+    """:mod:`impactcli.impact` (which imports this module), imported on first use."""
+    global _IMPACT
+    if _IMPACT is None:
+        from impactcli import impact
+
+        _IMPACT = impact
+    return _IMPACT
 
 
 @dataclass(frozen=True)
@@ -170,18 +192,17 @@ class ContactModel:
         effective mass, radius and modulus and the yield strength (the model's, else the
         weaker sphere's). An unknown law is a ValueError; its parameters are checked when
         the contact is first used."""
-        from impactcli.impact import effective_properties, weaker_yield_strength
-
+        impact = _impact()
         if self.damping is None:
             spec = get_law(self.law)
             sigma_y = (
                 self.yield_strength
                 if self.yield_strength is not None
-                else weaker_yield_strength(sphere1, sphere2)
+                else impact.weaker_yield_strength(sphere1, sphere2)
             )
-            m, r, e = effective_properties(sphere1, sphere2)
+            m, r, e = impact.effective_properties(sphere1, sphere2)
             return LawPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
-        m, r, e = effective_properties(sphere1, sphere2)
+        m, r, e = impact.effective_properties(sphere1, sphere2)
         return DampedPair(self, sphere1, sphere2, m, r, e)
 
 
@@ -276,10 +297,17 @@ class LawPair:
     permanent: ClassVar[bool] = True
     methods: ClassVar[tuple[str, ...]] = ("film", "table", "ode")
 
-    @cached_property
+    @property
     def normal_contact(self) -> NormalContact:
-        """The law's contact model for the pair (built on first use: the law's parameters
-        and the yield strength are checked then)."""
+        """The law's contact model for the pair (built on first use and kept: the law's
+        parameters and the yield strength are checked then)."""
+        contact = self.__dict__.get("_contact")
+        if contact is None:
+            contact = self.__dict__["_contact"] = self._contact()
+        return contact
+
+    def _contact(self) -> NormalContact:
+        """The law's contact model for the pair, built (:attr:`normal_contact`)."""
         return self.spec.contact(
             self.radius, self.modulus, self.yield_strength, **dict(self.model.law_params)
         )
@@ -301,55 +329,59 @@ class LawPair:
     def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
         """A plan past the law's yield point must resolve its elastic stage in double
         precision (:func:`impactcli.validation.plastic_range_problems`)."""
-        from impactcli.validation import plastic_range_problems, raise_first
-
         contact = self.normal_contact
         raise_first(plastic_range_problems(contact, impact_velocity, self.mass, plan.delta_max))
 
     def solve(self, impact_velocity: float, n: int, must_end: bool = True) -> PlanSolution:
-        """Plan the impact at V0 [m/s], check the plan and solve its stages by FILM with n
-        segments each (:class:`~impactcli.solution.PlanSolution`)."""
-        from impactcli.solution import PlanSolution
-
+        """The impact at V0 [m/s] by FILM with n segments per stage
+        (:class:`~impactcli.solution.PlanSolution`): the contact model's closed forms and
+        FILM's stage times where it has them (``film_summary``), its stages solved when a
+        history asks for them; else the plan checked and its stages solved."""
+        contact = self.normal_contact
+        solution = PlanSolution.of_closed_forms(contact, impact_velocity, self.mass, n)
+        if solution is not None:  # checked: finite, resolved in double precision
+            return solution
         plan = self.plan(impact_velocity)
         self.check_plan(plan, impact_velocity)
-        return PlanSolution.of_plan(plan, self.normal_contact, impact_velocity, self.mass, n)
+        return PlanSolution.of_plan(plan, contact, impact_velocity, self.mass, n)
 
     def kind(self, solution: Any) -> str:
         """``elastic`` for the Hertz impact of the normalised tables, ``elastoplastic`` past
         the law's yield point, else the law's name."""
-        v0 = solution.impact_velocity
-        if solution.plan.is_normalised():
+        if solution.normalised:
             return "elastic"
-        if bool(np.all(self.normal_contact.yields(v0, self.mass))):
+        if solution.plastic:
             return "elastoplastic"
         return self.spec.name
 
     def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
         """The plastic keys (:data:`impactcli.impact.PLASTIC_SUMMARY_KEYS` beyond the
         elastic ones) and the energy keys (:data:`impactcli.impact.ENERGY_SUMMARY_KEYS`)."""
-        from impactcli.impact import solution_energy_summary
-
         out = self._plastic_summary(result, solution)
-        out.update(solution_energy_summary(result, solution))
+        out.update(_impact().solution_energy_summary(result, solution))
         return out
 
     def _plastic_summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
         """delta_y and V_y of the contact (closed forms), the residual indentation of the
         pair and of each sphere (shared by the permanent fractions), and the energy
         dissipated, (1/2) m V0^2 (1 - e^2)."""
-        contact = self.normal_contact
         f1, f2 = result.permanent_fractions
-        delta_res = solution.delta_end
-        values = {
-            "delta_y": contact.yield_indentation,
-            "yield_velocity": contact.yield_velocity(np.asarray(self.mass, dtype=float)),
+        delta_res = float(solution.delta_end)
+        quantities = getattr(solution, "quantities", None)  # FILM's: the closed forms
+        if quantities is not None:
+            delta_y, yield_velocity = quantities.delta_y, quantities.yield_velocity
+        else:
+            contact = self.normal_contact
+            delta_y = float(contact.yield_indentation)
+            yield_velocity = float(contact.yield_velocity(np.asarray(self.mass, dtype=float)))
+        return {
+            "delta_y": delta_y,
+            "yield_velocity": yield_velocity,
             "delta_res": delta_res,
-            "delta1_res": f1 * np.asarray(delta_res, dtype=float),
-            "delta2_res": f2 * np.asarray(delta_res, dtype=float),
-            "energy_dissipated": solution.dissipated,
+            "delta1_res": f1 * delta_res,
+            "delta2_res": f2 * delta_res,
+            "energy_dissipated": float(solution.dissipated),
         }
-        return {key: float(value) for key, value in values.items()}
 
     def method_error(self, method: str) -> str:
         return f"method must be film, table or ode, got {method!r}"
@@ -386,11 +418,10 @@ class _ElasticModel(ContactModel):
     """Hertz as :func:`impactcli.impact.elastic_impact` runs it."""
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
-        from impactcli.impact import effective_properties, weaker_yield_strength
-
+        impact = _impact()
         spec = get_law(ELASTIC_LAW)
-        sigma_y = weaker_yield_strength(sphere1, sphere2)
-        m, r, e = effective_properties(sphere1, sphere2)
+        sigma_y = impact.weaker_yield_strength(sphere1, sphere2)
+        m, r, e = impact.effective_properties(sphere1, sphere2)
         return _ElasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
 
 
@@ -399,15 +430,10 @@ class _ElasticPair(LawPair):
     """The paper's elastic impact: the Hertz plan of K_h = (4/3) E* sqrt(R), checked by FILM
     itself; kind ``elastic``; the elastic summary keys (no plastic ones)."""
 
-    @cached_property
-    def normal_contact(self) -> NormalContact:
-        from impactcli.laws.hertz import HertzLawContact
-
+    def _contact(self) -> NormalContact:
         return HertzLawContact(self.radius, self.modulus)
 
     def plan(self, impact_velocity: float) -> ImpactPlan:
-        from impactcli.laws.hertz import HertzContact, hertz_stiffness
-
         stiffness = float(hertz_stiffness(self.modulus, self.radius))
         return HertzContact(stiffness).plan(impact_velocity, self.mass)
 
@@ -418,9 +444,7 @@ class _ElasticPair(LawPair):
         return "elastic"
 
     def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
-        from impactcli.impact import solution_energy_summary
-
-        return solution_energy_summary(result, solution)
+        return _impact().solution_energy_summary(result, solution)
 
 
 @dataclass(frozen=True)
@@ -432,20 +456,18 @@ class _DuWangModel(ContactModel):
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
-        from impactcli.impact import effective_properties, weaker_yield_strength
-        from impactcli.validation import YIELD_STRENGTH_NEEDED, needs_yield_strength
-
+        impact = _impact()
         sigma_y = (
             self.yield_strength
             if self.yield_strength is not None
-            else weaker_yield_strength(sphere1, sphere2)
+            else impact.weaker_yield_strength(sphere1, sphere2)
         )
         if sigma_y is None or needs_yield_strength(sigma_y, sigma_y):
             raise ValueError(YIELD_STRENGTH_NEEDED)
         factor = self.pressure_factor
         if not (np.isfinite(factor) and factor > 0):
             raise ValueError(f"the pressure factor must be positive, got {factor}")
-        m, r, e = effective_properties(sphere1, sphere2)
+        m, r, e = impact.effective_properties(sphere1, sphere2)
         spec = get_law(self.law)
         return _DuWangPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
 
@@ -458,10 +480,7 @@ class _DuWangPair(LawPair):
 
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR
 
-    @cached_property
-    def normal_contact(self) -> NormalContact:
-        from impactcli.contact import DuWangContact
-
+    def _contact(self) -> NormalContact:
         return DuWangContact(self.radius, self.modulus, self.yield_strength, self.pressure_factor)
 
     def plan(self, impact_velocity: float) -> ImpactPlan:
@@ -469,13 +488,11 @@ class _DuWangPair(LawPair):
             return self.normal_contact.plan(impact_velocity, self.mass)
 
     def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
-        from impactcli.validation import raise_first, yield_scale_problems
-
         if len(plan.stages) != 2:
             raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
 
     def kind(self, solution: Any) -> str:
-        return "elastic" if len(solution.plan.stages) == 2 else "elastoplastic"
+        return "elastoplastic" if solution.plastic else "elastic"
 
 
 # -- Hertz with a damping model -------------------------------------------------------------------
@@ -507,15 +524,11 @@ class DampedPair:
     @property
     def stiffness(self) -> float:
         """Hertz stiffness K = (4/3) E* sqrt(R) of the pair, [N/m^1.5]."""
-        from impactcli.laws.hertz import hertz_stiffness
-
         return float(hertz_stiffness(self.modulus, self.radius))
 
     @cached_property
     def normal_contact(self) -> NormalContact:
         """The elastic part: Hertz, no yield, no permanent indentation."""
-        from impactcli.laws.hertz import HertzLawContact
-
         return HertzLawContact(self.radius, self.modulus)
 
     @property

@@ -20,7 +20,7 @@ from typing import TypeVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import YIELD_STRENGTH_NEEDED
+from impactcli.laws.base import MIN_YIELD_INDENTATION_RATIO, YIELD_STRENGTH_NEEDED
 from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR
 from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR
 
@@ -273,13 +273,6 @@ def needs_yield_strength(sy1: ArrayLike, sy2: ArrayLike) -> NDArray[np.bool_]:
     with np.errstate(invalid="ignore"):
         return ~(np.isfinite(sigma_y) & (sigma_y > 0))
 
-
-#: Smallest delta_y / delta_max of an elastoplastic impact that is computed: below it the
-#: elastic loading stage is lost in the rounding of delta_max (double precision, eps 2.2e-16,
-#: squared by the Hertz force), and the stages give e = 0 or NaN times. Reached only by
-#: physically meaningless inputs (sigma_y of a few kPa against E = 210 GPa, E >= 1e40 Pa,
-#: rho >= 1e100 kg/m^3).
-MIN_YIELD_INDENTATION_RATIO = 1e-12
 
 
 def yield_scale_problems(

@@ -15,6 +15,7 @@ arrays of shape (N, n + 1)).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, ClassVar, Literal, Protocol
@@ -22,9 +23,10 @@ from typing import Any, ClassVar, Literal, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import ContactLaw
+from impactcli.film import ContactLaw, FilmSummary
 
 __all__ = [
+    "MIN_YIELD_INDENTATION_RATIO",
     "SEPARATIONS",
     "YIELD_MARGIN",
     "YIELD_STRENGTH_NEEDED",
@@ -38,7 +40,10 @@ __all__ = [
     "Parameter",
     "Reference",
     "StagePlan",
+    "TINY",
     "YieldOnset",
+    "as_float",
+    "finite_summary",
 ]
 
 Array = NDArray[np.float64]
@@ -55,6 +60,48 @@ YIELD_STRENGTH_NEEDED = (
 #: Relative margin above the yield velocity below which an impact counts as elastic
 #: (:meth:`DuWangContact.yields`).
 YIELD_MARGIN = 1e-9
+
+#: Smallest delta_y / delta_max of an elastoplastic impact that is computed: below it the
+#: elastic loading stage is lost in the rounding of delta_max (double precision, eps 2.2e-16,
+#: squared by the Hertz force), and the stages give e = 0 or NaN times. Reached only by
+#: physically meaningless inputs (sigma_y of a few kPa against E = 210 GPa, E >= 1e40 Pa,
+#: rho >= 1e100 kg/m^3). :func:`impactcli.validation.yield_scale_problems` words it.
+MIN_YIELD_INDENTATION_RATIO = 1e-12
+
+
+#: Smallest positive normal double: a single impact whose scales fall below it (or are not
+#: finite) is left to the array path and its checks.
+TINY = 2.2250738585072014e-308
+
+
+def as_float(value: object) -> float | None:
+    """``value`` as a float if it is one number (a float, an int or a 0-d array), else None:
+    the single-impact paths of the laws run on floats, arrays take the NumPy paths.
+
+    >>> as_float(2), as_float(np.array(0.5)), as_float(np.ones(2))
+    (2.0, 0.5, None)
+    """
+    if type(value) is float:
+        return value
+    one = isinstance(value, (float, int)) and not isinstance(value, bool)
+    if one or (isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf"):
+        try:
+            return float(value)  # type: ignore[arg-type]
+        except OverflowError:
+            return None
+    return None
+
+
+def finite_summary(summary: FilmSummary) -> bool:
+    """Every length, force and time of ``summary`` finite and positive (delta_res, e and the
+    recoverable work >= 0), delta_y and V_y not infinite: a single impact within double
+    precision, whose numbers the array path would give alike."""
+    s = summary
+    return (
+        all(TINY <= x < math.inf for x in (s.delta_max, s.force_max, s.t_max, s.end_time))
+        and all(0.0 <= x < math.inf for x in (s.delta_res, s.restitution, s.recoverable_work))
+        and not (math.isinf(s.delta_y) or math.isinf(s.yield_velocity))
+    )
 
 
 @dataclass(frozen=True)

@@ -9,20 +9,26 @@ the onset of yield in an elastic impact (:func:`first_yield_velocity`, Hertz pea
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary, solve_stage
 from impactcli.laws.base import (
+    TINY,
     Fitting,
     ImpactPlan,
     LawSpec,
     Reference,
     StagePlan,
     YieldOnset,
+    as_float,
     col,
+    finite_summary,
 )
 
 __all__ = [
@@ -35,6 +41,8 @@ __all__ = [
     "first_yield_velocity",
     "hertz_maximum_indentation",
     "hertz_stiffness",
+    "normalised_times",
+    "rebound_time",
 ]
 
 Array = NDArray[np.float64]
@@ -143,6 +151,60 @@ def first_yield_velocity(
     return hertz_velocity(mass, hertz_stiffness(e, r), delta_y)
 
 
+@lru_cache(maxsize=32)
+def normalised_times(n: int) -> tuple[float, float]:
+    """FILM time of maximum indentation and contact time of the normalised Hertz impact
+    (m = V0 = delta_m = 1, K_h = 5/4; docs/method.md §3, §5) with n segments per stage,
+    ``(t_bar_max, t_bar_c)`` in units of delta_m / V0: every elastic Hertz impact is this
+    one scaled, one run per n.
+
+    >>> [round(t, 7) for t in normalised_times(25)]
+    [1.4716277, 2.9432487]
+    """
+    law = Hertz(NORMALISED_STIFFNESS)
+    loading = solve_stage(law, 0.0, 1.0, 1.0, 1.0, n)
+    restitution = solve_stage(law, 1.0, 0.0, 0.0, 1.0, n, loading.end_time)
+    return float(loading.end_time), float(restitution.end_time)
+
+
+#: K_h delta_m^(5/2) / (m V0^2) of every elastic Hertz impact (docs/method.md §3).
+NORMALISED_STIFFNESS = 1.25
+
+def hertz_summary(
+    stiffness: float, impact_velocity: float, mass: float, n: int
+) -> FilmSummary | None:
+    """The elastic Hertz impact of one pair on floats (:class:`~impactcli.film.FilmSummary`):
+    delta_m = (5 m V0^2 / (4 K_h))^(2/5), F_m = K_h delta_m^1.5, e = 1, and FILM's times the
+    normalised solution's (:func:`normalised_times`) times delta_m / V0. None when a scale
+    is not a positive, finite, normal double (the array path then gives what it gives)."""
+    k, v0, m = stiffness, impact_velocity, mass
+    if not (k > 0.0 and v0 > 0.0 and m > 0.0):
+        return None
+    try:
+        delta_m = (5.0 * m * (v0 * v0) / (4.0 * k)) ** 0.4
+        force = k * delta_m**1.5
+        scale = delta_m / v0
+        work = 0.4 * k * delta_m**2.5
+    except (OverflowError, ZeroDivisionError):
+        return None
+    if not all(TINY <= x < math.inf for x in (m, k, delta_m, force, scale)):
+        return None
+    t_bar_max, t_bar_c = normalised_times(n)
+    summary = FilmSummary(
+        delta_m, force, 0.0, 1.0, t_bar_max * scale, t_bar_c * scale, math.nan, math.nan,
+        work, True, False,
+    )  # fmt: skip
+    return summary if finite_summary(summary) else None
+
+
+def rebound_time(delta_max: float, delta_res: float, speed: float, n: int) -> float:
+    """FILM time [s] of a Hertz unloading from rest at delta_m [m] to delta_res [m], where it
+    separates at ``speed`` [m/s], with n segments: the normalised restitution stage
+    (docs/method.md §3) scaled by (delta_m - delta_res) / speed."""
+    t_bar_max, t_bar_c = normalised_times(n)
+    return (t_bar_c - t_bar_max) * ((delta_max - delta_res) / speed)
+
+
 @dataclass(frozen=True)
 class HertzContact:
     """Elastic Hertz contact F = K_h delta^1.5 (docs/method.md §3)."""
@@ -165,6 +227,12 @@ class HertzContact:
             delta_res=zero,
             restitution=np.ones_like(delta_m),
         )
+
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:func:`hertz_summary`); None for arrays."""
+        k = as_float(self.stiffness)
+        return None if k is None else hertz_summary(k, impact_velocity, mass, n)
 
 
 @dataclass(frozen=True)
@@ -207,6 +275,14 @@ class HertzLawContact:
     def recoverable_work(self, delta: ArrayLike) -> Array:
         """All the loading work, (2/5) K_h delta^2.5, [J]."""
         return 0.4 * self.stiffness * np.asarray(delta, dtype=float) ** 2.5
+
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:func:`hertz_summary`); None for arrays."""
+        r, e = as_float(self.radius), as_float(self.modulus)
+        if r is None or e is None or not r > 0.0:
+            return None
+        return hertz_summary(4.0 / 3.0 * e * math.sqrt(r), impact_velocity, mass, n)
 
 
 def _build(radius, modulus, _sy, _params) -> HertzLawContact:

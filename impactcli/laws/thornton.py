@@ -3,11 +3,13 @@ radius, and its closed-form coefficient of restitution e(V_y/V0) (docs/method.md
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary
 from impactcli.laws.base import (
     Fitting,
     ImpactPlan,
@@ -16,11 +18,19 @@ from impactcli.laws.base import (
     Reference,
     StagePlan,
     YieldOnset,
+    as_float,
     col,
     energy_velocity,
+    finite_summary,
 )
-from impactcli.laws.du_wang import DuWangContact
-from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR, Hertz, hertz_stiffness
+from impactcli.laws.du_wang import DuWangContact, plastic_loading
+from impactcli.laws.hertz import (
+    FIRST_YIELD_PRESSURE_FACTOR,
+    Hertz,
+    hertz_stiffness,
+    hertz_summary,
+    rebound_time,
+)
 
 __all__ = ["SPEC", "ThorntonContact", "thornton_restitution"]
 
@@ -165,6 +175,55 @@ class ThorntonContact:
             delta_res=dres,
             restitution=energy_velocity(m, 0.4 * fm * (dm - dres)) / v0,
         )
+
+
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:class:`~impactcli.film.FilmSummary`): Du & Wang's loading with
+        p0 = p_y (:func:`~impactcli.laws.du_wang.plastic_loading`), then the closed forms of
+        :meth:`unloading` and the Hertz rebound on R_p
+        (:func:`~impactcli.laws.hertz.rebound_time`). None for arrays, and for an impact
+        the array path must judge."""
+        values = [as_float(x) for x in (self.radius, self.modulus, self.limit_pressure,
+                                        impact_velocity, mass)]  # fmt: skip
+        if any(x is None for x in values):
+            return None
+        r, e, p, v0, m = values  # type: ignore[misc]
+        try:
+            loading = plastic_loading(r, e, p, v0, m, n)
+            if loading is None:
+                return None
+            k, dy, v_y, dm, t_max, _ = loading
+            if math.isnan(t_max):  # below V_y: the Hertz impact, with this law's yield point
+                elastic = hertz_summary(k, v0, m, n)
+                if elastic is None:
+                    return None
+                dm = elastic.delta_max
+                work = 0.4 * k * dm**2.5
+                if dm > dy:  # within the margin of V_y: Hertzian unloading on R_p
+                    fm, dres = self._unloading(k, dy, r, e, p, dm)
+                    work = 0.4 * fm * (dm - dres)
+                summary = elastic._replace(delta_y=dy, yield_velocity=v_y, recoverable_work=work)
+                return summary if finite_summary(summary) else None
+            fm, dres = self._unloading(k, dy, r, e, p, dm)
+            work = 0.4 * fm * (dm - dres)
+            restitution = math.sqrt(2.0 * work / m) / v0
+            t_c = t_max + rebound_time(dm, dres, restitution * v0, n)
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        summary = FilmSummary(dm, fm, dres, restitution, t_max, t_c, dy, v_y, work, False, True)
+        return summary if finite_summary(summary) else None
+
+    @staticmethod
+    def _unloading(
+        k: float, dy: float, r: float, e: float, p: float, dm: float
+    ) -> tuple[float, float]:
+        """F_m [N] and delta_res [m] of :meth:`unloading`, on floats."""
+        fy = k * dy**1.5
+        fm = fy + math.pi * r * p * (dm - dy)
+        am2 = (2.0 * fm + fy) / (2.0 * math.pi * p)
+        rp = 4.0 * e * am2 * math.sqrt(am2) / (3.0 * fm)
+        return fm, dm - am2 / rp
 
 
 def _build(radius, modulus, sy, params) -> ThorntonContact:

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary, segment_time
 from impactcli.laws.base import (
     Fitting,
     ImpactPlan,
@@ -16,7 +17,9 @@ from impactcli.laws.base import (
     Parameter,
     Reference,
     StagePlan,
+    as_float,
     col,
+    finite_summary,
 )
 from impactcli.laws.hertz import hertz_stiffness
 
@@ -108,6 +111,31 @@ class WaltonBraunContact:
             delta_res=dres,
             restitution=np.broadcast_to(np.sqrt(k1 / k2), dm.shape).copy(),
         )
+
+
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:class:`~impactcli.film.FilmSummary`): the closed forms of
+        :meth:`plan`; FILM is exact on both linear stages, so each takes the time of one
+        segment (:func:`~impactcli.film.segment_time`: a quarter period). None for arrays,
+        and for an impact the array path must judge."""
+        values = [as_float(x) for x in (self.k_load, self.k_unload, impact_velocity, mass)]
+        if any(x is None for x in values):
+            return None
+        k1, k2, v0, m = values  # type: ignore[misc]
+        try:
+            dm = v0 * math.sqrt(m / k1)
+            dres = dm * (1.0 - k1 / k2)
+            force = k1 * dm
+            t_max = segment_time(0.0, force, 0.0, dm, v0, m, end_at_rest=True)
+            t_c = t_max + segment_time(k2 * (dm - dres), 0.0, dm, dres, 0.0, m)
+            work = 0.5 * k1 * k1 * (dm * dm) / k2
+            summary = FilmSummary(
+                dm, force, dres, math.sqrt(k1 / k2), t_max, t_c, 0.0, 0.0, work, False, v0 > 0.0
+            )  # fmt: skip
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        return summary if finite_summary(summary) else None
 
 
 def _build(_radius, _modulus, _sy, params) -> WaltonBraunContact:

@@ -1,0 +1,179 @@
+"""One impact's summary from the laws' closed forms and FILM's stage times (issue 25).
+
+A contact model with ``film_summary`` gives an impact's quantities on floats: its closed
+forms and FILM's times of its stages (the normalised Hertz solution scaled, a linear stage
+in one segment, the Hertz loading to first yield segment by segment). They must be the
+numbers of FILM's stages solved in full (to rounding), keep FILM's dependence on n, and
+leave the stages to be solved only when a history asks for them.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import impactcli
+from impactcli.film import hertz_loading_time, segment_time, solve_stage
+from impactcli.laws import get_law
+from impactcli.laws.hertz import Hertz, normalised_times
+from impactcli.solution import PlanSolution, StagedSolution, solve_plan
+from impactcli.tables import EXACT_CONTACT_DURATION, normalised_elastic
+
+STEEL = tuple(impactcli.Sphere.from_material(d, "steel") for d in (0.02, 0.04))
+FIELDS = ("delta_max", "force_max", "delta_end", "restitution", "t_max", "end_time")
+
+#: (law, parameters, V0 [m/s]): elastic and plastic impacts of every law with closed forms,
+#: and impacts just above the yield velocity.
+CASES = [
+    ("hertz", {}, 0.0125),
+    ("hertz", {}, 3.0),
+    ("du-wang", {}, 0.1),
+    ("du-wang", {}, 1.0),
+    ("du-wang", {}, 30.0),
+    ("thornton", {}, 0.05),
+    ("thornton", {}, 1.0),
+    ("thornton", {"py": 3e9}, 7.0),
+    ("walton-braun", {"k_load": 2e7, "k_unload": 8e7}, 1.0),
+    ("walton-braun", {"k_load": 2e7, "k_unload": 2e7}, 0.01),
+]
+
+
+def pair_of(law: str, params: dict):
+    return impactcli.ContactModel(law, params).for_spheres(*STEEL)
+
+
+@pytest.mark.parametrize("n", [1, 3, 25, 48, 49, 400])
+@pytest.mark.parametrize("law, params, v0", CASES)
+def test_the_summary_is_film_of_the_solved_stages(law, params, v0, n):
+    """Closed forms and FILM's stage times: the quantities of the stages solved in full."""
+    pair = pair_of(law, params)
+    contact = pair.normal_contact
+    quantities = contact.film_summary(v0, pair.mass, n)
+    assert quantities is not None
+    staged = StagedSolution.solve(contact, v0, pair.mass, n)
+    for name, value in zip(FIELDS, quantities):
+        assert value == pytest.approx(getattr(staged, name), rel=1e-13, abs=1e-25), name
+    assert quantities.normalised == staged.plan.is_normalised()
+    assert quantities.plastic == bool(contact.yields(v0, pair.mass))
+    assert quantities.recoverable_work == pytest.approx(
+        float(contact.recoverable_work(np.array([staged.delta_max]))[0]), rel=1e-13
+    )
+
+
+def test_the_summary_keeps_film_error_at_n():
+    """FILM's contact time at n, not the exact one: the error of the normalised solution."""
+    s1, s2 = STEEL
+    for n in (3, 25, 1000):
+        r = impactcli.elastic_impact(s1, s2, 5e-3, 7.5e-3, n=n)
+        exact = EXACT_CONTACT_DURATION * r.summary["delta_max"] / 0.0125
+        film = float(normalised_elastic(n)[1].end_time) / EXACT_CONTACT_DURATION - 1
+        assert r.summary["contact_time"] / exact - 1 == pytest.approx(film, rel=1e-9)
+        assert abs(film) > 1e-12
+
+
+def test_a_summary_solves_no_stage_until_a_history_asks(monkeypatch):
+    """elastic_impact, elastoplastic_impact and law_impact give the summary without FILM's
+    stage arrays; the history solves them then, and ends at the summary's contact time."""
+    import impactcli.film
+    import impactcli.solution
+
+    calls = []
+
+    def counted(*args, **kwargs):
+        calls.append(args[0])
+        return solve_stage(*args, **kwargs)
+
+    normalised_times(25)  # the normalised solution, once per n
+    monkeypatch.setattr(impactcli.film, "solve_stage", counted)
+    monkeypatch.setattr(impactcli.solution, "solve_stage", counted)
+    s1, s2 = STEEL
+    results = [
+        impactcli.elastic_impact(s1, s2, 5e-3, 7.5e-3),
+        impactcli.elastoplastic_impact(s1, s2, 0.25, 0.75),
+        impactcli.law_impact(s1, s2, 0.25, 0.75, "thornton"),
+        impactcli.law_impact(s1, s2, 0.25, 0.75, "walton-braun", {"k_load": 2e7, "k_unload": 8e7}),
+    ]
+    assert calls == []
+    for r in results:
+        assert "staged" not in r.solution.__dict__
+        h = r.history(points=11)
+        assert h["t"][-1] == r.summary["contact_time"]
+        assert h["delta"][-1] == pytest.approx(r.summary["delta_res"] if "delta_res" in
+                                               r.summary else 0.0, abs=1e-20)  # fmt: skip
+    assert len(calls) == 2 + 3 + 3 + 2
+
+
+def test_a_law_without_closed_forms_solves_its_stages():
+    """A tabulated curve has no film_summary: its plan is solved, as before."""
+    delta = np.linspace(0.0, 1e-4, 41)
+    curve = (delta, 1.2e10 * delta**1.5)
+    r = impactcli.law_impact(*STEEL, 0.25, 0.75, "tabulated", {"curve": curve})
+    assert "staged" in r.solution.__dict__
+    assert r.summary["contact_time"] == r.solution.staged.end_time
+
+
+@pytest.mark.parametrize("n", [1, 2, 25, 48])
+@pytest.mark.parametrize("ratio", [0.81, 1.0, 1.7, 40.0])
+def test_hertz_loading_time_on_floats_is_the_array_path(n, ratio):
+    """The loop over n segments on floats gives the NumPy arrays' time, to rounding."""
+    k, m, d = 1.3e10, 0.02, 3e-6
+    v = math.sqrt(ratio * k * d**2.5 / m)  # A = m V^2 / (K d^2.5)
+    on_floats = hertz_loading_time(d, v, k, m, n)
+    arrays = hertz_loading_time(np.array([d]), v, k, m, n)
+    assert type(on_floats) is float
+    assert on_floats == pytest.approx(float(arrays[0]), rel=1e-14)
+    staged = solve_stage(Hertz(k), 0.0, d, v, m, n)
+    assert on_floats == pytest.approx(float(staged.end_time), rel=1e-13)
+
+
+@pytest.mark.parametrize("n", [1, 7, 25])
+def test_a_linear_stage_takes_the_time_of_one_segment(n):
+    """FILM is exact on a linear law: n segments take the time of one (segment_time)."""
+    from impactcli.laws.walton_braun import LinearSpring
+
+    k, m, v0 = 4.0e7, 0.03, 1.2
+    loading = solve_stage(LinearSpring(k), 0.0, v0 * math.sqrt(m / k), v0, m, n, end_at_rest=True)
+    d_m = v0 * math.sqrt(m / k)
+    assert segment_time(0.0, k * d_m, 0.0, d_m, v0, m, end_at_rest=True) == pytest.approx(
+        float(loading.end_time), rel=1e-14
+    )
+    unloading = solve_stage(LinearSpring(2 * k, 0.5 * d_m), d_m, 0.5 * d_m, 0.0, m, n)
+    one = segment_time(2 * k * 0.5 * d_m, 0.0, d_m, 0.5 * d_m, 0.0, m)
+    assert one == pytest.approx(float(unloading.end_time), rel=1e-14)
+    assert one == pytest.approx(0.5 * math.pi * math.sqrt(m / (2 * k)), rel=1e-14)
+
+
+def test_the_array_path_judges_an_impact_beyond_double_precision():
+    """film_summary gives None where a scale leaves double precision, so the plan's checks
+    word the error as before."""
+    pair = pair_of("du-wang", {})
+    contact = pair.normal_contact
+    assert contact.film_summary(1e-300, pair.mass, 25) is None  # delta_m underflows
+    assert contact.film_summary(1e200, pair.mass, 25) is None  # overflow
+    with pytest.raises(impactcli.InputError, match="double precision"):
+        impactcli.elastoplastic_impact(*STEEL, 1e200, 0.0)
+
+
+def test_a_batch_of_contacts_takes_the_array_path():
+    """film_summary is for one impact: a contact of arrays gives None."""
+    contact = get_law("du-wang").contact(np.array([6e-3, 7e-3]), 115e9, 1e9)
+    assert contact.film_summary(1.0, 0.03, 25) is None
+    assert PlanSolution.solve(get_law("hertz").contact(6e-3, 115e9), 1.0, 0.03, 25).normalised
+
+
+def test_the_paper_examples_keep_their_numbers():
+    """Sec. 4.3 and 4.4 of the paper: the digits the README prints."""
+    s1, s2 = STEEL
+    elastic = impactcli.elastic_impact(s1, s2, 5e-3, 7.5e-3).summary
+    assert round(elastic["contact_time"] * 1e6, 3) == 171.319
+    assert round(elastic["d1_final"] * 1e6, 4) == -1.0469
+    plastic = impactcli.elastoplastic_impact(s1, s2, 0.25, 0.75).summary
+    assert (round(plastic["restitution"], 5), round(plastic["contact_time"] * 1e6, 3)) == (
+        0.85611,
+        75.988,
+    )
+    pair = pair_of("du-wang", {})
+    solved = solve_plan(pair.normal_contact.plan(1.0, pair.mass), pair.mass, 25)
+    assert plastic["contact_time"] == pytest.approx(float(solved[-1].end_time), rel=1e-14)
