@@ -68,6 +68,7 @@ from impactcli.model import DAMPED_DEFAULT_N, ContactModel, DampedPair, PairMode
 from impactcli.solution import (
     ContactSolution,
     PlanSolution,
+    StagedSolution,
     history_solution,
     history_times,
     solve_plan,
@@ -543,13 +544,15 @@ class ImpactResult:
         if method not in self.contact.methods:
             raise ValueError(self.contact.method_error(method))
         t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
-        t = np.clip(t, 0.0, float(self._solution(method).end_time))  # d_i match delta(t)
+        t = np.minimum(np.maximum(t, 0.0), float(self._solution(method).end_time))  # as delta(t)
         source = history_solution(self._solution(method))
         if method == "table":
             delta, delta_dot = self._table_state(t)
         else:
             delta, delta_dot = source.evaluate(t)
-        return self._columns(t, delta, delta_dot, source.force(t, delta, delta_dot), source)
+        force = source.force(t, delta, delta_dot)
+        own = method != "table" and isinstance(source, StagedSolution)  # W(t) from delta
+        return self._columns(t, delta, delta_dot, force, source, own)
 
     def energy(
         self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
@@ -624,9 +627,11 @@ class ImpactResult:
         delta_dot: NDArray,
         force: NDArray,
         source: ContactSolution,
+        own: bool = False,
     ) -> dict[str, NDArray]:
         """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4, and the
-        energy of ``source`` (:meth:`~impactcli.solution.ContactSolution.energy`)."""
+        energy of ``source`` (:meth:`~impactcli.solution.ContactSolution.energy`; ``own``:
+        delta is the FILM stages' own, :class:`~impactcli.solution.StagedSolution`)."""
         from impactcli.energy import energy_columns
 
         v0 = self.impact_velocity
@@ -649,7 +654,7 @@ class ImpactResult:
             delta1, delta2 = e1 * (delta - dp) + p1_ * dp, e2 * (delta - dp) + p2_ * dp
             delta1_dot = e1 * (delta_dot - dp_dot) + p1_ * dp_dot
             delta2_dot = e2 * (delta_dot - dp_dot) + p2_ * dp_dot
-        strain, dissipated = source.energy(t, delta)
+        strain, dissipated = source.energy(t, delta, own=True) if own else source.energy(t, delta)
         return {
             "t": t,
             "delta": delta,
@@ -751,9 +756,13 @@ def _plain_pair(sphere1: Sphere, sphere2: Sphere, v1: object, v2: object) -> boo
         return False
     m1, m2 = sphere1.total_mass, sphere2.total_mass
     d1, d2 = sphere1.diameter, sphere2.diameter
-    values = (v1, v2, m1, m2, d1, d2, sphere1.youngs_modulus, sphere2.youngs_modulus)
+    finite = math.isfinite
     try:
-        if not (all(math.isfinite(x) for x in values) and v1 + v2 > 0.0):  # type: ignore[operator]
+        if not (
+            finite(v1) and finite(v2) and v1 + v2 > 0.0  # type: ignore[operator]
+            and finite(m1) and finite(m2) and finite(d1) and finite(d2)
+            and finite(sphere1.youngs_modulus) and finite(sphere2.youngs_modulus)
+        ):  # fmt: skip
             return False
         m = 1.0 / (1.0 / m1 + 1.0 / m2)
         r = 1.0 / (1.0 / (d1 / 2) + 1.0 / (d2 / 2))
@@ -971,11 +980,12 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     delta_res), then the keys of the model's kind (:meth:`impactcli.model.PairModel.summary`)."""
     pair = result.contact
     values = (solution.delta_max, solution.force_max, solution.delta_end, solution.restitution)
+    times = (solution.t_max, solution.end_time)
     try:  # on floats: impact_summary's operations, one impact
-        out = _summary_of_floats(
-            result, pair.radius, pair.modulus, *map(_float, values),
-            _float(solution.t_max), _float(solution.end_time), pair.permanent,
-        )  # fmt: skip
+        if not all(type(x) is float for x in (*values, *times)):
+            values, times = tuple(map(_float, values)), tuple(map(_float, times))
+        out = _summary_of_floats(result, pair.radius, pair.modulus, *values, *times,
+                                 pair.permanent)  # fmt: skip
     except (ArithmeticError, TypeError, ValueError):
         m, r, e = effective_properties(result.sphere1, result.sphere2)
         plan = ImpactPlan((), *(np.asarray(x) for x in values))
@@ -1031,10 +1041,28 @@ def _summary_of_floats(
         p1, p2 = result.permanent_fractions
         summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
         summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
-    sigma_y = weaker_yield_strength(result.sphere1, result.sphere2)
-    if sigma_y is not None:
-        summary["first_yield_velocity"] = _first_yield_velocity(m, r, e, float(sigma_y))
+    sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
+    if sy1 is not None or sy2 is not None:  # the weaker sphere's
+        fy1, fy2 = _first_yield_velocities(result, m, r, e)
+        weaker = fy2 if sy1 is None or (sy2 is not None and sy2 < sy1) else fy1
+        summary["first_yield_velocity"] = weaker
     return summary
+
+
+def _first_yield_velocities(
+    result: ImpactResult, m: float, r: float, e: float
+) -> tuple[float, float]:
+    """The first-yield velocity of each sphere on floats, [m/s] (``inf`` without a yield
+    strength), worked out once per result (:func:`impactcli.design.first_yield_velocities`)."""
+    found = result.__dict__.get("_first_yield_")
+    if found is None:
+        sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
+        found = (
+            math.inf if sy1 is None or math.isnan(sy1) else _first_yield_velocity(m, r, e, sy1),
+            math.inf if sy2 is None or math.isnan(sy2) else _first_yield_velocity(m, r, e, sy2),
+        )
+        result.__dict__["_first_yield_"] = found
+    return found
 
 
 def _first_yield_velocity(m: float, r: float, e: float, sigma_y: float) -> float:
@@ -1093,9 +1121,7 @@ def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> 
     v0 = result.impact_velocity
     relative = 0.5 * m * v0 * v0
     restitution, delta_max = _float(solution.restitution), _float(solution.delta_max)
-    e1, e2 = result.split_fractions
-    p1, p2 = result.permanent_fractions
-    r1, r2 = result.mass_ratios
+    (r1, r2), (e1, e2), (p1, p2) = result._shares()
     quantities = getattr(solution, "quantities", None)  # FILM's: the law's closed forms
     if quantities is not None:
         work = quantities.recoverable_work
@@ -1103,29 +1129,27 @@ def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> 
         work = _first(result.contact_model.recoverable_work(np.array([delta_max])))
     stored = min(work, relative)
     lost = relative * (1.0 - restitution**2)
-    v1_final = result.v1 - r1 * (1.0 + restitution) * v0
-    v2_final = result.v2 - r2 * (1.0 + restitution) * v0
+    v1, v2, m1, m2 = result.v1, result.v2, result.m1, result.m2
+    v1_final = v1 - r1 * (1.0 + restitution) * v0
+    v2_final = v2 - r2 * (1.0 + restitution) * v0
     sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
     try:  # on floats
-        fy1, fy2 = (
-            math.inf if sy is None or math.isnan(sy) else _first_yield_velocity(m, r, e_star, sy)
-            for sy in (sy1, sy2)
+        fy1, fy2 = _first_yield_velocities(result, m, r, e_star)
+        kinetic = (
+            _kinetic_energy(m1, v1),
+            _kinetic_energy(m2, v2),
+            _kinetic_energy(m1, v1_final),
+            _kinetic_energy(m2, v2_final),
         )
-        kinetic = [
-            _kinetic_energy(mass, v)
-            for mass, v in ((result.m1, result.v1), (result.m2, result.v2),
-                            (result.m1, v1_final), (result.m2, v2_final))
-        ]  # fmt: skip
     except (ArithmeticError, TypeError, ValueError):
         from impactcli.design import first_yield_velocities
         from impactcli.energy import kinetic_energy
 
         fy1, fy2 = map(float, first_yield_velocities(m, r, e_star, sy1, sy2))
-        kinetic = [
+        kinetic = tuple(
             float(kinetic_energy(mass, v))
-            for mass, v in ((result.m1, result.v1), (result.m2, result.v2),
-                            (result.m1, v1_final), (result.m2, v2_final))
-        ]  # fmt: skip
+            for mass, v in ((m1, v1), (m2, v2), (m1, v1_final), (m2, v2_final))
+        )
     return {
         "kinetic_energy1_initial": kinetic[0],
         "kinetic_energy2_initial": kinetic[1],

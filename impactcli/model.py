@@ -22,6 +22,7 @@ solution. Everything is SI.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -66,6 +67,11 @@ DAMPED_DEFAULT_N = 400
 
 
 _IMPACT: Any = None
+
+
+def _positive(value: object) -> bool:
+    """A float > 0 and finite: plainly valid, no array check needed."""
+    return type(value) is float and 0.0 < value < math.inf
 
 
 def _impact() -> Any:
@@ -462,10 +468,10 @@ class _DuWangModel(ContactModel):
             if self.yield_strength is not None
             else impact.weaker_yield_strength(sphere1, sphere2)
         )
-        if sigma_y is None or needs_yield_strength(sigma_y, sigma_y):
+        if not _positive(sigma_y) and (sigma_y is None or needs_yield_strength(sigma_y, sigma_y)):
             raise ValueError(YIELD_STRENGTH_NEEDED)
         factor = self.pressure_factor
-        if not (np.isfinite(factor) and factor > 0):
+        if not _positive(factor) and not (np.isfinite(factor) and factor > 0):
             raise ValueError(f"the pressure factor must be positive, got {factor}")
         m, r, e = impact.effective_properties(sphere1, sphere2)
         spec = get_law(self.law)

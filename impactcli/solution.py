@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import FilmSolution, FilmStage, FilmSummary, solve_stage
+from impactcli.film import FilmSolution, FilmStage, FilmSummary, solve_stage, solve_stages
 from impactcli.limits import MAX_SEGMENTS, check_size
 
 if TYPE_CHECKING:
@@ -239,26 +239,53 @@ class StagedSolution(FilmSolution):
     ) -> Array:
         """Contact force F(delta) of the FILM stage each time [s] falls in, [N]."""
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
-        ends = [float(stage.end_time) for stage in self.stages]
-        stage = np.minimum(np.searchsorted(ends, t, side="left"), len(ends) - 1)
+        ends = self._stage_ends
+        stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
         return self.plan.force(stage, delta)
 
-    def contact_work(self, t: ArrayLike) -> Array:
+    @cached_property
+    def _stage_ends(self) -> Array:
+        """The time each stage ends, [s]."""
+        return np.array([float(stage.end_time) for stage in self.stages])
+
+    @cached_property
+    def _work_table(self) -> tuple:
+        """:func:`impactcli.energy.film_work_table` of the stages."""
+        from impactcli.energy import film_work_table
+
+        return film_work_table(self.stages, [stage.law for stage in self.plan.stages])
+
+    @cached_property
+    def _energy_constants(self) -> tuple:
+        """:func:`impactcli.energy.plan_energy_constants` of the impact."""
+        from impactcli.energy import plan_energy_constants
+
+        return plan_energy_constants(self.plan, self.contact, self.delta_max)
+
+    def contact_work(self, t: ArrayLike, delta: ArrayLike | None = None) -> Array:
         """W(t): work of the contact force up to times ``t`` [s] along FILM's segments
-        (:func:`impactcli.energy.film_contact_work`), [J]."""
+        (:func:`impactcli.energy.film_contact_work`), [J]; ``delta``: this solution's
+        indentation at ``t`` [m] (:meth:`evaluate`), if the caller has it."""
         from impactcli.energy import film_contact_work
 
         laws = [stage.law for stage in self.plan.stages]
-        return film_contact_work(self.stages, laws, t)
+        return film_contact_work(
+            self.stages, laws, t, film=self, delta=delta, table=self._work_table
+        )
 
-    def energy(self, t: ArrayLike, delta: ArrayLike) -> tuple[Array, Array]:
+    def energy(
+        self, t: ArrayLike, delta: ArrayLike, own: bool = False
+    ) -> tuple[Array, Array]:
         """Stored strain energy and dissipated (plastic) energy at times ``t`` [s] and
-        indentations ``delta`` [m], [J] (:func:`impactcli.energy.plan_energy`)."""
+        indentations ``delta`` [m], [J] (:func:`impactcli.energy.plan_energy`); ``own``:
+        ``delta`` is this solution's own at ``t`` (:meth:`evaluate`), used for W(t)."""
         from impactcli.energy import plan_energy
 
+        work = self.contact_work(t, delta if own else None)
         return plan_energy(
-            self.plan, self.contact, t, delta, self.contact_work(t), self.t_max, self.delta_max
-        )
+            self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
+            constants=self._energy_constants,
+        )  # fmt: skip
 
     def dissipated_at(self, t: ArrayLike) -> Array:
         """Energy dissipated from first contact to times ``t`` [s], [J]."""
@@ -512,6 +539,14 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     -------
     tuple of :class:`~impactcli.film.FilmStage`
     """
+    values = [(s.delta_start, s.delta_end, s.speed_start) for s in plan.stages]
+    if np.ndim(mass) == 0 and all(np.ndim(x) == 0 for row in values for x in row):
+        return solve_stages(  # one impact: its stages in one pass
+            [(s.law, float(a), float(b), float(v), s.end_at_rest)
+             for s, (a, b, v) in zip(plan.stages, values)],
+            float(mass),
+            n,
+        )  # fmt: skip
     stages: list[FilmStage] = []
     t_start: ArrayLike = np.zeros_like(np.asarray(plan.delta_max, dtype=float))
     for stage in plan.stages:

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import impactcli
-from impactcli.film import hertz_loading_time, segment_time, solve_stage
+from impactcli.film import hertz_loading_time, segment_time, solve_stage, solve_stages
 from impactcli.laws import get_law
 from impactcli.laws.hertz import Hertz, normalised_times
 from impactcli.solution import PlanSolution, StagedSolution, solve_plan
@@ -79,15 +79,20 @@ def test_a_summary_solves_no_stage_until_a_history_asks(monkeypatch):
     import impactcli.film
     import impactcli.solution
 
-    calls = []
+    solved = []
 
-    def counted(*args, **kwargs):
-        calls.append(args[0])
+    def counted_stage(*args, **kwargs):
+        solved.append(args[0])
         return solve_stage(*args, **kwargs)
 
+    def counted_stages(stages, *args, **kwargs):
+        solved.extend(stage[0] for stage in stages)
+        return solve_stages(stages, *args, **kwargs)
+
     normalised_times(25)  # the normalised solution, once per n
-    monkeypatch.setattr(impactcli.film, "solve_stage", counted)
-    monkeypatch.setattr(impactcli.solution, "solve_stage", counted)
+    for module in (impactcli.film, impactcli.solution):
+        monkeypatch.setattr(module, "solve_stage", counted_stage)
+        monkeypatch.setattr(module, "solve_stages", counted_stages)
     s1, s2 = STEEL
     results = [
         impactcli.elastic_impact(s1, s2, 5e-3, 7.5e-3),
@@ -95,14 +100,29 @@ def test_a_summary_solves_no_stage_until_a_history_asks(monkeypatch):
         impactcli.law_impact(s1, s2, 0.25, 0.75, "thornton"),
         impactcli.law_impact(s1, s2, 0.25, 0.75, "walton-braun", {"k_load": 2e7, "k_unload": 8e7}),
     ]
-    assert calls == []
+    assert solved == []
     for r in results:
         assert "staged" not in r.solution.__dict__
         h = r.history(points=11)
         assert h["t"][-1] == r.summary["contact_time"]
-        assert h["delta"][-1] == pytest.approx(r.summary["delta_res"] if "delta_res" in
-                                               r.summary else 0.0, abs=1e-20)  # fmt: skip
-    assert len(calls) == 2 + 3 + 3 + 2
+        assert h["delta"][-1] == pytest.approx(r.summary.get("delta_res", 0.0), abs=1e-20)
+    assert len(solved) == 2 + 3 + 3 + 2
+
+
+def test_the_stages_of_one_impact_in_one_pass_are_solve_stage_s():
+    """solve_stages (the stages of one impact as rows of one array) gives solve_stage's
+    arrays, to the bit."""
+    pair = pair_of("du-wang", {})
+    plan = pair.normal_contact.plan(1.0, pair.mass)
+    one_pass = solve_plan(plan, pair.mass, 25)
+    t_start = 0.0
+    for stage, got in zip(plan.stages, one_pass):
+        alone = solve_stage(stage.law, stage.delta_start, stage.delta_end, stage.speed_start,
+                            pair.mass, 25, t_start, end_at_rest=stage.end_at_rest)  # fmt: skip
+        for name in ("delta", "velocity", "time", "stiffness", "offset", "omega", "phase_x",
+                     "phase_y", "turning", "direction"):  # fmt: skip
+            assert np.array_equal(getattr(got, name), getattr(alone, name)), name
+        t_start = alone.end_time
 
 
 def test_a_law_without_closed_forms_solves_its_stages():
@@ -177,3 +197,22 @@ def test_the_paper_examples_keep_their_numbers():
     pair = pair_of("du-wang", {})
     solved = solve_plan(pair.normal_contact.plan(1.0, pair.mass), pair.mass, 25)
     assert plastic["contact_time"] == pytest.approx(float(solved[-1].end_time), rel=1e-14)
+
+
+@pytest.mark.parametrize("law, params, v0", CASES[1:6])
+def test_the_history_energy_is_the_work_along_the_stages(law, params, v0):
+    """The work and energy of a history, from the tables a solution keeps, are those of
+    film_contact_work and plan_energy worked out afresh, to the bit."""
+    from impactcli.energy import film_contact_work, plan_energy
+
+    pair = pair_of(law, params)
+    staged = PlanSolution.solve(pair.normal_contact, v0, pair.mass, 25).staged
+    t = np.linspace(-1e-6, 1.1 * staged.end_time, 97)
+    delta, _ = staged.evaluate(t)
+    laws = [stage.law for stage in staged.plan.stages]
+    fresh = film_contact_work(staged.stages, laws, t)
+    assert np.array_equal(staged.contact_work(t, delta), fresh)
+    expected = plan_energy(staged.plan, staged.contact, t, delta, fresh, staged.t_max,
+                           staged.delta_max)  # fmt: skip
+    for got, want in zip(staged.energy(t, delta, own=True), expected):
+        assert np.array_equal(got, want)

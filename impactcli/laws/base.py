@@ -44,6 +44,7 @@ __all__ = [
     "YieldOnset",
     "as_float",
     "finite_summary",
+    "floats",
 ]
 
 Array = NDArray[np.float64]
@@ -92,14 +93,27 @@ def as_float(value: object) -> float | None:
     return None
 
 
+def floats(*values: object) -> tuple[float, ...] | None:
+    """The values as floats (:func:`as_float`), or None if one of them is not one number."""
+    if all(type(x) is float for x in values):
+        return values  # type: ignore[return-value]
+    out = tuple(as_float(x) for x in values)
+    return None if None in out else out  # type: ignore[return-value]
+
+
 def finite_summary(summary: FilmSummary) -> bool:
     """Every length, force and time of ``summary`` finite and positive (delta_res, e and the
     recoverable work >= 0), delta_y and V_y not infinite: a single impact within double
     precision, whose numbers the array path would give alike."""
-    s = summary
+    s, inf = summary, math.inf
     return (
-        all(TINY <= x < math.inf for x in (s.delta_max, s.force_max, s.t_max, s.end_time))
-        and all(0.0 <= x < math.inf for x in (s.delta_res, s.restitution, s.recoverable_work))
+        TINY <= s.delta_max < inf
+        and TINY <= s.force_max < inf
+        and TINY <= s.t_max < inf
+        and TINY <= s.end_time < inf
+        and 0.0 <= s.delta_res < inf
+        and 0.0 <= s.restitution < inf
+        and 0.0 <= s.recoverable_work < inf
         and not (math.isinf(s.delta_y) or math.isinf(s.yield_velocity))
     )
 
@@ -159,7 +173,7 @@ class ImpactPlan:
         force = np.zeros_like(delta)
         for index, plan in enumerate(self.stages):  # a few stages, not rows
             mask = k == index
-            if np.any(mask):
+            if mask.any():
                 force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
         return force
 
@@ -517,6 +531,9 @@ class LawSpec:
         out: dict[str, Any] = {}
         for p in self.parameters:
             value = given.get(p.name, p.default)
+            if type(value) is float and 0.0 < value < math.inf and p.kind not in ("file", "choice"):
+                out[p.name] = value  # one positive, finite number: as it is
+                continue
             if value is not None and p.kind not in ("file", "choice"):
                 arr = np.asarray(value, dtype=float)
                 missing = np.isnan(arr)
@@ -559,6 +576,9 @@ class LawSpec:
         sigma_y [Pa] (of the weaker sphere), one entry per collision; ``params`` by name."""
         resolved = self.resolve(params)
         needed = self.yield_strength_needed(resolved)
+        plain = type(yield_strength) is float and 0.0 < yield_strength < math.inf
+        if needed is False or (needed is True and plain):  # nothing to check on arrays
+            return self.build(radius, modulus, yield_strength, resolved)
         if np.any(needed):
             sy = np.asarray(np.nan if yield_strength is None else yield_strength, dtype=float)
             if np.any(needed & ~(np.isfinite(sy) & (sy > 0))):

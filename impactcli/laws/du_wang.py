@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import FilmSummary, hertz_loading_time, segment_time
+from impactcli.film import FilmSummary, hertz_loading_seconds, segment_time
 from impactcli.laws.base import (
     MIN_YIELD_INDENTATION_RATIO,
     TINY,
@@ -27,9 +28,9 @@ from impactcli.laws.base import (
     Reference,
     StagePlan,
     YieldOnset,
-    as_float,
     col,
     finite_summary,
+    floats,
 )
 from impactcli.laws.hertz import (
     Hertz,
@@ -121,17 +122,17 @@ class DuWangContact:
     yield_strength: ArrayLike
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR
 
-    @property
+    @cached_property
     def stiffness(self) -> NDArray:
         """Hertz stiffness K_h, [N/m^1.5]."""
         return hertz_stiffness(self.modulus, self.radius)
 
-    @property
+    @cached_property
     def mean_pressure(self) -> NDArray:
         """p0 = 2.57 sigma_y, [Pa]."""
         return self.pressure_factor * np.asarray(self.yield_strength, dtype=float)
 
-    @property
+    @cached_property
     def yield_indentation(self) -> NDArray:
         """delta_y = pi^2 R p0^2 / (4 E*^2), [m]."""
         r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
@@ -225,11 +226,11 @@ class DuWangContact:
         :meth:`plan` and FILM's times of its stages (:func:`plastic_loading`,
         :func:`~impactcli.laws.hertz.rebound_time`). None for arrays, and for an impact
         the array path must judge (a scale beyond double precision)."""
-        values = [as_float(x) for x in (self.radius, self.modulus, self.yield_strength,
-                                        self.pressure_factor, impact_velocity, mass)]  # fmt: skip
-        if any(x is None for x in values):
+        values = floats(self.radius, self.modulus, self.yield_strength, self.pressure_factor,
+                        impact_velocity, mass)  # fmt: skip
+        if values is None:
             return None
-        r, e, sy, factor, v0, m = values  # type: ignore[misc]
+        r, e, sy, factor, v0, m = values
         try:
             loading = plastic_loading(r, e, factor * sy, v0, m, n)
             if loading is None:
@@ -273,25 +274,26 @@ def plastic_loading(
     limit (:func:`impactcli.validation.yield_scale_problems` words it).
 
     Past V_y: delta_m from the energy balance (:meth:`DuWangContact.maximum_indentation`);
-    FILM's Hertz stage 0 -> delta_y (:func:`impactcli.film.hertz_loading_time`) and its
+    FILM's Hertz stage 0 -> delta_y (:func:`impactcli.film.hertz_loading_seconds`) and its
     linear stage delta_y -> delta_m, on which FILM is exact: one segment gives the time of
     n (:func:`impactcli.film.segment_time`).
     """
     r, e, v0, m = radius, modulus, impact_velocity, mass
     k = 4.0 / 3.0 * e * math.sqrt(r)
     dy = math.pi**2 * r * (p0 * p0) / (4.0 * (e * e))
-    v_y = math.sqrt(2.0 / m * 0.4 * k * dy**2.5)  # as hertz_velocity: the same rounding
+    dy25 = dy**2.5
+    v_y = math.sqrt(2.0 / m * 0.4 * k * dy25)  # as hertz_velocity: the same rounding
     if not v0 > v_y * (1.0 + YIELD_MARGIN):
         return k, dy, v_y, math.nan, math.nan, math.nan
     slope = math.pi * r * p0
     intercept = math.pi**3 * (r * r) * p0**3 / (12.0 * (e * e))
-    rest = 0.5 * m * (v0 * v0) - 0.4 * k * dy**2.5 + 0.5 * slope * (dy * dy) - intercept * dy
+    rest = 0.5 * m * (v0 * v0) - 0.4 * k * dy25 + 0.5 * slope * (dy * dy) - intercept * dy
     dm = (intercept + math.sqrt(max(intercept * intercept + 2.0 * slope * rest, 0.0))) / slope
     if not (TINY <= dm < math.inf and dy / dm >= MIN_YIELD_INDENTATION_RATIO):
         return None
-    speed_y = math.sqrt(max(v0 * v0 - 2.0 / m * 0.4 * k * dy**2.5, 0.0))
+    speed_y = math.sqrt(max(v0 * v0 - 2.0 / m * 0.4 * k * dy25, 0.0))
     force_y, force = slope * dy - intercept, slope * dm - intercept
-    t_y = float(hertz_loading_time(dy, v0, k, m, n))
+    t_y = hertz_loading_seconds(dy, v0, k, m, n)
     t_max = t_y + segment_time(force_y, force, dy, dm, speed_y, m, end_at_rest=True)
     return k, dy, v_y, dm, t_max, force
 

@@ -29,6 +29,7 @@ from impactcli.laws.base import (
     as_float,
     col,
     finite_summary,
+    floats,
 )
 
 __all__ = [
@@ -187,8 +188,8 @@ def hertz_summary(
         work = 0.4 * k * delta_m**2.5
     except (OverflowError, ZeroDivisionError):
         return None
-    if not all(TINY <= x < math.inf for x in (m, k, delta_m, force, scale)):
-        return None
+    if not (TINY <= m < math.inf and TINY <= k < math.inf and TINY <= scale < math.inf):
+        return None  # delta_m, the force and the times: finite_summary
     t_bar_max, t_bar_c = normalised_times(n)
     summary = FilmSummary(
         delta_m, force, 0.0, 1.0, t_bar_max * scale, t_bar_c * scale, math.nan, math.nan,
@@ -279,9 +280,10 @@ class HertzLawContact:
     def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
         """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
         stage, on floats (:func:`hertz_summary`); None for arrays."""
-        r, e = as_float(self.radius), as_float(self.modulus)
-        if r is None or e is None or not r > 0.0:
+        values = floats(self.radius, self.modulus)
+        if values is None or not values[0] > 0.0:
             return None
+        r, e = values
         return hertz_summary(4.0 / 3.0 * e * math.sqrt(r), impact_velocity, mass, n)
 
 

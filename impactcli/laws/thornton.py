@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -18,10 +19,10 @@ from impactcli.laws.base import (
     Reference,
     StagePlan,
     YieldOnset,
-    as_float,
     col,
     energy_velocity,
     finite_summary,
+    floats,
 )
 from impactcli.laws.du_wang import DuWangContact, plastic_loading
 from impactcli.laws.hertz import (
@@ -89,17 +90,17 @@ class ThorntonContact:
     modulus: ArrayLike
     limit_pressure: ArrayLike
 
-    @property
+    @cached_property
     def _loading(self) -> DuWangContact:
         # Du & Wang's loading with p0 = p_y is Thornton's (delta_y, F_y, slope pi p_y R).
         return DuWangContact(self.radius, self.modulus, self.limit_pressure, 1.0)
 
-    @property
+    @cached_property
     def stiffness(self) -> Array:
         """Hertz stiffness K_h, [N/m^1.5]."""
         return hertz_stiffness(self.modulus, self.radius)
 
-    @property
+    @cached_property
     def yield_indentation(self) -> Array:
         """delta_y = pi^2 R p_y^2 / (4 E*^2), [m]."""
         return self._loading.yield_indentation
@@ -184,11 +185,10 @@ class ThorntonContact:
         :meth:`unloading` and the Hertz rebound on R_p
         (:func:`~impactcli.laws.hertz.rebound_time`). None for arrays, and for an impact
         the array path must judge."""
-        values = [as_float(x) for x in (self.radius, self.modulus, self.limit_pressure,
-                                        impact_velocity, mass)]  # fmt: skip
-        if any(x is None for x in values):
+        values = floats(self.radius, self.modulus, self.limit_pressure, impact_velocity, mass)
+        if values is None:
             return None
-        r, e, p, v0, m = values  # type: ignore[misc]
+        r, e, p, v0, m = values
         try:
             loading = plastic_loading(r, e, p, v0, m, n)
             if loading is None:
@@ -227,6 +227,8 @@ class ThorntonContact:
 
 
 def _build(radius, modulus, sy, params) -> ThorntonContact:
+    if params["py"] is None and type(sy) is float:  # one impact: 1.6 sigma_y
+        return ThorntonContact(radius, modulus, FIRST_YIELD_PRESSURE_FACTOR * sy)
     py = np.asarray(np.nan if params["py"] is None else params["py"], dtype=float)
     if np.any(np.isnan(py)):  # default: the Hertz peak pressure at first yield
         py = np.where(np.isnan(py), FIRST_YIELD_PRESSURE_FACTOR * np.asarray(sy, float), py)

@@ -17,9 +17,9 @@ from impactcli.laws.base import (
     Parameter,
     Reference,
     StagePlan,
-    as_float,
     col,
     finite_summary,
+    floats,
 )
 from impactcli.laws.hertz import hertz_stiffness
 
@@ -119,10 +119,10 @@ class WaltonBraunContact:
         :meth:`plan`; FILM is exact on both linear stages, so each takes the time of one
         segment (:func:`~impactcli.film.segment_time`: a quarter period). None for arrays,
         and for an impact the array path must judge."""
-        values = [as_float(x) for x in (self.k_load, self.k_unload, impact_velocity, mass)]
-        if any(x is None for x in values):
+        values = floats(self.k_load, self.k_unload, impact_velocity, mass)
+        if values is None:
             return None
-        k1, k2, v0, m = values  # type: ignore[misc]
+        k1, k2, v0, m = values
         try:
             dm = v0 * math.sqrt(m / k1)
             dres = dm * (1.0 - k1 / k2)
@@ -139,7 +139,10 @@ class WaltonBraunContact:
 
 
 def _build(_radius, _modulus, _sy, params) -> WaltonBraunContact:
-    k1, k2 = np.asarray(params["k_load"], float), np.asarray(params["k_unload"], float)
+    k1, k2 = params["k_load"], params["k_unload"]
+    if type(k1) is float and type(k2) is float and k2 >= k1:  # one impact, as given
+        return WaltonBraunContact(k1, k2)
+    k1, k2 = np.asarray(k1, float), np.asarray(k2, float)
     if np.any(k2 < k1):
         raise ValueError(
             "k_unload of law 'walton-braun' must be >= k_load (else e > 1: energy created)"
