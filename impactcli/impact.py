@@ -979,10 +979,17 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     the elastic keys (:func:`impact_summary`, with the indentation at separation as
     delta_res), then the keys of the model's kind (:meth:`impactcli.model.PairModel.summary`)."""
     pair = result.contact
-    values = (solution.delta_max, solution.force_max, solution.delta_end, solution.restitution)
-    times = (solution.t_max, solution.end_time)
+    quantities = getattr(solution, "quantities", None)  # FILM of a plan: floats already
+    if quantities is not None:
+        q = quantities
+        values = (q.delta_max, q.force_max, q.delta_res, q.restitution)
+        times = (q.t_max, q.end_time)
+    else:
+        values = (solution.delta_max, solution.force_max, solution.delta_end,
+                  solution.restitution)  # fmt: skip
+        times = (solution.t_max, solution.end_time)
     try:  # on floats: impact_summary's operations, one impact
-        if not all(type(x) is float for x in (*values, *times)):
+        if quantities is None:
             values, times = tuple(map(_float, values)), tuple(map(_float, times))
         out = _summary_of_floats(result, pair.radius, pair.modulus, *values, *times,
                                  pair.permanent)  # fmt: skip

@@ -150,7 +150,7 @@ class ContactModel:
     def elastic(cls) -> ContactModel:
         """Hertz as the paper's elastic impact (sec. 3, :func:`impactcli.impact.elastic_impact`):
         the elastic summary keys only, the stages checked by FILM itself."""
-        return _ElasticModel()
+        return _ELASTIC
 
     @classmethod
     def elastoplastic(
@@ -160,6 +160,8 @@ class ContactModel:
         :func:`impactcli.impact.elastoplastic_impact`): sigma_y [Pa] (default the weaker
         sphere's) and p0 / sigma_y [-] (default 2.57) checked first."""
         factor = DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
+        if yield_strength is None and factor == DU_WANG_PRESSURE_FACTOR:
+            return _DU_WANG  # the paper's, made once
         return _DuWangModel(yield_strength=yield_strength, pressure_factor=factor)
 
     def check(self, method: str = "film") -> None:
@@ -499,6 +501,12 @@ class _DuWangPair(LawPair):
 
     def kind(self, solution: Any) -> str:
         return "elastoplastic" if solution.plastic else "elastic"
+
+
+#: The paper's elastic and elastoplastic models (:meth:`ContactModel.elastic`,
+#: :meth:`ContactModel.elastoplastic` with the defaults), made once (a model is immutable).
+_ELASTIC = _ElasticModel()
+_DU_WANG = _DuWangModel()
 
 
 # -- Hertz with a damping model -------------------------------------------------------------------
