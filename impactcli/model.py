@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Protocol, cast
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.laws.base import MIN_YIELD_INDENTATION_RATIO as MIN_RATIO
 from impactcli.laws.base import Separation
 from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR, DuWangContact
 from impactcli.laws.hertz import HertzContact, HertzLawContact, hertz_stiffness
@@ -338,6 +339,10 @@ class LawPair:
         """A plan past the law's yield point must resolve its elastic stage in double
         precision (:func:`impactcli.validation.plastic_range_problems`)."""
         contact = self.normal_contact
+        if np.ndim(plan.delta_max) == 0 and np.ndim(contact.yield_indentation) == 0:
+            dm, dy = float(plan.delta_max), float(contact.yield_indentation)
+            if 0.0 < dm < math.inf and (not 0.0 < dy < math.inf or dy / dm >= MIN_RATIO):
+                return  # one impact, plainly within double precision: nothing to word
         raise_first(plastic_range_problems(contact, impact_velocity, self.mass, plan.delta_max))
 
     def solve(self, impact_velocity: float, n: int, must_end: bool = True) -> PlanSolution:
