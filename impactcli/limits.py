@@ -3,8 +3,8 @@
 Measured peak memory (resident set) of one run at the limits below (README, "Limits on
 sizes"), about:
 
-- 650 bytes per FILM segment per stage for ``elastoplastic --n`` (6.5 GB at 10^7), 440 for
-  ``elastic --n`` (4.4 GB), 260 for ``tables --n`` (2.6 GB), 210 for a ``convergence`` n;
+- 470 bytes per FILM segment per stage for ``elastoplastic --n`` (4.6 GB at 10^7), 310 for
+  ``elastic --n`` (3.1 GB), 260 for ``tables --n`` (2.6 GB), 210 for a ``convergence`` n;
 - 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7);
 - 0.55 GB for ``restitution --count`` x ``--n`` at 10^7;
 - 0.08 GB for a curve file of 10^6 points.
@@ -34,7 +34,7 @@ __all__ = [
     "check_size",
 ]
 
-#: FILM segments per stage (``--n``): 6.5 GB at the limit (``elastoplastic``).
+#: FILM segments per stage (``--n``): 4.6 GB at the limit (``elastoplastic``).
 MAX_SEGMENTS = 10_000_000
 #: Points of a history (``--points``): 3.5 GB at the limit.
 MAX_POINTS = 10_000_000
