@@ -67,12 +67,8 @@ DEFAULT_N = 25
 DAMPED_DEFAULT_N = 400
 
 
+#: :mod:`impactcli.impact`, which imports this module: bound on first use (:func:`_impact`).
 _IMPACT: Any = None
-
-
-def _positive(value: object) -> bool:
-    """A float > 0 and finite: plainly valid, no array check needed."""
-    return type(value) is float and 0.0 < value < math.inf
 
 
 def _impact() -> Any:
@@ -83,6 +79,11 @@ def _impact() -> Any:
 
         _IMPACT = impact
     return _IMPACT
+
+
+def _positive(value: object) -> bool:
+    """A float > 0 and finite: plainly valid, no array check needed."""
+    return type(value) is float and 0.0 < value < math.inf
 
 
 @dataclass(frozen=True)
