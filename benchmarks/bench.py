@@ -1,34 +1,57 @@
-"""``make bench``: how fast impactcli is, in one run, as ratios.
+"""``make bench``: impactcli against a baseline of the same run, at equal accuracy.
 
-(a) FILM against SciPy ``solve_ivp`` for one collision, elastic and elastoplastic, both tuned
-    to the same contact-time accuracy against the exact value (elastic: the Beta-function
-    contact time, docs/method.md §3; elastoplastic: FILM with n = 10^6, checked against DOP853 at
-    rtol 1e-13). FILM takes the smallest n, solve_ivp the fastest of RK45/DOP853/LSODA at the
-    loosest rtol, that reach the accuracy. FILM is timed three ways: its stages solved for
-    this one collision (``solve_plan``), per collision inside ``impact batch`` (the kernel
-    on 10^5 rows), and, elastic only, the normalised solution scaled by delta_m / V0.
-(b) ``impact batch`` throughput, collisions per second, for 10^5 and 10^6 rows, elastic and
-    elastoplastic: the kernel alone (``batch_impacts`` in chunks of 10^5 rows) and end to
-    end (``impact batch in.csv -o out.csv`` in a new process, start-up included). The
-    kernel runs with freed memory kept (:func:`impactcli.io.allocator.keep_freed_memory`), as
-    in ``impact batch``; 10^5 rows are also timed first with glibc's default settings.
-(c) ``impact tables --n 1000000`` to a CSV file.
-(d) Start-up of every command without ``--plot`` (with units, as typed), each against
-    ``python -c "import numpy"`` in the same run; the target is 2.5x.
-(e) Damped FILM (docs/damping.md), the paper's spheres with Tsuji damping alpha = 0.3 at the
-    default n = 400 of ``impact elastic --damping``: one impact by Newton on the chain of
-    segments against the segment-by-segment march and against SciPy ``solve_ivp`` (DOP853,
-    rtol 1e-12); the alpha of a target e; the march per impact in a batch.
+Each row of the table is a ratio against a baseline measured in the same process (or, for
+the commands, the same run), with the accuracy of both where there is one, the target of
+issue 25 and whether it is MET. NOT MET rows are what to speed up next.
 
-Usage: ``python benchmarks/bench.py [--quick] [--start-up] [--damping] [--readme README.md]``.
-``--start-up`` runs (d) alone, ``--damping`` (e) alone. ``--readme`` replaces the table between the
-``<!-- bench:start -->`` and ``<!-- bench:end -->`` markers. Timings are medians of
-repeats (best of repeats for the sub-millisecond FILM calls).
+(a) One impact, summary only, for every undamped law of the registry (hertz, du-wang,
+    thornton, walton-braun, tabulated with a five-point curve): the public call a user
+    makes (``elastic_impact``, ``elastoplastic_impact``, ``law_impact``, at their default
+    n), against SciPy ``solve_ivp`` DOP853 on m delta'' = -F(delta) with the same force
+    law (plain Python floats), a turning-point and a separation event, at the loosest rtol
+    whose error is no larger than FILM's. The error is max(|e/e_ref - 1|, |t_c/t_c,ref -
+    1|), against the exact values for Hertz (e = 1, t_c = 2(2/5)B(2/5,1/2) delta_m/V0) and
+    for the others against e of the law's closed form and t_c of DOP853 at rtol 1e-13
+    (whose difference from rtol 1e-12 is printed). Target: at least 50x. And the Hertz
+    impact from the normalised solution (the paper's point): ``batch_impacts`` of one row,
+    the one path that scales it today, and ``elastic_impact``; target under 20 us.
+(b) One impact with its 201-point history (``.history()``), against DOP853 with dense
+    output evaluated at 201 times over its contact, at equal error: max over the points of
+    |delta - delta_ref|/delta_m and |delta' - delta'_ref|/V0 against DOP853 at rtol 1e-13.
+    Target: at least 10x.
+(c) One damped impact (``damped_impact``: tsuji, hunt-crossley, viscoelastic, default n
+    and separation rule) against DOP853 on m delta'' = -(K delta^1.5 + c(delta) delta'),
+    separation at delta = 0, at the same error in e and t_c (against DOP853 at rtol 1e-13).
+    Target: at least 10x.
+(d) Batches: ``batch_impacts`` of every law and ``batch_damped_impacts`` of every damping
+    model (random steel spheres of 1-50 mm and 1-100 mm at 0.5-6 m/s, the n of
+    ``impact batch``), rows per second computed; target 10^6. ``impact batch`` of a CSV of
+    elastic rows that all carry a warning, end to end in a new process (start-up included),
+    rows per second (target 2 x 10^5), and its time against pyarrow alone reading the same
+    input and writing the same output table as CSV in a new process (target: within 1.5x).
+(e) ``impact collide3d --rows`` with ``--tangential mindlin`` (alumina spheres on a plane
+    at 3.9 m/s, Chung & Ooi 2011 test 4) on one chunk of rows (10,000: it works a chunk at
+    a time) and on two: rows per second between the two (start-up excluded; target 10^4),
+    and the peak RSS of each run, extrapolated linearly to 10^6 rows (not run; target:
+    under 1 GB, memory bounded by the block size).
+(f) ``impact tables --n 1000000 -o t.csv``, against pyarrow writing the same table of
+    floats as CSV (issue 25 sets no target).
+(g) Start-up of every command without ``--plot`` (with units, as typed), each against
+    ``python -c "import numpy"`` in the same run; target: within 2.5x.
+
+Usage: ``python benchmarks/bench.py [--quick] [--only a,b,...] [--readme README.md]``.
+``--quick`` is a smoke test (smaller sizes, fewer repeats, about a minute); ``--start-up``
+and ``--damping`` run (g) and (c) alone. ``--readme`` replaces the table between the
+``<!-- bench:start -->`` and ``<!-- bench:end -->`` markers of that file and of its copy in
+docs/about/benchmarks.md. Sub-millisecond calls are timed as the best of repeats, commands
+as medians.
 """
 
 from __future__ import annotations
 
 import argparse
+import bisect
+import inspect
 import math
 import os
 import platform
@@ -39,6 +62,8 @@ import sys
 import tempfile
 import time
 import timeit
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -46,307 +71,78 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from impactcli.batch import batch_impacts, normalised_times  # noqa: E402
-from impactcli.contact import (  # noqa: E402
-    DuWangContact,
-    HertzContact,
-    effective_mass,
-    effective_modulus,
-    effective_radius,
-    hertz_maximum_indentation,
-    sphere_mass,
+from impactcli.impact import (  # noqa: E402
+    Sphere,
+    damped_impact,
+    effective_properties,
+    elastic_impact,
+    elastoplastic_impact,
+    law_impact,
 )
-from impactcli.impact import solve_plan  # noqa: E402
-from impactcli.io.allocator import keep_freed_memory  # noqa: E402
 from impactcli.tables import EXACT_CONTACT_DURATION  # noqa: E402
 
-#: Contact-time accuracies at which FILM and solve_ivp are compared (relative error).
-ACCURACIES = (1e-6, 1e-9)
-#: Targets of issue 6 (2-core machine).
-TARGET_ELASTIC = 1e6
-TARGET_PLASTIC = 1e5
-TARGET_FILM_RATIO = 100.0
+#: Targets of issue 25.
+TARGET_SINGLE = 50.0
+TARGET_NORMALISED = 20e-6
+TARGET_HISTORY = 10.0
+TARGET_DAMPED = 10.0
+TARGET_BATCH = 1e6
+TARGET_END_TO_END = 2e5
+TARGET_PYARROW = 1.5
+TARGET_COLLIDE3D = 1e4
+TARGET_COLLIDE3D_MEMORY = 1e9
+TARGET_START_UP = 2.5
 
-# The paper's spheres (sec. 4.3/4.4): steel, D1 = 20 mm, D2 = 40 mm; V0 = 1 m/s.
-M1, M2 = float(sphere_mass(0.02, 7800.0)), float(sphere_mass(0.04, 7800.0))
-MASS = float(effective_mass(M1, M2))
-RADIUS = float(effective_radius(0.01, 0.02))
-MODULUS = float(effective_modulus(210e9, 0.3, 210e9, 0.3))
-SIGMA_Y = 1e9
+#: The paper's spheres (sec. 4.3/4.4): steel, D1 = 20 mm, D2 = 40 mm; V0 = 1 m/s.
+STEEL = (Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel"))
 V1, V2 = 0.25, 0.75
 V0 = V1 + V2
+#: Walton & Braun's stiffnesses of ``make run``'s compare-laws, [N/m].
+WALTON_BRAUN = {"k_load": 20e6, "k_unload": 80e6}
+#: A five-point loading curve (Hertz K = 10^10 N/m^1.5 at its points), elastic, [m], [N].
+CURVE_DELTA = np.array([0.0, 1e-5, 1e-4, 1e-3, 1e-2])
+CURVE = (CURVE_DELTA, 1e10 * CURVE_DELTA**1.5)
+#: rtol of the reference integrations, and of its check.
+REFERENCE_RTOL, CHECK_RTOL = 1e-13, 1e-12
 
 
-def best_time(call, number: int, repeat: int = 5) -> float:
-    """Best of ``repeat`` runs of ``number`` calls, per call, [s]."""
+@dataclass
+class Row:
+    """One line of the table."""
+
+    what: str
+    measured: str
+    baseline: str = ""
+    ratio: str = ""
+    accuracy: str = ""
+    target: str = ""
+    status: str = ""
+
+
+def verdict(met: bool | None) -> str:
+    return "" if met is None else ("MET" if met else "NOT MET")
+
+
+def best_time(call: Callable[[], object], repeat: int) -> float:
+    """Best of ``repeat`` rounds, each of enough calls to last about 20 ms, per call [s]."""
+    start = time.perf_counter()
+    call()
+    once = time.perf_counter() - start
+    number = max(1, int(0.02 / max(once, 1e-7)))
     return min(timeit.repeat(call, number=number, repeat=repeat)) / number
 
 
-def median_wall(cmd: list[str], runs: int, **kwargs) -> float:
-    """Median wall time of a command, [s]."""
-    times = []
-    for _ in range(runs):
-        start = time.perf_counter()
-        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, **kwargs)
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+def seconds(value: float) -> str:
+    """A duration with a unit that keeps three figures."""
+    for scale, unit in ((1.0, "s"), (1e-3, "ms"), (1e-6, "us")):
+        if value >= scale:
+            return f"{value / scale:,.3g} {unit}"
+    return f"{value * 1e9:,.3g} ns"
 
 
-# -- (a) FILM against solve_ivp ------------------------------------------------------------
-
-
-class Problem:
-    """One collision of the paper's spheres: FILM, solve_ivp and the reference contact time."""
-
-    def __init__(self, model: str) -> None:
-        self.model = model
-        if model == "elastic":
-            self.contact = HertzContact(float(DuWangContact(RADIUS, MODULUS, 1.0).stiffness))
-        else:
-            self.contact = DuWangContact(RADIUS, MODULUS, SIGMA_Y)
-        self.plan = self.contact.plan(V0, MASS)
-        self.delta_max = float(self.plan.delta_max)
-        if model == "elastic":
-            self.exact = EXACT_CONTACT_DURATION * self.delta_max / V0
-            self.reference = "exact 2(2/5)B(2/5,1/2) delta_m/V0"
-        else:
-            self.exact = self.film(10**6)
-            check = self.ode(1e-13, "DOP853")
-            self.reference = (
-                f"FILM n = 10^6 (DOP853 at rtol 1e-13 differs by {abs(check / self.exact - 1):.0e})"
-            )
-
-    def film(self, n: int) -> float:
-        """Contact time by FILM: the stages of this one collision, [s]."""
-        return float(solve_plan(self.contact.plan(V0, MASS), MASS, n)[-1].end_time)
-
-    def film_normalised(self, n: int) -> float:
-        """Elastic contact time from the normalised FILM solution: t_bar_c(n) delta_m / V0."""
-        stiffness = self.contact.stiffness
-        return normalised_times(n)[1] * float(hertz_maximum_indentation(MASS, V0, stiffness)) / V0
-
-    def ode(self, rtol: float, method: str) -> float:
-        """Contact time by solve_ivp of m delta'' = -F(delta), events at the turn and the
-        separation, [s]."""
-        from scipy.integrate import solve_ivp
-
-        m, k = MASS, float(self.contact.stiffness)
-        atol = np.array([rtol * self.delta_max, rtol * V0])
-        if self.model == "elastic":
-            delta_y, slope, intercept, delta_res = math.inf, 0.0, 0.0, 0.0
-        else:
-            law = self.contact.plastic_law()
-            delta_y = float(self.contact.yield_indentation)
-            slope, intercept = float(np.ravel(law.slope)[0]), float(np.ravel(law.intercept)[0])
-            delta_res = float(self.plan.delta_res)
-
-        def loading(_t, y):
-            d = max(y[0], 0.0)
-            f = k * d * math.sqrt(d) if d < delta_y else slope * d - intercept
-            return (y[1], -f / m)
-
-        def unloading(_t, y):
-            g = y[0] - delta_res
-            return (y[1], -k * g * math.sqrt(g) / m if g > 0.0 else 0.0)
-
-        def turn(_t, y):
-            return y[1]
-
-        def separation(_t, y):
-            return y[0] - delta_res
-
-        turn.terminal = separation.terminal = True
-        turn.direction = separation.direction = -1
-        span = 4.0 * self.delta_max / V0 * 10
-        first = solve_ivp(
-            loading, (0.0, span), (0.0, V0), method=method, rtol=rtol, atol=atol, events=turn
-        )
-        t_turn, y_turn = first.t_events[0][0], first.y_events[0][0]
-        second = solve_ivp(
-            unloading,
-            (t_turn, t_turn + span),
-            y_turn,
-            method=method,
-            rtol=rtol,
-            atol=atol,
-            events=separation,
-        )
-        return float(second.t_events[0][0])
-
-    def error(self, t: float) -> float:
-        return abs(t / self.exact - 1.0)
-
-    def film_n(self, accuracy: float) -> int:
-        """Smallest n (on a 5 % grid) whose FILM contact time is within ``accuracy``."""
-        n = 2
-        while self.error(self.film(n)) > accuracy:
-            n = max(n + 1, int(n * 1.05))
-        return n
-
-    def ode_setting(self, accuracy: float) -> tuple[str, float, float]:
-        """(method, rtol, seconds per collision) of the fastest solve_ivp within accuracy."""
-        best = None
-        for method in ("RK45", "DOP853", "LSODA"):
-            for k in range(6, 28):  # rtol 1e-3 ... 1e-13.5
-                rtol = 10.0 ** (-k / 2)
-                if self.error(self.ode(rtol, method)) <= accuracy:
-                    seconds = best_time(lambda m=method, r=rtol: self.ode(r, m), 3, 3)
-                    if best is None or seconds < best[2]:
-                        best = (method, rtol, seconds)
-                    break
-        assert best is not None
-        return best
-
-    def batch_seconds(self, n: int, rows: int = 100_000) -> float:
-        """FILM per collision inside impact batch: the kernel on ``rows`` copies, [s]."""
-        plastic = self.model != "elastic"
-
-        def run():
-            return batch_impacts(
-                np.full(rows, 0.02), 0.04, V1, V2, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0,
-                sy1=SIGMA_Y, sy2=SIGMA_Y, plastic=plastic, n=n,
-            )  # fmt: skip
-
-        return best_time(run, 1, 3) / rows
-
-
-def bench_film(rows: list, quick: bool) -> None:
-    for model in ("elastic", "elastoplastic"):
-        problem = Problem(model)
-        for accuracy in ACCURACIES[:1] if quick else ACCURACIES:
-            n = problem.film_n(accuracy)
-            film = best_time(lambda p=problem, k=n: p.film(k), 200)
-            method, rtol, ode = problem.ode_setting(accuracy)
-            batch = problem.batch_seconds(n, max(2_000, min(100_000, 5_000_000 // n)))
-            label = f"(a) {model}, contact time within {accuracy:.0e}"
-            rows.append(
-                (
-                    f"{label}: solve_ivp {method} rtol {rtol:.0e}",
-                    f"{ode * 1e6:,.0f} us",
-                    "1 (reference)",
-                )
-            )
-            rows.append(
-                (
-                    f"{label}: FILM n = {n}, stages of one collision",
-                    f"{film * 1e6:,.0f} us",
-                    f"{ode / film:,.0f}x faster",
-                )
-            )
-            if model == "elastic":
-                single = best_time(lambda p=problem, k=n: p.film_normalised(k), 2000)
-                rows.append(
-                    (
-                        f"{label}: FILM n = {n}, normalised solution x delta_m/V0",
-                        f"{single * 1e6:,.1f} us",
-                        f"{ode / single:,.0f}x faster",
-                    )
-                )
-            rows.append(
-                (
-                    f"{label}: FILM n = {n}, per collision in impact batch",
-                    f"{batch * 1e6:,.2f} us",
-                    f"{ode / batch:,.0f}x faster",
-                )
-            )
-        rows.append((f"(a) {model} reference contact time: {problem.reference}", "", ""))
-
-
-# -- (b) batch throughput ------------------------------------------------------------------
-
-
-def random_rows(size: int, plastic: bool, seed: int = 0) -> dict[str, np.ndarray]:
-    """Steel spheres of 1-50 mm and 1-100 mm at 0.5-5 m/s (elastoplastic: above yield)."""
-    rng = np.random.default_rng(seed)
-    return {
-        "d1": rng.uniform(1e-3, 0.05, size),
-        "d2": rng.uniform(1e-3, 0.1, size),
-        "v1": rng.uniform(0.5, 5.0, size),
-        "v2": rng.uniform(0.0, 1.0, size),
-        "model": np.full(size, "elastoplastic" if plastic else "elastic"),
-        "material": np.full(size, "steel"),
-    }
-
-
-def compute_rate(size: int, plastic: bool, chunk: int = 100_000) -> float:
-    rows = random_rows(size, plastic)
-    start = time.perf_counter()
-    for lo in range(0, size, chunk):
-        part = slice(lo, lo + chunk)
-        out = batch_impacts(
-            rows["d1"][part], rows["d2"][part], rows["v1"][part], rows["v2"][part],
-            210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0, sy1=1e9, sy2=1e9, plastic=plastic,
-        )  # fmt: skip
-        assert not np.any(out["error"] != "")
-    return size / (time.perf_counter() - start)
-
-
-def end_to_end_rate(size: int, plastic: bool, folder: Path) -> float:
-    import pyarrow as pa
-    from pyarrow import csv as pa_csv
-
-    source = folder / f"in_{size}_{int(plastic)}.csv"
-    target = folder / "out.csv"
-    pa_csv.write_csv(
-        pa.table(random_rows(size, plastic)),
-        source,
-        pa_csv.WriteOptions(quoting_style="none"),
-    )
-    cmd = [sys.executable, "-m", "impactcli", "batch", str(source), "-o", str(target)]
-    seconds = median_wall([*cmd, "--no-progress"], 1, cwd=ROOT, env=_env())
-    lines = sum(1 for _ in target.open("rb"))
-    assert lines == size + 1, lines
-    source.unlink()
-    target.unlink()
-    return size / seconds
-
-
-def default_allocator_rates() -> dict[bool, float]:
-    """Compute-only rates of 10^5 rows before :func:`keep_freed_memory` (run first: the
-    allocator setting cannot be undone within the process), best of three."""
-    return {
-        plastic: max(compute_rate(10**5, plastic) for _ in range(3)) for plastic in (False, True)
-    }
-
-
-def bench_batch(rows: list, quick: bool, default_rates: dict[bool, float]) -> None:
-    sizes = (10**5,) if quick else (10**5, 10**6)
-    with tempfile.TemporaryDirectory() as tmp:
-        for plastic in (False, True):
-            model = "elastoplastic" if plastic else "elastic"
-            target = TARGET_PLASTIC if plastic else TARGET_ELASTIC
-            computed = {}
-            rate = default_rates[plastic]
-            rows.append(
-                (
-                    f"(b) impact batch, 100,000 {model} rows, compute only, glibc's default "
-                    "allocator settings",
-                    f"{rate:,.0f} /s",
-                    f"{rate / target:.1f}x the {target:,.0f}/s target",
-                )
-            )
-            for size in sizes:
-                rate = computed[size] = compute_rate(size, plastic)
-                rows.append(
-                    (
-                        f"(b) impact batch, {size:,} {model} rows, compute only",
-                        f"{rate:,.0f} /s",
-                        f"{rate / target:.1f}x the {target:,.0f}/s target",
-                    )
-                )
-            for size in sizes:
-                rate = end_to_end_rate(size, plastic, Path(tmp))
-                rows.append(
-                    (
-                        f"(b) impact batch, {size:,} {model} rows, CSV file in and out, "
-                        "new process",
-                        f"{rate:,.0f} /s",
-                        f"{rate / computed[size]:.2f}x compute only",
-                    )
-                )
-
-
-# -- (c) tables and (d) start-up -----------------------------------------------------------
+def rate(value: float) -> str:
+    """Rows per second to three figures, with thousands separators."""
+    return f"{float(f'{value:.3g}'):,.0f} rows/s"
 
 
 def _env() -> dict[str, str]:
@@ -354,23 +150,680 @@ def _env() -> dict[str, str]:
     return {**os.environ, "PYTHONPATH": str(ROOT) + (os.pathsep + path if path else "")}
 
 
-def bench_tables(rows: list) -> None:
+#: Runs a command as its own child and writes the child's peak RSS [KiB] to a file: started
+#: from this small process, the child's RSS does not count the pages of a large parent that
+#: it would otherwise be forked from.
+PEAK_RSS = """
+import resource, subprocess, sys
+code = subprocess.call(sys.argv[2:])
+with open(sys.argv[1], "w") as f:
+    f.write(str(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss))
+sys.exit(code)
+"""
+
+
+def run_command(cmd: list[str], memory: bool = False, **kwargs) -> tuple[float, int]:
+    """Wall time [s] of a command in a new process, and with ``memory`` its peak RSS
+    [bytes] (else 0)."""
     with tempfile.TemporaryDirectory() as tmp:
-        out = str(Path(tmp) / "t.csv")
-        cmd = [sys.executable, "-m", "impactcli", "tables", "--n", "1000000", "-o", out]
-        seconds = median_wall(cmd, 3, cwd=ROOT, env=_env())
-        lines = 2 * (1_000_000 + 2)
-    rows.append(
-        (
-            "(c) impact tables --n 1000000 -o t.csv (2,000,004 rows)",
-            f"{seconds:.2f} s",
-            f"{lines / seconds:,.0f} rows/s",
-        )
-    )
+        rss = Path(tmp) / "rss"
+        if memory:
+            cmd = [sys.executable, "-c", PEAK_RSS, str(rss), *cmd]
+        with (Path(tmp) / "stderr").open("w+b") as stderr:
+            start = time.perf_counter()
+            code = subprocess.call(cmd, stdout=subprocess.DEVNULL, stderr=stderr, **kwargs)
+            elapsed = time.perf_counter() - start
+            if code != 0:
+                stderr.seek(0)
+                message = stderr.read().decode(errors="replace")
+                raise SystemExit(f"{' '.join(cmd)} failed ({code}):\n{message}")
+        return elapsed, int(rss.read_text()) * 1024 if memory else 0
 
 
-#: Start-up target: each command without --plot within this multiple of ``import numpy``.
-TARGET_START_UP = 2.5
+def median_wall(cmd: list[str], runs: int) -> float:
+    return statistics.median(run_command(cmd, cwd=ROOT, env=_env())[0] for _ in range(runs))
+
+
+# -- the baseline: solve_ivp DOP853 on the same law -----------------------------------------
+
+
+def scalar_force(law) -> Callable[[float], float]:
+    """The force law of a FILM stage as a function of one float, in plain Python: what a
+    user writes for solve_ivp."""
+    kind = type(law).__name__
+
+    def f(x) -> float:
+        return float(np.ravel(np.asarray(x, dtype=float))[0])
+
+    if kind == "Hertz":
+        k, offset = f(law.stiffness), f(law.offset)
+
+        def force(d: float) -> float:
+            g = d - offset
+            return k * g * math.sqrt(g) if g > 0.0 else 0.0
+
+    elif kind == "DuWangPlastic":
+        slope, intercept = f(law.slope), f(law.intercept)
+
+        def force(d: float) -> float:
+            return slope * d - intercept
+
+    elif kind == "LinearSpring":
+        k, offset = f(law.stiffness), f(law.offset)
+
+        def force(d: float) -> float:
+            return k * (d - offset) if d > offset else 0.0
+
+    elif kind == "TabulatedLaw" and law.interpolation == "linear":
+        xs, ys = law.delta.tolist(), law.values.tolist()
+
+        def force(d: float) -> float:
+            i = min(max(bisect.bisect_right(xs, d) - 1, 0), len(xs) - 2)
+            return ys[i] + (ys[i + 1] - ys[i]) * (d - xs[i]) / (xs[i + 1] - xs[i])
+
+    else:
+        raise SystemExit(f"bench: no plain-Python force for {kind}")
+    return force
+
+
+class Integration:
+    """solve_ivp DOP853 of one impact's plan: m delta'' = -F(delta), the loading stages to
+    the turning point (an event), then the unloading to separation (an event)."""
+
+    def __init__(self, plan, mass: float, v0: float) -> None:
+        stages = plan.stages
+        self.mass, self.v0 = mass, v0
+        self.loading = [(float(np.ravel(s.delta_end)[0]), scalar_force(s.law)) for s in stages[:-1]]
+        self.unloading = scalar_force(stages[-1].law)
+        self.delta_max = float(np.ravel(plan.delta_max)[0])
+        self.delta_res = float(np.ravel(plan.delta_res)[0])
+        for stage, (_, force) in zip(stages, [*self.loading, (0.0, self.unloading)]):
+            d = np.linspace(
+                float(np.ravel(stage.delta_start)[0]), float(np.ravel(stage.delta_end)[0]), 7
+            )
+            ours = np.array([force(x) for x in d.tolist()])
+            theirs = np.ravel(stage.law.force(d))
+            assert np.allclose(ours, theirs, rtol=1e-12, atol=1e-12 * abs(theirs).max()), stage.name
+
+    def run(self, rtol: float, dense: bool = False):
+        """(e, t_c, (loading solution, unloading solution))."""
+        from scipy.integrate import solve_ivp
+
+        m, loading, unloading, res = self.mass, self.loading, self.unloading, self.delta_res
+        last = loading[-1][1]
+
+        def first(_t, y):
+            d = y[0]
+            for end, force in loading:
+                if d <= end:
+                    return (y[1], -force(d) / m)
+            return (y[1], -last(d) / m)
+
+        def second(_t, y):
+            return (y[1], -unloading(y[0]) / m)
+
+        def turn(_t, y):
+            return y[1]
+
+        def separation(_t, y):
+            return y[0] - res
+
+        turn.terminal = separation.terminal = True
+        turn.direction = separation.direction = -1
+        atol = np.array([rtol * self.delta_max, rtol * self.v0])
+        span = 40.0 * self.delta_max / self.v0
+        options = dict(method="DOP853", rtol=rtol, atol=atol, dense_output=dense)
+        a = solve_ivp(first, (0.0, span), (0.0, self.v0), events=turn, **options)
+        t_turn, y_turn = a.t_events[0][0], a.y_events[0][0]
+        b = solve_ivp(second, (t_turn, t_turn + span), y_turn, events=separation, **options)
+        return -b.y_events[0][0][1] / self.v0, b.t_events[0][0], (a, b)
+
+    def history(self, rtol: float, points: int = 201) -> tuple[np.ndarray, np.ndarray]:
+        """delta and delta' at ``points`` times over the contact, from the dense output."""
+        _, t_c, (a, b) = self.run(rtol, dense=True)
+        return self.evaluate((a, b), np.linspace(0.0, t_c, points))
+
+    @staticmethod
+    def evaluate(solutions, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        a, b = solutions
+        turn = a.t[-1]
+        early = t <= turn
+        y = np.empty((2, t.size))
+        y[:, early] = a.sol(t[early])
+        y[:, ~early] = b.sol(t[~early])
+        return y[0], y[1]
+
+
+class DampedIntegration(Integration):
+    """solve_ivp DOP853 of m delta'' = -(K delta^1.5 + c0 delta^p delta'), from delta = 0 at
+    V0 to delta = 0 again (the ``overlap`` rule)."""
+
+    EXPONENT = {"tsuji": 0.25, "hunt-crossley": 1.5, "viscoelastic": 0.5}
+
+    def __init__(self, law, name: str, mass: float, v0: float, delta_max: float) -> None:
+        self.mass, self.v0, self.delta_max = mass, v0, delta_max
+        self.k = float(np.ravel(law.stiffness)[0])
+        self.c0 = float(np.ravel(law.damping_coefficient(1.0))[0])
+        self.p = self.EXPONENT[name]
+        d = np.linspace(0.0, delta_max, 7)
+        assert np.allclose(self.c0 * d**self.p, np.ravel(law.damping_coefficient(d)), rtol=1e-12)
+
+    def run(self, rtol: float, dense: bool = False):
+        from scipy.integrate import solve_ivp
+
+        m, k, c0, p = self.mass, self.k, self.c0, self.p
+
+        def motion(_t, y):
+            d = y[0] if y[0] > 0.0 else 0.0
+            return (y[1], -(k * d * math.sqrt(d) + c0 * d**p * y[1]) / m)
+
+        def separation(_t, y):
+            return y[0]
+
+        separation.terminal, separation.direction = True, -1
+        atol = np.array([rtol * self.delta_max, rtol * self.v0])
+        span = 40.0 * self.delta_max / self.v0
+        a = solve_ivp(motion, (0.0, span), (0.0, self.v0), method="DOP853", rtol=rtol,
+                      atol=atol, events=separation, dense_output=dense)  # fmt: skip
+        return -a.y_events[0][0][1] / self.v0, a.t_events[0][0], (a,)
+
+
+def error_of(e: float, t_c: float, e_ref: float, t_ref: float) -> float:
+    """max(|e/e_ref - 1|, |t_c/t_c,ref - 1|), [-]."""
+    return max(abs(e / e_ref - 1.0), abs(t_c / t_ref - 1.0))
+
+
+#: The smallest error DOP853 is asked for: about what its events and rounding allow.
+ACCURACY_FLOOR = 1e-12
+
+
+def loosest(error: Callable[[float], float], accuracy: float) -> float:
+    """The loosest rtol (10^(-k/4), down to 1e-13) whose error is at most ``accuracy`` (or
+    :data:`ACCURACY_FLOOR`, if larger)."""
+    for k in range(12, 53):  # rtol 1e-3 ... 1e-13
+        rtol = 10.0 ** (-k / 4)
+        if error(rtol) <= max(accuracy, ACCURACY_FLOOR):
+            return rtol
+    return rtol
+
+
+def accuracy_text(film: float, ode: float, how: str) -> str:
+    """FILM's error and DOP853's at the rtol chosen; ``how`` the reference."""
+    text = f"FILM {film:.1e}, DOP853 {ode:.1e}"
+    if film < ACCURACY_FLOOR:
+        text += f" (DOP853 asked for {ACCURACY_FLOOR:.0e} at most)"
+    return f"{text}; reference: {how}"
+
+
+# -- (a) one impact, summary only -------------------------------------------------------------
+
+
+def laws() -> list[tuple[str, str, Callable]]:
+    """(law, the public call, the call) of every undamped law of the registry."""
+    from impactcli.laws.registry import LAWS
+
+    s1, s2 = STEEL
+    calls = {
+        "hertz": ("elastic_impact(s1, s2, v1, v2)", lambda: elastic_impact(s1, s2, V1, V2)),
+        "du-wang": (
+            "elastoplastic_impact(s1, s2, v1, v2)",
+            lambda: elastoplastic_impact(s1, s2, V1, V2),
+        ),
+        "thornton": (
+            "law_impact(s1, s2, v1, v2, 'thornton')",
+            lambda: law_impact(s1, s2, V1, V2, "thornton"),
+        ),
+        "walton-braun": (
+            "law_impact(..., 'walton-braun', k_load 20 MN/m, k_unload 80 MN/m)",
+            lambda: law_impact(s1, s2, V1, V2, "walton-braun", WALTON_BRAUN),
+        ),
+        "tabulated": (
+            "law_impact(..., 'tabulated', a 5-point linear curve)",
+            lambda: law_impact(s1, s2, V1, V2, "tabulated", {"curve": CURVE}),
+        ),
+    }
+    missing = set(LAWS) - set(calls)
+    if missing:
+        raise SystemExit(f"bench: no case for the law(s) {', '.join(sorted(missing))}")
+    return [(name, *calls[name]) for name in LAWS]
+
+
+def reference(name: str, result, ode: Integration) -> tuple[float, float, str]:
+    """(e_ref, t_c,ref, how) of one impact."""
+    if name == "hertz":
+        t_ref = EXACT_CONTACT_DURATION * float(np.ravel(result.plan.delta_max)[0]) / V0
+        return 1.0, t_ref, "exact"
+    if name == "walton-braun":  # two quarter periods of linear springs
+        k1, k2 = WALTON_BRAUN["k_load"], WALTON_BRAUN["k_unload"]
+        t_ref = 0.5 * math.pi * (math.sqrt(ode.mass / k1) + math.sqrt(ode.mass / k2))
+        return math.sqrt(k1 / k2), t_ref, "exact"
+    e_ref = float(np.ravel(result.plan.restitution)[0])
+    _, t_ref, _ = ode.run(REFERENCE_RTOL)
+    _, t_check, _ = ode.run(CHECK_RTOL)
+    return e_ref, t_ref, f"the law's e, t_c of DOP853 rtol 1e-13 (+-{abs(t_check / t_ref - 1):.0e})"
+
+
+def bench_single(rows: list[Row], quick: bool) -> None:
+    repeat = 3 if quick else 7
+    m = effective_properties(*STEEL)[0]
+    for name, label, call in laws():
+        result = call()
+        ode = Integration(result.plan, m, V0)
+        e_ref, t_ref, how = reference(name, result, ode)
+        film_error = error_of(result.summary["restitution"], result.summary["contact_time"],
+                              e_ref, t_ref)  # fmt: skip
+
+        def ode_error(rtol: float, ode=ode, e_ref=e_ref, t_ref=t_ref) -> float:
+            e, t_c, _ = ode.run(rtol)
+            return error_of(e, t_c, e_ref, t_ref)
+
+        rtol = loosest(ode_error, film_error)
+        film = best_time(lambda c=call: c().summary, repeat)
+        scipy_time = best_time(lambda r=rtol, o=ode: o.run(r), repeat)
+        ratio = scipy_time / film
+        rows.append(Row(
+            f"(a) {name}: one impact, summary: {label}, n = {result.n}",
+            seconds(film),
+            f"DOP853 rtol {rtol:.0e}: {seconds(scipy_time)}",
+            f"{ratio:,.1f}x",
+            accuracy_text(film_error, ode_error(rtol), how),
+            f">= {TARGET_SINGLE:g}x",
+            verdict(ratio >= TARGET_SINGLE),
+        ))  # fmt: skip
+    bench_normalised(rows, repeat)
+
+
+def bench_normalised(rows: list[Row], repeat: int) -> None:
+    """The Hertz impact from the normalised solution: the paths that give it today."""
+    from impactcli.batch import batch_impacts
+
+    s1, s2 = STEEL
+    props = dict(E1=s1.youngs_modulus, nu1=s1.poisson_ratio, E2=s2.youngs_modulus,
+                 nu2=s2.poisson_ratio, rho1=s1.density, rho2=s2.density)  # fmt: skip
+    result = elastic_impact(s1, s2, V1, V2)
+    exact = EXACT_CONTACT_DURATION * float(np.ravel(result.plan.delta_max)[0]) / V0
+    cases = (
+        ("batch_impacts of one row (scales the normalised solution)",
+         lambda: batch_impacts(s1.diameter, s2.diameter, V1, V2, **props)),
+        ("elastic_impact(s1, s2, v1, v2).summary",
+         lambda: elastic_impact(s1, s2, V1, V2).summary),
+    )  # fmt: skip
+    for label, call in cases:
+        out = call()
+        t_c = float(np.ravel(out["contact_time"])[0])
+        film = best_time(call, repeat)
+        rows.append(Row(
+            f"(a) Hertz impact from the normalised solution: {label}",
+            seconds(film),
+            "",
+            "",
+            f"t_c within {abs(t_c / exact - 1):.1e} of exact (n = {result.n})",
+            f"< {seconds(TARGET_NORMALISED)}",
+            verdict(film < TARGET_NORMALISED),
+        ))  # fmt: skip
+
+
+# -- (b) one impact with its history ----------------------------------------------------------
+
+
+def bench_history(rows: list[Row], quick: bool) -> None:
+    repeat = 3 if quick else 7
+    m = effective_properties(*STEEL)[0]
+    for name, label, call in laws()[:2]:  # Hertz and Du & Wang
+        result = call()
+        ode = Integration(result.plan, m, V0)
+        _, _, reference_solution = ode.run(REFERENCE_RTOL, dense=True)
+        history = result.history(points=201)
+        ref = Integration.evaluate(reference_solution, history["t"])
+
+        def error(delta, delta_dot, ref=ref, ode=ode) -> float:
+            return max(
+                float(np.max(np.abs(delta - ref[0]))) / ode.delta_max,
+                float(np.max(np.abs(delta_dot - ref[1]))) / V0,
+            )
+
+        film_error = error(history["delta"], history["delta_dot"])
+
+        def ode_error(rtol: float, ode=ode, reference_solution=reference_solution) -> float:
+            _, t_c, solutions = ode.run(rtol, dense=True)
+            t = np.linspace(0.0, t_c, 201)
+            delta, delta_dot = Integration.evaluate(solutions, t)
+            ref = Integration.evaluate(reference_solution, t)
+            return max(float(np.max(np.abs(delta - ref[0]))) / ode.delta_max,
+                       float(np.max(np.abs(delta_dot - ref[1]))) / V0)  # fmt: skip
+
+        rtol = loosest(ode_error, film_error)
+        film = best_time(lambda c=call: c().history(points=201), repeat)
+        scipy_time = best_time(lambda r=rtol, o=ode: o.history(r), repeat)
+        ratio = scipy_time / film
+        rows.append(Row(
+            f"(b) {name}: one impact and its 201-point history: {label}.history()",
+            seconds(film),
+            f"DOP853 rtol {rtol:.0e}, dense output at 201 times: {seconds(scipy_time)}",
+            f"{ratio:,.1f}x",
+            accuracy_text(film_error, ode_error(rtol), "DOP853 rtol 1e-13; max over the points"),
+            f">= {TARGET_HISTORY:g}x",
+            verdict(ratio >= TARGET_HISTORY),
+        ))  # fmt: skip
+
+
+# -- (c) one damped impact --------------------------------------------------------------------
+
+
+def damping_cases() -> list[tuple[str, float]]:
+    """(model, alpha): Tsuji alpha = 0.3 (the README's example); the others at the alpha
+    that gives e = 0.8 at V0 = 1 m/s."""
+    from impactcli.laws.registry import DAMPING_LAWS
+
+    s1, s2 = STEEL
+    cases = []
+    for name in DAMPING_LAWS:
+        if name == "tsuji":
+            alpha = 0.3
+        else:
+            alpha = damped_impact(s1, s2, V1, V2, name, restitution=0.8).alpha
+        cases.append((name, alpha))
+    return cases
+
+
+def bench_damped(rows: list[Row], quick: bool) -> None:
+    repeat = 2 if quick else 5
+    s1, s2 = STEEL
+    m = effective_properties(s1, s2)[0]
+    for name, alpha in damping_cases():
+
+        def call(name=name, alpha=alpha):
+            return damped_impact(s1, s2, V1, V2, name, alpha=alpha)
+
+        result = call()
+        summary = result.summary
+        ode = DampedIntegration(result.law, name, m, V0, summary["delta_max"])
+        e_ref, t_ref, _ = ode.run(REFERENCE_RTOL)
+        _, t_check, _ = ode.run(CHECK_RTOL)
+        film_error = error_of(summary["restitution"], summary["contact_time"], e_ref, t_ref)
+
+        def ode_error(rtol: float, ode=ode, e_ref=e_ref, t_ref=t_ref) -> float:
+            e, t_c, _ = ode.run(rtol)
+            return error_of(e, t_c, e_ref, t_ref)
+
+        rtol = loosest(ode_error, film_error)
+        film = best_time(call, repeat)
+        scipy_time = best_time(lambda r=rtol, o=ode: o.run(r), repeat)
+        ratio = scipy_time / film
+        rows.append(Row(
+            f"(c) {name} alpha = {alpha:.3g}: damped_impact(s1, s2, v1, v2, '{name}', alpha), "
+            f"n = {result.n}, e = {summary['restitution']:.3f}",
+            seconds(film),
+            f"DOP853 rtol {rtol:.0e}: {seconds(scipy_time)}",
+            _times(ratio),
+            accuracy_text(film_error, ode_error(rtol),
+                          f"DOP853 rtol 1e-13 (+-{abs(t_check / t_ref - 1):.0e})"),
+            f">= {TARGET_DAMPED:g}x",
+            verdict(ratio >= TARGET_DAMPED),
+        ))  # fmt: skip
+
+
+def _times(ratio: float) -> str:
+    """'3.9x' or '0.23x (4.4x slower)'."""
+    return f"{ratio:,.1f}x" if ratio >= 1.0 else f"{ratio:.2f}x ({1.0 / ratio:,.1f}x slower)"
+
+
+# -- (d) batches ------------------------------------------------------------------------------
+
+
+def random_spheres(size: int, seed: int = 0) -> dict[str, np.ndarray]:
+    """Steel spheres of 1-50 mm and 1-100 mm at 0.5-6 m/s."""
+    rng = np.random.default_rng(seed)
+    return {
+        "d1": rng.uniform(1e-3, 0.05, size),
+        "d2": rng.uniform(1e-3, 0.1, size),
+        "v1": rng.uniform(0.5, 5.0, size),
+        "v2": rng.uniform(0.0, 1.0, size),
+    }
+
+
+def batch_option(name: str) -> int:
+    """The default of an option of ``impact batch``: ``n``, ``chunk_size``."""
+    from impactcli.cli.batch_cmd import batch
+
+    default = inspect.signature(batch).parameters[name].default
+    return int(getattr(default, "default", default))
+
+
+def chunks(rows: dict[str, np.ndarray], size: int) -> Iterator[dict[str, np.ndarray]]:
+    """``rows`` in chunks of ``size``, as ``impact batch`` gives them to the kernel."""
+    total = len(next(iter(rows.values())))
+    for start in range(0, total, size):
+        yield {key: value[start : start + size] for key, value in rows.items()}
+
+
+def throughput(compute: Callable[[dict], dict], budget: float, most: int) -> tuple[float, int]:
+    """Rows per second of ``compute`` on as many rows as take about ``budget`` seconds (at
+    most ``most``), in chunks of ``impact batch``'s chunk size, and that number."""
+    size, chunk = 1000, batch_option("chunk_size")
+    compute(random_spheres(100, seed=1))  # first calls: imports and caches
+    while True:
+        rows = random_spheres(size)
+        start = time.perf_counter()
+        for part in chunks(rows, chunk):
+            out = compute(part)
+            bad = np.flatnonzero(out["error"] != "")
+            if bad.size:
+                raise SystemExit(f"bench: {bad.size} rows failed: {out['error'][bad[0]]}")
+        elapsed = time.perf_counter() - start
+        if elapsed >= budget / 4 or size >= most:
+            return size / elapsed, size
+        size = min(most, int(size * min(100.0, budget / max(elapsed, 1e-3))))
+
+
+def bench_batch(rows: list[Row], quick: bool) -> None:
+    from impactcli.batch import batch_damped_impacts, batch_impacts
+
+    steel = dict(E1=210e9, nu1=0.3, E2=210e9, nu2=0.3, rho1=7800.0, rho2=7800.0, sy1=1e9,
+                 sy2=1e9)  # fmt: skip
+    budget, most = (0.5, 10**5) if quick else (2.0, 10**6)
+    n = batch_option("n")
+    params = {"walton-braun": WALTON_BRAUN, "tabulated": {"curve": CURVE}}
+    for name, _, _ in laws():
+
+        def compute(r, name=name):
+            return batch_impacts(r["d1"], r["d2"], r["v1"], r["v2"], **steel, n=n, law=name,
+                                 law_params=params.get(name))  # fmt: skip
+
+        value, size = throughput(compute, budget, most)
+        rows.append(_batch_row(f"(d) batch_impacts, law {name}", size, n, value))
+        if name == "hertz" and DEFAULT_ALLOCATOR:
+            before, size = DEFAULT_ALLOCATOR
+            rows.append(Row(
+                f"(d) batch_impacts, law hertz, {size:,} rows as above, glibc's "
+                "default allocator settings (impact batch raises its thresholds)",
+                rate(before), "", "", "", "", "",
+            ))  # fmt: skip
+    for name, alpha in damping_cases():
+
+        def compute(r, name=name, alpha=alpha):
+            return batch_damped_impacts(r["d1"], r["d2"], r["v1"], r["v2"], **steel,
+                                        damping=name, alpha=alpha, n=n)  # fmt: skip
+
+        value, size = throughput(compute, budget, most)
+        rows.append(_batch_row(f"(d) batch_damped_impacts, {name} alpha = {alpha:.3g}",
+                               size, n, value))  # fmt: skip
+    bench_end_to_end(rows, quick)
+
+
+#: (rows/s, rows) of hertz rows before :func:`keep_freed_memory`, measured first by main.
+DEFAULT_ALLOCATOR: tuple[float, int] | None = None
+
+
+def default_allocator_rate(quick: bool) -> tuple[float, int]:
+    """Hertz rows per second with glibc's default allocator settings, as the first hertz
+    row of (d) measures them (run first: the change cannot be undone within the process)."""
+    from impactcli.batch import batch_impacts
+
+    size, chunk, n = (10**5 if quick else 10**6), batch_option("chunk_size"), batch_option("n")
+    rows = random_spheres(size)
+    start = time.perf_counter()
+    for r in chunks(rows, chunk):
+        batch_impacts(r["d1"], r["d2"], r["v1"], r["v2"], 210e9, 0.3, 210e9, 0.3, 7800.0,
+                      7800.0, sy1=1e9, sy2=1e9, n=n, law="hertz")  # fmt: skip
+    return size / (time.perf_counter() - start), size
+
+
+def _batch_row(label: str, size: int, n: int, value: float) -> Row:
+    chunk = batch_option("chunk_size")
+    return Row(f"{label}, {size:,} rows in chunks of {chunk:,}, n = {n}, compute only",
+               rate(value), "", "", "",
+               f">= {TARGET_BATCH:,.0f} rows/s", verdict(value >= TARGET_BATCH))  # fmt: skip
+
+
+PYARROW_ALONE = """
+import sys
+import pyarrow.csv as csv, pyarrow.ipc as ipc
+source, table, target = sys.argv[1:]
+csv.read_csv(source)
+with ipc.open_file(table) as f:  # memory-mapped: the output table, read at no cost
+    out = f.read_all()
+csv.write_csv(out, target, csv.WriteOptions(quoting_style="needed"))
+"""
+
+
+def bench_end_to_end(rows: list[Row], quick: bool) -> None:
+    """impact batch of elastic rows that all warn, against pyarrow alone."""
+    import pyarrow as pa
+    import pyarrow.ipc as ipc
+    from pyarrow import csv as pa_csv
+
+    size = 10**5 if quick else 10**6
+    runs = 1 if quick else 2
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        source, target = folder / "in.csv", folder / "out.csv"
+        table = random_spheres(size, seed=1)
+        table.update(model=np.full(size, "elastic"), material=np.full(size, "steel"))
+        pa_csv.write_csv(pa.table(table), source, pa_csv.WriteOptions(quoting_style="none"))
+        cmd = [sys.executable, "-m", "impactcli", "batch", str(source), "-o", str(target),
+               "--no-progress"]  # fmt: skip
+        ours = median_wall(cmd, runs)
+        out = pa_csv.read_csv(target, convert_options=pa_csv.ConvertOptions(
+            strings_can_be_null=False))  # fmt: skip
+        assert out.num_rows == size
+        warned = sum(1 for w in out["warning"].to_pylist() if w)
+        with ipc.new_file(folder / "out.arrow", out.schema) as writer:
+            writer.write_table(out)
+        alone = median_wall(
+            [sys.executable, "-c", PYARROW_ALONE, str(source), str(folder / "out.arrow"),
+             str(folder / "copy.csv")], runs,
+        )  # fmt: skip
+    value, ratio = size / ours, ours / alone
+    label = f"(d) impact batch in.csv -o out.csv: {size:,} elastic rows, {warned:,} warned, "
+    rows.append(Row(
+        label + "end to end, new process", rate(value), "", "", "",
+        f">= {TARGET_END_TO_END:,.0f} rows/s", verdict(value >= TARGET_END_TO_END),
+    ))  # fmt: skip
+    rows.append(Row(label + "against pyarrow alone", seconds(ours),
+                    f"pyarrow: read in.csv, write the same output table as CSV: {seconds(alone)}",
+                    f"{ratio:.2f}x as long", "", f"<= {TARGET_PYARROW:g}x",
+                    verdict(ratio <= TARGET_PYARROW)))  # fmt: skip
+
+
+# -- (e) collide3d --rows ----------------------------------------------------------------------
+
+
+def collision_rows(path: Path, size: int) -> None:
+    """Chung & Ooi (2011) test 4: alumina spheres (5 mm) on a rigid plane at 3.9 m/s, angles
+    1-89 deg."""
+    angle = np.radians(np.linspace(1.0, 89.0, size))
+    zero = np.zeros(size)
+    columns = {
+        "p1_x": zero, "p1_y": zero, "p1_z": zero, "p2_x": zero, "p2_y": zero,
+        "p2_z": zero - 1.0, "v1_x": 3.9 * np.sin(angle), "v1_y": zero,
+        "v1_z": -3.9 * np.cos(angle), "d1": zero + 5e-3, "E1": zero + 380e9,
+        "nu1": zero + 0.23, "rho1": zero + 4000.0,
+    }  # fmt: skip
+    with path.open("w") as f:
+        f.write(",".join(columns) + ",d2,m2,E2\n")
+        for row in np.column_stack(list(columns.values())).tolist():
+            f.write(",".join(map(repr, row)) + ",inf,inf,inf\n")
+
+
+def bench_collide3d(rows: list[Row], quick: bool) -> None:
+    from impactcli.io.collisions3d import run_collisions3d
+
+    # one chunk of rows and two: memory beyond the first chunk is what grows with the rows
+    chunk = int(inspect.signature(run_collisions3d).parameters["rows"].default)
+    sizes = (300, 600) if quick else (chunk, 2 * chunk)
+    results = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for size in sizes:
+            source, target = Path(tmp) / f"in{size}.csv", Path(tmp) / "out.csv"
+            collision_rows(source, size)
+            cmd = [sys.executable, "-m", "impactcli", "collide3d", "--rows", str(source), "-o",
+                   str(target), "--tangential", "mindlin", "--mu", "0.092"]  # fmt: skip
+            results.append(run_command(cmd, memory=True, cwd=ROOT, env=_env()))
+            assert sum(1 for _ in target.open()) == size + 1
+    (t1, m1), (t2, m2) = results
+    value = (sizes[1] - sizes[0]) / (t2 - t1)
+    per_row = max(m2 - m1, 0) / (sizes[1] - sizes[0])
+    million = m2 + per_row * (10**6 - sizes[1])
+    label = "(e) impact collide3d --rows -o out.csv --tangential mindlin --mu 0.092"
+    rows.append(Row(
+        f"{label}: rows/s between {sizes[0]:,} rows ({seconds(t1)}) and {sizes[1]:,} "
+        f"({seconds(t2)}), start-up excluded",
+        rate(value), "", "", "", f">= {TARGET_COLLIDE3D:,.0f} rows/s",
+        verdict(value >= TARGET_COLLIDE3D),
+    ))  # fmt: skip
+    rows.append(Row(
+        f"{label}: peak RSS at 10^6 rows, extrapolated linearly (not run) from "
+        f"{m1 / 1e6:,.0f} MB at "
+        f"{sizes[0]:,} rows and {m2 / 1e6:,.0f} MB at {sizes[1]:,}",
+        f"{million / 1e9:,.3g} GB ({per_row / 1e6:.3g} MB a row)", "", "", "",
+        f"< {TARGET_COLLIDE3D_MEMORY / 1e9:g} GB", verdict(million < TARGET_COLLIDE3D_MEMORY),
+    ))  # fmt: skip
+
+
+# -- (f) tables --------------------------------------------------------------------------------
+
+PYARROW_TABLE = """
+import sys
+import pyarrow.csv as csv, pyarrow.ipc as ipc
+with ipc.open_file(sys.argv[1]) as f:
+    table = f.read_all()
+csv.write_csv(table, sys.argv[2])
+"""
+
+
+def bench_tables(rows: list[Row], quick: bool) -> None:
+    import pyarrow as pa
+    import pyarrow.ipc as ipc
+
+    from impactcli.tables import TABLE_COLUMNS, normalised_table
+
+    runs = 1 if quick else 3
+    n = 10**6
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "t.csv"
+        ours = median_wall([sys.executable, "-m", "impactcli", "tables", "--n", str(n), "-o",
+                            str(out)], runs)  # fmt: skip
+        lines = sum(1 for _ in out.open("rb")) - 1
+        parts = [normalised_table(n, stage) for stage in ("loading", "restitution")]
+        table = pa.table({
+            "stage": ["loading"] * (n + 2) + ["restitution"] * (n + 2),
+            **{c: np.concatenate([p[c] for p in parts]) for c in TABLE_COLUMNS},
+        })  # fmt: skip
+        with ipc.new_file(Path(tmp) / "t.arrow", table.schema) as writer:
+            writer.write_table(table)
+        alone = median_wall([sys.executable, "-c", PYARROW_TABLE, str(Path(tmp) / "t.arrow"),
+                             str(Path(tmp) / "p.csv")], runs)  # fmt: skip
+    rows.append(Row(
+        f"(f) impact tables --n 1000000 -o t.csv ({lines:,} rows of 7 floats, %.12g)",
+        seconds(ours),
+        f"pyarrow writing the same table (shortest round-trip digits): {seconds(alone)}",
+        f"{ours / alone:.2f}x as long", "", "none in issue 25", "",
+    ))  # fmt: skip
+
+
+# -- (g) start-up -------------------------------------------------------------------------------
+
 PAPER = ["--d1", "20mm", "--d2", "40mm", "--material", "steel"]
 #: Commands timed from a cold process, with units as a user types them (no --plot).
 START_UP_COMMANDS: dict[str, list[str]] = {
@@ -422,7 +875,7 @@ BATCH_ROWS = "d1,d2,v1,v2,material\n20mm,40mm,5mm/s,7.5mm/s,steel\n" \
     "21mm,40mm,5mm/s,7.5mm/s,steel\n22 mm,0.04,5 mm/s,7.5e-3,steel\n"  # fmt: skip
 
 
-def bench_start_up(rows: list, quick: bool) -> None:
+def bench_start_up(rows: list[Row], quick: bool) -> None:
     """Cold start of each command against ``python -c "import numpy"``: the runs of all
     commands are interleaved, so that a change of load on the machine hits them alike; the
     ratio is of medians. Bytecode is written and a first, unmeasured round made, as after
@@ -439,148 +892,110 @@ def bench_start_up(rows: list, quick: bool) -> None:
         times: dict[str, list[float]] = {label: [] for label in commands}
         for round_ in range(runs + 1):
             for label, cmd in commands.items():
-                seconds = median_wall(cmd, 1, cwd=ROOT, env=env)
+                elapsed, _ = run_command(cmd, cwd=ROOT, env=env)
                 if round_:
-                    times[label].append(seconds)
+                    times[label].append(elapsed)
     numpy = statistics.median(times.pop("numpy"))
     for label, samples in times.items():
-        seconds = statistics.median(samples)
-        ratio = seconds / numpy
-        verdict = "within" if ratio <= TARGET_START_UP else "ABOVE"
-        rows.append(
-            (
-                f"(d) start-up: {label}",
-                f"{seconds * 1e3:.0f} ms",
-                f"{ratio:.2f}x python -c 'import numpy' ({numpy * 1e3:.0f} ms); "
-                f"{verdict} the {TARGET_START_UP}x target",
-            )
-        )
+        elapsed = statistics.median(samples)
+        ratio = elapsed / numpy
+        rows.append(Row(
+            f"(g) start-up: {label}", seconds(elapsed),
+            f"python -c 'import numpy': {seconds(numpy)}", f"{ratio:.2f}x", "",
+            f"<= {TARGET_START_UP:g}x", verdict(ratio <= TARGET_START_UP),
+        ))  # fmt: skip
 
 
-def _faster(ratio: float) -> str:
-    """'3.9x faster' or '4.4x slower'."""
-    return f"{ratio:,.1f}x faster" if ratio >= 1.0 else f"{1.0 / ratio:,.1f}x slower"
+# -- report ------------------------------------------------------------------------------------
+
+SECTIONS: dict[str, Callable[[list[Row], bool], None]] = {
+    "a": bench_single,
+    "b": bench_history,
+    "c": bench_damped,
+    "d": bench_batch,
+    "e": bench_collide3d,
+    "f": bench_tables,
+    "g": bench_start_up,
+}
 
 
-# -- (e) damped FILM -------------------------------------------------------------------------
-
-
-def bench_damping(rows: list, quick: bool) -> None:
-    """One damped impact: chain against march against solve_ivp; the inverse problem."""
-    import impactcli.damping as damping
-    from impactcli.damping import (
-        TsujiDamping,
-        damped_impact_ode,
-        damping_for_restitution,
-        solve_damped_impact,
-    )
-    from impactcli.impact import DAMPED_DEFAULT_N as n
-
-    stiffness = float(DuWangContact(RADIUS, MODULUS, 1.0).stiffness)
-    law = TsujiDamping(stiffness, MASS, 0.3)
-    repeat = 3 if quick else 5
-    chain = best_time(lambda: solve_damped_impact(law, V0, MASS, n), 1, repeat)
-    limit = damping._CHAIN_MAX_COLLISIONS
-    damping._CHAIN_MAX_COLLISIONS = 0  # the march alone
-    try:
-        march = best_time(lambda: solve_damped_impact(law, V0, MASS, n), 1, repeat)
-    finally:
-        damping._CHAIN_MAX_COLLISIONS = limit
-    ode = best_time(lambda: damped_impact_ode(law, V0, MASS), 1, repeat)
-    film = solve_damped_impact(law, V0, MASS, n)
-    reference = damped_impact_ode(law, V0, MASS)
-    error = max(
-        abs(float(film.restitution) - reference["restitution"]),
-        abs(float(film.contact_time) / reference["contact_time"] - 1.0),
-    )
-    inverse = best_time(
-        lambda: damping_for_restitution("tsuji", 0.8, V0, stiffness, MASS, n), 1, repeat
-    )
-    size = 1024 if quick else 4096
-    many = TsujiDamping(stiffness, MASS, np.full(size, 0.3))
-    batch = best_time(lambda: solve_damped_impact(many, V0, MASS, 100), 1, 2) / size
-    label = f"(e) damped impact, Tsuji alpha = 0.3, n = {n} (e, t_c within {error:.0e} of SciPy)"
-    rows += [
-        (f"{label}: solve_ivp DOP853 rtol 1e-12", f"{ode * 1e3:,.1f} ms", "1 (reference)"),
-        (
-            f"{label}: FILM, segment-by-segment march",
-            f"{march * 1e3:,.1f} ms",
-            _faster(ode / march),
-        ),
-        (
-            f"{label}: FILM, Newton on the chain of segments (impact elastic --damping)",
-            f"{chain * 1e3:,.1f} ms",
-            f"{_faster(ode / chain)}; {march / chain:,.1f}x faster than the march",
-        ),
-        (
-            f"(e) alpha for e = 0.8 at n = {n} (impact elastic --damping tsuji --e 0.8)",
-            f"{inverse * 1e3:,.0f} ms",
-            f"{inverse / chain:,.1f} impacts' time",
-        ),
-        (
-            f"(e) damped impacts in a batch of {size:,}, n = 100, march, per impact",
-            f"{batch * 1e6:,.0f} us",
-            f"{chain / batch:,.0f} of them in the time of one impact alone",
-        ),
-    ]
-
-
-# -- report --------------------------------------------------------------------------------
-
-
-def table(rows: list[tuple[str, str, str]]) -> str:
+def table(rows: list[Row]) -> str:
+    import pyarrow
     import scipy
 
+    met = sum(r.status == "MET" for r in rows)
+    missed = sum(r.status == "NOT MET" for r in rows)
     head = (
         f"Measured {time.strftime('%Y-%m-%d')} on {os.cpu_count()} cores "
         f"({platform.processor() or platform.machine()}), Python {platform.python_version()}, "
-        f"NumPy {np.__version__}, SciPy {scipy.__version__}."
+        f"NumPy {np.__version__}, SciPy {scipy.__version__}, pyarrow {pyarrow.__version__}: "
+        f"{met} targets met, {missed} not met."
     )
-    lines = [head, "", "| benchmark | measured | ratio |", "|---|---:|---|"]
-    lines += [f"| {a} | {b} | {c} |" for a, b, c in rows]
+    lines = [
+        head,
+        "",
+        "| benchmark | measured | baseline, same run | ratio | accuracy | target | status |",
+        "|---|---:|---|---:|---|---|---|",
+    ]
+    lines += [
+        f"| {r.what} | {r.measured} | {r.baseline} | {r.ratio} | {r.accuracy} | {r.target} "
+        f"| {r.status} |"
+        for r in rows
+    ]
     return "\n".join(lines)
 
 
-def update_readme(path: Path, text: str) -> None:
-    readme = path.read_text()
+#: The pages that hold the table between the markers: the README and its copy in the docs.
+COPIES = (Path("docs") / "about" / "benchmarks.md",)
+
+
+def update_readme(path: Path, text: str) -> list[Path]:
+    """Replace the table between the markers of ``path`` and of its copies beside it
+    (:data:`COPIES`, relative to the README's folder); the files written."""
     pattern = re.compile(r"(<!-- bench:start -->\n).*?(<!-- bench:end -->)", re.S)
-    if not pattern.search(readme):
-        raise SystemExit(f"{path}: no <!-- bench:start --> ... <!-- bench:end --> block")
-    path.write_text(pattern.sub(lambda m: m.group(1) + text + "\n" + m.group(2), readme))
+    written = []
+    for page in (path, *(path.parent / copy for copy in COPIES)):
+        if page != path and not page.exists():
+            continue
+        content = page.read_text()
+        if not pattern.search(content):
+            raise SystemExit(f"{page}: no <!-- bench:start --> ... <!-- bench:end --> block")
+        page.write_text(pattern.sub(lambda m: m.group(1) + text + "\n" + m.group(2), content))
+        written.append(page)
+    return written
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="smaller sizes, one accuracy")
+    parser.add_argument("--quick", action="store_true", help="smaller sizes, fewer repeats")
     parser.add_argument("--readme", type=Path, help="write the table into this README")
-    parser.add_argument(
-        "--start-up", action="store_true", help="only (d), the start-up of each command"
-    )
-    parser.add_argument("--damping", action="store_true", help="only (e), damped FILM")
+    parser.add_argument("--only", default="", help="sections to run, e.g. a,c (default all)")
+    parser.add_argument("--start-up", action="store_true", help="only (g), the start-up")
+    parser.add_argument("--damping", action="store_true", help="only (c), damped impacts")
     args = parser.parse_args()
-    rows: list[tuple[str, str, str]] = []
-    if args.start_up or args.damping:
-        if args.start_up:
-            bench_start_up(rows, args.quick)
-        if args.damping:
-            bench_damping(rows, args.quick)
-        print(table(rows))
-        return
-    default_rates = default_allocator_rates()
-    keep_freed_memory()  # as impact batch does; from here on every measurement has it
-    for step in (
-        lambda: bench_film(rows, args.quick),
-        lambda: bench_batch(rows, args.quick, default_rates),
-        lambda: bench_tables(rows),
-        lambda: bench_start_up(rows, args.quick),
-        lambda: bench_damping(rows, args.quick),
-    ):
-        step()
-        print(rows[-1][0], "...", file=sys.stderr, flush=True)
+    chosen = [s.strip() for s in args.only.split(",") if s.strip()]
+    chosen += ["g"] * args.start_up + ["c"] * args.damping
+    unknown = set(chosen) - set(SECTIONS)
+    if unknown:
+        parser.error(f"unknown section(s) {', '.join(sorted(unknown))}; give a to g")
+    from impactcli.io.allocator import keep_freed_memory
+
+    global DEFAULT_ALLOCATOR
+    if not chosen or "d" in chosen:
+        DEFAULT_ALLOCATOR = default_allocator_rate(args.quick)
+    keep_freed_memory()  # as impact batch does: every in-process measurement has it
+    rows: list[Row] = []
+    for name, step in SECTIONS.items():
+        if chosen and name not in chosen:
+            continue
+        start = time.perf_counter()
+        step(rows, args.quick)
+        print(f"({name}) done in {time.perf_counter() - start:.0f} s", file=sys.stderr, flush=True)
     text = table(rows)
     print(text)
     if args.readme:
-        update_readme(args.readme, text)
+        for page in update_readme(args.readme, text):
+            print(f"wrote the table into {page}", file=sys.stderr)
 
 
 if __name__ == "__main__":

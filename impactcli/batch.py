@@ -27,7 +27,10 @@ about :data:`FILM_BLOCK` values, each plan timed by :func:`law_stage_times`. Wit
   (:func:`plastic_stage_times`).
 - Any other plan: FILM on its stages (:func:`impactcli.impact.solve_plan`).
 - Damped (Hertz plus viscous damping) rows, :func:`batch_damped_impacts`: the damped FILM
-  (:func:`impactcli.damping.solve_damped_impact`) in blocks of about :data:`DAMPED_BLOCK`
+  (:func:`impactcli.damping.solve_damped_impact`). At the default n each row's summary is
+  a look-up in the normalised tables (:mod:`impactcli.damped_similar`; blocks of
+  :data:`DAMPED_TABLE_ROWS` rows); otherwise, and beyond the tables, FILM once per
+  distinct value of the model's one parameter, in blocks of about :data:`DAMPED_BLOCK`
   values (rows x (n + 1)).
 - Everything else (final displacements and velocities, each sphere's share of the
   indentation, residual indentation, dissipated energy) is
@@ -50,7 +53,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
-    DU_WANG_PRESSURE_FACTOR,
     ImpactPlan,
     effective_mass,
     effective_modulus,
@@ -58,7 +60,7 @@ from impactcli.contact import (
     sphere_compliance,
     total_mass,
 )
-from impactcli.film import hertz_loading_time, solve_stage
+from impactcli.film import solve_stage
 from impactcli.impact import (
     DAMPED_DEFAULT_N,
     PLASTIC_SUMMARY_KEYS,
@@ -68,7 +70,7 @@ from impactcli.impact import (
     split_fractions,
 )
 from impactcli.laws import hertz_stiffness
-from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW
+from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, DEFAULT_LAW_PARAMETERS, ELASTIC_LAW
 from impactcli.limits import MAX_SEGMENTS, check_size
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
@@ -87,6 +89,7 @@ from impactcli.validation import (
 __all__ = [
     "BATCH_KEYS",
     "DAMPED_BLOCK",
+    "DAMPED_TABLE_ROWS",
     "FILM_BLOCK",
     "batch_damped_impacts",
     "batch_impacts",
@@ -110,6 +113,10 @@ FILM_BLOCK = 131072
 #: in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s unblocked); peak memory about
 #: 0.2 GB a block, whatever the number of rows.
 DAMPED_BLOCK = 524288
+#: Rows per block of damped rows at the n of the normalised tables (400, the default;
+#: :mod:`impactcli.damped_similar`): a row's summary is a table look-up, some 100 values of
+#: work arrays a row (about 50 MB a block).
+DAMPED_TABLE_ROWS = 65536
 
 
 #: Results every computed row must have as finite numbers, and those that must be > 0 (and
@@ -168,7 +175,8 @@ def plastic_stage_times(
     per impact only for the elastic loading:
 
     - elastic loading 0 -> delta_y: FILM on arrays of shape (impacts, n), the node
-      geometry shared (:func:`impactcli.film.hertz_loading_time`);
+      geometry shared (the stage law's ``loading_time``,
+      :func:`impactcli.laws.hertz.hertz_loading_time`);
     - plastic loading delta_y -> delta_m: the force is linear in delta, so FILM is exact on
       every segment (docs/method.md §4, item 5) and one segment gives the time of n;
     - unloading delta_m -> delta_res from rest: a Hertz restitution stage in
@@ -176,9 +184,7 @@ def plastic_stage_times(
       (delta_m - delta_res) / (e V0), e V0 being the speed at separation.
     """
     elastic, plastic_loading, _unloading = plan.stages
-    t_yield = hertz_loading_time(
-        elastic.delta_end, elastic.speed_start, elastic.law.stiffness[..., 0], mass, n
-    )
+    t_yield = elastic.law.loading_time(elastic.delta_end, elastic.speed_start, mass, n)
     second = solve_stage(
         plastic_loading.law,
         plastic_loading.delta_start,
@@ -214,6 +220,7 @@ def material_properties(
     names = np.asarray(names, dtype=object).reshape(-1)
     text = np.where(np.equal(names, None), "", names).astype(str)
     unique, inverse = np.unique(text, return_inverse=True)
+    from impactcli.errors import InputError
     from impactcli.materials import material
 
     props = np.full((unique.size, 4), np.nan)
@@ -223,8 +230,8 @@ def material_properties(
             continue
         try:
             found = material(name)
-        except KeyError as exc:
-            messages[i] = exc.args[0]
+        except InputError as exc:
+            messages[i] = str(exc)
             continue
         sy = found.yield_strength
         props[i] = (
@@ -369,7 +376,7 @@ def batch_impacts(
     plastic: ArrayLike = False,
     n: int = 25,
     split: Split = "mass",
-    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     law: str | None = None,
     law_params: Mapping[str, Any] | None = None,
     *,
@@ -466,27 +473,42 @@ def law_stage_times(
     """FILM time of maximum indentation and contact time [s] of a batch of impacts of any
     law (one plan), n segments per stage.
 
-    The fast paths when the plan allows: an elastic Hertz plan is the normalised solution
-    scaled (:func:`normalised_times`); Hertz, linear, Hertz-from-rest stages (Du & Wang,
-    Thornton) go through :func:`plastic_stage_times`. Any other plan is solved by
+    The fast paths, where the stage laws declare what they are: an elastic plan of the
+    normalised tables (:meth:`~impactcli.laws.base.ImpactPlan.is_normalised`) is the
+    normalised solution scaled (:func:`normalised_times`); a plan of a loading from 0 that
+    times itself (``loading_time``), a ``linear`` stage (FILM exact) and an unloading of
+    the normalised tables' law (Du & Wang, Thornton) goes through
+    :func:`plastic_stage_times`. Any other plan is solved by
     :func:`impactcli.impact.solve_plan` (callers pass blocks of about :data:`FILM_BLOCK`
     values).
     """
     from impactcli.impact import solve_plan
-    from impactcli.laws import DuWangPlastic, Hertz
 
     v0 = np.asarray(impact_velocity, dtype=float)
     m = np.broadcast_to(np.asarray(mass, dtype=float), v0.shape)
-    laws = [type(stage.law) for stage in plan.stages]
-    hertz_from_zero = laws[0] is Hertz and np.all(np.asarray(plan.stages[0].law.offset) == 0)
-    if hertz_from_zero and laws == [Hertz, Hertz] and np.all(plan.delta_res == 0):
+    if plan.is_normalised() and np.all(np.asarray(plan.stages[0].law.offset) == 0):
         t_bar_max, t_bar_c = normalised_times(n)
         scale = plan.delta_max / v0
         return t_bar_max * scale, t_bar_c * scale
-    if hertz_from_zero and laws == [Hertz, DuWangPlastic, Hertz]:
+    if _elastic_linear_elastic(plan):
         return plastic_stage_times(plan, m, v0, n)
     stages = solve_plan(plan, m, n)
     return stages[-2].end_time, stages[-1].end_time
+
+
+def _elastic_linear_elastic(plan: ImpactPlan) -> bool:
+    """Whether :func:`plastic_stage_times` solves ``plan``: three stages, a loading from 0
+    whose law times itself (``loading_time``), a ``linear`` law, and an unloading of the
+    normalised tables' law (``normalised_tables``), as the stage laws declare."""
+    if len(plan.stages) != 3:
+        return False
+    first, second, third = (stage.law for stage in plan.stages)
+    return (
+        hasattr(first, "loading_time")
+        and np.all(np.asarray(first.offset) == 0)
+        and getattr(second, "linear", False)
+        and getattr(third, "normalised_tables", False)
+    )
 
 
 def _batch_law(
@@ -527,8 +549,25 @@ def _batch_law(
     block = max(1, FILM_BLOCK // (n + 1))
     for start in range(0, good.size, block):
         chunk = good[start : start + block]
-        sub = contact_of(chunk)
-        for rows, plan in _plan_groups_of(sub, v0[chunk], m[chunk], contact_of, chunk):
+        groups = list(_plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk))
+        # a plan beyond double precision (docs/method.md §7) is its row's error before FILM
+        # runs: its stages would stop the block
+        refused = np.zeros(v0.size, dtype=bool)
+        for rows, plan in groups:
+            scale = plastic_range_problems(contact_of(rows), v0[rows], m[rows], plan.delta_max)
+            errors[rows[scale.bad]] = scale.messages[scale.bad]
+            refused[rows[scale.bad]] = True
+            force = np.broadcast_to(plan.force_max, rows.shape)
+            with np.errstate(invalid="ignore"):
+                beyond = rows[~refused[rows] & ~(np.isfinite(force) & (force > 0.0))]
+            errors[beyond] = [OUT_OF_RANGE.format(float(v)) for v in v0[beyond]]
+            refused[beyond] = True
+        if refused[chunk].any():
+            chunk = chunk[~refused[chunk]]
+            groups = list(
+                _plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk)
+            )
+        for rows, plan in groups:
             values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
@@ -677,9 +716,13 @@ def batch_damped_impacts(
         ok = np.flatnonzero(~problems.bad)
     never = np.zeros(problems.bad.size, dtype=bool)
     beyond = np.zeros(problems.bad.size, dtype=bool)
-    # FILM on (rows, n) arrays: blocks of about DAMPED_BLOCK values, so memory does not grow
-    # with the number of rows
-    block = max(1, DAMPED_BLOCK // (n + 1))
+    # At the tables' n a row's summary is a look-up (FILM marches, in blocks of its own, only
+    # the rows beyond the tables): blocks of DAMPED_TABLE_ROWS rows. Otherwise FILM on
+    # (rows, n) arrays: blocks of about DAMPED_BLOCK values. Memory does not grow with the
+    # number of rows.
+    from impactcli.damped_similar import TABLE_N
+
+    block = DAMPED_TABLE_ROWS if n == TABLE_N else max(1, DAMPED_BLOCK // (n + 1))
     for start in range(0, ok.size, block):
         rows = ok[start : start + block]
         pairs = _Pairs.of(columns, rows)

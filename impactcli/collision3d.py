@@ -583,8 +583,8 @@ def normal_law_warnings(
     indentation is delta_max [m] (:func:`impactcli.validation.normal_impact_warnings`);
     ``elastic``: an elastic (Hertz) normal law, whose first yield is worth a warning;
     ``velocity`` names u_n and ``advice`` the elastoplastic law in the messages."""
+    from impactcli.contact import first_yield_velocity
     from impactcli.impact import effective_properties, weaker_yield_strength
-    from impactcli.laws.hertz import first_yield_velocity
     from impactcli.validation import normal_impact_warnings
 
     m, radius, modulus = effective_properties(sphere1, sphere2)

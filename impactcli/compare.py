@@ -15,6 +15,7 @@ Pure functions on SI values; no printing, no files (besides a tabulated law's cu
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -25,7 +26,6 @@ from impactcli.impact import (
     ContactModel,
     ImpactResult,
     Sphere,
-    damped_restitution_sweep,
     effective_properties,
     solve_impact,
     weaker_yield_strength,
@@ -34,8 +34,10 @@ from impactcli.laws.registry import get_law
 
 __all__ = [
     "COMPARISON_KEYS",
+    "LawComparison",
     "comparison_row",
     "compare_impacts",
+    "summarise_laws",
     "published_restitution",
     "reference_yield_velocity",
     "restitution_curves",
@@ -102,8 +104,103 @@ def compare_impacts(
     ValueError
         Bad input of a law, or an impact beyond a tabulated curve (one line each).
     """
-    models = [_model(entry) for entry in laws]
+    models = _checked_models(laws, n)
     return {m.name: solve_impact(sphere1, sphere2, v1, v2, m, n, split) for m in models}
+
+
+@dataclass(frozen=True)
+class LawComparison:
+    """One law's impact in a comparison, without its FILM arrays.
+
+    Attributes
+    ----------
+    row : :data:`COMPARISON_KEYS` -> value, SI (:func:`comparison_row`)
+    delta, force : the force-indentation loop, [m] and [N], at ``points`` times over the
+        contact (``None`` when no loop was asked for)
+    n : the FILM segments per stage it ran with
+    damped : whether the model is Hertz with a damping model
+    """
+
+    row: dict[str, float]
+    delta: NDArray | None = None
+    force: NDArray | None = None
+    n: int = 25
+    damped: bool = False
+
+
+def summarise_laws(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    v1: float,
+    v2: float,
+    laws: Sequence[Law | ContactModel],
+    n: int | None = None,
+    split: str = "mass",
+    points: int | None = None,
+) -> dict[str, LawComparison]:
+    """The same impact under each law, one law at a time: law name ->
+    :class:`LawComparison`, each impact's FILM arrays released once it is summarised, so
+    that memory is that of one law's impact whatever the number of laws
+    (:func:`compare_impacts` keeps every impact).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    v1, v2 : velocities of the centres toward the other sphere, [m/s]
+    laws : as for :func:`compare_impacts`; laws x n at most
+        :data:`impactcli.limits.MAX_COMPARISON_SEGMENTS`
+    n : FILM segments per stage
+    split : the split of the indentation between the spheres
+    points : points of each force-indentation loop; ``None``: no loop
+
+    Returns
+    -------
+    dict
+        Law name -> :class:`LawComparison`, in the order of ``laws``.
+
+    Raises
+    ------
+    ValueError
+        As :func:`compare_impacts`; laws x n beyond the limit.
+
+    Examples
+    --------
+    >>> steel = Sphere.from_material(0.02, "steel")
+    >>> out = summarise_laws(steel, steel, 0.5, 0.5, [("du-wang", {}), ("thornton", {})])
+    >>> {name: round(c.row["restitution"], 4) for name, c in out.items()}
+    {'du-wang': 0.8368, 'thornton': 0.6002}
+    """
+    out: dict[str, LawComparison] = {}
+    for model in _checked_models(laws, n):
+        result = solve_impact(sphere1, sphere2, v1, v2, model, n, split)
+        loop: dict[str, NDArray] = {}
+        if points is not None:
+            loop = result.history(points=points)
+        out[model.name] = LawComparison(comparison_row(result), loop.get("delta"),
+                                        loop.get("force"), result.n,
+                                        model.damping is not None)  # fmt: skip
+        del result, loop  # before the next law runs
+    return out
+
+
+def _checked_models(laws: Sequence[Law | ContactModel], n: int | None) -> list[ContactModel]:
+    """The contact models of ``laws``; laws x n within
+    :data:`impactcli.limits.MAX_COMPARISON_SEGMENTS` (n None: each model's default n)."""
+    from impactcli.errors import InputError
+    from impactcli.limits import MAX_COMPARISON_SEGMENTS, MAX_SEGMENTS, check_size
+
+    models = [_model(entry) for entry in laws]
+    if n is None:
+        total = sum(model.default_n for model in models)
+    else:
+        total = len(models) * check_size("n", n, MAX_SEGMENTS)
+    if total > MAX_COMPARISON_SEGMENTS:
+        raise InputError(
+            f"{len(models)} laws x n = {total:,} segments: a comparison runs at most "
+            f"{MAX_COMPARISON_SEGMENTS:,} (laws x n; a run must fit in a few GB of memory): "
+            f"give fewer laws or n <= {MAX_COMPARISON_SEGMENTS // max(len(models), 1):,}"
+        )
+    return models
 
 
 def reference_yield_velocity(
@@ -132,7 +229,7 @@ def restitution_curves(
     One FILM sweep per law (:func:`impactcli.sweep.restitution_sweep`, vectorised over V0).
     Velocities a tabulated law's curves cannot take (the impact goes beyond them) get NaN.
     """
-    from impactcli.sweep import restitution_sweep
+    from impactcli.sweep import damped_sweep, restitution_sweep
 
     v0 = np.asarray(velocities, dtype=float)
     m, r, e = effective_properties(sphere1, sphere2)
@@ -140,7 +237,7 @@ def restitution_curves(
     out: dict[str, NDArray] = {}
     for model in map(_model, laws):
         if model.damping is not None:
-            out[model.name] = damped_restitution_sweep(
+            out[model.name] = damped_sweep(
                 sphere1, sphere2, v0, model.damping, model.alpha,
                 DAMPED_DEFAULT_N if n is None else n, model.separation,
             )["restitution"]  # fmt: skip

@@ -28,18 +28,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
-    DU_WANG_PRESSURE_FACTOR,
     FIRST_YIELD_PRESSURE_FACTOR,
     effective_mass,
     effective_modulus,
     effective_radius,
     first_yield_velocity,
-    hertz_maximum_indentation,
     sphere_mass,
 )
 from impactcli.errors import InputError
-from impactcli.laws import hertz_stiffness
-from impactcli.laws.registry import LAWS
+
+# defined here before the elastic law's module held it: kept importable from here
+from impactcli.laws.hertz import HERTZ_CONTACT_TIME_FACTOR
+from impactcli.laws.registry import DEFAULT_LAW_PARAMETERS, ELASTIC_LAW, LAWS, get_law
 from impactcli.validation import finite_float, input_errors
 
 __all__ = [
@@ -60,9 +60,6 @@ __all__ = [
 YIELD_LIMIT_LAWS: tuple[str, ...] = tuple(
     name for name, spec in LAWS.items() if spec.yield_onset is not None
 )
-
-#: t_c V0 / delta_m = 2 (2/5) B(2/5, 1/2) for Hertz contact (docs/method.md §3), [-].
-HERTZ_CONTACT_TIME_FACTOR = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
 
 #: Fractions of the Rayleigh time step commonly taken as the DEM time step, [-]
 #: (20 % to 40 % is the range usually quoted for Hertz-Mindlin DEM).
@@ -130,7 +127,9 @@ def rayleigh_time_step(
 def hertz_contact_time(
     mass: ArrayLike, radius: ArrayLike, modulus: ArrayLike, impact_velocity: ArrayLike
 ) -> NDArray:
-    """Exact duration of an elastic Hertz impact, [s] (docs/method.md §3):
+    """Exact duration of an elastic Hertz impact, [s] (docs/method.md §3): the elastic law's
+    closed form (:attr:`~impactcli.laws.base.LawSpec.contact_time`,
+    :func:`impactcli.laws.hertz.hertz_contact_time`), its inputs checked:
 
     .. math:: t_c = 2 \\cdot \\tfrac{2}{5} B(\\tfrac{2}{5}, \\tfrac{1}{2})\\,
               \\delta_m / V_0 = 2.9432752\\, \\delta_m / V_0,
@@ -156,9 +155,9 @@ def hertz_contact_time(
         for name, x in (("the effective mass", m), ("the effective radius", r),
                         ("the effective modulus", e)):  # fmt: skip
             _require(name, x, np.isfinite(x) & (x > 0), "finite and > 0")
-    stiffness = hertz_stiffness(e, r)
-    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
-        t_c = HERTZ_CONTACT_TIME_FACTOR * hertz_maximum_indentation(m, v0, stiffness) / v0
+    closed_form = get_law(ELASTIC_LAW).contact_time
+    assert closed_form is not None, "the elastic law declares its contact time"
+    t_c = closed_form(m, r, e, v0)
     _require("the contact time", t_c, np.isfinite(t_c) & (t_c > 0),
              "finite and > 0 (an input beyond the range of a float)")  # fmt: skip
     return t_c
@@ -279,7 +278,9 @@ def yield_limit_diameter(
     return float(math.exp(lo))
 
 
-def law_pressure_factor(law: str, p0_factor: float = DU_WANG_PRESSURE_FACTOR) -> float:
+def law_pressure_factor(
+    law: str, p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"]
+) -> float:
     """The pressure at which a law's contact stops being elastic, / sigma_y, [-].
 
     Each law of :data:`YIELD_LIMIT_LAWS` declares it

@@ -42,8 +42,6 @@ __all__ = [
     "FilmStage",
     "FilmSolution",
     "FilmSummary",
-    "hertz_loading_seconds",
-    "hertz_loading_time",
     "segment_time",
     "solve_stage",
     "solve_stages",
@@ -479,121 +477,6 @@ def segment_time(
     return _swept(x0, y0, abs(step), end_at_rest) / omega
 
 
-@lru_cache(maxsize=32)
-def _hertz_loading_geometry(n: int) -> tuple[tuple[float, ...], ...]:
-    """Per segment of :func:`hertz_loading_time` with n steps, on floats: (4/5) xi_r^2.5,
-    h (2 y0 + h), y0, y0 (2 y0 + h), y0 (y0 + h) and sqrt(k_r)."""
-    h = 1.0 / n
-    xi = [r / n for r in range(n + 1)]
-    force = [x * math.sqrt(x) for x in xi]
-    out = []
-    for r in range(n):
-        slope = (force[r + 1] - force[r]) * n
-        y0 = force[r] / slope
-        out.append(
-            (0.8 * force[r] * xi[r], h * (2.0 * y0 + h), y0, y0 * (2.0 * y0 + h),
-             y0 * (y0 + h), math.sqrt(slope))
-        )  # fmt: skip
-    return tuple(out)
-
-
-#: Largest n for which :func:`hertz_loading_time` of one impact runs on floats (a loop of
-#: n segments): beyond it the NumPy arrays of n segments are faster.
-SCALAR_SEGMENTS = 48
-
-
-def hertz_loading_seconds(
-    delta_end: float, speed_start: float, stiffness: float, mass: float, n: int
-) -> float:
-    """:func:`hertz_loading_time` of one impact given as floats (n checked), [s]: a loop
-    over the n segments up to :data:`SCALAR_SEGMENTS`, the arrays beyond."""
-    if n <= SCALAR_SEGMENTS:
-        return _hertz_loading_time_scalar(delta_end, speed_start, stiffness, mass, n)
-    return float(hertz_loading_time(delta_end, speed_start, stiffness, mass, n))
-
-
-def _hertz_loading_time_scalar(d: float, v: float, k: float, m: float, n: int) -> float:
-    """:func:`hertz_loading_time` of one impact, on floats (n <= :data:`SCALAR_SEGMENTS`)."""
-    a = m * (v * v) / (k * (d * d) * math.sqrt(d))
-    h = 1.0 / n
-    sqrt, atan2 = math.sqrt, math.atan2
-    total = 0.0
-    for energy, c1, y0, q, p, root in _hertz_loading_geometry(n):
-        rest = a - energy
-        x0 = sqrt(rest) / root if rest > 0.0 else 0.0
-        x_end_sq = x0 * x0 - c1
-        if x_end_sq <= 0.0:
-            total += atan2(x0, y0) / root
-        else:
-            x_end = sqrt(x_end_sq)
-            total += atan2(h * (x0 + q / (x0 + x_end)), x0 * x_end + p) / root
-    return total / sqrt(k * sqrt(d) / m)
-
-
-def hertz_loading_time(
-    delta_end: ArrayLike,
-    speed_start: ArrayLike,
-    stiffness: ArrayLike,
-    mass: ArrayLike,
-    n: int,
-) -> Array:
-    """FILM duration [s] of Hertz loading stages 0 -> delta_end that do not end at rest.
-
-    The elastic loading of an elastoplastic impact up to first yield (docs/method.md §7). The
-    result is that of :func:`solve_stage` with ``Hertz(stiffness)`` and n equal steps, to
-    rounding, at a fraction of the cost for many impacts: in xi = delta / delta_end the
-    nodes xi_r = r/n, the chord slopes and the offsets are the same for every impact, and
-    an impact enters only through A = m V_a^2 / (K_h delta_end^2.5), the start speed
-    measured against the speed Hertz loading loses up to delta_end (A > 4/5).
-
-    Parameters
-    ----------
-    delta_end : end of the stage (the yield indentation), [m]
-    speed_start : indentation rate at the start, V_a, [m/s]
-    stiffness : Hertz stiffness K_h, [N/m^1.5]
-    mass : effective mass m, [kg]
-    n : number of segments, >= 1
-
-    Returns
-    -------
-    The durations, [s]: a float for one impact given as floats (a loop over the n
-    segments up to :data:`SCALAR_SEGMENTS`, the same numbers to rounding).
-
-    Notes
-    -----
-    With lengths in units of delta_end and Omega = sqrt(K_h delta_end^0.5 / m): chord slopes
-    k_r = n (xi_s^1.5 - xi_r^1.5), omega_rs = Omega sqrt(k_r), y0 = xi_r^1.5 / k_r, h = 1/n,
-    and x0 = sqrt(A - (4/5) xi_r^2.5) / sqrt(k_r) from the energy balance (eq. 13e).
-
-    Examples
-    --------
-    The same time as :func:`solve_stage` (normalised units, start speed 1.2):
-
-    >>> from impactcli.laws import Hertz
-    >>> float(hertz_loading_time(1.0, 1.2, 1.25, 1.0, 25))
-    0.96176108
-    >>> float(solve_stage(Hertz(1.25), 0.0, 1.0, 1.2, 1.0, 25).end_time)
-    0.96176108
-    """
-    n = check_size("n", n, MAX_SEGMENTS)
-    values = (delta_end, speed_start, stiffness, mass)
-    if n <= SCALAR_SEGMENTS and all(type(x) is float for x in values):  # one impact
-        return _hertz_loading_time_scalar(*values, n)  # type: ignore[arg-type, return-value]
-    xi = np.arange(n + 1, dtype=float) / n
-    force = xi * np.sqrt(xi)  # F / (K_h delta_end^1.5)
-    slope = np.diff(force) * n  # k_r
-    root = np.sqrt(slope)
-    y0 = force[:-1] / slope
-    energy = 0.8 * force[:-1] * xi[:-1]  # (2/m) W / (Omega delta_end)^2 = (4/5) xi^2.5
-    d = np.asarray(delta_end, dtype=float)[..., None]
-    k, m = np.asarray(stiffness, dtype=float)[..., None], np.asarray(mass, dtype=float)[..., None]
-    a = m * np.asarray(speed_start, dtype=float)[..., None] ** 2 / (k * d**2 * np.sqrt(d))
-    x0 = np.sqrt(np.maximum(a - energy, 0.0)) / root
-    swept, _ = swept_angles(x0, y0, 1.0 / n)
-    omega_unit = np.sqrt(k * np.sqrt(d) / m)[..., 0]  # Omega, [rad/s]
-    return (swept / root).sum(axis=-1) / omega_unit
-
-
 @dataclass(frozen=True)
 class FilmSolution:
     """Consecutive FILM stages of one impact, chained in time (single collision).
@@ -671,3 +554,13 @@ class FilmSolution:
 
 
 _EPS = float(np.finfo(float).eps)
+
+
+def __getattr__(name: str):
+    """``hertz_loading_time``, defined here before the Hertz law's module held it
+    (:func:`impactcli.laws.hertz.hertz_loading_time`), stays importable from here."""
+    if name == "hertz_loading_time":
+        from impactcli.laws import hertz
+
+        return hertz.hertz_loading_time
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

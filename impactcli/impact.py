@@ -50,8 +50,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import (
-    DU_WANG_PRESSURE_FACTOR,
-    FIRST_YIELD_PRESSURE_FACTOR,
     ImpactPlan,
     effective_mass,
     effective_modulus,
@@ -62,7 +60,7 @@ from impactcli.contact import (
 )
 from impactcli.errors import InputError
 from impactcli.film import FilmSolution
-from impactcli.laws.registry import DEFAULT_LAW
+from impactcli.laws.registry import DEFAULT_LAW, DEFAULT_LAW_PARAMETERS
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
 from impactcli.model import DAMPED_DEFAULT_N, ContactModel, DampedPair, PairModel
 from impactcli.solution import (
@@ -87,7 +85,6 @@ from impactcli.validation import (
 )
 
 if TYPE_CHECKING:
-    from impactcli.contact import DuWangContact
     from impactcli.laws.base import NormalContact
 
 __all__ = [
@@ -919,7 +916,7 @@ def impact_summary(
 
 
 def plastic_summary(
-    contact: DuWangContact,
+    contact: NormalContact,
     mass: ArrayLike,
     impact_velocity: ArrayLike,
     plan: ImpactPlan,
@@ -1065,20 +1062,11 @@ def _first_yield_velocities(
     if found is None:
         sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
         found = (
-            math.inf if sy1 is None or math.isnan(sy1) else _first_yield_velocity(m, r, e, sy1),
-            math.inf if sy2 is None or math.isnan(sy2) else _first_yield_velocity(m, r, e, sy2),
+            math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1),
+            math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2),
         )
         result.__dict__["_first_yield_"] = found
     return found
-
-
-def _first_yield_velocity(m: float, r: float, e: float, sigma_y: float) -> float:
-    """:func:`impactcli.contact.first_yield_velocity` on floats, [m/s]: the Hertz impact
-    whose peak pressure reaches 1.6 sigma_y (docs/method.md §7.1)."""
-    p = FIRST_YIELD_PRESSURE_FACTOR * sigma_y
-    delta_y = math.pi**2 * r * (p * p) / (4.0 * (e * e))
-    k = 4.0 / 3.0 * e * math.sqrt(r)
-    return math.sqrt(2.0 / m * 0.4 * k * delta_y**2.5)
 
 
 @input_errors
@@ -1221,6 +1209,8 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
     >>> impact_warnings(r, first_yield=True)[0][:60]
     'V0 = 0.2 m/s exceeds the first-yield velocity 0.07846 m/s (H'
     """
+    if not isinstance(result, ImpactResult):
+        raise InputError(f"impact_warnings takes an ImpactResult, got {type(result).__name__}")
     s, v0 = result.summary, result.impact_velocity
     s1, s2 = result.sphere1, result.sphere2
     found = [
@@ -1396,7 +1386,7 @@ def elastoplastic_impact(
     n: int = 25,
     split: Split = "mass",
     yield_strength: float | None = None,
-    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     method: Method = "film",
     *,
     pressure_factor: float | None = None,

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from impactcli.laws.base import LawSpec, Parameter, Reference
 from impactcli.laws.base import NormalContact as ContactModel
-from impactcli.laws.hertz import HertzLawContact
+from impactcli.laws.hertz import HertzContact
 from impactcli.laws.registry import (
     DEFAULT_LAW,
     LAWS,
@@ -21,6 +21,14 @@ from impactcli.laws.registry import (
 from impactcli.laws.tabulated import TabulatedContact, TabulatedLaw, UnloadingCurves, UnloadingLaw
 from impactcli.laws.thornton import ThorntonContact, thornton_restitution
 from impactcli.laws.walton_braun import LinearSpring, WaltonBraunContact
+
+
+def HertzLawContact(radius, modulus) -> HertzContact:  # noqa: N802 - the former class name
+    """The Hertz contact of effective radius R [m] and modulus E* [Pa]: the former class
+    of that name is :class:`impactcli.laws.hertz.HertzContact`, built by
+    :meth:`~impactcli.laws.hertz.HertzContact.for_pair`."""
+    return HertzContact.for_pair(radius, modulus)
+
 
 __all__ = [
     "DEFAULT_LAW",

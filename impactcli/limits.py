@@ -3,13 +3,19 @@
 Measured peak memory (resident set) of one run at the limits below (README, "Limits on
 sizes"), about:
 
-- 470 bytes per FILM segment per stage for ``elastoplastic --n`` (4.6 GB at 10^7), 310 for
-  ``elastic --n`` (3.1 GB), 260 for ``tables --n`` (2.6 GB), 210 for a ``convergence`` n;
-- 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7);
-- 0.55 GB for ``restitution --count`` x ``--n`` at 10^7;
+- 470 bytes per FILM segment per stage for ``elastoplastic --n`` (4.6 GB at 10^7), 600 for
+  ``elastic --damping`` (5.7 GB), 310 for ``elastic --n`` (3.1 GB), 260 for ``tables --n``
+  (2.6 GB), 210 for a ``convergence`` n;
+- 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7), 220
+  for ``collide3d --tangential mindlin --points`` (2.1 GB);
+- 1.7 GB for ``compare-laws`` at laws x ``--n`` = 10^7 (two laws at 5 x 10^6: one law at a
+  time);
+- 0.20 GB for ``restitution --count`` x ``--n`` at 10^7; 0.09 GB for ``fit`` at 10^5 data
+  rows x ``--n`` 100;
 - 0.08 GB for a curve file of 10^6 points.
 
-Work over many rows (``batch``, ``collide3d --rows``) is done in blocks
+Work over many rows (``batch``, ``collide3d --rows``) or velocities (the sweeps of
+``restitution``, ``compare-laws --plot``, ``fit``) is done in blocks
 (:data:`impactcli.batch.FILM_BLOCK`, :data:`impactcli.batch.DAMPED_BLOCK`,
 :data:`impactcli.io.collisions3d.HISTORY_BLOCK`), so its memory does not grow with the
 number of rows. The checks live here once; the command line states the limits in
@@ -26,6 +32,7 @@ __all__ = [
     "MAX_POINTS",
     "MAX_COUNT",
     "MAX_SWEEP_SEGMENTS",
+    "MAX_COMPARISON_SEGMENTS",
     "MAX_CHUNK_ROWS",
     "MAX_CONVERGENCE_RUNS",
     "MAX_CURVE_POINTS",
@@ -40,8 +47,11 @@ MAX_SEGMENTS = 10_000_000
 MAX_POINTS = 10_000_000
 #: Impact velocities of a restitution sweep (``--count``).
 MAX_COUNT = 1_000_000
-#: Velocities times segments of a restitution sweep (``--count`` x ``--n``): 0.55 GB.
+#: Velocities times segments of a restitution sweep (``--count`` x ``--n``): 0.20 GB.
 MAX_SWEEP_SEGMENTS = 10_000_000
+#: Contact laws times segments of one ``impact compare-laws`` run (laws x ``--n``; each law
+#: is summarised and released before the next runs, so its memory is that of one law).
+MAX_COMPARISON_SEGMENTS = 10_000_000
 #: Rows per chunk of ``impact batch`` (``--chunk-size``).
 MAX_CHUNK_ROWS = 1_000_000
 #: Segment counts in one ``impact convergence`` run.

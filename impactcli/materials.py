@@ -7,6 +7,7 @@ properties of the actual spheres should replace them for quantitative work
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 __all__ = ["MATERIALS", "Material", "material"]
@@ -30,6 +31,12 @@ class Material:
     name, youngs_modulus, poisson_ratio, density, yield_strength, source : as the
         attributes (SI)
 
+    Raises
+    ------
+    InputError
+        A name or source that is not text, or a value out of range: E > 0 (``inf`` for a
+        rigid body), -1 < nu < 0.5, rho > 0 and finite, sigma_y > 0 and finite (or None).
+
     Examples
     --------
     >>> bronze = Material("bronze", 110e9, 0.34, 8800.0, 250e6, "a supplier's data sheet")
@@ -44,6 +51,35 @@ class Material:
     density: float
     yield_strength: float | None
     source: str
+
+    def __post_init__(self) -> None:
+        from impactcli.errors import InputError
+        from impactcli.validation import finite_float
+
+        for key in ("name", "source"):
+            if not isinstance(getattr(self, key), str):
+                raise InputError(f"a material's {key} must be text, got "
+                                 f"{type(getattr(self, key)).__name__}")  # fmt: skip
+        if not self.name.strip():
+            raise InputError("a material's name must not be empty")
+        checks = {
+            "youngs_modulus": ("> 0 [Pa] (inf for a rigid body)", lambda x: x > 0.0),
+            "poisson_ratio": ("in (-1, 0.5)", lambda x: -1.0 < x < 0.5),
+            "density": ("> 0 and finite [kg/m^3]", lambda x: 0.0 < x < math.inf),
+            "yield_strength": ("> 0 and finite [Pa], or None for a brittle material",
+                               lambda x: 0.0 < x < math.inf),
+        }  # fmt: skip
+        for key, (accepted, valid) in checks.items():
+            value = getattr(self, key)
+            if value is None and key == "yield_strength":
+                continue
+            what = f"material {self.name!r}: {key.replace('_', ' ')}"
+            if isinstance(value, (str, bytes)) or value is None:
+                raise InputError(f"{what} must be a number {accepted}, got {value!r:.40}")
+            number = finite_float(what, value)
+            if not valid(number):
+                raise InputError(f"{what} must be {accepted}, got {number:g}")
+            object.__setattr__(self, key, number)
 
     def properties(self) -> dict[str, float | None]:
         """The material's values as :class:`impactcli.impact.Sphere` takes them, SI:
@@ -121,11 +157,17 @@ def material(name: str) -> Material:
 
     Raises
     ------
-    KeyError
-        With the list of known names.
+    InputError
+        An unknown name or one that is not text, with the list of known names.
     """
+    from impactcli.errors import InputError
+
+    known = ", ".join(MATERIALS)
+    if not isinstance(name, str):
+        raise InputError(f"a material is named by text, got {type(name).__name__} "
+                         f"{name!r:.40}; known: {known}")  # fmt: skip
     key = name.strip().lower().replace("_", "-").replace(" ", "-")
     key = ALIASES.get(key, key)
     if key not in MATERIALS:
-        raise KeyError(f"unknown material {name!r}; known: {', '.join(MATERIALS)}")
+        raise InputError(f"unknown material {name!r}; known: {known}")
     return MATERIALS[key]

@@ -11,7 +11,7 @@ velocity V0 and n FILM segments into a :class:`~impactcli.solution.ContactSoluti
   (:meth:`impactcli.laws.base.LawSpec.contact`), FILM solves them in closed form
   (:class:`~impactcli.solution.PlanSolution`);
 - Hertz with a damping model (:class:`DampedPair`): the model for the pair's Hertz
-  stiffness (:meth:`impactcli.laws.base.DampedHertz.for_pair`), its alpha given or solved
+  stiffness (:meth:`impactcli.laws.viscous.DampingSpec.for_pair`), its alpha given or solved
   for a coefficient of restitution, FILM segment by segment
   (:func:`impactcli.damping.solve_damped_impact`).
 
@@ -33,9 +33,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws.base import MIN_YIELD_INDENTATION_RATIO as MIN_RATIO
 from impactcli.laws.base import Separation
-from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR, DuWangContact
-from impactcli.laws.hertz import HertzContact, HertzLawContact, hertz_stiffness
-from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW, get_law
+from impactcli.laws.registry import (
+    DAMPING_LAWS,
+    DEFAULT_LAW,
+    DEFAULT_LAW_PARAMETERS,
+    ELASTIC_LAW,
+    get_law,
+)
 from impactcli.solution import PlanSolution
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
@@ -158,13 +162,14 @@ class ContactModel:
     def elastoplastic(
         cls, yield_strength: float | None = None, pressure_factor: float | None = None
     ) -> ContactModel:
-        """Du & Wang as the paper's elastoplastic impact (sec. 4.4,
-        :func:`impactcli.impact.elastoplastic_impact`): sigma_y [Pa] (default the weaker
-        sphere's) and p0 / sigma_y [-] (default 2.57) checked first."""
-        factor = DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
-        if yield_strength is None and factor == DU_WANG_PRESSURE_FACTOR:
-            return _DU_WANG  # the paper's, made once
-        return _DuWangModel(yield_strength=yield_strength, pressure_factor=factor)
+        """The default law (:data:`~impactcli.laws.registry.DEFAULT_LAW`, Du & Wang) as the
+        paper's elastoplastic impact (sec. 4.4, :func:`impactcli.impact.elastoplastic_impact`):
+        sigma_y [Pa] (default the weaker sphere's) and p0 / sigma_y [-] (default the law's,
+        2.57) checked first."""
+        factor = _P0_FACTOR if pressure_factor is None else pressure_factor
+        if yield_strength is None and factor == _P0_FACTOR:
+            return _ELASTOPLASTIC  # the paper's, made once
+        return _ElastoplasticModel(yield_strength=yield_strength, pressure_factor=factor)
 
     def check(self, method: str = "film") -> None:
         """The checks of the model alone, before any sphere: a damping model's name, law,
@@ -442,17 +447,8 @@ class _ElasticModel(ContactModel):
 @dataclass(frozen=True)
 class _ElasticPair(LawPair):
     """The paper's elastic impact: the Hertz plan of K_h = (4/3) E* sqrt(R), checked by FILM
-    itself; kind ``elastic``; the elastic summary keys (no plastic ones)."""
-
-    def _contact(self) -> NormalContact:
-        return HertzLawContact(self.radius, self.modulus)
-
-    def plan(self, impact_velocity: float) -> ImpactPlan:
-        stiffness = float(hertz_stiffness(self.modulus, self.radius))
-        return HertzContact(stiffness).plan(impact_velocity, self.mass)
-
-    def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
-        return None
+    itself; kind ``elastic``; the elastic summary keys (no plastic ones). Its plan is checked
+    in double precision as every law's is (:meth:`LawPair.check_plan`)."""
 
     def kind(self, solution: Any) -> str:
         return "elastic"
@@ -461,13 +457,17 @@ class _ElasticPair(LawPair):
         return _impact().solution_energy_summary(result, solution)
 
 
+#: p0 / sigma_y of the default law when none is given, [-].
+_P0_FACTOR: float = DEFAULT_LAW_PARAMETERS["p0_factor"]
+
+
 @dataclass(frozen=True)
-class _DuWangModel(ContactModel):
-    """Du & Wang as :func:`impactcli.impact.elastoplastic_impact` runs it: sigma_y and the
-    pressure factor p0 / sigma_y checked with the spheres, in its words."""
+class _ElastoplasticModel(ContactModel):
+    """The default law as :func:`impactcli.impact.elastoplastic_impact` runs it: sigma_y and
+    the pressure factor p0 / sigma_y checked with the spheres, in its words."""
 
     law: str = DEFAULT_LAW
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR
+    pressure_factor: float = _P0_FACTOR
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
         impact = _impact()
@@ -483,19 +483,20 @@ class _DuWangModel(ContactModel):
             raise ValueError(f"the pressure factor must be positive, got {factor}")
         m, r, e = impact.effective_properties(sphere1, sphere2)
         spec = get_law(self.law)
-        return _DuWangPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
+        return _ElastoplasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
 
 
 @dataclass(frozen=True)
-class _DuWangPair(LawPair):
-    """The paper's elastoplastic impact: Du & Wang's contact with the model's p0 / sigma_y;
-    a plastic plan's elastic stage checked in double precision; kind ``elastic`` or
-    ``elastoplastic``."""
+class _ElastoplasticPair(LawPair):
+    """The paper's elastoplastic impact: the default law's contact with the model's
+    p0 / sigma_y; a plastic plan's elastic stage checked in double precision; kind
+    ``elastic`` or ``elastoplastic``."""
 
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR
+    pressure_factor: float = _P0_FACTOR
 
     def _contact(self) -> NormalContact:
-        return DuWangContact(self.radius, self.modulus, self.yield_strength, self.pressure_factor)
+        params = {"p0_factor": self.pressure_factor}  # checked by _ElastoplasticModel
+        return self.spec.build(self.radius, self.modulus, self.yield_strength, params)
 
     def plan(self, impact_velocity: float) -> ImpactPlan:
         with np.errstate(all="ignore"):
@@ -512,7 +513,7 @@ class _DuWangPair(LawPair):
 #: The paper's elastic and elastoplastic models (:meth:`ContactModel.elastic`,
 #: :meth:`ContactModel.elastoplastic` with the defaults), made once (a model is immutable).
 _ELASTIC = _ElasticModel()
-_DU_WANG = _DuWangModel()
+_ELASTOPLASTIC = _ElastoplasticModel()
 
 
 # -- Hertz with a damping model -------------------------------------------------------------------
@@ -543,13 +544,14 @@ class DampedPair:
 
     @property
     def stiffness(self) -> float:
-        """Hertz stiffness K = (4/3) E* sqrt(R) of the pair, [N/m^1.5]."""
-        return float(hertz_stiffness(self.modulus, self.radius))
+        """Hertz stiffness K = (4/3) E* sqrt(R) of the pair, [N/m^1.5]
+        (:meth:`~impactcli.laws.viscous.DampingSpec.stiffness`)."""
+        return float(DAMPING_LAWS[str(self.model.damping)].stiffness(self.radius, self.modulus))
 
     @cached_property
     def normal_contact(self) -> NormalContact:
-        """The elastic part: Hertz, no yield, no permanent indentation."""
-        return HertzLawContact(self.radius, self.modulus)
+        """The elastic part: the elastic law (Hertz), no yield, no permanent indentation."""
+        return get_law(ELASTIC_LAW).contact(self.radius, self.modulus)
 
     @property
     def separation(self) -> Separation:
@@ -617,14 +619,25 @@ class DampedPair:
     def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
         """e [-] and contact time [s] at each V0 [m/s]: the damped FILM of the model's
         alpha, vectorised (e = 0 and an infinite time for a contact that never ends)."""
+        from impactcli.batch import DAMPED_BLOCK
         from impactcli.damping import solve_damped_impact
         from impactcli.laws.registry import damping_model
 
         law = damping_model(
             str(self.model.damping), self.radius, self.modulus, self.mass, self.model.alpha
         )
-        out = solve_damped_impact(law, velocities, self.mass, n, self.separation)
-        return out.restitution, out.contact_time
+        v = np.asarray(velocities, dtype=float)
+        e, t_c = np.full(v.shape, np.nan), np.full(v.shape, np.nan)
+        # the damped FILM on (velocities, segments) arrays, in blocks of about DAMPED_BLOCK
+        # values: memory does not grow with the number of velocities
+        block = max(1, DAMPED_BLOCK // (int(n) + 1))
+        flat = v.reshape(-1)
+        for start in range(0, flat.size, block):
+            part = slice(start, start + block)
+            out = solve_damped_impact(law, flat[part], self.mass, n, self.separation)
+            e.reshape(-1)[part] = out.restitution
+            t_c.reshape(-1)[part] = out.contact_time
+        return e, t_c
 
     def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
         """The model's published e(V0) for its separation rule, or None."""

@@ -37,6 +37,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.formatting import UnitScale, format_quantity, unit_scale
+from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
 
 if TYPE_CHECKING:  # pragma: no cover - typing only; matplotlib is optional
     from matplotlib.axes import Axes
@@ -754,6 +755,12 @@ def convergence_figure(
 # -- a sweep over impact velocity -------------------------------------------------------
 
 
+def _onset_mark(law: str) -> str:
+    """How a figure labels the yield onset velocity of ``law`` (its declaration)."""
+    onset = get_law(law).yield_onset
+    return onset.mark if onset is not None and onset.mark else "yield, $V_y$"
+
+
 def restitution_figure(
     impact_velocity: ArrayLike,
     restitution: ArrayLike,
@@ -766,6 +773,7 @@ def restitution_figure(
     log_velocity: bool | None = None,
     indentation_title: str = "(c) Permanent indentation",
     indentation_label: str = r"permanent indentation $\delta_{res}$",
+    law: str = DEFAULT_LAW,
 ) -> Figure:
     """Three panels over a sweep of impact velocity V0: e, contact time, permanent indentation.
 
@@ -780,11 +788,13 @@ def restitution_figure(
     yield_velocity : V_y, [m/s]; a dotted line on every panel when within the swept V0, else
         named in the legends only (a line would stretch the axis away from the data)
     first_yield_velocity : where a Hertz impact first yields (peak pressure 1.6 sigma_y),
-        [m/s]; a dashed line (or a legend entry), as for ``yield_velocity``
+        [m/s]; a dashed line (or a legend entry), as for ``yield_velocity``; each line is
+        labelled as its law's yield onset declares (:attr:`~impactcli.laws.base.YieldOnset.mark`)
     log_velocity : logarithmic V0 axis; default when V0 > 0 spans two decades or more.
         Ticks at 1, 2 and 5 of each decade, all labelled
     indentation_title, indentation_label : title and axis label of the third panel (a
         damped sweep draws the maximum indentation and that at separation there)
+    law : the law whose yield velocity ``yield_velocity`` is (by default the default law)
 
     Returns
     -------
@@ -827,8 +837,8 @@ def restitution_figure(
     marks = [
         (velocity, text, style)
         for velocity, text, style in (
-            (first_yield_velocity, r"first yield (Hertz, 1.6 $\sigma_y$)", "--"),
-            (yield_velocity, "yield, $V_y$ (Du & Wang)", ":"),
+            (first_yield_velocity, _onset_mark(ELASTIC_LAW), "--"),
+            (yield_velocity, _onset_mark(law), ":"),
         )
         if velocity is not None and np.isfinite(velocity)
     ]

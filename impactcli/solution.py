@@ -157,8 +157,8 @@ class StagedSolution(FilmSolution):
     The normalised Hertz impact (R = 1, E* = 15/16, so K_h = 5/4; m = V0 = delta_m = 1)
     with n = 25 lasts 2.9432487 (exact 2.9432752, docs/method.md §6):
 
-    >>> from impactcli.laws.hertz import HertzLawContact
-    >>> s = StagedSolution.solve(HertzLawContact(1.0, 0.9375), 1.0, 1.0, 25)
+    >>> from impactcli.laws.registry import get_law
+    >>> s = StagedSolution.solve(get_law("hertz").contact(1.0, 0.9375), 1.0, 1.0, 25)
     >>> s.restitution, round(s.contact_time, 7), round(s.t_max, 7)
     (1.0, 2.9432487, 1.4716277)
     """
@@ -329,8 +329,8 @@ class PlanSolution:
     The normalised Hertz impact (R = 1, E* = 15/16, so K_h = 5/4; m = V0 = delta_m = 1)
     with n = 25 lasts 2.9432487 (exact 2.9432752, docs/method.md §6):
 
-    >>> from impactcli.laws.hertz import HertzLawContact
-    >>> s = PlanSolution.solve(HertzLawContact(1.0, 0.9375), 1.0, 1.0, 25)
+    >>> from impactcli.laws.registry import get_law
+    >>> s = PlanSolution.solve(get_law("hertz").contact(1.0, 0.9375), 1.0, 1.0, 25)
     >>> s.restitution, round(s.contact_time, 7), round(s.t_max, 7)
     (1.0, 2.9432487, 1.4716277)
     >>> len(s.stages), float(s.stages[-1].end_time) == s.staged.end_time

@@ -151,8 +151,8 @@ def _material(options: SphereOptions, i: int, prefix: str):
         return None
     try:
         return material(name)
-    except KeyError as exc:
-        raise InputError(f"{prefix}material{i if own is not None else ''}: {exc.args[0]}") from None
+    except InputError as exc:
+        raise InputError(f"{prefix}material{i if own is not None else ''}: {exc}") from None
 
 
 def _properties(options: SphereOptions, i: int, prefix: str) -> dict[str, float]:

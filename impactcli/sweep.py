@@ -14,16 +14,24 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.batch import law_stage_times
-from impactcli.contact import DU_WANG_PRESSURE_FACTOR, DuWangContact, first_yield_velocity
+from impactcli.batch import DAMPED_BLOCK, FILM_BLOCK, law_stage_times
+from impactcli.contact import first_yield_velocity
 from impactcli.impact import (
+    DAMPED_DEFAULT_N,
     Sphere,
     check_pair,
     effective_properties,
     split_fractions,
     weaker_yield_strength,
 )
-from impactcli.laws.registry import DEFAULT_LAW, get_law, plan_groups
+from impactcli.laws.base import NormalContact
+from impactcli.laws.registry import (
+    DEFAULT_LAW,
+    DEFAULT_LAW_PARAMETERS,
+    ELASTIC_LAW,
+    get_law,
+    plan_groups,
+)
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.validation import (
     input_errors,
@@ -32,7 +40,7 @@ from impactcli.validation import (
     renamed_p0_factor,
 )
 
-__all__ = ["SWEEP_COLUMNS", "restitution_sweep", "sweep_yield_velocity"]
+__all__ = ["SWEEP_COLUMNS", "damped_sweep", "restitution_sweep", "sweep_yield_velocity"]
 
 SWEEP_COLUMNS: tuple[str, ...] = (
     "impact_velocity",
@@ -55,7 +63,7 @@ def restitution_sweep(
     velocities: ArrayLike,
     n: int = 25,
     yield_strength: float | None = None,
-    p0_factor: float = DU_WANG_PRESSURE_FACTOR,
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     split: str = "mass",
     law: str | None = None,
     law_params: dict[str, Any] | None = None,
@@ -111,12 +119,18 @@ def restitution_sweep(
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)
     plastic = np.broadcast_to(contact.yields(v0, m), v0.shape)
     out = {name: np.zeros_like(v0) for name in SWEEP_COLUMNS}
-    for rows, plan in plan_groups(contact, v0, m):  # the elastic, then the plastic impacts
-        out["restitution"][rows] = plan.restitution
-        out["contact_time"][rows] = law_stage_times(plan, m, v0[rows], n)[1]
-        out["delta_max"][rows] = plan.delta_max
-        out["force_max"][rows] = plan.force_max
-        out["delta_res"][rows] = plan.delta_res
+    # FILM on (velocities, segments) arrays: blocks of about FILM_BLOCK values, so memory
+    # does not grow with the number of velocities (a block is one velocity when n is larger)
+    block = max(1, FILM_BLOCK // (int(n) + 1))
+    for start in range(0, v0.size, block):
+        part = np.arange(start, min(start + block, v0.size))
+        for local, plan in plan_groups(contact, v0[part], m):  # the elastic, then the plastic
+            rows = part[local]
+            out["restitution"][rows] = plan.restitution
+            out["contact_time"][rows] = law_stage_times(plan, m, v0[rows], n)[1]
+            out["delta_max"][rows] = plan.delta_max
+            out["force_max"][rows] = plan.force_max
+            out["delta_res"][rows] = plan.delta_res
     raise_first(plastic_range_problems(contact, v0, m, out["delta_max"]))
     with np.errstate(invalid="ignore"):  # a plan whose numbers left double precision
         broken = ~(np.isfinite(out["restitution"]) & (out["contact_time"] > 0.0)
@@ -152,11 +166,63 @@ def restitution_sweep(
     return out
 
 
+@input_errors
+def damped_sweep(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    velocities: ArrayLike,
+    damping: str,
+    alpha: float,
+    n: int = DAMPED_DEFAULT_N,
+    separation: str = "overlap",
+    split: str = "mass",
+) -> dict[str, NDArray]:
+    """:func:`impactcli.impact.damped_restitution_sweep` in blocks of velocities: about
+    :data:`impactcli.batch.DAMPED_BLOCK` values (velocities x (n + 1)) a block, so memory
+    does not grow with the number of velocities (a block is one velocity when n is larger).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    velocities : impact velocities V0 = V1 + V2, > 0, [m/s]
+    damping, alpha : the damping model and its alpha (unit of the model)
+    n : FILM segments per stage
+    separation, split : as for :func:`impactcli.impact.damped_impact`
+
+    Returns
+    -------
+    dict
+        :data:`impactcli.impact.DAMPED_SWEEP_COLUMNS` -> arrays, one value per velocity.
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> damped_sweep(*steel, [0.5, 1.0], "tsuji", 0.2)["restitution"].round(4).tolist()
+    [0.7542, 0.7542]
+    """
+    from impactcli.impact import damped_restitution_sweep
+
+    v0 = np.asarray(velocities, dtype=float)
+    if v0.ndim != 1 or v0.size == 0:  # refused by the sweep, with its message
+        return damped_restitution_sweep(sphere1, sphere2, v0, damping, alpha, n, separation,
+                                        split)  # type: ignore[arg-type]  # fmt: skip
+    check_size("the number of velocities", v0.size, MAX_COUNT)
+    check_size("the number of velocities x n", v0.size * int(n), MAX_SWEEP_SEGMENTS)
+    block = max(1, DAMPED_BLOCK // (int(n) + 1))
+    parts = [
+        damped_restitution_sweep(sphere1, sphere2, v0[i : i + block], damping, alpha, n,
+                                 separation, split)  # type: ignore[arg-type]  # fmt: skip
+        for i in range(0, v0.size, block)
+    ]
+    return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
+
+
 def sweep_yield_velocity(
     sphere1: Sphere,
     sphere2: Sphere,
     yield_strength: float | None = None,
-    pressure_factor: float = DU_WANG_PRESSURE_FACTOR,
+    pressure_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     law: str | None = None,
     law_params: dict[str, Any] | None = None,
 ) -> float:
@@ -191,9 +257,9 @@ def _contact(
     pressure_factor: float,
     law: str | None = None,
     law_params: dict[str, Any] | None = None,
-) -> tuple[DuWangContact, float]:
-    """The Du & Wang contact of the pair (or that of ``law``) and its effective mass m [kg];
-    the yield strength defaults to the weaker sphere's."""
+) -> tuple[NormalContact, float]:
+    """The contact of the default law (Du & Wang) for the pair (or that of ``law``) and its
+    effective mass m [kg]; the yield strength defaults to the weaker sphere's."""
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
@@ -201,11 +267,10 @@ def _contact(
         m, r, e = effective_properties(sphere1, sphere2)
         return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     m, r, e = effective_properties(sphere1, sphere2)
-    if sigma_y is None:  # Du & Wang, nothing can yield: the elastic Hertz impact
-        from impactcli.laws.hertz import HertzLawContact
-
-        return HertzLawContact(r, e), m
-    return DuWangContact(r, e, sigma_y, pressure_factor), m
+    if sigma_y is None:  # the default law, nothing can yield: the elastic law's impact
+        return get_law(ELASTIC_LAW).contact(r, e), m
+    params = {"p0_factor": pressure_factor}  # as given: restitution_sweep checks it
+    return get_law(DEFAULT_LAW).build(r, e, sigma_y, params), m
 
 
 def _nan(value: float | None) -> float:

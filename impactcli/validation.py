@@ -20,9 +20,11 @@ from typing import TypeVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import MIN_YIELD_INDENTATION_RATIO, YIELD_STRENGTH_NEEDED
-from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR
-from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR
+from impactcli.laws.base import MIN_YIELD_INDENTATION_RATIO, YIELD_STRENGTH_NEEDED, YieldOnset
+
+# kept importable from here, where it was defined before the law's module held it
+from impactcli.laws.du_wang import du_wang_yield_velocity
+from impactcli.laws.registry import DEFAULT_LAW, DEFAULT_LAW_PARAMETERS, ELASTIC_LAW, get_law
 
 __all__ = [
     "MIN_YIELD_INDENTATION_RATIO",
@@ -35,6 +37,7 @@ __all__ = [
     "check_friction",
     "check_restitution",
     "check_vectors",
+    "default_yield_velocity",
     "du_wang_yield_velocity",
     "contact_radius_warning",
     "ELASTOPLASTIC_ADVICE",
@@ -188,6 +191,7 @@ def sphere_problems(
     with a density. ``names`` names the properties in the messages (:data:`SPHERE_NAMES`,
     :func:`sphere_names`). ``given`` marks rho, m, sy (keys as in ``names``) as given, so
     that NaN there is a fault, not "not given" (a :class:`~impactcli.impact.Sphere`)."""
+    from impactcli.contact import sphere_mass
     d, e, nu, rho, m, sy = flat_floats(
         diameter, youngs_modulus, poisson_ratio, density, mass, yield_strength
     )
@@ -207,7 +211,7 @@ def sphere_problems(
             f"give {names['m']}, or a finite {names['d']} and {names['rho']}",
         )
         with np.errstate(over="ignore", under="ignore"):
-            computed = rho * (np.pi / 6.0) * d**3
+            computed = sphere_mass(d, rho)  # as the mass is computed (rho pi may overflow)
         p.add(
             np.isnan(m) & np.isfinite(d) & ~((computed > 0.0) & np.isfinite(computed)),
             f"out of range: {names['d']} and {names['rho']} give a mass of {{:.3g}} kg, beyond "
@@ -327,36 +331,44 @@ def raise_first(problems: Problems) -> None:
         raise InputError(problems.messages[bad[0]])
 
 
-# The two yield criteria the messages name: first yield of an elastic (Hertz) contact at the
-# peak pressure 1.6 sigma_y (Johnson 1985, Contact Mechanics, sec. 4.2; docs/method.md §7.1),
-# and Du & Wang's contact pressure p0 = 2.57 sigma_y, the end of their Hertz stage (Du & Wang
-# 2009; paper eq. 16; docs/method.md §7). The factors live with their laws in impactcli.laws.
+# The two yield criteria the messages name, each declared by its law
+# (:class:`~impactcli.laws.base.YieldOnset`): the first yield of the elastic law, and the
+# yield velocity of the default law, the end of its elastic stage (docs/method.md §7, §7.1).
+
+
+def _onset(law: str) -> YieldOnset:
+    onset = get_law(law).yield_onset
+    assert onset is not None, f"{law} declares no yield onset"
+    return onset
 
 
 def _first_yield_criterion() -> str:
-    return f"Hertz peak pressure {FIRST_YIELD_PRESSURE_FACTOR:g} sigma_y"
+    onset = _onset(ELASTIC_LAW)
+    return onset.criterion(onset.pressure_factor({}))
 
 
-def _du_wang_criterion(pressure_factor: float | None) -> str:
-    return f"Du & Wang's p0 = {_pressure_factor(pressure_factor):g} sigma_y"
+def _yield_criterion(pressure_factor: float | None) -> str:
+    return _onset(DEFAULT_LAW).criterion(_pressure_factor(pressure_factor))
 
 
 def _pressure_factor(pressure_factor: float | None) -> float:
-    return DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
+    return DEFAULT_LAW_PARAMETERS["p0_factor"] if pressure_factor is None else pressure_factor
 
 
-def du_wang_yield_velocity(
-    first_yield_velocity: float, pressure_factor: float | None = None
-) -> float:
-    """Du & Wang's yield velocity V_y [m/s] from the first-yield velocity V_Y [m/s] of the same
-    spheres: both are Hertz impacts up to delta ~ p^2 (docs/method.md §7, §7.1), and
-    V ~ delta^(5/4), so V_y = V_Y (p0 / 1.6 sigma_y)^(5/2).
+def default_yield_velocity(
+    first_yield_velocity: ArrayLike, pressure_factor: float | None = None
+) -> ArrayLike:
+    """The default law's yield velocity V_y [m/s] from the first-yield velocity [m/s], as
+    the law declares it (:attr:`~impactcli.laws.base.YieldOnset.velocity`; arrays too)."""
+    return _yield_velocity(first_yield_velocity, pressure_factor)
 
-    >>> round(du_wang_yield_velocity(0.078463), 4)  # the paper's sec. 4.3 / 4.4 spheres
-    0.2566
-    """
-    ratio = _pressure_factor(pressure_factor) / FIRST_YIELD_PRESSURE_FACTOR
-    return first_yield_velocity * ratio**2.5
+
+def _yield_velocity(first_yield_velocity, pressure_factor: float | None):
+    """The default law's yield velocity V_y [m/s] from the first-yield velocity [m/s]."""
+    onset = _onset(DEFAULT_LAW)
+    if onset.velocity is None:
+        return first_yield_velocity
+    return onset.velocity(first_yield_velocity, _pressure_factor(pressure_factor))
 
 
 #: The elastoplastic model a warning advises, in words for both its readers: the command
@@ -376,19 +388,20 @@ def first_yield_warning(
     """The warning of an elastic impact above the first-yield velocity V_Y [m/s] (Hertz peak
     pressure 1.6 sigma_y), else None. Its advice agrees with :func:`below_yield_note`: it
     says to use ``advice`` (the elastoplastic model, named for the command line and for
-    Python: :data:`ELASTOPLASTIC_ADVICE`) only above Du & Wang's yield velocity V_y [m/s]
-    (``yield_velocity``; by default from V_Y with :func:`du_wang_yield_velocity`); between
-    V_Y and V_y both give this Hertz result."""
+    Python: :data:`ELASTOPLASTIC_ADVICE`) only above the default law's yield velocity V_y
+    [m/s] (``yield_velocity``; by default from V_Y and the law's p0 / sigma_y,
+    ``pressure_factor``, as the law declares it: :attr:`~impactcli.laws.base.YieldOnset.velocity`);
+    between V_Y and V_y both give this Hertz result."""
     if not impact_velocity > first_yield_velocity:
         return None
     if yield_velocity is None:
-        yield_velocity = du_wang_yield_velocity(first_yield_velocity, pressure_factor)
+        yield_velocity = _yield_velocity(first_yield_velocity, pressure_factor)
     head = (
         f"V0 = {impact_velocity:.4g} m/s exceeds the first-yield velocity "
         f"{first_yield_velocity:.4g} m/s ({_first_yield_criterion()}): the spheres begin to "
         "yield under the contact"
     )
-    criterion = _du_wang_criterion(pressure_factor)
+    criterion = _yield_criterion(pressure_factor)
     if impact_velocity > yield_velocity:
         return (
             f"{head} and exceed the yield velocity V_y = {yield_velocity:.4g} m/s "
@@ -411,7 +424,7 @@ def renamed_p0_factor(
     and its wrappers."""
     if pressure_factor is None:
         return p0_factor
-    if p0_factor != DU_WANG_PRESSURE_FACTOR:
+    if p0_factor != DEFAULT_LAW_PARAMETERS["p0_factor"]:
         raise TypeError("give p0_factor or the deprecated pressure_factor, not both")
     import warnings
 
@@ -458,17 +471,18 @@ def below_yield_note(
     first_yield_velocity: float | None = None,
     pressure_factor: float | None = None,
 ) -> str:
-    """The note of an elastoplastic impact below Du & Wang's yield velocity V_y [m/s]
-    (contact pressure p0 = ``pressure_factor`` sigma_y): the result is the Hertz one. When
-    V0 exceeds the first-yield velocity [m/s] (Hertz peak pressure 1.6 sigma_y) it says so,
-    in the words of :func:`first_yield_warning`. Without ``pressure_factor`` it follows from
-    the two velocities (inverse of :func:`du_wang_yield_velocity`), else Du & Wang's 2.57."""
-    if pressure_factor is None and first_yield_velocity:
-        ratio = yield_velocity / first_yield_velocity
-        pressure_factor = float(f"{FIRST_YIELD_PRESSURE_FACTOR * ratio**0.4:.4g}")
+    """The note of an elastoplastic impact below the default law's yield velocity V_y [m/s]
+    (Du & Wang's contact pressure p0 = ``pressure_factor`` sigma_y): the result is the Hertz
+    one. When V0 exceeds the first-yield velocity [m/s] (Hertz peak pressure 1.6 sigma_y) it
+    says so, in the words of :func:`first_yield_warning`. Without ``pressure_factor`` it
+    follows from the two velocities (the law's
+    :attr:`~impactcli.laws.base.YieldOnset.factor_of`), else the law's default (2.57)."""
+    factor_of = _onset(DEFAULT_LAW).factor_of
+    if pressure_factor is None and first_yield_velocity and factor_of is not None:
+        pressure_factor = factor_of(first_yield_velocity, yield_velocity)
     note = (
         f"V0 = {impact_velocity:.4g} m/s is below the yield velocity V_y = "
-        f"{yield_velocity:.4g} m/s ({_du_wang_criterion(pressure_factor)}): the contact "
+        f"{yield_velocity:.4g} m/s ({_yield_criterion(pressure_factor)}): the contact "
         "stays Hertz and this result is elastic, as 'impact elastic' gives it"
     )
     if first_yield_velocity is not None and impact_velocity > first_yield_velocity:

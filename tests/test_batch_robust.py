@@ -185,7 +185,11 @@ def test_plain_numbers_in_a_column_with_units_are_numbers(batch):
     assert code == 0, err
     frame = _frame(out)
     assert frame["error"].tolist() == [
-        "", "", "v1: must be finite, got inf", "", "d2 must be positive, got -inf"
+        "",
+        "",
+        "v1: must be finite, got inf",
+        "",
+        "d2 must be positive, got -inf",
     ]
     assert frame["contact_time"][1] == frame["contact_time"][0] != ""
     assert float(frame["effective_radius"][3]) == 0.01  # d2 = inf: a flat
@@ -296,7 +300,6 @@ def test_parquet_quantity_column_of_lists_is_one_line(batch, tmp_path):
 # -- the Dask engine: the same rows, the same faults -----------------------------------------
 
 
-
 def test_dask_engine_reads_malformed_lines_as_the_numpy_engine(batch, tmp_path, dask_dataframe):
     rows = [b"g%d,20mm,40mm,1,0,elastic,steel\n" % k for k in range(6000)]
     rows[7] = b"short,20mm\n"
@@ -365,6 +368,65 @@ def test_warning_column_says_what_the_single_impact_commands_say(batch):
         first_yield_warning(1500.0, num["first_yield_velocity"][3]),
         contact_radius_warning(1500.0, num["delta_max"][3], num["effective_radius"][3]),
     ])  # fmt: skip
+
+
+def _warning_rows(size: int = 4000, seed: int = 13):
+    """Inputs of :func:`impactcli.io.table.row_warnings` with every kind of warning: none,
+    above first yield only (beyond or below Du & Wang's yield velocity, and at it exactly),
+    a large contact radius only (a/R just above 0.1, reading 0.10 at two decimals, 100 and
+    more, infinite), both, NaN rows and rows of a plastic model."""
+    rng = np.random.default_rng(seed)
+    first = 10 ** rng.uniform(-2.0, 0.0, size)
+    v0 = first * 10 ** rng.uniform(-1.0, 1.5, size)
+    v0[::17] = (first * 1.75**2.5)[::17]  # V0 = V_y, the limit of the two wordings
+    radius = 10 ** rng.uniform(-4.0, -1.0, size)
+    ratio = rng.choice([0.05, 0.1 + 1e-9, 0.1 + 1e-13, 0.1049, 0.15, 99.999, 150.0], size)
+    ratio *= 1.0 + rng.uniform(0.0, 1e-3, size) * rng.integers(0, 2, size)
+    delta = ratio**2 * radius
+    delta[::29] = np.inf
+    v0[::31] = np.nan
+    first[::37] = np.nan
+    elastic = rng.random(size) < 0.8
+    return v0, first, delta, radius, elastic
+
+
+def test_row_warnings_are_the_single_impact_warnings_row_by_row():
+    """The warning column built on whole arrays is, row by row, the text of the functions
+    that word the single-impact warnings (impact elastic and the other commands)."""
+    from impactcli.io.table import row_warnings
+    from impactcli.validation import contact_radius_warning, first_yield_warning
+
+    v0, first, delta, radius, elastic = _warning_rows()
+    got = row_warnings(v0, first, delta, radius, elastic)
+    kinds = set()
+    for i in range(v0.size):
+        words = []
+        if elastic[i] and v0[i] > first[i]:
+            words.append(first_yield_warning(v0[i], first[i]))
+        with np.errstate(invalid="ignore"):
+            words.append(contact_radius_warning(v0[i], delta[i], radius[i]))
+        expected = "; ".join(w for w in words if w)
+        assert got[i] == expected, i
+        kinds.add((" and exceed" in expected, "stay below" in expected, "/ R =" in expected))
+    assert len(kinds) == 6  # none, each wording alone, each yield wording with the radius's
+
+
+def test_row_warnings_take_no_call_per_row(monkeypatch):
+    """The warnings of thousands of warned rows come from a fixed number of calls of the
+    single-impact functions (their wording), not one call per row."""
+    import impactcli.validation as validation
+    from impactcli.io.table import row_warnings
+
+    calls = []
+    for name in ("first_yield_warning", "contact_radius_warning"):
+        original = getattr(validation, name)
+        monkeypatch.setattr(
+            validation, name, lambda *a, f=original, **k: calls.append(1) or f(*a, **k)
+        )
+    v0, first, delta, radius, elastic = _warning_rows()
+    warned = row_warnings(v0, first, delta, radius, elastic)
+    assert np.count_nonzero(warned != "") > 2000
+    assert len(calls) <= 3
 
 
 def test_closing_line_on_a_terminal(batch, monkeypatch):

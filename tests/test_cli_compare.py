@@ -195,6 +195,59 @@ def test_compare_laws_default_laws_and_json_inputs(impact):
     assert doc["laws"]["du-wang"]["restitution"] == pytest.approx(0.85611, abs=5e-6)
 
 
+def test_compare_laws_limits_laws_times_n_and_count_times_n(impact, tmp_path):
+    """laws x --n at most MAX_COMPARISON_SEGMENTS (4 laws at n = 10^7 took 11.5 GB); with
+    --plot, --count x --n at most MAX_SWEEP_SEGMENTS, refused before anything is printed
+    (the table was printed, then the sweep refused it). Both stated in --help."""
+    from impactcli.limits import MAX_COMPARISON_SEGMENTS, MAX_SWEEP_SEGMENTS
+
+    n = MAX_COMPARISON_SEGMENTS // 2 + 1
+    done = impact("compare-laws", *PAPER_4_4, "--n", str(n))  # the two default laws
+    assert done.returncode == 2 and done.stdout == ""
+    assert f"2 laws x n = {2 * n:,} segments" in done.stderr
+    assert f"n <= {MAX_COMPARISON_SEGMENTS // 2:,}" in done.stderr
+    done = impact("compare-laws", *PAPER_4_4, "--n", "1000000", "--count", "11", "--plot",
+                  str(tmp_path / "x.png"))  # fmt: skip
+    assert done.returncode == 2 and done.stdout == "" and done.stderr.count("\n") == 1
+    assert "--count x --n must be an integer from 1 to" in done.stderr
+    assert not list(tmp_path.iterdir())
+    text = " ".join(impact("compare-laws", "--help").stdout.split())
+    assert f"laws x --n is at most {MAX_COMPARISON_SEGMENTS:,}" in text
+    assert f"--count x --n at most {MAX_SWEEP_SEGMENTS:,}" in text
+
+
+def test_summarise_laws_gives_the_rows_and_loops_of_compare_impacts():
+    from impactcli.compare import comparison_row, summarise_laws
+
+    laws = [("du-wang", {}), ("walton-braun", WALTON_PARAMS)]
+    kept = compare_impacts(S1, S2, 0.25, 0.75, laws)
+    summarised = summarise_laws(S1, S2, 0.25, 0.75, laws, points=101)
+    for name, result in kept.items():
+        assert summarised[name].row == comparison_row(result)
+        history = result.history(points=101)
+        assert np.array_equal(summarised[name].delta, history["delta"])
+        assert np.array_equal(summarised[name].force, history["force"])
+    assert summarise_laws(S1, S2, 0.25, 0.75, laws)["du-wang"].delta is None
+
+
+def test_sweeps_in_blocks_give_the_numbers_of_one_block(monkeypatch):
+    """restitution_sweep and the damped sweep run in blocks of velocities (FILM_BLOCK,
+    DAMPED_BLOCK values); the blocks change no number of the elastoplastic sweep and none
+    of the damped one beyond the last bits (its kernel's rounding follows the rows)."""
+    import impactcli.sweep as sweep
+
+    v0 = np.linspace(0.05, 3.0, 23)
+    whole = sweep.restitution_sweep(S1, S2, v0, law="walton-braun", law_params=WALTON_PARAMS)
+    damped = sweep.damped_sweep(S1, S2, v0, "hunt-crossley", 0.2, n=50)
+    monkeypatch.setattr(sweep, "FILM_BLOCK", 5 * 26)  # 5 velocities of n = 25 a block
+    monkeypatch.setattr(sweep, "DAMPED_BLOCK", 4 * 51)
+    blocked = sweep.restitution_sweep(S1, S2, v0, law="walton-braun", law_params=WALTON_PARAMS)
+    for key, value in whole.items():
+        assert np.array_equal(blocked[key], value), key
+    for key, value in sweep.damped_sweep(S1, S2, v0, "hunt-crossley", 0.2, n=50).items():
+        np.testing.assert_allclose(value, damped[key], rtol=1e-13, err_msg=key)
+
+
 @pytest.mark.slow
 def test_compare_laws_plot(impact, tmp_path):
     pytest.importorskip("matplotlib")

@@ -11,6 +11,8 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from impactcli.tables import TABLE_COLUMNS, normalised_table
 
@@ -156,3 +158,78 @@ def test_csv_writer_formats_a_chunk_at_a_time():
     back = np.loadtxt(io.StringIO(stream.getvalue()), delimiter=",", skiprows=1,
                       usecols=(1, 2, 3))  # fmt: skip
     np.testing.assert_array_equal(back, values)
+
+
+def _printf_csv(header, blocks, float_format="%.12g") -> str:
+    """The CSV text of :func:`impactcli.output.write_csv` by printf alone, one row at a time."""
+    lines = [",".join(header)]
+    for prefix, values in blocks:
+        lead = "".join(f"{p}," for p in prefix)
+        lines += [lead + ",".join(float_format % v for v in row) for row in values.tolist()]
+    return "\n".join(lines) + "\n"
+
+
+def _hard_floats() -> np.ndarray:
+    """Values where %.Ng is easy to get wrong: ties and near-ties at the digit that is
+    rounded away, each side of every power of ten, 9.99...95 carries, subnormals, the
+    extremes, signed zeros, nan and inf, and random bit patterns."""
+    rng = np.random.default_rng(25)
+    powers = 10.0 ** np.arange(-320, 309)
+    sides = np.concatenate([np.nextafter(powers, 0.0), powers, np.nextafter(powers, np.inf)])
+    nines = [float("9" * k + f"5e{e}") for k in range(1, 15) for e in range(-25, 25, 3)]
+    ties = [float(f"1{'0' * k}5e{e}") for k in range(13) for e in range(-25, 25, 3)]
+    return np.concatenate([
+        [0.0, -0.0, np.nan, -np.nan, np.inf, -np.inf, 5e-324, 2.2250738585072014e-308,
+         1.7976931348623157e308, 0.1 + 0.2, 999999999999.5, 99999999999.95, 123456789012.5],
+        sides, -sides, nines, ties,
+        rng.integers(0, 10**14, 2000) + 0.5,  # exact ties in binary
+        rng.integers(0, 2**64, 20000, dtype=np.uint64).view(np.float64),
+        rng.uniform(-1.0, 1.0, 20000) * 10.0 ** rng.integers(-40, 40, 20000),
+    ])  # fmt: skip
+
+
+@pytest.mark.parametrize("precision", range(1, 13))
+def test_general_format_is_printfs_text(precision):
+    """format_general (the CSV writer's %.Ng on whole arrays) gives printf's text for every
+    value, rounding included."""
+    from impactcli.output import format_general
+
+    values = _hard_floats()
+    assert format_general(values, precision) == [f"%.{precision}g" % v for v in values.tolist()]
+
+
+def test_csv_writer_text_is_printfs_text():
+    """write_csv's text is printf's, byte for byte: prefixes (with % and non-ASCII),
+    several blocks, %.12g and another precision, one column and several."""
+    from impactcli.output import write_csv
+
+    values = _hard_floats()
+    blocks = [
+        (("loading",), values[: values.size // 7 * 7].reshape(-1, 7)),
+        ((), values[:12].reshape(4, 3)),
+        (("100%", "é", 3), values[-5:].reshape(5, 1)),
+        (("empty",), np.empty((0, 2))),
+    ]
+    for float_format in ("%.12g", "%.4g"):
+        stream = io.StringIO()
+        write_csv(stream, ("stage", "a", "b"), blocks, float_format)
+        assert stream.getvalue() == _printf_csv(("stage", "a", "b"), blocks, float_format)
+
+
+def test_a_table_in_csv_is_printfs_text(impact):
+    """impact tables: the CSV of n = 1000 is the printf text of the table's numbers."""
+    result = impact("tables", "--n", "1000", "--format", "csv")
+    assert result.returncode == 0, result.stderr
+    blocks = [
+        ((stage,), np.column_stack([normalised_table(1000, stage)[c] for c in TABLE_COLUMNS]))
+        for stage in ("loading", "restitution")
+    ]
+    assert result.stdout == _printf_csv(HEADER.split(","), blocks)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.floats(width=64), max_size=40), st.integers(1, 12))
+def test_general_format_of_any_floats(values, precision):
+    from impactcli.output import format_general
+
+    assert format_general(values, precision) == [f"%.{precision}g" % v for v in values]

@@ -229,3 +229,38 @@ def test_citation_file_names_this_version_and_the_paper():
     assert re.search(rf"^version: {re.escape(impactcli.__version__)}$", text, re.M)
     assert "doi: 10.5539/mer.v8n1p1" in text and "Big-Alabo" in text
     assert "CITATION.cff" in (DOCS / "about" / "cite.md").read_text()
+
+
+# -- the layout of the source -----------------------------------------------------------------
+
+
+def _layout_block(text: str) -> str:
+    start = text.index("```\n") + 4
+    return text[start : text.index("```\n", start)]
+
+
+def test_the_layout_names_every_module_and_the_site_keeps_the_readmes_copy():
+    """README's '## Layout' and docs/about/layout.md hold the same block, and it names every
+    module and package of impactcli (a package's modules by their own line or its line)."""
+    readme = (ROOT / "README.md").read_text()
+    section = readme[readme.index("## Layout\n") :]
+    block = _layout_block(section)
+    assert block == _layout_block((DOCS / "about" / "layout.md").read_text())
+    package = ROOT / "impactcli"
+    named = set()
+    folder = None
+    for line in block.splitlines():
+        first = line.split()[0] if line.strip() else ""
+        if first.startswith("impactcli/"):
+            named.add(first)
+            folder = first if first.endswith("/") else None
+        elif folder and line.startswith("  ") and first.endswith(".py"):
+            named.add(folder + first)
+    for path in sorted(package.glob("*.py")):
+        if path.stem not in ("__init__", "__main__"):
+            assert f"impactcli/{path.name}" in named, path.name
+    for folder_path in sorted(p for p in package.iterdir() if (p / "__init__.py").exists()):
+        assert f"impactcli/{folder_path.name}/" in named, folder_path.name
+    for path in sorted((package / "laws").glob("*.py")):
+        if path.stem != "__init__":
+            assert f"impactcli/laws/{path.name}" in named, path.name

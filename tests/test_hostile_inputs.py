@@ -109,6 +109,26 @@ def test_an_indentation_that_underflows_is_named(impact, command):
     assert "nan" not in r.stderr
 
 
+@pytest.mark.parametrize("command", ["elastic", "elastoplastic"])
+@pytest.mark.parametrize("v1, shown", [("1e300", "inf"), ("1e-300", "0")])
+def test_an_indentation_beyond_double_precision_is_named_by_every_model(impact, command, v1,
+                                                                         shown):
+    """elastic at V0 = 1e300 and 1e-300 said "the contact force must increase strictly with
+    indentation on a stage" (FILM's check of its stages); it now says what elastoplastic
+    says."""
+    r = impact(command, "--d1", "20mm", "--d2", "40mm", "--v1", v1, "--material", "steel")
+    _one_line(r, f"out of range: the maximum indentation is {shown} m, beyond double precision")
+
+
+def test_a_density_whose_mass_overflows_is_refused():
+    """rho pi overflows before D^3 brings it back: the mass was inf, a fixed sphere that
+    moves, while the check computed rho (pi/6) D^3 and found it finite."""
+    from impactcli.impact import Sphere
+
+    with pytest.raises(InputError, match="give a mass of inf kg"):
+        Sphere(0.02, 210e9, 0.3, 1e308)
+
+
 def test_a_contact_radius_warning_has_a_few_digits():
     from impactcli.validation import contact_radius_warning
 
@@ -197,13 +217,43 @@ def test_fit_of_an_unconstrained_parameter_says_so_in_the_table(impact, tmp_path
 # -- the fuzz of the Python API: every public function, one hostile argument at a time -------
 
 HOSTILE = [-1.0, 0.0, math.nan, math.inf, -math.inf, 5e-324, 1e-300, 1e300, -1e300, 10**400]
+#: For an argument that takes text (a material's name), and one that takes an object.
+HOSTILE_TEXT = ["nope", "", " ", 3, 3.5, None, b"steel", ["steel"]]
+HOSTILE_OBJECTS = [None, 3, 2.5, "x", math.nan, (1.0, 2.0)]
+
+
+def _hostile_vectors(valid: tuple) -> list:
+    """Each component of a valid vector in turn takes each hostile number; and vectors of
+    the wrong length, text and None."""
+    swapped = [valid[:i] + (h,) + valid[i + 1 :] for i in range(len(valid)) for h in HOSTILE]
+    return [*swapped, (), valid[:-1], (*valid, 0.0), "abc", None, ("a",) * len(valid)]
+
+
+def _hostile(value) -> list:
+    """The hostile values of an argument whose valid value is ``value``, by its type."""
+    if isinstance(value, bool):
+        return []
+    if isinstance(value, (int, float)):
+        return HOSTILE
+    if isinstance(value, tuple):
+        return _hostile_vectors(value)
+    if isinstance(value, str):
+        return HOSTILE_TEXT
+    return HOSTILE_OBJECTS
 
 
 def _public_api() -> dict[str, tuple]:
     """name -> (function, valid keyword arguments, the numbers its result must not hold
     as NaN): the functions exported by ``impactcli`` and those the README shows, and the
     entry points the CLI commands call."""
-    from impactcli import elastic_impact, elastoplastic_impact, oblique_collision
+    from impactcli import (
+        Material,
+        elastic_impact,
+        elastoplastic_impact,
+        impact_warnings,
+        material,
+        oblique_collision,
+    )
     from impactcli.batch import batch_impacts
     from impactcli.collision3d import oblique_collision_3d
     from impactcli.damping import damping_for_restitution
@@ -248,17 +298,33 @@ def _public_api() -> dict[str, tuple]:
             dict(pair, alpha=0.3), impact_keys),  # fmt: skip
         "integrate_impact": (lambda **kw: integrate_impact(elastic_impact(**kw)), dict(pair),
                              lambda r: [r["restitution"], r["contact_time"]]),  # fmt: skip
-        "restitution_sweep": (lambda v, **kw: restitution_sweep(s1, s2, [v, 1.0], **kw),
-                              dict(v=0.5, yield_strength=1e9),
+        "restitution_sweep": (restitution_sweep, dict(sphere1=s1, sphere2=s2,
+                              velocities=(0.5, 1.0), yield_strength=1e9),
                               lambda r: [*r["restitution"], *r["contact_time"]]),  # fmt: skip
         "oblique_collision": (oblique_collision, dict(m1=0.05, m2=0.15, v1=(2.6, -1.5),
                               v2=(1.3, 1.5), p1=(-1.0, 2.0), p2=(2.0, -2.0), restitution=0.8),
                               lambda c: [*c.v1_final, *c.v2_final]),  # fmt: skip
         "oblique_collision_3d": (oblique_collision_3d, dict(m1=2.6e-4, m2=math.inf,
-                                 v1=(1.0, 0.0, -3.0), v2=(0, 0, 0), p1=(0, 0, 0),
-                                 p2=(0, 0, -1), d1=5e-3, d2=math.inf, restitution=0.9,
-                                 mu=0.1),
+                                 v1=(1.0, 0.0, -3.0), v2=(0.0, 0.0, 0.0),
+                                 p1=(0.0, 0.0, 0.0), p2=(0.0, 0.0, -1.0), d1=5e-3,
+                                 d2=math.inf, w1=(0.0, 10.0, 0.0), w2=(0.0, 0.0, 0.0),
+                                 restitution=0.9, mu=0.1),
                                  lambda c: [*c.v1_final, *c.w1_final]),  # fmt: skip
+        "oblique_collision_3d (two spheres)": (
+            oblique_collision_3d, dict(m1=0.03, m2=0.05, v1=(1.0, 0.0, -3.0),
+                                       v2=(0.0, 0.5, 1.0), p1=(0.0, 0.0, 0.0),
+                                       p2=(0.0, 0.0, -0.025), d1=0.02, d2=0.03,
+                                       w1=(0.0, 10.0, 0.0), w2=(5.0, 0.0, 1.0), mu=0.2),
+            lambda c: [*c.v1_final, *c.w1_final, *c.v2_final, *c.w2_final]),  # fmt: skip
+        "material": (material, dict(name="steel"),
+                     lambda m: [m.youngs_modulus, m.poisson_ratio, m.density]),  # fmt: skip
+        "Material": (Material, dict(name="bronze", youngs_modulus=110e9, poisson_ratio=0.34,
+                                    density=8800.0, yield_strength=250e6, source="sheet"),
+                     lambda m: [m.youngs_modulus, m.poisson_ratio, m.density,
+                                m.yield_strength]),  # fmt: skip
+        "impact_warnings": (impact_warnings, dict(result=elastic_impact(s1, s2, 0.25, 0.75),
+                                                  first_yield=True),
+                            lambda w: [len(w)]),  # fmt: skip
         "rayleigh_time_step": (rayleigh_time_step, dict(radius=1e-3, youngs_modulus=210e9,
                                poisson_ratio=0.3, density=7800.0), lambda t: [t]),  # fmt: skip
         "hertz_contact_time": (hertz_contact_time, dict(mass=0.03, radius=0.007, modulus=1e11,
@@ -292,15 +358,14 @@ def _public_api() -> dict[str, tuple]:
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")  # NumPy's, on the way to the error
 @pytest.mark.parametrize("name", list(_public_api()))
 def test_fuzz_the_python_api(name):
-    """Each argument of each public function in turn takes each hostile value: the call
+    """Each argument of each public function in turn takes each hostile value (numbers;
+    each component of a vector, vectors of the wrong length; text; objects): the call
     raises InputError (a ValueError: one line), or returns numbers none of which is NaN (a
     batch: the row's error, or its numbers)."""
     function, valid, numbers = _public_api()[name]
     assert not np.any(np.isnan(np.asarray(numbers(function(**valid)), dtype=float)))
     for key, value in valid.items():
-        if not isinstance(value, (int, float)) or isinstance(value, bool):
-            continue
-        for hostile in HOSTILE:
+        for hostile in _hostile(value):
             if key == "n" and isinstance(hostile, float):
                 continue  # a count: its floats are refused by type, tested elsewhere
             try:

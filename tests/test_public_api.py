@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import impactcli
+from impactcli.errors import InputError
 from tests.conftest import run_impact
 
 SEC_44 = ["--d1", "20mm", "--d2", "40mm", "--material", "steel"]
@@ -74,7 +75,7 @@ def test_a_sphere_from_a_material():
     assert steel == impactcli.Sphere(0.02, **material("steel").properties())
     assert impactcli.Sphere.from_material(0.02, material("steel")) == steel
     assert impactcli.Sphere.from_material(0.02, "steel", density=7850.0).density == 7850.0
-    with pytest.raises(KeyError, match="unknown material"):
+    with pytest.raises(InputError, match="unknown material"):
         impactcli.Sphere.from_material(0.02, "unobtainium")
 
 

@@ -11,7 +11,7 @@ import pytest
 
 from impactcli.damping import solve_damped_impact
 from impactcli.laws import get_law
-from impactcli.laws.hertz import HertzLawContact
+from impactcli.laws.hertz import HertzContact
 from impactcli.laws.tsuji import TsujiDamping
 from impactcli.laws.viscoelastic import ViscoelasticDamping
 from impactcli.ode import OdeSolution, integrate
@@ -110,7 +110,7 @@ def test_the_damped_integration_ends_by_its_rule():
 
 def test_a_plan_solution_is_its_film_solution():
     """PlanSolution is the FilmSolution of its stages, with the plan and contact model."""
-    film = PlanSolution.solve(HertzLawContact(1.0, 0.9375), 1.0, 1.0, 25)
+    film = PlanSolution.solve(HertzContact.for_pair(1.0, 0.9375), 1.0, 1.0, 25)
     assert len(film.stages) == 2 and film.t_max == float(film.stages[0].end_time)
     assert film.delta_max == 1.0 and film.delta_end == 0.0 and film.stored == 0.0
 

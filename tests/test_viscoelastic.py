@@ -128,7 +128,7 @@ def test_alpha_for_restitution_is_exact_by_the_model():
 
 
 def test_registry_lists_it_with_its_unit(impact):
-    assert DAMPING_LAWS["viscoelastic"] is ViscoelasticDamping
+    assert DAMPING_LAWS["viscoelastic"].model is ViscoelasticDamping
     done = impact("laws", "-f", "json")
     listed = {law["name"]: law for law in json.loads(done.stdout)["laws"]}
     (alpha,) = listed["viscoelastic"]["parameters"]

@@ -8,6 +8,7 @@ import numpy as np
 import typer
 
 from impactcli.cli.common import (
+    DAMPED_DEFAULT_N,
     Format,
     OutputFile,
     OutputFormat,
@@ -24,7 +25,7 @@ from impactcli.cli.impact_cmd import POINTS, SUMMARY_UNITS
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
-from impactcli.limits import MAX_COUNT
+from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 
@@ -67,7 +68,7 @@ def compare_laws(
             min=2,
             max=MAX_COUNT,
             help="Velocities of the e panel (--plot), as impact restitution --count (50) gives "
-            "the velocities of its sweep.",
+            f"the velocities of its sweep; --count x --n at most {MAX_SWEEP_SEGMENTS:,}.",
         ),
     ] = 80,
     fmt: OutputFormat = None,
@@ -78,9 +79,10 @@ def compare_laws(
     indentation of each, and (--plot) their force-indentation loops on one figure with e
     against V0/V_y for the same laws.
 
-    --law is given once per law (default: every elastoplastic law that needs no more than
-    the spheres' properties: du-wang and thornton); each law's parameters as on 'impact
-    elastoplastic' (--py, --k-load, --k-unload, --curve, ...).
+    --law is given once per law (default: every elastoplastic law of 'impact laws' that
+    needs no more than the spheres' properties); each law's parameters as on 'impact
+    elastoplastic' (--py, --k-load, --k-unload, --curve, ...). The laws run one at a time;
+    laws x --n is at most 10,000,000.
 
     V_y of the e panel is one velocity for all laws: the first-yield velocity of the pair,
     where the Hertz peak pressure reaches 1.6 sigma_y (Thornton's V_y with his default p_y;
@@ -88,8 +90,8 @@ def compare_laws(
     this impact's V0. Open circles mark published closed forms (Thornton 1997's e(V_y/V0),
     Walton & Braun's sqrt(k_load/k_unload)).
 
-    --damping NAME --alpha A adds Hertz with that damping model to the comparison (row
-    hertz+NAME; no yield point, no permanent indentation).
+    --damping NAME --alpha A adds Hertz with that damping model to the comparison (its row
+    is named the elastic law +NAME; no yield point, no permanent indentation).
 
     Output: one row per law, columns law, restitution, contact_time, delta_max, force_max,
     delta_res, energy_dissipated, delta_y, yield_velocity (SI); JSON {"inputs", "laws"}.
@@ -98,7 +100,7 @@ def compare_laws(
     steel --law du-wang --law thornton --law walton-braun --k-load 2e7 --k-unload 8e7
     --plot laws.png
     """
-    from impactcli.compare import COMPARISON_KEYS, compare_impacts, comparison_row
+    from impactcli.compare import COMPARISON_KEYS, summarise_laws
     from impactcli.impact import ContactModel
     from impactcli.laws.registry import comparison_laws
     from impactcli.spheres import spheres_from_options, velocities_from_options
@@ -108,17 +110,20 @@ def compare_laws(
         raise InputError(f"need 0 < --ratio-min < --ratio-max, got {ratio_min:g}, {ratio_max:g}")
     choices = resolve_laws(law, default=comparison_laws())
     damping_law, alpha, _, separation = damping.parse()
+    if plot:  # the e panel: one sweep of --count velocities per law, at its n
+        sweep_n = n if n is not None else (25 if damping_law is None else DAMPED_DEFAULT_N)
+        check_size("--count x --n", count * sweep_n, MAX_SWEEP_SEGMENTS)
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
     laws = [ContactModel(c.name, c.params) for c in choices]
     if damping_law is not None:
         laws.append(ContactModel(damping=damping_law, alpha=alpha, separation=separation))
     try:
-        results = compare_impacts(s1, s2, v1, v2, laws, n)
+        results = summarise_laws(s1, s2, v1, v2, laws, n, points=points if plot else None)
     except ValueError as exc:
         raise InputError(str(exc)) from None
     segments = _segments(results)
-    table = {name: comparison_row(r) for name, r in results.items()}
+    table = {name: r.row for name, r in results.items()}
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.csv:
@@ -139,7 +144,7 @@ def compare_laws(
             _print(stream if output not in (None, "-") else None, table, v1 + v2, segments)
     if plot:
         _plot(
-            plot, results, laws, spheres, s1, s2, n, segments, points, ratio_min, ratio_max,
+            plot, results, laws, spheres, s1, s2, v1 + v2, n, segments, ratio_min, ratio_max,
             count,
         )  # fmt: skip
 
@@ -149,7 +154,7 @@ def _segments(results: dict) -> dict[str, int]:
     (``damped``), each present when there is such a row."""
     out = {}
     for result in results.values():
-        out["damped" if hasattr(result, "separation") else "laws"] = result.n
+        out["damped" if result.damped else "laws"] = result.n
     return out
 
 
@@ -211,9 +216,9 @@ def _plot(
     spheres: SphereOptions,
     s1,
     s2,
+    v0: float,
     n: int | None,
     segments: dict[str, int],
-    points: int,
     ratio_min: float,
     ratio_max: float,
     count: int,
@@ -221,7 +226,6 @@ def _plot(
     """Loops of this impact and e against V0/V_y for the same laws, written to ``path``."""
     from impactcli.cli.impact_cmd import _material_parts
     from impactcli.compare import (
-        comparison_row,
         published_restitution,
         reference_yield_velocity,
         restitution_curves,
@@ -230,11 +234,7 @@ def _plot(
     from impactcli.plots import law_comparison_figure
 
     titles = {m.name: f"{m.name} ({_title(m)})" for m in models}
-    v0 = next(iter(results.values())).impact_velocity
-    loops = {}
-    for name, result in results.items():
-        history = result.history(points=points)
-        loops[titles[name]] = (history["delta"], history["force"])
+    loops = {titles[name]: (result.delta, result.force) for name, result in results.items()}
     reference = reference_yield_velocity(s1, s2)
     if np.isfinite(reference):
         label = (
@@ -265,7 +265,7 @@ def _plot(
         title=f"Contact laws compared (FILM, {_segments_text(segments)}): " + ", ".join(parts),
         ratio_label=label,
         impact_ratio=v0 / reference,
-        residual={titles[name]: comparison_row(r)["delta_res"] for name, r in results.items()},
+        residual={titles[name]: r.row["delta_res"] for name, r in results.items()},
         published={
             label: (velocities / reference, e) for label, (velocities, e) in published.items()
         },

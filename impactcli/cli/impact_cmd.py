@@ -559,13 +559,13 @@ def elastic(
     a warning says so, and above Du & Wang's yield velocity V_y (p0 = 2.57 sigma_y) it says
     to use 'impact elastoplastic'.
 
-    --damping tsuji|hunt-crossley adds viscous damping to Hertz (docs/damping.md), with
-    --alpha or a target --e; the summary then adds delta_separation, alpha and the energy
-    dissipated, and the force-indentation curve is a loop.
+    --damping NAME adds viscous damping to Hertz (a damping model of 'impact laws';
+    docs/damping.md), with --alpha or a target --e; the summary then adds delta_separation,
+    alpha and the energy dissipated, and the force-indentation curve is a loop.
 
     --curve FILE replaces Hertz by your own loading curve (force against indentation), run
     as an elastic, reversible law; an impact beyond the curve is an error naming the largest
-    tabulated indentation and the one needed.
+    indentation of the curve and the one needed.
 
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
@@ -608,8 +608,9 @@ def elastoplastic(
     about the residual indentation delta_res; separation is at delta = delta_res. Below the
     yield velocity the impact is elastic and the result says so.
 
-    --law thornton (--py), walton-braun (--k-load, --k-unload) or tabulated (--curve,
-    --unload-curves) runs another law (see 'impact laws'); the summary keys are the same.
+    --law NAME runs another law of 'impact laws', with its parameters as options (--py,
+    --k-load, --curve, ...: each option's help names its law); the summary keys are the
+    same.
 
     Example (paper sec. 4.4): impact elastoplastic --d1 20mm --d2 40mm --v1 0.25m/s
     --v2 0.75m/s --material steel
@@ -666,11 +667,11 @@ def restitution(
     --plot draws e, the contact time and the permanent indentation (total and of each
     sphere) against V0, with the yield velocity V_y marked.
 
-    --damping tsuji|hunt-crossley --alpha A sweeps Hertz with viscous damping instead
-    (docs/damping.md): e is the same at every V0 for tsuji and falls with alpha V0 for
-    hunt-crossley; delta_res is 0, energy_dissipated the damping's work, and a column
-    delta_separation is added; the plot's third panel shows the maximum indentation and
-    that at separation.
+    --damping NAME --alpha A sweeps Hertz with viscous damping instead (a damping model of
+    'impact laws'; docs/damping.md): e is the same at every V0 for a self-similar model and
+    changes with V0 for the others ('impact laws' says what each one's e depends on);
+    delta_res is 0, energy_dissipated the damping's work, and a column delta_separation is
+    added; the plot's third panel shows the maximum indentation and that at separation.
 
     Example: impact restitution --v-min 0.1m/s --v-max 10m/s --count 50 --d1 20mm --d2 40mm
     --material steel --plot restitution.png
@@ -820,8 +821,9 @@ def _damped_sweep(
     linear: bool,
 ) -> None:
     """``impact restitution --damping``: the damped sweep in every format, and its plot."""
-    from impactcli.impact import DAMPED_SWEEP_COLUMNS, damped_restitution_sweep
+    from impactcli.impact import DAMPED_SWEEP_COLUMNS
     from impactcli.spheres import spheres_from_options
+    from impactcli.sweep import damped_sweep
 
     law, alpha, target, separation = damping.parse()
     assert law is not None
@@ -840,7 +842,7 @@ def _damped_sweep(
             raise InputError(str(exc)) from None
         note(f"{alpha_label(law, alpha, digits=10)} gives e = {target:g} at every V0")
     try:
-        data = damped_restitution_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
+        data = damped_sweep(s1, s2, velocities, law, alpha, n, separation, split.value)
     except ValueError as exc:
         raise InputError(str(exc)) from None
     _sweep_contact_warning(s1, s2, velocities, data["delta_max"])

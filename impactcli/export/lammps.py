@@ -102,7 +102,7 @@ _VARIANTS = {
 }
 
 #: The damping models LAMMPS has: this library's name -> LAMMPS's (declared in their modules).
-_TSUJI, _VISCOELASTIC = TsujiDamping.name, ViscoelasticDamping.name
+_TSUJI, _VISCOELASTIC = TsujiDamping.spec.name, ViscoelasticDamping.spec.name
 #: LAMMPS's damping from a coefficient of restitution (Tsuji's law, release-independent).
 COEFF_RESTITUTION = "coeff_restitution"
 
@@ -545,14 +545,14 @@ def _normal_model(sphere1, sphere2, source, restitution, v_range, version, notes
 
 #: The comment of an undamped contact.
 _NO_DAMPING = (
-    f"# no damping: damping {ViscoelasticDamping.lammps_damping} with coefficient 0 (this "
+    f"# no damping: damping {ViscoelasticDamping.spec.lammps_damping} with coefficient 0 (this "
     "release has no damping none)"
 )
 
 
 def _undamped() -> _Damping:
     """No damping: LAMMPS's viscoelastic damping with coefficient 0."""
-    return _Damping(ViscoelasticDamping.lammps_damping, 0.0, scaled=True)
+    return _Damping(ViscoelasticDamping.spec.lammps_damping, 0.0, scaled=True)
 
 
 def _damping_class(name: str):
@@ -582,7 +582,7 @@ def _tsuji(alpha: float, separation: str, version: str, comments: list[str]):
     from impactcli.impact import ContactModel
     from impactcli.laws.tsuji import tsuji_restitution_overlap
 
-    lammps = TsujiDamping.lammps_damping
+    lammps = TsujiDamping.spec.lammps_damping
     exported = ContactModel(damping=_TSUJI, alpha=alpha, separation=separation)
     if alpha == 0.0:
         comments.append("# alpha = 0: " + _NO_DAMPING[2:])
@@ -623,7 +623,7 @@ def _viscoelastic(constant: float, separation: str, comments: list[str]):
     from impactcli.impact import ContactModel
 
     exported = ContactModel(damping=_VISCOELASTIC, alpha=constant, separation=separation)
-    lammps = ViscoelasticDamping.lammps_damping
+    lammps = ViscoelasticDamping.spec.lammps_damping
     comments.append(
         f"# damping {lammps}: LAMMPS's force eta_n0 m_eff a delta' is Brilliantov et al.'s "
         f"2 E* A a delta' for eta_n0 = 2 E* A / m_eff (A = {constant:.6g} s): it depends on "

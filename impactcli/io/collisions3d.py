@@ -27,6 +27,7 @@ pyarrow is imported inside the functions.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -218,12 +219,13 @@ def compute_collisions3d(
             errors.add(unknown, message)
         sphere_problems(sphere["d"], sphere["E"], sphere["nu"], sphere["rho"], sphere["m"],
                         sphere["sy"], sphere_names(i), errors)  # fmt: skip
-        sphere["mass"] = total_mass(sphere["d"], sphere["rho"], sphere["m"])
+        with np.errstate(over="ignore", under="ignore"):  # out of range: the row's error above
+            sphere["mass"] = total_mass(sphere["d"], sphere["rho"], sphere["m"])
         spheres.append(sphere)
     s1, s2 = spheres
 
     friction = np.where(np.isnan(q["mu"]), mu, q["mu"])
-    with np.errstate(invalid="ignore"):
+    with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, its error
         errors.add(~(np.isfinite(friction) & (friction >= 0.0)), "mu must be finite and >= 0")
         given_e = np.where(np.isnan(q["e"]), np.nan if restitution is None else restitution,
                            q["e"])  # fmt: skip
@@ -239,7 +241,10 @@ def compute_collisions3d(
             errors.add(np.isinf(s1[key]) & np.isinf(s2[key]), f"at most one sphere can be {what}")
         errors.add(np.isinf(s1["E"]) & np.isinf(s2["E"]), "at most one sphere can be rigid")
         d = vectors["p2"] - vectors["p1"]
-        distance = np.sqrt(np.sum(d * d, axis=-1))
+        distance = np.hypot(np.hypot(d[..., 0], d[..., 1]), d[..., 2])  # no overflow of d^2
+        errors.add(np.isinf(distance) & np.all(np.isfinite(d), axis=-1),
+                   "out of range: |p2 - p1| is beyond double precision; check the values and "
+                   "their units")  # fmt: skip
         errors.add(distance == 0.0, "the centres p1 and p2 coincide: no line of centres")
         errors.add(contact_distance_problem(distance, 0.5 * s1["d"], 0.5 * s2["d"], friction),
                    "with friction the centres must be at contact: |p2 - p1| = (d1 + d2)/2 "
@@ -281,8 +286,9 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
         effective_shear_modulus,
         oblique_collision_3d,
     )
+    from impactcli.io.readers import first_line
 
-    shear = history = None
+    shear = arrays = given = None
     if tangential == "mindlin":
         e[rows], histories, reasons = _histories(s1, s2, u_n, rows, law, params, damping,
                                                  alpha, points, n, separation)  # fmt: skip
@@ -292,23 +298,48 @@ def _collide_block(rows, size, s1, s2, vectors, e, friction, u_n, errors, result
             return
         *arrays, impulse = histories
         given = None if np.all(np.isnan(impulse)) else impulse  # None: J_n (no pull)
-        history = NormalHistory(*arrays, impulse=given)
         shear = effective_shear_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows],
                                         s2["nu"][rows])  # fmt: skip
-    with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
-        collision = oblique_collision_3d(
-            s1["mass"][rows], s2["mass"][rows], vectors["v1"][rows], vectors["v2"][rows],
-            vectors["p1"][rows], vectors["p2"][rows], s1["d"][rows], s2["d"][rows],
-            vectors["w1"][rows], vectors["w2"][rows], e[rows], friction[rows], tangential,
-            history=history, shear_modulus=shear,
-        )  # fmt: skip
-        summary = collision_summary(collision)
-    finite = np.logical_and.reduce([np.isfinite(summary[k]) for k in _FINITE_KEYS])
-    beyond = np.zeros(size, dtype=bool)
-    beyond[rows[~finite]] = True
-    errors.add(beyond, _OUT_OF_RANGE)
-    for key, value in summary.items():
-        result[key][rows] = np.where(finite, value, np.nan)
+    summaries: list[tuple[np.ndarray, dict[str, np.ndarray]]] = []
+
+    def collide(start: int, stop: int) -> None:
+        """Collide the rows ``rows[start:stop]`` at once; a row the vectorised call refuses
+        (a value beyond double precision that the table's checks let through) stops only
+        its half: the halves are tried again down to that row, which gets the reason."""
+        at, part = rows[start:stop], slice(start, stop)
+        history = None if arrays is None else NormalHistory(
+            *(a[part] for a in arrays), impulse=None if given is None else given[part]
+        )
+        try:
+            with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
+                collision = oblique_collision_3d(
+                    s1["mass"][at], s2["mass"][at], vectors["v1"][at], vectors["v2"][at],
+                    vectors["p1"][at], vectors["p2"][at], s1["d"][at], s2["d"][at],
+                    vectors["w1"][at], vectors["w2"][at], e[at], friction[at], tangential,
+                    history=history, shear_modulus=None if shear is None else shear[part],
+                )  # fmt: skip
+                summaries.append((at, collision_summary(collision)))
+        except (InputError, ValueError) as exc:
+            if stop - start == 1:
+                row = np.zeros(size, dtype=bool)
+                row[at] = True
+                errors.add(row, _FIRST_AT.sub("", first_line(exc)))
+                return
+            middle = (start + stop) // 2
+            collide(start, middle)
+            collide(middle, stop)
+
+    collide(0, rows.size)
+    for at, summary in summaries:
+        finite = np.logical_and.reduce([np.isfinite(summary[k]) for k in _FINITE_KEYS])
+        # momenta are infinite only for a fixed target; with two finite masses, an overflow
+        masses = np.isfinite(s1["mass"][at]) & np.isfinite(s2["mass"][at])
+        finite &= ~(masses & np.logical_or.reduce([np.isinf(v) for v in summary.values()]))
+        beyond = np.zeros(size, dtype=bool)
+        beyond[at[~finite]] = True
+        errors.add(beyond, _OUT_OF_RANGE)
+        for key, value in summary.items():
+            result[key][at] = np.where(finite, value, np.nan)
 
 
 #: History points (rows x ``points``) per block of ``--tangential mindlin`` rows: each row's
@@ -321,10 +352,14 @@ _OUT_OF_RANGE = (
     "out of range: the collision's results leave double precision (velocities, masses or "
     "sizes too large or too small); check the values and their units"
 )
+#: The index a vectorised call names in its message, which a single row does not need.
+_FIRST_AT = re.compile(r" \(first at index \([0-9, ]*\)\)")
 #: Results every computed row has as finite numbers (a fixed or flat sphere included).
 _FINITE_KEYS: tuple[str, ...] = (
     *(f"{v}_final_{a}" for v in ("v1", "w1", "v2", "w2") for a in "xyz"),
-    "restitution", "normal_impulse", "tangential_impulse",
+    "restitution", "normal_impulse", "tangential_impulse", "kinetic_energy_before",
+    "kinetic_energy_after", *(f"energy_dissipated{i}_{kind}" for i in ("", "1", "2")
+                              for kind in ("normal", "friction")),
 )  # fmt: skip
 
 
@@ -338,16 +373,32 @@ def _restitutions(s1, s2, u_n, rows, law, params, damping, alpha, n, separation)
     """e of ``rows`` at u_n, vectorised: the batch kernel for a law of the library, the
     damped FILM for damped Hertz. Returns (e, reasons)."""
     from impactcli.batch import batch_impacts
+    from impactcli.io.readers import first_line
 
     if damping is None:
         # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
         v1 = np.where(np.isinf(s1["mass"][rows]), 0.0, u_n[rows])
-        out = batch_impacts(
-            s1["d"][rows], s2["d"][rows], v1, u_n[rows] - v1, s1["E"][rows], s1["nu"][rows],
-            s2["E"][rows], s2["nu"][rows], s1["rho"][rows], s2["rho"][rows], s1["m"][rows],
-            s2["m"][rows], s1["sy"][rows], s2["sy"][rows], n=n, law=law, law_params=params,
-        )  # fmt: skip
-        return out["restitution"], out["error"]
+        e = np.full(rows.size, np.nan)
+        reasons = np.full(rows.size, "", dtype=object)
+        pending = [np.arange(rows.size)]
+        while pending:  # a part the kernel refuses is halved down to the refused rows
+            part = pending.pop()
+            at = rows[part]
+            try:
+                out = batch_impacts(
+                    s1["d"][at], s2["d"][at], v1[part], u_n[at] - v1[part], s1["E"][at],
+                    s1["nu"][at], s2["E"][at], s2["nu"][at], s1["rho"][at], s2["rho"][at],
+                    s1["m"][at], s2["m"][at], s1["sy"][at], s2["sy"][at], n=n, law=law,
+                    law_params=params,
+                )  # fmt: skip
+            except ValueError as exc:
+                if part.size > 1:
+                    pending += [part[: part.size // 2], part[part.size // 2 :]]
+                else:
+                    reasons[part] = first_line(exc)
+                continue
+            e[part], reasons[part] = out["restitution"], out["error"]
+        return e, reasons
     from impactcli.batch import DAMPED_BLOCK
     from impactcli.damping import solve_damped_impact
     from impactcli.laws.registry import damping_model
@@ -373,13 +424,15 @@ def _damped_pairs(s1, s2, u_n, rows):
     precision (:func:`impactcli.batch.hertz_scale_problems`), ``""`` elsewhere."""
     from impactcli.batch import hertz_scale_problems
     from impactcli.contact import effective_mass, effective_modulus, effective_radius
-    from impactcli.laws.hertz import HertzLawContact
+    from impactcli.laws.viscous import DampingSpec
 
-    m = effective_mass(s1["mass"][rows], s2["mass"][rows])
-    radius = effective_radius(0.5 * s1["d"][rows], 0.5 * s2["d"][rows])
-    modulus = effective_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows], s2["nu"][rows])
-    stiffness = HertzLawContact(radius, modulus).stiffness
-    return m, radius, modulus, hertz_scale_problems(m, stiffness, u_n[rows])
+    with np.errstate(all="ignore"):  # a scale beyond double precision: that row's reason
+        m = effective_mass(s1["mass"][rows], s2["mass"][rows])
+        radius = effective_radius(0.5 * s1["d"][rows], 0.5 * s2["d"][rows])
+        modulus = effective_modulus(s1["E"][rows], s1["nu"][rows], s2["E"][rows],
+                                    s2["nu"][rows])  # fmt: skip
+        stiffness = DampingSpec.stiffness(radius, modulus)
+        return m, radius, modulus, hertz_scale_problems(m, stiffness, u_n[rows])
 
 
 def _histories(s1, s2, u_n, rows, law, params, damping, alpha, points, n, separation):

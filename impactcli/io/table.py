@@ -12,6 +12,8 @@ functions import it inside.
 
 from __future__ import annotations
 
+import functools
+import math
 import re
 from collections.abc import Mapping, Sequence
 
@@ -136,26 +138,119 @@ def row_warnings(
     """The ``warning`` of each row (``""`` where none), in the words of the single-impact
     commands (:func:`impactcli.validation.first_yield_warning` on elastic rows above the
     first-yield velocity, :func:`~impactcli.validation.contact_radius_warning` where the
-    contact radius exceeds 0.1 R), joined by ``"; "``. Velocities [m/s], lengths [m]."""
-    from impactcli.validation import (
-        SMALL_DEFORMATION_LIMIT,
-        contact_radius_warning,
-        first_yield_warning,
-    )
+    contact radius exceeds 0.1 R), joined by ``"; "``. Velocities [m/s], lengths [m].
 
-    size = impact_velocity.size
-    out = np.full(size, "", dtype=object)
+    The same text as those functions give row by row, built on whole arrays: the rows of
+    each kind of warning are written together into that kind's wording
+    (:func:`_warning_templates`), their numbers formatted by
+    :func:`impactcli.output.format_general`."""
+    from impactcli.validation import SMALL_DEFORMATION_LIMIT, default_yield_velocity
+
+    out = np.full(impact_velocity.size, "", dtype=object)
     with np.errstate(invalid="ignore", divide="ignore"):
         yields = elastic & (impact_velocity > first_yield_velocity)
-        large = np.sqrt(delta_max / radius) > SMALL_DEFORMATION_LIMIT
-    for i in np.flatnonzero(yields | large).tolist():  # the warned rows only
-        words = []
-        if yields[i]:
-            words.append(first_yield_warning(impact_velocity[i], first_yield_velocity[i]))
-        if large[i]:
-            words.append(contact_radius_warning(impact_velocity[i], delta_max[i], radius[i]))
-        out[i] = "; ".join(w for w in words if w)
+        ratio = np.sqrt(delta_max / radius)
+        large = ratio > SMALL_DEFORMATION_LIMIT
+    velocity = default_yield_velocity(first_yield_velocity)  # V_y of the yielding rows
+    shown = np.full(impact_velocity.size, "", dtype=object)
+    shown[large] = _shown_ratio(ratio[large])
+    exceed, below, contact = _warning_templates()
+    columns = (impact_velocity, first_yield_velocity, velocity)
+    for template, rows in (
+        (exceed, yields & (impact_velocity > velocity)),
+        (below, yields & ~(impact_velocity > velocity)),
+        (None, ~yields),
+    ):
+        for radius_too in (False, True):
+            chosen = np.flatnonzero(rows & (large if radius_too else ~large))
+            if chosen.size == 0 or (template is None and not radius_too):
+                continue
+            parts = [template] if template is not None else []
+            values = [c[chosen] for c in columns] if template is not None else []
+            if radius_too:
+                parts.append(contact)
+                values += [shown[chosen].tolist(), impact_velocity[chosen]]
+            out[chosen] = _fill("; ".join(parts), *values)
     return out
+
+
+#: Rows whose warnings are written at once (the text of a block is some 5 MB at most).
+_WARNING_BLOCK = 8192
+
+#: Numbers that stand for the values in the wording of one warning (each one's ``.4g``
+#: text occurs nowhere else in it): :func:`_warning_templates` finds them to make the
+#: templates.
+_SENTINELS = (6.666e66, 7.777e77, 8.888e88, 9.999e99)
+
+
+@functools.lru_cache(maxsize=1)
+def _warning_templates() -> tuple[str, str, str]:
+    """The wording of the batch warnings, from the single-impact functions themselves:
+    above the first-yield and Du & Wang's yield velocities (V0, V_Y, V_y), between the two
+    (V0, V_Y, V_y), and a large contact radius (the ratio as shown, V0); printf templates
+    with ``%s`` for the numbers, in that order."""
+    from impactcli.validation import contact_radius_warning, first_yield_warning
+
+    a, b, c, d = _SENTINELS
+    exceed = first_yield_warning(c, a, yield_velocity=b)
+    below = first_yield_warning(b, a, yield_velocity=c)
+    ratio = math.sqrt(d)  # >= 100: shown as its .3g text
+    contact = contact_radius_warning(a, d, 1.0)
+    assert exceed is not None and below is not None and contact is not None
+    return (
+        _template(exceed, f"{c:.4g}", f"{a:.4g}", f"{b:.4g}"),
+        _template(below, f"{b:.4g}", f"{a:.4g}", f"{c:.4g}"),
+        _template(contact, f"{ratio:.3g}", f"{a:.4g}"),
+    )
+
+
+def _template(text: str, *numbers: str) -> str:
+    """``text`` with each of ``numbers`` (in that order, each once) as ``%s``."""
+    pieces, rest = [], text
+    for number in numbers:
+        head, found, rest = rest.partition(number)
+        if not found or number in head or number in rest:
+            raise AssertionError(f"{number!r} is not in {text!r} once")
+        pieces.append(head.replace("%", "%%"))
+    return "%s".join(pieces) + "%s" + rest.replace("%", "%%")
+
+
+def _fill(template: str, *columns) -> list[str]:
+    """``template % row`` for each row of ``columns`` (floats as ``.4g``, or strings), a
+    block of rows at a time."""
+    from impactcli.output import format_general
+
+    size = len(columns[0])
+    text: list[str] = []
+    for start in range(0, size, _WARNING_BLOCK):
+        block = [c[start : start + _WARNING_BLOCK] for c in columns]
+        block = [c if isinstance(c, list) else format_general(c, 4) for c in block]
+        values = tuple(x for row in zip(*block) for x in row)
+        text += ((template + "\n") * len(block[0]) % values).split("\n")[:-1]
+    return text
+
+
+def _shown_ratio(ratio: np.ndarray) -> list[str]:
+    """How :func:`~impactcli.validation.contact_radius_warning` shows each ratio a/R above
+    the limit (:func:`~impactcli.validation._above` below 100: two decimals, or as many
+    more as it takes to read above the limit; else ``.3g``), on whole arrays."""
+    from impactcli.output import format_general
+    from impactcli.validation import SMALL_DEFORMATION_LIMIT
+
+    shown = np.full(ratio.size, "", dtype=object)
+    pending = np.flatnonzero(ratio < 100.0)
+    big = np.flatnonzero(~(ratio < 100.0))
+    shown[big] = format_general(ratio[big], 3)
+    for decimals in range(2, 17):  # the rows still at or below the limit as written
+        if pending.size == 0:
+            break
+        values = ratio[pending].tolist()
+        text = ((f"%.{decimals}f\n" * len(values)) % tuple(values)).split("\n")[:-1]
+        above = np.array(list(map(float, text))) > SMALL_DEFORMATION_LIMIT
+        shown[pending[above]] = np.array(text, dtype=object)[above]
+        pending = pending[~above]
+    shown[pending] = [repr(v) for v in ratio[pending].tolist()]
+    return shown.tolist()
 
 
 def used_columns(names: Sequence[str]) -> list[str]:

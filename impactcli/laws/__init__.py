@@ -3,9 +3,10 @@
 Normal laws: :mod:`~impactcli.laws.hertz`, :mod:`~impactcli.laws.du_wang`,
 :mod:`~impactcli.laws.thornton`, :mod:`~impactcli.laws.walton_braun`,
 :mod:`~impactcli.laws.tabulated`. Damping models (Hertz plus a viscous term):
-:mod:`~impactcli.laws.tsuji`, :mod:`~impactcli.laws.hunt_crossley`. What they share:
-:mod:`~impactcli.laws.base`; the one list of them: :mod:`~impactcli.laws.registry`
-(docs/laws.md, "How to add a law").
+:mod:`~impactcli.laws.tsuji`, :mod:`~impactcli.laws.hunt_crossley`,
+:mod:`~impactcli.laws.viscoelastic`. What they share: :mod:`~impactcli.laws.base` (and
+:mod:`~impactcli.laws.viscous` for the damping models); the one list of them:
+:mod:`~impactcli.laws.registry` (docs/laws.md, "How to add a law or a damping model").
 """
 
 from impactcli.laws.du_wang import DuWangPlastic

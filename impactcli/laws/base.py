@@ -5,7 +5,7 @@
 - a *normal contact* (:class:`NormalContact`): the stages of one impact (:class:`ImpactPlan`
   of :class:`StagePlan`) and its closed forms (yield, residual indentation, returned work);
 - a *damping model* (:class:`DampingModel`): F(delta, delta') = K delta^1.5 + c(delta) delta'
-  on Hertz elasticity (:class:`DampedHertz`);
+  on Hertz elasticity (its machinery and its registry entry: :mod:`impactcli.laws.viscous`);
 - the description of a law for the registry (:class:`LawSpec`): its :class:`Parameter`
   list with units and defaults, its :class:`Reference`, validity and capabilities.
 
@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, ClassVar, Literal, Protocol
+from typing import Any, Literal, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -30,7 +30,6 @@ __all__ = [
     "SEPARATIONS",
     "YIELD_MARGIN",
     "YIELD_STRENGTH_NEEDED",
-    "DampedHertz",
     "DampingModel",
     "FitStart",
     "Fitting",
@@ -43,6 +42,7 @@ __all__ = [
     "TINY",
     "YieldOnset",
     "as_float",
+    "describe_model",
     "finite_summary",
     "floats",
 ]
@@ -154,13 +154,14 @@ class ImpactPlan:
     restitution: NDArray
 
     def is_normalised(self) -> bool:
-        """True for the elastic impact of the normalised Tables A1/A2 (one impact): a
-        loading and an unloading stage whose force laws declare ``normalised_tables``
-        (:class:`~impactcli.laws.hertz.Hertz`), and no residual indentation."""
+        """True for the elastic impact of the normalised Tables A1/A2 (one impact, or every
+        impact of a batch): a loading and an unloading stage whose force laws declare
+        ``normalised_tables`` (:class:`~impactcli.laws.hertz.Hertz`), and no residual
+        indentation."""
         return (
             len(self.stages) == 2
             and all(getattr(s.law, "normalised_tables", False) for s in self.stages)
-            and float(self.delta_res) == 0.0
+            and bool(np.all(np.asarray(self.delta_res) == 0.0))
         )
 
     def force(self, stage: ArrayLike, delta: ArrayLike) -> NDArray:
@@ -226,29 +227,26 @@ class NormalContact(Protocol):
 class DampingModel(Protocol):
     """F(delta, delta') = K delta^1.5 + c(delta) delta'; parameters broadcast with delta.
 
-    What the registry, the commands and the solvers read of a damping model: ``name`` (its
-    ``--damping`` choice), ``label`` (titles: 'Tsuji damping'), ``summary`` (one line of
-    ``--help``), ``parameters`` (its one parameter alpha: unit, kind for unit parsing,
-    range), ``reference``, ``self_similar`` (e independent of V0), and the class methods
-    ``of(K, m, alpha)`` (the one constructor), ``alpha_estimate(e, V0, K, m)`` (the first guess of
-    the alpha search), ``fit_start(V_ref, K, m)`` ((start, lower, upper) of a fit of alpha)
-    and ``data_start(e, V0, K, m)`` (alpha read off measured points),
-    ``similar_alpha(alpha, K, m, V0)`` (the alpha of the same e at K = m = V0 = 1); optionally
-    ``closed_form(K, m, alpha, V0, separation)`` -> (label, e) or None, a published e(V0).
-    :class:`DampedHertz` gives every model ``for_pair(R, E*, m, alpha)`` (K from the pair) and
-    ``fitting()`` (how :mod:`impactcli.fit` takes it).
+    What the damped FILM (:func:`impactcli.damping.solve_damped_impact`) and the SciPy
+    reference read of a damping model: its array parameters ``stiffness`` K [N/m^1.5] and
+    ``alpha`` (a dataclass, so that the solvers broadcast every field), the Hertz part and
+    the total force, c(delta), its mean over a segment and the reduced force that gives the
+    sign of F; ``name``, ``label`` and ``parameters`` of its registry entry
+    (:class:`~impactcli.laws.viscous.DampingSpec`). Every damping model is a
+    :class:`~impactcli.laws.viscous.DampedHertz`.
     """
 
-    name: ClassVar[str]
-    label: ClassVar[str]
-    summary: ClassVar[str]
-    parameters: ClassVar[tuple[Parameter, ...]]
-    reference: ClassVar[Reference]
-    validity: ClassVar[str]
-    kind: ClassVar[str]
-    self_similar: ClassVar[bool]
     stiffness: ArrayLike
     alpha: ArrayLike
+
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def label(self) -> str: ...
+
+    @property
+    def parameters(self) -> tuple[Parameter, ...]: ...
 
     def elastic_force(self, delta: ArrayLike) -> Array: ...
 
@@ -261,122 +259,6 @@ class DampingModel(Protocol):
     def force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array: ...
 
     def reduced_force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array: ...
-
-
-class DampedHertz:
-    """Hertz elastic part K delta^1.5 shared by the damping models, and their total force.
-
-    A damping model subclasses it as a frozen dataclass with ``stiffness`` K [N/m^1.5],
-    ``mass`` m [kg] and ``alpha``, and defines ``damping_coefficient``, ``mean_damping``
-    and ``reduced_force``.
-    """
-
-    stiffness: ArrayLike
-    name: ClassVar[str]
-    label: ClassVar[str]
-    summary: ClassVar[str]
-    parameters: ClassVar[tuple[Parameter, ...]]
-    reference: ClassVar[Reference]
-    validity: ClassVar[str]
-    self_similar: ClassVar[bool]
-    #: what e depends on, in words: ``"alpha only"``, ``"alpha V0"``
-    restitution_depends_on: ClassVar[str]
-    #: the kind of contact model, as the registry lists it
-    kind: ClassVar[str] = "damping"
-
-    @classmethod
-    def for_pair(
-        cls, radius: ArrayLike, modulus: ArrayLike, mass: ArrayLike, alpha: ArrayLike
-    ) -> Any:
-        """The model for a pair of spheres: effective radius R [m], modulus E* [Pa] and mass
-        m [kg], damping parameter alpha (the model's unit); the Hertz stiffness
-        K = (4/3) E* sqrt(R) [N/m^1.5] (:func:`impactcli.laws.hertz.hertz_stiffness`).
-        Arrays broadcast (one entry per collision)."""
-        return cls.of(_hertz_stiffness(modulus, radius), mass, alpha)
-
-    @classmethod
-    def fitting(cls) -> Fitting:
-        """How :mod:`impactcli.fit` takes the model: its alpha, started by ``fit_start``
-        with the pair's K, read off measured points by ``data_start``; no yield point."""
-        (alpha,) = cls.parameters
-        unit = "-" if alpha.kind == "dimensionless" else alpha.unit
-
-        def starts(mass, radius, modulus, _sy, reference_velocity, _fixed) -> dict:
-            stiffness = float(_hertz_stiffness(modulus, radius))
-            start = cls.fit_start(reference_velocity, stiffness, mass)
-            return {alpha.name: (unit, *start)}
-
-        def data_starts(restitution, impact_velocity, mass, radius, modulus) -> dict:
-            stiffness = float(_hertz_stiffness(modulus, radius))
-            start = cls.data_start(restitution, impact_velocity, stiffness, mass)
-            return {alpha.name: start}
-
-        return Fitting(
-            default=(alpha.name,),
-            starts=starts,
-            run_parameters=lambda params: {alpha.name: params[alpha.name]},
-            starts_are_defaults=True,
-            yield_onset="none",
-            data_starts=data_starts,
-        )
-
-    @classmethod
-    def describe(cls) -> dict[str, Any]:
-        """JSON-ready description, as :meth:`LawSpec.describe`: name, kind, parameters,
-        reference, validity."""
-        return {
-            "name": cls.name,
-            "kind": cls.kind,
-            "description": cls.summary,
-            "parameters": [vars(p).copy() for p in cls.parameters],
-            "reference": vars(cls.reference).copy(),
-            "validity": cls.validity,
-            "needs_yield_strength": False,
-        }
-
-    def elastic_force(self, delta: ArrayLike) -> Array:
-        """F_e = K delta^1.5 (0 for delta <= 0), [N]."""
-        d = np.maximum(np.asarray(delta, dtype=float), 0.0)
-        return self.stiffness * d * np.sqrt(d)
-
-    def elastic_work(self, start: ArrayLike, end: ArrayLike) -> Array:
-        """Integral of F_e from ``start`` to ``end`` = (2/5) K [end^2.5 - start^2.5], [J]."""
-        a = np.maximum(np.asarray(start, dtype=float), 0.0)
-        b = np.maximum(np.asarray(end, dtype=float), 0.0)
-        return 0.4 * self.stiffness * (b * b * np.sqrt(b) - a * a * np.sqrt(a))
-
-    def force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array:
-        """Total contact force F_e(delta) + c(delta) delta', [N]."""
-        return self.elastic_force(delta) + self.damping_coefficient(delta) * delta_dot
-
-    def damping_coefficient(self, delta: ArrayLike) -> Array:  # pragma: no cover - abstract
-        raise NotImplementedError
-
-    @classmethod
-    def of(cls, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike) -> Any:
-        """The model with K [N/m^1.5], effective mass m [kg] and alpha (each model's)."""
-        raise NotImplementedError  # pragma: no cover - abstract
-
-    @classmethod
-    def fit_start(
-        cls, reference_velocity: float, stiffness: float, mass: float
-    ) -> tuple[float, float, float]:
-        """(start, lower, upper) of a fit of alpha (each model's)."""
-        raise NotImplementedError  # pragma: no cover - abstract
-
-    @classmethod
-    def data_start(
-        cls, restitution: NDArray, impact_velocity: NDArray, stiffness: float, mass: float
-    ) -> float:
-        """alpha read off measured e(V0) (each model's)."""
-        raise NotImplementedError  # pragma: no cover - abstract
-
-
-def _hertz_stiffness(modulus: ArrayLike, radius: ArrayLike) -> NDArray:
-    """K = (4/3) E* sqrt(R), [N/m^1.5] (:func:`impactcli.laws.hertz.hertz_stiffness`)."""
-    from impactcli.laws.hertz import hertz_stiffness
-
-    return hertz_stiffness(modulus, radius)
 
 
 # --------------------------------------------------------------------------------------
@@ -482,11 +364,23 @@ class YieldOnset:
         / sigma_y, [-], with the law's parameters (SI, by name) as given
     words : ``words(factor)`` -> how a result names the criterion
     help : one line of ``--help``
+    criterion : ``criterion(factor)`` -> how a warning or a note names the criterion
+        (``'Hertz peak pressure 1.6 sigma_y'``)
+    mark : how a figure labels the onset velocity (matplotlib mathtext)
+    velocity : ``velocity(V_Y, factor)`` -> the onset velocity [m/s] from the first-yield
+        velocity V_Y [m/s] of the same spheres (the elastic law's onset) and the factor;
+        None: the law's onset is the first yield itself
+    factor_of : ``factor_of(V_Y, V)`` -> the factor [-] whose onset velocity is V [m/s]
+        (the inverse of ``velocity``, to 4 significant digits); None as ``velocity``
     """
 
     pressure_factor: Callable[[Mapping[str, float]], float]
     words: Callable[[float], str]
     help: str
+    criterion: Callable[[float], str]
+    mark: str = ""
+    velocity: Callable[[float, float], float] | None = None
+    factor_of: Callable[[float, float], float] | None = None
 
 
 @dataclass(frozen=True)
@@ -514,6 +408,9 @@ class LawSpec:
     yield_onset: YieldOnset | None = field(default=None, repr=False)
     #: the published closed form of e: ``closed_form(contact, m, V0)`` -> (label, e [-])
     closed_form: Callable[..., tuple[str, Array]] | None = field(default=None, repr=False)
+    #: the closed-form duration of an impact: ``contact_time(m, R, E*, V0)`` -> t_c [s]
+    #: (an elastic law's; None: the law has none)
+    contact_time: Callable[..., Array] | None = field(default=None, repr=False)
 
     def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """The parameters with defaults filled in (also for NaN entries of per-row arrays);
@@ -609,12 +506,19 @@ class LawSpec:
 
     def describe(self) -> dict[str, Any]:
         """JSON-ready description: name, kind, parameters, reference, validity."""
-        return {
-            "name": self.name,
-            "kind": self.kind,
-            "description": self.description,
-            "parameters": [vars(p).copy() for p in self.parameters],
-            "reference": vars(self.reference).copy(),
-            "validity": self.validity,
-            "needs_yield_strength": self.needs_yield_strength,
-        }
+        return describe_model(self, self.description, self.needs_yield_strength)
+
+
+def describe_model(model: Any, description: str, needs_yield_strength: bool) -> dict[str, Any]:
+    """The JSON-ready description of a model of the registry (``impact laws -f json``):
+    its ``name``, ``kind``, ``parameters``, ``reference`` and ``validity``, with its one-line
+    ``description`` and whether it ``needs_yield_strength``."""
+    return {
+        "name": model.name,
+        "kind": model.kind,
+        "description": description,
+        "parameters": [vars(p).copy() for p in model.parameters],
+        "reference": vars(model.reference).copy(),
+        "validity": model.validity,
+        "needs_yield_strength": needs_yield_strength,
+    }

@@ -12,11 +12,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import FilmSummary, hertz_loading_seconds, segment_time
+from impactcli.film import FilmSummary, segment_time
 from impactcli.laws.base import (
     MIN_YIELD_INDENTATION_RATIO,
     TINY,
@@ -33,8 +34,10 @@ from impactcli.laws.base import (
     floats,
 )
 from impactcli.laws.hertz import (
+    FIRST_YIELD_PRESSURE_FACTOR,
     Hertz,
     HertzContact,
+    hertz_loading_seconds,
     hertz_maximum_indentation,
     hertz_stiffness,
     hertz_summary,
@@ -47,6 +50,7 @@ __all__ = [
     "SPEC",
     "DuWangContact",
     "DuWangPlastic",
+    "du_wang_yield_velocity",
     "plastic_loading",
 ]
 
@@ -81,6 +85,8 @@ class DuWangPlastic:
     radius: ArrayLike
     mean_pressure: ArrayLike
     modulus: ArrayLike
+    #: F is linear in delta: FILM is exact on one segment (docs/method.md §4, item 5)
+    linear: ClassVar[bool] = True
 
     @property
     def slope(self) -> NDArray:
@@ -274,7 +280,7 @@ def plastic_loading(
     limit (:func:`impactcli.validation.yield_scale_problems` words it).
 
     Past V_y: delta_m from the energy balance (:meth:`DuWangContact.maximum_indentation`);
-    FILM's Hertz stage 0 -> delta_y (:func:`impactcli.film.hertz_loading_seconds`) and its
+    FILM's Hertz stage 0 -> delta_y (:func:`~impactcli.laws.hertz.hertz_loading_seconds`) and its
     linear stage delta_y -> delta_m, on which FILM is exact: one segment gives the time of
     n (:func:`impactcli.film.segment_time`).
     """
@@ -296,6 +302,26 @@ def plastic_loading(
     t_y = hertz_loading_seconds(dy, v0, k, m, n)
     t_max = t_y + segment_time(force_y, force, dy, dm, speed_y, m, end_at_rest=True)
     return k, dy, v_y, dm, t_max, force
+def du_wang_yield_velocity(
+    first_yield_velocity: float, pressure_factor: float | None = None
+) -> float:
+    """Du & Wang's yield velocity V_y [m/s] from the first-yield velocity V_Y [m/s] of the same
+    spheres: both are Hertz impacts up to delta ~ p^2 (docs/method.md §7, §7.1), and
+    V ~ delta^(5/4), so V_y = V_Y (p0 / 1.6 sigma_y)^(5/2) (``pressure_factor``: p0 / sigma_y,
+    default 2.57).
+
+    >>> round(du_wang_yield_velocity(0.078463), 4)  # the paper's sec. 4.3 / 4.4 spheres
+    0.2566
+    """
+    factor = DU_WANG_PRESSURE_FACTOR if pressure_factor is None else pressure_factor
+    return first_yield_velocity * (factor / FIRST_YIELD_PRESSURE_FACTOR) ** 2.5
+
+
+def _pressure_factor_of(first_yield_velocity: float, yield_velocity: float) -> float:
+    """p0 / sigma_y whose yield velocity is V_y, from the first-yield velocity V_Y (the
+    inverse of :func:`du_wang_yield_velocity`), to 4 significant digits, [-]."""
+    ratio = yield_velocity / first_yield_velocity
+    return float(f"{FIRST_YIELD_PRESSURE_FACTOR * ratio**0.4:.4g}")
 
 
 def _build(radius, modulus, sy, params) -> DuWangContact:
@@ -358,5 +384,9 @@ SPEC = LawSpec(
         pressure_factor=_pressure_factor,
         words=lambda factor: f"Du & Wang V_y, p0 = {factor:g} sigma_y",
         help="its yield velocity V_y, mean pressure p0 = --p0-factor sigma_y",
+        criterion=lambda factor: f"Du & Wang's p0 = {factor:g} sigma_y",
+        mark="yield, $V_y$ (Du & Wang)",
+        velocity=lambda first_yield, factor: du_wang_yield_velocity(first_yield, factor),
+        factor_of=_pressure_factor_of,
     ),
 )

@@ -1,10 +1,10 @@
 """Hertz (1882): elastic contact of two spheres, F = K_h delta^(3/2), K_h = (4/3) E* sqrt(R).
 
-Everything particular to the Hertz law: its force and work (:class:`Hertz`), the stages of an
-elastic impact (:class:`HertzContact`), the law behind the common interface of the registry
-(:class:`HertzLawContact`), its closed forms (maximum indentation, contact time factor) and
-the onset of yield in an elastic impact (:func:`first_yield_velocity`, Hertz peak pressure
-1.6 sigma_y), and its registry entry :data:`SPEC`.
+Everything particular to the Hertz law: its force and work (:class:`Hertz`), its contact
+model (:class:`HertzContact`: the stages of an elastic impact), its closed forms (maximum
+indentation, contact time, the FILM time of a loading stage) and the onset of yield in an
+elastic impact (:func:`first_yield_velocity`, Hertz peak pressure 1.6 sigma_y), and its
+registry entry :data:`SPEC`.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import FilmSummary, solve_stage
+from impactcli.film import FilmSummary, solve_stage, swept_angles
 from impactcli.laws.base import (
     TINY,
     Fitting,
@@ -29,17 +29,20 @@ from impactcli.laws.base import (
     as_float,
     col,
     finite_summary,
-    floats,
 )
+from impactcli.limits import MAX_SEGMENTS, check_size
 
 __all__ = [
     "FIRST_YIELD_PRESSURE_FACTOR",
+    "HERTZ_CONTACT_TIME_FACTOR",
     "LAMMPS_NORMAL_MODEL",
     "SPEC",
     "Hertz",
     "HertzContact",
-    "HertzLawContact",
     "first_yield_velocity",
+    "hertz_contact_time",
+    "hertz_loading_seconds",
+    "hertz_loading_time",
     "hertz_maximum_indentation",
     "hertz_stiffness",
     "normalised_times",
@@ -50,6 +53,9 @@ Array = NDArray[np.float64]
 
 #: Yield starts when the Hertz peak pressure reaches 1.6 sigma_y (Johnson 1985; Stronge 2000).
 FIRST_YIELD_PRESSURE_FACTOR = 1.6
+
+#: t_c V0 / delta_m = 2 (2/5) B(2/5, 1/2) for Hertz contact (docs/method.md §3), [-].
+HERTZ_CONTACT_TIME_FACTOR = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
 
 #: LAMMPS's normal model of this law from E and nu (``pair_style granular``; docs/export.md).
 LAMMPS_NORMAL_MODEL = "hertz/material"
@@ -97,8 +103,11 @@ class Hertz:
 
     stiffness: ArrayLike
     offset: ArrayLike = 0.0
+    #: The law is K_h (delta - offset)^1.5: FILM on it is the normalised solution scaled.
     #: An impact whose stages all have this law and that leaves no residual indentation is
-    #: the Hertz impact of the normalised Tables A1/A2 (:meth:`ImpactPlan.is_normalised`).
+    #: the Hertz impact of the normalised Tables A1/A2 (:meth:`ImpactPlan.is_normalised`),
+    #: and a stage from rest is the normalised restitution scaled (the fast paths of
+    #: :func:`impactcli.batch.law_stage_times`).
     normalised_tables: ClassVar[bool] = True
 
     def force(self, delta: ArrayLike) -> NDArray:
@@ -109,6 +118,16 @@ class Hertz:
     def work(self, start: ArrayLike, end: ArrayLike) -> NDArray:
         """Integral of F from ``start`` to ``end``: (2/5) K_h [(end-o)^2.5 - (start-o)^2.5], [J]."""
         return 0.4 * self.stiffness * (_pow25(end, self.offset) - _pow25(start, self.offset))
+
+
+    def loading_time(
+        self, delta_end: ArrayLike, speed_start: ArrayLike, mass: ArrayLike, n: int
+    ) -> NDArray:
+        """FILM duration [s] of loading stages of this law from 0 (offset 0) to
+        ``delta_end`` [m] from ``speed_start`` [m/s], n segments (:func:`hertz_loading_time`);
+        K_h of shape (N, 1), as a stage of a plan of N impacts has it."""
+        stiffness = np.asarray(self.stiffness, dtype=float)[..., 0]
+        return hertz_loading_time(delta_end, speed_start, stiffness, mass, n)
 
 
 def _pow25(delta: ArrayLike, offset: ArrayLike) -> NDArray:
@@ -133,6 +152,154 @@ def hertz_velocity(mass: ArrayLike, stiffness: ArrayLike, delta: ArrayLike) -> N
     return np.sqrt(2.0 / m * 0.4 * k * d**2.5)
 
 
+def hertz_contact_time(
+    mass: ArrayLike, radius: ArrayLike, modulus: ArrayLike, impact_velocity: ArrayLike
+) -> NDArray:
+    """Exact duration of an elastic Hertz impact, [s] (docs/method.md §3):
+
+    .. math:: t_c = 2 \\cdot \\tfrac{2}{5} B(\\tfrac{2}{5}, \\tfrac{1}{2})\\,
+              \\delta_m / V_0 = 2.9432752\\, \\delta_m / V_0,
+              \\quad \\delta_m = (5 m V_0^2 / 4 K_h)^{2/5}
+
+    The closed form, unchecked (NaN or inf where an input is out of range); the checked
+    entry point of the library is :func:`impactcli.design.hertz_contact_time`.
+
+    Parameters
+    ----------
+    mass, radius, modulus : effective m [kg], R [m] and E* [Pa] of the pair
+    impact_velocity : V0, [m/s]
+
+    Examples
+    --------
+    In normalised units (m = R = V0 = 1, E* = 15/16: K_h = 5/4 and delta_m = 1), t_c is the
+    factor itself:
+
+    >>> round(float(hertz_contact_time(1.0, 1.0, 0.9375, 1.0)), 7)
+    2.9432752
+    """
+    v0 = np.asarray(impact_velocity, dtype=float)
+    stiffness = hertz_stiffness(np.asarray(modulus, dtype=float), np.asarray(radius, float))
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        return HERTZ_CONTACT_TIME_FACTOR * hertz_maximum_indentation(mass, v0, stiffness) / v0
+
+
+@lru_cache(maxsize=32)
+def _hertz_loading_geometry(n: int) -> tuple[tuple[float, ...], ...]:
+    """Per segment of :func:`hertz_loading_time` with n steps, on floats: (4/5) xi_r^2.5,
+    h (2 y0 + h), y0, y0 (2 y0 + h), y0 (y0 + h) and sqrt(k_r)."""
+    h = 1.0 / n
+    xi = [r / n for r in range(n + 1)]
+    force = [x * math.sqrt(x) for x in xi]
+    out = []
+    for r in range(n):
+        slope = (force[r + 1] - force[r]) * n
+        y0 = force[r] / slope
+        out.append(
+            (0.8 * force[r] * xi[r], h * (2.0 * y0 + h), y0, y0 * (2.0 * y0 + h),
+             y0 * (y0 + h), math.sqrt(slope))
+        )  # fmt: skip
+    return tuple(out)
+
+
+#: Largest n for which :func:`hertz_loading_time` of one impact runs on floats (a loop of
+#: n segments): beyond it the NumPy arrays of n segments are faster.
+SCALAR_SEGMENTS = 48
+
+
+def hertz_loading_seconds(
+    delta_end: float, speed_start: float, stiffness: float, mass: float, n: int
+) -> float:
+    """:func:`hertz_loading_time` of one impact given as floats (n checked), [s]: a loop
+    over the n segments up to :data:`SCALAR_SEGMENTS`, the arrays beyond."""
+    if n <= SCALAR_SEGMENTS:
+        return _hertz_loading_time_scalar(delta_end, speed_start, stiffness, mass, n)
+    return float(hertz_loading_time(delta_end, speed_start, stiffness, mass, n))
+
+
+def _hertz_loading_time_scalar(d: float, v: float, k: float, m: float, n: int) -> float:
+    """:func:`hertz_loading_time` of one impact, on floats (n <= :data:`SCALAR_SEGMENTS`)."""
+    a = m * (v * v) / (k * (d * d) * math.sqrt(d))
+    h = 1.0 / n
+    sqrt, atan2 = math.sqrt, math.atan2
+    total = 0.0
+    for energy, c1, y0, q, p, root in _hertz_loading_geometry(n):
+        rest = a - energy
+        x0 = sqrt(rest) / root if rest > 0.0 else 0.0
+        x_end_sq = x0 * x0 - c1
+        if x_end_sq <= 0.0:
+            total += atan2(x0, y0) / root
+        else:
+            x_end = sqrt(x_end_sq)
+            total += atan2(h * (x0 + q / (x0 + x_end)), x0 * x_end + p) / root
+    return total / sqrt(k * sqrt(d) / m)
+
+
+def hertz_loading_time(
+    delta_end: ArrayLike,
+    speed_start: ArrayLike,
+    stiffness: ArrayLike,
+    mass: ArrayLike,
+    n: int,
+) -> Array:
+    """FILM duration [s] of Hertz loading stages 0 -> delta_end that do not end at rest.
+
+    The elastic loading of an elastoplastic impact up to first yield (docs/method.md §7). The
+    result is that of :func:`impactcli.film.solve_stage` with ``Hertz(stiffness)`` and n
+    equal steps, to
+    rounding, at a fraction of the cost for many impacts: in xi = delta / delta_end the
+    nodes xi_r = r/n, the chord slopes and the offsets are the same for every impact, and
+    an impact enters only through A = m V_a^2 / (K_h delta_end^2.5), the start speed
+    measured against the speed Hertz loading loses up to delta_end (A > 4/5).
+
+    Parameters
+    ----------
+    delta_end : end of the stage (the yield indentation), [m]
+    speed_start : indentation rate at the start, V_a, [m/s]
+    stiffness : Hertz stiffness K_h, [N/m^1.5]
+    mass : effective mass m, [kg]
+    n : number of segments, >= 1
+
+    Returns
+    -------
+    The durations, [s]: a float for one impact given as floats (a loop over the n
+    segments up to :data:`SCALAR_SEGMENTS`, the same numbers to rounding).
+
+    Notes
+    -----
+    With lengths in units of delta_end and Omega = sqrt(K_h delta_end^0.5 / m): chord slopes
+    k_r = n (xi_s^1.5 - xi_r^1.5), omega_rs = Omega sqrt(k_r), y0 = xi_r^1.5 / k_r, h = 1/n,
+    and x0 = sqrt(A - (4/5) xi_r^2.5) / sqrt(k_r) from the energy balance (eq. 13e).
+
+    Examples
+    --------
+    The same time as :func:`impactcli.film.solve_stage` (normalised units, start speed 1.2):
+
+    >>> from impactcli.film import solve_stage
+    >>> float(hertz_loading_time(1.0, 1.2, 1.25, 1.0, 25))
+    0.96176108
+    >>> float(solve_stage(Hertz(1.25), 0.0, 1.0, 1.2, 1.0, 25).end_time)
+    0.96176108
+    """
+    n = check_size("n", n, MAX_SEGMENTS)
+    values = (delta_end, speed_start, stiffness, mass)
+    if n <= SCALAR_SEGMENTS and all(type(x) is float for x in values):  # one impact
+        return _hertz_loading_time_scalar(*values, n)  # type: ignore[arg-type, return-value]
+    xi = np.arange(n + 1, dtype=float) / n
+    force = xi * np.sqrt(xi)  # F / (K_h delta_end^1.5)
+    slope = np.diff(force) * n  # k_r
+    root = np.sqrt(slope)
+    y0 = force[:-1] / slope
+    energy = 0.8 * force[:-1] * xi[:-1]  # (2/m) W / (Omega delta_end)^2 = (4/5) xi^2.5
+    d = np.asarray(delta_end, dtype=float)[..., None]
+    k, m = np.asarray(stiffness, dtype=float)[..., None], np.asarray(mass, dtype=float)[..., None]
+    a = m * np.asarray(speed_start, dtype=float)[..., None] ** 2 / (k * d**2 * np.sqrt(d))
+    x0 = np.sqrt(np.maximum(a - energy, 0.0)) / root
+    swept, _ = swept_angles(x0, y0, 1.0 / n)
+    omega_unit = np.sqrt(k * np.sqrt(d) / m)[..., 0]  # Omega, [rad/s]
+    return (swept / root).sum(axis=-1) / omega_unit
+
+
+
 def first_yield_velocity(
     mass: ArrayLike,
     radius: ArrayLike,
@@ -144,8 +311,19 @@ def first_yield_velocity(
 
     docs/method.md §7.1: the Hertz peak pressure reaches 1.6 sigma_y (``pressure_factor``
     sigma_y) at delta_Y = pi^2 R (1.6 sigma_y)^2 / (4 E*^2);
-    V_Y = sqrt((2/m)(2/5) K_h delta_Y^2.5).
+    V_Y = sqrt((2/m)(2/5) K_h delta_Y^2.5). A float for one impact given as floats (the
+    same operations on floats).
     """
+    values = (mass, radius, modulus, yield_strength)
+    if all(type(x) is float for x in values):  # one impact
+        m, r, e, sy = values  # type: ignore[misc]
+        p = pressure_factor * sy
+        delta_y = math.pi**2 * r * (p * p) / (4.0 * (e * e))
+        k = 4.0 / 3.0 * e * math.sqrt(r)
+        try:
+            return math.sqrt(2.0 / m * 0.4 * k * delta_y**2.5)  # type: ignore[return-value]
+        except (OverflowError, ValueError, ZeroDivisionError):
+            pass  # the arrays word it (inf, nan)
     r, e = np.asarray(radius, dtype=float), np.asarray(modulus, dtype=float)
     p = pressure_factor * np.asarray(yield_strength, dtype=float)
     delta_y = np.pi**2 * r * p**2 / (4.0 * e**2)
@@ -208,9 +386,43 @@ def rebound_time(delta_max: float, delta_res: float, speed: float, n: int) -> fl
 
 @dataclass(frozen=True)
 class HertzContact:
-    """Elastic Hertz contact F = K_h delta^1.5 (docs/method.md §3)."""
+    """Elastic Hertz contact F = K_h delta^1.5 (docs/method.md §3) with the common interface
+    of a normal contact: no yield (delta_y and V_y are NaN), e = 1, delta_res = 0.
+
+    Parameters
+    ----------
+    stiffness : K_h = (4/3) E* sqrt(R), [N/m^1.5] (:meth:`for_pair` from R and E*)
+
+    Examples
+    --------
+    In normalised units (K_h = 5/4, m = V0 = 1) the maximum indentation is 1 and e = 1:
+
+    >>> plan = HertzContact(1.25).plan(1.0, 1.0)
+    >>> float(plan.delta_max), float(plan.restitution)
+    (1.0, 1.0)
+    """
 
     stiffness: ArrayLike
+
+    @classmethod
+    def for_pair(cls, radius: ArrayLike, modulus: ArrayLike) -> HertzContact:
+        """The contact of a pair of spheres: effective radius R [m] and modulus E* [Pa]
+        (:func:`hertz_stiffness`)."""
+        return cls(hertz_stiffness(modulus, radius))
+
+    @property
+    def yield_indentation(self) -> Array:
+        """NaN: the elastic law has no yield point, [m]."""
+        return np.full(np.shape(self.stiffness), np.nan)
+
+    def yield_velocity(self, mass: ArrayLike) -> Array:
+        """NaN: the elastic law has no yield point, [m/s]."""
+        return np.full(np.broadcast(self.stiffness, np.asarray(mass)).shape, np.nan)
+
+    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
+        """False: an impact of the elastic law is elastic at any V0, [-]."""
+        shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass), self.stiffness).shape
+        return np.zeros(shape, dtype=bool)
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Loading 0 -> delta_m from V0, then restitution delta_m -> 0 from rest; e = 1."""
@@ -235,60 +447,17 @@ class HertzContact:
         k = as_float(self.stiffness)
         return None if k is None else hertz_summary(k, impact_velocity, mass, n)
 
-
-@dataclass(frozen=True)
-class HertzLawContact:
-    """Hertz elastic contact F = K_h delta^1.5 (docs/method.md §3) with the common interface:
-    no yield (delta_y and V_y are NaN), e = 1, delta_res = 0.
-
-    Parameters
-    ----------
-    radius : effective radius R, [m]
-    modulus : effective modulus E*, [Pa]
-    """
-
-    radius: ArrayLike
-    modulus: ArrayLike
-
-    @property
-    def stiffness(self) -> Array:
-        """K_h = (4/3) E* sqrt(R), [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
-
-    @property
-    def yield_indentation(self) -> Array:
-        return np.full(np.shape(self.stiffness), np.nan)
-
-    def yield_velocity(self, mass: ArrayLike) -> Array:
-        return np.full(np.broadcast(self.stiffness, np.asarray(mass)).shape, np.nan)
-
-    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
-        shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass), self.stiffness).shape
-        return np.zeros(shape, dtype=bool)
-
-    def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
-        return HertzContact(self.stiffness).plan(impact_velocity, mass)
-
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """Zero: an elastic contact leaves no permanent indentation, [m]."""
         return np.zeros(np.broadcast(np.asarray(delta_max), self.stiffness).shape)
 
     def recoverable_work(self, delta: ArrayLike) -> Array:
         """All the loading work, (2/5) K_h delta^2.5, [J]."""
-        return 0.4 * self.stiffness * np.asarray(delta, dtype=float) ** 2.5
-
-    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
-        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
-        stage, on floats (:func:`hertz_summary`); None for arrays."""
-        values = floats(self.radius, self.modulus)
-        if values is None or not values[0] > 0.0:
-            return None
-        r, e = values
-        return hertz_summary(4.0 / 3.0 * e * math.sqrt(r), impact_velocity, mass, n)
+        return 0.4 * np.asarray(self.stiffness) * np.asarray(delta, dtype=float) ** 2.5
 
 
-def _build(radius, modulus, _sy, _params) -> HertzLawContact:
-    return HertzLawContact(radius, modulus)
+def _build(radius, modulus, _sy, _params) -> HertzContact:
+    return HertzContact.for_pair(radius, modulus)
 
 
 _JOHNSON = "Johnson (1985), Contact Mechanics, Cambridge University Press"
@@ -317,9 +486,12 @@ SPEC = LawSpec(
     needs_yield_strength=False,
     build=_build,
     fitting=Fitting(default=(), starts=_fit_starts, yield_onset="none"),
+    contact_time=hertz_contact_time,
     yield_onset=YieldOnset(
         pressure_factor=lambda _params: FIRST_YIELD_PRESSURE_FACTOR,
         words=lambda factor: f"first yield, Hertz peak pressure {factor:g} sigma_y",
         help="first yield, Hertz peak pressure 1.6 sigma_y (Johnson 1985)",
+        criterion=lambda factor: f"Hertz peak pressure {factor:g} sigma_y",
+        mark=rf"first yield (Hertz, {FIRST_YIELD_PRESSURE_FACTOR:g} $\sigma_y$)",
     ),
 )

@@ -1,20 +1,21 @@
 """Hunt & Crossley (1975): Hertz plus the damping c = (3/2) alpha K delta^(3/2).
 
-The model (:class:`HuntCrossleyDamping`) and the published alpha(e, V0) relations
-(:func:`hunt_crossley_alpha_published`); docs/damping.md.
+The force (:class:`HuntCrossleyDamping`), the published alpha(e, V0) relations
+(:func:`hunt_crossley_alpha_published`), its table and its registry entry :data:`SPEC`;
+docs/damping.md.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import DampedHertz, Parameter, Reference
+from impactcli.laws.base import Reference
+from impactcli.laws.viscous import DampedHertz, DampingSpec, RestitutionTable, alpha_parameter
 
-__all__ = ["HuntCrossleyDamping", "hunt_crossley_alpha_published"]
+__all__ = ["SPEC", "HuntCrossleyDamping", "hunt_crossley_alpha_published"]
 
 Array = NDArray[np.float64]
 
@@ -36,80 +37,6 @@ class HuntCrossleyDamping(DampedHertz):
     stiffness: ArrayLike
     alpha: ArrayLike
 
-    name: ClassVar[str] = "hunt-crossley"
-    label: ClassVar[str] = "Hunt-Crossley"
-    summary: ClassVar[str] = (
-        "F = K delta^1.5 (1 + 1.5 alpha delta') (Hunt & Crossley 1975; e depends on alpha V0)"
-    )
-    #: e depends on alpha V0: not self-similar
-    self_similar: ClassVar[bool] = False
-    #: what its coefficient of restitution depends on
-    restitution_depends_on: ClassVar[str] = "alpha V0"
-    reference: ClassVar[Reference] = Reference(
-        "K. H. Hunt, F. R. E. Crossley",
-        1975,
-        "Coefficient of restitution interpreted as damping in vibroimpact",
-        "J. Appl. Mech. 42(2):440-445",
-        "10.1115/1.3423596",
-        "F = K delta^n (1 + (3/2) alpha delta'), with n = 3/2",
-    )
-    validity: ClassVar[str] = "Hertz contact with viscous damping; e near 1 falls with alpha V0"
-    parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(
-            "alpha",
-            "s/m",
-            "inverse velocity",
-            None,
-            "damping factor: F = K delta^1.5 (1 + 1.5 alpha delta'); e depends on alpha V0",
-            required=True,
-            valid=">= 0 (alpha = 0: Hertz)",
-        ),
-    )
-
-    @classmethod
-    def of(cls, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike):
-        """The model with K [N/m^1.5], effective mass m [kg] and alpha (the registry's
-        one constructor of every damping model)."""
-        return cls(stiffness, alpha)
-
-    @classmethod
-    def alpha_estimate(
-        cls,
-        restitution: ArrayLike,
-        impact_velocity: ArrayLike,
-        stiffness: ArrayLike,
-        mass: ArrayLike,
-    ) -> Array:
-        """A first guess of alpha for e at V0: Hunt & Crossley's (1 - e)/V0, at least
-        1e-6/V0, [s/m] (the alpha search starts from it)."""
-        v0 = np.asarray(impact_velocity, dtype=float)
-        guess = hunt_crossley_alpha_published(restitution, v0)[cls.name]
-        return np.maximum(guess, 1e-6 / v0)
-
-    @classmethod
-    def similar_alpha(
-        cls, alpha: ArrayLike, stiffness: ArrayLike, mass: ArrayLike, impact_velocity: ArrayLike
-    ) -> Array:
-        """The alpha that gives the same e at K = m = V0 = 1 (the law in its own units):
-        alpha V0 (e depends on alpha V0 only)."""
-        return np.asarray(alpha, dtype=float) * np.asarray(impact_velocity, dtype=float)
-
-    @classmethod
-    def fit_start(
-        cls, reference_velocity: float, stiffness: float, mass: float
-    ) -> tuple[float, float, float]:
-        """(start, lower, upper) of a fit of alpha [s/m]: Hunt & Crossley's (1 - e)/V_ref
-        with e = 0.8 at the data's typical V_ref [m/s], within (1e-6, 1e3)."""
-        return 0.2 / reference_velocity, 1e-6, 1e3
-
-    @classmethod
-    def data_start(
-        cls, restitution: NDArray, impact_velocity: NDArray, stiffness: float, mass: float
-    ) -> float:
-        """alpha [s/m] read off measured e: the median of (1 - e)/V0 (their estimate for e
-        near 1)."""
-        return float(np.clip(np.median((1.0 - restitution) / impact_velocity), 1e-5, 1e2))
-
     def damping_coefficient(self, delta: ArrayLike) -> Array:
         """c = (3/2) alpha K delta^1.5, [N s/m]."""
         return 1.5 * np.asarray(self.alpha, dtype=float) * self.elastic_force(delta)
@@ -122,6 +49,31 @@ class HuntCrossleyDamping(DampedHertz):
     def reduced_force(self, delta: ArrayLike, delta_dot: ArrayLike) -> Array:
         """F / delta^1.5 = K (1 + 1.5 alpha delta'), [N/m^1.5]: the sign of F, for delta > 0."""
         return self.stiffness * (1.0 + 1.5 * np.asarray(self.alpha, dtype=float) * delta_dot)
+
+    @staticmethod
+    def alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
+        """A first guess of alpha for e at V0: Hunt & Crossley's (1 - e)/V0, at least
+        1e-6/V0, [s/m]."""
+        v0 = np.asarray(impact_velocity, dtype=float)
+        guess = hunt_crossley_alpha_published(restitution, v0)["hunt-crossley"]
+        return np.maximum(guess, 1e-6 / v0)
+
+    @staticmethod
+    def similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
+        """alpha V0: e depends on alpha V0 only."""
+        return np.asarray(alpha, dtype=float) * np.asarray(impact_velocity, dtype=float)
+
+    @staticmethod
+    def fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of alpha [s/m]: Hunt & Crossley's (1 - e)/V_ref with
+        e = 0.8 at the data's typical V_ref [m/s], within (1e-6, 1e3)."""
+        return 0.2 / reference_velocity, 1e-6, 1e3
+
+    @staticmethod
+    def data_start(restitution, impact_velocity, stiffness, mass) -> float:
+        """alpha [s/m] read off measured e: the median of (1 - e)/V0 (their estimate for e near
+        1)."""
+        return float(np.clip(np.median((1.0 - restitution) / impact_velocity), 1e-5, 1e2))
 
 
 def hunt_crossley_alpha_published(restitution: ArrayLike, impact_velocity: ArrayLike) -> dict:
@@ -142,3 +94,58 @@ def hunt_crossley_alpha_published(restitution: ArrayLike, impact_velocity: Array
         "lankarani-nikravesh": (1.0 - e * e) / (2.0 * v0),
         "flores": 16.0 * (1.0 - e) / (15.0 * e * v0),
     }
+
+
+def _published(name: str):
+    return lambda e, v0: hunt_crossley_alpha_published(e, v0)[name]
+
+
+#: alpha V0 for a target e, exact against the published relations (docs/damping.md).
+TABLES = (
+    RestitutionTable(
+        title="Hunt-Crossley: alpha V0 for a target e (both rules agree)",
+        readme=(
+            "Hunt-Crossley: alpha V0 for a target e, exact (FILM, n = {n}) against the "
+            "published relations, and the e each of them gives"
+        ),
+        targets=(0.95, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1),
+        relations=tuple(
+            (name, _published(name)) for name in ("hunt-crossley", "lankarani-nikravesh", "flores")
+        ),
+        columns=(
+            ("e", "e target"),
+            ("alpha_overlap", "alpha V0 exact"),
+            ("alpha_hunt-crossley", "HC (1-e)"),
+            ("e_hunt-crossley_overlap", "e of it"),
+            ("alpha_lankarani-nikravesh", "LN (1-e^2)/2"),
+            ("e_lankarani-nikravesh_overlap", "e of it"),
+            ("alpha_flores", "Flores 16(1-e)/(15e)"),
+            ("e_flores_overlap", "e of it"),
+        ),
+    ),
+)
+
+#: The registry entry of the model.
+SPEC = DampingSpec(
+    name="hunt-crossley",
+    model=HuntCrossleyDamping,
+    label="Hunt-Crossley",
+    summary=(
+        "F = K delta^1.5 (1 + 1.5 alpha delta') (Hunt & Crossley 1975; e depends on alpha V0)"
+    ),
+    parameters=alpha_parameter(
+        "s/m", "inverse velocity",
+        "damping factor: F = K delta^1.5 (1 + 1.5 alpha delta'); e depends on alpha V0",
+    ),
+    reference=Reference(
+        "K. H. Hunt, F. R. E. Crossley",
+        1975,
+        "Coefficient of restitution interpreted as damping in vibroimpact",
+        "J. Appl. Mech. 42(2):440-445",
+        "10.1115/1.3423596",
+        "F = K delta^n (1 + (3/2) alpha delta'), with n = 3/2",
+    ),
+    validity="Hertz contact with viscous damping; e near 1 falls with alpha V0",
+    restitution_depends_on="alpha V0",
+    tables=TABLES,
+)

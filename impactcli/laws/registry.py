@@ -1,20 +1,31 @@
 """The registry: the one list of the contact models of the library.
 
 Normal laws (:data:`LAWS`: name -> :class:`~impactcli.laws.base.LawSpec`) and damping
-models (:data:`DAMPING_LAWS`: name -> model class), each defined in its own module of
-:mod:`impactcli.laws`. The command-line options, ``--help``, ``impact laws``, batch columns,
-``fit``, ``compare-laws`` and ``design`` read them here; adding a model is one module and
-one line below.
+models (:data:`DAMPING_LAWS`: name -> :class:`~impactcli.laws.viscous.DampingSpec`), each
+defined in its own module of :mod:`impactcli.laws`. The command-line options, ``--help``,
+``impact laws``, batch columns, ``fit``, ``compare-laws`` and ``design`` read them here;
+adding a model is one module and one line below (docs/laws.md, "How to add a law or a
+damping model").
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws import du_wang, hertz, tabulated, thornton, walton_braun
+from impactcli.laws import (
+    du_wang,
+    hertz,
+    hunt_crossley,
+    tabulated,
+    thornton,
+    tsuji,
+    viscoelastic,
+    walton_braun,
+)
 from impactcli.laws.base import (
     SEPARATIONS,
     DampingModel,
@@ -24,14 +35,13 @@ from impactcli.laws.base import (
     NormalContact,
     Parameter,
 )
-from impactcli.laws.hunt_crossley import HuntCrossleyDamping
-from impactcli.laws.tsuji import TsujiDamping
-from impactcli.laws.viscoelastic import ViscoelasticDamping
+from impactcli.laws.viscous import DampingSpec
 
 __all__ = [
     "DAMPING_LAWS",
     "CURVE_LAW",
     "DEFAULT_LAW",
+    "DEFAULT_LAW_PARAMETERS",
     "ELASTIC_LAW",
     "LAWS",
     "MODELS",
@@ -53,8 +63,8 @@ __all__ = [
 
 #: The one registry: every contact model of the library by name, in listing order: the
 #: normal laws (:class:`LawSpec`, kind elastic or elastoplastic) and the damping models
-#: (classes of kind ``damping``, Hertz plus a viscous term).
-MODELS: dict[str, LawSpec | type] = {
+#: (:class:`DampingSpec`, kind ``damping``: Hertz plus a viscous term).
+MODELS: dict[str, LawSpec | DampingSpec] = {
     model.name: model
     for model in (
         hertz.SPEC,
@@ -62,9 +72,9 @@ MODELS: dict[str, LawSpec | type] = {
         thornton.SPEC,
         walton_braun.SPEC,
         tabulated.SPEC,
-        TsujiDamping,
-        HuntCrossleyDamping,
-        ViscoelasticDamping,
+        tsuji.SPEC,
+        hunt_crossley.SPEC,
+        viscoelastic.SPEC,
     )
 }
 
@@ -74,14 +84,19 @@ LAWS: dict[str, LawSpec] = {
 }
 
 #: The damping models by name.
-DAMPING_LAWS: dict[str, type] = {
-    name: model for name, model in MODELS.items() if getattr(model, "kind", "") == "damping"
+DAMPING_LAWS: dict[str, DampingSpec] = {
+    name: model for name, model in MODELS.items() if isinstance(model, DampingSpec)
 }
 
 
 #: The law of ``impact elastoplastic``, ``restitution`` and ``collide2d --model
 #: elastoplastic`` when none is named: Du & Wang, the paper's (eq. 16a-c).
 DEFAULT_LAW = "du-wang"
+#: The parameters of :data:`DEFAULT_LAW` when none is given, by name (its declared
+#: defaults: p0 / sigma_y = 2.57): the defaults of the functions that take them one by one.
+DEFAULT_LAW_PARAMETERS: dict[str, Any] = {
+    p.name: p.default for p in LAWS[DEFAULT_LAW].parameters if p.default is not None
+}
 #: The law of elastic impacts (``impact elastic``, ``--model elastic``) and of the first
 #: yield of an elastic contact: Hertz.
 ELASTIC_LAW = "hertz"
@@ -225,7 +240,7 @@ def damping_model(
 ) -> DampingModel:
     """The model called ``name`` (a key of :data:`DAMPING_LAWS`) for a pair of spheres:
     effective radius R [m], modulus E* [Pa], mass m [kg] and alpha; its Hertz stiffness
-    K = (4/3) E* sqrt(R) (:meth:`~impactcli.laws.base.DampedHertz.for_pair`)."""
+    K = (4/3) E* sqrt(R) (:meth:`~impactcli.laws.viscous.DampingSpec.for_pair`)."""
     check_damping(name)
     return DAMPING_LAWS[name].for_pair(radius, modulus, mass, alpha)
 

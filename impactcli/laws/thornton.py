@@ -291,6 +291,8 @@ SPEC = LawSpec(
         pressure_factor=lambda _params: FIRST_YIELD_PRESSURE_FACTOR,
         words=lambda factor: f"Thornton, p_y = {factor:g} sigma_y",
         help="its default p_y = 1.6 sigma_y (the same)",
+        criterion=lambda factor: f"Thornton's p_y = {factor:g} sigma_y",
+        mark="yield, $V_y$ (Thornton)",
     ),
     closed_form=_closed_form,
 )

@@ -1,21 +1,23 @@
 """Tsuji, Tanaka & Ishida (1992): Hertz plus the damping c = alpha sqrt(m K) delta^(1/4).
 
-The model (:class:`TsujiDamping`), its closed-form e of the ``overlap`` rule
-(:func:`tsuji_restitution_overlap`) and the published alpha(e) relations of DEM codes
-(:func:`tsuji_alpha_dem`, :func:`tsuji_alpha_hertz_mindlin`); docs/damping.md.
+The force (:class:`TsujiDamping`), its closed-form e of the ``overlap`` rule
+(:func:`tsuji_restitution_overlap`), the published alpha(e) relations of DEM codes
+(:func:`tsuji_alpha_dem`, :func:`tsuji_alpha_hertz_mindlin`), its tables and its registry
+entry :data:`SPEC`; docs/damping.md.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import DampedHertz, Parameter, Reference
+from impactcli.laws.base import Reference
+from impactcli.laws.viscous import DampedHertz, DampingSpec, RestitutionTable, alpha_parameter
 
 __all__ = [
+    "SPEC",
     "TsujiDamping",
     "tsuji_alpha_dem",
     "tsuji_alpha_hertz_mindlin",
@@ -47,98 +49,6 @@ class TsujiDamping(DampedHertz):
     mass: ArrayLike
     alpha: ArrayLike
 
-    name: ClassVar[str] = "tsuji"
-    #: LAMMPS's name of this damping (``pair_style granular``; docs/export.md)
-    lammps_damping: ClassVar[str] = "tsuji"
-    label: ClassVar[str] = "Tsuji"
-    summary: ClassVar[str] = (
-        "F = K delta^1.5 + alpha sqrt(m K) delta^(1/4) delta' (Tsuji et al. 1992; e depends "
-        "on alpha only)"
-    )
-    #: e does not depend on V0, m or K (the model is self-similar)
-    self_similar: ClassVar[bool] = True
-    #: what its coefficient of restitution depends on
-    restitution_depends_on: ClassVar[str] = "alpha only"
-    reference: ClassVar[Reference] = Reference(
-        "Y. Tsuji, T. Tanaka, T. Ishida",
-        1992,
-        "Lagrangian numerical simulation of plug flow of cohesionless particles in a "
-        "horizontal pipe",
-        "Powder Technol. 71:239-250",
-        "10.1016/0032-5910(92)88030-L",
-        "normal force: Hertz spring and dashpot eta = alpha sqrt(m K) delta^(1/4)",
-    )
-    validity: ClassVar[str] = "Hertz contact with viscous damping; e independent of V0"
-    parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(
-            "alpha",
-            "-",
-            "dimensionless",
-            None,
-            "damping ratio: c = alpha sqrt(m K) delta^(1/4); e depends on alpha only",
-            required=True,
-            valid=">= 0 (alpha = 0: Hertz)",
-        ),
-    )
-
-    @classmethod
-    def of(cls, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike):
-        """The model with K [N/m^1.5], effective mass m [kg] and alpha (the registry's
-        one constructor of every damping model)."""
-        return cls(stiffness, mass, alpha)
-
-    @classmethod
-    def alpha_estimate(
-        cls,
-        restitution: ArrayLike,
-        impact_velocity: ArrayLike,
-        stiffness: ArrayLike,
-        mass: ArrayLike,
-    ) -> Array:
-        """A first guess of alpha for a coefficient of restitution e: the DEM polynomial
-        (:func:`tsuji_alpha_dem`), at least 1e-3, [-] (the alpha search starts from it)."""
-        return np.maximum(tsuji_alpha_dem(restitution), 1e-3)
-
-    @classmethod
-    def closed_form(
-        cls,
-        stiffness: float,
-        mass: float,
-        alpha: float,
-        impact_velocity: ArrayLike,
-        separation: str,
-    ) -> tuple[str, Array] | None:
-        """The published e of the ``overlap`` rule at every V0
-        (:func:`tsuji_restitution_overlap`); None for the ``force`` rule."""
-        if separation != "overlap":
-            return None
-        e = tsuji_restitution_overlap(alpha)
-        return "Tsuji: Antypov & Elliott (2011) closed form", np.full(np.shape(impact_velocity), e)
-
-    @classmethod
-    def similar_alpha(
-        cls, alpha: ArrayLike, stiffness: ArrayLike, mass: ArrayLike, impact_velocity: ArrayLike
-    ) -> Array:
-        """The alpha that gives the same e at K = m = V0 = 1 (the law in its own units):
-        alpha itself, [-] (e depends on alpha only)."""
-        return np.asarray(alpha, dtype=float) + 0.0 * np.asarray(impact_velocity, dtype=float)
-
-    @classmethod
-    def fit_start(
-        cls, reference_velocity: float, stiffness: float, mass: float
-    ) -> tuple[float, float, float]:
-        """(start, lower, upper) of a fit of alpha [-]: 0.3, within (1e-4, 2.2), below
-        sqrt(5), where e reaches 0 (docs/damping.md)."""
-        return 0.3, 1e-4, 2.2
-
-    @classmethod
-    def data_start(
-        cls, restitution: NDArray, impact_velocity: NDArray, stiffness: float, mass: float
-    ) -> float:
-        """alpha [-] read off measured e: the exact inverse of the ``overlap`` e(alpha)
-        (:func:`tsuji_alpha_hertz_mindlin`) at the mean e."""
-        return float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(restitution)), 1e-3, 2.0))
-
     def _scale(self) -> Array:
         return np.asarray(self.alpha, dtype=float) * np.sqrt(
             np.asarray(self.mass, dtype=float) * np.asarray(self.stiffness, dtype=float)
@@ -162,6 +72,38 @@ class TsujiDamping(DampedHertz):
         """
         d = np.maximum(np.asarray(delta, dtype=float), 0.0)
         return self.stiffness * d * np.sqrt(np.sqrt(d)) + self._scale() * delta_dot
+
+    @staticmethod
+    def alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
+        """A first guess of alpha for e: the DEM polynomial (:func:`tsuji_alpha_dem`), at least
+        1e-3, [-]."""
+        return np.maximum(tsuji_alpha_dem(restitution), 1e-3)
+
+    @staticmethod
+    def similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
+        """alpha itself, [-]: e depends on alpha only."""
+        return np.asarray(alpha, dtype=float) + 0.0 * np.asarray(impact_velocity, dtype=float)
+
+    @staticmethod
+    def fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of alpha [-]: 0.3, within (1e-4, 2.2), below sqrt(5),
+        where e reaches 0 (docs/damping.md)."""
+        return 0.3, 1e-4, 2.2
+
+    @staticmethod
+    def data_start(restitution, impact_velocity, stiffness, mass) -> float:
+        """alpha [-] read off measured e: the exact inverse of the ``overlap`` e(alpha)
+        (:func:`tsuji_alpha_hertz_mindlin`) at the mean e."""
+        return float(np.clip(tsuji_alpha_hertz_mindlin(np.mean(restitution)), 1e-3, 2.0))
+
+    @staticmethod
+    def closed_form(stiffness, mass, alpha, impact_velocity, separation):
+        """The published e of the ``overlap`` rule at every V0 (:func:`tsuji_restitution_overlap`);
+        None for the ``force`` rule."""
+        if separation != "overlap":
+            return None
+        e = tsuji_restitution_overlap(alpha)
+        return "Tsuji: Antypov & Elliott (2011) closed form", np.full(np.shape(impact_velocity), e)
 
 
 def tsuji_alpha_dem(restitution: ArrayLike) -> Array:
@@ -205,3 +147,73 @@ def tsuji_alpha_hertz_mindlin(restitution: ArrayLike) -> Array:
     """
     log_e = np.log(np.asarray(restitution, dtype=float))
     return np.sqrt(5.0) * -log_e / np.sqrt(log_e**2 + np.pi**2)
+
+
+_TARGETS = (0.95, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1)
+
+#: e against alpha under both separation rules, and alpha for a target e against the
+#: published relations (docs/damping.md, "Relations DEM users rely on").
+TABLES = (
+    RestitutionTable(
+        title="Tsuji: e against alpha (FILM, n = {n})",
+        readme="Tsuji: e against alpha (FILM, n = {n}; every V0)",
+        alphas=(0.0, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.5, 2.0),
+        columns=(
+            ("alpha", "alpha"),
+            ("e_overlap", "e (overlap)"),
+            ("tc_overlap", "tc V0/dmH (overlap)"),
+            ("e_force", "e (force)"),
+            ("tc_force", "tc V0/dmH (force)"),
+            ("dsep_force", "delta_sep/dmH (force)"),
+        ),
+    ),
+    RestitutionTable(
+        title="Tsuji: alpha for a target e, exact against published relations",
+        targets=_TARGETS,
+        relations=(
+            ("dem", lambda e, v0: tsuji_alpha_dem(e)),
+            ("dem_unscaled", lambda e, v0: tsuji_alpha_dem(e) / np.sqrt(2.0)),
+            ("hm", lambda e, v0: tsuji_alpha_hertz_mindlin(e)),
+        ),
+        columns=(
+            ("e", "e target"),
+            ("alpha_overlap", "alpha exact (overlap)"),
+            ("alpha_force", "alpha exact (force)"),
+            ("alpha_dem", "alpha DEM poly x sqrt2"),
+            ("e_dem_overlap", "e of it (overlap)"),
+            ("e_dem_unscaled_overlap", "e of poly without sqrt2 (overlap)"),
+            ("alpha_hm", "alpha Hertz-Mindlin"),
+            ("e_hm_overlap", "e of it (overlap)"),
+            ("e_hm_force", "e of it (force)"),
+        ),
+    ),
+)
+
+#: The registry entry of the model.
+SPEC = DampingSpec(
+    name="tsuji",
+    model=TsujiDamping,
+    label="Tsuji",
+    summary=(
+        "F = K delta^1.5 + alpha sqrt(m K) delta^(1/4) delta' (Tsuji et al. 1992; e depends "
+        "on alpha only)"
+    ),
+    parameters=alpha_parameter(
+        "-", "dimensionless",
+        "damping ratio: c = alpha sqrt(m K) delta^(1/4); e depends on alpha only",
+    ),
+    reference=Reference(
+        "Y. Tsuji, T. Tanaka, T. Ishida",
+        1992,
+        "Lagrangian numerical simulation of plug flow of cohesionless particles in a "
+        "horizontal pipe",
+        "Powder Technol. 71:239-250",
+        "10.1016/0032-5910(92)88030-L",
+        "normal force: Hertz spring and dashpot eta = alpha sqrt(m K) delta^(1/4)",
+    ),
+    validity="Hertz contact with viscous damping; e independent of V0",
+    restitution_depends_on="alpha only",
+    self_similar=True,
+    lammps_damping="tsuji",
+    tables=TABLES,
+)

@@ -24,22 +24,24 @@ doi:10.1103/PhysRevE.60.4465.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import DampedHertz, Parameter, Reference
+from impactcli.laws.base import Reference
+from impactcli.laws.viscous import DampedHertz, DampingSpec, alpha_parameter
 
 __all__ = [
     "RESTITUTION_C1",
     "RESTITUTION_C2",
+    "SPEC",
     "ViscoelasticDamping",
     "viscoelastic_beta",
     "viscoelastic_restitution_series",
 ]
 
 Array = NDArray[np.float64]
+
 
 #: C1 and C2 of e = 1 - C1 beta V0^(1/5) + C2 beta^2 V0^(2/5) -+ ... (Ramírez et al. 1999,
 #: eqs. 27-29; C1 = Gamma(3/5) sqrt(pi) / (2^(1/5) 5^(2/5) Gamma(21/10))), [-].
@@ -97,108 +99,6 @@ class ViscoelasticDamping(DampedHertz):
     stiffness: ArrayLike
     alpha: ArrayLike
 
-    name: ClassVar[str] = "viscoelastic"
-    #: LAMMPS's name of this damping (``pair_style granular``; docs/export.md)
-    lammps_damping: ClassVar[str] = "viscoelastic"
-    label: ClassVar[str] = "Viscoelastic"
-    summary: ClassVar[str] = (
-        "F = K (delta^1.5 + 1.5 alpha delta^(1/2) delta') (Brilliantov et al. 1996, alpha = A "
-        "[s]; e falls with alpha (K/m)^(2/5) V0^(1/5))"
-    )
-    #: e depends on A (K/m)^(2/5) V0^(1/5): not self-similar
-    self_similar: ClassVar[bool] = False
-    #: what its coefficient of restitution depends on
-    restitution_depends_on: ClassVar[str] = "alpha (K/m)^(2/5) V0^(1/5)"
-    reference: ClassVar[Reference] = Reference(
-        "N. V. Brilliantov, F. Spahn, J.-M. Hertzsch, T. Poeschel",
-        1996,
-        "Model for collisions in granular gases",
-        "Phys. Rev. E 53(5):5382-5392",
-        "10.1103/PhysRevE.53.5382",
-        "F = rho (xi^(3/2) + (3/2) A xi^(1/2) xi'); e(V0): Ramirez et al. (1999), "
-        "Phys. Rev. E 60:4465, doi:10.1103/PhysRevE.60.4465",
-    )
-    validity: ClassVar[str] = (
-        "viscoelastic spheres, quasi-static (V0 well below the speed of sound), no plastic "
-        "yield; e falls with V0"
-    )
-    parameters: ClassVar[tuple[Parameter, ...]] = (
-        Parameter(
-            "alpha",
-            "s",
-            "time",
-            None,
-            "dissipative constant A: F = K (delta^1.5 + 1.5 A delta^0.5 delta'); LAMMPS's "
-            "damping viscoelastic has eta_n0 = 2 E* A / m_eff",
-            required=True,
-            valid=">= 0 (alpha = 0: Hertz)",
-        ),
-    )
-
-    @classmethod
-    def of(cls, stiffness: ArrayLike, mass: ArrayLike, alpha: ArrayLike):
-        """The model with K [N/m^1.5] and A [s] (m [kg] is not part of the force)."""
-        return cls(stiffness, alpha)
-
-    @classmethod
-    def alpha_estimate(
-        cls,
-        restitution: ArrayLike,
-        impact_velocity: ArrayLike,
-        stiffness: ArrayLike,
-        mass: ArrayLike,
-    ) -> Array:
-        """A first guess of A for e at V0: the first-order series, A = (1 - e) / (C1 (3/2)
-        (K/m)^(2/5) V0^(1/5)), at least 1e-12 of it for e = 0, [s]."""
-        e = np.minimum(np.asarray(restitution, dtype=float), 1.0 - 1e-12)
-        per_alpha = viscoelastic_beta(1.0, stiffness, mass) * np.asarray(impact_velocity) ** 0.2
-        return (1.0 - e) / (RESTITUTION_C1 * per_alpha)
-
-    @classmethod
-    def similar_alpha(
-        cls, alpha: ArrayLike, stiffness: ArrayLike, mass: ArrayLike, impact_velocity: ArrayLike
-    ) -> Array:
-        """The alpha that gives the same e at K = m = V0 = 1 (the law in its own units):
-        A (K/m)^(2/5) V0^(1/5) (e depends on it only: scale delta by
-        (m V0^2 / K)^(2/5) and t by that over V0)."""
-        return (
-            viscoelastic_beta(alpha, stiffness, mass)
-            / 1.5
-            * np.asarray(impact_velocity, float) ** 0.2
-        )
-
-    @classmethod
-    def fit_start(
-        cls, reference_velocity: float, stiffness: float, mass: float
-    ) -> tuple[float, float, float]:
-        """(start, lower, upper) of a fit of A [s]: the A giving e = 0.8 at V_ref to first
-        order, within 1e-6 and 1e3 times it."""
-        guess = float(cls.alpha_estimate(0.8, reference_velocity, stiffness, mass))
-        return guess, guess * 1e-6, guess * 1e3
-
-    @classmethod
-    def data_start(
-        cls, restitution: NDArray, impact_velocity: NDArray, stiffness: float, mass: float
-    ) -> float:
-        """A [s] read off measured e: the median of the first-order series' A."""
-        return float(np.median(cls.alpha_estimate(restitution, impact_velocity, stiffness, mass)))
-
-    @classmethod
-    def closed_form(
-        cls,
-        stiffness: float,
-        mass: float,
-        alpha: float,
-        impact_velocity: ArrayLike,
-        separation: str,
-    ) -> tuple[str, Array] | None:
-        """The series of Ramírez et al. (1999), ``overlap`` rule (contact ends at delta = 0,
-        as they integrate it); None for the ``force`` rule."""
-        if separation != "overlap":
-            return None
-        e = viscoelastic_restitution_series(alpha, impact_velocity, stiffness, mass)
-        return "Viscoelastic: Ramírez et al. (1999) series", e
-
     def damping_coefficient(self, delta: ArrayLike) -> Array:
         """c = (3/2) A K delta^(1/2), [N s/m]."""
         d = np.maximum(np.asarray(delta, dtype=float), 0.0)
@@ -216,3 +116,72 @@ class ViscoelasticDamping(DampedHertz):
         delta > 0, continuous at delta = 0 (the separation test)."""
         d = np.maximum(np.asarray(delta, dtype=float), 0.0)
         return self.stiffness * (d + 1.5 * np.asarray(self.alpha, dtype=float) * delta_dot)
+
+    @staticmethod
+    def alpha_estimate(restitution, impact_velocity, stiffness, mass) -> Array:
+        """A first guess of A for e at V0: the first-order series, A = (1 - e) / (C1 (3/2)
+        (K/m)^(2/5) V0^(1/5)), at least 1e-12 of it for e = 0, [s]."""
+        e = np.minimum(np.asarray(restitution, dtype=float), 1.0 - 1e-12)
+        per_alpha = viscoelastic_beta(1.0, stiffness, mass) * np.asarray(impact_velocity) ** 0.2
+        return (1.0 - e) / (RESTITUTION_C1 * per_alpha)
+
+    @staticmethod
+    def similar_alpha(alpha, stiffness, mass, impact_velocity) -> Array:
+        """A (K/m)^(2/5) V0^(1/5): e depends on it only (scale delta by (m V0^2 / K)^(2/5) and t
+        by that over V0)."""
+        beta = viscoelastic_beta(alpha, stiffness, mass)
+        return beta / 1.5 * np.asarray(impact_velocity, float) ** 0.2
+
+    @staticmethod
+    def fit_start(reference_velocity, stiffness, mass) -> tuple[float, float, float]:
+        """(start, lower, upper) of a fit of A [s]: the A giving e = 0.8 at V_ref to first
+        order, within 1e-6 and 1e3 times it."""
+        guess = ViscoelasticDamping.alpha_estimate(0.8, reference_velocity, stiffness, mass)
+        return float(guess), float(guess) * 1e-6, float(guess) * 1e3
+
+    @staticmethod
+    def data_start(restitution, impact_velocity, stiffness, mass) -> float:
+        """A [s] read off measured e: the median of the first-order series' A."""
+        guesses = ViscoelasticDamping.alpha_estimate(restitution, impact_velocity, stiffness, mass)
+        return float(np.median(guesses))
+
+    @staticmethod
+    def closed_form(stiffness, mass, alpha, impact_velocity, separation):
+        """The series of Ramírez et al. (1999), ``overlap`` rule (contact ends at delta = 0, as
+        they integrate it); None for the ``force`` rule."""
+        if separation != "overlap":
+            return None
+        e = viscoelastic_restitution_series(alpha, impact_velocity, stiffness, mass)
+        return "Viscoelastic: Ramírez et al. (1999) series", e
+
+
+#: The registry entry of the model.
+SPEC = DampingSpec(
+    name="viscoelastic",
+    model=ViscoelasticDamping,
+    label="Viscoelastic",
+    summary=(
+        "F = K (delta^1.5 + 1.5 alpha delta^(1/2) delta') (Brilliantov et al. 1996, alpha = A "
+        "[s]; e falls with alpha (K/m)^(2/5) V0^(1/5))"
+    ),
+    parameters=alpha_parameter(
+        "s", "time",
+        "dissipative constant A: F = K (delta^1.5 + 1.5 A delta^0.5 delta'); LAMMPS's "
+        "damping viscoelastic has eta_n0 = 2 E* A / m_eff",
+    ),
+    reference=Reference(
+        "N. V. Brilliantov, F. Spahn, J.-M. Hertzsch, T. Poeschel",
+        1996,
+        "Model for collisions in granular gases",
+        "Phys. Rev. E 53(5):5382-5392",
+        "10.1103/PhysRevE.53.5382",
+        "F = rho (xi^(3/2) + (3/2) A xi^(1/2) xi'); e(V0): Ramirez et al. (1999), "
+        "Phys. Rev. E 60:4465, doi:10.1103/PhysRevE.60.4465",
+    ),
+    validity=(
+        "viscoelastic spheres, quasi-static (V0 well below the speed of sound), no plastic "
+        "yield; e falls with V0"
+    ),
+    restitution_depends_on="alpha (K/m)^(2/5) V0^(1/5)",
+    lammps_damping="viscoelastic",
+)

@@ -1,0 +1,88 @@
+"""``make bench`` (benchmarks/bench.py): its baselines integrate the laws FILM solves, and
+its table goes into the README and the docs' copy. Nothing here times anything."""
+
+from __future__ import annotations
+
+import importlib.util
+import shutil
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="module")
+def bench():
+    spec = importlib.util.spec_from_file_location("bench", ROOT / "benchmarks" / "bench.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["bench"] = module  # its dataclass looks its module up
+    try:
+        spec.loader.exec_module(module)
+        yield module
+    finally:
+        sys.modules.pop("bench", None)
+
+
+def _block(text: str) -> str:
+    return text.split("<!-- bench:start -->\n", 1)[1].split("<!-- bench:end -->", 1)[0]
+
+
+def test_the_table_goes_into_the_readme_and_the_docs_copy(bench, tmp_path):
+    """make bench README=1 (--readme README.md) writes both tables, so that they stay the
+    same (tests/test_docs.py)."""
+    (tmp_path / "docs" / "about").mkdir(parents=True)
+    shutil.copy(ROOT / "README.md", tmp_path / "README.md")
+    shutil.copy(ROOT / "docs" / "about" / "benchmarks.md", tmp_path / "docs" / "about")
+    written = bench.update_readme(tmp_path / "README.md", "the new table")
+    assert written == [tmp_path / "README.md", tmp_path / "docs" / "about" / "benchmarks.md"]
+    for page in written:
+        assert _block(page.read_text()) == "the new table\n"
+    readme, page = (ROOT / "README.md").read_text(), written[0].read_text()
+    assert page.split("<!-- bench:start -->")[0] == readme.split("<!-- bench:start -->")[0]
+
+
+def test_every_undamped_law_has_its_case_and_its_baseline_integrates_it(bench):
+    """The DOP853 baseline of each law (plain-Python forces, checked against the law's own
+    at its construction) converges to FILM's e and contact time at a large n."""
+    from impactcli.impact import effective_properties, law_impact
+    from impactcli.laws.registry import LAWS
+
+    cases = bench.laws()
+    assert [name for name, _, _ in cases] == list(LAWS)
+    m = effective_properties(*bench.STEEL)[0]
+    params = {"walton-braun": bench.WALTON_BRAUN, "tabulated": {"curve": bench.CURVE}}
+    for name, _, call in cases:
+        result = call()
+        fine = law_impact(*bench.STEEL, bench.V1, bench.V2, name, params.get(name), n=4000)
+        e, t_c, _ = bench.Integration(result.plan, m, bench.V0).run(1e-12)
+        assert e == pytest.approx(fine.summary["restitution"], rel=1e-9), name
+        assert t_c == pytest.approx(fine.summary["contact_time"], rel=1e-8), name
+        e_ref, t_ref, _ = bench.reference(name, result, bench.Integration(result.plan, m, bench.V0))
+        assert t_ref == pytest.approx(fine.summary["contact_time"], rel=1e-8), name
+
+
+def test_the_damped_baseline_integrates_each_damping_model(bench):
+    from impactcli.impact import damped_impact, effective_properties
+
+    m = effective_properties(*bench.STEEL)[0]
+    for name, alpha in bench.damping_cases():
+        result = damped_impact(*bench.STEEL, bench.V1, bench.V2, name, alpha=alpha)
+        ode = bench.DampedIntegration(result.law, name, m, bench.V0, result.summary["delta_max"])
+        e, t_c, _ = ode.run(1e-12)
+        assert e == pytest.approx(result.summary["restitution"], rel=2e-6), name
+        assert t_c == pytest.approx(result.summary["contact_time"], rel=2e-6), name
+
+
+def test_the_history_baseline_is_the_impact(bench):
+    """DOP853's dense output at 201 times is FILM's history of the same impact."""
+    from impactcli.impact import effective_properties
+
+    m = effective_properties(*bench.STEEL)[0]
+    result = bench.elastic_impact(*bench.STEEL, bench.V1, bench.V2, n=2000)
+    history = result.history(points=201)
+    delta, delta_dot = bench.Integration(result.plan, m, bench.V0).history(1e-12)
+    np.testing.assert_allclose(delta, history["delta"], atol=1e-7 * delta.max())
+    np.testing.assert_allclose(delta_dot, history["delta_dot"], atol=1e-7 * bench.V0)
