@@ -226,11 +226,11 @@ def _hertz_loading_time_scalar(d: float, v: float, k: float, m: float, n: int) -
         rest = a - energy
         x0 = sqrt(rest) / root if rest > 0.0 else 0.0
         x_end_sq = x0 * x0 - c1
-        if x_end_sq <= 0.0:
-            total += atan2(x0, y0) / root
-        else:
+        if x_end_sq > 0.0:
             x_end = sqrt(x_end_sq)
             total += atan2(h * (x0 + q / (x0 + x_end)), x0 * x_end + p) / root
+        else:
+            total += atan2(x0, y0) / root
     return total / sqrt(k * sqrt(d) / m)
 
 
@@ -314,10 +314,9 @@ def first_yield_velocity(
     V_Y = sqrt((2/m)(2/5) K_h delta_Y^2.5). A float for one impact given as floats (the
     same operations on floats).
     """
-    values = (mass, radius, modulus, yield_strength)
-    if all(type(x) is float for x in values):  # one impact
-        m, r, e, sy = values  # type: ignore[misc]
-        p = pressure_factor * sy
+    m, r, e, sy = mass, radius, modulus, yield_strength
+    if type(m) is float and type(r) is float and type(e) is float and type(sy) is float:
+        p = pressure_factor * sy  # one impact
         delta_y = math.pi**2 * r * (p * p) / (4.0 * (e * e))
         k = 4.0 / 3.0 * e * math.sqrt(r)
         try:
@@ -407,7 +406,9 @@ class HertzContact:
     @classmethod
     def for_pair(cls, radius: ArrayLike, modulus: ArrayLike) -> HertzContact:
         """The contact of a pair of spheres: effective radius R [m] and modulus E* [Pa]
-        (:func:`hertz_stiffness`)."""
+        (:func:`hertz_stiffness`; on floats for one pair, the same operations)."""
+        if type(radius) is float and type(modulus) is float and radius >= 0.0:
+            return cls(4.0 / 3.0 * modulus * math.sqrt(radius))
         return cls(hertz_stiffness(modulus, radius))
 
     @property
