@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -40,6 +41,9 @@ class LinearSpring:
 
     stiffness: ArrayLike
     offset: ArrayLike = 0.0
+    #: F is linear in delta at and beyond the offset, where its stages run: FILM is exact on
+    #: one segment (docs/method.md §4, item 5)
+    linear: ClassVar[bool] = True
 
     def force(self, delta: ArrayLike) -> Array:
         return self.stiffness * np.maximum(np.asarray(delta, dtype=float) - self.offset, 0.0)
