@@ -125,13 +125,103 @@ def test_the_stages_of_one_impact_in_one_pass_are_solve_stage_s():
         t_start = alone.end_time
 
 
-def test_a_law_without_closed_forms_solves_its_stages():
-    """A tabulated curve has no film_summary: its plan is solved, as before."""
+@pytest.mark.parametrize("curve_kind", ["pchip", "unloading"])
+def test_a_law_without_closed_forms_solves_its_stages(curve_kind):
+    """A pchip curve, or a curve with unloading curves, has no film_summary: its plan is
+    solved, as before."""
     delta = np.linspace(0.0, 1e-4, 41)
-    curve = (delta, 1.2e10 * delta**1.5)
-    r = impactcli.law_impact(*STEEL, 0.25, 0.75, "tabulated", {"curve": curve})
+    params = {"curve": (delta, 1.2e10 * delta**1.5)}
+    if curve_kind == "pchip":
+        params["interpolation"] = "pchip"
+    else:
+        d = np.array([0.0, 1e-5, 2e-5])
+        params["unload_curves"] = (np.full(3, 1e-4), 8e-5 + d, np.array([0.0, 2e3, 1.2e4]))
+    r = impactcli.law_impact(*STEEL, 0.25, 0.75, "tabulated", params)
     assert "staged" in r.solution.__dict__
     assert r.summary["contact_time"] == r.solution.staged.end_time
+
+
+#: Linear curves: the bench's five points (one point within a slow impact), a fine Hertz
+#: curve (many points per FILM segment), a coarse convex curve and a straight line.
+LINEAR_CURVES = {
+    "five-points": (np.array([0.0, 1e-5, 1e-4, 1e-3, 1e-2]),
+                    1e10 * np.array([0.0, 1e-5, 1e-4, 1e-3, 1e-2]) ** 1.5),
+    "fine": (np.linspace(0.0, 1e-3, 2001), 1.2e10 * np.linspace(0.0, 1e-3, 2001) ** 1.5),
+    "on-nodes": (np.array([0.0, 8e-7, 4e-6, 1.2e-5, 2e-5, 1e-3]),
+                 np.array([0.0, 1e1, 1e2, 6e2, 1.5e3, 3e5])),
+    "straight": (np.array([0.0, 1e-3]), np.array([0.0, 1e5])),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 25, 400])
+@pytest.mark.parametrize("v0", [0.01, 0.3, 1.0, 4.0])
+@pytest.mark.parametrize("curve", list(LINEAR_CURVES))
+def test_a_linear_curve_summary_is_film_of_the_solved_stages(curve, v0, n):
+    """A linear tabulated curve (elastic): delta_m from the curve's exact work, FILM's time of
+    each stage from its runs of segments within one piece and the segments across a point
+    (linear_curve_stage_time): the quantities of the stages solved in full, to rounding."""
+    pair = pair_of("tabulated", {"curve": LINEAR_CURVES[curve]})
+    contact = pair.normal_contact
+    quantities = contact.film_summary(v0, pair.mass, n)
+    assert quantities is not None
+    staged = StagedSolution.solve(contact, v0, pair.mass, n)
+    for name, value in zip(FIELDS, quantities):
+        assert value == pytest.approx(getattr(staged, name), rel=1e-13, abs=1e-25), name
+    assert not quantities.normalised and not quantities.plastic
+    assert quantities.recoverable_work == pytest.approx(
+        float(contact.recoverable_work(np.array([staged.delta_max]))[0]), rel=1e-13
+    )
+
+
+@pytest.mark.parametrize("end_at_rest", [True, False])
+@pytest.mark.parametrize("n", [2, 5, 25])
+def test_a_curve_with_points_on_film_nodes(n, end_at_rest):
+    """Points of the curve exactly on FILM's nodes (a change of piece between two segments,
+    none across one), and between them: linear_curve_stage_time is solve_stage's time."""
+    from impactcli.laws.tabulated import TabulatedLaw, linear_curve_stage_time
+
+    b, v_a, m = 3e-5, 3.0, 0.05  # not at rest: 0.225 J against 0.06 J of work to b
+    nodes = [b * (r / n) for r in range(n)] + [b]
+    xs = np.unique(np.r_[nodes[:: max(1, n // 3)], 0.37 * b, 2.0 * b])
+    law = TabulatedLaw(xs, 1e10 * xs**1.4)
+    speed = v_a if not end_at_rest else math.sqrt(2.0 * float(law.work(0.0, b)) / m)
+    got = linear_curve_stage_time(law, 0.0, b, speed, m, n, end_at_rest=end_at_rest)
+    want = solve_stage(law, 0.0, b, speed, m, n, end_at_rest=end_at_rest).end_time
+    assert got == pytest.approx(float(want), rel=1e-13)
+    back = linear_curve_stage_time(law, b, 0.0, 0.0, m, n)
+    assert back == pytest.approx(float(solve_stage(law, b, 0.0, 0.0, m, n).end_time), rel=1e-13)
+
+
+def test_an_impact_beyond_the_curve_is_worded_by_the_array_path():
+    """Beyond the last point the summary leaves the impact to the plan, whose error says
+    how far the curve must reach."""
+    pair = pair_of("tabulated", {"curve": LINEAR_CURVES["straight"]})
+    assert pair.normal_contact.film_summary(1e3, pair.mass, 25) is None
+    with pytest.raises(impactcli.InputError, match="beyond the loading curve"):
+        impactcli.law_impact(*STEEL, 500.0, 500.0, "tabulated",
+                             {"curve": LINEAR_CURVES["straight"]})  # fmt: skip
+
+
+@pytest.mark.parametrize("n", [1, 25, 400])
+def test_a_batch_of_linear_stages_takes_one_segment_each(n):
+    """Walton & Braun's rows in a batch: each linear stage timed as one segment
+    (batch.linear_stage_times), FILM's n-segment times of the solved stages to rounding."""
+    from impactcli.batch import batch_impacts, linear_stage_times
+
+    params = {"k_load": 2e7, "k_unload": 8e7}
+    rng = np.random.default_rng(3)
+    v0, m = rng.uniform(0.01, 5.0, 50), rng.uniform(1e-3, 10.0, 50)
+    plan = get_law("walton-braun").contact(0.01, 1e11, None, **params).plan(v0, m)
+    t_max, t_c = linear_stage_times(plan, m)
+    stages = solve_plan(plan, m, n)
+    np.testing.assert_allclose(t_max, stages[-2].end_time, rtol=1e-13)
+    np.testing.assert_allclose(t_c, stages[-1].end_time, rtol=1e-13)
+    out = batch_impacts(0.02, 0.04, v0 / 2, v0 / 2, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0,
+                        n=n, law="walton-braun", law_params=params)  # fmt: skip
+    single = [impactcli.law_impact(*STEEL, v / 2, v / 2, "walton-braun", params, n=n)
+              for v in v0[:5]]  # fmt: skip
+    for key in ("contact_time", "t_max"):
+        np.testing.assert_allclose(out[key][:5], [r.summary[key] for r in single], rtol=1e-13)
 
 
 @pytest.mark.parametrize("n", [1, 2, 25, 48])

@@ -4,7 +4,10 @@ read by :mod:`impactcli.curves`."""
 
 from __future__ import annotations
 
+import math
+from bisect import bisect_right
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -16,6 +19,7 @@ from impactcli.curves import (
     read_unloading_curves,
 )
 from impactcli.errors import InputError
+from impactcli.film import FilmSummary, segment_time
 from impactcli.laws.base import (
     ImpactPlan,
     LawSpec,
@@ -24,6 +28,8 @@ from impactcli.laws.base import (
     StagePlan,
     col,
     energy_velocity,
+    finite_summary,
+    floats,
 )
 
 __all__ = [
@@ -123,6 +129,20 @@ class TabulatedLaw:
                 lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
             delta = 0.5 * (lo + hi)
         return np.where(w > total[-1], np.inf, delta)
+
+    @property
+    def points(self) -> tuple[list[float], list[float], list[float], list[float]]:
+        """The curve as lists of floats: delta [m], force [N], the slope of each segment
+        [N/m] and the work up to each point [J] (the single-impact path on floats)."""
+        points = self.__dict__.get("_points")
+        if points is None:
+            points = self.__dict__["_points"] = (
+                self.delta.tolist(),
+                self.values.tolist(),
+                self.slope.tolist(),
+                self.cumulative_work.tolist(),
+            )
+        return points
 
     def needed_indentation(self, work: ArrayLike) -> Array:
         """Indentation at which ``work`` [J] is reached with the last segment extended as a
@@ -295,6 +315,37 @@ class TabulatedContact:
             )
         return dm
 
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:class:`~impactcli.film.FilmSummary`), for an elastic curve
+        interpolated linearly: delta_m from the exact work of the curve
+        (:meth:`TabulatedLaw.indentation_for_work`), and FILM's time of each stage by
+        :func:`linear_curve_stage_time`. None otherwise (unloading curves, pchip, arrays)
+        and for an impact the array path must word (beyond the curve)."""
+        law = self.loading
+        values = floats(impact_velocity, mass)
+        if self.unloading is not None or law.interpolation != "linear" or values is None:
+            return None
+        v0, m = values
+        xs, ys, slopes, total = law.points
+        try:
+            energy = 0.5 * m * v0**2
+            if not (0.0 < energy <= total[-1]):
+                return None
+            i = min(max(bisect_right(total, energy) - 1, 0), len(total) - 2)
+            rest = energy - total[i]
+            f, k = ys[i], slopes[i]
+            dm = xs[i] + 2.0 * rest / (f + math.sqrt(f * f + 2.0 * k * rest))
+            force = _interp(law.points, dm)
+            t_max = linear_curve_stage_time(law, 0.0, dm, v0, m, n, end_at_rest=True)
+            t_c = t_max + linear_curve_stage_time(law, dm, 0.0, 0.0, m, n)
+            work = _primitive(law.points, dm) - _primitive(law.points, 0.0)
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        nan = math.nan
+        summary = FilmSummary(dm, force, 0.0, 1.0, t_max, t_c, nan, nan, work, False, False)
+        return summary if finite_summary(summary) else None
+
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """delta_res of the interpolated unloading curve (:class:`UnloadingCurves`); zero
         without unloading curves, [m]."""
@@ -349,6 +400,117 @@ class TabulatedContact:
         )
 
 
+def _interp(points: tuple[list[float], ...], x: float) -> float:
+    """:meth:`TabulatedLaw.force` of a linear curve (:attr:`TabulatedLaw.points`) at one
+    indentation [m], on floats, [N] (NumPy's ``interp``: the end values beyond the curve)."""
+    xs, ys = points[0], points[1]
+    if x >= xs[-1]:
+        return ys[-1]
+    if x <= xs[0]:
+        return ys[0]
+    j = bisect_right(xs, x) - 1
+    return (ys[j + 1] - ys[j]) / (xs[j + 1] - xs[j]) * (x - xs[j]) + ys[j]
+
+
+def _primitive(points: tuple[list[float], ...], x: float) -> float:
+    """:meth:`TabulatedLaw.primitive` of a linear curve (:attr:`TabulatedLaw.points`) at one
+    indentation [m], on floats, [J]."""
+    xs, ys, slopes, total = points
+    if x <= xs[0]:
+        x, i = xs[0], 0
+    elif x >= xs[-1]:
+        x, i = xs[-1], len(xs) - 2
+    else:
+        i = bisect_right(xs, x) - 1
+    s = x - xs[i]
+    return total[i] + s * (ys[i] + 0.5 * slopes[i] * s)
+
+
+def linear_curve_stage_time(
+    law: TabulatedLaw,
+    delta_start: float,
+    delta_end: float,
+    speed_start: float,
+    mass: float,
+    n: int,
+    end_at_rest: bool = False,
+) -> float:
+    """FILM time [s] of a stage on a linearly interpolated curve with n equal segments
+    (:func:`impactcli.film.solve_stage`), on floats, to rounding.
+
+    On a segment within one piece of the curve the law is linear, so FILM is exact there
+    (docs/method.md §4, item 5) and a run of such segments on the same piece takes the
+    time of one segment spanning the run (:func:`impactcli.film.segment_time`, the speed
+    at its start from the energy balance, eq. 13e); only a segment with a point of the
+    curve strictly inside is a chord of two pieces, solved as FILM solves it. The work is
+    O(points of the curve within the stage), not O(n).
+
+    Parameters
+    ----------
+    law : the curve (``linear``)
+    delta_start, delta_end : the ends of the stage, [m]
+    speed_start : |delta'| at the start, [m/s]
+    mass : effective mass m, [kg]
+    n : segments of the stage
+    end_at_rest : the stage ends at the turning point (the loading)
+
+    Examples
+    --------
+    A straight curve F = 4 delta (m = 1 kg, V0 = 1 m/s): FILM is exact, a quarter period.
+
+    >>> law = TabulatedLaw([0.0, 1.0], [0.0, 4.0])
+    >>> round(linear_curve_stage_time(law, 0.0, 0.5, 1.0, 1.0, 25, end_at_rest=True), 12)
+    0.785398163397
+    """
+    points = law.points
+    xs = points[0]
+    a, b = delta_start, delta_end
+    span = b - a
+    lo, hi = (a, b) if a < b else (b, a)
+
+    def node(r: int) -> float:
+        return b if r == n else a + span * (r / n)
+
+    # the nodes where the law's piece changes: a run ends there, or a segment straddles
+    cuts = {0, n}
+    for x in xs[bisect_right(xs, lo) : bisect_right(xs, hi)]:
+        if not x < hi:
+            continue
+        guess = min(max(int((x - a) / span * n), 1), n - 2)
+        for r in (guess - 1, guess, guess + 1):
+            if 0 <= r < n:
+                p, q = node(r), node(r + 1)
+                if (p < x < q) or (q < x < p):  # inside segment r: a chord of two pieces
+                    cuts.add(r)
+                    cuts.add(r + 1)
+                elif x == p:
+                    cuts.add(r)
+    ends = sorted(cuts)
+    work_start = _primitive(points, a)
+    rate = speed_start * speed_start
+    total = 0.0
+    d0 = a
+    f0 = _interp(points, a)
+    for j in ends[1:]:
+        d1 = node(j)
+        f1 = _interp(points, d1)
+        speed = math.sqrt(max(rate - 2.0 / mass * (_primitive(points, d0) - work_start), 0.0))
+        total += segment_time(f0, f1, d0, d1, speed, mass, end_at_rest and j == n)
+        d0, f0 = d1, f1
+    return total
+
+
+@lru_cache(maxsize=16)
+def _checked_law(delta: bytes, force: bytes, interpolation: str) -> TabulatedLaw:
+    """The loading law of a curve given as arrays (their bytes), checked and built once."""
+    d, f = np.frombuffer(delta), np.frombuffer(force)
+    return TabulatedLaw(*check_loading_curve(d, f), interpolation=interpolation)
+
+
+#: Largest curve given as arrays whose checked law is kept for the next impact (points).
+CACHED_CURVE_POINTS = 10_000
+
+
 def _build(_radius, _modulus, _sy, params) -> TabulatedContact:
     curve = params["curve"]
     kind = params["interpolation"]
@@ -357,7 +519,11 @@ def _build(_radius, _modulus, _sy, params) -> TabulatedContact:
     if isinstance(curve, TabulatedLaw):
         loading = curve
     elif isinstance(curve, tuple):  # (delta [m], force [N]) arrays
-        loading = TabulatedLaw(*check_loading_curve(*curve), interpolation=kind)
+        d, f = (np.asarray(x, dtype=float).ravel() for x in curve)
+        if d.size <= CACHED_CURVE_POINTS and f.size == d.size:  # the same curve: built once
+            loading = _checked_law(d.tobytes(), f.tobytes(), kind)
+        else:
+            loading = TabulatedLaw(*check_loading_curve(*curve), interpolation=kind)
     else:
         loading = TabulatedLaw(*read_loading_curve(curve), interpolation=kind)
     unload = params["unload_curves"]
