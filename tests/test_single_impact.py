@@ -343,3 +343,29 @@ def test_a_long_or_given_history_uses_the_stages():
     r = impactcli.elastic_impact(*STEEL, 0.25, 0.75)
     r.history(t=[0.0, 1e-6])
     assert "staged" in r.solution.__dict__
+
+
+@pytest.mark.parametrize("n", [2, 3, 25, 400])
+@pytest.mark.parametrize("curve", ["five-points", "on-nodes", "straight"])
+def test_a_batch_on_a_linear_curve_times_its_runs(curve, n):
+    """Batch rows on a linear tabulated curve of fewer points than n: each stage's FILM time
+    from its runs within one piece and its segments across a point, on arrays
+    (laws.tabulated.linear_curve_stage_times), the times of the solved stages to rounding;
+    a curve of more points than n leaves them to the stages."""
+    from impactcli.batch import law_stage_times
+    from impactcli.laws.tabulated import linear_curve_stage_times
+
+    contact = get_law("tabulated").contact(0.01, 1e11, None, curve=LINEAR_CURVES[curve])
+    rng = np.random.default_rng(7)
+    v0, m = rng.uniform(0.01, 4.0, 300), rng.uniform(1e-3, 1.0, 300)
+    plan = contact.plan(v0, m)
+    stages = solve_plan(plan, m, n)
+    t_max, t_c = law_stage_times(plan, m, v0, n)
+    np.testing.assert_allclose(t_max, stages[-2].end_time, rtol=1e-13)
+    np.testing.assert_allclose(t_c, stages[-1].end_time, rtol=1e-13)
+    law = contact.loading
+    used = law.stage_times(0.0, plan.delta_max, v0, m, n, end_at_rest=True)
+    assert (used is None) == (law.delta.size > n)
+    if used is None:
+        used = linear_curve_stage_times(law, 0.0, plan.delta_max, v0, m, n, end_at_rest=True)
+        np.testing.assert_allclose(used, stages[0].end_time.reshape(-1), rtol=1e-13)

@@ -19,7 +19,7 @@ from impactcli.curves import (
     read_unloading_curves,
 )
 from impactcli.errors import InputError
-from impactcli.film import FilmSummary, segment_time
+from impactcli.film import FilmSummary, segment_time, swept_angles
 from impactcli.laws.base import (
     ImpactPlan,
     LawSpec,
@@ -143,6 +143,24 @@ class TabulatedLaw:
                 self.cumulative_work.tolist(),
             )
         return points
+
+    def stage_times(
+        self,
+        delta_start: ArrayLike,
+        delta_end: ArrayLike,
+        speed_start: ArrayLike,
+        mass: ArrayLike,
+        n: int,
+        end_at_rest: bool = False,
+    ) -> Array | None:
+        """FILM time [s] of stages on this curve with n segments each, for many impacts
+        (:func:`linear_curve_stage_times`): a ``linear`` curve of fewer points than n (else
+        None: FILM's own stages are then no more work)."""
+        if self.interpolation != "linear" or self.delta.size > n:
+            return None
+        return linear_curve_stage_times(
+            self, delta_start, delta_end, speed_start, mass, n, end_at_rest
+        )
 
     def needed_indentation(self, work: ArrayLike) -> Array:
         """Indentation at which ``work`` [J] is reached with the last segment extended as a
@@ -498,6 +516,68 @@ def linear_curve_stage_time(
         total += segment_time(f0, f1, d0, d1, speed, mass, end_at_rest and j == n)
         d0, f0 = d1, f1
     return total
+
+
+def linear_curve_stage_times(
+    law: TabulatedLaw,
+    delta_start: ArrayLike,
+    delta_end: ArrayLike,
+    speed_start: ArrayLike,
+    mass: ArrayLike,
+    n: int,
+    end_at_rest: bool = False,
+) -> Array:
+    """:func:`linear_curve_stage_time` of many impacts at once (arrays broadcast), [s]: the
+    nodes where the curve's piece changes found per point of the curve, then one segment
+    per run and per segment across a point, on arrays of (impacts, 2 x points). The time
+    FILM's n segments take (:func:`impactcli.film.solve_stage`), to rounding.
+    """
+    values = (delta_start, delta_end, speed_start, mass)
+    a, b, v, m = np.broadcast_arrays(*(np.asarray(x, dtype=float).reshape(-1) for x in values))
+    span = b - a
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    rows = np.arange(a.size)
+
+    def node(r: NDArray[np.intp]) -> Array:
+        at = a[:, None] if r.ndim == 2 else a
+        width = span[:, None] if r.ndim == 2 else span
+        end = b[:, None] if r.ndim == 2 else b
+        return np.where(r == n, end, at + width * (r / n))
+
+    cuts = [np.zeros(a.size, dtype=np.intp), np.full(a.size, n, dtype=np.intp)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for x in law.delta[1:-1].tolist():
+            inside = (lo < x) & (x < hi)
+            if not inside.any():  # a point beyond every stage: no cut
+                continue
+            guess = np.clip(np.nan_to_num((x - a) / span * n).astype(np.intp), 1, n - 2)
+            first, second = np.full(a.size, n), np.full(a.size, n)  # n: no cut
+            for shift in (-1, 0, 1):
+                r = np.clip(guess + shift, 0, n - 1)
+                p, q = node(r), node(r + 1)
+                across = inside & (((p < x) & (x < q)) | ((q < x) & (x < p)))
+                on = inside & (x == p)
+                first = np.where(across | on, r, first)
+                second = np.where(across, r + 1, second)
+            cuts += [first, second]
+    ends = np.sort(np.stack(cuts, axis=1), axis=1)
+    start, stop = ends[:, :-1], ends[:, 1:]
+    used = stop > start  # a run or a segment across a point (repeated cuts: none)
+    d0, d1 = node(start), node(stop)
+    f0, f1 = law.force(d0), law.force(d1)
+    work = law.primitive(d0) - law.primitive(a)[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        speed = np.sqrt(np.maximum(v[:, None] ** 2 - 2.0 / m[:, None] * work, 0.0))
+        step = d1 - d0
+        direction = np.sign(step)
+        stiffness = (f1 - f0) / step
+        omega = np.sqrt(stiffness / m[:, None])
+        swept, _ = swept_angles(speed / omega, direction * f0 / stiffness, np.abs(step))
+        if end_at_rest:  # the run that ends at delta_m ends at its turning point
+            last = used & (stop == n)
+            turned = np.arctan2(speed / omega, direction * f0 / stiffness)
+            swept = np.where(last, turned, swept)
+        return np.where(used, swept / omega, 0.0).sum(axis=1)[rows]
 
 
 @lru_cache(maxsize=16)
