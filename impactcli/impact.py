@@ -540,12 +540,6 @@ class ImpactResult:
         method = self.method if method is None else method
         if method not in self.contact.methods:
             raise ValueError(self.contact.method_error(method))
-        if t is None and method == "film" and hasattr(self.solution, "film_history"):
-            points = check_size("points", points, MAX_POINTS, minimum=2)
-            scaled = self.solution.film_history(points)  # the normalised history, scaled
-            if scaled is not None:
-                t, delta, delta_dot, force, strain, dissipated = scaled
-                return self._columns(t, delta, delta_dot, force, None, energy=scaled[4:])
         t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
         t = np.minimum(np.maximum(t, 0.0), float(self._solution(method).end_time))  # as delta(t)
         source = history_solution(self._solution(method))
@@ -629,15 +623,12 @@ class ImpactResult:
         delta: NDArray,
         delta_dot: NDArray,
         force: NDArray,
-        source: ContactSolution | None,
+        source: ContactSolution,
         own: bool = False,
-        energy: tuple[NDArray, NDArray] | None = None,
     ) -> dict[str, NDArray]:
         """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4, and the
         energy of ``source`` (:meth:`~impactcli.solution.ContactSolution.energy`; ``own``:
-        delta is the FILM stages' own, :class:`~impactcli.solution.StagedSolution`), or
-        ``energy`` (strain, dissipated) [J] where given. ``source`` None: the stages of
-        :attr:`solution` (:func:`~impactcli.solution.history_solution`), if needed."""
+        delta is the FILM stages' own, :class:`~impactcli.solution.StagedSolution`)."""
         from impactcli.energy import energy_columns
 
         v0 = self.impact_velocity
@@ -655,18 +646,12 @@ class ImpactResult:
             delta1, delta2 = e1 * delta, e2 * delta
             delta1_dot, delta2_dot = e1 * delta_dot, e2 * delta_dot
         else:  # split yield: delta_i = e_i (delta - delta_p) + p_i delta_p
-            source = history_solution(self.solution) if source is None else source
             dp = self.permanent_indentation(t, delta, source)
             dp_dot = self._permanent_rate(t, delta, delta_dot, source)
             delta1, delta2 = e1 * (delta - dp) + p1_ * dp, e2 * (delta - dp) + p2_ * dp
             delta1_dot = e1 * (delta_dot - dp_dot) + p1_ * dp_dot
             delta2_dot = e2 * (delta_dot - dp_dot) + p2_ * dp_dot
-        if energy is not None:
-            strain, dissipated = energy
-        else:
-            source = history_solution(self.solution) if source is None else source
-            own_energy = source.energy(t, delta, own=True) if own else source.energy(t, delta)
-            strain, dissipated = own_energy
+        strain, dissipated = source.energy(t, delta, own=True) if own else source.energy(t, delta)
         return {
             "t": t,
             "delta": delta,

@@ -512,16 +512,6 @@ class PlanSolution:
         """SciPy integration of the same plan (:func:`impactcli.ode.integrate_plan`)."""
         return self.staged.integrate()
 
-    def film_history(self, points: int) -> tuple[Array, ...] | None:
-        """The state, force and energy at ``points`` evenly spaced times over the contact
-        from the contact model's ``film_history`` where it has one (Hertz: the normalised
-        solution's history scaled), ``(t, delta, delta_dot, force, strain, dissipated)``
-        (SI); None otherwise (the stages then give them, :attr:`staged`)."""
-        history_of = getattr(self.contact, "film_history", None)
-        if history_of is None:
-            return None
-        return history_of(self.quantities, self.impact_velocity, self.mass, self.n, points)
-
 
 def history_solution(solution: ContactSolution) -> ContactSolution:
     """The solution the histories of ``solution`` are evaluated on: a :class:`PlanSolution`'s

@@ -17,7 +17,7 @@ import pytest
 import impactcli
 from impactcli.film import hertz_loading_time, segment_time, solve_stage, solve_stages
 from impactcli.laws import get_law
-from impactcli.laws.hertz import Hertz, normalised_history, normalised_times
+from impactcli.laws.hertz import Hertz, normalised_times
 from impactcli.solution import PlanSolution, StagedSolution, solve_plan
 from impactcli.tables import EXACT_CONTACT_DURATION, normalised_elastic
 
@@ -75,8 +75,7 @@ def test_the_summary_keeps_film_error_at_n():
 
 def test_a_summary_solves_no_stage_until_a_history_asks(monkeypatch):
     """elastic_impact, elastoplastic_impact and law_impact give the summary without FILM's
-    stage arrays; the history solves them then (but the elastic impact's, the normalised
-    history scaled), and ends at the summary's contact time."""
+    stage arrays; the history solves them then, and ends at the summary's contact time."""
     import impactcli.film
     import impactcli.solution
 
@@ -91,7 +90,6 @@ def test_a_summary_solves_no_stage_until_a_history_asks(monkeypatch):
         return solve_stages(stages, *args, **kwargs)
 
     normalised_times(25)  # the normalised solution, once per n
-    normalised_history(25, 11)  # and its history, once per n and number of points
     for module in (impactcli.film, impactcli.solution):
         monkeypatch.setattr(module, "solve_stage", counted_stage)
         monkeypatch.setattr(module, "solve_stages", counted_stages)
@@ -108,7 +106,7 @@ def test_a_summary_solves_no_stage_until_a_history_asks(monkeypatch):
         h = r.history(points=11)
         assert h["t"][-1] == r.summary["contact_time"]
         assert h["delta"][-1] == pytest.approx(r.summary.get("delta_res", 0.0), abs=1e-20)
-    assert len(solved) == 3 + 3 + 2  # the elastic impact's: the normalised history, scaled
+    assert len(solved) == 2 + 3 + 3 + 2
 
 
 def test_the_stages_of_one_impact_in_one_pass_are_solve_stage_s():
@@ -308,43 +306,6 @@ def test_the_history_energy_is_the_work_along_the_stages(law, params, v0):
                            staged.delta_max)  # fmt: skip
     for got, want in zip(staged.energy(t, delta, own=True), expected):
         assert np.array_equal(got, want)
-
-
-@pytest.mark.parametrize("split", ["mass", "compliance", "yield"])
-@pytest.mark.parametrize("n, points", [(1, 2), (3, 17), (25, 201), (400, 1001)])
-def test_the_elastic_history_is_the_normalised_one_scaled(n, points, split):
-    """An elastic Hertz impact's history at its evenly spaced times: the normalised
-    impact's history scaled (laws.hertz.normalised_history), every column the one of its
-    own solved stages at the same times, to rounding; the energy balances."""
-    s1 = impactcli.Sphere.from_material(0.02, "steel")
-    s2 = impactcli.Sphere.from_material(0.03, "glass")
-    r = impactcli.elastic_impact(s1, s2, 0.3, 0.9, n=n, split=split) if split != "yield" else \
-        impactcli.law_impact(s1, s2, 0.3, 0.9, "hertz", n=n, split=split)  # fmt: skip
-    fast = r.history(points=points)
-    if split != "yield":  # the stages were not needed (yield: delta_p(t) takes them)
-        assert "staged" not in r.solution.__dict__
-    slow = r.history(t=fast["t"])
-    assert fast.keys() == slow.keys()
-    for name in fast:
-        scale = max(float(np.max(np.abs(slow[name]))), 1e-300)
-        assert np.max(np.abs(fast[name] - slow[name])) <= 1e-13 * scale, name
-    assert fast["t"][-1] == r.summary["contact_time"]
-    total = fast["ke1"] + fast["ke2"] + fast["strain_energy"] + fast["dissipated"]
-    np.testing.assert_allclose(total, total[0], rtol=1e-12)
-
-
-def test_a_long_or_given_history_uses_the_stages():
-    """Beyond the kept normalised histories, and at times given, the stages solve it."""
-    from impactcli.laws.hertz import NORMALISED_HISTORY_POINTS
-
-    r = impactcli.elastic_impact(*STEEL, 0.25, 0.75)
-    r.history(points=NORMALISED_HISTORY_POINTS + 1)
-    assert "staged" in r.solution.__dict__
-    r = impactcli.elastic_impact(*STEEL, 0.25, 0.75)
-    r.history(t=[0.0, 1e-6])
-    assert "staged" in r.solution.__dict__
-
-
 @pytest.mark.parametrize("n", [2, 3, 25, 400])
 @pytest.mark.parametrize("curve", ["five-points", "on-nodes", "straight"])
 def test_a_batch_on_a_linear_curve_times_its_runs(curve, n):

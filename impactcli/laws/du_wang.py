@@ -43,7 +43,6 @@ from impactcli.laws.hertz import (
     hertz_summary,
     hertz_velocity,
     rebound_time,
-    scaled_history,
 )
 
 __all__ = [
@@ -226,14 +225,6 @@ class DuWangContact:
             restitution=restitution,
         )
 
-
-    def film_history(
-        self, summary: FilmSummary, impact_velocity: float, mass: float, n: int, points: int
-    ) -> tuple[NDArray, ...] | None:
-        """The history of one impact below the yield velocity (``summary`` its
-        :meth:`film_summary`): the elastic Hertz impact's, the normalised one scaled
-        (:func:`~impactcli.laws.hertz.scaled_history`); None above it."""
-        return scaled_history(summary, impact_velocity, mass, n, points)
 
     def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
         """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per

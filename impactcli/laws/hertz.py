@@ -47,7 +47,6 @@ __all__ = [
     "hertz_stiffness",
     "normalised_times",
     "rebound_time",
-    "scaled_history",
 ]
 
 Array = NDArray[np.float64]
@@ -376,63 +375,6 @@ def hertz_summary(
     return summary if finite_summary(summary) else None
 
 
-#: Most history points of the normalised Hertz impact kept per n (:func:`normalised_history`);
-#: a longer history is evaluated on the impact's own stages.
-NORMALISED_HISTORY_POINTS = 10_001
-
-
-@lru_cache(maxsize=8)
-def normalised_history(n: int, points: int) -> tuple[Array, ...]:
-    """The history of the normalised Hertz impact (m = V0 = delta_m = 1, K_h = 5/4) by FILM
-    with n segments per stage at ``points`` evenly spaced times over its contact, the last
-    its contact time (:func:`normalised_times`): ``(t, delta, delta_dot, force, work)``,
-    work W(t) of the contact force along FILM's segments in units of m V0^2 (read-only
-    arrays, one run per n and points). Every elastic Hertz impact's history at its own
-    evenly spaced times is this one scaled (docs/method.md §5).
-    """
-    from impactcli.solution import StagedSolution
-
-    solution = StagedSolution.solve(HertzContact(NORMALISED_STIFFNESS), 1.0, 1.0, n)
-    t = np.linspace(0.0, solution.end_time, points)
-    t[-1] = normalised_times(n)[1]
-    delta, rate = solution.evaluate(t)
-    force = solution.force(t, delta, rate)
-    work = solution.contact_work(t, delta)
-    arrays = (t, delta, rate, force, work)
-    for array in arrays:
-        array.flags.writeable = False
-    return arrays
-
-
-def scaled_history(
-    summary: FilmSummary, impact_velocity: float, mass: float, n: int, points: int
-) -> tuple[Array, ...] | None:
-    """The history of one elastic Hertz impact (``summary``: its FILM summary, the Hertz
-    impact of the normalised tables within the elastic range) at ``points`` evenly spaced
-    times over its contact: the normalised one scaled (:func:`normalised_history`; times by
-    delta_m / V0, delta by delta_m, delta' by V0, the force by F_m / (5/4), the work by
-    m V0^2), ``(t, delta, delta_dot, force, strain, dissipated)`` [s, m, m/s, N, J, J]: the
-    strain energy is the work of the contact force along FILM's segments, nothing is
-    dissipated. None for any other impact, and beyond :data:`NORMALISED_HISTORY_POINTS`.
-    """
-    elastic = not summary.delta_max > summary.delta_y  # delta_y NaN: no yield point
-    if not (summary.normalised and elastic and summary.delta_res == 0.0):
-        return None
-    if not 2 <= points <= NORMALISED_HISTORY_POINTS:
-        return None
-    t, delta, rate, force, work = normalised_history(n, points)
-    v0, dm = impact_velocity, summary.delta_max
-    strain = (mass * v0 * v0) * work
-    return (
-        (dm / v0) * t,
-        dm * delta,
-        v0 * rate,
-        (summary.force_max / NORMALISED_STIFFNESS) * force,
-        strain,
-        np.zeros_like(strain),
-    )
-
-
 def rebound_time(delta_max: float, delta_res: float, speed: float, n: int) -> float:
     """FILM time [s] of a Hertz unloading from rest at delta_m [m] to delta_res [m], where it
     separates at ``speed`` [m/s], with n segments: the normalised restitution stage
@@ -505,13 +447,6 @@ class HertzContact:
         stage, on floats (:func:`hertz_summary`); None for arrays."""
         k = as_float(self.stiffness)
         return None if k is None else hertz_summary(k, impact_velocity, mass, n)
-
-    def film_history(
-        self, summary: FilmSummary, impact_velocity: float, mass: float, n: int, points: int
-    ) -> tuple[Array, ...] | None:
-        """The history of one impact (``summary`` its :meth:`film_summary`) at ``points``
-        evenly spaced times over its contact (:func:`scaled_history`)."""
-        return scaled_history(summary, impact_velocity, mass, n, points)
 
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """Zero: an elastic contact leaves no permanent indentation, [m]."""

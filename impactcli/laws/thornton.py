@@ -31,7 +31,6 @@ from impactcli.laws.hertz import (
     hertz_stiffness,
     hertz_summary,
     rebound_time,
-    scaled_history,
 )
 
 __all__ = ["SPEC", "ThorntonContact", "thornton_restitution"]
@@ -178,14 +177,6 @@ class ThorntonContact:
             restitution=energy_velocity(m, 0.4 * fm * (dm - dres)) / v0,
         )
 
-
-    def film_history(
-        self, summary: FilmSummary, impact_velocity: float, mass: float, n: int, points: int
-    ) -> tuple[Array, ...] | None:
-        """The history of one impact below the yield velocity (``summary`` its
-        :meth:`film_summary`): the elastic Hertz impact's, the normalised one scaled
-        (:func:`~impactcli.laws.hertz.scaled_history`); None above it."""
-        return scaled_history(summary, impact_velocity, mass, n, points)
 
     def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
         """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
