@@ -225,8 +225,11 @@ def _fill(template: str, *columns) -> list[str]:
     for start in range(0, size, _WARNING_BLOCK):
         block = [c[start : start + _WARNING_BLOCK] for c in columns]
         block = [c if isinstance(c, list) else format_general(c, 4) for c in block]
-        values = tuple(x for row in zip(*block) for x in row)
-        text += ((template + "\n") * len(block[0]) % values).split("\n")[:-1]
+        rows, width = len(block[0]), len(block)
+        values: list = [None] * (rows * width)
+        for k, column in enumerate(block):  # row by row, each row's cells in column order
+            values[k::width] = column
+        text += ((template + "\n") * rows % tuple(values)).split("\n")[:-1]
     return text
 
 
@@ -334,7 +337,11 @@ def _distinct(values: np.ndarray) -> tuple[list, np.ndarray]:
     if values.dtype != object:
         unique, codes = np.unique(values, return_inverse=True)
         return list(unique), codes.reshape(-1)
-    keys = [c if c.__class__ is str else (c.__class__, c) for c in values.tolist()]
+    cells = values.tolist()
+    if set(map(type, cells)) <= {str}:  # text alone (a CSV's cells): each cell its own key
+        order = {cell: k for k, cell in enumerate(dict.fromkeys(cells))}
+        return list(order), np.fromiter(map(order.__getitem__, cells), np.intp, len(cells))
+    keys = [c if c.__class__ is str else (c.__class__, c) for c in cells]
     index: dict[object, int] = {}
     codes = np.array([index.setdefault(k, len(index)) for k in keys], dtype=np.intp)
     return [k if k.__class__ is str else k[1] for k in index], codes
