@@ -8,7 +8,7 @@ sizes"), about:
   (2.6 GB), 210 for a ``convergence`` n;
 - 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7), 220
   for ``collide3d --tangential mindlin --points`` (2.1 GB);
-- 1.7 GB for ``compare-laws`` at laws x ``--n`` = 10^7 (two laws at 5 x 10^6: one law at a
+- 1.1 GB for ``compare-laws`` at laws x ``--n`` = 10^7 (two laws at 5 x 10^6: one law at a
   time);
 - 0.20 GB for ``restitution --count`` x ``--n`` at 10^7; 0.09 GB for ``fit`` at 10^5 data
   rows x ``--n`` 100;

@@ -88,14 +88,14 @@ class DuWangPlastic:
     #: F is linear in delta: FILM is exact on one segment (docs/method.md §4, item 5)
     linear: ClassVar[bool] = True
 
-    @property
+    @cached_property
     def slope(self) -> NDArray:
-        """dF/d delta = pi R p0, [N/m]."""
+        """dF/d delta = pi R p0, [N/m] (worked out once)."""
         return np.pi * np.asarray(self.radius) * self.mean_pressure
 
-    @property
+    @cached_property
     def intercept(self) -> NDArray:
-        """pi^3 R^2 p0^3 / (12 E*^2), [N]."""
+        """pi^3 R^2 p0^3 / (12 E*^2), [N] (worked out once)."""
         r, p0, e = (
             np.asarray(v, dtype=float) for v in (self.radius, self.mean_pressure, self.modulus)
         )

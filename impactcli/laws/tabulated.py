@@ -43,6 +43,10 @@ __all__ = [
 
 Array = NDArray[np.float64]
 
+#: Most points of a linear curve whose batch rows are timed by its runs
+#: (:meth:`TabulatedLaw.stage_times`: a few array operations per point of the curve).
+RUN_CURVE_POINTS = 64
+
 #: How a tabulated curve is interpolated: the choices of ``--interpolation``.
 INTERPOLATIONS = ("linear", "pchip")
 
@@ -154,9 +158,9 @@ class TabulatedLaw:
         end_at_rest: bool = False,
     ) -> Array | None:
         """FILM time [s] of stages on this curve with n segments each, for many impacts
-        (:func:`linear_curve_stage_times`): a ``linear`` curve of fewer points than n (else
-        None: FILM's own stages are then no more work)."""
-        if self.interpolation != "linear" or self.delta.size > n:
+        (:func:`linear_curve_stage_times`): a ``linear`` curve of no more points than n and
+        :data:`RUN_CURVE_POINTS` (else None: FILM's own stages are then no more work)."""
+        if self.interpolation != "linear" or self.delta.size > min(n, RUN_CURVE_POINTS):
             return None
         return linear_curve_stage_times(
             self, delta_start, delta_end, speed_start, mass, n, end_at_rest
@@ -338,11 +342,14 @@ class TabulatedContact:
         stage, on floats (:class:`~impactcli.film.FilmSummary`), for an elastic curve
         interpolated linearly: delta_m from the exact work of the curve
         (:meth:`TabulatedLaw.indentation_for_work`), and FILM's time of each stage by
-        :func:`linear_curve_stage_time`. None otherwise (unloading curves, pchip, arrays)
-        and for an impact the array path must word (beyond the curve)."""
+        :func:`linear_curve_stage_time`. None otherwise (unloading curves, pchip, arrays, a
+        curve of more than :data:`CACHED_CURVE_POINTS` points) and for an impact the array
+        path must word (beyond the curve)."""
         law = self.loading
         values = floats(impact_velocity, mass)
         if self.unloading is not None or law.interpolation != "linear" or values is None:
+            return None
+        if law.delta.size > CACHED_CURVE_POINTS:  # its points as floats would take memory
             return None
         v0, m = values
         xs, ys, slopes, total = law.points
@@ -587,7 +594,9 @@ def _checked_law(delta: bytes, force: bytes, interpolation: str) -> TabulatedLaw
     return TabulatedLaw(*check_loading_curve(d, f), interpolation=interpolation)
 
 
-#: Largest curve given as arrays whose checked law is kept for the next impact (points).
+#: Largest curve (points) whose checked law, given as arrays, is kept for the next impact,
+#: and whose impact is timed on floats (:meth:`TabulatedContact.film_summary`): a larger one
+#: stays in its arrays (a curve file of 10^6 points in 0.08 GB, README).
 CACHED_CURVE_POINTS = 10_000
 
 
