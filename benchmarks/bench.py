@@ -592,12 +592,22 @@ def random_spheres(size: int, seed: int = 0) -> dict[str, np.ndarray]:
     }
 
 
-def batch_option(name: str) -> int:
-    """The default of an option of ``impact batch``: ``n``, ``chunk_size``."""
+def batch_option(name: str) -> int | None:
+    """The default of an option of ``impact batch``: ``n``, ``chunk_size`` (None: none)."""
     from impactcli.cli.batch_cmd import batch
 
     default = inspect.signature(batch).parameters[name].default
-    return int(getattr(default, "default", default))
+    value = getattr(default, "default", default)
+    return None if value is None else int(value)
+
+
+def batch_n(damped: bool = False) -> int:
+    """The n ``impact batch`` runs rows at: its ``--n``, else the model's default (25, and
+    :data:`impactcli.model.DAMPED_DEFAULT_N` on damped rows)."""
+    from impactcli.model import DAMPED_DEFAULT_N, DEFAULT_N
+
+    n = batch_option("n")
+    return n if n is not None else (DAMPED_DEFAULT_N if damped else DEFAULT_N)
 
 
 def chunks(rows: dict[str, np.ndarray], size: int) -> Iterator[dict[str, np.ndarray]]:
@@ -632,7 +642,7 @@ def bench_batch(rows: list[Row], quick: bool) -> None:
     steel = dict(E1=210e9, nu1=0.3, E2=210e9, nu2=0.3, rho1=7800.0, rho2=7800.0, sy1=1e9,
                  sy2=1e9)  # fmt: skip
     budget, most = (0.5, 10**5) if quick else (2.0, 10**6)
-    n = batch_option("n")
+    n, n_damped = batch_n(), batch_n(damped=True)
     params = {"walton-braun": WALTON_BRAUN, "tabulated": {"curve": CURVE}}
     for name, _, _ in laws():
 
@@ -653,11 +663,11 @@ def bench_batch(rows: list[Row], quick: bool) -> None:
 
         def compute(r, name=name, alpha=alpha):
             return batch_damped_impacts(r["d1"], r["d2"], r["v1"], r["v2"], **steel,
-                                        damping=name, alpha=alpha, n=n)  # fmt: skip
+                                        damping=name, alpha=alpha, n=n_damped)  # fmt: skip
 
         value, size = throughput(compute, budget, most)
         rows.append(_batch_row(f"(d) batch_damped_impacts, {name} alpha = {alpha:.3g}",
-                               size, n, value))  # fmt: skip
+                               size, n_damped, value))  # fmt: skip
     bench_end_to_end(rows, quick)
 
 
@@ -670,7 +680,7 @@ def default_allocator_rate(quick: bool) -> tuple[float, int]:
     row of (d) measures them (run first: the change cannot be undone within the process)."""
     from impactcli.batch import batch_impacts
 
-    size, chunk, n = (10**5 if quick else 10**6), batch_option("chunk_size"), batch_option("n")
+    size, chunk, n = (10**5 if quick else 10**6), batch_option("chunk_size"), batch_n()
     rows = random_spheres(size)
     start = time.perf_counter()
     for r in chunks(rows, chunk):
