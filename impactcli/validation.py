@@ -14,7 +14,7 @@ warnings and notes are returned as text for the caller to show.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from functools import wraps
+from functools import lru_cache, wraps
 from typing import TypeVar
 
 import numpy as np
@@ -342,13 +342,24 @@ def _onset(law: str) -> YieldOnset:
     return onset
 
 
+@lru_cache(maxsize=1)
 def _first_yield_criterion() -> str:
+    """How a warning names the elastic law's first-yield criterion (worked out once)."""
     onset = _onset(ELASTIC_LAW)
     return onset.criterion(onset.pressure_factor({}))
 
 
+@lru_cache(maxsize=64)
+def _criterion_of(pressure_factor: float) -> str:
+    """How a warning names the default law's yield criterion at p0 / sigma_y."""
+    return _onset(DEFAULT_LAW).criterion(pressure_factor)
+
+
 def _yield_criterion(pressure_factor: float | None) -> str:
-    return _onset(DEFAULT_LAW).criterion(_pressure_factor(pressure_factor))
+    factor = _pressure_factor(pressure_factor)
+    if type(factor) is float:  # one number: its words once
+        return _criterion_of(factor)
+    return _onset(DEFAULT_LAW).criterion(factor)
 
 
 def _pressure_factor(pressure_factor: float | None) -> float:

@@ -471,7 +471,7 @@ class LawSpec:
     ) -> NormalContact:
         """The contact model for effective radius R [m], modulus E* [Pa] and yield strength
         sigma_y [Pa] (of the weaker sphere), one entry per collision; ``params`` by name."""
-        resolved = self.resolve(params)
+        resolved = self.resolve(params) if params or self.parameters else {}
         needed = self.yield_strength_needed(resolved)
         plain = type(yield_strength) is float and 0.0 < yield_strength < math.inf
         if needed is False or (needed is True and plain):  # nothing to check on arrays
