@@ -391,7 +391,10 @@ def _swept_rows(
     with np.errstate(divide="ignore", invalid="ignore"):
         cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))
     dot_node = x0 * x_end + y0 * (y0 + h)
-    swept = np.where(turning, np.arctan2(x0, y0), np.arctan2(cross_node, dot_node))
+    swept = np.arctan2(cross_node, dot_node)
+    at = np.nonzero(turning)
+    if at[0].size:
+        swept[at] = np.arctan2(x0[at], y0[at])
     return swept, turning
 
 
@@ -426,8 +429,12 @@ def swept_angles(
     with np.errstate(divide="ignore", invalid="ignore"):
         cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))
     dot_node = x0 * x_end + y0 * (y0 + h)
-    # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0).
-    swept = np.where(turning, np.arctan2(x0, y0), np.arctan2(cross_node, dot_node))
+    swept = np.arctan2(cross_node, dot_node)
+    # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0) (taken
+    # where the segments turn alone: few of them, often the last one only).
+    at = np.nonzero(turning)
+    if at[0].size:
+        swept[at] = np.arctan2(x0[at], y0[at])
     return swept, turning
 
 
