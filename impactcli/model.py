@@ -31,6 +31,9 @@ from typing import TYPE_CHECKING, Any, ClassVar, Protocol, cast
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.contact import first_yield_velocity
+from impactcli.design import first_yield_velocities
+from impactcli.energy import kinetic_energy
 from impactcli.laws.base import MIN_YIELD_INDENTATION_RATIO as MIN_RATIO
 from impactcli.laws.base import Separation
 from impactcli.laws.registry import (
@@ -40,6 +43,7 @@ from impactcli.laws.registry import (
     ELASTIC_LAW,
     get_law,
 )
+from impactcli.pairs import effective_properties, weaker_yield_strength
 from impactcli.solution import PlanSolution
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
@@ -50,8 +54,9 @@ from impactcli.validation import (
 )
 
 if TYPE_CHECKING:
-    from impactcli.impact import ImpactResult, Sphere
+    from impactcli.impact import ImpactResult
     from impactcli.laws.base import ImpactPlan, LawSpec, NormalContact
+    from impactcli.pairs import Sphere
     from impactcli.solution import ContactSolution
 
 __all__ = [
@@ -61,6 +66,7 @@ __all__ = [
     "DampedPair",
     "LawPair",
     "PairModel",
+    "solution_energy_summary",
 ]
 
 #: FILM segments per stage of a normal law by default (the paper's n = 25).
@@ -69,20 +75,6 @@ DEFAULT_N = 25
 #: FILM segments per stage of a damped impact by default: e and the contact time within
 #: 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
 DAMPED_DEFAULT_N = 400
-
-
-#: :mod:`impactcli.impact`, which imports this module: bound on first use (:func:`_impact`).
-_IMPACT: Any = None
-
-
-def _impact() -> Any:
-    """:mod:`impactcli.impact` (which imports this module), imported on first use."""
-    global _IMPACT
-    if _IMPACT is None:
-        from impactcli import impact
-
-        _IMPACT = impact
-    return _IMPACT
 
 
 def _positive(value: object) -> bool:
@@ -207,17 +199,16 @@ class ContactModel:
         effective mass, radius and modulus and the yield strength (the model's, else the
         weaker sphere's). An unknown law is a ValueError; its parameters are checked when
         the contact is first used."""
-        impact = _impact()
         if self.damping is None:
             spec = get_law(self.law)
             sigma_y = (
                 self.yield_strength
                 if self.yield_strength is not None
-                else impact.weaker_yield_strength(sphere1, sphere2)
+                else weaker_yield_strength(sphere1, sphere2)
             )
-            m, r, e = impact.effective_properties(sphere1, sphere2)
+            m, r, e = effective_properties(sphere1, sphere2)
             return LawPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
-        m, r, e = impact.effective_properties(sphere1, sphere2)
+        m, r, e = effective_properties(sphere1, sphere2)
         return DampedPair(self, sphere1, sphere2, m, r, e)
 
 
@@ -268,10 +259,6 @@ class PairModel(Protocol):
 
     def damping_law(self, solution: Any) -> Any:
         """The damping model of the solution (None for a normal law)."""
-        ...
-
-    def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
-        """e [-] and contact time [s] at each V0 [m/s], vectorised FILM."""
         ...
 
     def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
@@ -377,7 +364,7 @@ class LawPair:
         """The plastic keys (:data:`impactcli.impact.PLASTIC_SUMMARY_KEYS` beyond the
         elastic ones) and the energy keys (:data:`impactcli.impact.ENERGY_SUMMARY_KEYS`)."""
         out = self._plastic_summary(result, solution)
-        out.update(_impact().solution_energy_summary(result, solution))
+        out.update(solution_energy_summary(result, solution))
         return out
 
     def _plastic_summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
@@ -409,17 +396,6 @@ class LawPair:
         """No damping model: None."""
         return None
 
-    def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
-        """e [-] and contact time [s] at each V0 [m/s]: :func:`impactcli.sweep.restitution_sweep`
-        of the law (FILM, the elastic and the plastic impacts each one batch)."""
-        from impactcli.sweep import restitution_sweep
-
-        sweep = restitution_sweep(
-            self.sphere1, self.sphere2, velocities, n, yield_strength=self.model.yield_strength,
-            law=self.spec.name, law_params=dict(self.model.law_params),
-        )  # fmt: skip
-        return sweep["restitution"], sweep["contact_time"]
-
     def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
         """The law's published e(V0) (:attr:`~impactcli.laws.base.LawSpec.closed_form`)."""
         if self.spec.closed_form is None:
@@ -437,10 +413,9 @@ class _ElasticModel(ContactModel):
     """Hertz as :func:`impactcli.impact.elastic_impact` runs it."""
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
-        impact = _impact()
         spec = get_law(ELASTIC_LAW)
-        sigma_y = impact.weaker_yield_strength(sphere1, sphere2)
-        m, r, e = impact.effective_properties(sphere1, sphere2)
+        sigma_y = weaker_yield_strength(sphere1, sphere2)
+        m, r, e = effective_properties(sphere1, sphere2)
         return _ElasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
 
 
@@ -454,7 +429,7 @@ class _ElasticPair(LawPair):
         return "elastic"
 
     def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
-        return _impact().solution_energy_summary(result, solution)
+        return solution_energy_summary(result, solution)
 
 
 #: p0 / sigma_y of the default law when none is given, [-].
@@ -470,18 +445,17 @@ class _ElastoplasticModel(ContactModel):
     pressure_factor: float = _P0_FACTOR
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
-        impact = _impact()
         sigma_y = (
             self.yield_strength
             if self.yield_strength is not None
-            else impact.weaker_yield_strength(sphere1, sphere2)
+            else weaker_yield_strength(sphere1, sphere2)
         )
         if not _positive(sigma_y) and (sigma_y is None or needs_yield_strength(sigma_y, sigma_y)):
             raise ValueError(YIELD_STRENGTH_NEEDED)
         factor = self.pressure_factor
         if not _positive(factor) and not (np.isfinite(factor) and factor > 0):
             raise ValueError(f"the pressure factor must be positive, got {factor}")
-        m, r, e = impact.effective_properties(sphere1, sphere2)
+        m, r, e = effective_properties(sphere1, sphere2)
         spec = get_law(self.law)
         return _ElastoplasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
 
@@ -619,9 +593,9 @@ class DampedPair:
     def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
         """e [-] and contact time [s] at each V0 [m/s]: the damped FILM of the model's
         alpha, vectorised (e = 0 and an infinite time for a contact that never ends)."""
-        from impactcli.batch import DAMPED_BLOCK
         from impactcli.damping import solve_damped_impact
         from impactcli.laws.registry import damping_model
+        from impactcli.limits import DAMPED_BLOCK
 
         law = damping_model(
             str(self.model.damping), self.radius, self.modulus, self.mass, self.model.alpha
@@ -659,3 +633,96 @@ class DampedPair:
                 solution.law, impact_velocity, self.mass, n, separation="force"
             )
         return (1.0 + float(pushing.restitution)) * self.mass * float(impact_velocity)
+
+def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> dict[str, float]:
+    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact from ``solution``, SI
+    (docs/method.md §12).
+
+    Kinetic energy of each sphere before and at separation [J]; the energy dissipated in
+    each sphere, p_i (1/2) m V0^2 (1 - e^2) [J]; the share of the initial relative kinetic
+    energy (1/2) m V0^2 that each sphere holds at maximum compression, as recoverable strain
+    energy (``stored_share``: e_i W_r(delta_max) / ((1/2) m V0^2); both add up to e^2) and
+    in all (``absorbed_share``: stored plus dissipated; both add up to 1) [-]; and the
+    impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
+    without a yield strength: :func:`impactcli.design.first_yield_velocities`).
+    """
+    pair = result.contact
+    m, r, e_star = pair.mass, pair.radius, pair.modulus  # effective_properties of the pair
+    v0 = result.impact_velocity
+    relative = 0.5 * m * v0 * v0
+    restitution, delta_max = _float(solution.restitution), _float(solution.delta_max)
+    (r1, r2), (e1, e2), (p1, p2) = result._shares()
+    quantities = getattr(solution, "quantities", None)  # FILM's: the law's closed forms
+    if quantities is not None:
+        work = quantities.recoverable_work
+    else:
+        work = _one(result.contact_model.recoverable_work(np.array([delta_max])))
+    stored = min(work, relative)
+    lost = relative * (1.0 - restitution**2)
+    v1, v2, m1, m2 = result.v1, result.v2, result.m1, result.m2
+    v1_final = v1 - r1 * (1.0 + restitution) * v0
+    v2_final = v2 - r2 * (1.0 + restitution) * v0
+    sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
+    try:  # on floats
+        fy1, fy2 = first_yield_velocities_of(result, m, r, e_star)
+        kinetic = (
+            _kinetic_energy(m1, v1),
+            _kinetic_energy(m2, v2),
+            _kinetic_energy(m1, v1_final),
+            _kinetic_energy(m2, v2_final),
+        )
+    except (ArithmeticError, TypeError, ValueError):
+        fy1, fy2 = map(float, first_yield_velocities(m, r, e_star, sy1, sy2))
+        kinetic = tuple(
+            float(kinetic_energy(mass, v))
+            for mass, v in ((m1, v1), (m2, v2), (m1, v1_final), (m2, v2_final))
+        )
+    return {
+        "kinetic_energy1_initial": kinetic[0],
+        "kinetic_energy2_initial": kinetic[1],
+        "kinetic_energy1_final": kinetic[2],
+        "kinetic_energy2_final": kinetic[3],
+        "energy_dissipated1": p1 * lost,
+        "energy_dissipated2": p2 * lost,
+        "stored_share1": e1 * stored / relative,
+        "stored_share2": e2 * stored / relative,
+        "absorbed_share1": (e1 * stored + p1 * (relative - stored)) / relative,
+        "absorbed_share2": (e2 * stored + p2 * (relative - stored)) / relative,
+        "first_yield_velocity1": fy1,
+        "first_yield_velocity2": fy2,
+    }
+
+
+def first_yield_velocities_of(
+    result: ImpactResult, m: float, r: float, e: float
+) -> tuple[float, float]:
+    """The first-yield velocity of each sphere of ``result`` on floats, [m/s] (``inf``
+    without a yield strength), from the effective mass m [kg], radius R [m] and modulus E*
+    [Pa]; worked out once per result (:func:`impactcli.design.first_yield_velocities`)."""
+    found = result.__dict__.get("_first_yield_")
+    if found is None:
+        sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
+        found = (
+            math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1),
+            math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2),
+        )
+        result.__dict__["_first_yield_"] = found
+    return found
+
+
+def _kinetic_energy(mass: float, velocity: float) -> float:
+    """:func:`impactcli.energy.kinetic_energy` on floats: (1/2) m v^2, zero for a fixed
+    body at rest, [J]."""
+    if mass == math.inf and velocity == 0.0:
+        return 0.0
+    return 0.5 * mass * velocity * velocity
+
+
+def _float(value: ArrayLike) -> float:
+    """A float, or the one value of a scalar or shape-(1,) array."""
+    return value if type(value) is float else _one(value)  # type: ignore[return-value]
+
+
+def _one(value: ArrayLike) -> float:
+    """The one value of a scalar or shape-(1,) array."""
+    return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
