@@ -596,7 +596,7 @@ def _checked_law(delta: bytes, force: bytes, interpolation: str) -> TabulatedLaw
 
 #: Largest curve (points) whose checked law, given as arrays, is kept for the next impact,
 #: and whose impact is timed on floats (:meth:`TabulatedContact.film_summary`): a larger one
-#: stays in its arrays (a curve file of 10^6 points in 0.08 GB, README).
+#: stays in its arrays (a curve file of 10^6 points in 0.08 GB, docs/about/guarantees.md).
 CACHED_CURVE_POINTS = 10_000
 
 
