@@ -359,9 +359,12 @@ def hertz_summary(
     if not (k > 0.0 and v0 > 0.0 and m > 0.0):
         return None
     try:
-        delta_m = (5.0 * m * (v0 * v0) / (4.0 * k)) ** 0.4
+        x = 5.0 * m * (v0 * v0) / (4.0 * k)
+        delta_m = x**0.4
         force = k * delta_m**1.5
-        scale = delta_m / v0
+        # the times' scale from delta_m to within an ulp (x**0.4 carries the float exponent's
+        # error times ln x, some 5 ulp at delta_m ~ 1e-5 m), as FILM's solved stages have it
+        scale = _two_fifths_power(x) / v0
         work = 0.4 * k * delta_m**2.5
     except (OverflowError, ZeroDivisionError):
         return None
@@ -373,6 +376,15 @@ def hertz_summary(
         work, True, False,
     )  # fmt: skip
     return summary if finite_summary(summary) else None
+
+
+def _two_fifths_power(x: float) -> float:
+    """x^(2/5) of a positive, finite float to within an ulp: x = f 2^(5q + r) with f in
+    [0.5, 1) and r in 0..4, so that x^(2/5) = 4^q (f 2^r)^(2/5), whose base is within
+    [0.5, 16) and the float exponent 0.4's error (2e-17) barely counts."""
+    f, exponent = math.frexp(x)
+    q, r = divmod(exponent, 5)
+    return math.ldexp(math.ldexp(f, r) ** 0.4, 2 * q)
 
 
 def rebound_time(delta_max: float, delta_res: float, speed: float, n: int) -> float:
