@@ -106,6 +106,7 @@ from impactcli.collision2d import (
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW, get_law
 from impactcli.laws.tangential import get_tangential, tangential_names
+from impactcli.solution import history_times
 from impactcli.validation import check_friction, check_restitution, check_vectors, input_errors
 from impactcli.validation import where_first as _where
 
@@ -743,7 +744,7 @@ def normal_restitution_and_history(
             f"the damped contact never ends (alpha = {alpha:g}: overdamped), so it has no "
             "normal history for a tangential spring"
         )
-    t = np.linspace(0.0, t_c, int(points))
+    t = history_times(solution, int(points))
     delta, delta_dot = solution.evaluate(t)
     delta = np.maximum(delta, 0.0)
     force = np.maximum(solution.force(t, delta, delta_dot), 0.0)

@@ -3,12 +3,12 @@
 Measured peak memory (resident set) of one run at the limits below (docs/about/guarantees.md,
 "Limits on sizes and memory"), about:
 
-- 650 bytes per FILM segment per stage for ``elastoplastic --n`` (6.5 GB at 10^7), 600 for
-  ``elastic --damping`` (5.7 GB), 440 for ``elastic --n`` (4.4 GB), 260 for ``tables --n``
+- 470 bytes per FILM segment per stage for ``elastoplastic --n`` (4.6 GB at 10^7), 600 for
+  ``elastic --damping`` (5.7 GB), 310 for ``elastic --n`` (3.1 GB), 260 for ``tables --n``
   (2.6 GB), 210 for a ``convergence`` n;
 - 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7), 220
   for ``collide3d --tangential mindlin --points`` (2.1 GB);
-- 1.7 GB for ``compare-laws`` at laws x ``--n`` = 10^7 (two laws at 5 x 10^6: one law at a
+- 1.1 GB for ``compare-laws`` at laws x ``--n`` = 10^7 (two laws at 5 x 10^6: one law at a
   time);
 - 0.20 GB for ``restitution --count`` x ``--n`` at 10^7; 0.09 GB for ``fit`` at 10^5 data
   rows x ``--n`` 100;
@@ -46,7 +46,7 @@ __all__ = [
     "check_size",
 ]
 
-#: FILM segments per stage (``--n``): 6.5 GB at the limit (``elastoplastic``).
+#: FILM segments per stage (``--n``): 4.6 GB at the limit (``elastoplastic``).
 MAX_SEGMENTS = 10_000_000
 #: Points of a history (``--points``): 3.5 GB at the limit.
 MAX_POINTS = 10_000_000

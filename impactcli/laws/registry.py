@@ -149,6 +149,8 @@ def law_names() -> tuple[str, ...]:
 def get_law(name: str) -> LawSpec:
     """The law called ``name`` (case and ``_`` for ``-`` ignored); a one-line ValueError
     listing the accepted names otherwise."""
+    if type(name) is str and name in LAWS:  # its own name
+        return LAWS[name]
     key = str(name).strip().lower().replace("_", "-").replace(" ", "-")
     if key in LAWS:
         return LAWS[key]
