@@ -134,7 +134,7 @@ __all__ = [
     "velocity_from_angles",
 ]
 
-from impactcli.tangential import Steps
+from impactcli.tangential import Steps, check_tangential_damping
 
 if TYPE_CHECKING:
     from impactcli.impact import ImpactResult, Sphere
@@ -205,6 +205,10 @@ class NormalHistory:
         library, and damped Hertz with the ``force`` separation). A damped contact with the
         ``overlap`` separation pulls at its end (F < 0): its J_n is the integral of F, while
         friction is capped by the larger integral of max(F, 0).
+    damping : the normal damping coefficient eta_n = c(delta) at the times, [N s/m], where
+        the normal law has viscous damping (a tangential dashpot scales it); None: none
+    damping_mean : the mean of eta_n over each interval (K - 1 on the last axis), [N s/m];
+        None: the mean of its ends
     """
 
     t: Array
@@ -212,6 +216,8 @@ class NormalHistory:
     delta_dot: Array
     force: Array
     impulse: Array | None = None
+    damping: Array | None = None
+    damping_mean: Array | None = None
 
     def __post_init__(self) -> None:
         arrays = [np.asarray(getattr(self, k), dtype=float) for k in ("t", "delta")]
@@ -232,6 +238,14 @@ class NormalHistory:
             if not np.all(np.isfinite(impulse) & (impulse > 0.0)):
                 raise ValueError("the impulse of a normal history must be finite and > 0")
             object.__setattr__(self, "impulse", np.broadcast_to(impulse, shape[:-1]))
+        for key, points in (("damping", shape[-1]), ("damping_mean", shape[-1] - 1)):
+            value = getattr(self, key)
+            if value is None:
+                continue
+            value = np.asarray(value, dtype=float)
+            if not np.all(np.isfinite(value) & (value >= 0.0)):
+                raise ValueError(f"the normal history {key} must be finite and >= 0")
+            object.__setattr__(self, key, np.broadcast_to(value, shape[:-1] + (points,)))
 
     @classmethod
     def from_impacts(cls, impacts: Sequence[ImpactResult], points: int = 4001) -> NormalHistory:
@@ -736,9 +750,16 @@ def normal_restitution_and_history(
     force = np.maximum(solution.force(t, delta, delta_dot), 0.0)
     # The impulse of max(F, 0): J_n unless the force pulls (a damped contact near separation).
     impulse = pair.pushing_impulse(solution, float(u_n), segments)
+    eta = eta_mean = None
+    if damping is not None:  # eta_n, for a tangential dashpot
+        from impactcli.tangential import interval_damping
+
+        eta = np.asarray(solution.law.damping_coefficient(delta), dtype=float)[None]
+        eta_mean = interval_damping(solution.law, delta)[None]
     history = NormalHistory(
-        t[None], delta[None], delta_dot[None], force[None], None if impulse is None else [impulse]
-    )
+        t[None], delta[None], delta_dot[None], force[None], None if impulse is None else [impulse],
+        eta, eta_mean,
+    )  # fmt: skip
     return NormalLaw(e, history, warned)
 
 
@@ -764,6 +785,7 @@ def oblique_collision_3d(
     *,
     warnings: Sequence[str] = (),
     steps: Steps | None = None,
+    tangential_damping: ArrayLike = 0.0,
 ) -> Collision3D:
     r"""Velocities and spins after the oblique collision of two rough spheres, in 3-D.
 
@@ -818,6 +840,11 @@ def oblique_collision_3d(
         tangential integration takes them (:func:`impactcli.tangential.hertz_steps`: a batch
         of Hertz impacts from one normalised history, memory O(batch + points)); the
         result then has no force history
+    tangential_damping : X >= 0, [-]: a tangential dashpot beside a spring model,
+        eta_t = X eta_n with eta_n the normal damping coefficient of the history (LAMMPS's
+        ``x_gamma_t``); the friction force is the spring's plus eta_t u_t, capped by
+        mu F_n (docs/collision3d.md). Default 0: none. X > 0 needs a spring model and a
+        normal law with viscous damping (``history.damping``)
 
     Returns
     -------
@@ -848,7 +875,7 @@ def oblique_collision_3d(
     result = _oblique(
         m1, m2, 0.5 * np.asarray(d1, dtype=float), 0.5 * np.asarray(d2, dtype=float), p1, p2,
         v1, v2, w1, w2, restitution, mu, tangential, inertia1, inertia2, history,
-        shear_modulus, steps,
+        shear_modulus, steps, tangential_damping,
     )  # fmt: skip
     if warnings:
         object.__setattr__(result, "warnings", tuple(warnings))
@@ -922,9 +949,16 @@ def _oblique(
     history: NormalHistory | None = None,
     shear_modulus: ArrayLike | None = None,
     steps: Steps | None = None,
+    tangential_damping: ArrayLike = 0.0,
 ) -> Collision3D:
     """:func:`oblique_collision_3d` with radii [m] and friction mu [-]."""
     spec = get_tangential(tangential)
+    x_t = np.asarray(tangential_damping, dtype=float)
+    damped = spec.kind == "spring" and (
+        (steps is not None and steps.damping is not None)
+        or (steps is None and history is not None and history.damping is not None)
+    )
+    check_tangential_damping(x_t, tangential, damped)
     m1, m2, r1, r2, e, mu = (
         np.asarray(x, dtype=float) for x in (m1, m2, r1, r2, restitution, friction)
     )
@@ -1012,7 +1046,11 @@ def _oblique(
 
         if shape != (steps.rows,):
             raise ValueError(f"steps has {steps.rows} rows for a batch of shape {shape}")
-        out = integrate_tangential(spec, steps, slip, m_t, mu)
+        if np.any(x_t != 0.0):
+            out = integrate_tangential(spec, steps, slip, m_t, mu,
+                                       tangential_damping=np.broadcast_to(x_t, shape))  # fmt: skip
+        else:
+            out = integrate_tangential(spec, steps, slip, m_t, mu)
         j_t, stuck = out.impulse, out.stuck
     else:
         if history is None or shear_modulus is None:
@@ -1023,7 +1061,7 @@ def _oblique(
             raise ValueError("the effective shear modulus G* must be > 0" + _where(bad))
         radius = 1.0 / (1.0 / r1 + 1.0 / r2)
         j_t, stuck, force = _spring(spec.name, history, shape, u_n, e, j_n, slip, m_t, mu, g,
-                                    radius)  # fmt: skip
+                                    radius, x_t)  # fmt: skip
         times = np.broadcast_to(history.t, force.shape)
 
     impulse_t = j_t[..., None] * t_hat  # on sphere 2
@@ -1126,6 +1164,7 @@ def _spring(
     mu: Array,
     g: Array,
     radius: Array,
+    x_t: Array | None = None,
 ) -> tuple[Array, NDArray[np.bool_], Array]:
     """Tangential impulse, stick flag and force history of a tangential model with a spring
     (see :func:`oblique_collision_3d`), by :func:`impactcli.tangential.integrate_tangential`
@@ -1167,11 +1206,24 @@ def _spring(
         return np.reshape(np.broadcast_to(a, shape), -1)
 
     rows = (-1, k_points)
+    extra = {}
+    if x_t is not None and np.any(x_t != 0.0):
+        extra["tangential_damping"] = flat(x_t)
+        eta = history.damping
+        mean = history.damping_mean
+        damping = {
+            "damping": np.reshape(np.broadcast_to(eta, shape + (k_points,)), rows),
+            "damping_mean": None if mean is None else np.reshape(
+                np.broadcast_to(mean, shape + (k_points - 1,)), (-1, k_points - 1)),
+        }  # fmt: skip
+    else:
+        damping = {}
     steps = history_steps(
         np.reshape(hist["t"], rows), np.reshape(hist["delta"], rows), np.reshape(f_n, rows),
-        flat(impulse), flat(g), flat(radius),
+        flat(impulse), flat(g), flat(radius), **damping,
     )  # fmt: skip
-    out = integrate_tangential(model, steps, flat(slip), flat(m_t), flat(mu), record=True)
+    out = integrate_tangential(model, steps, flat(slip), flat(m_t), flat(mu), record=True,
+                               **extra)  # fmt: skip
     return (
         np.reshape(out.impulse, shape),
         np.reshape(out.stuck, shape),
@@ -1321,6 +1373,7 @@ def sphere_collision_3d(
     mu: float = 0.0,
     tangential: str = "rigid",
     points: int = 4001,
+    tangential_damping: float = 0.0,
 ) -> tuple[Collision3D, NormalHistory | None]:
     """One oblique collision of two :class:`~impactcli.impact.Sphere` (``impact collide3d``):
     the normal law run as a head-on impact at the normal approach velocity u_n
@@ -1339,6 +1392,9 @@ def sphere_collision_3d(
     mu : Coulomb friction coefficient, [-]
     tangential : a model of :mod:`impactcli.laws.tangential` (``rigid``, ``mindlin``, ...)
     points : time points of the normal history of a tangential spring
+    tangential_damping : X >= 0, [-]: the tangential dashpot eta_t = X eta_n of a spring
+        model, eta_n the normal damping coefficient (LAMMPS's ``x_gamma_t``); default 0
+        (none); X > 0 needs viscous damping in the normal law (``damping``, or e < 1)
 
     Returns
     -------
@@ -1396,7 +1452,7 @@ def sphere_collision_3d(
     collision = oblique_collision_3d(
         sphere1.total_mass, sphere2.total_mass, v1, v2, p1, p2, sphere1.diameter,
         sphere2.diameter, w1, w2, restitution, mu, tangential, history=history,
-        shear_modulus=shear, warnings=warned,
+        shear_modulus=shear, warnings=warned, tangential_damping=tangential_damping,
     )  # fmt: skip
     return collision, history
 

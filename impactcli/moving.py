@@ -58,6 +58,7 @@ def moving_collision_3d(
     n: int | None = None,
     *,
     warnings: Sequence[str] | None = (),
+    tangential_damping: float = 0.0,
 ) -> Collision3D:
     """The collision of two spheres integrated in time with the spheres moving (module
     docstring), as a :class:`~impactcli.collision3d.Collision3D` with ``geometry =
@@ -80,6 +81,10 @@ def moving_collision_3d(
     n : FILM segments per stage of the normal law's e (``restitution`` of the result)
     warnings : carried by the result; None: those of the normal law
         (:attr:`impactcli.collision3d.NormalLaw.warnings`, as ``impact collide3d`` prints them)
+    tangential_damping : X >= 0, [-]: a tangential dashpot eta_t = X eta_n beside the
+        spring, eta_n the damping model's coefficient (LAMMPS's ``x_gamma_t``; the friction
+        force is the spring's plus eta_t times the slip, capped by mu F_n, and on the cap
+        the spring is the cap less the dashpot's force); default 0: none
 
     Returns
     -------
@@ -159,6 +164,9 @@ def moving_collision_3d(
     m, radius, modulus = effective_properties(sphere1, sphere2)
     shear = float(effective_shear_modulus(sphere1.youngs_modulus, sphere1.poisson_ratio,
                                           sphere2.youngs_modulus, sphere2.poisson_ratio))
+    from impactcli.tangential import check_tangential_damping
+
+    check_tangential_damping(tangential_damping, spec.name, model.damping is not None)
     damper = None
     if model.damping is not None:
         damper = damping_model(model.damping, radius, modulus, m, model.alpha)
@@ -171,7 +179,7 @@ def moving_collision_3d(
         warnings = normal.warnings
     t_c = float(history.t[0, -1])
     contact = _Contact(sphere1, sphere2, radius, modulus, shear, damper, model.separation,
-                       mu, spec)  # fmt: skip
+                       mu, spec, float(tangential_damping))  # fmt: skip
     start = (x1, x2, u1, u2, o1, o2)
     coarse = contact.run(start, t_c / max(int(points) - 1, 2))
     fine = contact.run(start, t_c / (2 * max(int(points) - 1, 2)))
@@ -205,7 +213,8 @@ def _fields(result):
 class _Contact:
     """The two spheres and their contact, stepped in time (module docstring)."""
 
-    def __init__(self, s1, s2, radius, modulus, shear, damper, separation, mu, spec):
+    def __init__(self, s1, s2, radius, modulus, shear, damper, separation, mu, spec,
+                 tangential_damping=0.0):  # fmt: skip
         from impactcli.laws.viscous import DampingSpec
 
         self.r1, self.r2 = s1.radius, s2.radius
@@ -220,6 +229,7 @@ class _Contact:
         self.separation = separation
         self.mu = mu
         self.spec = spec
+        self.tangential_damping = tangential_damping
         self.stuck = False
 
     def forces(self, x1, x2, v1, v2, w1, w2, state, dt):
@@ -231,6 +241,7 @@ class _Contact:
         delta = self.r1 + self.r2 - gap
         rel = v1 - v2
         rate = float(rel @ n)
+        coefficient = 0.0
         if self.damper is None:
             total = self.stiffness * max(delta, 0.0) ** 1.5
         else:
@@ -259,6 +270,19 @@ class _Contact:
         history += (slip if displacement else k_t * slip) * dt
         spring = k_t * history if displacement else history.copy()
         limit = self.mu * max(total, 0.0)
+        if self.tangential_damping > 0.0:  # the dashpot beside the spring (LAMMPS's rule)
+            dashpot = self.tangential_damping * coefficient * slip
+            spring = spring + dashpot
+            size = math.sqrt(float(spring @ spring))
+            if size > limit:
+                spring *= limit / size
+                elastic = spring - dashpot
+                history[:] = elastic / k_t if displacement else elastic
+            else:
+                self.stuck = True
+            state[1] = a
+            force = force - spring
+            return force, np.cross(self.r1 * n, -spring), np.cross(-self.r2 * n, spring)
         size = math.sqrt(float(spring @ spring))
         if size > limit:
             spring *= limit / size

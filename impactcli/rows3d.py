@@ -4,8 +4,9 @@ table of results out.
 One row per collision: vector columns ``p1_x, p1_y, p1_z`` (centres at contact, required),
 ``v1_x...`` (required), ``v2_x...``, ``w1_x...``, ``w2_x...`` (default 0), the sphere columns
 of ``impact batch`` (:data:`impactcli.rows.QUANTITY_COLUMNS` without ``v1``, ``v2``;
-``material``, ``material1``, ``material2``), and optionally ``mu``, ``e`` and
-``tangential`` (a model of :mod:`impactcli.laws.tangential` by name) per row (else the
+``material``, ``material1``, ``material2``), and optionally ``mu``, ``e``,
+``tangential`` (a model of :mod:`impactcli.laws.tangential` by name) and
+``tangential_damping`` (X of the tangential dashpot eta_t = X eta_n, [-]) per row (else the
 model's). The result columns are :data:`impactcli.collision3d.SUMMARY_KEYS` and ``error``.
 
 :func:`compute_rows3d` is vectorised over rows: each row's pair of spheres is the head-on
@@ -89,6 +90,7 @@ SCALAR_COLUMNS: dict[str, tuple[str, bool]] = {
     **{k: v for k, v in QUANTITY_COLUMNS.items() if k not in ("v1", "v2")},
     "mu": ("dimensionless", False),
     "e": ("dimensionless", False),
+    "tangential_damping": ("dimensionless", False),
 }
 TEXT_COLUMNS: tuple[str, ...] = ("material", "material1", "material2", "tangential")
 #: Every column read; others are carried to the output unread.
@@ -123,6 +125,8 @@ class CollisionModel:
     tangential : a model of :mod:`impactcli.laws.tangential` (``rigid``, ``mindlin``, ...)
         of rows without a ``tangential`` cell
     points : time points of each normal history (a tangential spring), [-]
+    tangential_damping : X >= 0 of rows without a ``tangential_damping`` cell: the
+        tangential dashpot eta_t = X eta_n of a spring (LAMMPS's ``x_gamma_t``), [-]
     """
 
     law: str | None = None
@@ -135,6 +139,7 @@ class CollisionModel:
     mu: float = 0.0
     tangential: str = "rigid"
     points: int = 4001
+    tangential_damping: float = 0.0
 
     def __post_init__(self) -> None:
         get_tangential(self.tangential)  # the model of rows without a cell: a ValueError if unknown
@@ -177,6 +182,11 @@ def compute_rows3d(
     models, spring = _row_models(reader, model.tangential, errors)
     s1, s2 = _spheres(reader, q, errors)
     friction, given_e, u_n = _row_checks(q, s1, s2, vectors, spring, model, errors)
+    x_t = np.where(np.isnan(q["tangential_damping"]), model.tangential_damping,
+                   q["tangential_damping"])  # fmt: skip
+    with np.errstate(invalid="ignore"):
+        errors.add(~(np.isfinite(x_t) & (x_t >= 0.0)),
+                   "tangential_damping must be finite and >= 0 (0: none)")  # fmt: skip
     # each row's pair of spheres, in the head-on impact at u_n: sphere 1 moves, unless it
     # is the fixed one
     with np.errstate(all="ignore"):
@@ -204,7 +214,7 @@ def compute_rows3d(
             blocks = [chosen[i : i + rows_per_block] for i in range(0, chosen.size,
                                                                      rows_per_block)]  # fmt: skip
         for rows in blocks:
-            _collide_block(rows, pairs, (vectors, e, friction, u_n), model, name,
+            _collide_block(rows, pairs, (vectors, e, friction, u_n, x_t), model, name,
                            (errors, result))  # fmt: skip
     result["error"] = errors.messages
     return result
@@ -320,7 +330,7 @@ def _row_checks(
 def _collide_block(
     rows: NDArray[np.intp],
     pairs: SpherePairs,
-    state: tuple[Mapping[str, NDArray], NDArray, NDArray, NDArray],
+    state: tuple[Mapping[str, NDArray], NDArray, NDArray, NDArray, NDArray],
     model: CollisionModel,
     tangential: str,
     out: tuple[Problems, dict[str, NDArray]],
@@ -330,7 +340,7 @@ def _collide_block(
     histories of a spring (normalised ones scaled on Hertz, damped or not; else one FILM
     run per row), then :func:`impactcli.collision3d.oblique_collision_3d`; the results
     written into the result columns, each refused row's reason into the errors (``out``)."""
-    vectors, e, friction, u_n = state
+    vectors, e, friction, u_n, _ = state
     errors, result = out
     size = e.size
     if not get_tangential(tangential).needs_history:
@@ -457,7 +467,7 @@ def _similar_steps(
 def _collide_rows(
     rows: NDArray[np.intp],
     pairs: SpherePairs,
-    state: tuple[Mapping[str, NDArray], NDArray, NDArray, NDArray],
+    state: tuple[Mapping[str, NDArray], NDArray, NDArray, NDArray, NDArray],
     tangential: str,
     out: tuple[Problems, dict[str, NDArray]],
     *,
@@ -470,7 +480,7 @@ def _collide_rows(
     histories row by row (``arrays``: t, delta, delta', F; ``given``: their impulses or
     None, ``shear``: G*) or as normalised ones (``steps``); the results into the result
     columns (``out``)."""
-    vectors, e, friction, _ = state
+    vectors, e, friction, _, x_t = state
     errors, result = out
     size = e.size
     summaries: list[tuple[NDArray, dict[str, NDArray]]] = []
@@ -484,6 +494,7 @@ def _collide_rows(
             *(a[part] for a in arrays), impulse=None if given is None else given[part]
         )
         rows_steps = None if steps is None else steps.take(np.arange(start, stop))
+        extra = {"tangential_damping": x_t[at]} if np.any(x_t[at] != 0.0) else {}
         try:
             with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
                 collision = oblique_collision_3d(
@@ -491,7 +502,7 @@ def _collide_rows(
                     vectors["p1"][at], vectors["p2"][at], pairs.d1[at], pairs.d2[at],
                     vectors["w1"][at], vectors["w2"][at], e[at], friction[at], tangential,
                     history=history, steps=rows_steps,
-                    shear_modulus=None if shear is None else shear[part],
+                    shear_modulus=None if shear is None else shear[part], **extra,
                 )  # fmt: skip
                 summaries.append((at, collision_summary(collision)))
         except (InputError, ValueError) as exc:

@@ -36,6 +36,15 @@ where the slide begins), and the force is mu F_n at the interval's end, where th
 interval starts (no scaling after the cap: the slide stays on the limit). The error is of
 second order in the time step (docs/collision3d.md gives its size).
 
+**A tangential dashpot** (``tangential_damping`` X > 0: eta_t = X eta_n beside the
+spring, LAMMPS's ``x_gamma_t``) adds -eta_t/m_t to the slip's row of the matrix: the
+Cayley step's factors become (1 - q - d) on the slip and (1 - q + d) on the spring over
+(1 + q + d), q = L phi/4 as without it and d half the interval's integral of eta_t/m_t
+(eta_n's mean over the interval exact for an indentation linear in time). The Coulomb test
+is on the total F_s + eta_t u_t at the interval's end; where it slides, the total is on
+the limit and the spring is set to the limit less the dashpot's force (LAMMPS's rule,
+``gran_sub_mod_tangential.cpp``). X = 0 runs the loop without it, unchanged.
+
 **Mindlin-Deresiewicz** (Thornton & Yin 1991): the incremental law with its loading,
 unloading and reloading branches and their turning points, integrated by Heun's method
 (second order where theta is smooth; the branch changes are located to the interval).
@@ -61,15 +70,17 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.tangential import TangentialModel, get_tangential
+from impactcli.laws.tangential import SPRING_MODELS, TangentialModel, get_tangential
 
 __all__ = [
     "Steps",
+    "check_tangential_damping",
     "TangentialResult",
     "damped_steps",
     "hertz_steps",
     "history_steps",
     "integrate_tangential",
+    "interval_damping",
 ]
 
 Array = NDArray[np.float64]
@@ -91,6 +102,12 @@ class Steps:
     share : each interval's share of the impulse of F_n (sums to 1 on every row), [-]
     time_scale : [s]; stiffness_scale: k_t at delta = delta_scale, [N/m];
     force_scale : [N]; impulse : the impulse of F_n of each row, [N s]
+    damping : the normal damping coefficient eta_n = c(delta) at the nodes, normalised
+        (:mod:`impactcli.laws.viscous`): the tangential dashpot is eta_t = X eta_n; None
+        where the normal law has no viscous damping, [-]
+    damping_scale : eta_n [N s/m] per unit of ``damping``, shape (rows,); None with it
+    damping_mean : the mean of eta_n over each interval (K - 1), normalised as ``damping``
+        (exact for an indentation linear in time); None: the mean of its ends, [-]
     slip_bound : where known (Hertz), the slip velocity per unit of mu above which every
         spring model slides throughout, mu E* u_n/(4 G*) divided by mu, [m/s]: a spring
         loaded from first contact keeps up with the Coulomb limit of a Hertz contact while
@@ -107,6 +124,9 @@ class Steps:
     force_scale: Array
     impulse: Array
     slip_bound: Array | None = None
+    damping: Array | None = None
+    damping_scale: Array | None = None
+    damping_mean: Array | None = None
 
     @property
     def rows(self) -> int:
@@ -126,13 +146,14 @@ class Steps:
         def rows(a: Array | None) -> Array | None:
             return None if a is None else a[index]
 
-        def nodes(a: Array) -> Array:
-            return a if a.shape[0] == 1 else a[index]
+        def nodes(a: Array | None) -> Array | None:
+            return a if a is None or a.shape[0] == 1 else a[index]
 
         return Steps(
             nodes(self.time), nodes(self.stiffness), nodes(self.force), nodes(self.share),
             rows(self.time_scale), rows(self.stiffness_scale), rows(self.force_scale),
-            rows(self.impulse), rows(self.slip_bound),
+            rows(self.impulse), rows(self.slip_bound), nodes(self.damping),
+            rows(self.damping_scale), nodes(self.damping_mean),
         )  # fmt: skip
 
 
@@ -151,10 +172,15 @@ def history_steps(
     impulse: ArrayLike,
     shear_modulus: ArrayLike,
     radius: ArrayLike,
+    damping: ArrayLike | None = None,
+    damping_mean: ArrayLike | None = None,
 ) -> Steps:
     """:class:`Steps` of normal histories given row by row (SI arrays of shape (rows, K)):
     times [s], indentations [m], normal forces F_n >= 0 [N]; the impulse of F_n of each row
-    [N s] (J_n where the force never pulls), G* [Pa] and the effective radius R [m]."""
+    [N s] (J_n where the force never pulls), G* [Pa] and the effective radius R [m]; where
+    the normal law has viscous damping, its coefficient eta_n = c(delta) at the times
+    [N s/m] (for a tangential dashpot; None: none) and, optionally, its mean over each
+    interval (rows, K - 1) [N s/m]."""
     t, delta, force = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (t, delta, force))
     rows = t.shape[0]
     one = np.ones(rows)
@@ -168,7 +194,11 @@ def history_steps(
         stiffness_scale=np.broadcast_to(scale, (rows,)).astype(float),
         force_scale=one,
         impulse=np.broadcast_to(np.asarray(impulse, dtype=float), (rows,)).astype(float),
-    )
+        damping=None if damping is None else np.atleast_2d(np.asarray(damping, dtype=float)),
+        damping_scale=None if damping is None else one,
+        damping_mean=None if damping_mean is None else np.atleast_2d(
+            np.asarray(damping_mean, dtype=float)),
+    )  # fmt: skip
 
 
 @lru_cache(maxsize=8)
@@ -231,6 +261,25 @@ def hertz_steps(
     return steps, np.full(np.shape(m), e)
 
 
+def _normalised_law(damping: str, alpha: float):
+    """The damping model at K = m = 1 with its similar alpha."""
+    from impactcli.laws.registry import DAMPING_LAWS
+
+    return DAMPING_LAWS[damping].of(1.0, 1.0, alpha)
+
+
+def interval_damping(law, delta: ArrayLike) -> Array:
+    """The mean of a damping model's c(delta) over each interval between the indentations
+    ``delta`` [m] (last axis), exact for an indentation linear in time, [N s/m]: where the
+    indentation does not change, c there."""
+    d = np.asarray(delta, dtype=float)
+    a, b = d[..., :-1], d[..., 1:]
+    same = np.isclose(a, b, rtol=1e-9, atol=0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = np.asarray(law.mean_damping(a, np.where(same, a + 1.0, b)), dtype=float)
+    return np.where(same, np.asarray(law.damping_coefficient(a), dtype=float), mean)
+
+
 @lru_cache(maxsize=16)
 def _normalised_damped(
     damping: str, alpha: float, separation: str, n: int, points: int
@@ -240,9 +289,8 @@ def _normalised_damped(
     the impulse of F_n), as :func:`impactcli.collision3d.normal_restitution_and_history`
     builds a damped history."""
     from impactcli.damping import solve_damped_impact
-    from impactcli.laws.registry import DAMPING_LAWS
 
-    law = DAMPING_LAWS[damping].of(1.0, 1.0, alpha)
+    law = _normalised_law(damping, alpha)
     solution = solve_damped_impact(law, 1.0, 1.0, n, separation)  # type: ignore[arg-type]
     e, t_c = float(solution.restitution), float(solution.contact_time)
     if not (np.isfinite(t_c) and e > 0.0):
@@ -306,6 +354,7 @@ def damped_steps(
         damping, float(similar_alpha), separation, int(n), int(points)
     )
     k = DAMPING_LAWS[damping].stiffness(r, e_star)
+    law = _normalised_law(damping, float(similar_alpha))
     length = (m * v0**2 / k) ** 0.4
     steps = Steps(
         time=t[None],
@@ -316,7 +365,11 @@ def damped_steps(
         stiffness_scale=np.ravel(8.0 * g * np.sqrt(r * length)),
         force_scale=np.ravel(m * v0**2 / length),
         impulse=np.ravel(impulse * m * v0),
-    )
+        # eta_n in units of m V0/L = m/(L/V0), the time scale
+        damping=np.asarray(law.damping_coefficient(delta), dtype=float)[None],
+        damping_scale=np.ravel(m * v0 / length),
+        damping_mean=interval_damping(law, delta)[None],
+    )  # fmt: skip
     return steps, e
 
 
@@ -345,6 +398,7 @@ def integrate_tangential(
     tangential_mass: ArrayLike,
     mu: ArrayLike,
     record: bool = False,
+    tangential_damping: ArrayLike = 0.0,
 ) -> TangentialResult:
     """Integrate a tangential model over the normal histories of ``steps``.
 
@@ -355,15 +409,28 @@ def integrate_tangential(
     slip : |u_t| before the impact, >= 0, [m/s], shape (rows,)
     tangential_mass : m_t, [kg]; mu : Coulomb friction, [-]
     record : also return F_t at every node (rows x K numbers)
+    tangential_damping : X >= 0, the tangential dashpot eta_t = X eta_n of a spring model,
+        eta_n the normal damping coefficient of ``steps`` (LAMMPS's ``x_gamma_t``), [-]
 
     Returns
     -------
     TangentialResult
+
+    Raises
+    ------
+    ValueError
+        A tangential damping X > 0 with a model that has no spring, or with a normal
+        history without viscous damping (``steps.damping`` None).
     """
     spec = model if isinstance(model, TangentialModel) else get_tangential(model)
     rows = steps.rows
     s0, m_t, mu = (np.broadcast_to(np.asarray(x, dtype=float), (rows,)).astype(float)
                    for x in (slip, tangential_mass, mu))  # fmt: skip
+    x_t = np.broadcast_to(np.asarray(tangential_damping, dtype=float), (rows,))
+    if np.any(x_t != 0.0):
+        check_tangential_damping(x_t, spec.name, steps.damping is not None)
+        if spec.kind == "spring":
+            return _spring(spec, steps, s0, m_t, mu, record, x_t.astype(float))
     if spec.kind == "spring":
         return _spring(spec, steps, s0, m_t, mu, record)
     if spec.kind == "partial-slip":
@@ -399,7 +466,33 @@ def _spring_coefficients(steps: Steps, spring: str, rescale: bool):
     return phi, g1, g2, rho
 
 
-def _spring(spec: TangentialModel, steps: Steps, s0, m_t, mu, record: bool) -> TangentialResult:
+def check_tangential_damping(x_t: ArrayLike, tangential: str, damped: bool) -> None:
+    """Refuse a tangential damping X that is not a number >= 0, or X > 0 where there is no
+    dashpot to scale: a model without a spring (``rigid``, ``mindlin-deresiewicz``) or a
+    normal law without viscous damping (eta_n = 0; LAMMPS's ``damping none``)."""
+    x = np.asarray(x_t, dtype=float)
+    bad = ~(np.isfinite(x) & (x >= 0.0))
+    if np.any(bad):
+        raise ValueError(
+            f"the tangential damping must be a finite number >= 0 (0: none), got {x[bad].flat[0]:g}"
+        )
+    if not np.any(x > 0.0):
+        return
+    spec = get_tangential(tangential)
+    if spec.kind != "spring":
+        raise ValueError(
+            f"the tangential damping is a dashpot beside a tangential spring: the "
+            f"{tangential} model has none (accepted: {', '.join(SPRING_MODELS)})"
+        )
+    if not damped:
+        raise ValueError(
+            "the tangential damping scales the normal damping coefficient (eta_t = X eta_n), "
+            "and this normal law has none: give a viscous damping model (--damping, or e < 1)"
+        )
+
+
+def _spring(spec: TangentialModel, steps: Steps, s0, m_t, mu, record: bool,
+            x_t=None) -> TangentialResult:  # fmt: skip
     """The spring models (module docstring): the rows that need it integrated, the others
     closed: no friction or no slip (J_t = 0) and, for Hertz histories, gross slip
     throughout (J_t = mu times the impulse of F_n; :attr:`Steps.slip_bound`)."""
@@ -410,7 +503,7 @@ def _spring(spec: TangentialModel, steps: Steps, s0, m_t, mu, record: bool) -> T
     stuck = (mu > 0.0) & (s0 == 0.0)  # no slip: nothing moves, under the limit
     forces = np.zeros((rows, points)) if record else None
     busy = (mu > 0.0) & (s0 > 0.0)
-    if steps.slip_bound is not None and not record:
+    if steps.slip_bound is not None and not record and x_t is None:
         # Gross slip throughout, the exact answer (docs/collision3d.md): the slip left at
         # separation is fast enough for the spring to stay on the limit at every time.
         sliding = busy & (s0 - slide_scale >= mu * steps.slip_bound)
@@ -433,8 +526,9 @@ def _spring(spec: TangentialModel, steps: Steps, s0, m_t, mu, record: bool) -> T
         return TangentialResult(impulse, slip, stuck, forces)
     part = steps if index.size == rows else steps.take(index)
     lost, s_end, stuck_part, recorded = _spring_loop(
-        spec, part, s0[index], m_t[index], mu[index], slide_scale[index], record
-    )
+        spec, part, s0[index], m_t[index], mu[index], slide_scale[index], record,
+        None if x_t is None else x_t[index],
+    )  # fmt: skip
     impulse[index] = m_t[index] * lost
     slip[index] = s_end
     stuck[index] = stuck_part
@@ -443,7 +537,7 @@ def _spring(spec: TangentialModel, steps: Steps, s0, m_t, mu, record: bool) -> T
     return TangentialResult(impulse, slip, stuck, forces)
 
 
-def _spring_loop(spec, steps: Steps, s0, m_t, mu, slide_scale, record: bool):
+def _spring_loop(spec, steps: Steps, s0, m_t, mu, slide_scale, record: bool, x_t=None):
     """The loop over the intervals, on rows with mu > 0 and slip > 0. The slip is counted
     in units of mu J/m_t (``slide_scale``) and the force in units of mu F_scale, so that
     the Coulomb limit and each slide are the normalised history's own numbers."""
@@ -465,6 +559,12 @@ def _spring_loop(spec, steps: Steps, s0, m_t, mu, slide_scale, record: bool):
     q, inverse, s_trial, f_trial, delta, work = buffers
     # (beyond the range of a float, an extreme row's numbers are inf or NaN, which the
     # caller's checks of the result refuse)
+    if x_t is not None:
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            return _damped_steps(
+                phi, g1, g2, rho, quarter, to_slip, to_force, cap_scale, slide_scale, steps,
+                s, f, lost, sign, always, forces, x_t, m_t,
+            )  # fmt: skip
     with np.errstate(over="ignore", invalid="ignore"):
         return _spring_steps(
             phi, g1, g2, rho, quarter, to_slip, to_force, cap_scale, slide_scale, steps, s, f,
@@ -511,6 +611,53 @@ def _spring_steps(phi, g1, g2, rho, quarter, to_slip, to_force, cap_scale, slide
         always &= over | (limit == 0.0)
         if forces is not None:
             forces[:, j + 1] = f * cap_scale
+    return lost * slide_scale, s * slide_scale, ~always, forces
+
+
+def _damped_steps(phi, g1, g2, rho, quarter, to_slip, to_force, cap_scale, slide_scale,
+                  steps, s, f, lost, sign, always, forces, x_t, m_t):  # fmt: skip
+    """The loop of :func:`_spring_loop` with a tangential dashpot eta_t = X eta_n beside the
+    spring (module docstring): the system's matrix gains -eta_t/m_t on the slip, so the
+    Cayley step's factors become 1 - q - d (slip), 1 - q + d (spring) over 1 + q + d, with
+    d half the interval's integral of eta_t/m_t; the Coulomb test is on the total force
+    F_s + eta_t u_t; in a slide the total is on the limit and the spring is set to the
+    limit less the dashpot's force (LAMMPS's rule, gran_sub_mod_tangential.cpp)."""
+    cap, share, points = steps.force, steps.share, steps.points
+    node = steps.damping
+    h = np.diff(steps.time, axis=-1)
+    if steps.damping_mean is not None:
+        mean = steps.damping_mean
+    else:
+        mean = 0.5 * (node[..., 1:] + node[..., :-1])
+    integral = mean * h
+    # d = X eta_scale tau/(2 m_t) times the interval's normalised integral of eta_n;
+    # the dashpot's force in units of mu F_scale: X eta_scale slide_scale/cap_scale eta_n s
+    half = 0.5 * x_t * steps.damping_scale * steps.time_scale / m_t
+    to_dashpot = x_t * steps.damping_scale * slide_scale / cap_scale
+    for j in range(points - 1):
+        q = quarter * phi[..., j]
+        d = half * integral[..., j]
+        inverse = 1.0 / (1.0 + q + d)
+        s_trial = ((1.0 - q - d) * s - to_slip * g1[..., j] * f) * inverse
+        f_trial = (to_force * g2[..., j] * s + (1.0 - q + d) * rho[..., j] * f) * inverse
+        eta_b = to_dashpot * node[..., j + 1]
+        total = f_trial + eta_b * s_trial
+        limit = cap[..., j + 1]
+        sliding = sign != 0.0
+        size = np.abs(total)
+        over = (size > limit) | (sliding & (size == limit))
+        delta = s - s_trial
+        decrement = np.where(sliding, share[..., j], np.minimum(share[..., j], np.abs(delta)))
+        direction = np.where(total == 0.0, sign, np.sign(total))
+        change = np.where(over, direction * decrement, delta)
+        lost += change
+        s = s - change
+        # on the limit: the total there, the spring the limit less the dashpot's force
+        f = np.where(over, direction * limit - eta_b * s, f_trial)
+        sign = direction * over
+        always &= over | (limit == 0.0)
+        if forces is not None:
+            forces[:, j + 1] = np.where(over, direction * limit, total) * cap_scale
     return lost * slide_scale, s * slide_scale, ~always, forces
 
 

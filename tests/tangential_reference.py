@@ -211,3 +211,118 @@ def partial_slip(m: float, k_h: float, g: float, radius: float, mu: float, u_n: 
         else:  # slides backwards: loading anew in the other direction, on the limit
             sigma, branch, capped, y[3] = -sigma, 0, True, mu * p
     raise RuntimeError("too many branches")
+
+
+def damped_spring(model: str, m: float, k_h: float, g: float, radius: float, mu: float,
+                  u_n: float, u_t: float, alpha: float, x_t: float) -> float:  # fmt: skip
+    """The slip velocity at separation of a spring model with a tangential dashpot, over
+    Hertz with Tsuji's damping integrated with it (m delta'' = -F, F = K delta^1.5 +
+    eta_n delta', eta_n = alpha sqrt(m K) delta^(1/4); the contact ends when delta returns
+    to 0; the Coulomb limit mu max(F, 0)).
+
+    While the spring sticks: u' = -(k_t^a w + eta_t u)/m_t, eta_t = x_t eta_n, w as in
+    :func:`spring`. Stick to slide where |k_t^a w + eta_t u| reaches mu F_n; while sliding
+    the total is sigma mu F_n and the spring sigma mu F_n - eta_t u (LAMMPS's rule); slide to
+    stick where the rate the total would have under stick, k_t u + a (k_t'/k_t) F_s +
+    (eta_t u)', falls below the limit's, mu F_n'."""
+    m_t = 2.0 * m / 7.0
+    _delta_max, t_c = hertz(m, k_h, u_n)
+    damp = alpha * math.sqrt(m * k_h)
+
+    def k_t(delta):
+        return 8.0 * g * math.sqrt(radius * max(delta, 0.0))
+
+    def eta(delta):
+        return damp * max(delta, 0.0) ** 0.25
+
+    def total_normal(delta, rate):
+        return k_h * max(delta, 0.0) ** 1.5 + eta(delta) * rate
+
+    def cap(delta, rate):
+        return mu * max(total_normal(delta, rate), 0.0)
+
+    def alpha_of(rate):
+        shrinking = rate < 0.0
+        return {"mindlin": int(shrinking), "mindlin-force": 0, "mindlin-displacement": 1,
+                "mindlin-rescale": 1 + int(shrinking)}[model]  # fmt: skip
+
+    def stick(_t, y, a):
+        delta, rate, u, w = y
+        k = k_t(delta)
+        spring_force = k**a * w
+        w_rate = k ** (1 - a) * u if a < 2 else (u / k if k > 0 else 0.0)
+        return [rate, -total_normal(delta, rate) / m,
+                -(spring_force + x_t * eta(delta) * u) / m_t, w_rate]  # fmt: skip
+
+    def slide(_t, y, sigma):
+        delta, rate, _u, _w = y
+        return [rate, -total_normal(delta, rate) / m, -sigma * cap(delta, rate) / m_t, 0.0]
+
+    def total(y, a):
+        return k_t(y[0]) ** a * y[3] + x_t * eta(y[0]) * y[2]
+
+    def separate(_t, y, *_):
+        return y[0] if _t > 1e-6 * t_c else 1.0
+
+    separate.terminal, separate.direction = True, -1
+
+    def turn(_t, y, *_):
+        return y[1]
+
+    turn.terminal, turn.direction = True, -1
+
+    t, y = 0.0, np.array([0.0, u_n, u_t, 0.0])
+    # the first instant: the dashpot (~ t^0.25) against the limit (the normal dashpot's)
+    phase, sigma = ("slide", 1.0) if x_t * u_t > mu * u_n else ("stick", 0.0)
+    for _ in range(1000):
+        a = alpha_of(y[1])
+        if phase == "stick":
+
+            def over(_t, yy, *_, aa=a, t0=t):
+                return abs(total(yy, aa)) - cap(yy[0], yy[1]) if _t > t0 + 1e-9 * t_c else -1.0
+
+            over.terminal, over.direction = True, 1
+            run = solve_ivp(stick, (t, 2 * t_c), y, args=(a,), events=(separate, turn, over),
+                            **OPTIONS)  # fmt: skip
+        else:
+
+            def under(_t, yy, *_, aa=a, s=sigma, t0=t):
+                delta, rate, u, _ = yy
+                if _t <= t0 + 1e-9 * t_c or delta <= 0.0:
+                    return 1.0
+                k = k_t(delta)
+                limit = cap(delta, rate)
+                f = total_normal(delta, rate)
+                accel = -f / m
+                eta_n = eta(delta)
+                eta_rate = eta_n * rate / (4.0 * delta)
+                f_rate = 1.5 * k_h * math.sqrt(delta) * rate + eta_rate * rate + eta_n * accel
+                rate_limit = mu * f_rate if f > 0.0 else 0.0
+                spring_force = s * limit - x_t * eta_n * u
+                u_rate = -s * limit / m_t
+                total_rate = (k * u + aa * rate / (2.0 * delta) * spring_force
+                              + x_t * (eta_rate * u + eta_n * u_rate))  # fmt: skip
+                return s * total_rate - rate_limit
+
+            under.terminal, under.direction = True, -1
+            run = solve_ivp(slide, (t, 2 * t_c), y, args=(sigma,),
+                            events=(separate, turn, under), **OPTIONS)  # fmt: skip
+        which = [k for k, e in enumerate(run.t_events) if e.size]
+        t, y = float(run.t[-1]), run.y[:, -1].copy()
+        if not which or 0 in which:
+            return float(y[2])
+        if 1 in which:  # the turn: alpha may change, w with it
+            if phase == "stick":
+                f = k_t(y[0]) ** a * y[3]
+                y[1] = -1e-300
+                y[3] = f / k_t(y[0]) ** alpha_of(y[1])
+            else:
+                y[1] = -1e-300
+            continue
+        if phase == "stick":  # to slide
+            phase, sigma = "slide", math.copysign(1.0, total(y, a))
+        else:  # to stick, the spring from the limit less the dashpot
+            phase = "stick"
+            spring_force = sigma * cap(y[0], y[1]) - x_t * eta(y[0]) * y[2]
+            y[3] = spring_force / k_t(y[0]) ** a
+    raise RuntimeError("too many phases")

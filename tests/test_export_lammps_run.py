@@ -239,3 +239,29 @@ def test_each_spring_is_the_lammps_variant_of_its_name(model, angle):
     ours = [collide3d(points, *ALUMINA_ON_RIGID, "--v1", f"3.9m/s@{angle}deg",
                       tangential=model) for points in (16001, 32001)]  # fmt: skip
     agree(SPIN, lammps_pair(inp, tuple(v1)), (ours[0], ours[1]))
+
+
+@pytest.mark.parametrize("angle", [2, 20])
+def test_the_tangential_dashpot_is_lammps_s_x_gamma_t(angle):
+    """impact collide3d --tangential-damping X is LAMMPS's x_gamma_t (tangential
+    mindlin_rescale/force NULL X mu): Chung & Ooi's test 4 with Tsuji's damping of
+    e_n = 0.98 (the force rule, limit_damping, so that both cap at mu max(F_n, 0)), X = 1,
+    in stick and slip at 2 deg and sliding at first contact at 20 deg (X tan 20 deg > mu).
+    The spins within K times the step-halving estimates of both sides."""
+    from impactcli.collision3d import restitution_damping, velocity_from_angles
+
+    alpha = restitution_damping(0.98)[1]
+    model = ContactModel(damping="tsuji", alpha=alpha, separation="force")
+    v1 = velocity_from_angles(3.9, math.radians(angle), 0.0, np.array([0.0, 0.0, -1.0]))
+    inp = lammps_input(ALUMINA5, RIGID_WALL, model, mu=0.092, tangential="mindlin",
+                       tangential_damping=1.0)  # fmt: skip
+    assert inp.exact and "mindlin_rescale/force NULL 1 0.092" in inp.text
+    args = [*ALUMINA_ON_RIGID, "--v1", f"3.9m/s@{angle}deg", "--damping", "tsuji", "--alpha",
+            repr(alpha), "--separation", "force", "--tangential-damping", "1"]  # fmt: skip
+    ours = [collide3d(points, *args) for points in (16001, 32001)]
+    lammps = lammps_pair(inp, tuple(v1))
+    agree(SPIN, lammps, (ours[0], ours[1]))
+    # not blind: the dashpot moves the spin by more than the tolerance
+    without = collide3d(16001, *args[:-2])
+    assert abs(without["w1_final_y"] - ours[1]["w1_final_y"]) > 10 * abs(
+        lammps[0]["w1_final_y"][0] - lammps[1]["w1_final_y"][0])

@@ -158,6 +158,17 @@ MU_OPTION = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0
 TANGENTIAL_OPTION = typer.Option(
     Tangential.rigid, "--tangential", metavar="MODEL", help=TANGENTIAL_HELP
 )
+TANGENTIAL_DAMPING_OPTION = typer.Option(
+    0.0,
+    "--tangential-damping",
+    metavar="X",
+    help="Tangential dashpot beside a tangential spring, X >= 0 [-]: eta_t = X eta_n, "
+    "eta_n the normal damping coefficient of --damping (or of the damping a given --e "
+    "makes), LAMMPS's x_gamma_t; the friction force is the spring's plus eta_t u_t, capped "
+    "by mu F_n, and on the cap the spring is the cap less the dashpot's force (LAMMPS's "
+    "rule). Default 0: none. Refused without viscous damping (eta_n = 0) and with rigid "
+    "or mindlin-deresiewicz.",
+)
 POINTS_OPTION = typer.Option(
     4001,
     "--points",
@@ -183,7 +194,8 @@ ROWS_OPTION = typer.Option(
     metavar="TABLE",
     help="Many collisions: a CSV or Parquet table, one collision per row (columns p1_x, "
     "p1_y, p1_z, p2_*, v1_*, optional v2_*, w1_*, w2_*, mu, e, tangential (a model of "
-    "--tangential by name; an empty cell: the option's); the sphere columns of impact "
+    "--tangential by name; an empty cell: the option's), tangential_damping; the sphere "
+    "columns of impact "
     "batch); writes its columns and the results (-o OUT.csv or .parquet, else "
     "stdout as CSV); a bad row gets its reason in the error column.",
 )
@@ -213,6 +225,7 @@ def collide3d(
     e: Optional[float] = E_OPTION,
     mu: float = MU_OPTION,
     tangential: Tangential = TANGENTIAL_OPTION,
+    tangential_damping: float = TANGENTIAL_DAMPING_OPTION,
     points: int = POINTS_OPTION,
     n: Annotated[Optional[int], N_OPTION] = None,
     geometry: Geometry = GEOMETRY_OPTION,
@@ -296,11 +309,12 @@ def collide3d(
         single += [f"--{k}" for k, value in vars(spheres).items() if value is not None]
         _rows(rows, output, fmt, single, law=law_name, params=params,
               damping=damping_law, alpha=alpha, separation=separation, restitution=e, mu=mu,
-              tangential=tangential.value, points=points, n=n)  # fmt: skip
+              tangential=tangential.value, points=points, n=n,
+              tangential_damping=tangential_damping)  # fmt: skip
         return
     texts = {"--v1": v1, "--v2": v2, "--w1": w1, "--w2": w2, "--p1": p1, "--p2": p2}
     normal_law = (law_name, params, (damping_law, alpha, separation), e, n)
-    _one(spheres, texts, normal_law, (mu, tangential, points, geometry),
+    _one(spheres, texts, normal_law, (mu, tangential, points, geometry, tangential_damping),
          (fmt, output, plot, plot_force))  # fmt: skip
 
 
@@ -479,9 +493,11 @@ def _solve(s1, s2, vectors: dict, normal_law: tuple, tangential_model: tuple):
     inputs, spring force history and Coulomb limit; ``normal_law`` is (law, its
     parameters, (damping law or None, alpha, separation rule), given e or None, n; with a
     spring, a given e is already the damping that gives it), ``tangential_model`` (mu,
-    tangential model, history points, geometry)."""
+    tangential model, history points, geometry, tangential damping X)."""
     law, params, (damping, alpha, separation), e, n = normal_law
-    mu, tangential, points, geometry = tangential_model
+    mu, tangential, points, geometry, x_t = tangential_model
+    damped = x_t != 0.0
+    extra = {"tangential_damping": x_t} if damped else {}
     spring = get_tangential(tangential.value).needs_history
     given_e = e is not None and not spring  # used as it is (rigid)
     normal = dict(law=law, params=params, damping=damping, alpha=alpha, separation=separation,
@@ -500,14 +516,15 @@ def _solve(s1, s2, vectors: dict, normal_law: tuple, tangential_model: tuple):
             result = moving_collision_3d(
                 s1, s2, *(vectors[k] for k in ("--v1", "--v2", "--p1", "--p2", "--w1", "--w2")),
                 ContactModel(law, dict(params or {}), damping, alpha, separation=separation),
-                mu=mu, tangential=tangential.value, points=points, n=n, warnings=None,
+                mu=mu, tangential=tangential.value, points=points, n=n, warnings=None, **extra,
             )  # fmt: skip
         else:
             from impactcli.collision3d import sphere_collision_3d
 
             motion = {k.lstrip("-"): v for k, v in vectors.items()}
             result, history = sphere_collision_3d(
-                s1, s2, motion, normal, e if given_e else None, mu, tangential.value, points
+                s1, s2, motion, normal, e if given_e else None, mu, tangential.value, points,
+                **extra,
             )
     except ValueError as exc:
         raise InputError(str(exc)) from None
@@ -534,6 +551,7 @@ def _solve(s1, s2, vectors: dict, normal_law: tuple, tangential_model: tuple):
         "normal_model": normal_law,
         "tangential_model": tangential.value,
         "mu": mu,
+        **extra,
         "geometry": geometry.value,
     }
     if e is None and damping is None:
@@ -589,8 +607,11 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
     title = (
         f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = "
         f"{one([s['restitution']], '')[0]}; {inputs['tangential_model']} tangential, mu = "
-        f"{one([inputs['mu']], '')[0]}; {inputs['geometry']} geometry)"
-    )
+        f"{one([inputs['mu']], '')[0]}"
+        + (f", tangential damping X = {inputs['tangential_damping']:g}"
+           if "tangential_damping" in inputs else "")
+        + f"; {inputs['geometry']} geometry)"
+    )  # fmt: skip
     rows = []
     for label, unit in (("v1", "m/s"), ("w1", "rad/s"), ("v2", "m/s"), ("w2", "rad/s")):
         before, after = inputs[label], triple(f"{label}_final")

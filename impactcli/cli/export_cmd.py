@@ -101,6 +101,15 @@ def export(
         "rigid (an impulse model) and mindlin-deresiewicz (partial slip) LAMMPS does not "
         "have: exported as mindlin_rescale/force, said so.",
     ),
+    tangential_damping: float = typer.Option(
+        0.0,
+        "--tangential-damping",
+        metavar="X",
+        help="Tangential dashpot beside the spring, X >= 0 [-], as impact collide3d takes it: "
+        "eta_t = X eta_n, eta_n the normal damping coefficient of --damping or --e, written as "
+        "LAMMPS's x_gamma_t (tangential VARIANT NULL X mu). Default 0: none. Refused without "
+        "damping (LAMMPS: eta_n = 0, no tangential damping).",
+    ),
     from_fit: Optional[str] = typer.Option(
         None,
         "--from-fit",
@@ -190,7 +199,7 @@ def export(
             sphere1, sphere2, model, restitution=e, mu=mu, tangential=tangential.value,
             lammps_tangential=None if lammps_tangential is None else lammps_tangential.value,
             v_range=span,
-            lammps_version=lammps_version.value,
+            lammps_version=lammps_version.value, tangential_damping=tangential_damping,
         )  # fmt: skip
         text = None
         if script is not None:

@@ -137,6 +137,11 @@ MEANINGS: dict[str, dict[str, tuple[str, ...]]] = {
     "--v0": {"the impact velocity V0": ("yield-limit", "timestep")},
     "--w1": {"angular velocity of sphere 1 before the impact": ("collide3d", "export")},
     "--tangential": {"the tangential (friction) model": ("collide3d", "export")},
+    "--tangential-damping": {
+        "X = eta_t/eta_n [-], the tangential dashpot of a spring (LAMMPS's x_gamma_t)": (
+            "collide3d", "export",
+        ),
+    },
 }  # fmt: skip
 
 

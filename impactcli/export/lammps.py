@@ -282,6 +282,7 @@ class LammpsInput:
     notes : one line per difference from the contact asked for
     nearest : the fit of the nearest model, or None
     sphere1, sphere2, mu, tangential, lammps_tangential, lammps_version : as given
+    tangential_damping : x_gamma_t of the tangential line, as given
     """
 
     lines: tuple[str, ...]
@@ -297,6 +298,7 @@ class LammpsInput:
     lammps_version: str
     restitution: float | None = None
     source: Any = None
+    tangential_damping: float = 0.0
 
     @property
     def text(self) -> str:
@@ -359,6 +361,7 @@ def lammps_input(
     lammps_tangential: str | None = None,
     v_range: tuple[float, float] | None = None,
     lammps_version: str = DEFAULT_LAMMPS_VERSION,
+    tangential_damping: float = 0.0,
 ) -> LammpsInput:
     """The LAMMPS lines that reproduce a contact of this library, units ``si``.
 
@@ -382,6 +385,11 @@ def lammps_input(
     v_range : (V_min, V_max) [m/s] over which the nearest LAMMPS model is fitted to a law
         LAMMPS does not have (required then)
     lammps_version : a key of :data:`LAMMPS_VERSIONS`
+    tangential_damping : X >= 0, [-]: the tangential dashpot of a spring, eta_t = X eta_n
+        (``impact collide3d --tangential-damping``), written as LAMMPS's ``x_gamma_t`` (the
+        second coefficient of ``tangential mindlin...``: LAMMPS's tangential damping is
+        x_gamma_t times the normal damping model's coefficient); default 0. X > 0 needs
+        a damped normal model (LAMMPS: no damping, eta_n = 0, no tangential damping)
 
     Returns
     -------
@@ -442,6 +450,10 @@ def lammps_input(
         sphere1, sphere2, source, restitution, v_range, version, notes, comments
     )
     limit = exported.separation == "force" and not damping.none
+    from impactcli.tangential import check_tangential_damping
+
+    x_t = float(tangential_damping)
+    check_tangential_damping(x_t, tangential, not damping.none)
     if source.separation == "force" and damping.none:
         comments.append("# separation force: no damping, so the force returns to 0 at delta = 0")
     variant = lammps_tangential
@@ -469,7 +481,7 @@ def lammps_input(
         )
     lines = _wrap(_lines(
         sphere1, sphere2, exported, source, restitution, damping, limit, float(mu), variant,
-        version, (m, radius, e_star, g_star), notes, comments,
+        version, (m, radius, e_star, g_star), notes, comments, x_t,
     ))  # fmt: skip
     return LammpsInput(
         lines=tuple(lines),
@@ -485,6 +497,7 @@ def lammps_input(
         lammps_version=version,
         restitution=None if restitution is None else float(restitution),
         source=source,
+        tangential_damping=x_t,
     )
 
 
@@ -746,14 +759,14 @@ def _wrap(lines: list[str]) -> list[str]:
     return out
 
 
-def _tangential_words(mu: float, variant: str) -> str:
+def _tangential_words(mu: float, variant: str, x_t: float = 0.0) -> str:
     if mu == 0.0:
         return "tangential linear_nohistory 0.0 0.0"
-    return f"tangential {variant} NULL 0.0 {_num(mu)}"
+    return f"tangential {variant} NULL {_num(x_t) if x_t else '0.0'} {_num(mu)}"
 
 
 def _lines(sphere1, sphere2, exported, source, restitution, damping, limit, mu, variant,
-           version, pair, notes, comments) -> list[str]:  # fmt: skip
+           version, pair, notes, comments, x_t: float = 0.0) -> list[str]:  # fmt: skip
     """The comment lines and the LAMMPS lines."""
     from impactcli import __version__
 
@@ -781,12 +794,20 @@ def _lines(sphere1, sphere2, exported, source, restitution, damping, limit, mu, 
     if limit:
         out.append("# limit_damping: the total normal force is held >= 0 (impactcli's "
                    "separation force)")  # fmt: skip
-    tangential = _tangential_words(mu, variant)
-    if mu > 0.0:
+    tangential = _tangential_words(mu, variant, x_t)
+    if mu > 0.0 and x_t:
+        out.append(
+            f"# tangential {variant} NULL x_gamma,t mu: {_VARIANTS[variant]}; NULL: k_t = 8 G* "
+            f"a from the normal model's E, nu; x_gamma,t = {_num(x_t)}: tangential damping "
+            "eta_t = x_gamma,t eta_n, eta_n the damping model's coefficient (impactcli "
+            "--tangential-damping); |F_t| <= mu |F_n|, on the limit the spring is set to the "
+            "limit less the dashpot's force"
+        )
+    elif mu > 0.0:
         out.append(
             f"# tangential {variant} NULL 0.0 mu: {_VARIANTS[variant]}; NULL: k_t = 8 G* a from "
-            "the normal model's E, nu; x_gamma,t = 0: no tangential damping (impactcli has "
-            "none); |F_t| <= mu |F_n|"
+            "the normal model's E, nu; x_gamma,t = 0: no tangential damping (impactcli "
+            "--tangential-damping 0, the default); |F_t| <= mu |F_n|"
         )
     tail = f"{tangential} damping {damping.keyword}" + (" limit_damping" if limit else "")
 
@@ -907,9 +928,11 @@ def _expected(inp: LammpsInput, v1, v2, w1, w2) -> _Expected:
         )  # fmt: skip
         shear = effective_shear_modulus(s1.youngs_modulus, s1.poisson_ratio,
                                         s2.youngs_modulus, s2.poisson_ratio)  # fmt: skip
+    extra = {"tangential_damping": inp.tangential_damping} if mindlin else {}
     c = oblique_collision_3d(
         s1.total_mass, s2.total_mass, v1, v2, p1, p2, s1.diameter, s2.diameter, w1, w2,
         values["restitution"], inp.mu, tangential, history=history, shear_modulus=shear,
+        **extra,
     )  # fmt: skip
     for name in ("v1_final", "w1_final", "v2_final", "w2_final"):
         vector = np.asarray(getattr(c, name), dtype=float).reshape(-1, 3)[0]

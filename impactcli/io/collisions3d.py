@@ -74,6 +74,7 @@ def compute_collisions3d(
     n: int | None = None,
     faults: np.ndarray | None = None,
     separation: str = "overlap",
+    tangential_damping: float = 0.0,
 ) -> dict[str, np.ndarray]:
     """The result columns of a chunk of rows.
 
@@ -96,6 +97,8 @@ def compute_collisions3d(
     faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
         CSV line), which becomes its error
     separation : the separation rule of damped Hertz (``overlap`` or ``force``)
+    tangential_damping : X >= 0 of rows without a ``tangential_damping`` cell: the
+        tangential dashpot eta_t = X eta_n of a spring, [-] (``--tangential-damping``)
 
     Returns
     -------
@@ -120,7 +123,7 @@ def compute_collisions3d(
     'the spheres are not approaching along the line of centres ((v1 - v2) . n_hat <= 0)'
     """
     model = CollisionModel(law, params, damping, alpha, separation, n, restitution, mu,
-                           tangential, points)  # fmt: skip
+                           tangential, points, tangential_damping)  # fmt: skip
     return compute_rows3d(TableReader(frame), model, faults)
 
 

@@ -22,8 +22,8 @@ the initial slip direction, F_t the tangential force, m_t the tangential mass
 - ``mindlin-displacement``: the spring's displacement xi is integrated, xi' = u_t, and the
   force is the current stiffness times it, F_t = k_t xi (the force follows the stiffness up
   and down); LAMMPS ``mindlin`` and the classic ``pair gran/hertz/history``, LIGGGHTS's
-  ``tangential history`` and EDEM's Hertz-Mindlin (no slip), F_t = -S_t delta_t (both with
-  an optional tangential damping this tool does not have). Chung & Ooi's (2011) published
+  ``tangential history`` and EDEM's Hertz-Mindlin (no slip), F_t = -S_t delta_t. Chung &
+  Ooi's (2011) published
   curves of their test 4 are this form (docs/validation.md).
 - ``mindlin-rescale``: F_t = k_t xi with the displacement scaled by a_new/a_old while the
   contact shrinks, xi' = u_t + min(a', 0) xi / a; LAMMPS ``mindlin_rescale``.
@@ -35,6 +35,11 @@ the initial slip direction, F_t the tangential force, m_t the tangential mass
 In every spring model |F_t| <= mu F_n; where the spring would go beyond it the contact
 slides (F_t = mu F_n along the slip) and the spring's history is set to that force (LAMMPS's
 convention: the displacement to mu F_n / k_t).
+
+Every spring model takes an optional tangential dashpot (``tangential_damping`` X, LAMMPS's
+``x_gamma_t``): F_t = F_s + eta_t u_t with eta_t = X eta_n, eta_n the normal damping
+coefficient of the damping model, the total capped by mu F_n and, on the cap, the spring
+set to the cap less the dashpot's force (LAMMPS's rule; :mod:`impactcli.tangential`).
 
 References
 ----------
