@@ -485,7 +485,7 @@ def law_stage_times(
     if _elastic_linear_elastic(plan):
         return plastic_stage_times(plan, m, v0, n)
     stages = solve_plan(plan, m, n)
-    return stages[-2].end_time, stages[-1].end_time
+    return stages[plan.turning].end_time, stages[-1].end_time
 
 
 def _elastic_linear_elastic(plan: ImpactPlan) -> bool:

@@ -295,14 +295,15 @@ def plan_energy(
 
     Parameters
     ----------
-    plan : the impact's :class:`~impactcli.laws.base.ImpactPlan` (its loading stages: all
-        but the last)
+    plan : the impact's :class:`~impactcli.laws.base.ImpactPlan` (its loading stages: up to
+        its ``turning`` stage)
     contact : its contact model (``recoverable_work(delta)`` [J])
     t, delta : times [s] and indentation [m] of the history
     contact_work : W(t) along the solution (FILM's or an integration's), [J]
     t_max, delta_max : the solution's turning point, [s], [m]
     """
-    stages = plan.stages[:-1]  # the loading stages; the last one unloads
+    turning = plan.turning % len(plan.stages)
+    stages = plan.stages[: turning + 1]  # the loading stages; the rest unload
     laws = [stage.law for stage in stages]
     bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
     delta = np.asarray(delta, dtype=float)

@@ -40,16 +40,21 @@ __all__ = [
     "FilmSolution",
     "solve_stage",
     "swept_angles",
+    "swept_rapidities",
 ]
 
 Array = NDArray[np.float64]
 
 
 class ContactLaw(Protocol):
-    """A force-indentation law for one stage: monotone increasing in delta on the stage.
+    """A force-indentation law for one stage: strictly monotone in delta on the stage
+    (increasing, or decreasing: the tensile branch of an adhesive contact past its
+    pull-off force, where each chord is an unstable, hyperbolic oscillator).
 
     Parameters of a law broadcast against the node arrays, so a batch of N collisions uses
-    parameters of shape (N, 1).
+    parameters of shape (N, 1). A law may place the stage's nodes itself
+    (``stage_nodes(delta_start, delta_end, n)`` -> node indentations, shape (..., n + 1), ends
+    exact), e.g. graded toward an end where dF/d delta grows without bound.
     """
 
     def force(self, delta: ArrayLike) -> Array:
@@ -81,6 +86,10 @@ class FilmStage:
     phase_y : s (delta_r - C_rs), [m]
     turning : True where the linearised oscillator turns before reaching the next node
         (the chord is stiffer than the curve; always the last loading segment), [-]
+
+    A segment whose chord stiffness is negative (a stage of a law that decreases with
+    delta) is a hyperbolic oscillator: ``omega`` is then sqrt(-K_rs/m) and ``phase_x``
+    |delta'_r| / omega_rs (:func:`swept_rapidities`).
     """
 
     delta: Array
@@ -98,6 +107,11 @@ class FilmStage:
     def n(self) -> int:
         """Number of segments."""
         return self.omega.shape[-1]
+
+    @property
+    def hyperbolic(self) -> NDArray[np.bool_]:
+        """True on segments whose chord stiffness is negative (hyperbolic oscillators)."""
+        return np.asarray(self.stiffness) < 0.0
 
     @property
     def start_time(self) -> Array:
@@ -141,6 +155,19 @@ def _oscillator(
     sin = np.sin(wt)
     delta = delta_r + direction * (x * sin - 2.0 * y * np.sin(0.5 * wt) ** 2)
     delta_dot = direction * omega * (x * np.cos(wt) - y * sin)
+    return delta, delta_dot
+
+
+def _hyperbolic_oscillator(
+    tau: Array, delta_r: Array, direction: ArrayLike, rate: Array, x: Array, y: Array
+) -> tuple[Array, Array]:
+    """Closed form of one segment of negative chord stiffness a time ``tau`` after its start
+    node: delta = delta_r + s [x sinh(l tau) + 2 y sinh^2(l tau / 2)],
+    delta' = s l [x cosh + y sinh], l = sqrt(-K_rs/m) (:func:`swept_rapidities`)."""
+    lt = rate * tau
+    sinh = np.sinh(lt)
+    delta = delta_r + direction * (x * sinh + 2.0 * y * np.sinh(0.5 * lt) ** 2)
+    delta_dot = direction * rate * (x * np.cosh(lt) + y * sinh)
     return delta, delta_dot
 
 
@@ -212,8 +239,12 @@ def solve_stage(
     m = np.asarray(mass, dtype=float)[..., None]
     direction = np.sign(b - a)
 
-    frac = np.arange(n + 1, dtype=float) / n
-    nodes = a + (b - a) * frac
+    placed = getattr(law, "stage_nodes", None)
+    if placed is not None:  # the law's own nodes (graded toward a singular end)
+        nodes = np.array(placed(a, b, n), dtype=float)
+    else:
+        frac = np.arange(n + 1, dtype=float) / n
+        nodes = a + (b - a) * frac
     nodes[..., -1] = b[..., 0]
 
     force = law.force(nodes)
@@ -228,9 +259,13 @@ def solve_stage(
     velocity = direction * np.sqrt(np.maximum(speed_sq, 0.0))
 
     stiffness = np.diff(force, axis=-1) / step
-    if not np.all(stiffness > 0.0):
-        raise ValueError("the contact force must increase strictly with indentation on a stage")
-    omega = np.sqrt(stiffness / m)
+    rising = np.all(stiffness > 0.0)
+    if not (rising or np.all(stiffness < 0.0)):
+        raise ValueError(
+            "the contact force must increase strictly with indentation on a stage (or decrease "
+            "strictly on all of it: a tensile branch)"
+        )
+    omega = np.sqrt(np.abs(stiffness) / m)
     force_r = force[..., :-1]
     h = np.abs(step)
     y0 = direction * force_r / stiffness
@@ -238,7 +273,10 @@ def solve_stage(
 
     if end_at_rest:
         velocity[..., -1] = 0.0
-    swept, turning = swept_angles(x0, y0, h, end_at_rest)
+    if rising:
+        swept, turning = swept_angles(x0, y0, h, end_at_rest)
+    else:  # a decreasing law: hyperbolic segments
+        swept, turning = swept_rapidities(x0, y0, h, end_at_rest)
     dt = swept / omega
 
     time = np.empty_like(nodes)
@@ -296,6 +334,61 @@ def swept_angles(
     return swept, turning
 
 
+def swept_rapidities(
+    x0: ArrayLike, y0: ArrayLike, h: ArrayLike, end_at_rest: bool = False
+) -> tuple[Array, NDArray[np.bool_]]:
+    """Rapidity each hyperbolic segment sweeps, [-], and where it turns: the segments of a
+    stage whose force decreases with indentation (negative chord stiffness K_rs < 0).
+
+    With l = sqrt(-K_rs/m), y = s (delta - C_rs) and x = |delta'| / l, a segment's state
+    moves on the hyperbola x^2 - y^2 = const: y' = l x, x' = l y, so that
+    (y, x) = (y0 cosh eta + x0 sinh eta, y0 sinh eta + x0 cosh eta), eta = l t. It ends at
+    the next node, y0 + h, or where x = 0 (the motion turns) if it gets there first; the
+    segment's duration is eta / l. The rapidity is taken from
+    exp(eta) = (x1 + y1)/(x0 + y0) = (x0 - y0)/(x1 - y1), written (log1p) so that nothing
+    cancels: with y0 >= 0 the first form, with y0 < 0 the second.
+
+    Parameters
+    ----------
+    x0 : |delta'_r| / l at the segment start, [m]
+    y0 : s (delta_r - C_rs), [m]
+    h : |delta_s - delta_r|, the segment length, [m]
+    end_at_rest : the last segment ends where the motion turns (a capture: the relative
+        velocity reaches zero at the stage's last node)
+
+    Returns
+    -------
+    (swept, turning), broadcast from the inputs.
+
+    Examples
+    --------
+    From rest at the unstable equilibrium's distance y0 = 1 the motion runs away,
+    y = cosh(eta): one unit further (y = 2) at eta = acosh(2):
+
+    >>> swept, turning = swept_rapidities(0.0, 1.0, 1.0)
+    >>> round(float(swept), 12), bool(turning)
+    (1.316957896925, False)
+    """
+    x0, y0, h = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x0, y0, h)))
+    y1 = y0 + h
+    x_end_sq = x0**2 + h * (2.0 * y0 + h)
+    turning = x_end_sq <= 0.0
+    if end_at_rest:
+        turning[..., -1] = True
+    x_end = np.where(turning, 0.0, np.sqrt(np.maximum(x_end_sq, 0.0)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ahead = np.log1p(h * (1.0 + (2.0 * y0 + h) / (x0 + x_end)) / (x0 + y0))
+        behind = -np.log1p(h * (y0 + y1 - x0 - x_end) / ((x0 + x_end) * (x0 - y0)))
+        # a turn inside a segment, where x reaches 0 short of the node: atanh(x0 / -y0)
+        inside = 0.5 * np.log1p(2.0 * x0 / (-y0 - x0))
+    node = np.where(y0 >= 0.0, ahead, behind)
+    at_node = ~turning
+    if end_at_rest:  # the last node is the turning point: it ends there, x1 = 0
+        at_node[..., -1] = True
+    swept = np.where(at_node, node, inside)
+    return swept, turning
+
+
 @dataclass(frozen=True)
 class FilmSolution:
     """Consecutive FILM stages of one impact, chained in time (single collision).
@@ -321,6 +414,9 @@ class FilmSolution:
         object.__setattr__(self, "_omega", cat([s.omega for s in self.stages]))
         object.__setattr__(self, "_x", cat([s.phase_x for s in self.stages]))
         object.__setattr__(self, "_y", cat([s.phase_y for s in self.stages]))
+        object.__setattr__(
+            self, "_hyper", cat([np.broadcast_to(s.hyperbolic, (s.n,)) for s in self.stages])
+        )
 
     @property
     def start_time(self) -> float:
@@ -343,7 +439,7 @@ class FilmSolution:
         seg = np.searchsorted(self._start, t + slack, side="right") - 1
         seg = np.clip(seg, 0, self._start.size - 1)
         tau = np.clip(t - self._start[seg], 0.0, self._end[seg] - self._start[seg])
-        delta, delta_dot = _oscillator(
+        args = (
             tau,
             self._delta[seg],
             self._direction[seg],
@@ -351,6 +447,12 @@ class FilmSolution:
             self._x[seg],
             self._y[seg],
         )
+        delta, delta_dot = _oscillator(*args)
+        if self._hyper.any():  # segments of negative chord stiffness
+            hyper = self._hyper[seg]
+            with np.errstate(over="ignore", invalid="ignore"):
+                h_delta, h_rate = _hyperbolic_oscillator(*args)
+            delta, delta_dot = np.where(hyper, h_delta, delta), np.where(hyper, h_rate, delta_dot)
         end = t + slack >= self.end_time
         last = self.stages[-1]
         return np.where(end, last.delta[-1], delta), np.where(end, last.velocity[-1], delta_dot)

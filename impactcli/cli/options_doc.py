@@ -32,6 +32,7 @@ METAVAR_UNITS = {
     "DENSITY": "kg/m^3",
     "ANGLE": "deg",
     "STIFFNESS": "N/m",
+    "SURFACE-ENERGY": "J/m^2",
     "NUMBER": "-",
     "INTEGER": "",
     "X,Y": "m",
