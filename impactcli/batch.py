@@ -537,7 +537,9 @@ def _batch_law(
     if reach is not None:
         errors = reach(v0, m)
     good = np.flatnonzero(errors == "")
-    values = {k: np.full(v0.size, np.nan) for k in ("dm", "fm", "dres", "e", "tmax", "tc")}
+    values = {
+        k: np.full(v0.size, np.nan) for k in ("dm", "fm", "dres", "dsep", "e", "tmax", "tc")
+    }
     block = max(1, FILM_BLOCK // (n + 1))
     for start in range(0, good.size, block):
         chunk = good[start : start + block]
@@ -562,12 +564,13 @@ def _batch_law(
         for rows, plan in groups:
             values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
+            values["dsep"][rows] = plan.delta_end  # where it parts (an adhesive law's)
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
     # a law's plastic stage beyond double precision (docs/method.md §7): the row's error
     scale = plastic_range_problems(contact, v0, m, values["dm"])
     refused = (errors == "") & scale.bad
     errors[refused] = scale.messages[refused]
-    plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"])
+    plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"], values["dsep"])
     fractions = pairs.fractions(split)
     summary = pairs.summary(plan, values["tmax"], values["tc"], fractions)
     if plastic_keys:

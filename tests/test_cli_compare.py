@@ -314,7 +314,10 @@ def test_impact_beyond_the_curve_names_both_indentations(impact, curves):
     ("arguments", "fragments"),
     [
         (["--law", "maugis"], ["--law: unknown law 'maugis'", "thornton"]),
-        (["--py", "2GPa"], ["--py is a parameter of law thornton or thornton-ning, not of du-wang"]),
+        (
+            ["--py", "2GPa"],
+            ["--py is a parameter of law thornton or thornton-ning, not of du-wang"],
+        ),
         (["--law", "thornton", "--py", "3m"], ["--py: expected a pressure"]),
         (["--law", "thornton", "--py=-1GPa"], ["py of law 'thornton' must be a positive"]),
         (["--law", "walton-braun", "--k-load", "2e7"], ["needs the parameter k_unload"]),

@@ -119,7 +119,7 @@ def shared_help(name: str) -> str:
     if declared is None:
         return ""
     param, owners = declared
-    return f"With law {' or '.join(owners)}: {param.description} (default {param.default})."
+    return f"With law {' or '.join(owners)}: {param.description} ({param.default} if not given)."
 
 
 def shared_choices(name: str) -> tuple[str, ...]:

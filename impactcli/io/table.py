@@ -464,6 +464,7 @@ def compute_frame(
     from impactcli.impact import DAMPED_DEFAULT_N
 
     n_damped = DAMPED_DEFAULT_N if n is None else n
+    n_given = n  # a law's rows take its own default (an adhesive law's) when not given
     n = 25 if n is None else n
 
     columns, size = table_columns(frame)
@@ -541,7 +542,10 @@ def compute_frame(
             result[k][ok] = out[k]
         kernel[ok] = out["error"]
     for rows, name, params in _law_groups(laws, law_params, ~errors.bad & undamped):
-        for part, out in _law_rows(rows, name, params, args, n):
+        from impactcli.laws.registry import get_law
+
+        own_n = n if n_given is not None else (get_law(name).default_n or n)
+        for part, out in _law_rows(rows, name, params, args, own_n):
             for k in BATCH_KEYS:
                 result[k][part] = out[k]
             kernel[part] = out["error"]
@@ -591,13 +595,26 @@ def _row_laws(columns, size: int, errors: Problems):
         elastic[rows] = spec.kind == "elastic"
     errors.add_messages(message)
 
+    from impactcli.laws.registry import parameter_laws
+
+    declared = parameter_laws()
     params: dict[str, np.ndarray] = {}
     for column, (kind, takers) in law_parameter_columns().items():
         if column not in columns:
             continue
+        param = declared[column][0]
         if kind in ("file", "choice"):
             params[column] = _text_column(columns, column, size)
             present = ~np.equal(params[column], None)
+            if column in TEXT_COLUMNS:  # shared with the damping columns (separation)
+                mine = present & np.isin(params[column].astype(str), list(param.choices))
+                takes = np.isin(laws.astype(str), takers.split(", "))
+                errors.add(
+                    present & ~mine & takes,
+                    f"{column} of law(s) {takers} must be {' or '.join(param.choices)}",
+                )
+                params[column] = np.where(mine, params[column], None)
+                present = mine
         else:
             unit_kind = kind if kind in KINDS else "dimensionless"  # e.g. stiffness: SI
             params[column], bad = _quantity_column(columns[column], unit_kind, column, False)
@@ -605,10 +622,12 @@ def _row_laws(columns, size: int, errors: Problems):
             values = params[column]
             present = ~np.isnan(values)
             with np.errstate(invalid="ignore"):
-                wrong = np.flatnonzero(present & ~(values > 0) & ~errors.bad)
+                floor = (values >= 0) if param.zero_allowed else (values > 0)
+                wrong = np.flatnonzero(present & ~floor & ~errors.bad)
+            what = "finite number >= 0" if param.zero_allowed else "positive, finite number"
             message = np.full(size, "", dtype=object)
             message[wrong] = [  # the refused rows only, each with its law's name
-                f"{column} of law {law!r} must be a positive, finite number, got {v:g}"
+                f"{column} of law {law!r} must be a {what}, got {v:g}"
                 for law, v in zip(laws[wrong].tolist(), values[wrong].tolist())
             ]
             errors.add_messages(message)
