@@ -27,7 +27,10 @@ about :data:`FILM_BLOCK` values, each plan timed by :func:`law_stage_times`. Wit
   (:func:`plastic_stage_times`).
 - Any other plan: FILM on its stages (:func:`impactcli.impact.solve_plan`).
 - Damped (Hertz plus viscous damping) rows, :func:`batch_damped_impacts`: the damped FILM
-  (:func:`impactcli.damping.solve_damped_impact`) in blocks of about :data:`DAMPED_BLOCK`
+  (:func:`impactcli.damping.solve_damped_impact`). At the default n each row's summary is
+  a look-up in the normalised tables (:mod:`impactcli.damped_similar`; blocks of
+  :data:`DAMPED_TABLE_ROWS` rows); otherwise, and beyond the tables, FILM once per
+  distinct value of the model's one parameter, in blocks of about :data:`DAMPED_BLOCK`
   values (rows x (n + 1)).
 - Everything else (final displacements and velocities, each sphere's share of the
   indentation, residual indentation, dissipated energy) is
@@ -86,6 +89,7 @@ from impactcli.validation import (
 __all__ = [
     "BATCH_KEYS",
     "DAMPED_BLOCK",
+    "DAMPED_TABLE_ROWS",
     "FILM_BLOCK",
     "batch_damped_impacts",
     "batch_impacts",
@@ -109,6 +113,10 @@ FILM_BLOCK = 131072
 #: in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s unblocked); peak memory about
 #: 0.2 GB a block, whatever the number of rows.
 DAMPED_BLOCK = 524288
+#: Rows per block of damped rows at the n of the normalised tables (400, the default;
+#: :mod:`impactcli.damped_similar`): a row's summary is a table look-up, some 100 values of
+#: work arrays a row (about 50 MB a block).
+DAMPED_TABLE_ROWS = 65536
 
 
 #: Results every computed row must have as finite numbers, and those that must be > 0 (and
@@ -711,9 +719,13 @@ def batch_damped_impacts(
         ok = np.flatnonzero(~problems.bad)
     never = np.zeros(problems.bad.size, dtype=bool)
     beyond = np.zeros(problems.bad.size, dtype=bool)
-    # FILM on (rows, n) arrays: blocks of about DAMPED_BLOCK values, so memory does not grow
-    # with the number of rows
-    block = max(1, DAMPED_BLOCK // (n + 1))
+    # At the tables' n a row's summary is a look-up (FILM marches, in blocks of its own, only
+    # the rows beyond the tables): blocks of DAMPED_TABLE_ROWS rows. Otherwise FILM on
+    # (rows, n) arrays: blocks of about DAMPED_BLOCK values. Memory does not grow with the
+    # number of rows.
+    from impactcli.damped_similar import TABLE_N
+
+    block = DAMPED_TABLE_ROWS if n == TABLE_N else max(1, DAMPED_BLOCK // (n + 1))
     for start in range(0, ok.size, block):
         rows = ok[start : start + block]
         pairs = _Pairs.of(columns, rows)

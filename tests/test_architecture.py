@@ -58,6 +58,7 @@ LIBRARY = (
     "impactcli.lawlib",
     "impactcli.curves",
     "impactcli.damping",
+    "impactcli.damped_similar",
     "impactcli.collision3d",
     "impactcli.export",
     "impactcli.export.lammps",
