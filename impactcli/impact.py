@@ -1212,7 +1212,7 @@ def law_impact(
     v2: float,
     law: str = DEFAULT_LAW,
     law_params: dict[str, Any] | None = None,
-    n: int = 25,
+    n: int | None = None,
     split: Split = "mass",
     yield_strength: float | None = None,
     method: Method = "film",
@@ -1238,7 +1238,9 @@ def law_impact(
     law_params : the law's parameters by name (SI; files for ``tabulated``), as
         :func:`impactcli.batch.batch_impacts` takes them (``params=``, the former name,
         works until 0.3 with a DeprecationWarning)
-    n, split, method : as for :func:`elastic_impact`
+    n : FILM segments per stage; default the law's (:attr:`ContactModel.default_n`: 25,
+        200 for an adhesive law)
+    split, method : as for :func:`elastic_impact`
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
 
     Returns

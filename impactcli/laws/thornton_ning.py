@@ -306,7 +306,7 @@ class ThorntonNingContact:
         shape = self._shape(impact_velocity, mass)
         v0, m = _rows(impact_velocity, shape), _rows(mass, shape)
         _, _, _, _, sticky = self._safe(shape)
-        everything = np.ones(shape, dtype=bool)
+        everything = Ellipsis  # every row, keeping a single impact's shape ()
         if not np.any(sticky):
             return _with_extras(self._thornton(shape).plan(v0, m), v0)
         if not np.all(sticky):

@@ -1,0 +1,295 @@
+"""The adhesive laws (jkr, dmt, thornton-ning) against references independent of their
+modules: JKR's and DMT's closed forms, the energy balance of the loop, SciPy's solve_ivp of
+the same force law written here from the equations of docs/laws.md (the contact radius by
+brentq, not by the module's polynomials), and the sticking velocity of Thornton & Ning
+(1998).
+
+Conventions: W is the work of adhesion (W = 2 gamma for like surfaces; JKR's pull-off force
+(3/2) pi W R); Thornton & Ning's Gamma is this W (their pull-off force (3/2) pi Gamma R*,
+their neck energy 7.09 (Gamma^5 R*^4 / E*^2)^(1/3)). The contact snaps in at delta = 0 and
+ends at the rule's point: ``instability`` the fixed-grip point (d delta / d a = 0),
+``pull-off`` the load-controlled one (F = -(3/2) pi W R, LAMMPS's jkr).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad, solve_ivp
+from scipy.optimize import brentq, minimize_scalar
+
+from impactcli import InputError, solve_impact
+from impactcli.impact import Sphere, effective_properties
+from impactcli.model import ContactModel
+
+#: Two 20 um silica spheres (E 73 GPa, nu 0.17, 2200 kg/m^3) and W = 0.2 J/m^2.
+SILICA = Sphere(20e-6, 73e9, 0.17, 2200.0)
+W = 0.2
+M, R, E = effective_properties(SILICA, SILICA)
+
+
+def jkr_delta(a: float, r: float = R, w: float = W, e: float = E) -> float:
+    """JKR (1971): delta(a) = a^2/R - sqrt(2 pi W a / E*), [m]."""
+    return a * a / r - math.sqrt(2.0 * math.pi * w * a / e)
+
+
+def jkr_f(a: float, r: float = R, w: float = W, e: float = E) -> float:
+    """JKR (1971): F(a) = 4 E* a^3 / (3 R) - sqrt(8 pi W E* a^3), [N], pushing > 0."""
+    return 4.0 * e * a**3 / (3.0 * r) - math.sqrt(8.0 * math.pi * w * e * a**3)
+
+
+def grip_radius(r: float = R, w: float = W, e: float = E) -> float:
+    """The contact radius where d delta / d a = 0: a^3 = pi W R^2 / (8 E*), [m]."""
+    return (math.pi * w * r * r / (8.0 * e)) ** (1.0 / 3.0)
+
+
+def pull_off_radius(r: float = R, w: float = W, e: float = E) -> float:
+    """The contact radius where dF/da = 0 (F = -(3/2) pi W R): a^3 = 9 pi W R^2/(8 E*)."""
+    return (9.0 * math.pi * w * r * r / (8.0 * e)) ** (1.0 / 3.0)
+
+
+def jkr_force_of_overlap(d: float, r: float = R, w: float = W, e: float = E) -> float:
+    """F on the stable branch (a above the fixed-grip point) at overlap d, by brentq."""
+    a_low = grip_radius(r, w, e)
+    if d <= jkr_delta(a_low, r, w, e):
+        return jkr_f(a_low, r, w, e)
+    a_high = 2.0 * math.sqrt(r * max(d, 0.0)) + 4.0 * a_low
+    a = brentq(lambda x: jkr_delta(x, r, w, e) - d, a_low, a_high, xtol=1e-30, rtol=1e-15)
+    return jkr_f(a, r, w, e)
+
+
+def integrate(force, v0: float, delta_end: float, m: float = M):
+    """solve_ivp (DOP853, rtol 1e-12) of m delta'' = -F(delta) from delta = 0 at V0 to the
+    separation at delta_end (after the turning point) or to a capture (delta' back to 0
+    from below): (e, t_c, captured, delta at the end)."""
+    scale = 1e-9
+
+    def rhs(_t, y):
+        return (y[1], -force(y[0]) / m)
+
+    def turn(_t, y):
+        return y[1]
+
+    turn.terminal, turn.direction = True, -1
+    span = 1e-3
+    options = dict(method="DOP853", rtol=1e-12, atol=[1e-12 * scale, 1e-12 * v0])
+    a = solve_ivp(rhs, (0.0, span), (0.0, v0), events=turn, **options)
+    t1, y1 = a.t_events[0][0], a.y_events[0][0]
+
+    def part(_t, y):
+        return y[0] - delta_end
+
+    def capture(_t, y):
+        return y[1]
+
+    part.terminal, part.direction = True, -1
+    capture.terminal, capture.direction = True, 1
+    b = solve_ivp(rhs, (t1, t1 + span), (y1[0], -0.0), events=(part, capture), **options)
+    if b.t_events[0].size:
+        return -b.y_events[0][0][1] / v0, b.t_events[0][0], False, b.y_events[0][0][0]
+    return 0.0, b.t_events[1][0], True, b.y_events[1][0][0]
+
+
+def jkr(v0: float, separation: str = "instability", w: float = W, **kw):
+    law = {"work_of_adhesion": w, "separation": separation}
+    return solve_impact(SILICA, SILICA, v0, 0.0, ContactModel("jkr", law), **kw)
+
+
+# -- quasi-static closed forms ---------------------------------------------------------------
+
+
+def test_the_jkr_branch_is_the_parametric_curve_of_jkr_1971():
+    """F(delta) of the law's branch at points of the parametric curve a -> (delta(a), F(a)),
+    from above the fixed-grip point into compression, to 1e-12 of the pull-off force."""
+    from impactcli.laws.jkr import JKRBranch
+
+    branch = JKRBranch(R, E, W)
+    radii = np.linspace(1.0001 * grip_radius(), 20 * grip_radius(), 60)
+    deltas = np.array([jkr_delta(a) for a in radii])
+    forces = np.array([jkr_f(a) for a in radii])
+    scale = 1.5 * math.pi * W * R
+    assert np.max(np.abs(branch.force(deltas) - forces)) < 1e-11 * scale
+    assert np.allclose(branch.s_of(deltas) ** 2 * branch.contact_radius_at_rest, radii, 1e-10)
+
+
+def test_pull_off_force_and_the_two_separation_points():
+    """The minimum of F(a) is -(3/2) pi W R (load-controlled pull-off); the minimum of
+    delta(a) is the fixed-grip point, F there -(5/9) (3/2) pi W R; the law's neck ends at
+    each, and the summary's pull_off_force is (3/2) pi W R."""
+    from impactcli.laws.jkr import JKRBranch
+
+    f_c = 1.5 * math.pi * W * R
+    a_hi = 5 * pull_off_radius()
+    low = minimize_scalar(jkr_f, bounds=(1e-3 * a_hi, a_hi), method="bounded",
+                          options={"xatol": 1e-18})  # fmt: skip
+    assert low.fun == pytest.approx(-f_c, rel=1e-9)
+    grip = minimize_scalar(jkr_delta, bounds=(1e-3 * a_hi, a_hi), method="bounded",
+                           options={"xatol": 1e-18})  # fmt: skip
+    assert jkr_f(grip.x) == pytest.approx(-5.0 / 9.0 * f_c, rel=1e-6)
+    branch = JKRBranch(R, E, W)
+    assert float(branch.force(grip.fun)) == pytest.approx(-5.0 / 9.0 * f_c, rel=1e-5)
+    for rule, end in (("instability", grip.fun), ("pull-off", jkr_delta(low.x))):
+        s = jkr(0.1, rule).summary
+        assert s["delta_separation"] == pytest.approx(end, rel=1e-9), rule
+        assert s["pull_off_force"] == pytest.approx(f_c, rel=1e-12)
+        assert s["stuck"] is False
+
+
+def test_dmt_is_hertz_plus_the_constant_pull_and_gives_e_1():
+    """DMT (1975): F = K_h delta^1.5 - 2 pi W R; the attraction's work in and out cancel:
+    e = 1, nothing sticks; the contact time by SciPy of that force."""
+    from impactcli.laws.dmt import DMTContact
+
+    contact = DMTContact(R, E, W)
+    k = 4.0 / 3.0 * E * math.sqrt(R)
+    d = np.linspace(0.0, 5e-9, 9)
+    assert np.allclose(contact.plan(0.1, M).stages[0].law.force(d),
+                       k * d**1.5 - 2 * math.pi * W * R, rtol=1e-13, atol=1e-20)  # fmt: skip
+    result = solve_impact(SILICA, SILICA, 0.1, 0.0, ContactModel("dmt", {"work_of_adhesion": W}))
+    e, t_c, captured, _ = integrate(lambda x: k * max(x, 0.0) ** 1.5 - 2 * math.pi * W * R,
+                                    0.1, 0.0)  # fmt: skip
+    assert not captured and e == pytest.approx(1.0, abs=1e-9)
+    assert result.summary["restitution"] == pytest.approx(1.0, abs=1e-12)
+    assert result.summary["contact_time"] == pytest.approx(t_c, rel=1e-6)
+    assert result.summary["pull_off_force"] == pytest.approx(2 * math.pi * W * R, rel=1e-12)
+    assert result.summary["stuck"] is False
+
+
+@pytest.mark.parametrize("law", ["jkr", "dmt"])
+def test_zero_work_of_adhesion_is_hertz_to_rounding(law):
+    """W = 0: every output of the Hertz impact, to rounding."""
+    hertz = solve_impact(SILICA, SILICA, 0.1, 0.0, ContactModel("hertz"), n=60)
+    zero = solve_impact(SILICA, SILICA, 0.1, 0.0,
+                        ContactModel(law, {"work_of_adhesion": 0.0}), n=60)  # fmt: skip
+    for key, value in hertz.summary.items():
+        assert zero.summary[key] == pytest.approx(value, rel=1e-12, abs=1e-30, nan_ok=True), key
+    assert zero.summary["stuck"] is False and zero.summary["sticking_velocity"] == 0.0
+    ours, theirs = zero.history(), hertz.history()
+    for key, value in theirs.items():
+        assert np.allclose(ours[key], value, rtol=1e-12, atol=0, equal_nan=True), key
+
+
+# -- dynamics against SciPy -------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("rule", ["instability", "pull-off"])
+@pytest.mark.parametrize("v0", [0.05, 0.1, 1.0])
+def test_jkr_impact_agrees_with_solve_ivp_at_the_default_n(rule, v0):
+    """e and t_c within 1e-6 of DOP853 (rtol 1e-12) of the same force law, through the
+    snap-in, the neck, to the rule's separation point."""
+    a_end = grip_radius() if rule == "instability" else pull_off_radius()
+    e_ref, t_ref, captured, _ = integrate(jkr_force_of_overlap, v0, jkr_delta(a_end))
+    result = jkr(v0, rule)
+    assert result.n == 200
+    assert not captured and result.summary["stuck"] is False
+    assert result.summary["restitution"] == pytest.approx(e_ref, rel=1e-6)
+    assert result.summary["contact_time"] == pytest.approx(t_ref, rel=1e-6)
+
+
+@pytest.mark.parametrize("rule", ["instability", "pull-off"])
+@pytest.mark.parametrize("fraction", [0.3, 0.9])
+def test_jkr_capture_agrees_with_solve_ivp(rule, fraction):
+    """Below V_s the relative velocity returns to zero on the neck: e = 0, ``stuck``; the
+    time and the overlap of the capture as DOP853's."""
+    a_end = grip_radius() if rule == "instability" else pull_off_radius()
+    v_s = jkr(0.1, rule).summary["sticking_velocity"]
+    v0 = fraction * v_s
+    e_ref, t_ref, captured, d_ref = integrate(jkr_force_of_overlap, v0, jkr_delta(a_end))
+    result = jkr(v0, rule)
+    assert captured and e_ref == 0.0
+    assert result.summary["stuck"] is True and result.summary["restitution"] == 0.0
+    assert result.summary["contact_time"] == pytest.approx(t_ref, rel=1e-6)
+    assert result.summary["delta_separation"] == pytest.approx(d_ref, rel=1e-6)
+
+
+# -- energy ------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("rule", ["instability", "pull-off"])
+def test_the_energy_lost_is_the_hysteresis_of_the_loop(rule):
+    """Snap-in costs no work, loading and unloading share the branch: the loop's area is the
+    work of the neck from delta = 0 to the separation point, integrated here along the
+    parametric curve; (1/2) m V0^2 (1 - e^2) equals it, and no energy is created."""
+    a_end = grip_radius() if rule == "instability" else pull_off_radius()
+    a_snap = brentq(jkr_delta, 2 * grip_radius(), 100 * grip_radius(), xtol=1e-30, rtol=1e-15)
+    neck, _ = quad(lambda a: -jkr_f(a) * (2 * a / R - 0.5 * math.sqrt(2 * math.pi * W / (E * a))),
+                   a_end, a_snap, epsabs=0, epsrel=1e-13)  # fmt: skip
+    for v0 in (0.06, 0.2, 2.0):
+        s = jkr(v0, rule).summary
+        lost = 0.5 * M * v0 * v0 * (1.0 - s["restitution"] ** 2)
+        assert lost == pytest.approx(neck, rel=1e-9)
+        assert s["energy_adhesion"] == pytest.approx(neck, rel=1e-9)
+        assert s["energy_dissipated1"] + s["energy_dissipated2"] == pytest.approx(neck, rel=1e-9)
+        assert s["kinetic_energy1_final"] + s["kinetic_energy2_final"] <= 0.5 * M * v0 * v0 * 2
+        assert 0.0 < s["restitution"] < 1.0
+    v_s = jkr(0.1, rule).summary["sticking_velocity"]
+    assert 0.5 * M * v_s**2 == pytest.approx(neck, rel=1e-9)
+
+
+# -- published results -------------------------------------------------------------------------
+
+
+def test_sticking_velocity_is_thornton_and_ning_1998():
+    """V_s = 1.84 (W^5 / (rho^3 E*^2 R^5))^(1/6) for a sphere on a wall of the same
+    material (Thornton & Ning 1998, the instability rule), to its three figures; the impact
+    just below V_s sticks and just above rebounds."""
+    from impactcli.laws.jkr import JKRContact
+
+    for d, w in ((20e-6, 0.2), (5e-6, 0.05), (100e-6, 1.0)):
+        r = d / 2
+        m = 2200.0 * math.pi * d**3 / 6
+        e_star = 73e9 / (1 - 0.17**2)  # wall: E* = E / (1 - nu^2)
+        published = 1.84 * (w**5 / (2200.0**3 * e_star**2 * r**5)) ** (1.0 / 6.0)
+        v_s = float(JKRContact(r, e_star, w).sticking_velocity(m))
+        assert v_s == pytest.approx(published, rel=3e-3)
+    v_s = jkr(0.1).summary["sticking_velocity"]
+    assert jkr(0.999 * v_s).summary["stuck"] is True
+    assert jkr(1.001 * v_s).summary["stuck"] is False
+    assert jkr(2 * v_s).summary["restitution"] == pytest.approx(math.sqrt(0.75), rel=1e-9)
+
+
+def test_the_pull_off_rule_sticks_below_about_0_7_of_the_instability_rule():
+    """The two rules' sticking velocities: sqrt(E_neck ratio), about 30 % apart."""
+    ratio = (
+        jkr(0.1, "pull-off").summary["sticking_velocity"] / jkr(0.1).summary["sticking_velocity"]
+    )
+    assert ratio == pytest.approx(0.7028, abs=2e-4)
+
+
+# -- Thornton & Ning ---------------------------------------------------------------------------
+
+
+def test_thornton_ning_is_jkr_below_its_limiting_pressure_and_conserves_energy_above():
+    """Below the yield velocity the impact is JKR's; above it, e < the elastic one and the
+    energy lost is the plastic work plus the neck: e^2 + loss / KE0 = 1."""
+    law = {"work_of_adhesion": W, "py": 3e9}
+    model = ContactModel("thornton-ning", law)
+    low = solve_impact(SILICA, SILICA, 0.1, 0.0, model).summary
+    assert low["restitution"] == pytest.approx(jkr(0.1).summary["restitution"], rel=1e-12)
+    high = solve_impact(SILICA, SILICA, 20.0, 0.0, model).summary
+    assert high["restitution"] < jkr(20.0).summary["restitution"]
+    lost = high["energy_dissipated1"] + high["energy_dissipated2"]
+    ke0 = 0.5 * M * 20.0**2
+    assert high["restitution"] ** 2 + lost / ke0 == pytest.approx(1.0, rel=1e-9)
+    assert high["pull_off_force"] > 1.5 * math.pi * W * R  # the flattened contact's
+
+
+# -- bad input ---------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("law", "params", "fragment"),
+    [
+        ("jkr", {"work_of_adhesion": -0.1}, ">= 0"),
+        ("jkr", {"work_of_adhesion": float("inf")}, ">= 0"),
+        ("jkr", {"work_of_adhesion": 1e9}, "too large for these spheres"),
+        ("dmt", {"work_of_adhesion": 1e9}, "too large for these spheres"),
+        ("jkr", {"work_of_adhesion": 0.2, "separation": "overlap"}, "instability"),
+        ("thornton-ning", {"work_of_adhesion": 0.2, "py": 1e8}, "limit"),
+    ],
+)
+def test_bad_adhesion_parameters_raise_input_error(law, params, fragment):
+    with pytest.raises(InputError, match=fragment):
+        solve_impact(SILICA, SILICA, 0.1, 0.0, ContactModel(law, params))
