@@ -607,6 +607,17 @@ def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float
         )
     if force.size and np.nanmin(force) < 0.0:  # a damped contact that pulls before it ends
         ax.axhline(0.0, color="0.5", linewidth=0.6)
+    if summary and "pull_off_force" in summary and force.size and summary["pull_off_force"] > 0:
+        # an adhesive loop: the snap-in at first touch and the jump off at separation (no
+        # displacement, no work), which close the loop whose area the neck takes
+        ends = [(delta[0], force[0], "snap-in at first touch", "force:snap-in")]
+        if not summary.get("stuck", False):
+            ends.append((delta[-1], force[-1], "separation (the neck breaks)", "force:jump-off"))
+        for k, (x, f, label, gid) in enumerate(ends):
+            ax.plot([x / xs.factor] * 2, [0.0, f / fs.factor], color=("tab:red", "tab:green")[k],
+                    linestyle=":", label=label, gid=gid)  # fmt: skip
+        ax.axhline(-summary["pull_off_force"] / fs.factor, color="0.5", linestyle="-.",
+                   linewidth=0.8, label="pull-off force")  # fmt: skip
     if summary and summary.get("delta_separation", 0.0) > 0:
         ds = summary["delta_separation"]
         ax.plot(
