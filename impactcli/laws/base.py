@@ -32,6 +32,7 @@ __all__ = [
     "FitStart",
     "Fitting",
     "ImpactPlan",
+    "LammpsModel",
     "LawSpec",
     "NormalContact",
     "Parameter",
@@ -341,6 +342,30 @@ class YieldOnset:
 
 
 @dataclass(frozen=True)
+class LammpsModel:
+    """A law's counterpart among LAMMPS's ``pair_style granular`` normal models
+    (:mod:`impactcli.export.lammps`, docs/export.md).
+
+    Attributes
+    ----------
+    name : LAMMPS's keyword of the model (``jkr``, ``dmt``)
+    coefficients : the law's resolved parameters -> the model's coefficients after
+        ``E eta nu`` (the cohesion gamma = W/2 [J/m^2] of ``jkr`` and ``dmt``)
+    exported : the law's resolved parameters -> the parameters of the same law that the
+        LAMMPS model computes (JKR with LAMMPS's own separation rule)
+    difference : the law's resolved parameters -> why LAMMPS's model is not the contact
+        asked for, or "" when it is
+    comment : the comment line that states the model's force and coefficients
+    """
+
+    name: str
+    coefficients: Callable[[Mapping[str, Any]], tuple[float, ...]] = field(repr=False)
+    exported: Callable[[Mapping[str, Any]], dict[str, Any]] = field(repr=False)
+    difference: Callable[[Mapping[str, Any]], str] = field(repr=False)
+    comment: str = ""
+
+
+@dataclass(frozen=True)
 class LawSpec:
     """A law of the library: metadata and the factory of its contact model.
 
@@ -375,6 +400,9 @@ class LawSpec:
     #: (its contact model gives ``sticking_velocity(m)``, ``pull_off_force`` and its
     #: plans the ``extras`` stuck, pull_off_force and energy_adhesion)
     adhesive: bool = False
+    #: the law's LAMMPS normal model (None: LAMMPS has none; ``impact export lammps`` then
+    #: fits the nearest model LAMMPS has)
+    lammps: LammpsModel | None = field(default=None, repr=False)
 
     def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """The parameters with defaults filled in (also for NaN entries of per-row arrays);

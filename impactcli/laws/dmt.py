@@ -15,11 +15,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import ImpactPlan, LawSpec, Reference, StagePlan, col
+from impactcli.laws.base import ImpactPlan, LammpsModel, LawSpec, Reference, StagePlan, col
 from impactcli.laws.hertz import HertzContact, hertz_stiffness
 from impactcli.laws.jkr import WORK_OF_ADHESION, check_adhesion
 
-__all__ = ["LAMMPS_NORMAL_MODEL", "SPEC", "DMTContact", "DMTForce", "dmt_pull_off_force"]
+__all__ = ["LAMMPS", "LAMMPS_NORMAL_MODEL", "SPEC", "DMTContact", "DMTForce", "dmt_pull_off_force"]
 
 Array = NDArray[np.float64]
 
@@ -206,6 +206,20 @@ def _build(radius, modulus, _sy, params) -> DMTContact:
     return DMTContact(radius, modulus, params["work_of_adhesion"])
 
 
+#: LAMMPS's counterpart, exact: ``dmt E eta nu gamma``, Hertz less 4 pi gamma R with the
+#: cohesion gamma = W/2, from first touch to delta = 0 (src/GRANULAR/gran_sub_mod_normal.cpp).
+LAMMPS = LammpsModel(
+    LAMMPS_NORMAL_MODEL,
+    coefficients=lambda params: (0.5 * float(params["work_of_adhesion"]),),
+    exported=lambda params: {"work_of_adhesion": float(params["work_of_adhesion"])},
+    difference=lambda params: "",
+    comment=(
+        "# dmt E eta nu gamma: F = (4/3) E* a delta - 4 pi gamma R, a = sqrt(R delta), from "
+        "first touch to delta = 0, gamma = W/2 (LAMMPS's cohesion is the surface energy of "
+        "each surface; W the work of adhesion)"
+    ),
+)
+
 #: The registry entry of the law.
 SPEC = LawSpec(
     name="dmt",
@@ -233,4 +247,5 @@ SPEC = LawSpec(
     build=_build,
     default_n=200,
     adhesive=True,
+    lammps=LAMMPS,
 )

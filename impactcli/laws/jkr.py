@@ -49,6 +49,7 @@ from numpy.typing import ArrayLike, NDArray
 from impactcli.laws.base import (
     Fitting,
     ImpactPlan,
+    LammpsModel,
     LawSpec,
     Parameter,
     Reference,
@@ -60,6 +61,7 @@ from impactcli.laws.hertz import HertzContact, hertz_stiffness
 __all__ = [
     "GRIP_S",
     "JKR_SEPARATIONS",
+    "LAMMPS",
     "LAMMPS_NORMAL_MODEL",
     "PULL_OFF_S",
     "SEPARATION_PARAMETER",
@@ -769,6 +771,35 @@ def _closed_form(contact: JKRContact, mass, impact_velocity) -> tuple[str, Array
     return "JKR closed form", jkr_restitution(impact_velocity, contact.sticking_velocity(mass))
 
 
+def _lammps_difference(params) -> str:
+    if params["separation"] == "pull-off":
+        return ""
+    return (
+        "LAMMPS's jkr ends the contact at the load-controlled pull-off point (the pull-off "
+        "rule); the instability rule asked for ends it later, at the fixed-grip point: these "
+        "lines are JKR with the pull-off rule (a higher e; it sticks below 0.70 of the "
+        "instability rule's V_s)"
+    )
+
+
+#: LAMMPS's counterpart: ``jkr E eta nu gamma``, the cohesion gamma = W/2, the contact from
+#: first touch to the load-controlled pull-off point (its pulloff_distance), that is
+#: ``separation pull-off`` (src/GRANULAR/gran_sub_mod_normal.cpp).
+LAMMPS = LammpsModel(
+    LAMMPS_NORMAL_MODEL,
+    coefficients=lambda params: (0.5 * float(params["work_of_adhesion"]),),
+    exported=lambda params: {
+        "work_of_adhesion": float(params["work_of_adhesion"]),
+        "separation": "pull-off",
+    },
+    difference=_lammps_difference,
+    comment=(
+        "# jkr E eta nu gamma: JKR from first touch (snap-in) to the pull-off point, "
+        "F = (4/3) E* a^3/R - 2 pi a^2 sqrt(4 gamma E*/(pi a)), gamma = W/2 (LAMMPS's "
+        "cohesion is the surface energy of each surface; W the work of adhesion)"
+    ),
+)
+
 #: The registry entry of the law.
 SPEC = LawSpec(
     name="jkr",
@@ -807,4 +838,5 @@ SPEC = LawSpec(
     closed_form=_closed_form,
     default_n=200,
     adhesive=True,
+    lammps=LAMMPS,
 )
