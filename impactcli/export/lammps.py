@@ -23,15 +23,20 @@ running it, tests/test_export_lammps_run.py):
   alpha = sqrt(5) (-ln e) / sqrt(ln^2 e + pi^2) in every release.
 - Viscoelastic damping (Brilliantov et al. 1996), c = 2 E* A a: ``damping viscoelastic``
   with eta_n0 = 2 E* A / m_eff.
+- The adhesive laws of their registry entries (:attr:`~impactcli.laws.base.LawSpec.lammps`):
+  ``dmt E eta nu gamma`` and ``jkr E eta nu gamma`` with the cohesion gamma = W/2; LAMMPS's
+  JKR ends the contact at the load-controlled pull-off point, so ``jkr`` is exact with
+  ``separation pull-off`` (the ``instability`` rule is exported as that, said so).
 - The separation rule: ``overlap`` is LAMMPS's default; ``force`` is ``limit_damping``.
 - Coulomb friction with impactcli's Mindlin spring (incremental, scaled down while the
   contact shrinks): ``tangential mindlin_rescale/force NULL 0 mu``. LAMMPS's other Mindlin
   variants are offered as LAMMPS defines them (:data:`LAMMPS_TANGENTIAL`).
 
 A normal law LAMMPS does not have (Du & Wang, Thornton, Walton & Braun, a tabulated curve,
-Hunt & Crossley damping) is said so, and the nearest LAMMPS model is fitted to the law's
-e(V0) over a velocity range (:class:`NearestFit`): Hertz with Tsuji damping (a constant e)
-or with viscoelastic damping (e falling with V0), whichever has the smaller worst error.
+Thornton & Ning, Hunt & Crossley damping) is said so, and the nearest LAMMPS model is fitted
+to the law's e(V0) over a velocity range (:class:`NearestFit`): Hertz with Tsuji damping (a
+constant e) or with viscoelastic damping (e falling with V0), whichever has the smaller worst
+error.
 """
 
 from __future__ import annotations
