@@ -276,6 +276,54 @@ def test_thornton_ning_is_jkr_below_its_limiting_pressure_and_conserves_energy_a
     assert high["pull_off_force"] > 1.5 * math.pi * W * R  # the flattened contact's
 
 
+@pytest.mark.parametrize("rule", ["instability", "pull-off"])
+def test_thornton_ning_plastic_impact_agrees_with_solve_ivp(rule):
+    """Past yield: JKR loading to a_y = pi R p_y / (2 E*), the plastic line
+    F = F_y + pi p_y R (delta - delta_y), unloading on the JKR branch of
+    R_p = 4 E* a_m^3 / (3 (F_m + sqrt(8 pi W E* a_m^3))) offset by the permanent indentation,
+    to the rule's end: e and t_c within 1e-6 of DOP853 of that force law at the default n."""
+    py, v0 = 1e9, 2.0
+    a_y = math.pi * R * py / (2.0 * E)
+    d_y, f_y = jkr_delta(a_y), jkr_f(a_y)
+
+    def loading(d: float) -> float:
+        return jkr_force_of_overlap(d) if d <= d_y else f_y + math.pi * py * R * (d - d_y)
+
+    def rhs(_t, y):
+        return (y[1], -loading(y[0]) / M)
+
+    def turn(_t, y):
+        return y[1]
+
+    turn.terminal, turn.direction = True, -1
+    options = dict(method="DOP853", rtol=1e-12, atol=[1e-21, 1e-12 * v0])
+    first = solve_ivp(rhs, (0.0, 1e-3), (0.0, v0), events=turn, **options)
+    t_m, (d_m, _) = first.t_events[0][0], first.y_events[0][0]
+    a_m = math.sqrt(a_y**2 + R * (d_m - d_y))
+    f_m = f_y + math.pi * py * R * (d_m - d_y)
+    r_p = 4.0 * E * a_m**3 / (3.0 * (f_m + math.sqrt(8.0 * math.pi * W * E * a_m**3)))
+    d_p = d_m - jkr_delta(a_m, r_p)
+    a_end = grip_radius(r_p) if rule == "instability" else pull_off_radius(r_p)
+    d_end = d_p + jkr_delta(a_end, r_p)
+
+    def unloading(_t, y):
+        return (y[1], -jkr_force_of_overlap(y[0] - d_p, r_p) / M)
+
+    def part(_t, y):
+        return y[0] - d_end
+
+    part.terminal, part.direction = True, -1
+    second = solve_ivp(unloading, (t_m, t_m + 1e-3), (d_m, 0.0), events=part, **options)
+    e_ref, t_ref = -second.y_events[0][0][1] / v0, second.t_events[0][0]
+    law = {"work_of_adhesion": W, "py": py, "separation": rule}
+    s = solve_impact(SILICA, SILICA, v0, 0.0, ContactModel("thornton-ning", law)).summary
+    assert s["delta_max"] == pytest.approx(d_m, rel=1e-9)
+    assert s["restitution"] == pytest.approx(e_ref, rel=1e-6)
+    assert s["contact_time"] == pytest.approx(t_ref, rel=1e-6)
+    assert s["delta_separation"] == pytest.approx(d_end, rel=1e-6)
+    assert s["pull_off_force"] == pytest.approx(1.5 * math.pi * W * r_p, rel=1e-9)
+
+
 # -- bad input ---------------------------------------------------------------------------------
 
 
