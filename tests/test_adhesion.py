@@ -341,3 +341,51 @@ def test_thornton_ning_plastic_impact_agrees_with_solve_ivp(rule):
 def test_bad_adhesion_parameters_raise_input_error(law, params, fragment):
     with pytest.raises(InputError, match=fragment):
         solve_impact(SILICA, SILICA, 0.1, 0.0, ContactModel(law, params))
+
+
+PAIR = ("--d1", "20um", "--d2", "20um", "--E", "73GPa", "--nu", "0.17", "--rho", "2200")
+
+
+@pytest.mark.parametrize(
+    ("args", "fragment"),
+    [
+        (["--law", "jkr", "--work-of-adhesion=-0.2"], "must be a finite number >= 0"),
+        (["--law", "jkr", "--work-of-adhesion", "0.2m"], "expected a surface energy"),
+        (["--law", "jkr", "--work-of-adhesion", "20kJ/m^2"], "too large for these spheres"),
+        (["--law", "jkr", "--work-of-adhesion", "0.2", "--separation", "overlap"],
+         "with law jkr or thornton-ning it is instability or pull-off"),
+        (["--law", "hertz", "--separation", "pull-off"], "not of hertz: add --law jkr"),
+        (["--law", "thornton-ning", "--work-of-adhesion", "0.2", "--py", "10MPa"],
+         "below the JKR contact pressure at first touch"),
+    ],
+)  # fmt: skip
+def test_bad_adhesion_options_are_one_line_exit_2(args, fragment):
+    from tests.conftest import run_impact
+
+    command = "elastoplastic" if "thornton-ning" in args else "elastic"
+    result = run_impact(command, *PAIR, "--v1", "0.1", *args, "-f", "json")
+    assert result.returncode == 2
+    assert result.stdout == ""
+    assert result.stderr.count("\n") == 1 and result.stderr.startswith("impact: error: ")
+    assert fragment in result.stderr
+
+
+def test_the_units_of_the_work_of_adhesion_mean_the_same_everywhere():
+    """0.2 J/m^2, 200 mJ/m^2 and 0.2 N/m are one W: the same e in elastic and restitution."""
+    import json
+
+    from tests.conftest import run_impact
+
+    values = []
+    for text in ("0.2J/m^2", "200mJ/m^2", "0.2N/m", "0.2"):
+        one = run_impact("elastic", *PAIR, "--v1", "0.1", "--law", "jkr",
+                         "--work-of-adhesion", text, "-f", "json")  # fmt: skip
+        sweep = run_impact("restitution", *PAIR, "--v-min", "0.1", "--v-max", "0.2",
+                           "--count", "2", "--law", "jkr", "--work-of-adhesion", text,
+                           "-f", "json")  # fmt: skip
+        assert one.returncode == 0 and sweep.returncode == 0, one.stderr + sweep.stderr
+        values.append(json.loads(one.stdout)["summary"]["restitution"])
+        v_s = jkr(0.1).summary["sticking_velocity"]
+        assert f"sticking velocity V_s = {v_s:.6g} m/s" in sweep.stderr
+    assert len(set(values)) == 1
+    assert values[0] == pytest.approx(math.sqrt(1 - (v_s / 0.1) ** 2), rel=1e-12)

@@ -133,7 +133,15 @@ class DampingOptions:
             ] + (["--separation"] if self.separation is not None else [])
             if extra:
                 verb = "needs" if len(extra) == 1 else "need"
-                raise InputError(f"{', '.join(extra)} {verb} {_either()}")
+                laws = ""
+                if self.separation is not None:  # the rules of a law's neck (jkr, ...)
+                    from impactcli.cli.law_options import shared_choices, shared_help
+
+                    rules = shared_choices("separation")
+                    if rules:
+                        owners = shared_help("separation").split(":", 1)[0].lower()
+                        laws = f" ({owners} it is {' or '.join(rules)})"
+                raise InputError(f"{', '.join(extra)} {verb} {_either()}{laws}")
             return None, None, None, "overlap"
         from impactcli.damping import check_alpha
         from impactcli.units import parse_quantity
