@@ -453,6 +453,8 @@ class FilmSolution:
             with np.errstate(over="ignore", invalid="ignore"):
                 h_delta, h_rate = _hyperbolic_oscillator(*args)
             delta, delta_dot = np.where(hyper, h_delta, delta), np.where(hyper, h_rate, delta_dot)
+            del h_delta, h_rate, hyper
+        del args, tau, seg  # the gathered segment data: no longer held (peak memory)
         end = t + slack >= self.end_time
         last = self.stages[-1]
         return np.where(end, last.delta[-1], delta), np.where(end, last.velocity[-1], delta_dot)
