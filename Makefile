@@ -87,8 +87,9 @@ test: $(VENV)/.test-installed
 	$(BIN)/python -m pytest -q -n auto -m "not slow"
 
 ## test-slow: the tests marked slow: the smoke tests of a new interpreter, signals, pipes, Dask,
-##            rendered figures, the README run verbatim, the fuzz, and (after make dem) the
-##            exported LAMMPS inputs run by LAMMPS; CI runs test, make dem, then this
+##            rendered figures, the README and the site's pages run verbatim, the fuzz, and
+##            (after make dem) the exported LAMMPS inputs run by LAMMPS; CI runs test, make
+##            dem, then this
 test-slow: $(VENV)/.test-installed
 	$(BIN)/python -m pytest -q -n auto -m slow
 
@@ -110,9 +111,10 @@ options: $(VENV)/.run-installed
 	$(BIN)/python -m impactcli.cli.options_doc > docs/options.md
 
 ## bench: FILM against SciPy, impact batch throughput, tables --n 10^6, cold start (a few
-##        minutes); prints the table, and writes it into README.md with `make bench README=1`
+##        minutes); prints the table, and writes it into docs/about/benchmarks.md (which the
+##        README links to) with `make bench WRITE=1` (README=1, its former spelling, too)
 bench: $(VENV)/.bench-installed
-	$(BIN)/python benchmarks/bench.py $(if $(filter 1 yes true,$(README)),--readme README.md)
+	$(BIN)/python benchmarks/bench.py $(if $(filter 1 yes true,$(WRITE) $(README)),--page docs/about/benchmarks.md)
 
 lint: $(VENV)/.test-installed
 	$(BIN)/ruff check impactcli tests

@@ -39,12 +39,12 @@ issue 25 and whether it is MET. NOT MET rows are what to speed up next.
 (g) Start-up of every command without ``--plot`` (with units, as typed), each against
     ``python -c "import numpy"`` in the same run; target: within 2.5x.
 
-Usage: ``python benchmarks/bench.py [--quick] [--only a,b,...] [--readme README.md]``.
+Usage: ``python benchmarks/bench.py [--quick] [--only a,b,...] [--page PAGE]``.
 ``--quick`` is a smoke test (smaller sizes, fewer repeats, about a minute); ``--start-up``
-and ``--damping`` run (g) and (c) alone. ``--readme`` replaces the table between the
-``<!-- bench:start -->`` and ``<!-- bench:end -->`` markers of that file and of its copy in
-docs/about/benchmarks.md. Sub-millisecond calls are timed as the best of repeats, commands
-as medians.
+and ``--damping`` run (g) and (c) alone. ``--page`` replaces the table between the
+``<!-- bench:start -->`` and ``<!-- bench:end -->`` markers of that page
+(docs/about/benchmarks.md, which the README links to). Sub-millisecond calls are timed as
+the best of repeats, commands as medians.
 """
 
 from __future__ import annotations
@@ -587,7 +587,7 @@ def bench_history(rows: list[Row], quick: bool) -> None:
 
 
 def damping_cases() -> list[tuple[str, float]]:
-    """(model, alpha): Tsuji alpha = 0.3 (the README's example); the others at the alpha
+    """(model, alpha): Tsuji alpha = 0.3 (the damping guide's example); the others at the alpha
     that gives e = 0.8 at V0 = 1 m/s."""
     from impactcli.laws.registry import DAMPING_LAWS
 
@@ -1021,30 +1021,24 @@ def table(rows: list[Row]) -> str:
     return "\n".join(lines)
 
 
-#: The pages that hold the table between the markers: the README and its copy in the docs.
-COPIES = (Path("docs") / "about" / "benchmarks.md",)
+#: The page that holds the table between the markers (``make bench WRITE=1`` writes it).
+PAGE = Path("docs") / "about" / "benchmarks.md"
 
 
-def update_readme(path: Path, text: str) -> list[Path]:
-    """Replace the table between the markers of ``path`` and of its copies beside it
-    (:data:`COPIES`, relative to the README's folder); the files written."""
+def update_page(page: Path, text: str) -> Path:
+    """Replace the table between the markers of ``page``; the file written."""
     pattern = re.compile(r"(<!-- bench:start -->\n).*?(<!-- bench:end -->)", re.S)
-    written = []
-    for page in (path, *(path.parent / copy for copy in COPIES)):
-        if page != path and not page.exists():
-            continue
-        content = page.read_text()
-        if not pattern.search(content):
-            raise SystemExit(f"{page}: no <!-- bench:start --> ... <!-- bench:end --> block")
-        page.write_text(pattern.sub(lambda m: m.group(1) + text + "\n" + m.group(2), content))
-        written.append(page)
-    return written
+    content = page.read_text()
+    if not pattern.search(content):
+        raise SystemExit(f"{page}: no <!-- bench:start --> ... <!-- bench:end --> block")
+    page.write_text(pattern.sub(lambda m: m.group(1) + text + "\n" + m.group(2), content))
+    return page
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes, fewer repeats")
-    parser.add_argument("--readme", type=Path, help="write the table into this README")
+    parser.add_argument("--page", type=Path, help=f"write the table into this page ({PAGE})")
     parser.add_argument("--only", default="", help="sections to run, e.g. a,c (default all)")
     parser.add_argument("--start-up", action="store_true", help="only (g), the start-up")
     parser.add_argument("--damping", action="store_true", help="only (c), damped impacts")
@@ -1069,9 +1063,8 @@ def main() -> None:
         print(f"({name}) done in {time.perf_counter() - start:.0f} s", file=sys.stderr, flush=True)
     text = table(rows)
     print(text)
-    if args.readme:
-        for page in update_readme(args.readme, text):
-            print(f"wrote the table into {page}", file=sys.stderr)
+    if args.page:
+        print(f"wrote the table into {update_page(args.page, text)}", file=sys.stderr)
 
 
 if __name__ == "__main__":

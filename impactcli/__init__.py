@@ -4,10 +4,10 @@ The numerical core works in SI units on floats and NumPy arrays and never prints
 files; the ``impact`` command line (:mod:`impactcli.cli`) is a thin layer over it.
 
 The public API, one set of names: a pair of spheres is ``sphere1, sphere2, v1, v2`` (SI,
-diameters, velocities toward the other sphere) or, for the vectorised functions, the
-columns of ``impact batch`` (``d1, d2, v1, v2, E1, nu1, rho1, sy1, ...``, the names of the
-command-line options ``--E1``...); a :class:`Sphere` names its properties in words
-(``youngs_modulus``, ``poisson_ratio``, ``density``, ``yield_strength``, as
+diameters, velocities toward the other sphere) or, for the vectorised functions, one
+:class:`SpherePairs` of the columns of ``impact batch`` (``d1, d2, v1, v2, E1, nu1, rho1,
+sy1, ...``, the names of the command-line options ``--E1``...); a :class:`Sphere` names its
+properties in words (``youngs_modulus``, ``poisson_ratio``, ``density``, ``yield_strength``, as
 :meth:`Material.properties` gives them). A law's parameters are ``law_params`` with the keys
 of the law (``p0_factor``, ``k_load``: the option ``--p0-factor``, ``--k-load`` with ``_``
 for ``-``); friction is ``mu``; every result carries the ``warnings`` the command line
@@ -49,6 +49,8 @@ _PUBLIC: dict[str, str] = {
     "oblique_collision_3d": "impactcli.collision3d",
     "Collision3D": "impactcli.collision3d",
     "batch_impacts": "impactcli.batch",
+    "SpherePairs": "impactcli.pairs",
+    "pair_impacts": "impactcli.batch",
     "restitution_sweep": "impactcli.sweep",
     "Material": "impactcli.materials",
     "material": "impactcli.materials",

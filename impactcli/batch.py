@@ -44,34 +44,25 @@ computed.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Mapping
 from functools import lru_cache
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.contact import (
-    ImpactPlan,
-    effective_mass,
-    effective_modulus,
-    effective_radius,
-    sphere_compliance,
-    total_mass,
-)
+from impactcli.contact import ImpactPlan
 from impactcli.film import solve_stage
-from impactcli.impact import (
-    DAMPED_DEFAULT_N,
-    PLASTIC_SUMMARY_KEYS,
-    Split,
-    impact_summary,
-    plastic_summary,
-    split_fractions,
-)
-from impactcli.laws import hertz_stiffness
+from impactcli.impact import DAMPED_DEFAULT_N, PLASTIC_SUMMARY_KEYS, impact_summary, plastic_summary
 from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, DEFAULT_LAW_PARAMETERS, ELASTIC_LAW
-from impactcli.limits import MAX_SEGMENTS, check_size
+from impactcli.limits import (
+    DAMPED_BLOCK,
+    DAMPED_TABLE_ROWS,
+    FILM_BLOCK,
+    MAX_SEGMENTS,
+    check_size,
+)
+from impactcli.pairs import SpherePairs, Split
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     Problems,
@@ -91,32 +82,21 @@ __all__ = [
     "DAMPED_BLOCK",
     "DAMPED_TABLE_ROWS",
     "FILM_BLOCK",
+    "SpherePairs",
     "batch_damped_impacts",
     "batch_impacts",
+    "damped_pair_impacts",
     "hertz_scale_problems",
     "law_stage_times",
     "material_properties",
     "normalised_times",
+    "pair_impacts",
     "validate",
 ]
 
 #: Result columns of a batch, in order: the elastoplastic summary keys (SI).
 BATCH_KEYS: tuple[str, ...] = PLASTIC_SUMMARY_KEYS
 
-#: Values (rows x n segments) per block of the per-row FILM runs of elastoplastic rows above
-#: the yield velocity: 1 MiB work arrays (measured by ``make bench``: faster than blocks of
-#: 2048 rows, 1.5-2.6x for n = 25-100, and than smaller blocks for n in the hundreds).
-FILM_BLOCK = 131072
-#: Values (rows x (n + 1) segment nodes) per block of damped rows
-#: (:func:`batch_damped_impacts`): the damped FILM marches segment by segment over the rows
-#: of a block, so larger blocks than :data:`FILM_BLOCK` pay off (n = 1000, 1,300 rows: 8 s
-#: in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s unblocked); peak memory about
-#: 0.2 GB a block, whatever the number of rows.
-DAMPED_BLOCK = 524288
-#: Rows per block of damped rows at the n of the normalised tables (400, the default;
-#: :mod:`impactcli.damped_similar`): a row's summary is a table look-up, some 100 values of
-#: work arrays a row (about 50 MB a block).
-DAMPED_TABLE_ROWS = 65536
 
 
 #: Results every computed row must have as finite numbers, and those that must be > 0 (and
@@ -244,116 +224,38 @@ def material_properties(
     return values[:, 0], values[:, 1], values[:, 2], values[:, 3], messages[inverse.reshape(-1)]
 
 
-def validate(
-    d1: ArrayLike,
-    d2: ArrayLike,
-    v1: ArrayLike,
-    v2: ArrayLike,
-    E1: ArrayLike,
-    nu1: ArrayLike,
-    E2: ArrayLike,
-    nu2: ArrayLike,
-    rho1: ArrayLike = np.nan,
-    rho2: ArrayLike = np.nan,
-    m1: ArrayLike = np.nan,
-    m2: ArrayLike = np.nan,
-    sy1: ArrayLike = np.nan,
-    sy2: ArrayLike = np.nan,
-    plastic: ArrayLike = False,
-) -> NDArray[np.object_]:
-    """Why each row cannot be computed: one line per row, ``""`` for a valid row.
+def validate(pairs: SpherePairs, plastic: ArrayLike = False) -> NDArray[np.object_]:
+    """Why each pair cannot be computed: one line per collision, ``""`` for a valid one.
 
     The checks of :class:`~impactcli.impact.Sphere`, ``elastic_impact`` and
-    ``elastoplastic_impact``, applied to every row at once; a row reports its first failing
-    check. NaN in ``rho``, ``m`` or ``sy`` means "not given" (arguments as
-    :func:`batch_impacts`).
+    ``elastoplastic_impact``, applied to every pair at once; a pair reports its first
+    failing check. NaN in ``rho``, ``m`` or ``sy`` of ``pairs`` means "not given";
+    ``plastic`` (one flag, or one per pair) asks a yield strength, as the elastoplastic
+    model does.
     """
-    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = flat_floats(
-        d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2
-    )
-    plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), d1.shape)
-    problems = Problems(d1.size)
-    sphere_problems(d1, E1, nu1, rho1, m1, sy1, sphere_names(1), problems)
-    sphere_problems(d2, E2, nu2, rho2, m2, sy2, sphere_names(2), problems)
-    mass1, mass2 = total_mass(d1, rho1, m1), total_mass(d2, rho2, m2)
-    pair_problems(v1, v2, mass1, mass2, d1, d2, E1, E2, problems)
-    problems.add(plastic & needs_yield_strength(sy1, sy2), YIELD_STRENGTH_NEEDED)
-    errors = problems.messages
-    return errors
-
-
-@dataclass(frozen=True)
-class _Pairs:
-    """The per-collision constants of the valid rows of a batch (docs/method.md §1), SI."""
-
-    v1: NDArray
-    v2: NDArray
-    mass1: NDArray
-    mass2: NDArray
-    compliance1: NDArray
-    compliance2: NDArray
-    m: NDArray
-    radius: NDArray
-    modulus: NDArray
-    sigma_y: NDArray
-    sy1: NDArray
-    sy2: NDArray
-
-    @classmethod
-    def of(cls, columns: Sequence[NDArray], ok: NDArray[np.intp]) -> _Pairs:
-        """The rows ``ok`` of the flat columns d1, d2, v1, v2, E1, nu1, E2, nu2, rho1,
-        rho2, m1, m2, sy1, sy2 (the arguments of :func:`validate`, in that order)."""
-        d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 = (
-            x[ok] for x in columns
+    plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), pairs.d1.shape)
+    problems = Problems(pairs.size)
+    for i in (1, 2):
+        d, E, nu, rho, m, sy = (
+            getattr(pairs, f"{k}{i}") for k in ("d", "E", "nu", "rho", "m", "sy")
         )
-        mass1, mass2 = total_mass(d1, rho1, m1), total_mass(d2, rho2, m2)
-        return cls(
-            v1,
-            v2,
-            mass1,
-            mass2,
-            sphere_compliance(E1, nu1),
-            sphere_compliance(E2, nu2),
-            effective_mass(mass1, mass2),
-            effective_radius(0.5 * d1, 0.5 * d2),
-            effective_modulus(E1, nu1, E2, nu2),
-            np.fmin(sy1, sy2),
-            sy1,
-            sy2,
-        )
+        sphere_problems(d, E, nu, rho, m, sy, sphere_names(i), problems)
+    pair_problems(pairs.v1, pairs.v2, pairs.mass1, pairs.mass2, pairs.d1, pairs.d2, pairs.E1,
+                  pairs.E2, problems)  # fmt: skip
+    problems.add(plastic & needs_yield_strength(pairs.sy1, pairs.sy2), YIELD_STRENGTH_NEEDED)
+    return problems.messages
 
-    @property
-    def v0(self) -> NDArray:
-        """Impact velocity V0 = V1 + V2, [m/s]."""
-        return self.v1 + self.v2
 
-    @property
-    def stiffness(self) -> NDArray:
-        """Hertz stiffness K_h, [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
-
-    def fractions(self, split: Split) -> tuple[tuple[NDArray, NDArray], tuple[NDArray, NDArray]]:
-        """Each sphere's share of the indentation and of its permanent part
-        (:func:`impactcli.impact.split_fractions`; they differ for ``yield``)."""
-        args = (split, self.mass1, self.mass2, self.compliance1, self.compliance2)
-        return (
-            split_fractions(*args),
-            split_fractions(*args, self.sy1, self.sy2, permanent=True),
-        )
-
-    def summary(
-        self,
-        plan: ImpactPlan,
-        t_max: NDArray,
-        t_c: NDArray,
-        fractions: tuple[tuple[NDArray, NDArray], tuple[NDArray, NDArray]],
-    ) -> dict[str, NDArray]:
-        """:func:`impactcli.impact.impact_summary` of these impacts (``fractions`` as
-        :meth:`fractions` gives them)."""
-        return impact_summary(
-            self.v1, self.v2, self.mass1, self.mass2, self.radius, self.modulus, plan,
-            t_max, t_c, fractions[0], self.sigma_y, fractions[1],
-        )  # fmt: skip
+def _summary(
+    pairs: SpherePairs,
+    plan: ImpactPlan,
+    t_max: NDArray,
+    t_c: NDArray,
+    fractions: tuple[tuple[NDArray, NDArray], tuple[NDArray, NDArray]],
+) -> dict[str, NDArray]:
+    """:func:`impactcli.impact.impact_summary` of these impacts (``fractions`` as
+    :meth:`~impactcli.pairs.SpherePairs.fractions` gives them)."""
+    return impact_summary(pairs, plan, t_max, t_c, fractions[0], fractions[1])
 
 
 @without_float_warnings
@@ -386,7 +288,8 @@ def batch_impacts(
 
     Row i gives what ``elastic_impact`` (``plastic[i]`` False) or ``elastoplastic_impact``
     (True) give for ``Sphere(d1[i], E1[i], nu1[i], rho1[i], m1[i], sy1[i])``, sphere 2 alike,
-    velocities ``v1[i]``, ``v2[i]``, n segments and ``split``.
+    velocities ``v1[i]``, ``v2[i]``, n segments and ``split``. The columns make one
+    :class:`~impactcli.pairs.SpherePairs` for :func:`pair_impacts`, which takes the pairs.
 
     Parameters
     ----------
@@ -426,16 +329,74 @@ def batch_impacts(
     >>> (out["contact_time"] * 1e6).round(3), out["restitution"].round(5)
     (array([171.319,  75.988]), array([1.     , 0.85611]))
     """
-    pressure_factor = renamed_p0_factor("batch_impacts", p0_factor, pressure_factor, 5)
+    p0_factor = renamed_p0_factor("batch_impacts", p0_factor, pressure_factor, 5)
+    n = _checked_options(n, p0_factor)
+    pairs = SpherePairs.from_columns(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2)
+    return _impacts(pairs, plastic, n, split, p0_factor, law, law_params)
+
+
+@without_float_warnings
+@input_errors
+def pair_impacts(
+    pairs: SpherePairs,
+    plastic: ArrayLike = False,
+    *,
+    n: int = 25,
+    split: Split = "mass",
+    p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
+    law: str | None = None,
+    law_params: Mapping[str, Any] | None = None,
+) -> dict[str, NDArray]:
+    """Summaries of many impacts of two spheres, one per pair: :func:`batch_impacts` of a
+    :class:`~impactcli.pairs.SpherePairs` (flattened, one entry per collision).
+
+    Parameters
+    ----------
+    pairs : the spheres and their velocities toward each other, SI
+    plastic : True for the elastoplastic (Du & Wang) model, False for elastic Hertz, [-]
+    n, split, p0_factor, law, law_params : as :func:`batch_impacts` (p0_factor [-])
+
+    Returns
+    -------
+    dict
+        :data:`BATCH_KEYS` -> float arrays and ``error`` -> one-line reasons, as
+        :func:`batch_impacts`.
+
+    Examples
+    --------
+    >>> pairs = SpherePairs.from_columns(0.02, 0.04, [5e-3, 0.25], [7.5e-3, 0.75], 210e9, 0.3,
+    ...                                  210e9, 0.3, 7800.0, 7800.0, sy1=1e9, sy2=1e9)
+    >>> out = pair_impacts(pairs, plastic=[False, True])
+    >>> (out["contact_time"] * 1e6).round(3), out["restitution"].round(5)
+    (array([171.319,  75.988]), array([1.     , 0.85611]))
+    """
+    n = _checked_options(n, p0_factor)
+    return _impacts(pairs.ravel(), plastic, n, split, p0_factor, law, law_params)
+
+
+def _checked_options(n: int, p0_factor: float) -> int:
+    """n [-] checked against its limit, and p0 / sigma_y [-] refused unless > 0."""
     n = check_size("n", n, MAX_SEGMENTS)
-    if not (np.isfinite(pressure_factor) and pressure_factor > 0):
-        raise ValueError(f"the pressure factor must be positive, got {pressure_factor}")
-    columns = flat_floats(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2)
-    shape = columns[0].shape
+    if not (np.isfinite(p0_factor) and p0_factor > 0):
+        raise ValueError(f"the pressure factor must be positive, got {p0_factor}")
+    return n
+
+
+def _impacts(
+    pairs: SpherePairs,
+    plastic: ArrayLike,
+    n: int,
+    split: Split,
+    p0_factor: float,
+    law: str | None,
+    law_params: Mapping[str, Any] | None,
+) -> dict[str, NDArray]:
+    """:func:`pair_impacts` of flat ``pairs``, its options checked."""
+    shape = pairs.d1.shape
     plastic = np.broadcast_to(np.asarray(plastic, dtype=bool), shape).reshape(-1)
     if law is not None:  # the law's own need of a yield strength
         plastic = np.broadcast_to(_needs_yield_strength(law, law_params or {}), shape)
-    errors = validate(*columns, plastic)
+    errors = validate(pairs, plastic)
     out = {key: np.full(shape, np.nan) for key in BATCH_KEYS}
     out["error"] = errors
     ok = np.flatnonzero(errors == "")
@@ -443,20 +404,19 @@ def batch_impacts(
         return out
 
     # Valid rows only from here: the per-collision constants (docs/method.md §1).
-    pairs = _Pairs.of(columns, ok)
     if law is not None:
-        out = _batch_law(out, ok, law, law_params or {}, pairs, n, split)
-        return refuse_out_of_range(out, columns[2] + columns[3])
+        out = _batch_law(out, ok, law, law_params or {}, pairs.take(ok), n, split)
+        return refuse_out_of_range(out, pairs.v0)
     # No law named: Du & Wang where ``plastic``, else Hertz, each group by the one law path.
     plastic = plastic[ok]
     for model, params, rows in (
         (ELASTIC_LAW, {}, np.flatnonzero(~plastic)),
-        (DEFAULT_LAW, {"p0_factor": pressure_factor}, np.flatnonzero(plastic)),
+        (DEFAULT_LAW, {"p0_factor": p0_factor}, np.flatnonzero(plastic)),
     ):
         if rows.size:
-            group = _Pairs.of(columns, ok[rows])
+            group = pairs.take(ok[rows])
             out = _batch_law(out, ok[rows], model, params, group, n, split, model != ELASTIC_LAW)
-    return refuse_out_of_range(out, columns[2] + columns[3])
+    return refuse_out_of_range(out, pairs.v0)
 
 
 def _needs_yield_strength(law: str, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
@@ -516,7 +476,7 @@ def _batch_law(
     ok: NDArray[np.intp],
     law: str,
     params: Mapping[str, Any],
-    pairs: _Pairs,
+    pairs: SpherePairs,
     n: int,
     split: Split,
     plastic_keys: bool = True,
@@ -580,7 +540,7 @@ def _batch_law(
     errors[refused] = scale.messages[refused]
     plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"], values["dsep"])
     fractions = pairs.fractions(split)
-    summary = pairs.summary(plan, values["tmax"], values["tc"], fractions)
+    summary = _summary(pairs, plan, values["tmax"], values["tc"], fractions)
     if plastic_keys:
         summary.update(plastic_summary(contact, m, v0, plan, fractions[1]))
     for key, value in summary.items():
@@ -673,7 +633,8 @@ def batch_damped_impacts(
     damped_impact`),
     :func:`impactcli.damping.solve_damped_impact`, vectorised over the rows; the summary by
     :func:`impactcli.impact.impact_summary` with the indentation at separation in place of
-    delta_res (0 for ``overlap``). Arguments otherwise as :func:`batch_impacts`.
+    delta_res (0 for ``overlap``). Arguments otherwise as :func:`batch_impacts`; the
+    columns make a :class:`~impactcli.pairs.SpherePairs` for :func:`damped_pair_impacts`.
 
     Returns
     -------
@@ -681,21 +642,108 @@ def batch_damped_impacts(
         :data:`BATCH_KEYS` (the plastic keys NaN; ``energy_dissipated`` the viscous
         dissipation [J]), ``alpha`` (the damping parameter used) and ``error``.
     """
-    from impactcli.damping import (
-        check_damping,
-        damping_for_restitution,
-        make_damping_law,
-        solve_damped_impact,
-    )
-
-    n = check_size("n", n, MAX_SEGMENTS)
-    check_damping(damping, separation)
+    n = _checked_damping(n, damping, separation)
     *columns, alpha, e_target = flat_floats(
         d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, alpha, restitution
     )
-    errors = validate(*columns, False)
+    return _damped_impacts(SpherePairs(*columns), damping, alpha, e_target, n, split, separation)
+
+
+@without_float_warnings
+@input_errors
+def damped_pair_impacts(
+    pairs: SpherePairs,
+    *,
+    damping: str,
+    alpha: ArrayLike = np.nan,
+    restitution: ArrayLike = np.nan,
+    n: int = DAMPED_DEFAULT_N,
+    split: Split = "mass",
+    separation: str = "overlap",
+) -> dict[str, NDArray]:
+    """:func:`batch_damped_impacts` of a :class:`~impactcli.pairs.SpherePairs` (flattened,
+    one entry per collision).
+
+    Parameters
+    ----------
+    pairs : the spheres and their velocities toward each other, SI
+    damping : the damping model (``impact laws``)
+    alpha : its parameter, one value or one per pair (unit of the model: [-] for
+        ``tsuji``, [s/m] for ``hunt-crossley``); NaN where ``restitution`` is given
+    restitution : the target e [-] instead, one value or one per pair
+    n, split, separation : as :func:`batch_damped_impacts`
+
+    Returns
+    -------
+    dict
+        :data:`BATCH_KEYS`, ``alpha`` and ``error``, as :func:`batch_damped_impacts`.
+
+    Examples
+    --------
+    >>> pairs = SpherePairs.from_columns(0.02, 0.04, 0.25, 0.75, 210e9, 0.3, 210e9, 0.3,
+    ...                                  7800.0, 7800.0)
+    >>> out = damped_pair_impacts(pairs, damping="tsuji", restitution=0.8)
+    >>> out["restitution"].round(6), out["error"]
+    (array([0.8]), array([''], dtype=object))
+    """
+    n = _checked_damping(n, damping, separation)
+    pairs = pairs.ravel()
+    alpha, e_target = (
+        np.broadcast_to(np.asarray(x, dtype=float).reshape(-1), pairs.d1.shape).copy()
+        for x in (alpha, restitution)
+    )
+    return _damped_impacts(pairs, damping, alpha, e_target, n, split, separation)
+
+
+def _checked_damping(n: int, damping: str, separation: str) -> int:
+    """n [-] checked against its limit; the damping model and separation rule known."""
+    from impactcli.damping import check_damping
+
+    n = check_size("n", n, MAX_SEGMENTS)
+    check_damping(damping, separation)
+    return n
+
+
+def _damped_impacts(
+    pairs: SpherePairs,
+    damping: str,
+    alpha: NDArray,
+    e_target: NDArray,
+    n: int,
+    split: Split,
+    separation: str,
+) -> dict[str, NDArray]:
+    """:func:`damped_pair_impacts` of flat ``pairs``, its options checked: the rows that
+    can be computed, in blocks so that memory does not grow with the number of rows. At
+    the tables' n a row's summary is a look-up (FILM marches, in blocks of its own, only
+    the rows beyond the tables): blocks of :data:`DAMPED_TABLE_ROWS` rows. Otherwise FILM
+    on (rows, n) arrays: blocks of about :data:`DAMPED_BLOCK` values (rows x (n + 1))."""
+    from impactcli.damped_similar import TABLE_N
+
+    problems = _damping_problems(pairs, damping, alpha, e_target)
+    out = {key: np.full(alpha.shape, np.nan) for key in BATCH_KEYS}
+    out["alpha"] = np.full(alpha.shape, np.nan)
+    stuck = np.zeros(problems.bad.size, dtype=object)  # "never" or "beyond" per row
+    ok = np.flatnonzero(~problems.bad)
+    block = DAMPED_TABLE_ROWS if n == TABLE_N else max(1, DAMPED_BLOCK // (n + 1))
+    for start in range(0, ok.size, block):
+        rows = ok[start : start + block]
+        options = (damping, n, split, separation)
+        stuck[rows] = _damped_block(out, rows, pairs.take(rows), alpha, e_target, options)
+    problems.add(stuck == "never", "the contact never ends (overdamped: the spheres stay together)")
+    problems.add(stuck == "beyond", OUT_OF_RANGE, pairs.v0)
+    out["error"] = problems.messages
+    return refuse_out_of_range(out, pairs.v0)
+
+
+def _damping_problems(
+    pairs: SpherePairs, damping: str, alpha: NDArray, e_target: NDArray
+) -> Problems:
+    """Why each row of a damped batch cannot be computed: the pair's checks
+    (:func:`validate`), one of alpha and e, each in range, and Hertz scales that stay in
+    double precision (:func:`hertz_scale_problems`)."""
     problems = Problems(alpha.size)
-    problems.add_messages(errors)
+    problems.add_messages(validate(pairs, False))
     has_alpha, has_e = ~np.isnan(alpha), ~np.isnan(e_target)
     problems.add(~has_alpha & ~has_e, f"damping {damping} needs alpha or a target e")
     problems.add(has_alpha & has_e, "give alpha or e for the damping, not both")
@@ -708,58 +756,64 @@ def batch_damped_impacts(
         problems.add(
             has_e & ~((e_target > 0) & (e_target <= 1)), "e must lie in (0, 1], got {:g}", e_target
         )
-    out = {key: np.full(alpha.shape, np.nan) for key in BATCH_KEYS}
-    out["alpha"] = np.full(alpha.shape, np.nan)
     ok = np.flatnonzero(~problems.bad)
     if ok.size:  # rows whose Hertz scales leave double precision are their own error
-        pairs = _Pairs.of(columns, ok)
+        valid = pairs.take(ok)
         problems.add_messages(
-            _scatter(hertz_scale_problems(pairs.m, pairs.stiffness, pairs.v0), ok, alpha.size)
+            _scatter(hertz_scale_problems(valid.m, _stiffness(damping, valid), valid.v0), ok,
+                     alpha.size)  # fmt: skip
         )
-        ok = np.flatnonzero(~problems.bad)
-    never = np.zeros(problems.bad.size, dtype=bool)
-    beyond = np.zeros(problems.bad.size, dtype=bool)
-    # At the tables' n a row's summary is a look-up (FILM marches, in blocks of its own, only
-    # the rows beyond the tables): blocks of DAMPED_TABLE_ROWS rows. Otherwise FILM on
-    # (rows, n) arrays: blocks of about DAMPED_BLOCK values. Memory does not grow with the
-    # number of rows.
-    from impactcli.damped_similar import TABLE_N
+    return problems
 
-    block = DAMPED_TABLE_ROWS if n == TABLE_N else max(1, DAMPED_BLOCK // (n + 1))
-    for start in range(0, ok.size, block):
-        rows = ok[start : start + block]
-        pairs = _Pairs.of(columns, rows)
-        m, stiffness, v0 = pairs.m, pairs.stiffness, pairs.v0
-        a = alpha[rows].copy()
-        solve = np.flatnonzero(np.isnan(a))
-        if solve.size:  # the alpha of the target e, exactly by the model (FILM, n)
-            a[solve] = damping_for_restitution(
-                damping, e_target[rows][solve], v0[solve], stiffness[solve], m[solve], n=n,
-                separation=separation,
-            )  # fmt: skip
-        law = make_damping_law(damping, stiffness, m, a)
-        with np.errstate(all="ignore"):
-            sol = solve_damped_impact(law, v0, m, n=n, separation=separation)
-        ends = np.isfinite(sol.contact_time) & (sol.restitution > 0)
-        plan = ImpactPlan((), sol.delta_max, sol.force_max, sol.delta_separation, sol.restitution)
-        summary = pairs.summary(plan, sol.t_max, sol.contact_time, pairs.fractions(split))
-        summary["energy_dissipated"] = sol.dissipated
-        for key, value in summary.items():
-            out[key][rows] = np.where(ends, value, np.nan)
-        out["alpha"][rows] = a
-        # Overdamped, or out of range? e of a damping model depends on one combination of
-        # alpha, K, m and V0 (its similar_alpha), so the same impact at K = m = V0 = 1 tells
-        # a contact that never ends from numbers that overflow or underflow.
-        stuck = np.flatnonzero(~ends)
-        if stuck.size:
-            model = DAMPING_LAWS[damping]
-            same = model.similar_alpha(a[stuck], stiffness[stuck], m[stuck], v0[stuck])
-            unit = solve_damped_impact(make_damping_law(damping, 1.0, 1.0, same), 1.0, 1.0,
-                                       n=n, separation=separation)  # fmt: skip
-            creeps = ~(np.isfinite(unit.contact_time) & (unit.restitution > 0))
-            never[rows[stuck[creeps]]] = True
-            beyond[rows[stuck[~creeps]]] = True
-    problems.add(never, "the contact never ends (overdamped: the spheres stay together)")
-    problems.add(beyond, OUT_OF_RANGE, columns[2] + columns[3])
-    out["error"] = problems.messages
-    return refuse_out_of_range(out, columns[2] + columns[3])
+
+def _stiffness(damping: str, pairs: SpherePairs) -> NDArray:
+    """The Hertz stiffness K = (4/3) E* sqrt(R) [N/m^1.5] of each pair: the elastic part of
+    the damping model (:meth:`impactcli.laws.viscous.DampingSpec.stiffness`)."""
+    return DAMPING_LAWS[damping].stiffness(pairs.radius, pairs.modulus)
+
+
+def _damped_block(
+    out: dict[str, NDArray],
+    rows: NDArray[np.intp],
+    pairs: SpherePairs,
+    alpha: NDArray,
+    e_target: NDArray,
+    options: tuple[str, int, Split, str],
+) -> NDArray[np.object_]:
+    """The damped FILM of one block of valid ``rows`` (their ``pairs``), written into
+    ``out``; returns ``""``, ``"never"`` (overdamped) or ``"beyond"`` (out of double
+    precision) for each row whose contact does not end."""
+    from impactcli.damping import damping_for_restitution, make_damping_law, solve_damped_impact
+
+    damping, n, split, separation = options
+    m, stiffness, v0 = pairs.m, _stiffness(damping, pairs), pairs.v0
+    a = alpha[rows].copy()
+    solve = np.flatnonzero(np.isnan(a))
+    if solve.size:  # the alpha of the target e, exactly by the model (FILM, n)
+        a[solve] = damping_for_restitution(
+            damping, e_target[rows][solve], v0[solve], stiffness[solve], m[solve], n=n,
+            separation=separation,
+        )  # fmt: skip
+    law = make_damping_law(damping, stiffness, m, a)
+    with np.errstate(all="ignore"):
+        sol = solve_damped_impact(law, v0, m, n=n, separation=separation)
+    ends = np.isfinite(sol.contact_time) & (sol.restitution > 0)
+    plan = ImpactPlan((), sol.delta_max, sol.force_max, sol.delta_separation, sol.restitution)
+    summary = _summary(pairs, plan, sol.t_max, sol.contact_time, pairs.fractions(split))
+    summary["energy_dissipated"] = sol.dissipated
+    for key, value in summary.items():
+        out[key][rows] = np.where(ends, value, np.nan)
+    out["alpha"][rows] = a
+    # Overdamped, or out of range? e of a damping model depends on one combination of
+    # alpha, K, m and V0 (its similar_alpha), so the same impact at K = m = V0 = 1 tells
+    # a contact that never ends from numbers that overflow or underflow.
+    verdict = np.full(rows.size, "", dtype=object)
+    stuck = np.flatnonzero(~ends)
+    if stuck.size:
+        model = DAMPING_LAWS[damping]
+        same = model.similar_alpha(a[stuck], stiffness[stuck], m[stuck], v0[stuck])
+        unit = solve_damped_impact(make_damping_law(damping, 1.0, 1.0, same), 1.0, 1.0,
+                                   n=n, separation=separation)  # fmt: skip
+        creeps = ~(np.isfinite(unit.contact_time) & (unit.restitution > 0))
+        verdict[stuck] = np.where(creeps, "never", "beyond")
+    return verdict

@@ -42,15 +42,30 @@ doi:10.5539/mer.v8n1p1.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.validation import check_restitution, check_vectors, input_errors
+from impactcli.contact import first_yield_velocity
+from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
+from impactcli.pairs import effective_properties, weaker_yield_strength
+from impactcli.validation import (
+    check_restitution,
+    check_vectors,
+    input_errors,
+    normal_impact_warnings,
+)
 from impactcli.validation import where_first as _where
 
+if TYPE_CHECKING:
+    from impactcli.impact import Sphere
+    from impactcli.model import ContactModel
+
 __all__ = [
+    "ELASTOPLASTIC_NORMAL_LAW",
     "PAPER_ANGLE_SIGN",
     "ObliqueCollision",
     "CONTACT_DISTANCE_RTOL",
@@ -58,8 +73,10 @@ __all__ = [
     "check_contact_distance",
     "collision_summary",
     "line_of_centres",
+    "normal_law_warnings",
     "oblique_collision",
     "polar_angle",
+    "sphere_collision_2d",
     "velocity_from_polar",
     "wrap_degrees",
 ]
@@ -207,6 +224,8 @@ class ObliqueCollision:
     v1_final, v2_final : velocities after the impact, [m/s]
     normal : unit normal n_hat from sphere 1 to sphere 2 along the line of centres, [-]
     restitution : coefficient of restitution e, [-]
+    warnings : what ``impact collide2d`` prints for this collision: the warnings of its
+        normal impact (:func:`sphere_collision_2d`)
 
     Examples
     --------
@@ -225,6 +244,7 @@ class ObliqueCollision:
     v2_final: Array
     normal: Array
     restitution: Array
+    warnings: tuple[str, ...] = field(default=(), repr=False)
 
     @property
     def tangent(self) -> Array:
@@ -438,6 +458,98 @@ def oblique_collision(
         normal=np.broadcast_to(normal, shape + (2,)),
         restitution=e,
     )
+
+
+#: What a warning of :func:`impactcli.collision3d.normal_restitution_and_history` advises
+#: above the yield velocity, for the command line and for Python.
+ELASTOPLASTIC_NORMAL_LAW = (
+    f"the elastoplastic normal law ('impact collide3d --model elastoplastic'; "
+    f"law={DEFAULT_LAW!r} in Python)"
+)
+
+
+def normal_law_warnings(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    u_n: float,
+    delta_max: float,
+    elastic: bool,
+    velocity: str = "the normal approach velocity u_n",
+    advice: str = ELASTOPLASTIC_NORMAL_LAW,
+) -> tuple[str, ...]:
+    """The warnings of the normal impact of two spheres at u_n [m/s] whose maximum
+    indentation is delta_max [m] (:func:`impactcli.validation.normal_impact_warnings`);
+    ``elastic``: an elastic (Hertz) normal law, whose first yield is worth a warning;
+    ``velocity`` names u_n and ``advice`` the elastoplastic law in the messages."""
+    m, radius, modulus = effective_properties(sphere1, sphere2)
+    sigma_y = weaker_yield_strength(sphere1, sphere2)
+    first_yield = None
+    if elastic and sigma_y is not None:
+        first_yield = float(first_yield_velocity(m, radius, modulus, sigma_y))
+    return normal_impact_warnings(u_n, delta_max, radius, first_yield, velocity, advice)
+
+
+@input_errors
+def sphere_collision_2d(
+    masses: tuple[float, float],
+    motion: Mapping[str, ArrayLike],
+    normal: ContactModel | float | None = None,
+    spheres: tuple[Sphere, Sphere] | None = None,
+    words: tuple[str, str] = ("the approach velocity (v1 - v2).n", ELASTOPLASTIC_NORMAL_LAW),
+) -> ObliqueCollision:
+    """One oblique collision of two smooth spheres (``impact collide2d``): e given, or that
+    of the normal impact at the approach velocity (v1 - v2).n under a contact model, then
+    :func:`oblique_collision`.
+
+    Parameters
+    ----------
+    masses : m1, m2, [kg]
+    motion : ``v1``, ``v2`` [m/s] and ``p1``, ``p2`` [m] (centres at contact), each (x, y)
+    normal : a coefficient of restitution e [-], used as it is; or a
+        :class:`~impactcli.model.ContactModel`, run as the head-on impact of ``spheres`` at
+        the approach velocity, sphere 2 at rest (:func:`impactcli.impact.solve_impact`); or
+        None: e = 1 (Hertz)
+    spheres : the two :class:`~impactcli.impact.Sphere` (needed by a contact model): with
+        them an elastic impact (e = 1, or a contact model of the elastic law, damped or
+        not) has its warnings too (first yield, a contact radius beyond 0.1 R)
+    words : how the warnings name the approach velocity and the elastoplastic law
+
+    Returns
+    -------
+    ObliqueCollision
+        With the ``warnings`` of the normal impact.
+
+    Examples
+    --------
+    The paper's sec. 4.5.3 with steel spheres of 20 mm and 30 mm, elastoplastic (the
+    contact radius is past 0.1 R):
+
+    >>> from impactcli.impact import Sphere
+    >>> from impactcli.model import ContactModel
+    >>> pair = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.03, "steel")
+    >>> motion = {"v1": (2.598, -1.5), "v2": (1.2856, 1.5321), "p1": (-6e-3, 8e-3),
+    ...           "p2": (6e-3, -8e-3)}
+    >>> c = sphere_collision_2d((0.05, 0.15), motion, ContactModel.elastoplastic(), pair)
+    >>> round(float(c.restitution), 4), c.warnings[0][:22]
+    (0.6975, 'contact radius / R = 0')
+    """
+    v1, v2, p1, p2 = (motion[key] for key in ("v1", "v2", "p1", "p2"))
+    velocity = float(approach_velocity(v1, v2, p1, p2))
+    restitution = 1.0 if normal is None or not isinstance(normal, (int, float)) else normal
+    warned: tuple[str, ...] = ()
+    if velocity > 0.0 and spheres is not None and not isinstance(normal, (int, float)):
+        from impactcli.impact import solve_impact
+
+        result = solve_impact(*spheres, velocity, 0.0, normal)
+        elastic = (
+            normal is None or normal.damping is not None or get_law(normal.law).name == ELASTIC_LAW
+        )
+        delta_max = result.summary["delta_max"]
+        warned = normal_law_warnings(*spheres, velocity, delta_max, elastic, *words)
+        if normal is not None:
+            restitution = float(result.summary["restitution"])
+    collision = oblique_collision(*masses, v1, v2, p1, p2, restitution)
+    return replace(collision, warnings=warned)
 
 
 def wrap_degrees(degrees: float) -> float:

@@ -89,27 +89,33 @@ particle impact level", Granular Matter 13:643-656, 2011, doi:10.1007/s10035-011
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.collision2d import line_of_centres
+from impactcli.collision2d import (
+    ELASTOPLASTIC_NORMAL_LAW,
+    line_of_centres,
+    normal_law_warnings,
+)
 from impactcli.errors import InputError
-from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
+from impactcli.laws.registry import ELASTIC_LAW, get_law
 from impactcli.validation import check_friction, check_restitution, check_vectors, input_errors
 from impactcli.validation import where_first as _where
 
 __all__ = [
     "CONTACT_DISTANCE_RTOL",
+    "ELASTOPLASTIC_NORMAL_LAW",
     "SUMMARY_KEYS",
     "TANGENTIAL_MODELS",
     "Collision3D",
     "check_contact_distance",
     "collision_summary",
     "contact_distance_problem",
+    "contact_normal",
     "NormalHistory",
     "NormalLaw",
     "effective_shear_modulus",
@@ -118,6 +124,7 @@ __all__ = [
     "oblique_collision_3d",
     "oblique_impact",
     "reference_tangent",
+    "sphere_collision_3d",
     "velocity_from_angles",
 ]
 
@@ -559,39 +566,6 @@ class NormalLaw(tuple):
     @property
     def history(self) -> NormalHistory | None:
         return self[1]
-
-
-#: What a warning of :func:`normal_restitution_and_history` advises above the yield
-#: velocity, for the command line and for Python.
-ELASTOPLASTIC_NORMAL_LAW = (
-    f"the elastoplastic normal law ('impact collide3d --model elastoplastic'; "
-    f"law={DEFAULT_LAW!r} in Python)"
-)
-
-
-def normal_law_warnings(
-    sphere1: Sphere,
-    sphere2: Sphere,
-    u_n: float,
-    delta_max: float,
-    elastic: bool,
-    velocity: str = "the normal approach velocity u_n",
-    advice: str = ELASTOPLASTIC_NORMAL_LAW,
-) -> tuple[str, ...]:
-    """The warnings of the normal impact of two spheres at u_n [m/s] whose maximum
-    indentation is delta_max [m] (:func:`impactcli.validation.normal_impact_warnings`);
-    ``elastic``: an elastic (Hertz) normal law, whose first yield is worth a warning;
-    ``velocity`` names u_n and ``advice`` the elastoplastic law in the messages."""
-    from impactcli.contact import first_yield_velocity
-    from impactcli.impact import effective_properties, weaker_yield_strength
-    from impactcli.validation import normal_impact_warnings
-
-    m, radius, modulus = effective_properties(sphere1, sphere2)
-    sigma_y = weaker_yield_strength(sphere1, sphere2)
-    first_yield = None
-    if elastic and sigma_y is not None:
-        first_yield = float(first_yield_velocity(m, radius, modulus, sigma_y))
-    return normal_impact_warnings(u_n, delta_max, radius, first_yield, velocity, advice)
 
 
 @input_errors
@@ -1283,3 +1257,99 @@ def collision_summary(c: Collision3D) -> dict[str, Array]:
         "energy_dissipated2_friction": energy2["friction"],
     }
     return {key: np.asarray(out[key], dtype=float) for key in SUMMARY_KEYS}
+
+
+@input_errors
+def sphere_collision_3d(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    motion: Mapping[str, ArrayLike],
+    normal_law: Mapping[str, Any] | None = None,
+    restitution: float | None = None,
+    mu: float = 0.0,
+    tangential: str = "rigid",
+    points: int = 4001,
+) -> tuple[Collision3D, NormalHistory | None]:
+    """One oblique collision of two :class:`~impactcli.impact.Sphere` (``impact collide3d``):
+    the normal law run as a head-on impact at the normal approach velocity u_n
+    (:func:`normal_restitution_and_history`), then :func:`oblique_collision_3d`.
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (masses, diameters, G* from E and nu)
+    motion : ``v1``, ``v2`` [m/s], ``p1``, ``p2`` [m] (centres at contact) and, optionally,
+        ``w1``, ``w2`` [rad/s] (default 0), each (x, y, z)
+    normal_law : the keywords of :func:`normal_restitution_and_history` (``law``,
+        ``params``, ``damping``, ``alpha``, ``separation``, ``n``); default Hertz
+    restitution : a given e [-] instead of the normal law (``rigid`` only)
+    mu : Coulomb friction coefficient, [-]
+    tangential : ``rigid`` or ``mindlin``
+    points : time points of the normal history of ``mindlin``
+
+    Returns
+    -------
+    tuple
+        The :class:`Collision3D` (one collision; with the normal law's ``warnings``) and
+        the :class:`NormalHistory` of ``mindlin`` (None for ``rigid``).
+
+    Raises
+    ------
+    ValueError
+        Spheres not approaching (u_n <= 0), and the faults of the normal law and the collision.
+
+    Examples
+    --------
+
+    >>> from impactcli.impact import Sphere
+    >>> ball = Sphere(5e-3, 380e9, 0.23, 4000.0)
+    >>> plane = Sphere(np.inf, np.inf, 0.0, mass=np.inf)
+    >>> s, c = np.sin(np.radians(30.0)), np.cos(np.radians(30.0))
+    >>> motion = {"v1": (3.9 * s, 0, -3.9 * c), "v2": (0, 0, 0), "p1": (0, 0, 0),
+    ...           "p2": (0, 0, -1)}
+    >>> collision, _ = sphere_collision_3d(ball, plane, motion, mu=0.092)
+    >>> bool(collision.stuck), round(float(collision.restitution), 6)
+    (True, 1.0)
+    """
+    v1, v2, p1, p2 = (np.asarray(motion[k], dtype=float) for k in ("v1", "v2", "p1", "p2"))
+    w1, w2 = (np.asarray(motion.get(k, (0.0, 0.0, 0.0)), dtype=float) for k in ("w1", "w2"))
+    n = contact_normal(p1, p2)
+    u_n = float(np.dot(v1 - v2, n))
+    if not u_n > 0.0:
+        raise ValueError(
+            f"the spheres are not approaching along the line of centres: (v1 - v2).n = "
+            f"{u_n:.6g} m/s with n = ({n[0]:.6g}, {n[1]:.6g}, {n[2]:.6g}) from sphere 1 to "
+            "sphere 2 (an impact needs > 0)"
+        )
+    mindlin = tangential == "mindlin"
+    history = shear = None
+    warned: tuple[str, ...] = ()
+    if restitution is None:
+        normal = normal_restitution_and_history(
+            sphere1, sphere2, u_n, **dict(normal_law or {}), points=points if mindlin else None
+        )
+        restitution, history = normal
+        warned = normal.warnings
+    if mindlin:
+        shear = effective_shear_modulus(
+            sphere1.youngs_modulus, sphere1.poisson_ratio, sphere2.youngs_modulus,
+            sphere2.poisson_ratio,
+        )  # fmt: skip
+    collision = oblique_collision_3d(
+        sphere1.total_mass, sphere2.total_mass, v1, v2, p1, p2, sphere1.diameter,
+        sphere2.diameter, w1, w2, restitution, mu, tangential, history=history,
+        shear_modulus=shear, warnings=warned,
+    )  # fmt: skip
+    return collision, history
+
+
+def contact_normal(p1: ArrayLike, p2: ArrayLike) -> NDArray:
+    """The unit normal n = (p2 - p1)/|p2 - p1| from sphere 1 to sphere 2, [-]; a ValueError
+    when the centres coincide.
+
+    >>> contact_normal((0, 0, 0), (0, 0, -2)).tolist()
+    [0.0, 0.0, -1.0]
+    """
+    d = np.subtract(np.asarray(p2, dtype=float), np.asarray(p1, dtype=float))
+    if not np.any(d != 0.0):
+        raise ValueError("the centres p1 and p2 coincide: no line of centres")
+    return d / np.linalg.norm(d)

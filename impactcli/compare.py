@@ -98,11 +98,28 @@ def compare_impacts(
     n : FILM segments per stage; None: each model's default, 25 for a law and
         :data:`~impactcli.impact.DAMPED_DEFAULT_N` (400) for a damping model
         (:func:`impactcli.impact.solve_impact`)
+    split : how delta is shared between the spheres (:func:`impactcli.impact.solve_impact`)
+
+    Returns
+    -------
+    dict
+        Law name -> :class:`~impactcli.impact.ImpactResult` (summary in SI), in the order
+        of ``laws``.
 
     Raises
     ------
     ValueError
         Bad input of a law, or an impact beyond a tabulated curve (one line each).
+
+    Examples
+    --------
+    The paper's sec. 4.4 impact under two laws:
+
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> out = compare_impacts(s1, s2, 0.25, 0.75, [("du-wang", {}), ("thornton", {})])
+    >>> {name: round(r.summary["restitution"], 5) for name, r in out.items()}
+    {'du-wang': 0.85611, 'thornton': 0.62143}
     """
     models = _checked_models(laws, n)
     return {m.name: solve_impact(sphere1, sphere2, v1, v2, m, n, split) for m in models}
@@ -208,7 +225,24 @@ def reference_yield_velocity(
 ) -> float:
     """V_y of the comparison: the impact velocity at which a Hertz impact of the pair first
     yields (peak pressure 1.6 sigma_y, :func:`impactcli.contact.first_yield_velocity`),
-    [m/s]; NaN without a yield strength (0.0785 m/s for the paper's sec. 4.4 spheres)."""
+    [m/s]; NaN without a yield strength (0.0785 m/s for the paper's sec. 4.4 spheres).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    yield_strength : sigma_y, [Pa]; default the lower of the spheres'
+
+    Returns
+    -------
+    float
+        V_y, [m/s].
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> round(reference_yield_velocity(s1, s2) * 1e3, 3)  # [mm/s]
+    78.463"""
     from impactcli.sweep import sweep_first_yield_velocity
 
     if yield_strength is None and weaker_yield_strength(sphere1, sphere2) is None:
@@ -228,6 +262,26 @@ def restitution_curves(
 
     One FILM sweep per law (:func:`impactcli.sweep.restitution_sweep`, vectorised over V0).
     Velocities a tabulated law's curves cannot take (the impact goes beyond them) get NaN.
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    velocities : impact velocities V0, [m/s]
+    laws : as for :func:`compare_impacts`
+    n : FILM segments per stage (:func:`compare_impacts`)
+
+    Returns
+    -------
+    dict
+        Law name -> e at each V0, [-].
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> e = restitution_curves(s1, s2, [0.1, 1.0, 10.0], [("du-wang", {}), ("thornton", {})])
+    >>> {name: [round(float(x), 5) for x in values] for name, values in e.items()}
+    {'du-wang': [1.0, 0.85611, 0.58592], 'thornton': [0.9884, 0.62143, 0.35236]}
     """
     from impactcli.sweep import damped_sweep, restitution_sweep
 
@@ -273,6 +327,25 @@ def published_restitution(
     (``closed_form(K, m, alpha, V0, separation)``, None where it has none for the rule).
     Du & Wang (2009) give no closed form for e; their law is checked against the paper's
     sec. 4.4 value instead (e = 0.85611 at V0 = 1 m/s for its steel spheres).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    velocities : impact velocities V0, [m/s]
+    laws : as for :func:`compare_impacts`
+
+    Returns
+    -------
+    dict
+        Label of the published form -> (V0 [m/s], e [-]); a law without one is left out.
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> out = published_restitution(s1, s2, [1.0], [("thornton", {}), ("du-wang", {})])
+    >>> {label: round(float(e[0]), 5) for label, (v0, e) in out.items()}
+    {'Thornton (1997) closed form': 0.62143}
     """
     v0 = np.asarray(velocities, dtype=float)
     out: dict[str, tuple[NDArray, NDArray]] = {}

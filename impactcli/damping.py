@@ -724,6 +724,16 @@ def solve_damped_impact(
     -----
     Accuracy is second order in 1/n for e, contact time, delta_max and t_max
     (tests/test_damping.py).
+
+    Examples
+    --------
+    Tsuji's damping with alpha = 0.3 (K = 1.25 N/m^1.5, m = 1 kg, V0 = 1 m/s: the Hertz
+    maximum indentation is 1 m), whose e is exp(-pi alpha / sqrt(5 - alpha^2)):
+
+    >>> from impactcli.laws.registry import DAMPING_LAWS
+    >>> sol = solve_damped_impact(DAMPING_LAWS["tsuji"].of(1.25, 1.0, 0.3), 1.0, 1.0)
+    >>> round(float(sol.restitution), 6), round(float(sol.contact_time), 4)
+    (0.653551, 3.0946)
     """
     n = check_size("n", n, MAX_SEGMENTS)
     check_damping(separation=separation)
@@ -1080,6 +1090,16 @@ def damping_for_restitution(
     Returns
     -------
     alpha, in the broadcast shape of the inputs ([-] or [s/m]).
+
+    Examples
+    --------
+    Tsuji's e depends on alpha alone, Hunt & Crossley's on alpha V0 (here at K = 1.25
+    N/m^1.5, m = 1 kg, where the Hertz maximum indentation is 1 m at V0 = 1 m/s):
+
+    >>> round(float(damping_for_restitution("tsuji", 0.8, 1.0, 1.25, 1.0)), 10)
+    0.1584261819
+    >>> round(float(damping_for_restitution("hunt-crossley", 0.8, 2.0, 1.25, 1.0)) * 2.0, 4)
+    0.2488
     """
     check_damping(name)
     e_t, v0, k, m = np.broadcast_arrays(

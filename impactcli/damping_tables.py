@@ -2,9 +2,9 @@
 
 ``python -m impactcli.damping_tables [n]`` prints the Markdown tables each damping model of
 the registry declares (:attr:`~impactcli.laws.viscous.DampingSpec.tables`; ``--readme [n]``:
-those of the README): e(alpha) of the exact model (FILM, both separation rules) and, for
-target restitutions, the alpha of the exact model against the published alpha(e)
-relations, with the e each relation actually gives. The numbers come from
+those of the damping guide, docs/guide/damping.md): e(alpha) of the exact model (FILM, both
+separation rules) and, for target restitutions, the alpha of the exact model against the
+published alpha(e) relations, with the e each relation actually gives. The numbers come from
 :mod:`impactcli.damping`; the tables are each model's; this module computes and formats
 them.
 """
@@ -77,7 +77,7 @@ def markdown_table(
 
 def tables(readme: bool = False) -> Iterator[tuple[DampingSpec, RestitutionTable]]:
     """(model, table) of every table of the damping models, in registry order (``readme``:
-    those of the README only)."""
+    those of the damping guide only)."""
     for spec in DAMPING_LAWS.values():
         for table in spec.tables:
             if table.readme is not None or not readme:
@@ -85,7 +85,7 @@ def tables(readme: bool = False) -> Iterator[tuple[DampingSpec, RestitutionTable
 
 
 def readme_tables(n: int = 400) -> str:
-    """The README's tables: each with its README heading."""
+    """The damping guide's tables (docs/guide/damping.md): each with its heading."""
     return "\n\n".join(
         f"{table.readme.format(n=n)}\n\n{markdown_table(spec, table, n)}"
         for spec, table in tables(readme=True)

@@ -23,6 +23,7 @@ experiments for 'sandpiles' composed of spherical particles", Powder Technol. 16
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -40,7 +41,11 @@ from impactcli.errors import InputError
 # defined here before the elastic law's module held it: kept importable from here
 from impactcli.laws.hertz import HERTZ_CONTACT_TIME_FACTOR
 from impactcli.laws.registry import DEFAULT_LAW_PARAMETERS, ELASTIC_LAW, LAWS, get_law
+from impactcli.pairs import effective_properties
 from impactcli.validation import finite_float, input_errors
+
+if TYPE_CHECKING:
+    from impactcli.pairs import Sphere
 
 __all__ = [
     "HERTZ_CONTACT_TIME_FACTOR",
@@ -50,6 +55,8 @@ __all__ = [
     "rayleigh_time_step",
     "first_yield_velocities",
     "law_pressure_factor",
+    "pair_first_yield_velocity",
+    "pair_timestep_table",
     "timestep_table",
     "yield_limit_diameter",
     "YIELD_LIMIT_LAWS",
@@ -108,6 +115,11 @@ def rayleigh_time_step(
     poisson_ratio : nu, [-]
     density : rho, [kg/m^3]
 
+    Returns
+    -------
+    NDArray
+        T_R, [s], in the broadcast shape of the inputs.
+
     Examples
     --------
     A 2 mm steel sphere (E = 210 GPa, nu = 0.3, rho = 7800 kg/m^3):
@@ -141,6 +153,11 @@ def hertz_contact_time(
     radius : effective radius R, [m]
     modulus : effective modulus E*, [Pa]
     impact_velocity : V0 > 0, [m/s]
+
+    Returns
+    -------
+    NDArray
+        t_c, [s], in the broadcast shape of the inputs.
 
     Examples
     --------
@@ -347,3 +364,59 @@ def timestep_table(
     for divisor in CONTACT_TIME_DIVISORS:
         out[f"contact_time_over_{divisor}"] = t_c / divisor
     return out
+
+
+@input_errors
+def pair_first_yield_velocity(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    which: int,
+    pressure_factor: float = FIRST_YIELD_PRESSURE_FACTOR,
+) -> float:
+    """The impact velocity [m/s] at which sphere ``which`` (1 or 2) of a pair of
+    :class:`~impactcli.impact.Sphere` first yields: :func:`first_yield_velocities` of the
+    pair's effective properties, the contact pressure reaching ``pressure_factor``
+    sigma_y [-] (``inf`` for a sphere without a yield strength).
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> round(pair_first_yield_velocity(*steel, 1), 5)
+    0.07846
+    """
+    m, r, e = effective_properties(sphere1, sphere2)
+    strengths = (sphere1.yield_strength, sphere2.yield_strength)
+    return float(first_yield_velocities(m, r, e, *strengths, pressure_factor)[which - 1])
+
+
+@input_errors
+def pair_timestep_table(
+    sphere1: Sphere, sphere2: Sphere, impact_velocity: float
+) -> dict[str, float]:
+    """:func:`timestep_table` of a pair of :class:`~impactcli.impact.Sphere` at V0
+    [m/s] (``impact timestep``): each sphere's Rayleigh time step [s] (NaN without a
+    density) and the Hertz contact time [s] of the pair.
+
+    Examples
+    --------
+    >>> from impactcli.impact import Sphere
+    >>> glass = Sphere.from_material(2e-3, "glass")
+    >>> round(pair_timestep_table(glass, glass, 1.0)["contact_time"] * 1e6, 3)
+    5.936
+    """
+    m, r, e = effective_properties(sphere1, sphere2)
+
+    def density(s: Sphere) -> float:
+        return math.nan if s.density is None else s.density
+
+    return timestep_table(
+        (sphere1.radius, sphere2.radius),
+        (sphere1.youngs_modulus, sphere2.youngs_modulus),
+        (sphere1.poisson_ratio, sphere2.poisson_ratio),
+        (density(sphere1), density(sphere2)),
+        m,
+        r,
+        e,
+        impact_velocity,
+    )

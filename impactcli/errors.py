@@ -7,7 +7,7 @@ options of a sphere); the command line prints it on stderr and exits with status
 
 from __future__ import annotations
 
-__all__ = ["InputError", "OutputError", "StdoutClosed"]
+__all__ = ["InputError", "OutputError", "StdoutClosed", "first_line"]
 
 
 class InputError(ValueError):
@@ -40,3 +40,14 @@ class StdoutClosed(Exception):  # noqa: N818 (an event, not a failure)
     """stdout's reader stopped reading (``impact tables | head -1``): the run ends quietly
     with exit status 0. Raised instead of BrokenPipeError, which Click would turn into
     exit status 1."""
+
+
+def first_line(exc: BaseException) -> str:
+    """The first line of an exception's message (pyarrow's and dask's run long), or its
+    type's name when it has none.
+
+    >>> first_line(ValueError("bad row\\nmore detail"))
+    'bad row'
+    """
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__

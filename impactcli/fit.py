@@ -53,6 +53,7 @@ __all__ = [
     "FitData",
     "FitParameter",
     "FitResult",
+    "fit_curves",
     "fit_law",
     "fit_named_law",
     "law_model",
@@ -366,7 +367,32 @@ def fit_law(
 def rank_fits(results: Sequence[FitResult]) -> list[tuple[FitResult, float, float]]:
     """Fits of several laws to the same data, best first by AICc: ``(result, delta_aicc,
     akaike_weight)``. The Akaike weight exp(-delta/2) / sum is the relative likelihood of
-    each law among those compared (Burnham & Anderson 2002, sec. 2.9)."""
+    each law among those compared (Burnham & Anderson 2002, sec. 2.9).
+
+    Parameters
+    ----------
+    results : fits of :func:`fit_law` or :func:`fit_named_law` to the same data
+
+    Returns
+    -------
+    list of (FitResult, float, float)
+        Each fit with its AICc less the best one's (AIC where AICc is not finite), [-],
+        and its Akaike weight, [-] (the weights add up to 1), best first.
+
+    Examples
+    --------
+    Du & Wang's law and Thornton's fitted to impacts that Du & Wang's law made:
+
+    >>> import numpy as np
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> v0 = np.array([0.5, 1.0, 2.0, 4.0])
+    >>> e = law_model(s1, s2, "du-wang")({"sy": 0.8e9}, v0)["restitution"]
+    >>> data = FitData(v0, e + [0.002, -0.003, 0.001, -0.002])
+    >>> fits = [fit_named_law(s1, s2, law, data)[0] for law in ("thornton", "du-wang")]
+    >>> [(fit.law, round(weight, 3)) for fit, _, weight in rank_fits(fits)]
+    [('du-wang', 1.0), ('thornton', 0.0)]
+    """
     scores = np.array([r.aicc if math.isfinite(r.aicc) else r.aic for r in results])
     order = np.argsort(scores, kind="stable")
     best = scores[order[0]]
@@ -510,6 +536,16 @@ def law_model(
     -------
     Model
         A callable ``model(params, v0)``; ``params`` override ``fixed``.
+
+    Examples
+    --------
+    The paper's sec. 4.4 spheres under Du & Wang's law (sigma_y = 1 GPa) at V0 = 1 m/s:
+
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> out = law_model(s1, s2, "du-wang")({"sy": 1e9}, [1.0])
+    >>> round(float(out["restitution"][0]), 5), round(float(out["contact_time"][0]) * 1e6, 3)
+    (0.85611, 75.988)
     """
     law = _check_law(law)
     from impactcli.limits import MAX_SEGMENTS, check_size
@@ -534,10 +570,11 @@ def law_model(
                 f"law {law!r} has no parameter {sorted(unknown)[0]!r} (accepted: {accepted})"
             )
         from impactcli.model import ContactModel
+        from impactcli.sweep import model_restitution
 
         contact = ContactModel.named(law, declared.run_parameters(p), p.get("sy"))
         pair = contact.for_spheres(sphere1, sphere2)
-        e, t_c = pair.restitution(np.asarray(v0, dtype=float), segments)
+        e, t_c = model_restitution(pair, np.asarray(v0, dtype=float), segments)
         return {"restitution": e, "contact_time": t_c}
 
     return model
@@ -558,11 +595,32 @@ def prediction_band(
     for N - p degrees of freedom (Seber & Wild 1989, Nonlinear Regression, sec. 5.1). NaN
     where the parameters are not determined.
 
+    Parameters
+    ----------
+    result : a fit (:func:`fit_law`, :func:`fit_named_law`)
+    model : the model it used (:func:`fit_named_law` returns it)
+    impact_velocity : V0 of the curve, [m/s]
+    fixed : values of parameters not fitted, SI (as for :func:`law_model`)
+    level : the confidence level of the band, [-]
+
     Returns
     -------
     dict
         ``impact_velocity`` [m/s], ``restitution``, ``lower``, ``upper`` [-] and
         ``contact_time`` [s]
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> v0 = np.array([0.5, 1.0, 2.0, 4.0])
+    >>> e = law_model(s1, s2, "du-wang")({"sy": 0.8e9}, v0)["restitution"]
+    >>> data = FitData(v0, e + [0.002, -0.003, 0.001, -0.002])
+    >>> fit, model = fit_named_law(s1, s2, "du-wang", data)
+    >>> band = prediction_band(fit, model, [1.0, 3.0])
+    >>> bool(np.all((band["lower"] < band["restitution"]) & (band["restitution"] < band["upper"])))
+    True
     """
     v0 = np.asarray(impact_velocity, dtype=float).reshape(-1)
     fixed = dict(fixed or {})
@@ -596,6 +654,48 @@ def prediction_band(
         "upper": e + t * se,
         "contact_time": np.asarray(centre["contact_time"], dtype=float),
     }
+
+
+def fit_curves(
+    data: FitData,
+    fits: Sequence[tuple[FitResult, Model, Mapping[str, float]]],
+    best: FitResult,
+    points: int = 80,
+) -> tuple[list[dict[str, NDArray]], NDArray | None]:
+    """What a figure of fits to ``data`` draws (``impact fit --plot``).
+
+    Parameters
+    ----------
+    data : the measured points
+    fits : each fit as (its result, its model, the parameters it held fixed)
+    best : the best-ranked fit (:func:`rank_fits`), whose reduced chi-square s^2 sets the
+        error of the measured points
+    points : velocities of the curves over the measured range (geometric where it spans
+        more than a factor 3, linear otherwise), [-]; the measured V0 are added
+
+    Returns
+    -------
+    curves : list of dict
+        Each fit's :func:`prediction_band` on the grid of velocities and ``residuals``,
+        e_i - e(V0_i) of the fit at the measured points [-].
+    error : ndarray or None
+        sigma_i = s / sqrt(w_i) of each measured point [-] (None without weights).
+    """
+    v0 = data.impact_velocity
+    lo, hi = float(v0.min()), float(v0.max())
+    grid = np.geomspace(lo, hi, points) if hi > 3 * lo else np.linspace(lo, hi, points)
+    grid = np.unique(np.concatenate([grid, v0]))
+    curves = [
+        {
+            **prediction_band(result, model, grid, held),
+            "residuals": data.restitution - result.predicted["restitution"],
+        }
+        for result, model, held in fits
+    ]
+    error = None
+    if data.weight is not None:
+        error = np.sqrt(best.reduced_chi_square / data.weight)
+    return curves, error
 
 
 def law_yield_velocity(sphere1, sphere2, law: str, params: Mapping[str, float]) -> float:
@@ -651,7 +751,13 @@ def fit_named_law(
 
     Parameters
     ----------
+    sphere1, sphere2 : :class:`impactcli.impact.Sphere`
+    law : a name of :data:`FIT_LAWS`
+    data : the measurements: V0 [m/s], e [-], optional contact times [s] and weights
+        (:class:`FitData`; :func:`impactcli.io.fitdata.read_fit_data` reads them)
     names : the parameters to fit; default :data:`DEFAULT_FIT` of the law
+    start : starting values by name, SI (Pa for ``sy`` and ``py``, N/m for ``k_load``)
+    bounds : ``(low, high)`` by name, SI
     fixed : values of other parameters of the law, SI (held during the fit)
     n : FILM segments per stage (:func:`law_model`)
 
@@ -660,6 +766,20 @@ def fit_named_law(
     (FitResult, Model)
         The fit and the model it used (with ``fixed`` built in), e.g. for
         :func:`prediction_band`.
+
+    Examples
+    --------
+    Four impacts made by Du & Wang's law with sigma_y = 0.8 GPa, with a little noise:
+
+    >>> import numpy as np
+    >>> from impactcli.impact import Sphere
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> v0 = np.array([0.5, 1.0, 2.0, 4.0])
+    >>> e = law_model(s1, s2, "du-wang")({"sy": 0.8e9}, v0)["restitution"]
+    >>> data = FitData(v0, e + [0.002, -0.003, 0.001, -0.002])
+    >>> fit, model = fit_named_law(s1, s2, "du-wang", data)
+    >>> fit.names, round(float(fit.values[0]) / 1e6, 1)  # sigma_y, [MPa]
+    (('sy',), 798.9)
     """
     law = _check_law(law)
     fixed = dict(fixed or {})

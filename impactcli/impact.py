@@ -51,25 +51,34 @@ from numpy.typing import ArrayLike, NDArray
 from impactcli.contact import (
     ImpactPlan,
     effective_mass,
-    effective_modulus,
-    effective_radius,
     first_yield_velocity,
-    sphere_compliance,
-    sphere_mass,
 )
 from impactcli.errors import InputError
 from impactcli.film import FilmSolution
 from impactcli.laws.registry import DEFAULT_LAW, DEFAULT_LAW_PARAMETERS
 from impactcli.limits import MAX_POINTS, MAX_SEGMENTS, check_size
-from impactcli.model import DAMPED_DEFAULT_N, ContactModel, DampedPair, PairModel
+from impactcli.model import (
+    DAMPED_DEFAULT_N,
+    ContactModel,
+    DampedPair,
+    PairModel,
+    solution_energy_summary,
+)
+from impactcli.pairs import (
+    SPLITS,
+    Sphere,
+    SpherePairs,
+    Split,
+    effective_properties,
+    split_fractions,
+    weaker_yield_strength,
+)
 from impactcli.solution import ContactSolution, PlanSolution, solve_plan
 from impactcli.validation import (
-    finite_float,
     input_errors,
     pair_problems,
     raise_first,
     renamed_p0_factor,
-    sphere_problems,
 )
 
 if TYPE_CHECKING:
@@ -93,6 +102,7 @@ __all__ = [
     "check_pair",
     "damped_impact",
     "damped_restitution_sweep",
+    "damping_alpha",
     "elastic_impact",
     "effective_properties",
     "elastoplastic_impact",
@@ -180,124 +190,7 @@ PLASTIC_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "energy_dissipated",
 )
 
-Split = Literal["mass", "compliance", "yield"]
-SPLITS: tuple[str, ...] = ("mass", "compliance", "yield")
 Method = Literal["film", "table", "ode"]
-
-
-@dataclass(frozen=True)
-class Sphere:
-    """One sphere, SI.
-
-    Parameters
-    ----------
-    diameter : D, [m]; ``inf`` for a flat target
-    youngs_modulus : E, [Pa]; ``inf`` for a rigid body
-    poisson_ratio : nu, [-]
-    density : rho, [kg/m^3]
-    mass : m, [kg]; ``None`` for rho pi D^3 / 6, ``inf`` for a fixed target
-    yield_strength : sigma_y, [Pa], or ``None`` if unknown
-
-    Raises
-    ------
-    InputError
-        A property out of range, named (``diameter must be > 0 ...``).
-
-    Examples
-    --------
-    >>> s = Sphere(0.02, youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
-    >>> s.radius, round(s.total_mass, 6)
-    (0.01, 0.032673)
-    >>> Sphere.from_material(0.02, "steel") == Sphere(0.02, 210e9, 0.3, 7800.0, None, 1e9)
-    True
-    >>> wall = Sphere(float("inf"), float("inf"), 0.0, mass=float("inf"))  # rigid, fixed
-    """
-
-    diameter: float
-    youngs_modulus: float
-    poisson_ratio: float
-    density: float | None = None
-    mass: float | None = None
-    yield_strength: float | None = None
-
-    def __post_init__(self) -> None:
-        for key in ("diameter", "youngs_modulus", "poisson_ratio", "density", "mass",
-                    "yield_strength"):  # fmt: skip
-            value = getattr(self, key)
-            if value is not None:  # a number of float range (10**400 is not)
-                finite_float(key.replace("_", " "), value)
-        raise_first(
-            sphere_problems(
-                self.diameter,
-                self.youngs_modulus,
-                self.poisson_ratio,
-                np.nan if self.density is None else self.density,
-                np.nan if self.mass is None else self.mass,
-                np.nan if self.yield_strength is None else self.yield_strength,
-                given={
-                    "rho": self.density is not None,
-                    "m": self.mass is not None,
-                    "sy": self.yield_strength is not None,
-                },
-            )
-        )
-
-    @classmethod
-    def from_material(
-        cls,
-        diameter: float,
-        material: str | Any,
-        mass: float | None = None,
-        **properties: float | None,
-    ) -> Sphere:
-        """A sphere of ``diameter`` [m] of a built-in material (``impact materials``), or
-        of a :class:`~impactcli.materials.Material`; ``properties`` (``youngs_modulus``,
-        ``poisson_ratio``, ``density``, ``yield_strength``, SI) replace the material's.
-
-        ``Sphere(0.02, **material("steel").properties())`` is the same sphere.
-
-        Parameters
-        ----------
-        diameter : D, [m]; ``inf`` for a flat target
-        material : a name of :data:`impactcli.materials.MATERIALS` or a ``Material``
-        mass : m, [kg]; ``None`` for rho pi D^3 / 6, ``inf`` for a fixed target
-        properties : the material's values to replace, SI
-
-        Returns
-        -------
-        Sphere
-
-        Examples
-        --------
-        >>> s = Sphere.from_material(0.02, "steel")
-        >>> s.youngs_modulus, s.yield_strength, round(s.total_mass, 6)
-        (210000000000.0, 1000000000.0, 0.032673)
-        >>> Sphere.from_material(0.02, "steel", yield_strength=8e8).yield_strength
-        800000000.0
-        """
-        from impactcli.materials import Material
-        from impactcli.materials import material as named
-
-        chosen = material if isinstance(material, Material) else named(material)
-        values = {**chosen.properties(), **properties}
-        return cls(diameter, mass=mass, **values)
-
-    @property
-    def radius(self) -> float:
-        """R_i = D_i / 2, [m]."""
-        return 0.5 * self.diameter
-
-    @property
-    def total_mass(self) -> float:
-        """m_i, [kg]: as given, else rho pi D^3 / 6."""
-        if self.mass is not None:
-            return float(self.mass)
-        return float(sphere_mass(self.diameter, self.density))
-
-    @property
-    def compliance(self) -> float:
-        """(1 - nu^2)/E, [1/Pa]; zero for a rigid body (:func:`.sphere_compliance`)."""
-        return float(sphere_compliance(self.youngs_modulus, self.poisson_ratio))
 
 
 @dataclass(frozen=True)
@@ -374,6 +267,12 @@ class ImpactResult:
     def impact_velocity(self) -> float:
         """V0 = V1 + V2, [m/s]."""
         return self.v1 + self.v2
+
+    @property
+    def relative_energy(self) -> float:
+        """(1/2) m V0^2, the kinetic energy of the relative motion, [J]: what the energy
+        partition shares out (``stored_share``, ``absorbed_share``)."""
+        return 0.5 * self.summary["effective_mass"] * self.impact_velocity**2
 
     @property
     def mass_ratios(self) -> tuple[float, float]:
@@ -677,95 +576,30 @@ def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -
     )
 
 
-def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
-    """Effective mass m [kg], radius R [m] and modulus E* [Pa] of the pair (paper eq. 2,
-    docs/method.md §1)."""
-    m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
-    r = float(effective_radius(sphere1.radius, sphere2.radius))
-    e = float(
-        effective_modulus(
-            sphere1.youngs_modulus,
-            sphere1.poisson_ratio,
-            sphere2.youngs_modulus,
-            sphere2.poisson_ratio,
-        )
-    )
-    return m, r, e
-
-
-def weaker_yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
-    """sigma_y of the sphere that yields first: the lower of the known ones."""
-    known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
-    return min(known) if known else None
-
-
-def split_fractions(
-    split: Split,
-    m1: ArrayLike,
-    m2: ArrayLike,
-    compliance1: ArrayLike,
-    compliance2: ArrayLike,
-    yield_strength1: ArrayLike = np.nan,
-    yield_strength2: ArrayLike = np.nan,
-    permanent: bool = False,
-) -> tuple[NDArray, NDArray]:
-    """delta_i / delta for each sphere, [-]; arrays broadcast.
-
-    ``mass``: the paper's contact plane, delta_i = (m/m_i) delta (eq. 4, docs/method.md §2);
-    ``compliance``: Hertz, delta_i proportional to (1 - nu_i^2)/E_i, [1/Pa];
-    ``yield``: the recoverable part delta - delta_p by compliance, the permanent part
-    delta_p to the sphere that yields, delta_i = e_i (delta - delta_p) + p_i delta_p
-    (docs/method.md §12). With ``permanent=False`` the shares e_i of the recoverable part
-    are returned, with ``permanent=True`` the shares p_i of delta_p
-    (:func:`impactcli.energy.permanent_fractions`: the weaker sphere; none to a sphere
-    without a yield strength, NaN; by compliance within 2 %). For ``mass`` and
-    ``compliance`` both are the same.
-    """
-    if split == "mass":
-        m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
-        m = effective_mass(m1, m2)
-        return m / m1, m / m2
-    c1, c2 = np.asarray(compliance1, dtype=float), np.asarray(compliance2, dtype=float)
-    if split == "compliance" or (split == "yield" and not permanent):
-        return c1 / (c1 + c2), c2 / (c1 + c2)
-    if split == "yield":
-        from impactcli.energy import permanent_fractions
-
-        return permanent_fractions(yield_strength1, yield_strength2, c1, c2)
-    raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
-
-
 def impact_summary(
-    v1: ArrayLike,
-    v2: ArrayLike,
-    m1: ArrayLike,
-    m2: ArrayLike,
-    radius: ArrayLike,
-    modulus: ArrayLike,
+    pairs: SpherePairs,
     plan: ImpactPlan,
     t_max: ArrayLike,
     contact_time: ArrayLike,
     fractions: tuple[ArrayLike, ArrayLike],
-    yield_strength: ArrayLike | None = None,
     permanent: tuple[ArrayLike, ArrayLike] | None = None,
 ) -> dict[str, NDArray]:
     """The summary of impacts (:data:`ELASTIC_SUMMARY_KEYS`), SI, from their plans and times.
 
-    Shared by :func:`elastic_impact` (floats) and :mod:`impactcli.batch` (one entry per
+    Shared by :func:`elastic_impact` (one pair) and :mod:`impactcli.batch` (one entry per
     collision); every argument broadcasts.
 
     Parameters
     ----------
-    v1, v2 : velocities toward the other sphere, [m/s]
-    m1, m2 : masses, [kg] (``inf`` for a fixed sphere)
-    radius, modulus : effective radius R [m] and modulus E* [Pa]
+    pairs : the spheres and their velocities toward each other
+        (:class:`~impactcli.pairs.SpherePairs`: masses [kg], ``inf`` for a fixed sphere;
+        effective radius R [m] and modulus E* [Pa]; sigma_y [Pa] of the first-yield
+        velocity, NaN where unknown)
     plan : closed-form values ``delta_max`` [m], ``force_max`` [N], ``delta_res`` [m] and
         ``restitution`` [-] (an :class:`~impactcli.contact.ImpactPlan`)
     t_max : time of maximum indentation (end of the last loading stage), [s]
     contact_time : time of separation, [s]
     fractions : delta_i / delta of each sphere (:func:`split_fractions`), [-]
-    yield_strength : sigma_y for the first-yield velocity, [Pa] (NaN where unknown); the key
-        is left out when ``None``
     permanent : shares p_i of the permanent indentation (``split="yield"``); default
         ``fractions``: then delta_i_max = f_i delta_max, else
         e_i (delta_max - delta_res) + p_i delta_res
@@ -776,10 +610,9 @@ def impact_summary(
     contact parts) and delta' = -e V0 (exact node values, eq. 13e), so by eq. 12:
     d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
     """
-    v1, v2 = np.asarray(v1, dtype=float), np.asarray(v2, dtype=float)
-    m1, m2 = np.asarray(m1, dtype=float), np.asarray(m2, dtype=float)
-    m = effective_mass(m1, m2)
-    r1, r2 = m / m1, m / m2
+    v1, v2 = pairs.v1, pairs.v2
+    m = pairs.m
+    r1, r2 = m / pairs.mass1, m / pairs.mass2
     f1, f2 = fractions
     v0 = v1 + v2
     t_c = np.asarray(contact_time, dtype=float)
@@ -801,15 +634,16 @@ def impact_summary(
         "delta2_max": f2 * delta_max,
         "restitution": restitution,
         "effective_mass": m,
-        "effective_radius": np.asarray(radius, dtype=float),
-        "effective_modulus": np.asarray(modulus, dtype=float),
+        "effective_radius": pairs.radius,
+        "effective_modulus": pairs.modulus,
     }
     if permanent is not None:
         p1, p2 = permanent
         summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
         summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
-    if yield_strength is not None:
-        summary["first_yield_velocity"] = first_yield_velocity(m, radius, modulus, yield_strength)
+    summary["first_yield_velocity"] = first_yield_velocity(
+        m, pairs.radius, pairs.modulus, pairs.sigma_y
+    )
     return summary
 
 
@@ -841,8 +675,6 @@ def plastic_summary(
 
 def _summarise(
     result: ImpactResult,
-    r: float,
-    e: float,
     plan: ImpactPlan,
     t_max: float,
     contact_time: float,
@@ -852,20 +684,17 @@ def _summarise(
     force_max, delta_res and e and the times t_max, t_c [s] of FILM or of the integration;
     delta_res shared by :attr:`ImpactResult.permanent_fractions` if ``permanent``, else as
     delta."""
+    pairs = SpherePairs.from_spheres(result.sphere1, result.sphere2, result.v1, result.v2)
     summary = impact_summary(
-        result.v1,
-        result.v2,
-        result.m1,
-        result.m2,
-        r,
-        e,
+        pairs,
         plan,
         t_max,
         contact_time,
         result.split_fractions,
-        weaker_yield_strength(result.sphere1, result.sphere2),
         result.permanent_fractions if permanent else None,
     )
+    if np.isnan(pairs.sigma_y):  # no yield strength: no first-yield velocity
+        del summary["first_yield_velocity"]
     return {key: float(value) for key, value in summary.items()}
 
 
@@ -873,7 +702,6 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     """The summary of ``result``'s impact from ``solution`` (FILM's or the integration's):
     the elastic keys (:func:`impact_summary`, with the indentation at separation as
     delta_res), then the keys of the model's kind (:meth:`impactcli.model.PairModel.summary`)."""
-    m, r, e = effective_properties(result.sphere1, result.sphere2)
     values = ImpactPlan(
         (),
         np.asarray(solution.delta_max),
@@ -883,7 +711,7 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     )
     pair = result.contact
     out = _summarise(
-        result, r, e, values, solution.t_max, solution.end_time, permanent=pair.permanent
+        result, values, solution.t_max, solution.end_time, permanent=pair.permanent
     )
     out.update(pair.summary(result, solution))
     return out
@@ -901,6 +729,16 @@ def integrate_impact(result: ImpactResult) -> dict[str, float]:
     properties, delta_y, yield velocities) are the closed forms. The integration is
     :attr:`ImpactResult.ode`, done once per result.
 
+    Parameters
+    ----------
+    result : an impact of this library (:func:`solve_impact`, any contact model)
+
+    Returns
+    -------
+    dict
+        The keys of ``result.summary``, in SI (times [s], lengths [m], velocities [m/s],
+        forces [N], energies [J], e [-]), from the integration.
+
     Examples
     --------
     >>> steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
@@ -917,51 +755,6 @@ def energy_summary(result: ImpactResult, method: str = "film") -> dict[str, floa
     FILM's solution or (``method="ode"``) the integration's: :func:`solution_energy_summary`.
     """
     return solution_energy_summary(result, result.ode if method == "ode" else result.solution)
-
-
-def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> dict[str, float]:
-    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact from ``solution``, SI
-    (docs/method.md §12).
-
-    Kinetic energy of each sphere before and at separation [J]; the energy dissipated in
-    each sphere, p_i (1/2) m V0^2 (1 - e^2) [J]; the share of the initial relative kinetic
-    energy (1/2) m V0^2 that each sphere holds at maximum compression, as recoverable strain
-    energy (``stored_share``: e_i W_r(delta_max) / ((1/2) m V0^2); both add up to e^2) and
-    in all (``absorbed_share``: stored plus dissipated; both add up to 1) [-]; and the
-    impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
-    without a yield strength: :func:`impactcli.design.first_yield_velocities`).
-    """
-    from impactcli.design import first_yield_velocities
-    from impactcli.energy import kinetic_energy
-
-    m, r, e_star = effective_properties(result.sphere1, result.sphere2)
-    v0 = result.impact_velocity
-    relative = 0.5 * m * v0 * v0
-    restitution, delta_max = _first(solution.restitution), _first(solution.delta_max)
-    e1, e2 = result.split_fractions
-    p1, p2 = result.permanent_fractions
-    r1, r2 = result.mass_ratios
-    stored = min(_first(result.contact_model.recoverable_work(np.array([delta_max]))), relative)
-    lost = relative * (1.0 - restitution**2)
-    v1_final = result.v1 - r1 * (1.0 + restitution) * v0
-    v2_final = result.v2 - r2 * (1.0 + restitution) * v0
-    fy1, fy2 = first_yield_velocities(
-        m, r, e_star, result.sphere1.yield_strength, result.sphere2.yield_strength
-    )
-    return {
-        "kinetic_energy1_initial": float(kinetic_energy(result.m1, result.v1)),
-        "kinetic_energy2_initial": float(kinetic_energy(result.m2, result.v2)),
-        "kinetic_energy1_final": float(kinetic_energy(result.m1, v1_final)),
-        "kinetic_energy2_final": float(kinetic_energy(result.m2, v2_final)),
-        "energy_dissipated1": p1 * lost,
-        "energy_dissipated2": p2 * lost,
-        "stored_share1": e1 * stored / relative,
-        "stored_share2": e2 * stored / relative,
-        "absorbed_share1": (e1 * stored + p1 * (relative - stored)) / relative,
-        "absorbed_share2": (e2 * stored + p2 * (relative - stored)) / relative,
-        "first_yield_velocity1": float(fy1),
-        "first_yield_velocity2": float(fy2),
-    }
 
 
 def _check_yield_split(result: ImpactResult) -> None:
@@ -1442,6 +1235,38 @@ def damped_restitution_sweep(
         "plastic": zero.copy(),
         "delta_separation": np.asarray(sol.delta_separation, dtype=float),
     }
+
+
+@input_errors
+def damping_alpha(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    damping: str,
+    restitution: float,
+    impact_velocity: float,
+    n: int = DAMPED_DEFAULT_N,
+    separation: str = "overlap",
+) -> float:
+    """The alpha of the damping model ``damping`` that gives the coefficient of restitution
+    e [-] to the impact of this pair at V0 [m/s]: the pair's damped model solved for it by
+    FILM with n segments (:func:`impactcli.damping.damping_for_restitution`). For a model
+    whose e does not depend on V0 (``self_similar``) it is the alpha of e at every V0.
+
+    Returns
+    -------
+    float
+        alpha in the unit of the model ([-] for ``tsuji``, [s/m] for ``hunt-crossley``).
+
+    Examples
+    --------
+    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> round(damping_alpha(*steel, "tsuji", 0.8, 1.0), 6)
+    0.158426
+    """
+    model = ContactModel(damping=damping, restitution=restitution, separation=separation)
+    pair = model.for_spheres(sphere1, sphere2)
+    assert isinstance(pair, DampedPair)
+    return float(pair.alpha(impact_velocity, n))
 
 
 def __getattr__(name: str):

@@ -1,7 +1,7 @@
 """Limits on the sizes of a run, so that every run fits in a few GB of memory.
 
-Measured peak memory (resident set) of one run at the limits below (README, "Limits on
-sizes"), about:
+Measured peak memory (resident set) of one run at the limits below (docs/about/guarantees.md,
+"Limits on sizes and memory"), about:
 
 - 650 bytes per FILM segment per stage for ``elastoplastic --n`` (6.5 GB at 10^7), 600 for
   ``elastic --damping`` (5.7 GB), 440 for ``elastic --n`` (4.4 GB), 260 for ``tables --n``
@@ -16,8 +16,8 @@ sizes"), about:
 
 Work over many rows (``batch``, ``collide3d --rows``) or velocities (the sweeps of
 ``restitution``, ``compare-laws --plot``, ``fit``) is done in blocks
-(:data:`impactcli.batch.FILM_BLOCK`, :data:`impactcli.batch.DAMPED_BLOCK`,
-:data:`impactcli.io.collisions3d.HISTORY_BLOCK`), so its memory does not grow with the
+(:data:`FILM_BLOCK`, :data:`DAMPED_BLOCK`, :data:`DAMPED_TABLE_ROWS`,
+:data:`HISTORY_BLOCK`), so its memory does not grow with the
 number of rows. The checks live here once; the command line states the limits in
 ``--help`` and refuses larger values up front, the library entry points refuse them with
 the same message.
@@ -28,6 +28,10 @@ from __future__ import annotations
 from impactcli.errors import InputError
 
 __all__ = [
+    "DAMPED_BLOCK",
+    "DAMPED_TABLE_ROWS",
+    "FILM_BLOCK",
+    "HISTORY_BLOCK",
     "MAX_SEGMENTS",
     "MAX_POINTS",
     "MAX_COUNT",
@@ -64,6 +68,27 @@ MAX_CURVE_POINTS = 1_000_000
 MAX_CURVE_BYTES = 64 * 2**20
 #: Characters of one line of a curve file.
 MAX_CURVE_LINE = 4096
+
+
+#: Values (rows x n segments) per block of the per-row FILM runs of elastoplastic rows above
+#: the yield velocity: 1 MiB work arrays (measured by ``make bench``: faster than blocks of
+#: 2048 rows, 1.5-2.6x for n = 25-100, and than smaller blocks for n in the hundreds).
+FILM_BLOCK = 131072
+#: Values (rows x (n + 1) segment nodes) per block of damped rows
+#: (:func:`impactcli.batch.batch_damped_impacts`): the damped FILM marches segment by
+#: segment over the rows of a block, so larger blocks than :data:`FILM_BLOCK` pay off
+#: (n = 1000, 1,300 rows: 8 s in blocks of 2^19 values, 15 s in blocks of 2^17, 4 s
+#: unblocked); peak memory about 0.2 GB a block, whatever the number of rows.
+DAMPED_BLOCK = 524288
+#: Rows per block of damped rows at the n of the normalised tables (400, the default;
+#: :mod:`impactcli.damped_similar`): a row's summary is a table look-up, some 100 values of
+#: work arrays a row (about 50 MB a block).
+DAMPED_TABLE_ROWS = 65536
+#: History points (rows x ``points``) per block of ``collide3d --rows --tangential mindlin``
+#: rows: each row's normal history and the tangential spring integrated over a block of
+#: rows at once; memory does not grow with the number of rows (one row a block when
+#: ``points`` is larger).
+HISTORY_BLOCK = 1_048_576
 
 
 def check_size(name: str, value: int, maximum: int, minimum: int = 1) -> int:

@@ -30,6 +30,8 @@ from typing import TYPE_CHECKING, Any, ClassVar, Protocol, cast
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.design import first_yield_velocities
+from impactcli.energy import kinetic_energy
 from impactcli.laws.base import Separation
 from impactcli.laws.registry import (
     DAMPING_LAWS,
@@ -38,10 +40,12 @@ from impactcli.laws.registry import (
     ELASTIC_LAW,
     get_law,
 )
+from impactcli.pairs import effective_properties, weaker_yield_strength
 
 if TYPE_CHECKING:
-    from impactcli.impact import ImpactResult, Sphere
+    from impactcli.impact import ImpactResult
     from impactcli.laws.base import ImpactPlan, LawSpec, NormalContact
+    from impactcli.pairs import Sphere
     from impactcli.solution import ContactSolution, PlanSolution
 
 __all__ = [
@@ -52,6 +56,7 @@ __all__ = [
     "DampedPair",
     "LawPair",
     "PairModel",
+    "solution_energy_summary",
 ]
 
 #: FILM segments per stage of a normal law by default (the paper's n = 25).
@@ -180,8 +185,6 @@ class ContactModel:
         effective mass, radius and modulus and the yield strength (the model's, else the
         weaker sphere's). An unknown law is a ValueError; its parameters are checked when
         the contact is first used."""
-        from impactcli.impact import effective_properties, weaker_yield_strength
-
         if self.damping is None:
             spec = get_law(self.law)
             sigma_y = (
@@ -243,10 +246,6 @@ class PairModel(Protocol):
 
     def damping_law(self, solution: Any) -> Any:
         """The damping model of the solution (None for a normal law)."""
-        ...
-
-    def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
-        """e [-] and contact time [s] at each V0 [m/s], vectorised FILM."""
         ...
 
     def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
@@ -339,8 +338,6 @@ class LawPair:
     def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
         """The plastic keys (:data:`impactcli.impact.PLASTIC_SUMMARY_KEYS` beyond the
         elastic ones) and the energy keys (:data:`impactcli.impact.ENERGY_SUMMARY_KEYS`)."""
-        from impactcli.impact import solution_energy_summary
-
         out = self._plastic_summary(result, solution)
         out.update(solution_energy_summary(result, solution))
         return out
@@ -368,17 +365,6 @@ class LawPair:
     def damping_law(self, solution: Any) -> None:
         """No damping model: None."""
         return None
-
-    def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
-        """e [-] and contact time [s] at each V0 [m/s]: :func:`impactcli.sweep.restitution_sweep`
-        of the law (FILM, the elastic and the plastic impacts each one batch)."""
-        from impactcli.sweep import restitution_sweep
-
-        sweep = restitution_sweep(
-            self.sphere1, self.sphere2, velocities, n, yield_strength=self.model.yield_strength,
-            law=self.spec.name, law_params=dict(self.model.law_params),
-        )  # fmt: skip
-        return sweep["restitution"], sweep["contact_time"]
 
     def closed_form(self, velocities: ArrayLike) -> tuple[str, NDArray] | None:
         """The law's published e(V0) (:attr:`~impactcli.laws.base.LawSpec.closed_form`)."""
@@ -456,8 +442,6 @@ class _ElasticModel(ContactModel):
     """Hertz as :func:`impactcli.impact.elastic_impact` runs it."""
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
-        from impactcli.impact import effective_properties, weaker_yield_strength
-
         spec = get_law(ELASTIC_LAW)
         sigma_y = weaker_yield_strength(sphere1, sphere2)
         m, r, e = effective_properties(sphere1, sphere2)
@@ -474,8 +458,6 @@ class _ElasticPair(LawPair):
         return "elastic"
 
     def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
-        from impactcli.impact import solution_energy_summary
-
         return solution_energy_summary(result, solution)
 
 
@@ -492,7 +474,6 @@ class _ElastoplasticModel(ContactModel):
     pressure_factor: float = _P0_FACTOR
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
-        from impactcli.impact import effective_properties, weaker_yield_strength
         from impactcli.validation import YIELD_STRENGTH_NEEDED, needs_yield_strength
 
         sigma_y = (
@@ -640,9 +621,9 @@ class DampedPair:
     def restitution(self, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
         """e [-] and contact time [s] at each V0 [m/s]: the damped FILM of the model's
         alpha, vectorised (e = 0 and an infinite time for a contact that never ends)."""
-        from impactcli.batch import DAMPED_BLOCK
         from impactcli.damping import solve_damped_impact
         from impactcli.laws.registry import damping_model
+        from impactcli.limits import DAMPED_BLOCK
 
         law = damping_model(
             str(self.model.damping), self.radius, self.modulus, self.mass, self.model.alpha
@@ -680,3 +661,49 @@ class DampedPair:
                 solution.law, impact_velocity, self.mass, n, separation="force"
             )
         return (1.0 + float(pushing.restitution)) * self.mass * float(impact_velocity)
+
+def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> dict[str, float]:
+    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact from ``solution``, SI
+    (docs/method.md §12).
+
+    Kinetic energy of each sphere before and at separation [J]; the energy dissipated in
+    each sphere, p_i (1/2) m V0^2 (1 - e^2) [J]; the share of the initial relative kinetic
+    energy (1/2) m V0^2 that each sphere holds at maximum compression, as recoverable strain
+    energy (``stored_share``: e_i W_r(delta_max) / ((1/2) m V0^2); both add up to e^2) and
+    in all (``absorbed_share``: stored plus dissipated; both add up to 1) [-]; and the
+    impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
+    without a yield strength: :func:`impactcli.design.first_yield_velocities`).
+    """
+    m, r, e_star = effective_properties(result.sphere1, result.sphere2)
+    v0 = result.impact_velocity
+    relative = 0.5 * m * v0 * v0
+    restitution, delta_max = _one(solution.restitution), _one(solution.delta_max)
+    e1, e2 = result.split_fractions
+    p1, p2 = result.permanent_fractions
+    r1, r2 = result.mass_ratios
+    stored = min(_one(result.contact_model.recoverable_work(np.array([delta_max]))), relative)
+    lost = relative * (1.0 - restitution**2)
+    v1_final = result.v1 - r1 * (1.0 + restitution) * v0
+    v2_final = result.v2 - r2 * (1.0 + restitution) * v0
+    fy1, fy2 = first_yield_velocities(
+        m, r, e_star, result.sphere1.yield_strength, result.sphere2.yield_strength
+    )
+    return {
+        "kinetic_energy1_initial": float(kinetic_energy(result.m1, result.v1)),
+        "kinetic_energy2_initial": float(kinetic_energy(result.m2, result.v2)),
+        "kinetic_energy1_final": float(kinetic_energy(result.m1, v1_final)),
+        "kinetic_energy2_final": float(kinetic_energy(result.m2, v2_final)),
+        "energy_dissipated1": p1 * lost,
+        "energy_dissipated2": p2 * lost,
+        "stored_share1": e1 * stored / relative,
+        "stored_share2": e2 * stored / relative,
+        "absorbed_share1": (e1 * stored + p1 * (relative - stored)) / relative,
+        "absorbed_share2": (e2 * stored + p2 * (relative - stored)) / relative,
+        "first_yield_velocity1": float(fy1),
+        "first_yield_velocity2": float(fy2),
+    }
+
+
+def _one(value: ArrayLike) -> float:
+    """The one value of a scalar or shape-(1,) array."""
+    return float(np.reshape(np.asarray(value, dtype=float), -1)[0])

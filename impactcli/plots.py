@@ -119,11 +119,28 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = 150) -> No
     path : the target file; its extension chooses the format (:func:`figure_format`)
     dpi : resolution of a PNG, [1/inch]
 
+    Returns
+    -------
+    None
+        The file is written; nothing else is left beside it.
+
     Raises
     ------
     ValueError
         Unknown extension; or ``path`` is a folder or cannot be written
         (:class:`impactcli.errors.InputError`, from :func:`impactcli.output.atomic_output`).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from impactcli import Sphere, elastic_impact
+    >>> r = elastic_impact(Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel"),
+    ...                    5e-3, 7.5e-3)
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> save_figure(impact_figure(r.history(), "sec. 4.3"), folder / "sec43.svg")
+    >>> [(p.name, p.stat().st_size > 0) for p in folder.iterdir()]
+    [('sec43.svg', True)]
     """
     from impactcli.output import atomic_output
 
@@ -247,7 +264,10 @@ def impact_figure(
     (f) force against total indentation: one curve traversed twice when elastic, a loop
     ending at the permanent indentation when plastic, a loop through the origin (or ending
     at ``delta_separation``) under viscous damping, the force F(delta, delta') of the
-    history being higher while loading than while unloading.
+    history being higher while loading than while unloading. A third row, (g), draws the
+    energy partition against time when the history has its columns (``ke1``, ``ke2``,
+    ``strain_energy``, ``dissipated`` [J], as :meth:`impactcli.impact.ImpactResult.history`
+    gives them).
 
     Parameters
     ----------
@@ -270,6 +290,17 @@ def impact_figure(
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    The paper's sec. 4.3 impact (its Figs. 4-8, and the energy):
+
+    >>> from impactcli import Sphere, elastic_impact
+    >>> steel1, steel2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> r = elastic_impact(steel1, steel2, 5e-3, 7.5e-3)
+    >>> fig = impact_figure(r.history(), "sec. 4.3", summary=r.summary)
+    >>> len(fig.axes), fig.axes[5].get_title()
+    (7, '(f) Force against indentation')
     """
     h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
     ref = None if reference is None else {k: np.asarray(v, float) for k, v in reference.items()}
@@ -444,6 +475,17 @@ def energy_figure(
     -------
     matplotlib.figure.Figure
         Areas and lines have gids named after the columns.
+
+    Examples
+    --------
+    The paper's sec. 4.4 impact:
+
+    >>> from impactcli import Sphere, elastoplastic_impact
+    >>> steel1, steel2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> r = elastoplastic_impact(steel1, steel2, 0.25, 0.75)
+    >>> fig = energy_figure(r.history(), "sec. 4.4", summary=r.summary)
+    >>> len(fig.axes)
+    2
     """
     h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
     t = h["t"]
@@ -672,6 +714,15 @@ def convergence_figure(
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> from impactcli.tables import convergence, normalised_history
+    >>> rows = convergence([1, 5, 25])
+    >>> curves = {n: normalised_history(n, 201) for n in (1, 5, 25)}
+    >>> fig = convergence_figure(curves, [r.n for r in rows], [r.relative_error for r in rows])
+    >>> len(fig.axes)
+    2
     """
     fig = _new_figure(13.0, 5.4)
     ax_h, ax_e = fig.subplots(1, 2)
@@ -816,6 +867,21 @@ def restitution_figure(
     matplotlib.figure.Figure
         Lines have gids ``restitution``, ``contact_time`` and ``permanent_indentation``
         (``permanent_indentation:<label>`` for a mapping).
+
+    Examples
+    --------
+    The sec. 4.4 spheres from 0.05 to 2.5 m/s under Du & Wang's law:
+
+    >>> import numpy as np
+    >>> from impactcli import Sphere, restitution_sweep
+    >>> from impactcli.compare import reference_yield_velocity
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> v0 = np.geomspace(0.05, 2.5, 10)
+    >>> out = restitution_sweep(s1, s2, v0)
+    >>> fig = restitution_figure(v0, out["restitution"], out["contact_time"], out["delta_res"],
+    ...                          first_yield_velocity=reference_yield_velocity(s1, s2))
+    >>> len(fig.axes)
+    3
     """
     v0 = np.asarray(impact_velocity, dtype=float)
     if log_velocity is None:
@@ -934,6 +1000,19 @@ def fit_figure(
     matplotlib.figure.Figure
         gids: ``data``, ``fit:<label>`` (curves), ``band:<label>`` (bands, PolyCollection),
         ``residuals:<label>``.
+
+    Examples
+    --------
+    Four measurements and a straight line through them with a band of +-0.01:
+
+    >>> import numpy as np
+    >>> v0, e = np.array([0.5, 1.0, 2.0, 4.0]), np.array([0.877, 0.78, 0.699, 0.62])
+    >>> grid = np.geomspace(0.5, 4.0, 20)
+    >>> line = {"label": "a line", "impact_velocity": grid, "restitution": 0.9 - 0.07 * grid,
+    ...         "lower": 0.89 - 0.07 * grid, "upper": 0.91 - 0.07 * grid,
+    ...         "residuals": e - (0.9 - 0.07 * v0)}
+    >>> len(fit_figure(v0, e, [line]).axes)
+    2
     """
     v0 = np.asarray(impact_velocity, dtype=float)
     e = np.asarray(restitution, dtype=float)
@@ -1071,6 +1150,17 @@ def collision2d_figure(
     matplotlib.figure.Figure
         The arrows are annotations with gids ``v1``, ``v2``, ``v1_after``, ``v2_after``
         (panel a: ``at:`` prefixed): tail ``xyann``, head ``xy``, in the axes' units.
+
+    Examples
+    --------
+    The paper's sec. 4.5.3 collision:
+
+    >>> from impactcli import oblique_collision
+    >>> p1, p2 = (-1.0, 2.0), (2.0, -2.0)
+    >>> c = oblique_collision(0.05, 0.15, (2.598076, -1.5), (1.285575, 1.532089), p1, p2)
+    >>> fig = collision2d_figure(c.v1, c.v2, c.v1_final, c.v2_final, p1, p2, masses=(0.05, 0.15))
+    >>> len(fig.axes)
+    2
     """
     vel = {
         "v1": np.asarray(v1, dtype=float),
@@ -1308,6 +1398,23 @@ def law_comparison_figure(
     matplotlib.figure.Figure
         Lines have gids ``loop:<label>``, ``restitution:<label>`` and
         ``published:<label>``; a law keeps its colour on both panels.
+
+    Examples
+    --------
+    The paper's sec. 4.4 impact under two laws (:mod:`impactcli.compare`):
+
+    >>> import numpy as np
+    >>> from impactcli import Sphere
+    >>> from impactcli.compare import compare_impacts, reference_yield_velocity, restitution_curves
+    >>> s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> laws = [("du-wang", {}), ("thornton", {})]
+    >>> histories = {name: r.history(points=200)
+    ...              for name, r in compare_impacts(s1, s2, 0.25, 0.75, laws).items()}
+    >>> loops = {name: (h["delta"], h["force"]) for name, h in histories.items()}
+    >>> v_y, ratio = reference_yield_velocity(s1, s2), np.geomspace(0.5, 100.0, 20)
+    >>> e = restitution_curves(s1, s2, ratio * v_y, laws)
+    >>> len(law_comparison_figure(loops, ratio, e, title="sec. 4.4", impact_ratio=1 / v_y).axes)
+    2
     """
     fig = _new_figure(13.0, 5.0)
     ax_f, ax_e = fig.subplots(1, 2)
@@ -1402,6 +1509,22 @@ def oblique_impact_figure(
     -------
     matplotlib.figure.Figure
         Lines have gids ``<label>:<key>`` and ``closed:<key>``.
+
+    Examples
+    --------
+    The rigid model's closed forms for a sphere (R = 2.5 mm) on a rigid plane at 3.9 m/s,
+    mu = 0.092, e = 1 (Chung & Ooi 2011, test 4): stick below tan(theta) = 7 mu, gross
+    slip above it:
+
+    >>> import numpy as np
+    >>> mu, radius, angle = 0.092, 2.5e-3, np.linspace(1.0, 89.0, 45)
+    >>> tan, v_n = np.tan(np.radians(angle)), 3.9 * np.cos(np.radians(angle))
+    >>> stick = tan < 7 * mu
+    >>> rigid = {"tangential_restitution": np.where(stick, 5 / 7, 1 - 2 * mu / tan),
+    ...          "spin": np.where(stick, 5 / 7 * v_n * tan, 5 * mu * v_n) / radius,
+    ...          "rebound_angle": np.where(stick, 0.0, np.degrees(np.arctan(tan - 7 * mu)))}
+    >>> len(oblique_impact_figure(angle, {"rigid": rigid}).axes)
+    3
     """
     x = np.asarray(incident_angle, dtype=float)
     fig = _new_figure(15.0, 4.8)

@@ -9,7 +9,7 @@ Hertz impact: contact time, maximum indentation and force against V0 (e = 1).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -34,16 +34,23 @@ from impactcli.laws.registry import (
 )
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.validation import (
+    contact_radius_warning,
     input_errors,
     plastic_range_problems,
     raise_first,
     renamed_p0_factor,
 )
 
+if TYPE_CHECKING:
+    from impactcli.model import PairModel
+
 __all__ = [
     "SWEEP_COLUMNS",
     "damped_sweep",
+    "model_restitution",
     "restitution_sweep",
+    "sweep_contact_warning",
+    "sweep_is_elastic",
     "sweep_sticking_velocity",
     "sweep_yield_velocity",
 ]
@@ -172,6 +179,31 @@ def restitution_sweep(
     return out
 
 
+def model_restitution(pair: PairModel, velocities: ArrayLike, n: int) -> tuple[NDArray, NDArray]:
+    """e [-] and contact time [s] at each V0 [m/s] of a contact model bound to a pair of
+    spheres (:meth:`impactcli.model.ContactModel.for_spheres`), vectorised FILM with n
+    segments per stage: :func:`restitution_sweep` of a normal law (the elastic and the
+    plastic impacts each one batch), the damped FILM of a damping model (e = 0 and an
+    infinite time for a contact that never ends)."""
+    if pair.model.damping is not None:
+        return pair.restitution(velocities, n)
+    sweep = restitution_sweep(
+        pair.sphere1, pair.sphere2, velocities, n, yield_strength=pair.model.yield_strength,
+        law=pair.spec.name, law_params=dict(pair.model.law_params),
+    )  # fmt: skip
+    return sweep["restitution"], sweep["contact_time"]
+
+
+def sweep_contact_warning(
+    sphere1: Sphere, sphere2: Sphere, velocities: ArrayLike, delta_max: ArrayLike
+) -> str | None:
+    """The warning of a sweep (``impact restitution``) whose contact radius sqrt(R delta_max)
+    leaves the small-deformation range at some V0 [m/s], delta_max [m] of each
+    (:func:`impactcli.validation.contact_radius_warning` with the pair's R), or None."""
+    _m, r, _e = effective_properties(sphere1, sphere2)
+    return contact_radius_warning(velocities, delta_max, r)
+
+
 @input_errors
 def damped_sweep(
     sphere1: Sphere,
@@ -288,14 +320,34 @@ def _contact(
     sigma_y = (
         yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
     )
-    if law is not None and not (sigma_y is None and get_law(law).name == DEFAULT_LAW):
-        m, r, e = effective_properties(sphere1, sphere2)
-        return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     m, r, e = effective_properties(sphere1, sphere2)
-    if sigma_y is None:  # the default law, nothing can yield: the elastic law's impact
+    if sweep_is_elastic(sphere1, sphere2, yield_strength, law):  # nothing can yield
         return get_law(ELASTIC_LAW).contact(r, e), m
+    if law is not None:
+        return get_law(law).contact(r, e, sigma_y, **(law_params or {})), m
     params = {"p0_factor": pressure_factor}  # as given: restitution_sweep checks it
     return get_law(DEFAULT_LAW).build(r, e, sigma_y, params), m
+
+
+def sweep_is_elastic(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    yield_strength: float | None = None,
+    law: str | None = None,
+) -> bool:
+    """Whether :func:`restitution_sweep` of the pair is of the elastic Hertz impact (e = 1):
+    the default elastoplastic law (``law`` None or its name) without any yield strength
+    [Pa] (neither ``yield_strength`` nor the spheres').
+
+    >>> from impactcli.impact import Sphere
+    >>> glass = Sphere.from_material(0.02, "glass")
+    >>> sweep_is_elastic(glass, glass), sweep_is_elastic(glass, glass, 1e9)
+    (True, False)
+    """
+    sigma_y = (
+        yield_strength if yield_strength is not None else weaker_yield_strength(sphere1, sphere2)
+    )
+    return sigma_y is None and (law is None or get_law(law).name == DEFAULT_LAW)
 
 
 def _nan(value: float | None) -> float:

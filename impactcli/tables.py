@@ -100,6 +100,17 @@ def normalised_history(
     Returns
     -------
     (t V0/delta_m, delta/delta_m) [-], each of length ``points + 1`` with NaN at the break
+
+    Examples
+    --------
+    One segment per stage turns at delta/delta_m = 2/sqrt(5), short of the node 1 where
+    restitution starts:
+
+    >>> import numpy as np
+    >>> t, delta = normalised_history(1, 2001)
+    >>> loading = delta[: int(np.argmax(np.isnan(delta)))]  # up to the NaN at the break
+    >>> len(t), round(float(loading.max()), 3)
+    (2002, 0.894)
     """
     loading, restitution = normalised_elastic(n, carry_velocity)
     solution = FilmSolution((loading, restitution))
@@ -114,7 +125,28 @@ def normalised_history(
 
 @input_errors
 def normalised_contact_duration(n: int, carry_velocity: bool = False) -> float:
-    """Normalised contact duration t_c V0/delta_m by FILM: loading plus restitution time."""
+    """Normalised contact duration t_c V0/delta_m by FILM: loading plus restitution time.
+
+    Parameters
+    ----------
+    n : FILM segments per stage
+    carry_velocity : start each segment with the velocity the one before ends with (the
+        scheme nearest the paper's printed n = 3 and 5, error falling as n^-2) instead of
+        the node velocities of the exact energy balance (eq. 13e)
+
+    Returns
+    -------
+    float
+        t_c V0 / delta_m, [-]: 2 (2/5) B(2/5, 1/2) = 2.9432752 in the limit of large n
+        (docs/method.md §5).
+
+    Examples
+    --------
+    >>> round(normalised_contact_duration(25), 5)
+    2.94325
+    >>> round(normalised_contact_duration(5, carry_velocity=True), 5)
+    2.93891
+    """
     return float(normalised_elastic(n, carry_velocity)[1].end_time)
 
 
@@ -127,6 +159,12 @@ def normalised_table(
     One row per node (delta_bar = r/n, r = 0..n in the stage's order), plus, if
     ``midpoint``, a row at the mid-time of the last loading segment (A1) or of the first
     restitution segment (A2), evaluated from that segment's closed form (eq. 7a,b).
+
+    Parameters
+    ----------
+    n : FILM segments per stage (the paper's tables: 25)
+    stage : ``loading`` (Table A1) or ``restitution`` (Table A2)
+    midpoint : add the paper's mid-segment row
 
     Returns
     -------
@@ -196,6 +234,18 @@ def convergence(ns: list[int], carry_velocity: bool = False) -> list[Convergence
 
     The observed order between successive n is log(e_prev/e)/log(n/n_prev) on the absolute
     errors; ``ns`` is used in the order given.
+
+    Parameters
+    ----------
+    ns : the segment counts n per stage, each >= 1
+    carry_velocity : as in :func:`normalised_contact_duration`
+
+    Returns
+    -------
+    list of ConvergenceRow
+        For each n: the loading time and the contact duration t V0/delta_m, [-], the
+        contact duration's error relative to the exact one, [-], and the observed order
+        (NaN for the first n).
 
     Examples
     --------

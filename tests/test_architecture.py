@@ -43,6 +43,8 @@ LIBRARY = (
     "impactcli.materials",
     "impactcli.validation",
     "impactcli.spheres",
+    "impactcli.pairs",
+    "impactcli.quantities",
     "impactcli.errors",
     "impactcli.formatting",
     "impactcli.io.table",
@@ -59,6 +61,7 @@ LIBRARY = (
     "impactcli.curves",
     "impactcli.damping",
     "impactcli.damped_similar",
+    "impactcli.damped_similar_build",
     "impactcli.collision3d",
     "impactcli.export",
     "impactcli.export.lammps",
@@ -74,6 +77,9 @@ LIBRARY = (
     "impactcli.damping_tables",
     "impactcli.io.allocator",
     "impactcli.io.collisions3d",
+    "impactcli.io.partitions",
+    "impactcli.rows",
+    "impactcli.rows3d",
     "impactcli.output",
     "impactcli.plots",
 )
@@ -523,7 +529,7 @@ LAW_NAMES_ALLOWED: dict[tuple[str, str], str] = {
     "impact, by definition",
     ("impactcli/batch.py", "hertz"): "the Hertz stiffness and scales of damped rows: Hertz is "
     "the elastic part of every damping model",
-    ("impactcli/io/collisions3d.py", "hertz"): "the Hertz scales of damped rows "
+    ("impactcli/rows3d.py", "hertz"): "the Hertz scales of damped rows "
     "(batch.hertz_scale_problems)",
     ("impactcli/damping.py", "hertz"): "the damped FILM bounds its loading by the Hertz "
     "maximum indentation of the elastic part",
@@ -569,3 +575,201 @@ def test_the_library_imports_laws_from_the_laws_package():
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.ImportFrom) and node.module == "impactcli.lawlib":
                 raise AssertionError(f"{path.relative_to(ROOT)}:{node.lineno} imports lawlib")
+
+
+# -- the layers: no import circle, io/ reads and writes, cli/ parses and formats ---------------
+
+
+def _imports(source: str, module: str) -> list[tuple[str, int]]:
+    """(module, line) of every ``impactcli`` module that the source of ``module`` imports,
+    at module level or inside a function. Those under ``if TYPE_CHECKING:`` are never run,
+    and those of a module's ``__getattr__`` run only for a name kept importable where it
+    was defined before it moved (a deprecated spelling): neither counts. ``from package
+    import module`` names that module, ``from module import name`` the module."""
+    tree = ast.parse(source)
+    shims = [
+        node
+        for node in tree.body
+        if isinstance(node, ast.If) and getattr(node.test, "id", None) == "TYPE_CHECKING"
+        or isinstance(node, ast.FunctionDef) and node.name == "__getattr__"
+    ]
+    unused = {id(inner) for node in shims for inner in ast.walk(node)}
+    package = module.split(".")[:-1]
+    found = []
+    for node in ast.walk(tree):
+        if id(node) in unused:
+            continue
+        if isinstance(node, ast.Import):
+            found += [(a.name, node.lineno) for a in node.names if a.name.startswith("impactcli")]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                base = ".".join(package[: len(package) - node.level + 1] + ([base] if base else []))
+            if not base.startswith("impactcli"):
+                continue
+            modules = [f"{base}.{a.name}" for a in node.names if _is_module(f"{base}.{a.name}")]
+            found += [(m, node.lineno) for m in modules]
+            if len(modules) < len(node.names):
+                found.append((base, node.lineno))
+    return found
+
+
+def _is_module(module: str) -> bool:
+    """Whether ``module`` is a module of the package (not a name in one)."""
+    path = PACKAGE.parent / module.replace(".", "/")
+    return path.with_suffix(".py").is_file() or (path / "__init__.py").is_file()
+
+
+def _module_imports(path: Path) -> list[tuple[str, int]]:
+    name = ".".join(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+    if path.name == "__init__.py":
+        name += ".__init__"  # relative imports count from the package itself
+    return _imports(path.read_text(), name)
+
+
+def _import_graph() -> dict[str, set[str]]:
+    graph = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        name = ".".join(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+        name = name.removesuffix(".__init__")
+        graph[name] = {m for m, _ in _module_imports(path) if _is_module(m)} - {name}
+    return graph
+
+
+def _circles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Each circle of imports found by a depth-first walk, as the modules on it."""
+    circles: list[list[str]] = []
+    done: set[str] = set()
+
+    def visit(module: str, path: list[str]) -> None:
+        if module in path:
+            circles.append(path[path.index(module) :] + [module])
+            return
+        if module in done:
+            return
+        for other in sorted(graph.get(module, ())):
+            visit(other, [*path, module])
+        done.add(module)
+
+    for module in sorted(graph):
+        visit(module, [])
+    return circles
+
+
+def test_no_import_circle_even_through_imports_inside_functions():
+    """No module of the package reaches itself through the imports of others, counting
+    those made inside functions (a circle put off until a function runs is still one)."""
+    circles = _circles(_import_graph())
+    assert not circles, "\n".join(" -> ".join(c) for c in circles)
+
+
+def test_the_circle_check_sees_imports_inside_functions():
+    """The check counts an import inside a function, and not one for type checkers nor a
+    module's ``__getattr__`` (a moved name kept importable)."""
+    source = (
+        "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import impactcli.cli\n"
+        "def f():\n    from impactcli.io import table\n    return table\n"
+        "def __getattr__(name):\n    from impactcli import batch\n    return batch\n"
+    )
+    assert _imports(source, "impactcli.io.readers") == [("impactcli.io.table", 5)]
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
+    assert _circles(graph) == [["a", "b", "c", "a"]]
+
+
+#: What io/ may import outside itself: the library's errors, units, limits and output
+#: helpers, the batch layer of each table (its rows), and the data type a fit reads.
+IO_MAY_IMPORT = {
+    "impactcli.errors",
+    "impactcli.units",
+    "impactcli.limits",
+    "impactcli.output",
+    "impactcli.rows",
+    "impactcli.rows3d",
+    "impactcli.fit",
+}
+
+
+def test_io_reads_and_writes_and_reaches_the_physics_through_the_rows_layer():
+    """impactcli.io turns tables into arrays and back: every physics module it needs is
+    behind the batch layer (impactcli.rows, impactcli.rows3d), none imported directly."""
+    found = []
+    for path in sorted((PACKAGE / "io").glob("*.py")):
+        for module, line in _module_imports(path):
+            if module.startswith("impactcli.io") or module in IO_MAY_IMPORT:
+                continue
+            found.append(f"{path.relative_to(ROOT)}:{line} imports {module}")
+    assert not found, "\n".join(found)
+
+
+def _si_units() -> set[str]:
+    """The units of the results and options, as the library writes them."""
+    from impactcli.quantities import HISTORY_QUANTITIES, KINDS, summary_quantities
+
+    units = {q.unit for q in summary_quantities().values()}
+    units |= {q.unit for q in HISTORY_QUANTITIES.values()}
+    units |= {si for si, _ in KINDS.values()}
+    return units - {""}
+
+
+def test_the_command_line_keeps_no_table_of_units():
+    """A table of units or meanings of results (summary keys, history columns, the kinds of
+    an option's value) is the library's (impactcli.quantities), which the commands read: no
+    dict or set literal of the command line maps to or from three or more units."""
+    units = _si_units()
+    found = []
+    for path in sorted((PACKAGE / "cli").glob("*.py")):
+        for node in ast.parse(path.read_text()).body:
+            value = getattr(node, "value", None)
+            if not isinstance(value, (ast.Dict, ast.Set)):
+                continue
+            if isinstance(value, ast.Dict):
+                cells = [*value.keys, *value.values]
+            else:
+                cells = list(value.elts)
+            cells = [c.elts[0] if isinstance(c, ast.Tuple) and c.elts else c for c in cells]
+            named = [c.value for c in cells if isinstance(c, ast.Constant) and c.value in units]
+            if len(named) >= 3:
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno}: {named[:4]}")
+    assert not found, "\n".join(found)
+
+
+def test_every_result_has_its_unit_and_meaning_in_the_library():
+    from impactcli.impact import (
+        DAMPED_SUMMARY_KEYS,
+        ENERGY_SUMMARY_KEYS,
+        HISTORY_COLUMNS,
+        PLASTIC_SUMMARY_KEYS,
+    )
+    from impactcli.laws.registry import DAMPING_LAWS
+    from impactcli.quantities import HISTORY_QUANTITIES, summary_quantities
+
+    assert set(PLASTIC_SUMMARY_KEYS + ENERGY_SUMMARY_KEYS) <= set(summary_quantities())
+    for name, model in DAMPING_LAWS.items():
+        quantities = summary_quantities(name)
+        assert set(DAMPED_SUMMARY_KEYS) <= set(quantities)
+        (alpha,) = model.parameters
+        assert quantities["alpha"].unit == ("" if alpha.kind == "dimensionless" else alpha.unit)
+    assert tuple(HISTORY_QUANTITIES) == HISTORY_COLUMNS
+    assert all(q.description for q in HISTORY_QUANTITIES.values())
+
+
+#: The formulas of the physics: the command line asks the library functions that use them.
+PHYSICS_PRIMITIVES = {
+    "effective_mass", "effective_radius", "effective_modulus", "effective_properties",
+    "effective_shear_modulus", "hertz_stiffness", "first_yield_velocity",
+    "first_yield_velocities", "total_mass", "sphere_mass", "sphere_compliance",
+    "split_fractions", "kinetic_energy", "damping_for_restitution", "make_damping_law",
+}  # fmt: skip
+
+
+def test_the_command_line_computes_no_physics():
+    """A command parses, calls the library and formats: no module of cli/ imports the
+    formulas of a pair's effective properties, stiffness, first yield, masses or energy
+    (the library functions it calls use them)."""
+    found = []
+    for path in sorted((PACKAGE / "cli").glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom):
+                names = {a.name for a in node.names} & PHYSICS_PRIMITIVES
+                found += [f"{path.relative_to(ROOT)}:{node.lineno} {n}" for n in sorted(names)]
+    assert not found, "\n".join(found)

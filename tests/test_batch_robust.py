@@ -318,7 +318,7 @@ def test_dask_engine_reads_malformed_lines_as_the_numpy_engine(batch, tmp_path, 
 
 
 def test_dask_quoted_line_break_across_blocks_is_two_rows(dask_dataframe):
-    from impactcli.io.table import dask_csv_block
+    from impactcli.io.partitions import dask_csv_block
 
     names = HEADER.decode().strip().split(",")
     data = HEADER + GOOD + b'"two\nlines",20mm,40mm,1,0,elastic,steel\n' + GOOD

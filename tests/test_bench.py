@@ -1,5 +1,5 @@
 """``make bench`` (benchmarks/bench.py): its baselines integrate the laws FILM solves, and
-its table goes into the README and the docs' copy. Nothing here times anything."""
+its table goes into the site's benchmarks page. Nothing here times anything."""
 
 from __future__ import annotations
 
@@ -30,18 +30,20 @@ def _block(text: str) -> str:
     return text.split("<!-- bench:start -->\n", 1)[1].split("<!-- bench:end -->", 1)[0]
 
 
-def test_the_table_goes_into_the_readme_and_the_docs_copy(bench, tmp_path):
-    """make bench README=1 (--readme README.md) writes both tables, so that they stay the
-    same (tests/test_docs.py)."""
-    (tmp_path / "docs" / "about").mkdir(parents=True)
-    shutil.copy(ROOT / "README.md", tmp_path / "README.md")
-    shutil.copy(ROOT / "docs" / "about" / "benchmarks.md", tmp_path / "docs" / "about")
-    written = bench.update_readme(tmp_path / "README.md", "the new table")
-    assert written == [tmp_path / "README.md", tmp_path / "docs" / "about" / "benchmarks.md"]
-    for page in written:
-        assert _block(page.read_text()) == "the new table\n"
-    readme, page = (ROOT / "README.md").read_text(), written[0].read_text()
-    assert page.split("<!-- bench:start -->")[0] == readme.split("<!-- bench:start -->")[0]
+def test_the_table_goes_into_the_benchmarks_page(bench, tmp_path):
+    """make bench WRITE=1 (--page docs/about/benchmarks.md) replaces the table between the
+    markers and leaves the rest of the page as it was; a page without them is refused."""
+    assert bench.PAGE == Path("docs") / "about" / "benchmarks.md"
+    page = tmp_path / "benchmarks.md"
+    shutil.copy(ROOT / bench.PAGE, page)
+    assert bench.update_page(page, "the new table") == page
+    assert _block(page.read_text()) == "the new table\n"
+    original, text = (ROOT / bench.PAGE).read_text(), page.read_text()
+    assert text.startswith(original.split("<!-- bench:start -->")[0])
+    assert text.endswith(original.split("<!-- bench:end -->")[1])
+    (tmp_path / "other.md").write_text("# no table here\n")
+    with pytest.raises(SystemExit, match="no <!-- bench:start -->"):
+        bench.update_page(tmp_path / "other.md", "the new table")
 
 
 def test_every_undamped_law_has_its_case_and_its_baseline_integrates_it(bench):

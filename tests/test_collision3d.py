@@ -696,7 +696,7 @@ def _chung_ooi_script():
 
 
 def test_chung_ooi_figure_curves_hold_the_closed_forms():
-    """The README's benchmark figure: its rigid curves are the closed forms (gross slip,
+    """The oblique guide's benchmark figure: its rigid curves are the closed forms (gross slip,
     stick, v_t'/v_t = 5/7 below tan(theta) = 7 mu), for both tests and materials, and the
     figure draws exactly those numbers."""
     pytest.importorskip("matplotlib")

@@ -234,7 +234,7 @@ def test_callers_build_contact_models_from_the_pair():
     import impactcli
 
     package = Path(impactcli.__file__).parent
-    for name in ("fit.py", "compare.py", "collision3d.py", "io/collisions3d.py",
+    for name in ("fit.py", "compare.py", "collision3d.py", "io/collisions3d.py", "rows3d.py",
                  "cli/impact_cmd.py", "impact.py"):  # fmt: skip
         source = (package / name).read_text()
         assert "hertz_stiffness" not in source, name

@@ -2,7 +2,7 @@
 
 FILM of a damping model of the registry, scaled from K = m = V0 = 1, is FILM of every
 impact with the same ``similar_alpha``; the tables (impactcli/data, made by
-``python -m impactcli.damped_similar --regenerate``) give FILM's summary at n = 400 to
+``python -m impactcli.damped_similar_build --regenerate``) give FILM's summary at n = 400 to
 1e-12 (relative; the energy dissipated below 1e-2 m V0^2 absolute, as FILM's own rounding).
 """
 
@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import impactcli.damping as damping
-from impactcli import damped_similar
+from impactcli import damped_similar, damped_similar_build
 from impactcli.damping import (
     SUMMARY_KEYS,
     damping_for_restitution,
@@ -23,7 +23,7 @@ from impactcli.model import DAMPED_DEFAULT_N
 
 MODELS = tuple(damped_similar._models())
 RULES = ("overlap", "force")
-FLOOR = np.array([damped_similar._FLOOR.get(key, 1e-300) for key in SUMMARY_KEYS])
+FLOOR = np.array([damped_similar_build._FLOOR.get(key, 1e-300) for key in SUMMARY_KEYS])
 
 
 def _film(name: str, alphas, rule: str, n: int = 400) -> np.ndarray:
@@ -88,7 +88,7 @@ def test_tables_match_film_at_random_parameters(name, rule):
 
 @pytest.mark.slow
 def test_tables_match_film_everywhere():
-    assert damped_similar.check(count=200, seed=3, log=lambda *_: None) < 1e-12
+    assert damped_similar_build.check(count=200, seed=3, log=lambda *_: None) < 1e-12
 
 
 @pytest.mark.parametrize("name", MODELS)
@@ -101,12 +101,12 @@ def test_stored_pieces_are_regenerated_from_film(name):
         stored = tables[name, table]
         pieces = stored.coef.shape[0]
         outputs = damped_similar.OUTPUTS[table]
-        floor = np.array([damped_similar._FLOOR.get(k, 1e-300) for k in outputs])
+        floor = np.array([damped_similar_build._FLOOR.get(k, 1e-300) for k in outputs])
         for p in (0, pieces // 2, pieces - 1):
             edges, upper, root = (
                 stored.edges[p : p + 2], stored.upper[p : p + 1], stored.root[p : p + 1]
             )  # fmt: skip
-            coef = damped_similar._coefficients(
+            coef = damped_similar_build._coefficients(
                 name, table, edges, upper, root, damped_similar.POINTS
             )
             again = damped_similar._Table(edges, upper, root, coef, damped_similar.OUTPUTS[table])
@@ -116,7 +116,7 @@ def test_stored_pieces_are_regenerated_from_film(name):
             assert np.max(error) < 1e-12, (table, p, error)
     turns = np.unique(tables[name, "load"].upper)[[0, 10, -1]]
     h = 1.25**0.4 / damped_similar.TABLE_N
-    d_max = damped_similar._loading_summary(name, turns)[:, 0]
+    d_max = damped_similar_build._loading_summary(name, turns)[:, 0]
     np.testing.assert_allclose(d_max / h, np.round(d_max / h), rtol=0, atol=1e-11)
 
 

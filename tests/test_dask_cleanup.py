@@ -56,7 +56,7 @@ def _end(proc: subprocess.Popen) -> None:
 # signal in the middle of sending a partition. The module is put on the workers' path.
 _HALF_SEND = '''
 import multiprocessing, os, struct, time
-import impactcli.io.table as table
+import impactcli.io.partitions as table
 
 
 def block(*args, **kwargs):

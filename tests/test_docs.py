@@ -3,11 +3,14 @@
 ``make docs`` builds the site with warnings as errors (CI runs it); these tests hold what
 the build cannot see: every public name has an API page with numpydoc sections and units,
 every law module a page, every command a section of the CLI reference, each gallery script
-runs, the README's tables and the pages' copies agree, and CITATION.cff names this version.
+runs, each table the tests recompute is on one page only, and CITATION.cff names this
+version.
 """
 
 from __future__ import annotations
 
+import ast
+import importlib
 import inspect
 import re
 import runpy
@@ -38,10 +41,57 @@ def autosummary_entries(page: Path) -> list[str]:
     return names
 
 
+#: The functions of the task modules on the API reference (listed there as ``module.name``
+#: after the names of ``impactcli.__all__``), by their full dotted names.
+TASK_FUNCTIONS = [
+    f"impactcli.{n}" for n in autosummary_entries(DOCS / "reference" / "api.rst") if "." in n
+]
+
+
+def _resolve(name: str):
+    """``impactcli.NAME`` or, for a dotted name, the attribute of its module."""
+    if "." not in name:
+        return getattr(impactcli, name)
+    module, _, attribute = name.rpartition(".")
+    return getattr(importlib.import_module(module), attribute)
+
+
 def test_every_public_name_has_a_page_in_the_api_reference():
     listed = autosummary_entries(DOCS / "reference" / "api.rst")
-    assert sorted(listed) == sorted(impactcli.__all__)
+    assert sorted(n for n in listed if "." not in n) == sorted(impactcli.__all__)
     assert len(listed) == len(set(listed))
+    assert TASK_FUNCTIONS and all(n.startswith("impactcli.") for n in TASK_FUNCTIONS)
+
+
+def _imported_names(code: str) -> list[tuple[str, str]]:
+    """(module, name) of each ``from impactcli... import name`` of a block of Python."""
+    found = []
+    for node in ast.walk(ast.parse(code)):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("impactcli"):
+            found += [(node.module, alias.name) for alias in node.names]
+    return found
+
+
+def test_every_name_the_readme_the_guide_and_the_gallery_import_has_a_reference_page():
+    """A name the README, Getting started, a guide page or a gallery script imports from
+    impactcli is one of ``impactcli.__all__`` (under any module that defines it) or a
+    task-module function of the API reference: what the pages teach, the reference
+    documents."""
+    from tests.test_readme import code_blocks
+
+    pages = [ROOT / "README.md", DOCS / "getting-started.md", *sorted(DOCS.glob("guide/*.md"))]
+    public = {id(getattr(impactcli, name)) for name in impactcli.__all__}
+    imported = set()
+    for page in pages:
+        for lang, _, body in code_blocks(page.read_text()):
+            if lang == "python":
+                imported.update(_imported_names("\n".join(body)))
+    for script in EXAMPLES:
+        imported.update(_imported_names(script.read_text()))
+    assert len(imported) > 20
+    for module, name in sorted(imported):
+        thing = _resolve(f"{module}.{name}")
+        assert id(thing) in public or f"{module}.{name}" in TASK_FUNCTIONS, (module, name)
 
 
 def test_every_law_module_has_a_page():
@@ -92,9 +142,9 @@ QUANTITIES = {
 UNIT = re.compile(r"\[(-|m|m/s|kg|Pa|s|s/m|rad/s|kg/m\^3|kg m\^2|N|J)\]")
 
 
-@pytest.mark.parametrize("name", impactcli.__all__)
+@pytest.mark.parametrize("name", [*impactcli.__all__, *TASK_FUNCTIONS])
 def test_each_public_name_has_numpydoc_parameters_with_units_returns_and_examples(name):
-    thing = getattr(impactcli, name)
+    thing = _resolve(name)
     sections = numpydoc_sections(inspect.getdoc(thing) or "")
     assert "Examples" in sections and ">>> " in sections["Examples"], name
     # a result type documents its fields as Attributes
@@ -194,9 +244,10 @@ def test_each_gallery_script_runs_and_draws(script, monkeypatch):
     assert any(isinstance(value, Figure) for value in scope.values()), script.name
 
 
-# -- copies of the README's checked tables --------------------------------------------------
+# -- the checked tables, each on one page ----------------------------------------------------
 
-#: Marked blocks that the README's tests recompute, and the page that holds a copy.
+#: Marked blocks that tests recompute (or ``make bench WRITE=1`` writes), and the one page
+#: that holds each (the README, which held them all once, links to these pages).
 COPIES = {
     ("<!-- damping-tables:start -->", "<!-- damping-tables:end -->"): "guide/damping.md",
     ("<!-- law-restitution-table -->", "<!-- /law-restitution-table -->"): "guide/elastoplastic.md",
@@ -211,13 +262,14 @@ def _block(text: str, start: str, end: str) -> str | None:
 
 
 @pytest.mark.parametrize("markers,page", COPIES.items(), ids=list(COPIES.values()))
-def test_a_page_holds_the_readmes_checked_table_as_it_is(markers, page):
-    """While the README holds a table its tests recompute, the page's copy is the same."""
-    copy = _block((DOCS / page).read_text(), *markers)
-    assert copy is not None, page
-    original = _block((ROOT / "README.md").read_text(), *markers)
-    if original is not None:
-        assert copy == original, page
+def test_each_checked_table_is_on_its_page_and_nowhere_else(markers, page):
+    """The page holds the table its tests recompute; no other page and not the README holds
+    a copy that could drift from it."""
+    assert _block((DOCS / page).read_text(), *markers), page
+    others = [ROOT / "README.md", *(p for p in DOCS.rglob("*.md") if p != DOCS / page)]
+    for other in others:
+        if "_build" not in other.parts:
+            assert markers[0] not in other.read_text(), other
 
 
 # -- how to cite ------------------------------------------------------------------------------
@@ -239,13 +291,10 @@ def _layout_block(text: str) -> str:
     return text[start : text.index("```\n", start)]
 
 
-def test_the_layout_names_every_module_and_the_site_keeps_the_readmes_copy():
-    """README's '## Layout' and docs/about/layout.md hold the same block, and it names every
-    module and package of impactcli (a package's modules by their own line or its line)."""
-    readme = (ROOT / "README.md").read_text()
-    section = readme[readme.index("## Layout\n") :]
-    block = _layout_block(section)
-    assert block == _layout_block((DOCS / "about" / "layout.md").read_text())
+def test_the_layout_names_every_module():
+    """docs/about/layout.md (once the README's '## Layout') names every module and package
+    of impactcli (a package's modules by their own line or its line)."""
+    block = _layout_block((DOCS / "about" / "layout.md").read_text())
     package = ROOT / "impactcli"
     named = set()
     folder = None

@@ -101,8 +101,8 @@ def test_a_damped_model_runs_in_blocks_of_velocities(monkeypatch):
     """The damped laws' model ran the damped FILM on all data points at once (data x n
     values, 600 bytes each: 6 GB at the limit of 10^7); it runs blocks of about
     DAMPED_BLOCK values, with the numbers of one block to the last bits."""
-    import impactcli.batch
     import impactcli.damping
+    import impactcli.limits
     from impactcli.fit import law_model
 
     v0 = np.linspace(0.2, 3.0, 17)
@@ -116,8 +116,35 @@ def test_a_damped_model_runs_in_blocks_of_velocities(monkeypatch):
         return solve(law, v, *args, **kwargs)
 
     monkeypatch.setattr(impactcli.damping, "solve_damped_impact", counted)
-    monkeypatch.setattr(impactcli.batch, "DAMPED_BLOCK", 5 * 51)  # n = 50: 5 points a block
+    monkeypatch.setattr(impactcli.limits, "DAMPED_BLOCK", 5 * 51)  # n = 50: 5 points a block
     blocked = model({"alpha": 0.3}, v0)
     assert sizes == [5, 5, 5, 2]
     for key in ("restitution", "contact_time"):
         np.testing.assert_allclose(blocked[key], whole[key], rtol=1e-13)
+
+
+def test_the_curves_of_a_fit_figure_pass_through_its_points():
+    # Noisy, weighted data: the band's centre at a measured V0 is the fit's prediction
+    # there, the residuals are e_i minus it, and sigma_i sqrt(w_i) is the same s for every
+    # point, with s^2 the reduced chi-square of the weighted residuals.
+    from impactcli.fit import fit_curves
+
+    truth = du_wang({"sy": 1.0e9}, V0)["restitution"]
+    e = truth + np.random.default_rng(5).normal(0.0, 0.003, V0.size)
+    weight = np.linspace(1.0, 4.0, V0.size)
+    data = validate_fit_data(V0, np.minimum(e, 1.0), weight=weight)
+    fit = fit_law("du-wang", du_wang, data, [FitParameter("sy", "Pa", 8e8, 1e6, 1e12)])
+    (curve,), error = fit_curves(data, [(fit, du_wang, {})], fit)
+    grid = curve["impact_velocity"]
+    assert np.all(np.diff(grid) > 0) and np.all(np.isin(V0, grid))
+    assert grid[0] == V0.min() and grid[-1] == V0.max()
+    at_points = np.searchsorted(grid, V0)
+    np.testing.assert_allclose(curve["restitution"][at_points], du_wang(
+        {"sy": fit.values[0]}, V0)["restitution"], rtol=1e-12)  # fmt: skip
+    residuals = data.restitution - curve["restitution"][at_points]
+    np.testing.assert_allclose(curve["residuals"], residuals, rtol=0, atol=1e-12)
+    s2 = np.sum(weight * residuals**2) / (V0.size - 1)  # one fitted parameter
+    np.testing.assert_allclose(error * np.sqrt(weight), np.sqrt(s2), rtol=1e-6)
+    assert np.all(curve["lower"][at_points] < curve["restitution"][at_points])
+    unweighted = validate_fit_data(V0, np.minimum(e, 1.0))
+    assert fit_curves(unweighted, [(fit, du_wang, {})], fit)[1] is None

@@ -244,7 +244,7 @@ def _hostile(value) -> list:
 
 def _public_api() -> dict[str, tuple]:
     """name -> (function, valid keyword arguments, the numbers its result must not hold
-    as NaN): the functions exported by ``impactcli`` and those the README shows, and the
+    as NaN): the functions exported by ``impactcli`` and those the guide shows, and the
     entry points the CLI commands call."""
     from impactcli import (
         Material,

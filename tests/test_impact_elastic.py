@@ -104,7 +104,7 @@ def test_paper_4_1_convergence_figures():
     # Its 2.94089 (n = 3) and 2.94252 (n = 5) are twice the loading time: with the chord
     # stiffer than the curve, FILM's restitution is shorter than its loading, so the two
     # differ at small n (2.93794 and 2.94180 for the contact duration), and 2 t_max would
-    # print 2.94326 at n = 25. See also tests/test_tables.py and the README.
+    # print 2.94326 at n = 25. See also tests/test_tables.py and docs/guide/elastic.md.
     s1, s2 = steel_pair()
     v0 = 0.0125
     out = elastic_impact(s1, s2, 5e-3, 7.5e-3, n=25).summary

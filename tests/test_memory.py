@@ -1,8 +1,9 @@
-"""Memory is bounded by a stated block size, whatever the input (README, "Limits on sizes").
+"""Memory is bounded by a stated block size, whatever the input (docs/about/guarantees.md,
+"Limits on sizes and memory").
 
 Each command runs in a new process on an input 10 times larger than its block, and its
 peak resident set (``ru_maxrss`` of the child, measured by a wrapper process of its own)
-stays under the bound the README states. Before the blocks, the same inputs took: damped
+stays under the bound that page states. Before the blocks, the same inputs took: damped
 batch rows at n = 1,000, 0.9 GB (linear in rows); ``collide3d --rows --tangential
 mindlin --points 40001``, 1.7 GB; ``collide3d --rows --damping``, linear in rows; a curve
 file of 1,000,000 points, 0.5 GB; ``--curve /dev/zero``, all the memory there was.
@@ -27,7 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 pytestmark = pytest.mark.slow
 
-#: Peak resident set of each command below at 10 blocks, [MB]: the README's bound.
+#: Peak resident set of each command below at 10 blocks, [MB]: the stated bound.
 BOUND_MB = 400
 
 _WRAPPER = """
@@ -180,7 +181,7 @@ def test_a_curve_at_its_point_limit_stays_in_the_bound_and_one_more_is_refused(t
     _curve(tmp_path / "curve.csv", MAX_CURVE_POINTS)
     status, peak, err = _peak(["elastic", *SPHERES, "--curve", "curve.csv"], tmp_path)
     assert status == 0, err
-    assert peak < 100  # the README: 0.08 GB
+    assert peak < 100  # the stated 0.08 GB
     with open(tmp_path / "more.csv", "w") as more:  # the same and one point further
         more.write((tmp_path / "curve.csv").read_text() + "3e-4,56637999.3\n")
     status, _, err = _peak(["elastic", *SPHERES, "--curve", "more.csv"], tmp_path)
@@ -203,7 +204,10 @@ def test_an_endless_curve_file_is_refused_in_bounded_memory(tmp_path, option):
     assert peak < BOUND_MB
 
 
-# -- the README's figures at the limits, checked at a tenth of each limit --------------------
+# -- the stated figures at the limits, checked at a tenth of each limit ---------------------
+
+#: The page that states the limits and the memory measured at each.
+GUARANTEES = ROOT / "docs" / "about" / "guarantees.md"
 
 PAPER = ["--d1", "20mm", "--d2", "40mm", "--v1", "0.25m/s", "--v2", "0.75m/s", "--material",
          "steel"]  # fmt: skip
@@ -229,13 +233,12 @@ CHUNG_OOI = ["--d1", "5mm", "--E1", "380GPa", "--nu1", "0.23", "--rho1", "4000",
     ids=["elastoplastic-n", "elastic-n", "tables-n", "convergence-n", "elastic-points",
          "damped-n", "compare-laws-n", "collide3d-points"],  # fmt: skip
 )
-def test_the_readme_memory_figure_at_a_tenth_of_the_limit(tmp_path, args, figure_gb):
+def test_the_stated_memory_figure_at_a_tenth_of_the_limit(tmp_path, args, figure_gb):
     """Memory grows linearly with --n and --points: at a tenth of the limit (10^6; laws x n
     of compare-laws: its two default laws at n = 5 x 10^5) the peak is the interpreter's
-    own plus a tenth of the rest of the README's figure at the limit (10^7, measured once
+    own plus a tenth of the rest of the stated figure at the limit (10^7, measured once
     with /usr/bin/time: 6.5, 4.4, 2.6, 2.1, 3.5, 5.7, 1.7, 2.1 GB), within 20 %."""
-    readme = (ROOT / "README.md").read_text()
-    assert f"{figure_gb} GB" in readme
+    assert f"{figure_gb} GB" in GUARANTEES.read_text()
     status, base, err = _peak(["elastic", *PAPER], tmp_path)  # the interpreter and modules
     assert status == 0, err
     status, peak, err = _peak(args, tmp_path)
@@ -244,10 +247,10 @@ def test_the_readme_memory_figure_at_a_tenth_of_the_limit(tmp_path, args, figure
     assert peak == pytest.approx(expected, rel=0.2)
 
 
-def test_the_readme_memory_figure_of_a_restitution_sweep_at_its_limit(tmp_path):
+def test_the_stated_memory_figure_of_a_restitution_sweep_at_its_limit(tmp_path):
     """--count x --n at its limit, 10^7 (10^6 velocities of 10 segments, in blocks): the
-    README's 0.20 GB, within 10 % (0.55 GB before the blocks)."""
-    assert "| 10,000,000 | 0.20 GB" in (ROOT / "README.md").read_text()
+    stated 0.20 GB, within 10 % (0.55 GB before the blocks)."""
+    assert "| 10,000,000 | 0.20 GB" in GUARANTEES.read_text()
     status, peak, err = _peak(
         ["restitution", *PAPER[:4], *PAPER[8:], "--v-min", "0.05m/s", "--v-max", "2.5m/s",
          "--count", "1000000", "--n", "10", "-o", "r.csv"],
@@ -257,10 +260,10 @@ def test_the_readme_memory_figure_of_a_restitution_sweep_at_its_limit(tmp_path):
     assert peak == pytest.approx(0.20 * 1024, rel=0.1)
 
 
-def test_the_readme_memory_figure_of_a_fit_at_its_limit(tmp_path):
-    """A fit at its limits: 100,000 data rows x n = 100 (10^7): the README's 0.09 GB, within
+def test_the_stated_memory_figure_of_a_fit_at_its_limit(tmp_path):
+    """A fit at its limits: 100,000 data rows x n = 100 (10^7): the stated 0.09 GB, within
     20 %; one more segment is refused."""
-    assert "| 10,000,000 | 0.09 GB" in (ROOT / "README.md").read_text()
+    assert "| 10,000,000 | 0.09 GB" in GUARANTEES.read_text()
     rng = np.random.default_rng(7)
     v0 = np.linspace(0.5, 3.0, 100_000)
     e = 0.9 - 0.05 * v0 + rng.normal(0.0, 0.01, v0.size)

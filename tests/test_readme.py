@@ -1,7 +1,8 @@
 """The README and the documentation pages work verbatim: every shell command in their code
-blocks runs as written.
+blocks runs as written, and the README's outputs are what its commands print.
 
-The pages are README.md and every Markdown page of the site (docs/**/*.md). Each command of
+The pages are README.md and every Markdown page of the site (docs/**/*.md): the README
+holds the first steps and links into the site, whose pages hold the rest. Each command of
 a ```sh block runs in bash, in order, in one scratch directory whose PATH
 starts with an ``impact`` that is this interpreter's ``python -m impactcli`` (with this
 checkout importable), as after ``make run`` and ``source .venv/bin/activate``; the scratch
@@ -157,25 +158,36 @@ def _environment(work: Path) -> dict[str, str]:
 
 
 def test_the_readme_starts_with_make_run_and_make_test():
+    """The README's two commands; its test command is the one CI runs (.ci/run)."""
     assert [command.split("#")[0].strip() for _, command in COMMANDS[:2]] == [
         "make run", "make test"
     ]  # fmt: skip
+    assert re.search(r"^make test\s*$", (ROOT / ".ci" / "run").read_text(), re.M)
 
 
 def test_commands_were_found():
-    """The extraction sees the README's commands (guards against a silent empty list)."""
-    assert len(COMMANDS) > 20
-    assert any(c.startswith("impact collide2d") and "--paper-angles" in c for _, c in COMMANDS)
+    """The extraction sees the commands of the README and the pages (guards against a
+    silent empty list)."""
+    commands = [c for _, _, block in SHELL_BLOCKS for _, c in block]
+    assert len(commands) > 20 and len(COMMANDS) >= 5
+    assert any(c.startswith("impact collide2d") and "--paper-angles" in c for c in commands)
+    assert any(c.startswith("impact compare-laws") for _, c in COMMANDS)
 
 
-def test_make_bench_leaves_the_readme_alone_unless_asked():
+def test_make_bench_writes_the_benchmarks_page_only_when_asked():
+    """``make bench WRITE=1`` (or its former spelling README=1) writes the table into the
+    site's benchmarks page, which the README links to; ``make bench`` writes nothing."""
     if shutil.which("make") is None:
         pytest.skip("no make")
-    plain = subprocess.run(["make", "-n", "-C", str(ROOT), "bench"], capture_output=True,
-                           text=True, check=True).stdout  # fmt: skip
-    asked = subprocess.run(["make", "-n", "-C", str(ROOT), "bench", "README=1"],
-                           capture_output=True, text=True, check=True).stdout  # fmt: skip
-    assert "--readme" not in plain and "--readme README.md" in asked
+
+    def dry_run(*variables: str) -> str:
+        return subprocess.run(["make", "-n", "-C", str(ROOT), "bench", *variables],
+                              capture_output=True, text=True, check=True).stdout  # fmt: skip
+
+    assert "--page" not in dry_run()
+    for variable in ("WRITE=1", "README=1"):
+        assert "--page docs/about/benchmarks.md" in dry_run(variable)
+    assert "](docs/about/benchmarks.md)" in TEXT
 
 
 def run_readme_command(workdir: Path, line: int, command: str, page: str = "README") -> str | None:
@@ -327,12 +339,12 @@ def test_each_input_is_made_before_a_command_reads_it(page):
         assert not twice, f"{page_name(page)} block at line {start} writes {twice} twice"
 
 
-def test_the_readme_and_the_batch_page_make_their_tables():
-    """The README's and the batch guide's blocks make the tables their commands read."""
-    for page in (README, DOCS / "guide" / "batch.md"):
-        made = {w for _, commands in shell_blocks(page.read_text()) for _, c in commands
-                for w in _files(c)[1]}  # fmt: skip
-        assert {"collisions.csv", "collisions.parquet"} <= made, page_name(page)
+def test_the_batch_page_makes_its_tables():
+    """The batch guide's blocks make the tables its commands read."""
+    page = DOCS / "guide" / "batch.md"
+    made = {w for _, commands in shell_blocks(page.read_text()) for _, c in commands
+            for w in _files(c)[1]}  # fmt: skip
+    assert {"collisions.csv", "collisions.parquet"} <= made, page_name(page)
 
 
 def test_the_pages_have_blocks_to_run():
@@ -342,3 +354,80 @@ def test_the_pages_have_blocks_to_run():
     assert {"docs/getting-started.md", "docs/guide/elastic.md", "docs/guide/batch.md"} <= names
     assert sum(page != "README" for page, _, _ in SHELL_BLOCKS) > 20
     assert sum(page != "README" for page, _, _ in PYTHON_BLOCKS) > 8
+
+
+# -- the README: short, its outputs the commands', its links into the site ---------------------
+
+#: The README stays a front page: what the tool does, the first steps, links into the site.
+README_MAX_LINES = 250
+
+
+def readme_outputs(text: str) -> list[tuple[int, str, str]]:
+    """(line, command, output) for each ```sh block of one command that a ```text block,
+    the output it prints, follows directly."""
+    blocks = code_blocks(text)
+    found = []
+    for (lang, start, body), (after, out_start, output) in zip(blocks, blocks[1:]):
+        if lang == "sh" and after == "text" and out_start == start + len(body) + 3:
+            ((line, command),) = [c for _, commands in shell_blocks("\n".join(
+                ["```sh", *body, "```"])) for c in commands]  # fmt: skip
+            found.append((start + line - 2, command, "\n".join(output)))
+    return found
+
+
+README_OUTPUTS = readme_outputs(TEXT)
+
+
+def test_the_readme_is_a_front_page():
+    """Under 250 lines, with a first example from the command line (its output shown) and
+    one from Python, and a picture that ``make run`` draws."""
+    assert len(TEXT.splitlines()) < README_MAX_LINES
+    assert README_OUTPUTS and any(lang == "python" for lang, _, _ in code_blocks(TEXT))
+    pictures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", TEXT)
+    assert pictures
+    makefile = (ROOT / "Makefile").read_text()
+    for picture in pictures:
+        assert (ROOT / picture).is_file() and picture in makefile, picture
+
+
+@pytest.mark.parametrize("line,command,output", README_OUTPUTS,
+                         ids=[f"README:line{n}" for n, _, _ in README_OUTPUTS])  # fmt: skip
+def test_the_readmes_outputs_are_what_its_commands_print(line, command, output, tmp_path):
+    """The output the README shows under a command is what the command prints (stdout and
+    stderr as a reader sees them, at 100 columns as the pages' commands run here), trailing
+    spaces aside."""
+    if "--plot" in command and not _has("matplotlib"):
+        pytest.skip("needs matplotlib")
+    sys.path.insert(0, str(DOCS / "_ext"))
+    try:
+        from impact_cli_text import run_command
+    finally:
+        sys.path.remove(str(DOCS / "_ext"))
+    words = shlex.split(command, comments=True)
+    assert words[0] == "impact", f"README line {line}"
+    status, printed = run_command(words[1:], 100, cwd=str(tmp_path))
+    assert status == 0, f"README line {line}: {printed}"
+    shown = [row.rstrip() for row in printed.rstrip().splitlines()]
+    assert shown == [row.rstrip() for row in output.rstrip().splitlines()], f"README line {line}"
+
+
+def test_the_readme_links_into_the_site():
+    """Each relative link of the README names a file of the checkout, and the task table
+    links every page of the user guide."""
+    links = re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", TEXT)
+    local = [link for link in links if "://" not in link]
+    for link in local:
+        assert (ROOT / link).exists(), link
+    guide = sorted((DOCS / "guide").glob("*.md"))
+    for page in guide:
+        if page.stem != "index":
+            assert f"](docs/guide/{page.name})" in TEXT, page.name
+    for page in (
+        "docs/getting-started.md",
+        "docs/about/guarantees.md",
+        "docs/about/cite.md",
+        "docs/reference/api.rst",
+        "docs/reference/cli.rst",
+        "CITATION.cff",
+    ):
+        assert f"]({page})" in TEXT, page

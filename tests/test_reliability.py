@@ -1,9 +1,9 @@
 """How every run ends: signals, write failures, broken pipes, permissions, size limits,
 numerical warnings, and a fuzz over every command's options.
 
-The promise (README, "What a run keeps and what it cleans up"): a run ends with exit status
-0, 2 (one line on stderr, no traceback) or 128 + a signal number; it writes all of its
-files or none; it leaves no temporary file and no child process behind.
+The promise (docs/about/guarantees.md, "What a run keeps and what it cleans up"): a run
+ends with exit status 0, 2 (one line on stderr, no traceback) or 128 + a signal number; it
+writes all of its files or none; it leaves no temporary file and no child process behind.
 """
 
 from __future__ import annotations

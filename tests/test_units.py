@@ -28,7 +28,7 @@ from impactcli.units import (
 NUMBERS = ("1", "20", "-2.5", "+2", ".5", "3.", "1e-3", "7.8E+3", "-4.25e2", "0")
 #: Between number and unit.
 SEPARATORS = ("", " ", "  ")
-#: Unit expressions of the kinds the options take, written in the ways the README allows.
+#: Unit expressions of the kinds the options take, written in the ways the guide allows.
 EXPRESSIONS = (
     "m/s", "mm/s", "km/h", "ft/s", "mm/ms", "um/us", "µm/µs", "μm/μs", "in/min", "mi/h",
     "kg/m^3", "kg/m**3", "kg m^-3", "kg*m^-3", "kg·m^-3", "kg/m³", "g/cm^3", "g/cc", "g/mL",

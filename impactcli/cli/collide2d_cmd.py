@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import IO, Optional
 
@@ -18,12 +19,15 @@ from impactcli.cli.common import (
     quantity_table,
     resolve_format,
     save_plot,
+    warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
+from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
 from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.spheres import SphereOptions
 from impactcli.validation import check_restitution
 
 #: --e of impact collide2d and collide3d: a given e (impact elastic's --e is a target).
@@ -40,89 +44,99 @@ CONVENTIONS = {
 }
 
 
+#: The sphere options of collide2d (the masses are --m1, --m2) and how it uses them.
+SPHERE_HELPS = {
+    "d1": "Diameter of sphere 1 [m]: needed by --law, --model elastoplastic and --damping "
+    "(which run the normal impact), and to draw the spheres and to check the advice of an "
+    "elastic impact.",
+    "d2": "Diameter of sphere 2 [m], as --d1; 'inf' is a flat target.",
+    "material": "Material of both spheres (see 'impact materials'), as --d1.",
+    "material1": "Material of sphere 1.",
+    "material2": "Material of sphere 2.",
+    "sy": "Yield strength of both spheres [Pa] (of an elastoplastic law).",
+}
+
+
+#: The options of collide2d (the sphere, law and damping options are added by their
+#: decorators).
+M1_OPTION = typer.Option(..., "--m1", help="Mass of sphere 1, e.g. 50g or 0.05 (kg).")
+M2_OPTION = typer.Option(..., "--m2", help="Mass of sphere 2, e.g. 0.15kg.")
+V1_OPTION = typer.Option(
+    ...,
+    "--v1",
+    metavar="X,Y|SPEED@ANGLE",
+    help="Velocity of sphere 1 before the impact [m/s]: components x,y (--v1 2.598,-1.5, "
+    "or '2.598m/s,-1.5m/s'), or a speed and its direction SPEED@ANGLE, as impact "
+    "collide3d writes it (--v1 3m/s@-30deg): ANGLE counter-clockwise from +x (clockwise, "
+    "the paper's alpha_1, with --paper-angles), a bare angle in degrees. (impact "
+    "collide3d's angle is from the normal, as a 3-D impact has no +x of its own.)",
+)
+A1_OPTION = typer.Option(
+    None,
+    "--a1",
+    metavar="ANGLE",
+    help="Deprecated (goes in 0.3): the direction of a speed --v1; write "
+    "--v1 SPEED@ANGLE.",
+)
+V2_OPTION = typer.Option(
+    "0,0",
+    "--v2",
+    metavar="X,Y|SPEED@ANGLE",
+    help="Velocity of sphere 2 [m/s], as --v1; ANGLE counter-clockwise from +x (also the "
+    "paper's alpha_2); at rest by default.",
+)
+A2_OPTION = typer.Option(
+    None,
+    "--a2",
+    metavar="ANGLE",
+    help="Deprecated (goes in 0.3): the direction of a speed --v2; write "
+    "--v2 SPEED@ANGLE.",
+)
+P1_OPTION = typer.Option(
+    ...,
+    "--p1",
+    help="Centre of sphere 1 at contact, x,y (m, or with units: '-1m,2m'). Write "
+    "--p1=-1,2 when x is negative.",
+)
+P2_OPTION = typer.Option(..., "--p2", help="Centre of sphere 2 at contact, x,y.")
+MODEL_OPTION = typer.Option(
+    None,
+    "--model",
+    help=f"Normal law when --law is not given: elastic ({ELASTIC_LAW}, e = 1, the default) "
+    f"or elastoplastic ({DEFAULT_LAW}: e from its FILM run at the normal approach "
+    "velocity; needs --d1, --d2, a material and what the law needs).",
+)
+E_OPTION = typer.Option(
+    None,
+    "--e",
+    help=f"Coefficient of restitution 0 <= e <= 1 {E_GIVEN_HELP}",
+)
+PAPER_ANGLES_OPTION = typer.Option(
+    False,
+    "--paper-angles",
+    help="Read the angle of --v1 and print theta_2 and phi clockwise, as the paper does "
+    "(alpha_2 and theta_1 stay counter-clockwise), to reproduce sec. 4.5.3 as printed.",
+)
+
+
+@with_sphere_options(names=tuple(SPHERE_HELPS), helps=SPHERE_HELPS)
 @with_law_options(default=f"{ELASTIC_LAW}, e = 1; {DEFAULT_LAW} with --model elastoplastic")
 @with_damping_options(target_e=False)  # collide2d's --e is a given e, not a target of alpha
 def collide2d(
-    m1: str = typer.Option(..., "--m1", help="Mass of sphere 1, e.g. 50g or 0.05 (kg)."),
-    m2: str = typer.Option(..., "--m2", help="Mass of sphere 2, e.g. 0.15kg."),
-    v1: str = typer.Option(
-        ...,
-        "--v1",
-        metavar="X,Y|SPEED@ANGLE",
-        help="Velocity of sphere 1 before the impact [m/s]: components x,y (--v1 2.598,-1.5, "
-        "or '2.598m/s,-1.5m/s'), or a speed and its direction SPEED@ANGLE, as impact "
-        "collide3d writes it (--v1 3m/s@-30deg): ANGLE counter-clockwise from +x (clockwise, "
-        "the paper's alpha_1, with --paper-angles), a bare angle in degrees. (impact "
-        "collide3d's angle is from the normal, as a 3-D impact has no +x of its own.)",
-    ),
-    a1: Optional[str] = typer.Option(
-        None,
-        "--a1",
-        metavar="ANGLE",
-        help="Deprecated (goes in 0.3): the direction of a speed --v1; write "
-        "--v1 SPEED@ANGLE.",
-    ),
-    v2: str = typer.Option(
-        "0,0",
-        "--v2",
-        metavar="X,Y|SPEED@ANGLE",
-        help="Velocity of sphere 2 [m/s], as --v1; ANGLE counter-clockwise from +x (also the "
-        "paper's alpha_2); at rest by default.",
-    ),
-    a2: Optional[str] = typer.Option(
-        None,
-        "--a2",
-        metavar="ANGLE",
-        help="Deprecated (goes in 0.3): the direction of a speed --v2; write "
-        "--v2 SPEED@ANGLE.",
-    ),
-    p1: str = typer.Option(
-        ...,
-        "--p1",
-        help="Centre of sphere 1 at contact, x,y (m, or with units: '-1m,2m'). Write "
-        "--p1=-1,2 when x is negative.",
-    ),
-    p2: str = typer.Option(..., "--p2", help="Centre of sphere 2 at contact, x,y."),
-    model: Optional[Model] = typer.Option(
-        None,
-        "--model",
-        help=f"Normal law when --law is not given: elastic ({ELASTIC_LAW}, e = 1, the default) "
-        f"or elastoplastic ({DEFAULT_LAW}: e from its FILM run at the normal approach "
-        "velocity; needs --d1, --d2, a material and what the law needs).",
-    ),
+    m1: str = M1_OPTION,
+    m2: str = M2_OPTION,
+    v1: str = V1_OPTION,
+    a1: Optional[str] = A1_OPTION,
+    v2: str = V2_OPTION,
+    a2: Optional[str] = A2_OPTION,
+    p1: str = P1_OPTION,
+    p2: str = P2_OPTION,
+    model: Optional[Model] = MODEL_OPTION,
     law: LawOptions = None,
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
-    d1: Optional[str] = typer.Option(
-        None,
-        "--d1",
-        help="Diameter of sphere 1 [m]: needed by --law, --model elastoplastic and --damping "
-        "(which run the normal impact), and to draw the spheres and to check the advice of "
-        "an elastic impact.",
-    ),
-    d2: Optional[str] = typer.Option(
-        None, "--d2", help="Diameter of sphere 2 [m], as --d1; 'inf' is a flat target."
-    ),
-    material: Optional[str] = typer.Option(
-        None,
-        "--material",
-        help="Material of both spheres (see 'impact materials'), as --d1.",
-    ),
-    material1: Optional[str] = typer.Option(None, "--material1", help="Material of sphere 1."),
-    material2: Optional[str] = typer.Option(None, "--material2", help="Material of sphere 2."),
-    sy: Optional[str] = typer.Option(
-        None, "--sy", help="Yield strength of both spheres [Pa] (of an elastoplastic law)."
-    ),
-    e: Optional[float] = typer.Option(
-        None,
-        "--e",
-        help=f"Coefficient of restitution 0 <= e <= 1 {E_GIVEN_HELP}",
-    ),
-    paper_angles: bool = typer.Option(
-        False,
-        "--paper-angles",
-        help="Read the angle of --v1 and print theta_2 and phi clockwise, as the paper does "
-        "(alpha_2 and theta_1 stay counter-clockwise), to reproduce sec. 4.5.3 as printed.",
-    ),
+    spheres: SphereOptions = None,  # type: ignore[assignment]  # --d1, --d2, --material, ...
+    e: Optional[float] = E_OPTION,
+    paper_angles: bool = PAPER_ANGLES_OPTION,
     fmt: OutputFormat = None,
     output: OutputFile = None,
     plot: PlotFile = None,
@@ -161,26 +175,58 @@ def collide2d(
     """
     import numpy as np
 
-    from impactcli.collision2d import (
-        PAPER_ANGLE_SIGN,
-        approach_velocity,
-        check_contact_distance,
-        collision_summary,
-        oblique_collision,
-    )
-    from impactcli.impact import ContactModel
-    from impactcli.spheres import SphereOptions, check_options, spheres_from_options
-    from impactcli.units import parse_vector
+    from impactcli.collision2d import PAPER_ANGLE_SIGN, collision_summary, sphere_collision_2d
+    from impactcli.spheres import check_options
 
     check_plot(plot, output)
     sign = PAPER_ANGLE_SIGN if paper_angles else dict.fromkeys(PAPER_ANGLE_SIGN, 1.0)
-    mass1 = _mass(m1, "--m1")
-    mass2 = _mass(m2, "--m2")
-    spheres = SphereOptions(
-        d1=d1, d2=d2, material=material, material1=material1, material2=material2,
-        m1=mass1, m2=mass2, sy=sy,
-    )  # fmt: skip
+    masses = (_mass(m1, "--m1"), _mass(m2, "--m2"))
+    spheres = dataclasses.replace(spheres, m1=masses[0], m2=masses[1])
     check_options(spheres)  # every option given is checked, used or not
+    motion, inputs = _motion((v1, a1, v2, a2, p1, p2), sign, paper_angles)
+    radii = _radii(spheres, motion)
+    chosen, normal, model_name, which = _normal_law(law, model, damping, e)
+    pair = _spheres(spheres, motion, normal, which)
+    try:  # the spheres must approach along the line of centres
+        words = (NORMAL_VELOCITY, ELASTOPLASTIC_ADVICE)
+        result = sphere_collision_2d(masses, motion, normal, pair, words)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    for message in result.warnings:  # the normal impact's, as a Python caller gets them
+        warn(message)
+    restitution = float(result.restitution)
+    summary = collision_summary(result, sign)
+    inputs = {"m1": masses[0], "m2": masses[1], **inputs, "model": model_name,
+              "restitution": restitution,
+              "angle_convention": CONVENTIONS[paper_angles]}  # fmt: skip
+    if chosen is not None:
+        from impactcli.cli.law_options import law_inputs
+        from impactcli.impact import weaker_yield_strength
+        from impactcli.spheres import spheres_from_options
+
+        inputs.update(law_inputs(chosen, weaker_yield_strength(*spheres_from_options(spheres))))
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.csv:
+            write_csv(stream, tuple(summary), [((), np.array([list(summary.values())]))])
+        elif kind is Format.json:
+            write_json(stream, {"inputs": inputs, "summary": summary})
+        else:
+            _print_tables(
+                stream if output not in (None, "-") else None, inputs, summary, paper_angles
+            )
+    if plot:
+        _plot(plot, result, motion, radii, model_name, restitution)
+
+
+def _motion(
+    texts: tuple[str, str | None, str, str | None, str, str], sign: dict, paper_angles: bool
+) -> tuple[dict[str, tuple[float, float]], dict[str, float]]:
+    """The velocities and the centres at contact from --v1, --a1, --v2, --a2, --p1, --p2
+    (SI), and their inputs as the output reports them (components, speed, angle)."""
+    from impactcli.units import parse_vector
+
+    v1, a1, v2, a2, p1, p2 = texts
     vel1, speed1, angle1 = _velocity(v1, a1, "--v1", "--a1", sign["alpha_1"], paper_angles)
     vel2, speed2, angle2 = _velocity(v2, a2, "--v2", "--a2", sign["alpha_2"], paper_angles)
     pos1 = parse_vector(p1, "length", "--p1")
@@ -190,12 +236,21 @@ def collide2d(
             f"--p1 and --p2 coincide at {_pair(pos1)} m: the centres at contact must differ "
             "to give the line of centres"
         )
-    radii = _radii(spheres)
-    if radii is not None:
-        try:
-            check_contact_distance(pos1, pos2, *radii)
-        except ValueError as exc:
-            raise InputError(f"--p1, --p2, --d1, --d2: {exc}") from None
+    inputs = {
+        "v1_x": vel1[0], "v1_y": vel1[1], "v1_speed": speed1, "v1_angle": angle1,
+        "v2_x": vel2[0], "v2_y": vel2[1], "v2_speed": speed2, "v2_angle": angle2,
+        "p1_x": pos1[0], "p1_y": pos1[1], "p2_x": pos2[0], "p2_y": pos2[1],
+    }  # fmt: skip
+    return {"v1": vel1, "v2": vel2, "p1": pos1, "p2": pos2}, inputs
+
+
+def _normal_law(law: LawOptions, model: Model | None, damping: DampingOptions, e: float | None):
+    """(law choice or None, the normal law for :func:`impactcli.collision2d.
+    sphere_collision_2d`: a given e, a contact model or None for e = 1, its name in the
+    output, the option that runs a normal impact or None) from --law and its parameters,
+    --model, --damping and --e, with one line for each clash."""
+    from impactcli.impact import ContactModel
+
     if e is not None and model is not None:
         raise InputError("give either --model or --e, not both")
     damping_law, alpha, _, separation = damping.parse()
@@ -220,76 +275,41 @@ def collide2d(
             check_restitution(e, "--e")
         except ValueError as exc:
             raise InputError(str(exc)) from None
-        restitution, model_name = e, "given e"
-    elif chosen is not None:
-        kind = get_law(chosen.name).kind
-        restitution, model_name = 1.0, "elastic" if kind == "elastic" else "elastoplastic"
-    else:
-        restitution, model_name = 1.0, (model or Model.elastic).value
-    v_rel_n = float(approach_velocity(vel1, vel2, pos1, pos2))
-    contact = None
+        return None, e, "given e", None
     if chosen is not None:
-        contact = ContactModel(chosen.name, chosen.params)
-    elif damping_law is not None:
+        kind = get_law(chosen.name).kind
+        name = "elastic" if kind == "elastic" else "elastoplastic"
+        which = "--law" if law.names or law.given else "--model elastoplastic"
+        return chosen, ContactModel(chosen.name, chosen.params), name, which
+    name = (model or Model.elastic).value
+    if damping_law is not None:
         contact = ContactModel(damping=damping_law, alpha=alpha, separation=separation)
-        model_name = f"{model_name} with {damping_law} damping (alpha = {alpha:g})"
-    if contact is not None and v_rel_n > 0.0:
-        if d1 is None or d2 is None or (material is None and None in (material1, material2)):
-            which = (
-                "--damping" if damping_law is not None
-                else "--law" if law.names or law.given
-                else "--model elastoplastic"
-            )  # fmt: skip
-            raise InputError(
-                f"{which} needs --d1, --d2 and --material (or --material1/--material2)"
-            )
+        return None, contact, f"{name} with {damping_law} damping (alpha = {alpha:g})", "--damping"
+    return None, None, name, None
+
+
+def _spheres(spheres: SphereOptions, motion: dict, normal, which: str | None):
+    """The two spheres the normal impact needs (a contact model: ``which`` names the option
+    that asks for it) or that give the advice of an elastic impact (e = 1: when all are
+    known), when the spheres approach; else None."""
+    from impactcli.collision2d import approach_velocity
+    from impactcli.spheres import spheres_from_options
+
+    if isinstance(normal, float) or not approach_velocity(*motion.values()) > 0.0:
+        return None
+    if normal is None:  # Hertz, e = 1: its advice when the spheres are known
         try:
-            restitution = _normal_restitution(v_rel_n, contact, *spheres_from_options(spheres))
-        except ValueError as exc:
-            raise InputError(str(exc)) from None
-    elif e is None and v_rel_n > 0.0:  # Hertz, e = 1: its advice when the spheres are known
-        _elastic_advice(v_rel_n, spheres)
-    try:  # the spheres must approach along the line of centres
-        result = oblique_collision(mass1, mass2, vel1, vel2, pos1, pos2, restitution)
+            return spheres_from_options(spheres)
+        except InputError:  # the spheres are not all given: e = 1 needs only the masses
+            return None
+    if spheres.d1 is None or spheres.d2 is None or (
+        spheres.material is None and None in (spheres.material1, spheres.material2)
+    ):
+        raise InputError(f"{which} needs --d1, --d2 and --material (or --material1/--material2)")
+    try:
+        return spheres_from_options(spheres)
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    summary = collision_summary(result, sign)
-    inputs = {
-        "m1": mass1,
-        "m2": mass2,
-        "v1_x": vel1[0],
-        "v1_y": vel1[1],
-        "v1_speed": speed1,
-        "v1_angle": angle1,
-        "v2_x": vel2[0],
-        "v2_y": vel2[1],
-        "v2_speed": speed2,
-        "v2_angle": angle2,
-        "p1_x": pos1[0],
-        "p1_y": pos1[1],
-        "p2_x": pos2[0],
-        "p2_y": pos2[1],
-        "model": model_name,
-        "restitution": restitution,
-        "angle_convention": CONVENTIONS[paper_angles],
-    }
-    if chosen is not None:
-        from impactcli.cli.law_options import law_inputs
-        from impactcli.impact import weaker_yield_strength
-
-        inputs.update(law_inputs(chosen, weaker_yield_strength(*spheres_from_options(spheres))))
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            write_csv(stream, tuple(summary), [((), np.array([list(summary.values())]))])
-        elif kind is Format.json:
-            write_json(stream, {"inputs": inputs, "summary": summary})
-        else:
-            _print_tables(
-                stream if output not in (None, "-") else None, inputs, summary, paper_angles
-            )
-    if plot:
-        _plot(plot, result, vel1, vel2, pos1, pos2, radii, model_name, restitution)
 
 
 #: What the warnings of collide2d call the normal impact's velocity, and what they advise.
@@ -297,49 +317,11 @@ NORMAL_VELOCITY = "the approach velocity (v1 - v2).n"
 ELASTOPLASTIC_ADVICE = "--model elastoplastic (or --law)"
 
 
-def _normal_restitution(normal_velocity: float, model, sphere1, sphere2) -> float:
-    """e of the normal impact at the approach velocity (v1 - v2).n [m/s] under the contact
-    model ``model`` (:class:`~impactcli.impact.ContactModel`): the FILM run, sphere 2 at
-    rest; its warnings (first yield of Hertz, damped or not; a contact radius beyond 0.1 R)
-    as impact collide3d gives them."""
-    from impactcli.impact import solve_impact
-    from impactcli.laws.registry import get_law
-
-    result = solve_impact(sphere1, sphere2, normal_velocity, 0.0, model)
-    elastic = model.damping is not None or get_law(model.law).name == ELASTIC_LAW
-    _warn_all(normal_velocity, result.summary["delta_max"], elastic, sphere1, sphere2)
-    return float(result.summary["restitution"])
-
-
-def _elastic_advice(normal_velocity: float, spheres) -> None:
-    """The warnings of the elastic (Hertz, e = 1) normal impact when the spheres are known
-    (--d1, --d2 and their materials): above the first-yield velocity, a contact radius
-    beyond 0.1 R, as impact elastic gives them for the same normal impact."""
-    from impactcli.impact import solve_impact
-    from impactcli.spheres import spheres_from_options
-
-    try:
-        sphere1, sphere2 = spheres_from_options(spheres)
-    except InputError:  # the spheres are not all given: e = 1 needs only the masses
-        return
-    result = solve_impact(sphere1, sphere2, normal_velocity, 0.0)
-    _warn_all(normal_velocity, result.summary["delta_max"], True, sphere1, sphere2)
-
-
-def _warn_all(normal_velocity: float, delta_max: float, elastic: bool, sphere1, sphere2) -> None:
-    from impactcli.cli.common import warn
-    from impactcli.collision3d import normal_law_warnings
-
-    for message in normal_law_warnings(
-        sphere1, sphere2, normal_velocity, delta_max, elastic, NORMAL_VELOCITY,
-        ELASTOPLASTIC_ADVICE,
-    ):  # fmt: skip
-        warn(message)
-
-
-def _radii(spheres) -> tuple[float, float] | None:
+def _radii(spheres: SphereOptions, motion: dict) -> tuple[float, float] | None:
     """(R1, R2) [m] to draw the spheres: when both diameters are given and finite (a flat
-    target, ``inf``, is not drawn). The diameters were checked by ``check_options``."""
+    target, ``inf``, is not drawn), the centres then checked to be at contact. The
+    diameters were checked by ``check_options``."""
+    from impactcli.collision2d import check_contact_distance
     from impactcli.units import parse_quantity
 
     if spheres.d1 is None or spheres.d2 is None:
@@ -348,20 +330,24 @@ def _radii(spheres) -> tuple[float, float] | None:
     d2 = parse_quantity(spheres.d2, "length", "--d2", allow_inf=True)
     if not math.isfinite(d2):
         return None
+    try:
+        check_contact_distance(motion["p1"], motion["p2"], d1 / 2.0, d2 / 2.0)
+    except ValueError as exc:
+        raise InputError(f"--p1, --p2, --d1, --d2: {exc}") from None
     return d1 / 2.0, d2 / 2.0
 
 
-def _plot(path: str, c, vel1, vel2, pos1, pos2, radii, model: str, e: float) -> None:
+def _plot(path: str, c, motion: dict, radii, model: str, e: float) -> None:
     """The before/after velocity diagram of :func:`impactcli.plots.collision2d_figure`."""
     from impactcli.plots import collision2d_figure
 
     fig = collision2d_figure(
-        vel1,
-        vel2,
+        motion["v1"],
+        motion["v2"],
         c.v1_final,
         c.v2_final,
-        pos1,
-        pos2,
+        motion["p1"],
+        motion["p2"],
         radii=radii,
         masses=(float(c.m1), float(c.m2)),
         title=f"Oblique collision ({model}, e = {e:.6g}); angles counter-clockwise from +x",
@@ -408,8 +394,6 @@ def _velocity(
                 f"{name}: expected x,y or SPEED@ANGLE (e.g. 3m/s@30deg), got {text}@{angle}"
             )
     elif angle is not None:
-        from impactcli.cli.common import warn
-
         warn(
             f"{angle_name} is deprecated (it goes in 0.3): write {name} {text}@{angle}, the "
             "notation of impact collide3d"

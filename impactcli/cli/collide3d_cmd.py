@@ -73,93 +73,110 @@ VELOCITY_HELP = (
 )
 
 
+#: The options of collide3d (the sphere, law and damping options are added by their
+#: decorators).
+V1_OPTION = typer.Option(
+    None,
+    "--v1",
+    metavar="X,Y,Z|SPEED@THETA[@PHI]",
+    help="Velocity of sphere 1 before the impact: " + VELOCITY_HELP,
+)
+V2_OPTION = typer.Option(
+    "0,0,0",
+    "--v2",
+    metavar="X,Y,Z|SPEED@THETA[@PHI]",
+    help="Velocity of sphere 2, as --v1; at rest by default.",
+)
+W1_OPTION = typer.Option(
+    "0,0,0",
+    "--w1",
+    help="Angular velocity of sphere 1, x,y,z: rad/s (a bare number), rpm, deg/s, 1/s; "
+    "e.g. --w1 100rad/s,0,0 or --w1 0,0,600rpm.",
+)
+W2_OPTION = typer.Option(
+    "0,0,0",
+    "--w2",
+    metavar="X,Y,Z",
+    help="Angular velocity of sphere 2, as --w1 (0 for a flat target).",
+)
+P1_OPTION = typer.Option(
+    None, "--p1", help="Centre of sphere 1 at contact, x,y,z (m). Write --p1=-1,0,0 when x < 0."
+)
+P2_OPTION = typer.Option(
+    None,
+    "--p2",
+    help="Centre of sphere 2 at contact, x,y,z: with --mu > 0, |p2 - p1| = (d1 + d2)/2 "
+    "within 1e-6 of it; for a flat target (--d2 inf) a point on the side of the plane, "
+    "p2 - p1 giving the normal.",
+)
+MODEL_OPTION = typer.Option(
+    None,
+    "--model",
+    help=f"Normal law when --law is not given: elastic ({ELASTIC_LAW}, e = 1, the default) or "
+    f"elastoplastic ({DEFAULT_LAW}; needs a yield strength).",
+)
+E_OPTION = typer.Option(
+    None,
+    "--e",
+    help=f"Coefficient of restitution 0 <= e <= 1 (--tangential rigid only) {E_GIVEN_HELP}",
+)
+MU_OPTION = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0.")
+TANGENTIAL_OPTION = typer.Option(
+    Tangential.rigid,
+    "--tangential",
+    help="rigid: impulse model, stick or gross slip (Brach; Stronge). mindlin: tangential "
+    "spring k_t = 8 G* a with Coulomb slip over the FILM normal history (Thornton, "
+    "Cummins & Cleary 2011).",
+)
+POINTS_OPTION = typer.Option(
+    4001,
+    "--points",
+    help=f"Time points of the normal history for --tangential mindlin, 3 to {MAX_POINTS:,} "
+    "(impact elastic's --points, 201, are the points of its history table).",
+)
+ROWS_OPTION = typer.Option(
+    None,
+    "--rows",
+    metavar="TABLE",
+    help="Many collisions: a CSV or Parquet table, one collision per row (columns p1_x, "
+    "p1_y, p1_z, p2_*, v1_*, optional v2_*, w1_*, w2_*, mu, e; the sphere columns of "
+    "impact batch); writes its columns and the results (-o OUT.csv or .parquet, else "
+    "stdout as CSV); a bad row gets its reason in the error column.",
+)
+PLOT_FORCE_OPTION = typer.Option(
+    None,
+    "--plot-force",
+    metavar="FILE",
+    help="With --tangential mindlin: draw the tangential force history and its Coulomb "
+    "limit mu F_n to FILE (.png, .svg or .pdf).",
+)
+
+
 @with_law_options(default=f"{ELASTIC_LAW}, e = 1; {DEFAULT_LAW} with --model elastoplastic")
 @with_sphere_options(velocities=False)
 @with_damping_options(target_e=False)  # collide3d's --e is a given e, not a target of alpha
 def collide3d(
-    v1: Optional[str] = typer.Option(
-        None,
-        "--v1",
-        metavar="X,Y,Z|SPEED@THETA[@PHI]",
-        help="Velocity of sphere 1 before the impact: " + VELOCITY_HELP,
-    ),
-    v2: str = typer.Option(
-        "0,0,0",
-        "--v2",
-        metavar="X,Y,Z|SPEED@THETA[@PHI]",
-        help="Velocity of sphere 2, as --v1; at rest by default.",
-    ),
-    w1: str = typer.Option(
-        "0,0,0",
-        "--w1",
-        help="Angular velocity of sphere 1, x,y,z: rad/s (a bare number), rpm, deg/s, 1/s; "
-        "e.g. --w1 100rad/s,0,0 or --w1 0,0,600rpm.",
-    ),
-    w2: str = typer.Option(
-        "0,0,0",
-        "--w2",
-        metavar="X,Y,Z",
-        help="Angular velocity of sphere 2, as --w1 (0 for a flat target).",
-    ),
-    p1: Optional[str] = typer.Option(
-        None, "--p1", help="Centre of sphere 1 at contact, x,y,z (m). Write --p1=-1,0,0 when x < 0."
-    ),
-    p2: Optional[str] = typer.Option(
-        None,
-        "--p2",
-        help="Centre of sphere 2 at contact, x,y,z: with --mu > 0, |p2 - p1| = (d1 + d2)/2 "
-        "within 1e-6 of it; for a flat target (--d2 inf) a point on the side of the plane, "
-        "p2 - p1 giving the normal.",
-    ),
+    v1: Optional[str] = V1_OPTION,
+    v2: str = V2_OPTION,
+    w1: str = W1_OPTION,
+    w2: str = W2_OPTION,
+    p1: Optional[str] = P1_OPTION,
+    p2: Optional[str] = P2_OPTION,
     spheres: SphereOptions = None,  # type: ignore[assignment]  # the shared sphere options
     law: LawOptions = None,  # type: ignore[assignment]  # --law and the law parameters
-    model: Optional[Model] = typer.Option(
-        None,
-        "--model",
-        help=f"Normal law when --law is not given: elastic ({ELASTIC_LAW}, e = 1, the default) or "
-        f"elastoplastic ({DEFAULT_LAW}; needs a yield strength).",
-    ),
+    model: Optional[Model] = MODEL_OPTION,
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
-    e: Optional[float] = typer.Option(
-        None,
-        "--e",
-        help=f"Coefficient of restitution 0 <= e <= 1 (--tangential rigid only) {E_GIVEN_HELP}",
-    ),
-    mu: float = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0."),
-    tangential: Tangential = typer.Option(
-        Tangential.rigid,
-        "--tangential",
-        help="rigid: impulse model, stick or gross slip (Brach; Stronge). mindlin: tangential "
-        "spring k_t = 8 G* a with Coulomb slip over the FILM normal history (Thornton, "
-        "Cummins & Cleary 2011).",
-    ),
-    points: int = typer.Option(
-        4001,
-        "--points",
-        help=f"Time points of the normal history for --tangential mindlin, 3 to {MAX_POINTS:,} "
-        "(impact elastic's --points, 201, are the points of its history table).",
-    ),
-    rows: Optional[str] = typer.Option(
-        None,
-        "--rows",
-        metavar="TABLE",
-        help="Many collisions: a CSV or Parquet table, one collision per row (columns p1_x, "
-        "p1_y, p1_z, p2_*, v1_*, optional v2_*, w1_*, w2_*, mu, e; the sphere columns of "
-        "impact batch); writes its columns and the results (-o OUT.csv or .parquet, else "
-        "stdout as CSV); a bad row gets its reason in the error column.",
-    ),
+    e: Optional[float] = E_OPTION,
+    mu: float = MU_OPTION,
+    tangential: Tangential = TANGENTIAL_OPTION,
+    points: int = POINTS_OPTION,
+    rows: Optional[str] = ROWS_OPTION,
     fmt: Annotated[
         Optional[Collide3dFormat], typer.Option("--format", "-f", help=FORMAT_3D_HELP)
     ] = None,
     output: OutputFile = None,
     plot: PlotFile = None,
-    plot_force: Optional[str] = typer.Option(
-        None,
-        "--plot-force",
-        metavar="FILE",
-        help="With --tangential mindlin: draw the tangential force history and its Coulomb "
-        "limit mu F_n to FILE (.png, .svg or .pdf).",
-    ),
+    plot_force: Optional[str] = PLOT_FORCE_OPTION,
 ) -> None:
     """Oblique 3-D collision of two rough, spinning spheres (or a sphere and a flat target).
 
@@ -192,7 +209,7 @@ def collide3d(
     before and after in the plane of the impact (horizontal: the initial slip direction t,
     vertical: n), projected on it; --plot-force the mindlin tangential force history.
     """
-    from impactcli.spheres import check_options, spheres_from_options
+    from impactcli.spheres import check_options
 
     try:
         check_friction(mu, "--mu")
@@ -220,33 +237,39 @@ def collide3d(
               damping=damping_law, alpha=alpha, separation=separation, restitution=e, mu=mu,
               tangential=tangential.value, points=points)  # fmt: skip
         return
-    for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2)):
-        if value is None:
+    texts = {"--v1": v1, "--v2": v2, "--w1": w1, "--w2": w2, "--p1": p1, "--p2": p2}
+    normal_law = (law_name, params, (damping_law, alpha, separation), e)
+    _one(spheres, texts, normal_law, (mu, tangential, points), (fmt, output, plot, plot_force))
+
+
+def _one(spheres: SphereOptions, texts: dict, normal_law: tuple, tangential_model: tuple,
+         outputs: tuple) -> None:  # fmt: skip
+    """One collision: its vectors read from the options' ``texts`` (--v1 ... --p2), solved
+    (:func:`_solve`) and written in the format asked, with its figures."""
+    fmt, output, plot, plot_force = outputs
+    for name in ("--v1", "--p1", "--p2"):
+        if texts[name] is None:
             raise InputError(f"missing {name} (or give --rows TABLE for many collisions)")
     if fmt is Collide3dFormat.parquet:
         raise InputError(
             "-f parquet writes the table of --rows; one collision is written as table, csv "
             "or json"
         )
+    from impactcli.spheres import spheres_from_options
     from impactcli.units import parse_vector3
 
-    positions = {
-        "--p1": parse_vector3(p1, "length", "--p1"),
-        "--p2": parse_vector3(p2, "length", "--p2"),
-    }
+    positions = {name: parse_vector3(texts[name], "length", name) for name in ("--p1", "--p2")}
     normal = _normal(*positions.values())
     vectors = {
-        "--v1": _velocity(v1, "--v1", normal),
-        "--v2": _velocity(v2, "--v2", normal),
-        "--w1": parse_vector3(w1, "angular_velocity", "--w1"),
-        "--w2": parse_vector3(w2, "angular_velocity", "--w2"),
+        "--v1": _velocity(texts["--v1"], "--v1", normal),
+        "--v2": _velocity(texts["--v2"], "--v2", normal),
+        "--w1": parse_vector3(texts["--w1"], "angular_velocity", "--w1"),
+        "--w2": parse_vector3(texts["--w2"], "angular_velocity", "--w2"),
         **positions,
     }
     s1, s2 = spheres_from_options(spheres)
-    result, summary, inputs, force, limit = _solve(
-        s1, s2, vectors, law_name, params, (damping_law, alpha, separation), e, mu, tangential,
-        points,
-    )  # fmt: skip
+    result, summary, inputs, force, limit = _solve(s1, s2, vectors, normal_law,
+                                                   tangential_model)  # fmt: skip
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
     kind = resolve_format(None if fmt is None else Format(fmt.value), output)
@@ -266,6 +289,8 @@ def collide3d(
         from impactcli.plots import tangential_force_figure
 
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
+
+
 
 
 def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
@@ -289,13 +314,14 @@ def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
 
 
 def _normal(p1, p2):
-    """The unit normal from sphere 1 to sphere 2 (a one-line error when p1 = p2)."""
-    import numpy as np
+    """The unit normal from sphere 1 to sphere 2 (:func:`impactcli.collision3d.
+    contact_normal`; a one-line error when p1 = p2)."""
+    from impactcli.collision3d import contact_normal
 
-    d = np.subtract(p2, p1)
-    if not np.any(d != 0.0):
-        raise InputError("--p1 and --p2 coincide: the centres at contact must differ")
-    return d / np.linalg.norm(d)
+    try:
+        return contact_normal(p1, p2)
+    except ValueError:
+        raise InputError("--p1 and --p2 coincide: the centres at contact must differ") from None
 
 
 def _velocity(text: str, name: str, normal) -> tuple[float, float, float]:
@@ -383,49 +409,22 @@ def _plot(path: str, c, inputs: dict) -> None:
     save_plot(fig, path)
 
 
-def _solve(s1, s2, vectors, law, params, damped, e, mu, tangential, points):
-    """The collision, its summary, inputs, mindlin force history and Coulomb limit;
-    ``damped`` is (damping law or None, alpha, separation rule)."""
-    import numpy as np
+def _solve(s1, s2, vectors: dict, normal_law: tuple, tangential_model: tuple):
+    """The collision (:func:`impactcli.collision3d.sphere_collision_3d`), its summary,
+    inputs, mindlin force history and Coulomb limit; ``normal_law`` is (law, its
+    parameters, (damping law or None, alpha, separation rule), given e or None),
+    ``tangential_model`` (mu, tangential model, history points)."""
+    from impactcli.collision3d import sphere_collision_3d
 
-    from impactcli.collision3d import (
-        effective_shear_modulus,
-        normal_restitution_and_history,
-        oblique_collision_3d,
-    )
-
-    v1, v2, w1, w2, p1, p2 = (np.array(x) for x in vectors.values())
-    n = _normal(p1, p2)
-    u_n = float(np.dot(v1 - v2, n))
-    if not u_n > 0.0:
-        raise InputError(
-            f"the spheres are not approaching along the line of centres: (v1 - v2).n = "
-            f"{u_n:.6g} m/s with n = ({n[0]:.6g}, {n[1]:.6g}, {n[2]:.6g}) from sphere 1 to "
-            "sphere 2 (an impact needs > 0)"
-        )
-    damping, alpha, separation = damped
+    law, params, (damping, alpha, separation), e = normal_law
+    mu, tangential, points = tangential_model
     mindlin = tangential is Tangential.mindlin
-    history = shear = None
+    motion = {k.lstrip("-"): v for k, v in vectors.items()}
+    normal = dict(law=law, params=params, damping=damping, alpha=alpha, separation=separation)
     try:
-        warned: tuple[str, ...] = ()
-        if e is None:
-            normal = normal_restitution_and_history(
-                s1, s2, u_n, law=law, params=params, damping=damping, alpha=alpha,
-                points=points if mindlin else None, separation=separation,
-            )  # fmt: skip
-            restitution, history = normal
-            warned = normal.warnings
-        else:
-            restitution = e
-        if mindlin:
-            shear = effective_shear_modulus(
-                s1.youngs_modulus, s1.poisson_ratio, s2.youngs_modulus, s2.poisson_ratio
-            )
-        result = oblique_collision_3d(
-            s1.total_mass, s2.total_mass, v1, v2, p1, p2, s1.diameter, s2.diameter, w1, w2,
-            restitution, mu, tangential.value, history=history, shear_modulus=shear,
-            warnings=warned,
-        )  # fmt: skip
+        result, history = sphere_collision_3d(
+            s1, s2, motion, normal, e, mu, tangential.value, points
+        )
     except ValueError as exc:
         raise InputError(str(exc)) from None
     limit = force = None

@@ -21,16 +21,17 @@ from impactcli.cli.common import (
     segments_option,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
-from impactcli.cli.impact_cmd import POINTS, SUMMARY_UNITS
+from impactcli.cli.impact_cmd import POINTS
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
 from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.quantities import summary_quantities
 from impactcli.spheres import SphereOptions
 
-#: Comparison key -> header on screen (SI units: :data:`~impactcli.cli.impact_cmd.
-#: SUMMARY_UNITS`); CSV and JSON have every key.
+#: Comparison key -> header on screen (SI units: :func:`impactcli.quantities.
+#: summary_quantities`); CSV and JSON have every key.
 COLUMNS = {
     "restitution": "e",
     "contact_time": "t_c",
@@ -197,7 +198,7 @@ def _print(stream: IO[str] | None, table: dict, v0: float, segments: dict[str, i
     out.add_column("law", no_wrap=True)
     columns = []
     for key, header in COLUMNS.items():  # one SI prefix per column
-        unit = SUMMARY_UNITS[key][0]
+        unit = summary_quantities()[key].unit
         values = [row[key] for row in table.values()]
         scale = unit_scale(values, unit) if unit else None
         out.add_column(

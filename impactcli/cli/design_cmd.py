@@ -139,9 +139,8 @@ def yield_limit(
     Example: impact yield-limit --d1 3mm --d2 inf --m2 inf --material1 aluminium
     --material2 steel --sphere 1
     """
-    from impactcli.design import first_yield_velocities, law_pressure_factor
+    from impactcli.design import law_pressure_factor, pair_first_yield_velocity
     from impactcli.formatting import format_quantity
-    from impactcli.impact import effective_properties
     from impactcli.spheres import spheres_from_options
 
     if fmt is LineFormat.text:
@@ -178,9 +177,7 @@ def yield_limit(
         "yield_strength": sigma,
     }
     if velocity is None:
-        m, r, e = effective_properties(s1, s2)
-        sy = [s1.yield_strength, s2.yield_strength]
-        limit = float(first_yield_velocities(m, r, e, *sy, pressure_factor=factor)[sphere - 1])
+        limit = pair_first_yield_velocity(s1, s2, sphere, pressure_factor=factor)
         doc.update(quantity="impact_velocity", value=limit, unit="m/s")
         line = (
             f"sphere {sphere} stays elastic up to V0 = {format_quantity(limit, 'm/s')} "
@@ -258,8 +255,7 @@ def timestep(
 
     Example: impact timestep --d1 2mm --material glass --v0 1m/s
     """
-    from impactcli.design import timestep_table
-    from impactcli.impact import effective_properties
+    from impactcli.design import pair_timestep_table
     from impactcli.spheres import spheres_from_options
 
     velocity = _speed(v0, "--v0")
@@ -270,21 +266,7 @@ def timestep(
     if all(options.get(k) is None for k in second):
         options = dataclasses.replace(options, **{k: options.get(k[:-1] + "1") for k in second})
     s1, s2 = spheres_from_options(options)
-    m, r, e = effective_properties(s1, s2)
-
-    def density(s) -> float:
-        return math.nan if s.density is None else s.density
-
-    table = timestep_table(
-        (s1.radius, s2.radius),
-        (s1.youngs_modulus, s2.youngs_modulus),
-        (s1.poisson_ratio, s2.poisson_ratio),
-        (density(s1), density(s2)),
-        m,
-        r,
-        e,
-        velocity,
-    )
+    table = pair_timestep_table(s1, s2, velocity)
     kind = resolve_format(fmt, output)
     with atomic_output(output) as stream:
         if kind is Format.json:

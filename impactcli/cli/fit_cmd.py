@@ -279,7 +279,12 @@ def _models(laws: list[str], dampings: list[str], accepted: Sequence[str]) -> li
                 f"give --damping {key}"
             )
         elif key not in accepted:
-            extra = " (it has no numeric parameter)" if key in LAWS else ""
+            extra = ""
+            if key in LAWS:  # a law without a fitting: why, from its declaration
+                numeric = any(p.kind not in ("file", "choice") for p in LAWS[key].parameters)
+                extra = " (its module declares no fitting)" if numeric else (
+                    " (it has no numeric parameter)"
+                )
             choices = [k for k in accepted if k not in _DAMPING_AS_LAW]
             raise InputError(
                 f"--law {name}: cannot fit this law{extra}; accepted: {', '.join(choices)} "
@@ -457,37 +462,26 @@ def _print_tables(stream: IO[str] | None, measured, fits, ranked, meaning: str =
 
 
 def _plot(path: str, measured, fits, ranked, s1, s2) -> None:
-    from impactcli.fit import prediction_band
+    from impactcli.fit import fit_curves
     from impactcli.formatting import format_quantity
     from impactcli.plots import fit_figure
 
-    v0 = measured.impact_velocity
-    lo, hi = float(v0.min()), float(v0.max())
-    grid = np.geomspace(lo, hi, 80) if hi > 3 * lo else np.linspace(lo, hi, 80)
-    grid = np.unique(np.concatenate([grid, v0]))
+    bands, error = fit_curves(measured, fits, ranked[0][0])
     curves = []
-    for result, model, held in fits:
-        band = prediction_band(result, model, grid, held)
+    for (result, _model, _held), band in zip(fits, bands):
         values = ", ".join(
             f"{_option_name(nm)} = {_shown(v, u)}"
             for nm, u, v in zip(result.names, result.units, result.values)
         )
-        curves.append(
-            {
-                "label": f"{result.law}" + (f" ({values})" if values else ""),
-                **band,
-                "residuals": measured.restitution - result.predicted["restitution"],
-            }
-        )
-    error = None
-    if measured.weight is not None:  # sigma_i = s / sqrt(w_i), s^2 of the best law
-        error = np.sqrt(ranked[0][0].reduced_chi_square / measured.weight)
+        curves.append({"label": f"{result.law}" + (f" ({values})" if values else ""), **band})
     d2 = "flat" if not np.isfinite(s2.diameter) else format_quantity(s2.diameter, "m")
     title = (
         f"Fit to {measured.size} points, D1 = {format_quantity(s1.diameter, 'm')}, "
         f"D2 = {d2}; bands: 95 % (delta method)"
     )
-    save_plot(fit_figure(v0, measured.restitution, curves, error=error, title=title), path)
+    fig = fit_figure(measured.impact_velocity, measured.restitution, curves, error=error,
+                     title=title)  # fmt: skip
+    save_plot(fig, path)
 
 
 def register(app: typer.Typer) -> None:

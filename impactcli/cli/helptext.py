@@ -26,27 +26,13 @@ from typing import Any
 
 from typer.core import TyperCommand
 
+from impactcli.quantities import kind_of_unit
+
 __all__ = ["HELP_WIDTH", "HelpCommand", "example_commands", "metavar_of"]
 
 #: Help wraps to the terminal width, up to this many columns (longer lines read badly).
 HELP_WIDTH = 120
 
-#: A unit written in an option's help ``[m/s]`` or ``(m/s, ...)`` -> the metavar.
-UNIT_METAVARS = {
-    "m": "LENGTH",
-    "mm": "LENGTH",
-    "m/s": "VELOCITY",
-    "Pa": "PRESSURE",
-    "kg": "MASS",
-    "kg/m^3": "DENSITY",
-    "s": "TIME",
-    "N": "FORCE",
-    "J": "ENERGY",
-    "deg": "ANGLE",
-    "rad": "ANGLE",
-    "rad/s": "RATE",
-    "-": "NUMBER",
-}
 #: The first words of an option's help -> the metavar, when no unit is written.
 WORD_METAVARS = (
     ("diameter", "LENGTH"),
@@ -100,8 +86,9 @@ def _metavar_from_help(text: str) -> str | None:
     if re.search(r"\bx,\s?y\b", text):
         return "X,Y"
     for unit in _UNIT.findall(text):
-        if unit in UNIT_METAVARS:
-            return UNIT_METAVARS[unit]
+        kind = kind_of_unit(unit)  # the kind a unit names: impactcli.quantities.KINDS
+        if kind is not None:
+            return kind
     lowered = text.lower()
     for words, metavar in WORD_METAVARS:
         if lowered.startswith(words) or re.match(rf"\w+ {re.escape(words)}\b", lowered):

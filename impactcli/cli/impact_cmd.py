@@ -39,6 +39,7 @@ from impactcli.errors import InputError
 from impactcli.laws.registry import CURVE_LAW, DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW
 from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.quantities import HISTORY_QUANTITIES, summary_quantities
 from impactcli.spheres import SphereOptions
 
 UNITS_HELP = "A bare number is SI; units may be given, e.g. 20mm, 7.5mm/s, 210GPa, 7800kg/m^3."
@@ -123,70 +124,11 @@ CURVE = Annotated[
 ]
 
 
-#: Summary key -> (SI unit, meaning). The screen shows each value with the SI prefix that
-#: suits it (17.13 mm, 727.6 nm); CSV and JSON stay in SI.
-SUMMARY_UNITS = {
-    "contact_time": ("s", "contact duration"),
-    "delta_max": ("m", "maximum total indentation"),
-    "force_max": ("N", "maximum contact force"),
-    "t_max": ("s", "time of maximum indentation"),
-    "v_cp": ("m/s", "contact-plane velocity (x-frame, sphere 1 moves +x)"),
-    "d1_final": ("m", "sphere 1 displacement at separation (toward sphere 2 +)"),
-    "d2_final": ("m", "sphere 2 displacement at separation (toward sphere 1 +)"),
-    "v1_final": ("m/s", "sphere 1 velocity at separation (toward sphere 2 +)"),
-    "v2_final": ("m/s", "sphere 2 velocity at separation (toward sphere 1 +)"),
-    "delta1_max": ("m", "maximum indentation of sphere 1"),
-    "delta2_max": ("m", "maximum indentation of sphere 2"),
-    "restitution": ("", "coefficient of restitution e"),
-    "effective_mass": ("kg", "m = (1/m1 + 1/m2)^-1"),
-    "effective_radius": ("m", "R = (1/R1 + 1/R2)^-1"),
-    "effective_modulus": ("Pa", "E* = [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1"),
-    "first_yield_velocity": ("m/s", "impact velocity at first yield (1.6 sigma_y)"),
-    "delta_y": ("m", "indentation at yield, Du & Wang"),
-    "yield_velocity": ("m/s", "yield velocity V_y, Du & Wang"),
-    "delta_res": ("m", "residual (permanent) total indentation"),
-    "delta1_res": ("m", "permanent indentation of sphere 1"),
-    "delta2_res": ("m", "permanent indentation of sphere 2"),
-    "energy_dissipated": ("J", "kinetic energy lost, (1/2) m V0^2 (1 - e^2)"),
-    "kinetic_energy1_initial": ("J", "kinetic energy, sphere 1, before"),
-    "kinetic_energy2_initial": ("J", "kinetic energy, sphere 2, before"),
-    "kinetic_energy1_final": ("J", "kinetic energy, sphere 1, after"),
-    "kinetic_energy2_final": ("J", "kinetic energy, sphere 2, after"),
-    "energy_dissipated1": ("J", "dissipated in sphere 1"),
-    "energy_dissipated2": ("J", "dissipated in sphere 2"),
-    "stored_share1": ("", "stored in sphere 1 at delta_max *"),
-    "stored_share2": ("", "stored in sphere 2 at delta_max *"),
-    "absorbed_share1": ("", "absorbed by sphere 1 at delta_max *"),
-    "absorbed_share2": ("", "absorbed by sphere 2 at delta_max *"),
-    "first_yield_velocity1": ("m/s", "first yield of sphere 1 (inf: none)"),
-    "first_yield_velocity2": ("m/s", "first yield of sphere 2 (inf: none)"),
-    "delta_separation": ("m", "total indentation where the contact ends (or is captured)"),
-    "stuck": ("", "the spheres stick: they do not part, e = 0"),
-    "sticking_velocity": ("m/s", "largest V0 at which the spheres stick"),
-    "pull_off_force": ("N", "pull-off force of the contact the impact leaves"),
-    "energy_adhesion": ("J", "energy taken by the adhesion (the neck)"),
-    "energy_adhesion1": ("J", "taken by the adhesion, sphere 1"),
-    "energy_adhesion2": ("J", "taken by the adhesion, sphere 2"),
-}
-
-#: Summary keys of a damped impact whose unit or meaning differ (or that are its own).
-DAMPED_SUMMARY_UNITS = {
-    "delta_separation": ("m", "total indentation at separation (0 for --separation overlap)"),
-    "alpha": ("", "damping parameter alpha (unit: the damping model's)"),
-    "energy_dissipated": ("J", "energy dissipated by damping, integral of c delta'^2 dt"),
-    "energy_stored": ("J", "elastic energy left in the contact at separation"),
-}
-
-
 def _summary_units(result) -> dict[str, tuple[str, str]]:
-    """Unit and meaning of each summary key of ``result``."""
-    if _damped_title(result) is None:
-        return SUMMARY_UNITS
-    units = {**SUMMARY_UNITS, **DAMPED_SUMMARY_UNITS}
-    (alpha,) = result.law.parameters
-    unit = "" if alpha.kind == "dimensionless" else alpha.unit
-    units["alpha"] = (unit, f"damping parameter alpha of {result.law.label} damping")
-    return units
+    """Unit and meaning of each summary key of ``result`` (:mod:`impactcli.quantities`).
+    The screen shows each value with the SI prefix that suits it (17.13 mm, 727.6 nm); CSV
+    and JSON stay in SI."""
+    return summary_quantities(None if result.law is None else result.law.name)
 
 
 def _damped_title(result) -> str | None:
@@ -331,8 +273,9 @@ def _run(
         title = f"Energy partition, split {split.value}: " + _case_title(
             result, spheres, method, law
         )
-        relative = 0.5 * result.summary["effective_mass"] * result.impact_velocity**2
-        fig = energy_figure(history, title, summary=result.summary, relative_energy=relative)
+        fig = energy_figure(
+            history, title, summary=result.summary, relative_energy=result.relative_energy
+        )
         save_plot(fig, energy_plot)
 
 
@@ -399,24 +342,6 @@ def _check(result, history: dict) -> tuple[dict[str, float], dict]:
     return out, (film if result.method == "ode" else ode)
 
 
-HISTORY_UNITS = {
-    "t": "s",
-    "delta": "m",
-    "delta_dot": "m/s",
-    "force": "N",
-    "d1": "m",
-    "d2": "m",
-    "v1": "m/s",
-    "v2": "m/s",
-    "delta1": "m",
-    "delta2": "m",
-    "delta1_dot": "m/s",
-    "delta2_dot": "m/s",
-    "p1": "kg m/s",
-    "p2": "kg m/s",
-}
-
-
 #: The compact history's columns by quantity kind: one SI prefix per kind, so that v1 and
 #: v2 (and delta, d1, d2) read in the same unit.
 HISTORY_KINDS = (("t",), ("delta", "d1", "d2"), ("force",), ("v1", "v2"))
@@ -452,7 +377,8 @@ def _print(
     columns: dict[str, list[str]] = {}
     headers: dict[str, str] = {}
     for kind in HISTORY_KINDS:
-        scale = unit_scale([np.asarray(history[c]) for c in kind], HISTORY_UNITS[kind[0]])
+        unit = HISTORY_QUANTITIES[kind[0]].unit
+        scale = unit_scale([np.asarray(history[c]) for c in kind], unit)
         for col in kind:
             values = np.asarray(history[col], dtype=float)[rows] / scale.factor
             largest = float(np.nanmax(np.abs(values))) if values.size else 0.0
@@ -764,7 +690,7 @@ def restitution(
     from impactcli.cli.law_options import law_inputs
     from impactcli.impact import weaker_yield_strength
     from impactcli.spheres import spheres_from_options
-    from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep
+    from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep, sweep_is_elastic
 
     check_plot(plot, output)
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
@@ -811,7 +737,7 @@ def restitution(
         )
     _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
     _split_messages(split, s1, s2)
-    elastic_only = _elastic_sweep(choice, s1, s2)
+    elastic_only = sweep_is_elastic(s1, s2, law=choice.name)
     if elastic_only:
         note("no yield strength given: the sweep is of the elastic (Hertz) impact, e = 1")
     kind = resolve_format(fmt, output)
@@ -883,12 +809,6 @@ def _regime(data: dict, i: int, sticking: float | None) -> str:
     return "plastic" if data["plastic"][i] else "elastic"
 
 
-def _elastic_sweep(law: LawChoice, s1, s2) -> bool:
-    """Du & Wang (the default law) without any yield strength: the elastic Hertz sweep
-    (:func:`impactcli.sweep.restitution_sweep`)."""
-    return law.name == DEFAULT_LAW and s1.yield_strength is None and s2.yield_strength is None
-
-
 def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
     """The elastic sweep on screen: V0, contact time, delta_max, force_max."""
     from impactcli.cli.common import Table
@@ -908,11 +828,10 @@ def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
 
 def _sweep_contact_warning(s1, s2, velocities: np.ndarray, delta_max: np.ndarray) -> None:
     """The warning of a sweep whose contact radius leaves the small-deformation range
-    (:func:`impactcli.validation.contact_radius_warning`), if any."""
-    from impactcli.contact import effective_radius
-    from impactcli.validation import contact_radius_warning
+    (:func:`impactcli.sweep.sweep_contact_warning`), if any."""
+    from impactcli.sweep import sweep_contact_warning
 
-    message = contact_radius_warning(velocities, delta_max, effective_radius(s1.radius, s2.radius))
+    message = sweep_contact_warning(s1, s2, velocities, delta_max)
     if message:
         warn(message)
 
@@ -939,14 +858,11 @@ def _damped_sweep(
     s1, s2 = spheres_from_options(spheres)
     if alpha is None:  # tsuji --e: its e is the same at every V0 (docs/damping.md)
         from impactcli.damping import alpha_label
-        from impactcli.model import ContactModel, DampedPair
+        from impactcli.impact import damping_alpha
 
         assert target is not None
         try:
-            model = ContactModel(damping=law, restitution=target, separation=separation)
-            pair = model.for_spheres(s1, s2)
-            assert isinstance(pair, DampedPair)
-            alpha = pair.alpha(velocities[0], n)
+            alpha = damping_alpha(s1, s2, law, target, velocities[0], n, separation)
         except ValueError as exc:
             raise InputError(str(exc)) from None
         note(f"{alpha_label(law, alpha, digits=10)} gives e = {target:g} at every V0")
@@ -1026,14 +942,14 @@ def _plot_sweep(
     drawn)."""
     from impactcli.formatting import format_quantity
     from impactcli.plots import restitution_figure
-    from impactcli.sweep import sweep_first_yield_velocity, sweep_yield_velocity
+    from impactcli.sweep import sweep_first_yield_velocity, sweep_is_elastic, sweep_yield_velocity
 
     parts = [
         f"D1 = {format_quantity(s1.diameter, 'm')}",
         f"D2 = {format_quantity(s2.diameter, 'm')}",
         *_material_parts(spheres, s1, s2),
     ]
-    if _elastic_sweep(law, s1, s2):
+    if sweep_is_elastic(s1, s2, law=law.name):
         from impactcli.plots import elastic_sweep_figure
 
         fig = elastic_sweep_figure(

@@ -12,6 +12,7 @@ import re
 from dataclasses import dataclass
 
 from impactcli.laws.registry import alpha_units
+from impactcli.quantities import KINDS
 
 __all__ = [
     "MEANINGS",
@@ -22,22 +23,6 @@ __all__ = [
     "option_rows",
     "options_markdown",
 ]
-
-#: The unit of the value an option's metavar names (SI; a unit may be given on the line).
-METAVAR_UNITS = {
-    "LENGTH": "m",
-    "VELOCITY": "m/s",
-    "PRESSURE": "Pa",
-    "MASS": "kg",
-    "DENSITY": "kg/m^3",
-    "ANGLE": "deg",
-    "STIFFNESS": "N/m",
-    "SURFACE-ENERGY": "J/m^2",
-    "NUMBER": "-",
-    "INTEGER": "",
-    "X,Y": "m",
-    "X,Y,Z": "m",
-}
 
 #: Options of the same name whose value differs by nature between commands, and why. Every
 #: other difference of metavar or default is stated in the helps of both commands, which
@@ -220,8 +205,9 @@ class OptionRow:
     help: str
 
 
-#: Units written in brackets in an option's help, ``[m/s]``.
-_UNITS = {"m", "m/s", "Pa", "kg", "kg/m^3", "N/m", "s/m", "-", "s", "N", "J", "deg", "rad/s"}
+#: Units written in brackets in an option's help, ``[m/s]``: the SI units of the kinds of
+#: quantity (:data:`impactcli.quantities.KINDS`).
+_UNITS = {si for si, _ in KINDS.values()} - {""}
 
 
 def _default(param) -> str:
@@ -266,8 +252,8 @@ def _unit(metavar: str, help_text: str) -> str:
         return ""  # a path, a choice or a name has no unit
     if metavar == "ALPHA":
         return alpha_units()
-    if metavar in METAVAR_UNITS:
-        return METAVAR_UNITS[metavar]
+    if metavar in KINDS:  # the SI unit of the kind: impactcli.quantities.KINDS
+        return KINDS[metavar][0]
     for unit in re.findall(r"\[([^\]\s]+)\]", help_text):
         if unit in _UNITS:
             return unit

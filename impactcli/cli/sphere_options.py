@@ -70,14 +70,20 @@ def _parameter(name: str, help_text: str | None = None) -> inspect.Parameter:
 
 
 def with_sphere_options(
-    velocities: bool = True, helps: dict[str, str] | None = None
+    velocities: bool = True,
+    helps: dict[str, str] | None = None,
+    names: tuple[str, ...] | None = None,
 ) -> Callable[[Callable], Callable]:
     """Decorate a command whose signature has a ``spheres`` parameter: the sphere options
-    (without --v1, --v2 unless ``velocities``) take its place in the command's options,
-    and the command receives them as ``spheres=SphereOptions(...)``. ``helps``: the help of
-    an option whose use differs in this command (option name -> text), e.g. a --d2 that
-    is not required."""
-    names = [n for n in SPHERE_OPTIONS if velocities or n not in ("v1", "v2")]
+    (without --v1, --v2 unless ``velocities``; only ``names``, when given) take its place in
+    the command's options, and the command receives them as ``spheres=SphereOptions(...)``
+    (the others None). ``helps``: the help of an option whose use differs in this command
+    (option name -> text), e.g. a --d2 that is not required."""
+    chosen = names
+    names = [
+        n for n in SPHERE_OPTIONS
+        if (velocities or n not in ("v1", "v2")) and (chosen is None or n in chosen)
+    ]  # fmt: skip
     helps = helps or {}
 
     def decorate(command: Callable) -> Callable:

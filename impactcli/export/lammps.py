@@ -371,7 +371,7 @@ def lammps_input(
         ``mass = inf`` alone a fixed sphere (``fix freeze`` in the script)
     model : the contact (:class:`impactcli.impact.ContactModel`; default Hertz); a damping
         model needs its ``alpha``
-    restitution : instead of ``model``'s law, a coefficient of restitution e in (0, 1] (as
+    restitution : instead of ``model``'s law, a coefficient of restitution e in (0, 1], [-] (as
         ``impact collide3d --e``): Hertz with LAMMPS's ``damping coeff_restitution e``
     mu : Coulomb friction coefficient, [-]
     tangential : impactcli's tangential model, ``rigid`` or ``mindlin`` (LAMMPS has no

@@ -14,7 +14,7 @@ parses a block with pyarrow's CSV reader and, only when that fails (a malformed 
 somewhere in the block), record by record with Python's :mod:`csv`. Rows count from 1
 after the header; a record whose quoted cell holds a line break counts once.
 
-Limits (stated in ``impact batch --help`` and the README): a line (record) of at most
+Limits (stated in ``impact batch --help`` and docs/guide/batch.md): a line (record) of at most
 :data:`MAX_LINE_BYTES`; blocks of at most :data:`MAX_BLOCK_BYTES`, so memory stays
 bounded whatever the input (``/dev/zero`` is refused at once). pyarrow is imported inside
 the functions.

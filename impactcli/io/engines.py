@@ -2,7 +2,7 @@
 
 :func:`run_numpy` streams the chunks of a CSV or Parquet file in this process;
 :func:`run_dask` maps the same per-chunk function (:func:`impactcli.io.table.compute_frame`,
-through :func:`~impactcli.io.table.dask_partition`) over the partitions of a Dask
+through :func:`~impactcli.io.partitions.dask_partition`) over the partitions of a Dask
 DataFrame. Both write the output whole or not at all and return a :class:`BatchReport` of
 the invalid rows; printing it, and any progress bar, is the caller's.
 """
@@ -19,6 +19,7 @@ from contextlib import AbstractContextManager, contextmanager, nullcontext, supp
 import numpy as np
 
 from impactcli.errors import InputError
+from impactcli.io.partitions import dask_csv_block, dask_partition, partition_errors
 from impactcli.io.readers import (
     PARQUET_SUFFIXES,
     ColumnCheck,
@@ -33,9 +34,6 @@ from impactcli.io.table import (
     RowError,
     check_columns,
     compute_frame,
-    dask_csv_block,
-    dask_partition,
-    partition_errors,
     used_columns,
 )
 from impactcli.io.writers import (
@@ -450,7 +448,7 @@ def _output_schema_of(path: str):
 def _dask_csv(path: str, rows: int, options: dict, strict: bool):
     """A CSV file (or glob, URL) as a Dask DataFrame of result partitions: blocks of whole
     lines (:func:`dask.bytes.read_bytes`), each read and computed by
-    :func:`~impactcli.io.table.dask_csv_block`."""
+    :func:`~impactcli.io.partitions.dask_csv_block`."""
     import dask
     import dask.dataframe as dd
     from dask.bytes import read_bytes
@@ -492,7 +490,7 @@ def run_dask(
     scheduler: str | None = None,
 ) -> BatchReport:
     """As :func:`run_numpy` on a Dask DataFrame: files, folders of Parquet parts or URLs in
-    and out, :func:`~impactcli.io.table.dask_partition` mapped over the partitions.
+    and out, :func:`~impactcli.io.partitions.dask_partition` mapped over the partitions.
 
     ``rows`` sets the CSV block size (about 100 bytes a row); ``scheduler`` is ``threads``
     (default), ``processes``, ``synchronous``, ``local`` (a LocalCluster) or the address of

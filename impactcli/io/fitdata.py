@@ -82,6 +82,17 @@ def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
     Returns
     -------
     FitData
+        V0 [m/s], e [-], and the contact times [s] and weights when the file has them.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
+    ...     _ = f.write("v0 [mm/s],e\\n250,0.95\\n1000,0.86\\n")
+    >>> data = read_fit_data(f.name)
+    >>> os.remove(f.name)
+    >>> data.impact_velocity.tolist(), data.restitution.tolist()
+    ([0.25, 1.0], [0.95, 0.86])
     """
     from impactcli.units import parse_quantities
 

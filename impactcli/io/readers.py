@@ -12,7 +12,7 @@ from collections.abc import Callable, Collection, Iterator, Sequence
 
 import numpy as np
 
-from impactcli.errors import InputError
+from impactcli.errors import InputError, first_line
 from impactcli.io.table import NULL_VALUES, QUANTITY_COLUMNS, check_columns
 
 __all__ = [
@@ -121,12 +121,6 @@ def _parquet_source(path: str, stream: io.BufferedReader, check: ColumnCheck, ro
 
 def _label(path: str) -> str:
     return "stdin" if path == "-" else path
-
-
-def first_line(exc: BaseException) -> str:
-    """The first line of an exception's message (pyarrow's and dask's run long)."""
-    text = str(exc).strip().splitlines()
-    return text[0] if text else type(exc).__name__
 
 
 def compute_input(

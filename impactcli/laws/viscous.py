@@ -145,8 +145,8 @@ class RestitutionTable:
     alphas : the alphas of the rows of a table of e(alpha)
     targets : the target e [-] of the rows of a table of alpha(e)
     relations : (name, ``alpha(e, V0)``) of each published relation a table compares
-    readme : its heading among the README's tables (``{n}`` as in ``title``); None: not
-        in the README
+    readme : its heading among the tables of the damping guide, docs/guide/damping.md (once
+        the README's; ``{n}`` as in ``title``); None: not there
     """
 
     title: str

@@ -1,0 +1,89 @@
+"""Pairs of spheres as one object (issue 23): SpherePairs from columns or from Sphere
+objects, and the vectorised functions that take it give what the column signatures give."""
+
+from __future__ import annotations
+
+import inspect
+
+import numpy as np
+import pytest
+
+from impactcli.batch import (
+    batch_damped_impacts,
+    batch_impacts,
+    damped_pair_impacts,
+    pair_impacts,
+    validate,
+)
+from impactcli.impact import Sphere, elastoplastic_impact, impact_summary
+from impactcli.pairs import COLUMNS, SpherePairs
+
+STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
+COLUMNS_OF_TWO = dict(
+    d1=[0.02, 0.01], d2=[0.04, np.inf], v1=[0.25, 1.0], v2=[0.75, 0.0], E1=210e9, nu1=0.3,
+    E2=[70e9, np.inf], nu2=[0.33, 0.0], rho1=7800.0, rho2=[2700.0, np.nan], m2=[np.nan, np.inf],
+    sy1=1e9, sy2=[3e8, np.nan],
+)  # fmt: skip
+
+
+def test_pairs_from_spheres_are_the_pairs_from_columns():
+    s1 = [Sphere(0.02, **STEEL), Sphere(0.01, **STEEL)]
+    s2 = [Sphere(0.04, 70e9, 0.33, 2700.0, yield_strength=3e8),
+          Sphere(np.inf, np.inf, 0.0, mass=np.inf)]  # fmt: skip
+    spheres = SpherePairs.from_spheres(s1, s2, [0.25, 1.0], [0.75, 0.0])
+    columns = SpherePairs.from_columns(**COLUMNS_OF_TWO)
+    for name in COLUMNS:
+        np.testing.assert_array_equal(getattr(spheres, name), getattr(columns, name))
+    for derived in ("mass1", "mass2", "m", "radius", "modulus", "sigma_y", "v0"):
+        np.testing.assert_array_equal(getattr(spheres, derived), getattr(columns, derived))
+    assert columns.mass2[1] == np.inf and columns.radius[1] == 0.005
+    one = SpherePairs.from_spheres(s1[0], s2[0], 0.25, 0.75)
+    assert one.d1.shape == () and float(one.m) == pytest.approx(float(columns.m[0]), rel=1e-15)
+
+
+def test_take_and_ravel_keep_one_entry_per_collision():
+    pairs = SpherePairs.from_columns(**COLUMNS_OF_TWO)
+    assert len(pairs) == 2 and pairs.take([1]).d2.tolist() == [np.inf]
+    one = SpherePairs.from_spheres(Sphere(0.02, **STEEL), Sphere(0.04, **STEEL), 0.25, 0.75)
+    assert one.ravel().d1.shape == (1,) and pairs.ravel() is pairs
+
+
+def test_the_pair_kernels_are_the_column_kernels():
+    pairs = SpherePairs.from_columns(**COLUMNS_OF_TWO)
+    for how in ({"plastic": [False, True]}, {"law": "thornton"}, {"split": "yield"}):
+        old = batch_impacts(**COLUMNS_OF_TWO, **how)
+        plastic = how.pop("plastic", False)
+        new = pair_impacts(pairs, plastic, **how)
+        assert old.keys() == new.keys()
+        for key in old:
+            np.testing.assert_array_equal(old[key], new[key])
+    old = batch_damped_impacts(**COLUMNS_OF_TWO, damping="tsuji", restitution=[0.8, 0.5])
+    new = damped_pair_impacts(pairs, damping="tsuji", restitution=[0.8, 0.5])
+    for key in old:
+        np.testing.assert_array_equal(old[key], new[key])
+    assert list(new["restitution"].round(12)) == [0.8, 0.5]
+
+
+def test_validate_takes_the_pairs():
+    pairs = SpherePairs.from_columns(0.02, [0.04, -0.04], 1.0, 0.0, 210e9, 0.3, 210e9, 0.3,
+                                     7800.0, 7800.0)  # fmt: skip
+    assert validate(pairs).tolist() == ["", "d2 must be positive, got -0.04"]
+    assert validate(pairs, plastic=True)[0].startswith("the elastoplastic model needs")
+
+
+def test_impact_summary_of_pairs_is_the_single_impacts():
+    s1, s2 = Sphere(0.02, **STEEL), Sphere(0.04, **STEEL)
+    result = elastoplastic_impact(s1, s2, 0.25, 0.75)
+    pairs = SpherePairs.from_spheres(s1, s2, 0.25, 0.75)
+    shares, permanent = pairs.fractions("mass")
+    times = result.summary["t_max"], result.summary["contact_time"]
+    summary = impact_summary(pairs, result.plan, *times, shares, permanent)
+    for key, value in summary.items():
+        assert float(value) == result.summary[key], key
+    assert list(inspect.signature(impact_summary).parameters)[0] == "pairs"
+
+
+def test_the_column_signatures_stay_for_scripts():
+    """batch_impacts and batch_damped_impacts keep their positional columns."""
+    for function in (batch_impacts, batch_damped_impacts):
+        assert list(inspect.signature(function).parameters)[:14] == list(COLUMNS)
