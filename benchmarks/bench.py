@@ -283,7 +283,7 @@ class Integration:
         self.unloading = pieces(stages[turning + 1 :])
         self.delta_max = float(np.ravel(plan.delta_max)[0])
         self.delta_res = float(np.ravel(plan.delta_end)[0])
-        self.stuck = bool(np.ravel(plan.extras.get("stuck", 0.0))[0])
+        self.captured = bool(np.ravel(plan.extras.get("captured", 0.0))[0])
         for stage, (_, force) in zip(stages, [*self.loading, *self.unloading]):
             d = np.linspace(
                 float(np.ravel(stage.delta_start)[0]), float(np.ravel(stage.delta_end)[0]), 7
@@ -333,9 +333,9 @@ class Integration:
         options = dict(method="DOP853", rtol=rtol, atol=atol, dense_output=dense)
         a = solve_ivp(first, (0.0, span), (0.0, self.v0), events=turn, **options)
         t_turn, y_turn = a.t_events[0][0], a.y_events[0][0]
-        event = capture if self.stuck else separation
+        event = capture if self.captured else separation
         b = solve_ivp(second, (t_turn, t_turn + span), y_turn, events=event, **options)
-        e = 0.0 if self.stuck else -b.y_events[0][0][1] / self.v0
+        e = 0.0 if self.captured else -b.y_events[0][0][1] / self.v0
         return e, b.t_events[0][0], (a, b)
 
     def history(self, rtol: float, points: int = 201) -> tuple[np.ndarray, np.ndarray]:

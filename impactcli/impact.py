@@ -1083,15 +1083,15 @@ DAMPED_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
 #: Summary keys an adhesive law (jkr, dmt, thornton-ning: ``impact laws``) adds to
 #: :data:`PLASTIC_SUMMARY_KEYS` and :data:`ENERGY_SUMMARY_KEYS`
 #: (:class:`impactcli.model.AdhesivePair`): the indentation where the contact ends [m]
-#: (in tension, < 0; or where it is captured), ``stuck`` (True: the spheres do not part,
+#: (in tension, < 0; or where it is captured), ``captured`` (True: the spheres do not part,
 #: e = 0, and the contact time is the time to capture, when the relative velocity first
 #: returns to zero), the sticking velocity of the pair [m/s] (the largest V0 that sticks),
 #: the pull-off force [N] and the energy the adhesion takes [J] (the work of the
 #: attraction on the way out less that on the way in; all of (1/2) m V0^2 less the plastic
-#: work when stuck), shared between the spheres as the strain energy is.
+#: work when captured), shared between the spheres as the strain energy is.
 ADHESIVE_SUMMARY_KEYS: tuple[str, ...] = (
     "delta_separation",
-    "stuck",
+    "captured",
     "sticking_velocity",
     "pull_off_force",
     "energy_adhesion",

@@ -384,8 +384,8 @@ class AdhesivePair(LawPair):
     one pair of spheres: a :class:`LawPair` whose summary adds the keys of
     :data:`impactcli.impact.ADHESIVE_SUMMARY_KEYS` (docs/laws.md).
 
-    The contact may end in tension, at delta < 0, or not at all (``stuck``: captured, the
-    relative velocity back to zero on the neck, e = 0); ``delta_separation`` is where,
+    The contact may end in tension, at delta < 0, or not at all (``captured``: the bound
+    state, the relative velocity back to zero on the neck, e = 0); ``delta_separation`` is where,
     ``delta_res`` the permanent indentation alone. The energy the adhesion takes is shared
     as the strain energy is (the neck deforms both spheres elastically), the rest of the
     energy lost as the permanent indentation is.
@@ -398,7 +398,7 @@ class AdhesivePair(LawPair):
         return self.spec.kind != "elastic"
 
     def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
-        """The keys of :meth:`LawPair.summary` and the adhesive ones, SI (``stuck`` a
+        """The keys of :meth:`LawPair.summary` and the adhesive ones, SI (``captured`` a
         bool)."""
         out = LawPair.summary(self, result, solution)
         contact = self.normal_contact
@@ -424,7 +424,7 @@ class AdhesivePair(LawPair):
                 "energy_dissipated1": e1 * adhesion + p1 * plastic,
                 "energy_dissipated2": e2 * adhesion + p2 * plastic,
                 "delta_separation": float(solution.delta_end),
-                "stuck": bool(extras["stuck"]),
+                "captured": bool(extras["captured"]),
                 "sticking_velocity": float(
                     np.reshape(contact.sticking_velocity(np.asarray(self.mass)), -1)[0]
                 ),

@@ -653,7 +653,7 @@ def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float
         # an adhesive loop: the snap-in at first touch and the jump off at separation (no
         # displacement, no work), which close the loop whose area the neck takes
         ends = [(delta[0], force[0], "snap-in at first touch", "force:snap-in")]
-        if not summary.get("stuck", False):
+        if not summary.get("captured", False):
             ends.append((delta[-1], force[-1], "separation (the neck breaks)", "force:jump-off"))
         for k, (x, f, label, gid) in enumerate(ends):
             ax.plot([x / xs.factor] * 2, [0.0, f / fs.factor], color=("tab:red", "tab:green")[k],
@@ -859,7 +859,7 @@ def restitution_figure(
         damped sweep draws the maximum indentation and that at separation there)
     law : the law whose yield velocity ``yield_velocity`` is (by default the default law)
     sticking_velocity : V_s of an adhesive law, [m/s]: below it the spheres stick (e = 0,
-        drawn as the sticking branch, gid ``stuck``; their contact time is the time to
+        drawn as the sticking branch, gid ``captured``; their contact time is the time to
         capture); a dash-dot line on every panel, as the yield velocities are
 
     Returns
@@ -914,10 +914,10 @@ def restitution_figure(
     ax_e.plot(line_x, line_e, marker=".", markevery=[i for i, v in enumerate(line_x)
               if np.any(x == v)], gid="restitution")  # fmt: skip
     if sticking_velocity is not None:
-        stuck = (e == 0.0) & (v0 <= sticking_velocity)
-        if np.any(stuck):
-            ax_e.plot(x[stuck], e[stuck], "o", color="C3", markersize=4, gid="stuck",
-                      label="stuck (e = 0: the spheres do not part)")  # fmt: skip
+        captured = (e == 0.0) & (v0 <= sticking_velocity)
+        if np.any(captured):
+            ax_e.plot(x[captured], e[captured], "o", color="C3", markersize=4, gid="captured",
+                      label="captured (e = 0: the spheres do not part)")  # fmt: skip
     ax_e.set_ylabel("coefficient of restitution $e$ (-)")
     ax_e.set_title("(a) Restitution", fontsize="medium")
 
@@ -965,7 +965,7 @@ def restitution_figure(
         if marks or ax is ax_r and len(residual) > 1:
             ax.legend(fontsize="small")
     if sticking_velocity is not None:
-        ax_t.set_title("(b) Contact time (stuck: time to capture)", fontsize="medium")
+        ax_t.set_title("(b) Contact time (captured: time to capture)", fontsize="medium")
     fig.suptitle(title, fontsize="large")
     return fig
 

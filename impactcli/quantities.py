@@ -68,7 +68,7 @@ SUMMARY_QUANTITIES: dict[str, Quantity] = {
     "first_yield_velocity1": Quantity("m/s", "first yield of sphere 1 (inf: none)"),
     "first_yield_velocity2": Quantity("m/s", "first yield of sphere 2 (inf: none)"),
     "delta_separation": Quantity("m", "total indentation where the contact ends (or is captured)"),
-    "stuck": Quantity("", "the spheres stick: they do not part, e = 0"),
+    "captured": Quantity("", "captured: the spheres do not part, e = 0 (the bound state)"),
     "sticking_velocity": Quantity("m/s", "largest V0 at which the spheres stick"),
     "pull_off_force": Quantity("N", "pull-off force of the contact the impact leaves"),
     "energy_adhesion": Quantity("J", "energy taken by the adhesion (the neck)"),

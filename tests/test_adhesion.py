@@ -134,7 +134,7 @@ def test_pull_off_force_and_the_two_separation_points():
         s = jkr(0.1, rule).summary
         assert s["delta_separation"] == pytest.approx(end, rel=1e-9), rule
         assert s["pull_off_force"] == pytest.approx(f_c, rel=1e-12)
-        assert s["stuck"] is False
+        assert s["captured"] is False
 
 
 def test_dmt_is_hertz_plus_the_constant_pull_and_gives_e_1():
@@ -154,7 +154,7 @@ def test_dmt_is_hertz_plus_the_constant_pull_and_gives_e_1():
     assert result.summary["restitution"] == pytest.approx(1.0, abs=1e-12)
     assert result.summary["contact_time"] == pytest.approx(t_c, rel=1e-6)
     assert result.summary["pull_off_force"] == pytest.approx(2 * math.pi * W * R, rel=1e-12)
-    assert result.summary["stuck"] is False
+    assert result.summary["captured"] is False
 
 
 @pytest.mark.parametrize("law", ["jkr", "dmt"])
@@ -165,7 +165,7 @@ def test_zero_work_of_adhesion_is_hertz_to_rounding(law):
                         ContactModel(law, {"work_of_adhesion": 0.0}), n=60)  # fmt: skip
     for key, value in hertz.summary.items():
         assert zero.summary[key] == pytest.approx(value, rel=1e-12, abs=1e-30, nan_ok=True), key
-    assert zero.summary["stuck"] is False and zero.summary["sticking_velocity"] == 0.0
+    assert zero.summary["captured"] is False and zero.summary["sticking_velocity"] == 0.0
     ours, theirs = zero.history(), hertz.history()
     for key, value in theirs.items():
         assert np.allclose(ours[key], value, rtol=1e-12, atol=0, equal_nan=True), key
@@ -183,7 +183,7 @@ def test_jkr_impact_agrees_with_solve_ivp_at_the_default_n(rule, v0):
     e_ref, t_ref, captured, _ = integrate(jkr_force_of_overlap, v0, jkr_delta(a_end))
     result = jkr(v0, rule)
     assert result.n == 200
-    assert not captured and result.summary["stuck"] is False
+    assert not captured and result.summary["captured"] is False
     assert result.summary["restitution"] == pytest.approx(e_ref, rel=1e-6)
     assert result.summary["contact_time"] == pytest.approx(t_ref, rel=1e-6)
 
@@ -191,7 +191,7 @@ def test_jkr_impact_agrees_with_solve_ivp_at_the_default_n(rule, v0):
 @pytest.mark.parametrize("rule", ["instability", "pull-off"])
 @pytest.mark.parametrize("fraction", [0.3, 0.9])
 def test_jkr_capture_agrees_with_solve_ivp(rule, fraction):
-    """Below V_s the relative velocity returns to zero on the neck: e = 0, ``stuck``; the
+    """Below V_s the relative velocity returns to zero on the neck: e = 0, ``captured``; the
     time and the overlap of the capture as DOP853's."""
     a_end = grip_radius() if rule == "instability" else pull_off_radius()
     v_s = jkr(0.1, rule).summary["sticking_velocity"]
@@ -199,7 +199,7 @@ def test_jkr_capture_agrees_with_solve_ivp(rule, fraction):
     e_ref, t_ref, captured, d_ref = integrate(jkr_force_of_overlap, v0, jkr_delta(a_end))
     result = jkr(v0, rule)
     assert captured and e_ref == 0.0
-    assert result.summary["stuck"] is True and result.summary["restitution"] == 0.0
+    assert result.summary["captured"] is True and result.summary["restitution"] == 0.0
     assert result.summary["contact_time"] == pytest.approx(t_ref, rel=1e-6)
     assert result.summary["delta_separation"] == pytest.approx(d_ref, rel=1e-6)
 
@@ -245,8 +245,8 @@ def test_sticking_velocity_is_thornton_and_ning_1998():
         v_s = float(JKRContact(r, e_star, w).sticking_velocity(m))
         assert v_s == pytest.approx(published, rel=3e-3)
     v_s = jkr(0.1).summary["sticking_velocity"]
-    assert jkr(0.999 * v_s).summary["stuck"] is True
-    assert jkr(1.001 * v_s).summary["stuck"] is False
+    assert jkr(0.999 * v_s).summary["captured"] is True
+    assert jkr(1.001 * v_s).summary["captured"] is False
     assert jkr(2 * v_s).summary["restitution"] == pytest.approx(math.sqrt(0.75), rel=1e-9)
 
 
@@ -389,3 +389,23 @@ def test_the_units_of_the_work_of_adhesion_mean_the_same_everywhere():
         assert f"sticking velocity V_s = {v_s:.6g} m/s" in sweep.stderr
     assert len(set(values)) == 1
     assert values[0] == pytest.approx(math.sqrt(1 - (v_s / 0.1) ** 2), rel=1e-12)
+
+
+def test_captured_is_the_adhesive_key_and_stuck_stays_collide3d_s():
+    """One name, one meaning: the bound state of an adhesive impact is ``captured``;
+    ``stuck`` is collide3d's tangential stick at the end of contact, and no adhesive key
+    is a collide3d result column, so both can stand in one collide3d result."""
+    from impactcli.collision3d import SUMMARY_KEYS
+    from impactcli.impact import ADHESIVE_SUMMARY_KEYS
+    from impactcli.quantities import summary_quantities
+    from impactcli.rows3d import output_columns3d
+
+    assert "captured" in ADHESIVE_SUMMARY_KEYS and "stuck" in SUMMARY_KEYS
+    assert not set(ADHESIVE_SUMMARY_KEYS) & {*SUMMARY_KEYS, *output_columns3d()}
+    meanings = summary_quantities()
+    assert meanings["captured"].unit == "" and "e = 0" in meanings["captured"].description
+    jkr = ContactModel("jkr", {"work_of_adhesion": W})
+    v_s = solve_impact(SILICA, SILICA, 0.1, 0.0, jkr).summary["sticking_velocity"]
+    summary = solve_impact(SILICA, SILICA, 0.5 * v_s, 0.0, jkr).summary
+    assert summary["captured"] is True and "stuck" not in summary
+

@@ -225,8 +225,8 @@ def _run(
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
     _split_notes(split, s1, s2)
-    if s.get("stuck"):
-        note(_stuck_note(s, v0))
+    if s.get("captured"):
+        note(_captured_note(s, v0))
 
     history = result.history(points=points)
     differences, reference = _check(result, history) if check else (None, None)
@@ -290,7 +290,7 @@ def _refuse_plastic(result, law: LawChoice) -> None:
         )
 
 
-def _stuck_note(s: dict, v0: float) -> str:
+def _captured_note(s: dict, v0: float) -> str:
     """The bound state of an adhesive impact that sticks, in words."""
     from impactcli.formatting import format_quantity
 
@@ -540,7 +540,7 @@ def elastic(
     indentation of the curve and the one needed.
 
     --law NAME runs another elastic law of 'impact laws' (an adhesive one: the spheres snap
-    together at first touch, may part in tension or stick; the summary then adds stuck,
+    together at first touch, may part in tension or stick; the summary then adds captured,
     sticking_velocity, pull_off_force and energy_adhesion).
 
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
@@ -803,9 +803,9 @@ def _sticking_velocity(law: LawChoice, s1, s2) -> float | None:
 
 
 def _regime(data: dict, i: int, sticking: float | None) -> str:
-    """'stuck' (an adhesive law's e = 0), 'plastic' or 'elastic' for row i of a sweep."""
+    """'captured' (an adhesive law's e = 0), 'plastic' or 'elastic' for row i of a sweep."""
     if sticking is not None and data["restitution"][i] == 0.0:
-        return "stuck"
+        return "captured"
     return "plastic" if data["plastic"][i] else "elastic"
 
 

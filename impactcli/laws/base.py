@@ -91,7 +91,7 @@ class ImpactPlan:
     turning : index into :attr:`stages` of the stage that ends at the maximum indentation
         (default -2: the one before the last)
     extras : further closed-form quantities of the impacts by name (an adhesive law's
-        ``stuck``, ``pull_off_force``, ``energy_adhesion``), arrays as ``delta_max``
+        ``captured``, ``pull_off_force``, ``energy_adhesion``), arrays as ``delta_max``
     """
 
     stages: tuple[StagePlan, ...]
@@ -398,7 +398,7 @@ class LawSpec:
     default_n: int | None = None
     #: the law's contact attracts: it snaps in at first touch and may hold the spheres
     #: (its contact model gives ``sticking_velocity(m)``, ``pull_off_force`` and its
-    #: plans the ``extras`` stuck, pull_off_force and energy_adhesion)
+    #: plans the ``extras`` captured, pull_off_force and energy_adhesion)
     adhesive: bool = False
     #: the law's LAMMPS normal model (None: LAMMPS has none; ``impact export lammps`` then
     #: fits the nearest model LAMMPS has)

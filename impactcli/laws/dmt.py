@@ -171,7 +171,9 @@ class DMTContact:
         if np.all(pull == 0.0):
             hertz = HertzContact(k).plan(v0, m)
             zero = np.zeros_like(v0)
-            extras = {"stuck": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()}
+            extras = {
+                "captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()
+            }  # fmt: skip
             return ImpactPlan(hertz.stages, hertz.delta_max, hertz.force_max, hertz.delta_res,
                               hertz.restitution, extras=extras)  # fmt: skip
         if np.any(pull == 0.0):
@@ -188,7 +190,7 @@ class DMTContact:
             force_max=k * delta_m**1.5 - pull,
             delta_res=zero,
             restitution=np.ones_like(delta_m),
-            extras={"stuck": zero.copy(), "pull_off_force": pull.copy(),
+            extras={"captured": zero.copy(), "pull_off_force": pull.copy(),
                     "energy_adhesion": zero.copy()},  # fmt: skip
         )
 

@@ -28,7 +28,7 @@ An impact (docs/laws.md, ``jkr``):
   infinite);
 - **capture**: when the kinetic energy (1/2) m V0^2 does not pay for the neck, the
   relative velocity returns to zero on the tensile branch and the spheres stay bound
-  (e = 0, ``stuck``; the stage ends at rest). The largest V0 that sticks, the sticking
+  (e = 0, ``captured``; the stage ends at rest). The largest V0 that sticks, the sticking
   velocity, is V_s = sqrt(2 E_neck / m), E_neck the work of the neck from delta = 0 to the
   separation point; above it e = sqrt(1 - (V_s / V0)^2).
 
@@ -490,7 +490,7 @@ def unloading_plan(
     -------
     (stages, ends)
         ``ends``: ``delta_end`` (where the contact ends or is captured) [m], ``speed``
-        there [m/s], ``stuck`` (1.0 where captured) and ``s_end``.
+        there [m/s], ``captured`` (1.0 where captured) and ``s_end``.
     """
     _check_separation(separation)
     s_m = np.asarray(s_max, dtype=float)
@@ -503,9 +503,9 @@ def unloading_plan(
         return np.sqrt(np.maximum(2.0 * unit * (top - _potential(s)) / m, 0.0))
 
     rule_end = _END_S[separation]
-    stuck = key != 0
+    captured = key != 0
     snap, pull = np.full_like(s_m, SNAP_S), np.full_like(s_m, PULL_OFF_S)
-    if not stuck:  # to delta = 0, the tensile branch to pull-off, the neck
+    if not captured:  # to delta = 0, the tensile branch to pull-off, the neck
         s_end = np.full_like(s_m, rule_end)
         points = [s_m, snap, pull] + ([s_end] if separation == "instability" else [])
         names = ["unloading", "tension", "neck"]
@@ -527,13 +527,13 @@ def unloading_plan(
                 deltas[k],
                 deltas[k + 1],
                 np.zeros_like(s_m) if k == 0 else speed(points[k]),
-                end_at_rest=stuck and last,
+                end_at_rest=captured and last,
             )
         )
     ends = {
         "delta_end": deltas[-1],
-        "speed": np.zeros_like(s_m) if stuck else speed(s_end),
-        "stuck": np.full_like(s_m, 1.0 if stuck else 0.0),
+        "speed": np.zeros_like(s_m) if captured else speed(s_end),
+        "captured": np.full_like(s_m, 1.0 if captured else 0.0),
         "s_end": s_end,
     }
     return stages, ends
@@ -699,7 +699,7 @@ class JKRContact:
             delta_separation=ends["delta_end"],
             turning=0,
             extras={
-                "stuck": ends["stuck"],
+                "captured": ends["captured"],
                 "pull_off_force": branch.force_unit[..., 0],
                 "energy_adhesion": energy * (1.0 - restitution * restitution),
             },
@@ -731,7 +731,7 @@ def _hertz_plan(stiffness: ArrayLike, v0: Array, m: Array) -> ImpactPlan:
     zero = np.zeros_like(v0)
     return ImpactPlan(
         plan.stages, plan.delta_max, plan.force_max, plan.delta_res, plan.restitution,
-        extras={"stuck": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
+        extras={"captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
     )  # fmt: skip
 
 

@@ -348,7 +348,7 @@ class ThorntonNingContact:
             delta_separation=ends["delta_end"],
             turning=1,
             extras={
-                "stuck": ends["stuck"],
+                "captured": ends["captured"],
                 "pull_off_force": out.branch.force_unit[..., 0],
                 "energy_adhesion": np.minimum(np.maximum(outward - inward, 0.0), lost),
             },
@@ -452,7 +452,7 @@ def _with_extras(plan: ImpactPlan, v0: Array) -> ImpactPlan:
     zero = np.zeros_like(v0)
     return ImpactPlan(
         plan.stages, plan.delta_max, plan.force_max, plan.delta_res, plan.restitution,
-        extras={"stuck": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
+        extras={"captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
     )  # fmt: skip
 
 
