@@ -13,6 +13,7 @@ ends at the rule's point: ``instability`` the fixed-grip point (d delta / d a = 
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -409,3 +410,20 @@ def test_captured_is_the_adhesive_key_and_stuck_stays_collide3d_s():
     summary = solve_impact(SILICA, SILICA, 0.5 * v_s, 0.0, jkr).summary
     assert summary["captured"] is True and "stuck" not in summary
 
+
+def test_fit_without_the_work_of_adhesion_says_how_fit_takes_it(cli, tmp_path):
+    """fit takes a law's parameters by --param and --fix NAME=VALUE, not by the law's own
+    option: a missing W is named the way fit accepts it, one line, exit 2; held by --fix
+    the fit runs."""
+    data = tmp_path / "e.csv"
+    data.write_text("v0,e\n0.05,0.3\n0.1,0.8\n0.5,0.95\n1,0.97\n")
+    pair = ("--d1", "20um", "--d2", "20um", "--E", "73GPa", "--nu", "0.17", "--rho", "2200")
+    code, out, err = cli("fit", str(data), "--law", "thornton-ning", "--param", "py", *pair)
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1
+    assert err.startswith("impact: error: ") and "work_of_adhesion [J/m^2]" in err
+    assert "--param work-of-adhesion" in err and "--fix work-of-adhesion=VALUE" in err
+    assert "option --work-of-adhesion" not in err
+    code, out, err = cli("fit", str(data), "--law", "thornton-ning", "--param", "py",
+                         "--fix", "work-of-adhesion=0.2", *pair, "-f", "json")  # fmt: skip
+    assert code == 0, err
+    assert json.loads(out)["fits"][0]["fixed"]["work_of_adhesion"] == pytest.approx(0.2)
