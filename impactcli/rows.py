@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from impactcli.batch import (
+    ADHESIVE_KEYS,
     BATCH_KEYS,
     damped_pair_impacts,
     material_properties,
@@ -115,9 +116,10 @@ def law_parameter_columns() -> dict[str, tuple[str, str]]:
 
 
 def output_columns() -> tuple[str, ...]:
-    """Columns added after the input ones: the summary keys (SI), then ``error`` and
-    ``warning`` (text)."""
-    return (*BATCH_KEYS, *EXTRA_KEYS, *TEXT_OUTPUTS)
+    """Columns added after the input ones: the summary keys (SI), :data:`EXTRA_KEYS`, the
+    adhesive laws' keys (:data:`impactcli.batch.ADHESIVE_KEYS`, empty on the other rows),
+    then ``error`` and ``warning`` (text)."""
+    return (*BATCH_KEYS, *EXTRA_KEYS, *ADHESIVE_KEYS, *TEXT_OUTPUTS)
 
 
 def used_columns(names: Sequence[str]) -> list[str]:
@@ -194,7 +196,7 @@ def compute_rows(
     splits = np.where(np.equal(splits, None), split, splits).astype(str)
     errors.add(~np.isin(splits, SPLITS), f"split must be {', '.join(SPLITS)}")
     notes = _sphere_shares(result, splits, pairs, ~errors.bad)
-    for k in (*BATCH_KEYS, *EXTRA_KEYS):
+    for k in (*BATCH_KEYS, *EXTRA_KEYS, *ADHESIVE_KEYS):
         result[k][errors.bad] = np.nan
     result["error"] = errors.messages
     result["warning"] = row_warnings(
@@ -272,7 +274,7 @@ def _kernel_results(
     adhesive law's) for its rows."""
     n_given, n = n, 25 if n is None else n
     size = rows.pairs.size
-    result = {k: np.full(size, np.nan) for k in (*BATCH_KEYS, *EXTRA_KEYS)}
+    result = {k: np.full(size, np.nan) for k in (*BATCH_KEYS, *EXTRA_KEYS, *ADHESIVE_KEYS)}
     kernel = np.full(size, "", dtype=object)
     for chosen, name, rule in _damping_groups(rows.damped, rows.damping, ~errors.bad):
         out = damped_pair_impacts(
@@ -293,8 +295,9 @@ def _kernel_results(
     for chosen, name, params in _law_groups(rows.laws, rows.law_params, ~errors.bad & undamped):
         own_n = n if n_given is not None else (get_law(name).default_n or n)
         for part, out in _law_rows(rows.pairs.take(chosen), chosen, name, params, own_n):
-            for k in BATCH_KEYS:
-                result[k][part] = out[k]
+            for k in (*BATCH_KEYS, *ADHESIVE_KEYS):
+                if k in out:  # the adhesive keys: an adhesive law's rows
+                    result[k][part] = out[k]
             kernel[part] = out["error"]
     errors.add_messages(kernel)
     return result

@@ -427,3 +427,51 @@ def test_fit_without_the_work_of_adhesion_says_how_fit_takes_it(cli, tmp_path):
                          "--fix", "work-of-adhesion=0.2", *pair, "-f", "json")  # fmt: skip
     assert code == 0, err
     assert json.loads(out)["fits"][0]["fixed"]["work_of_adhesion"] == pytest.approx(0.2)
+
+
+def test_batch_rows_of_adhesive_laws_carry_the_summary_s_adhesive_keys():
+    """A batch's adhesive rows (a law column, W in its units, the separation column) give
+    the adhesive keys of the single impact as columns, named and documented by the
+    library's keys and quantities: each equal to solve_impact's summary at the law's own
+    default n (the contact time too); the other rows leave them empty; a negative W is the
+    row's error, the good rows kept."""
+    from impactcli.batch import ADHESIVE_KEYS
+    from impactcli.impact import ADHESIVE_SUMMARY_KEYS
+    from impactcli.io.table import compute_frame, output_columns
+    from impactcli.quantities import summary_quantities
+
+    assert ADHESIVE_KEYS == ADHESIVE_SUMMARY_KEYS
+    assert set(ADHESIVE_KEYS) <= set(output_columns()) and set(ADHESIVE_KEYS) <= set(
+        summary_quantities()
+    )
+    cases = [  # (law, V0 [m/s], W as written, separation, p_y)
+        ("jkr", 0.1, "0.2J/m^2", None, None),
+        ("jkr", 0.02, "200mJ/m^2", None, None),  # below V_s: captured
+        ("jkr", 0.1, "0.2", "pull-off", None),
+        ("dmt", 0.1, "0.2", None, None),
+        ("thornton-ning", 2.0, "0.2", None, "1GPa"),
+        ("thornton-ning", 0.02, "0.2", "pull-off", "1GPa"),
+        ("hertz", 0.1, None, None, None),
+        ("jkr", 0.1, "-1", None, None),
+    ]
+    rows = {
+        "d1": ["20um"] * len(cases), "d2": ["20um"] * len(cases),
+        "v1": [c[1] for c in cases], "v2": [0.0] * len(cases),
+        "E": ["73GPa"] * len(cases), "nu": [0.17] * len(cases), "rho": [2200.0] * len(cases),
+        "law": [c[0] for c in cases], "work_of_adhesion": [c[2] for c in cases],
+        "separation": [c[3] for c in cases], "py": [c[4] for c in cases],
+    }  # fmt: skip
+    out = compute_frame(rows)
+    for i, (law, v0, _w, rule, py) in enumerate(cases[:6]):
+        params = {"work_of_adhesion": 0.2, **({"separation": rule} if rule else {})}
+        params.update({"py": 1e9} if py else {})
+        summary = solve_impact(SILICA, SILICA, v0, 0.0, ContactModel(law, params)).summary
+        assert out["error"][i] == ""
+        for key in (*ADHESIVE_KEYS, "restitution", "contact_time", "delta_max"):
+            assert float(out[key][i]) == pytest.approx(float(summary[key]), rel=1e-9, abs=1e-30)
+    assert out["captured"][1] == 1.0 and out["restitution"][1] == 0.0
+    assert out["captured"][5] == 1.0 and out["captured"][4] == 0.0
+    assert out["sticking_velocity"][2] < 0.71 * out["sticking_velocity"][0]
+    assert all(np.isnan(out[key][6]) for key in ADHESIVE_KEYS) and out["error"][6] == ""
+    assert "work_of_adhesion of law 'jkr' must be a finite number >= 0" in out["error"][7]
+    assert all(np.isnan(out[key][7]) for key in ADHESIVE_KEYS)
