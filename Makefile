@@ -6,7 +6,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check
 
-.PHONY: run test test-slow dem docs tables options bench lint clean venv
+.PHONY: run test test-slow dem docs tables options bench validate lint clean venv
 
 $(BIN)/python:
 	@echo "== creating $(VENV) with $(PYTHON)"
@@ -115,6 +115,13 @@ options: $(VENV)/.run-installed
 ##        README links to) with `make bench WRITE=1` (README=1, its former spelling, too)
 bench: $(VENV)/.bench-installed
 	$(BIN)/python benchmarks/bench.py $(if $(filter 1 yes true,$(WRITE) $(README)),--page docs/about/benchmarks.md)
+
+## validate: Chung & Ooi (2011) tests 1 to 8 and Kharaz et al. (2001), every tangential model
+##           against the published curves (benchmarks/data/validation/): the figures into
+##           docs/figures/validation/, the deviations into docs/validation.md and
+##           benchmarks/data/validation/deviations.csv (a few minutes)
+validate: $(VENV)/.run-installed
+	$(BIN)/python benchmarks/validation.py
 
 lint: $(VENV)/.test-installed
 	$(BIN)/ruff check impactcli tests

@@ -13,8 +13,9 @@ issue 25 and whether it is MET. NOT MET rows are what to speed up next.
     1|), against the exact values for Hertz (e = 1, t_c = 2(2/5)B(2/5,1/2) delta_m/V0) and
     for the others against e of the law's closed form and t_c of DOP853 at rtol 1e-13
     (whose difference from rtol 1e-12 is printed). Target: at least 50x. And the Hertz
-    impact from the normalised solution (the paper's point): ``batch_impacts`` of one row,
-    the one path that scales it today, and ``elastic_impact``; target under 20 us.
+    impact from the normalised solution (the paper's point): ``elastic_impact``, which
+    scales it, against the same DOP853 run; target under 20 us. ``batch_impacts`` of one
+    row is shown beside it (a batch kernel's fixed cost per call; its rows are in (d)).
 (b) One impact with its 201-point history (``.history()``), against DOP853 with dense
     output evaluated at 201 times over its contact, at equal error: max over the points of
     |delta - delta_ref|/delta_m and |delta' - delta'_ref|/V0 against DOP853 at rtol 1e-13.
@@ -32,8 +33,10 @@ issue 25 and whether it is MET. NOT MET rows are what to speed up next.
 (e) ``impact collide3d --rows`` with ``--tangential mindlin`` (alumina spheres on a plane
     at 3.9 m/s, Chung & Ooi 2011 test 4) on one chunk of rows (10,000: it works a chunk at
     a time) and on two: rows per second between the two (start-up excluded; target 10^4),
-    and the peak RSS of each run, extrapolated linearly to 10^6 rows (not run; target:
-    under 1 GB, memory bounded by the block size).
+    and the peak RSS of a run of 10^6 rows (target: under 1 GB, memory bounded by the block
+    size). With ``--e 0.98`` (Tsuji's damping, the benchmark's e_n), in process: one
+    normalised damped history for all rows against one FILM history per row, rows per
+    second of each (issue 26 sets no target).
 (f) ``impact tables --n 1000000 -o t.csv``, against pyarrow writing the same table of
     floats as CSV (issue 25 sets no target).
 (g) Start-up of every command without ``--plot`` (with units, as typed), each against
@@ -481,6 +484,7 @@ def reference(name: str, result, ode: Integration) -> tuple[float, float, str]:
 
 def bench_single(rows: list[Row], quick: bool) -> None:
     repeat = 3 if quick else 7
+    hertz_baseline = (math.nan, math.nan, math.nan)
     for name, label, call in laws():
         result = call()
         spheres, v0, _ = pair_of(name)
@@ -497,6 +501,8 @@ def bench_single(rows: list[Row], quick: bool) -> None:
         film = best_time(lambda c=call: c().summary, repeat)
         scipy_time = best_time(lambda r=rtol, o=ode: o.run(r), repeat)
         ratio = scipy_time / film
+        if name == "hertz":
+            hertz_baseline = (scipy_time, rtol, ode_error(rtol))
         rows.append(Row(
             f"(a) {name}: one impact, summary: {label}, n = {result.n}",
             seconds(film),
@@ -506,11 +512,15 @@ def bench_single(rows: list[Row], quick: bool) -> None:
             f">= {TARGET_SINGLE:g}x",
             verdict(ratio >= TARGET_SINGLE),
         ))  # fmt: skip
-    bench_normalised(rows, repeat)
+    bench_normalised(rows, repeat, hertz_baseline)
 
 
-def bench_normalised(rows: list[Row], repeat: int) -> None:
-    """The Hertz impact from the normalised solution: the paths that give it today."""
+def bench_normalised(
+    rows: list[Row], repeat: int, baseline: tuple[float, float, float]
+) -> None:
+    """The Hertz impact from the normalised solution: ``elastic_impact`` (which scales it)
+    against DOP853 at equal accuracy (``baseline``: its time, rtol and error from (a)), and
+    ``batch_impacts`` of one row beside it (no target: a batch's fixed cost per call)."""
     from impactcli.batch import batch_impacts
 
     s1, s2 = STEEL
@@ -518,24 +528,26 @@ def bench_normalised(rows: list[Row], repeat: int) -> None:
                  nu2=s2.poisson_ratio, rho1=s1.density, rho2=s2.density)  # fmt: skip
     result = elastic_impact(s1, s2, V1, V2)
     exact = EXACT_CONTACT_DURATION * float(np.ravel(result.plan.delta_max)[0]) / V0
+    scipy_time, rtol, ode_error = baseline
     cases = (
-        ("batch_impacts of one row (scales the normalised solution)",
-         lambda: batch_impacts(s1.diameter, s2.diameter, V1, V2, **props)),
         ("elastic_impact(s1, s2, v1, v2).summary",
-         lambda: elastic_impact(s1, s2, V1, V2).summary),
+         lambda: elastic_impact(s1, s2, V1, V2).summary, True),
+        ("batch_impacts of one row (a batch kernel's fixed cost per call; its rows: (d))",
+         lambda: batch_impacts(s1.diameter, s2.diameter, V1, V2, **props), False),
     )  # fmt: skip
-    for label, call in cases:
+    for label, call, target in cases:
         out = call()
         t_c = float(np.ravel(out["contact_time"])[0])
         film = best_time(call, repeat)
         rows.append(Row(
             f"(a) Hertz impact from the normalised solution: {label}",
             seconds(film),
-            "",
-            "",
-            f"t_c within {abs(t_c / exact - 1):.1e} of exact (n = {result.n})",
-            f"< {seconds(TARGET_NORMALISED)}",
-            verdict(film < TARGET_NORMALISED),
+            f"DOP853 rtol {rtol:.0e}: {seconds(scipy_time)}",
+            _times(scipy_time / film),
+            f"t_c within {abs(t_c / exact - 1):.1e} of exact (n = {result.n}); DOP853 "
+            f"{ode_error:.1e}",
+            f"< {seconds(TARGET_NORMALISED)}" if target else "none (a batch: (d))",
+            verdict(film < TARGET_NORMALISED) if target else "",
         ))  # fmt: skip
 
 
@@ -658,12 +670,22 @@ def random_spheres(size: int, seed: int = 0) -> dict[str, np.ndarray]:
     }
 
 
-def batch_option(name: str) -> int:
-    """The default of an option of ``impact batch``: ``n``, ``chunk_size``."""
+def batch_option(name: str) -> int | None:
+    """The default of an option of ``impact batch``: ``n``, ``chunk_size`` (None: none)."""
     from impactcli.cli.batch_cmd import batch
 
     default = inspect.signature(batch).parameters[name].default
-    return int(getattr(default, "default", default))
+    value = getattr(default, "default", default)
+    return None if value is None else int(value)
+
+
+def batch_n(damped: bool = False) -> int:
+    """The n ``impact batch`` runs rows at: its ``--n``, else the model's default (25, and
+    :data:`impactcli.model.DAMPED_DEFAULT_N` on damped rows)."""
+    from impactcli.model import DAMPED_DEFAULT_N, DEFAULT_N
+
+    n = batch_option("n")
+    return n if n is not None else (DAMPED_DEFAULT_N if damped else DEFAULT_N)
 
 
 def chunks(rows: dict[str, np.ndarray], size: int) -> Iterator[dict[str, np.ndarray]]:
@@ -698,7 +720,7 @@ def bench_batch(rows: list[Row], quick: bool) -> None:
     steel = dict(E1=210e9, nu1=0.3, E2=210e9, nu2=0.3, rho1=7800.0, rho2=7800.0, sy1=1e9,
                  sy2=1e9)  # fmt: skip
     budget, most = (0.5, 10**5) if quick else (2.0, 10**6)
-    n = batch_option("n")
+    n, n_damped = batch_n(), batch_n(damped=True)
     params = {"walton-braun": WALTON_BRAUN, "tabulated": {"curve": CURVE}}
     for name, _, _ in laws():
 
@@ -719,11 +741,11 @@ def bench_batch(rows: list[Row], quick: bool) -> None:
 
         def compute(r, name=name, alpha=alpha):
             return batch_damped_impacts(r["d1"], r["d2"], r["v1"], r["v2"], **steel,
-                                        damping=name, alpha=alpha, n=n)  # fmt: skip
+                                        damping=name, alpha=alpha, n=n_damped)  # fmt: skip
 
         value, size = throughput(compute, budget, most)
         rows.append(_batch_row(f"(d) batch_damped_impacts, {name} alpha = {alpha:.3g}",
-                               size, n, value))  # fmt: skip
+                               size, n_damped, value))  # fmt: skip
     bench_end_to_end(rows, quick)
 
 
@@ -736,7 +758,7 @@ def default_allocator_rate(quick: bool) -> tuple[float, int]:
     row of (d) measures them (run first: the change cannot be undone within the process)."""
     from impactcli.batch import batch_impacts
 
-    size, chunk, n = (10**5 if quick else 10**6), batch_option("chunk_size"), batch_option("n")
+    size, chunk, n = (10**5 if quick else 10**6), batch_option("chunk_size"), batch_n()
     rows = random_spheres(size)
     start = time.perf_counter()
     for r in chunks(rows, chunk):
@@ -828,19 +850,19 @@ def bench_collide3d(rows: list[Row], quick: bool) -> None:
     # one chunk of rows and two: memory beyond the first chunk is what grows with the rows
     chunk = int(inspect.signature(run_collisions3d).parameters["rows"].default)
     sizes = (300, 600) if quick else (chunk, 2 * chunk)
+    million = 3000 if quick else 10**6
     results = []
     with tempfile.TemporaryDirectory() as tmp:
-        for size in sizes:
+        for size in (*sizes, million):
             source, target = Path(tmp) / f"in{size}.csv", Path(tmp) / "out.csv"
             collision_rows(source, size)
             cmd = [sys.executable, "-m", "impactcli", "collide3d", "--rows", str(source), "-o",
                    str(target), "--tangential", "mindlin", "--mu", "0.092"]  # fmt: skip
             results.append(run_command(cmd, memory=True, cwd=ROOT, env=_env()))
             assert sum(1 for _ in target.open()) == size + 1
-    (t1, m1), (t2, m2) = results
+            source.unlink()
+    (t1, m1), (t2, m2), (t3, m3) = results
     value = (sizes[1] - sizes[0]) / (t2 - t1)
-    per_row = max(m2 - m1, 0) / (sizes[1] - sizes[0])
-    million = m2 + per_row * (10**6 - sizes[1])
     label = "(e) impact collide3d --rows -o out.csv --tangential mindlin --mu 0.092"
     rows.append(Row(
         f"{label}: rows/s between {sizes[0]:,} rows ({seconds(t1)}) and {sizes[1]:,} "
@@ -849,12 +871,62 @@ def bench_collide3d(rows: list[Row], quick: bool) -> None:
         verdict(value >= TARGET_COLLIDE3D),
     ))  # fmt: skip
     rows.append(Row(
-        f"{label}: peak RSS at 10^6 rows, extrapolated linearly (not run) from "
-        f"{m1 / 1e6:,.0f} MB at "
-        f"{sizes[0]:,} rows and {m2 / 1e6:,.0f} MB at {sizes[1]:,}",
-        f"{million / 1e9:,.3g} GB ({per_row / 1e6:.3g} MB a row)", "", "", "",
-        f"< {TARGET_COLLIDE3D_MEMORY / 1e9:g} GB", verdict(million < TARGET_COLLIDE3D_MEMORY),
+        f"{label}: peak RSS at {million:,} rows, run ({seconds(t3)}; {m1 / 1e6:,.0f} MB at "
+        f"{sizes[0]:,} rows, {m2 / 1e6:,.0f} MB at {sizes[1]:,}): blocks of 8,192 rows",
+        f"{m3 / 1e9:,.3g} GB", "", "", "",
+        f"< {TARGET_COLLIDE3D_MEMORY / 1e9:g} GB", verdict(m3 < TARGET_COLLIDE3D_MEMORY),
     ))  # fmt: skip
+    bench_collide3d_damped(rows, quick)
+
+
+def bench_collide3d_damped(rows: list[Row], quick: bool) -> None:
+    """Chung & Ooi's e_n = 0.98 (Hertz with the Tsuji damping that gives it): every row's
+    normal history one normalised damped history scaled, against the row-by-row FILM
+    histories (one FILM run per row, as for a law other than Hertz), in process; the
+    normalised history is built once (cached) before the timed run."""
+    from impactcli import rows3d
+    from impactcli.io import collisions3d
+
+    size, few = (512, 16) if quick else (8192, 128)
+    frame = _collision_frame(size)
+    part = {k: v[:: size // few] for k, v in frame.items()}
+    options = {"mu": 0.092, "tangential": "mindlin", "restitution": 0.98}
+    collisions3d.compute_collisions3d(part, **options)  # the normalised history, cached
+    start = time.perf_counter()
+    collisions3d.compute_collisions3d(frame, **options)
+    fast = time.perf_counter() - start
+    original = rows3d.CollisionModel.self_similar
+    try:  # every row's history by its own FILM run, as for a law other than Hertz
+        rows3d.CollisionModel.self_similar = property(lambda _: False)
+        start = time.perf_counter()
+        reference = collisions3d.compute_collisions3d(part, **options)
+        slow = time.perf_counter() - start
+    finally:
+        rows3d.CollisionModel.self_similar = original
+    ours = collisions3d.compute_collisions3d(part, **options)
+    error = float(np.max(np.abs(ours["tangential_impulse"] - reference["tangential_impulse"])
+                         / np.abs(reference["normal_impulse"])))  # fmt: skip
+    fast_rate, slow_rate = size / fast, part["d1"].size / slow
+    rows.append(Row(
+        f"(e) collide3d --rows --tangential mindlin --e 0.98 (Tsuji damping; in process, "
+        f"{size:,} rows): one normalised damped history for all rows",
+        rate(fast_rate), f"one FILM history per row ({part['d1'].size} rows): "
+        f"{rate(slow_rate)}", f"{fast_rate / slow_rate:,.0f}x",
+        f"J_t within {error:.1g} J_n of it", "none in issue 26", "",
+    ))  # fmt: skip
+
+
+def _collision_frame(size: int) -> dict[str, np.ndarray]:
+    """The rows of :func:`collision_rows` as columns of floats."""
+    angle = np.radians(np.linspace(1.0, 89.0, size))
+    zero = np.zeros(size)
+    return {
+        "p1_x": zero, "p1_y": zero, "p1_z": zero, "p2_x": zero, "p2_y": zero,
+        "p2_z": zero - 1.0, "v1_x": 3.9 * np.sin(angle), "v1_y": zero,
+        "v1_z": -3.9 * np.cos(angle), "d1": zero + 5e-3, "E1": zero + 380e9,
+        "nu1": zero + 0.23, "rho1": zero + 4000.0, "d2": zero + np.inf, "m2": zero + np.inf,
+        "E2": zero + np.inf,
+    }  # fmt: skip
 
 
 # -- (f) tables --------------------------------------------------------------------------------

@@ -65,7 +65,9 @@ def __getattr__(name: str):
     if name in _PUBLIC:
         from importlib import import_module
 
-        return getattr(import_module(_PUBLIC[name]), name)
+        value = getattr(import_module(_PUBLIC[name]), name)
+        globals()[name] = value  # found here from now on, without this call
+        return value
     raise AttributeError(f"module 'impactcli' has no attribute {name!r}")
 
 

@@ -207,6 +207,44 @@ def plastic_stage_times(
     return t_max, t_max + (t_bar_c - t_bar_max) * rebound
 
 
+def _declared_stage_times(
+    plan: ImpactPlan, mass: ArrayLike, n: int
+) -> tuple[NDArray, NDArray] | None:
+    """FILM time of maximum indentation and contact time [s] where every stage's law times
+    its own stages (``stage_times``: a linear tabulated curve), chained; None where one
+    does not."""
+    total: ArrayLike = 0.0
+    ends = []
+    for stage in plan.stages:
+        times_of = getattr(stage.law, "stage_times", None)
+        if times_of is None:
+            return None
+        duration = times_of(stage.delta_start, stage.delta_end, stage.speed_start, mass, n,
+                            end_at_rest=stage.end_at_rest)  # fmt: skip
+        if duration is None:
+            return None
+        total = total + duration
+        ends.append(total)
+    return ends[-2], ends[-1]
+
+
+def linear_stage_times(plan: ImpactPlan, mass: ArrayLike) -> tuple[NDArray, NDArray]:
+    """FILM time of maximum indentation and contact time [s] of impacts whose stages are all
+    ``linear`` (their laws declare it): FILM is exact on every segment of a linear stage
+    (docs/method.md §4, item 5), so one segment gives the time of n, to rounding
+    (:func:`impactcli.film.solve_stage` with n = 1, chained in time)."""
+    t_end: ArrayLike = 0.0
+    ends = []
+    for stage in plan.stages:
+        solved = solve_stage(
+            stage.law, stage.delta_start, stage.delta_end, stage.speed_start, mass, 1, t_end,
+            end_at_rest=stage.end_at_rest,
+        )  # fmt: skip
+        t_end = solved.end_time
+        ends.append(t_end)
+    return ends[-2], ends[-1]
+
+
 def material_properties(
     names: ArrayLike,
 ) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray[np.object_]]:
@@ -500,7 +538,9 @@ def law_stage_times(
     normalised solution scaled (:func:`normalised_times`); a plan of a loading from 0 that
     times itself (``loading_time``), a ``linear`` stage (FILM exact) and an unloading of
     the normalised tables' law (Du & Wang, Thornton) goes through
-    :func:`plastic_stage_times`. Any other plan is solved by
+    :func:`plastic_stage_times`; a plan of ``linear`` stages alone (Walton & Braun's)
+    through :func:`linear_stage_times`; a plan whose stage laws time their stages
+    (``stage_times``: a linear tabulated curve) by theirs. Any other plan is solved by
     :func:`impactcli.impact.solve_plan` (callers pass blocks of about :data:`FILM_BLOCK`
     values).
     """
@@ -514,6 +554,11 @@ def law_stage_times(
         return t_bar_max * scale, t_bar_c * scale
     if _elastic_linear_elastic(plan):
         return plastic_stage_times(plan, m, v0, n)
+    if all(getattr(stage.law, "linear", False) for stage in plan.stages):
+        return linear_stage_times(plan, m)
+    times = _declared_stage_times(plan, m, n)
+    if times is not None:
+        return times
     stages = solve_plan(plan, m, n)
     return stages[plan.turning].end_time, stages[-1].end_time
 

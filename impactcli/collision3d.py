@@ -3,8 +3,8 @@ r"""Oblique 3-D collision of two spheres with Coulomb friction and spin.
 The smooth collision of :mod:`impactcli.collision2d` (paper sec. 4.5) extended to rough
 spheres in three dimensions. The spheres are rigid bodies during the short contact
 (impulsive approximation: the positions do not change); the contact deforms only through
-the normal law, which supplies the coefficient of restitution e, and, for the ``mindlin``
-model, through a tangential spring.
+the normal law, which supplies the coefficient of restitution e, and, for the spring models
+(``mindlin`` and its variants), through a tangential spring.
 
 Kinematics
 ----------
@@ -39,7 +39,7 @@ masses
 
 The normal law gives J_n = (1 + e) m u_n (paper eq. 20 for any e). Normal and tangential
 motions are uncoupled for spheres, and the tangential impulse stays along the initial slip
-direction t_hat = u_t/|u_t| in both models below.
+direction t_hat = u_t/|u_t| in every model below.
 
 Tangential models
 -----------------
@@ -50,21 +50,23 @@ J_t = mu J_n t_hat. For a solid sphere on a fixed plane (m_t = 2 m / 7) in gross
 v_t' = v_t - mu (1 + e) v_n and |omega'| = (5/2) mu (1 + e) v_n / R, and the contact sticks
 when tan(theta) = |u_t|/u_n <= (7/2) mu (1 + e).
 
-``mindlin``: the tangential compliance of Mindlin (1949) with Coulomb slip, in the simplified
-incremental form used in DEM (Thornton & Yin 1991; Di Renzo & Di Maio 2004; Thornton, Cummins
-& Cleary 2011): a tangential spring of the no-slip Mindlin stiffness
+The spring models (``mindlin``, ``mindlin-force``, ``mindlin-displacement``,
+``mindlin-rescale``) and ``mindlin-deresiewicz``: the tangential compliance of Mindlin
+(1949) with Coulomb slip, as DEM codes implement it (:mod:`impactcli.laws.tangential` has
+each model's equations and the codes that use it): a tangential spring of the no-slip
+Mindlin stiffness
 
 .. math::
 
     k_t = 8 G^* a, \qquad a = \sqrt{R \delta}, \qquad
     \frac{1}{G^*} = \frac{2 - \nu_1}{G_1} + \frac{2 - \nu_2}{G_2},
 
-loaded incrementally, dF_t = k_t u_t dt, capped by Coulomb's law |F_t| <= mu F_n (gross
-slip), and, while the contact shrinks (k_t decreasing), scaled down with the stiffness,
-F_t <- F_t k_t,new / k_t,old, so that the spring never returns more energy than it stored.
-It is integrated over the normal history delta(t), F_n(t) of the normal law (FILM). Partial
-slip inside the contact (the Mindlin-Deresiewicz annulus) is not resolved: the spring is
-elastic up to the Coulomb limit, then slides.
+capped by Coulomb's law |F_t| <= mu F_n, integrated over the normal history delta(t),
+F_n(t) of the normal law (FILM) by :mod:`impactcli.tangential` (second order in the time
+step). ``mindlin`` (LAMMPS ``mindlin_rescale/force``; Thornton, Cummins & Cleary 2011)
+loads the force incrementally, dF_t = k_t u_t dt, and scales it down with the stiffness
+while the contact shrinks, so that the spring never returns more energy than it stored.
+``mindlin-deresiewicz`` resolves the partial slip of the contact (Thornton & Yin 1991).
 
 Every function broadcasts over a leading batch shape S: scalars of shape S, vectors of
 shape S + (3,), histories of shape S + (K,).
@@ -103,12 +105,15 @@ from impactcli.collision2d import (
 )
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW, get_law
+from impactcli.laws.tangential import get_tangential, tangential_names
+from impactcli.solution import history_times
 from impactcli.validation import check_friction, check_restitution, check_vectors, input_errors
 from impactcli.validation import where_first as _where
 
 __all__ = [
     "CONTACT_DISTANCE_RTOL",
     "ELASTOPLASTIC_NORMAL_LAW",
+    "HISTORY_N",
     "SUMMARY_KEYS",
     "TANGENTIAL_MODELS",
     "Collision3D",
@@ -122,19 +127,22 @@ __all__ = [
     "normal_law_warnings",
     "normal_restitution_and_history",
     "oblique_collision_3d",
+    "restitution_damping",
     "oblique_impact",
     "reference_tangent",
     "sphere_collision_3d",
     "velocity_from_angles",
 ]
 
+from impactcli.tangential import Steps
+
 if TYPE_CHECKING:
     from impactcli.impact import ImpactResult, Sphere
 
 Array = NDArray[np.float64]
 
-#: The tangential models of :func:`oblique_collision_3d`.
-TANGENTIAL_MODELS: tuple[str, ...] = ("rigid", "mindlin")
+#: The tangential models of :func:`oblique_collision_3d` (:mod:`impactcli.laws.tangential`).
+TANGENTIAL_MODELS: tuple[str, ...] = tangential_names()
 
 #: Relative tolerance on the agreement of a normal history with u_n and e.
 _HISTORY_RTOL = 1e-6
@@ -181,16 +189,16 @@ class NormalHistory:
     """The normal contact history of each collision, from the normal law (FILM).
 
     Arrays have the batch shape S followed by K >= 2 time points, from first contact to
-    separation. The ``mindlin`` model takes one tangential step per interval, so K sets its
-    resolution (a few thousand points resolve the tangential oscillation).
+    separation. A tangential spring takes one step per interval (second order in it), so K
+    sets its resolution (4001 points: within 1e-6 of the converged answer, docs/collision3d.md).
 
     Attributes
     ----------
     t : times, increasing, [s]
     delta : total indentation delta(t), [m]
     delta_dot : indentation rate delta'(t), [m/s]; delta'(0) = u_n, at separation -e u_n
-    force : compressive normal force F_n(t) = max(F(t), 0), [N]: the Coulomb limit of the
-        ``mindlin`` model is mu F_n
+    force : compressive normal force F_n(t) = max(F(t), 0), [N]: the Coulomb limit of a
+        tangential spring is mu F_n
     impulse : the integral of F_n dt over the contact, [N s], batch shape S: the most
         impulse friction can take is mu times it. ``None`` (the default): J_n = (1 + e) m u_n,
         right when the normal force never pulls (F >= 0 throughout: every law of the
@@ -257,14 +265,19 @@ class Collision3D:
     friction : Coulomb friction coefficient mu, [-]
     normal_impulse : J_n = (1 + e) m u_n, on sphere 2 along n_hat, [N s]
     tangential_impulse : J_t . t_hat, on sphere 2 along t_hat, [N s] (>= 0)
-    stuck : True where the contact stuck (rigid: m_t |u_t| <= mu J_n; mindlin: the spring
-        was below the Coulomb limit during part of the contact), False where it slid
+    stuck : True where the contact stuck (rigid: m_t |u_t| <= mu J_n; a spring: it was
+        below the Coulomb limit during part of the contact), False where it slid
         throughout at |F_t| = mu F_n, [-]
-    model : ``rigid`` or ``mindlin``
+    model : the tangential model (:data:`TANGENTIAL_MODELS`)
     times, tangential_force : the tangential force on sphere 2 along t_hat at the times of
-        the normal history, [s], [N] (``mindlin`` only, else ``None``)
+        the normal history, [s], [N] (a tangential spring only, else ``None``)
     warnings : what ``impact collide3d`` prints for this collision: the warnings of its
         normal impact (:attr:`NormalLaw.warnings`, given to :func:`oblique_collision_3d`)
+    geometry : ``frozen`` (the line of centres of first contact throughout, the impulsive
+        approximation) or ``moving`` (the spheres moved during the contact,
+        :func:`impactcli.moving.moving_collision_3d`)
+    p1_final, p2_final : with the moving geometry, the centres at separation, [m] (the
+        angular momenta after the impact are taken there); else ``None``
 
     Examples
     --------
@@ -304,6 +317,9 @@ class Collision3D:
     times: Array | None = field(default=None, repr=False)
     tangential_force: Array | None = field(default=None, repr=False)
     warnings: tuple[str, ...] = field(default=(), repr=False)
+    geometry: str = "frozen"
+    p1_final: Array | None = field(default=None, repr=False)
+    p2_final: Array | None = field(default=None, repr=False)
 
     # -- masses ------------------------------------------------------------------------
     @property
@@ -414,6 +430,9 @@ class Collision3D:
         )[i - 1]
         v = getattr(self, f"v{i}_final" if final else f"v{i}")
         w = getattr(self, f"w{i}_final" if final else f"w{i}")
+        moved = self.p1_final if i == 1 else self.p2_final
+        if final and moved is not None:  # where the spheres were at separation
+            p = moved
         with np.errstate(invalid="ignore", divide="ignore"):
             inertia = r * r / rot
             spin = np.where(np.isfinite(inertia)[..., None], inertia[..., None] * w, np.nan)
@@ -456,8 +475,8 @@ class Collision3D:
         """Energy lost to friction, m_t (|u_t|^2 - |u_t'|^2) / 2, [J] (>= 0).
 
         Normal and tangential motions are uncoupled for spheres, so the kinetic energy lost
-        is the sum of this and :attr:`energy_dissipated_normal` (the tangential spring of
-        ``mindlin`` is unloaded at separation, F_n = 0)."""
+        is the sum of this and :attr:`energy_dissipated_normal` (a tangential spring is
+        unloaded at separation, F_n = 0)."""
         u_t = self.contact_velocity - self.approach_velocity[..., None] * self.normal
         u_t_final = self.contact_velocity_final + self.separation_velocity[..., None] * self.normal
         return 0.5 * self.tangential_mass * (_dot(u_t, u_t) - _dot(u_t_final, u_t_final))
@@ -568,6 +587,36 @@ class NormalLaw(tuple):
         return self[1]
 
 
+def restitution_damping(restitution: float) -> tuple[str | None, float | None]:
+    """The normal law of a given e for a tangential spring: Hertz with the Tsuji damping
+    that gives e at every impact velocity (LAMMPS's ``damping coeff_restitution``, solved
+    exactly here): ``("tsuji", alpha)``, or ``(None, None)`` (Hertz) for e = 1.
+
+    >>> name, alpha = restitution_damping(0.98)
+    >>> name, round(alpha, 6)
+    ('tsuji', 0.014379)
+    """
+    from impactcli.damping import damping_for_restitution
+
+    e = float(restitution)
+    check_restitution(e)
+    if e == 1.0:
+        return None, None
+    if not e > 0.0:
+        raise ValueError("e = 0 has no normal force history (the damped contact never ends)")
+    from impactcli.laws.registry import DAMPING_LAWS, RESTITUTION_DAMPING
+
+    # The damping scales with sqrt(m K): its alpha for e is that of any m, K and V0.
+    name = DAMPING_LAWS[RESTITUTION_DAMPING].name
+    return name, float(damping_for_restitution(name, e, 1.0, 1.0, 1.0))
+
+
+#: FILM segments per stage of a normal history (``points`` given) when ``n`` is not: the
+#: tangential integration inherits the history's error, 1e-5 of the converged answer at 100
+#: (docs/collision3d.md); e alone keeps the 25 of impact elastic/elastoplastic.
+HISTORY_N = 100
+
+
 @input_errors
 def normal_restitution_and_history(
     sphere1: Sphere,
@@ -578,7 +627,7 @@ def normal_restitution_and_history(
     damping: str | None = None,
     alpha: float | None = None,
     points: int | None = None,
-    n: int = 25,
+    n: int | None = None,
     separation: str = "overlap",
 ) -> NormalLaw:
     r"""The normal law of an oblique impact: e and, if asked, the normal history.
@@ -600,9 +649,9 @@ def normal_restitution_and_history(
     params : the law's parameters by name (SI)
     damping : None, ``tsuji`` or ``hunt-crossley``
     alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
-    points : time points of the history (>= 3) for the ``mindlin`` model; None: no history
-    n : FILM segments per stage of a law of :mod:`impactcli.laws` (damped Hertz uses
-        :data:`impactcli.model.DAMPED_DEFAULT_N`, 400)
+    points : time points of the history (>= 3) for a tangential spring; None: no history
+    n : FILM segments per stage; default 25 for e alone, :data:`HISTORY_N` (100) with a
+        history, and :data:`impactcli.model.DAMPED_DEFAULT_N` (400) with damping
     separation : with ``damping``: ``overlap`` (the contact ends when delta returns to 0) or
         ``force`` (when the total force does; the spheres part at delta_separation > 0)
 
@@ -658,7 +707,12 @@ def normal_restitution_and_history(
         check_alpha(alpha)
         check_damping(damping, separation)
     model = ContactModel(law, dict(params or {}), damping, alpha, separation=separation)
-    segments = n if damping is None else model.default_n
+    if n is not None:
+        segments = n
+    elif damping is not None:
+        segments = model.default_n
+    else:
+        segments = 25 if points is None else HISTORY_N
     # the head-on impact at u_n: sphere 1 moves, unless it is the fixed one
     v1 = 0.0 if np.isinf(sphere1.total_mass) else float(u_n)
     check_size("n", segments, MAX_SEGMENTS)
@@ -674,9 +728,9 @@ def normal_restitution_and_history(
     if not (np.isfinite(t_c) and e > 0.0):
         raise ValueError(
             f"the damped contact never ends (alpha = {alpha:g}: overdamped), so it has no "
-            "normal history for the mindlin model"
+            "normal history for a tangential spring"
         )
-    t = np.linspace(0.0, t_c, int(points))
+    t = history_times(solution, int(points))
     delta, delta_dot = solution.evaluate(t)
     delta = np.maximum(delta, 0.0)
     force = np.maximum(solution.force(t, delta, delta_dot), 0.0)
@@ -709,6 +763,7 @@ def oblique_collision_3d(
     shear_modulus: ArrayLike | None = None,
     *,
     warnings: Sequence[str] = (),
+    steps: Steps | None = None,
 ) -> Collision3D:
     r"""Velocities and spins after the oblique collision of two rough spheres, in 3-D.
 
@@ -721,16 +776,18 @@ def oblique_collision_3d(
     - ``rigid``: J_t = m_t |u_t| (stick) if that is <= mu J_n, else mu J_n (gross slip),
       along the slip direction t_hat (Brach 1991; Stronge 2000).
     - ``mindlin``: incremental Mindlin spring k_t = 8 G* sqrt(R delta) with the Coulomb cap
-      mu F_n, scaled down while the contact shrinks (Thornton, Cummins & Cleary 2011),
-      integrated over ``history``. Each interval is solved exactly as a harmonic oscillator
-      of stiffness k_t (the mean of its ends) and mass m_t; where the spring would end
-      above mu F_n the interval slides with the impulse mu dJ (dJ: the interval's share of
-      the integral of F_n dt, the trapezoid of F_n dt scaled to the history's ``impulse``),
-      but no more than the elastic interval's, and ends at |F_t| = mu F_n. In gross slip
+      mu F_n, scaled down while the contact shrinks (Thornton, Cummins & Cleary 2011; LAMMPS
+      ``mindlin_rescale/force``), integrated over ``history``; its variants
+      ``mindlin-force``, ``mindlin-displacement``, ``mindlin-rescale`` (LAMMPS's other
+      Mindlin springs) and ``mindlin-deresiewicz`` (partial slip, Thornton & Yin 1991) as
+      :mod:`impactcli.laws.tangential` defines them, by :mod:`impactcli.tangential` (second
+      order in the time step of the history). Where the spring would go beyond mu F_n the
+      interval slides with the impulse mu dJ (dJ: the interval's share of the integral of
+      F_n dt, the trapezoid of F_n dt scaled to the history's ``impulse``). In gross slip
       throughout J_t = mu times the impulse of F_n = max(F, 0) to rounding: mu J_n where
       the normal force never pulls.
 
-    With mu = 0 both models give the smooth collision of
+    With mu = 0 every model gives the smooth collision of
     :func:`impactcli.collision2d.oblique_collision` (exactly, for planar input with z = 0).
 
     Parameters
@@ -746,14 +803,21 @@ def oblique_collision_3d(
     restitution : normal coefficient of restitution e in [0, 1], [-], from the normal law
         (elastic: 1; elastoplastic: the FILM run at the normal approach velocity u_n)
     mu : Coulomb friction coefficient mu >= 0, [-] (``--mu`` of ``impact collide3d``)
-    tangential : ``rigid`` or ``mindlin``
+    tangential : a model of :data:`TANGENTIAL_MODELS`: ``rigid`` (the default), ``mindlin``,
+        ``mindlin-force``, ``mindlin-displacement``, ``mindlin-rescale``,
+        ``mindlin-deresiewicz``
     inertia1, inertia2 : moments of inertia, [kg m^2]; default a solid sphere,
         I = (2/5) m R^2 (R^2/I = 5/(2 m); 0 for a fixed body and for a flat one, which
         does not turn)
-    history : the normal history (``mindlin`` only), consistent with u_n and e to 1e-6
-    shear_modulus : G* of :func:`effective_shear_modulus`, [Pa] (``mindlin`` only)
+    history : the normal history (every model but ``rigid``), consistent with u_n and e to
+        1e-6
+    shear_modulus : G* of :func:`effective_shear_modulus`, [Pa] (every model but ``rigid``)
     warnings : the warnings of the normal law that gave e (:attr:`NormalLaw.warnings` of
         :func:`normal_restitution_and_history`), carried by the result
+    steps : instead of ``history`` and ``shear_modulus``, the normal histories as the
+        tangential integration takes them (:func:`impactcli.tangential.hertz_steps`: a batch
+        of Hertz impacts from one normalised history, memory O(batch + points)); the
+        result then has no force history
 
     Returns
     -------
@@ -767,7 +831,7 @@ def oblique_collision_3d(
     ValueError
         Masses, diameters, e, mu or vectors out of range, coincident centres, centres of
         two spheres with friction not at contact distance, spheres not approaching
-        (u_n <= 0), an unknown model, or a ``mindlin`` call without a history consistent
+        (u_n <= 0), an unknown model, or a spring model without a history consistent
         with u_n and e. For a batch the message names the first bad collision.
 
     Examples
@@ -784,7 +848,7 @@ def oblique_collision_3d(
     result = _oblique(
         m1, m2, 0.5 * np.asarray(d1, dtype=float), 0.5 * np.asarray(d2, dtype=float), p1, p2,
         v1, v2, w1, w2, restitution, mu, tangential, inertia1, inertia2, history,
-        shear_modulus,
+        shear_modulus, steps,
     )  # fmt: skip
     if warnings:
         object.__setattr__(result, "warnings", tuple(warnings))
@@ -857,10 +921,10 @@ def _oblique(
     inertia2: ArrayLike | None = None,
     history: NormalHistory | None = None,
     shear_modulus: ArrayLike | None = None,
+    steps: Steps | None = None,
 ) -> Collision3D:
     """:func:`oblique_collision_3d` with radii [m] and friction mu [-]."""
-    if tangential not in TANGENTIAL_MODELS:
-        raise ValueError(f"the tangential model must be rigid or mindlin, got {tangential!r}")
+    spec = get_tangential(tangential)
     m1, m2, r1, r2, e, mu = (
         np.asarray(x, dtype=float) for x in (m1, m2, r1, r2, restitution, friction)
     )
@@ -912,7 +976,8 @@ def _oblique(
         rot1.shape,
         rot2.shape,
         u_n.shape,
-        () if history is None or tangential != "mindlin" else history.t.shape[:-1],
+        () if history is None or not spec.needs_history else history.t.shape[:-1],
+        () if steps is None or not spec.needs_history else (steps.rows,),
     )
     m1, m2, r1, r2, e, mu, rot1, rot2, u_n = (
         np.broadcast_to(a, shape) for a in (m1, m2, r1, r2, e, mu, rot1, rot2, u_n)
@@ -942,15 +1007,23 @@ def _oblique(
         j_stick = m_t * slip
         stuck = j_stick <= mu * j_n
         j_t = np.where(stuck, j_stick, mu * j_n)
+    elif steps is not None:
+        from impactcli.tangential import integrate_tangential
+
+        if shape != (steps.rows,):
+            raise ValueError(f"steps has {steps.rows} rows for a batch of shape {shape}")
+        out = integrate_tangential(spec, steps, slip, m_t, mu)
+        j_t, stuck = out.impulse, out.stuck
     else:
         if history is None or shear_modulus is None:
-            raise ValueError("the mindlin model needs the normal history and G*")
+            raise ValueError(f"the {tangential} model needs the normal history and G*")
         g = np.broadcast_to(np.asarray(shear_modulus, dtype=float), shape)
         bad = ~(g > 0.0)
         if np.any(bad):
             raise ValueError("the effective shear modulus G* must be > 0" + _where(bad))
         radius = 1.0 / (1.0 / r1 + 1.0 / r2)
-        j_t, stuck, force = _mindlin(history, shape, u_n, e, j_n, slip, m_t, mu, g, radius)
+        j_t, stuck, force = _spring(spec.name, history, shape, u_n, e, j_n, slip, m_t, mu, g,
+                                    radius)  # fmt: skip
         times = np.broadcast_to(history.t, force.shape)
 
     impulse_t = j_t[..., None] * t_hat  # on sphere 2
@@ -1041,7 +1114,8 @@ def check_contact_distance(
         )
 
 
-def _mindlin(
+def _spring(
+    model: str,
     history: NormalHistory,
     shape: tuple[int, ...],
     u_n: Array,
@@ -1053,8 +1127,11 @@ def _mindlin(
     g: Array,
     radius: Array,
 ) -> tuple[Array, NDArray[np.bool_], Array]:
-    """Tangential impulse, stick flag and force history of the Mindlin spring (see
-    :func:`oblique_collision_3d`). One vectorised step per interval of the history."""
+    """Tangential impulse, stick flag and force history of a tangential model with a spring
+    (see :func:`oblique_collision_3d`), by :func:`impactcli.tangential.integrate_tangential`
+    on every collision at once."""
+    from impactcli.tangential import history_steps, integrate_tangential
+
     k_points = history.t.shape[-1]
     hist = {
         key: np.broadcast_to(getattr(history, key), shape + (k_points,))
@@ -1067,10 +1144,10 @@ def _mindlin(
     bad = ~np.isclose(-end, e * u_n, rtol=_HISTORY_RTOL, atol=_HISTORY_RTOL * u_n)
     if np.any(bad):
         raise ValueError("the normal history must end at delta' = -e u_n" + _where(bad))
-    # Share of the impulse of F_n = max(F, 0) in each interval: the trapezoid of F_n dt,
-    # scaled to sum to the history's impulse (J_n where the normal force never pulls) to
-    # rounding, so gross slip gives J_t = mu * that impulse to rounding. (Between FILM
-    # nodes delta' is not monotonic to rounding, so its differences are not used.)
+    # The Coulomb budget: mu times the impulse of F_n = max(F, 0), J_n where the normal
+    # force never pulls; each interval's share of it is the trapezoid of F_n dt scaled to
+    # it, so gross slip gives J_t = mu * that impulse to rounding. (Between FILM nodes
+    # delta' is not monotonic to rounding, so its differences are not used.)
     impulse = j_n
     if history.impulse is not None:
         impulse = np.broadcast_to(history.impulse, shape)
@@ -1081,50 +1158,25 @@ def _mindlin(
                 "(the integral of max(F, 0) dt)" + _where(bad)
             )
     f_n = hist["force"]
-    area = 0.5 * (f_n[..., 1:] + f_n[..., :-1]) * np.diff(hist["t"], axis=-1)
-    total = np.sum(area, axis=-1)
+    total = np.sum(0.5 * (f_n[..., 1:] + f_n[..., :-1]) * np.diff(hist["t"], axis=-1), axis=-1)
     bad = ~(total > 0.0)
     if np.any(bad):
         raise ValueError("the normal history has no contact force" + _where(bad))
-    d_jn = impulse[..., None] * area / total[..., None]
-    stiffness = 8.0 * g[..., None] * np.sqrt(radius[..., None] * hist["delta"])
-    cap = mu[..., None] * hist["force"]
-    dt = np.diff(hist["t"], axis=-1)
-    # What does not depend on the slip and the force, for every interval at once: the
-    # interval's spring (the mean of its ends' stiffness), its rotation omega dt, the
-    # largest sliding impulse mu dJ (Coulomb's mu F_n integrated over the interval), and
-    # the scale of a shrinking contact's force.
-    k_old, k = stiffness[..., :-1], stiffness[..., 1:]
-    k_mid = 0.5 * (k_old + k)
-    omega_dt = np.sqrt(k_mid / np.asarray(m_t)[..., None]) * dt
-    cos, sinc = np.cos(omega_dt), np.sinc(omega_dt / np.pi)
-    dj_most = mu[..., None] * d_jn
-    with np.errstate(invalid="ignore", divide="ignore"):  # 1 where the contact grows
-        scale = np.where(k < k_old, k / np.where(k_old > 0.0, k_old, 1.0), 1.0)
-    s = slip.copy()  # slip speed along t_hat
-    f = np.zeros(shape)  # tangential force on sphere 2 along t_hat
-    j_t = np.zeros(shape)
-    forces = np.zeros(shape + (k_points,))
-    stuck = np.zeros(shape, dtype=bool)
-    steps = zip(*(np.moveaxis(a, -1, 0) for a in (cos, sinc, dt, k_mid, dj_most, scale)),
-                np.moveaxis(cap, -1, 0)[1:], np.moveaxis(-cap, -1, 0)[1:])  # fmt: skip
-    for j, (cos_j, sinc_j, dt_j, k_j, most_j, scale_j, cap_j, low_j) in enumerate(steps):
-        s_trial = s * cos_j - f * dt_j * sinc_j / m_t
-        f_trial = f * cos_j + k_j * s * dt_j * sinc_j
-        # Coulomb: where the spring would end above mu F_n the step slides, with the
-        # impulse mu dJ, but never more than the elastic step's (the force is bounded by
-        # both); the end force is held within mu F_n.
-        dj_elastic = m_t * (s - s_trial)
-        slides = np.abs(f_trial) >= cap_j
-        dj_slide = np.sign(dj_elastic) * np.minimum(most_j, np.abs(dj_elastic))
-        dj = np.where(slides, dj_slide, dj_elastic)
-        s = np.where(slides, s - dj / m_t, s_trial)
-        # A shrinking contact scales the force with the stiffness (Thornton et al. 2011).
-        f = f_trial.clip(low_j, cap_j) * scale_j
-        j_t = j_t + dj
-        forces[..., j + 1] = f
-        stuck |= ~slides
-    return j_t, stuck, forces
+
+    def flat(a: ArrayLike) -> Array:
+        return np.reshape(np.broadcast_to(a, shape), -1)
+
+    rows = (-1, k_points)
+    steps = history_steps(
+        np.reshape(hist["t"], rows), np.reshape(hist["delta"], rows), np.reshape(f_n, rows),
+        flat(impulse), flat(g), flat(radius),
+    )  # fmt: skip
+    out = integrate_tangential(model, steps, flat(slip), flat(m_t), flat(mu), record=True)
+    return (
+        np.reshape(out.impulse, shape),
+        np.reshape(out.stuck, shape),
+        np.reshape(out.force, shape + (k_points,)),
+    )
 
 
 def _contact_velocity(v1, v2, w1, w2, r1, r2, normal) -> Array:
@@ -1281,16 +1333,18 @@ def sphere_collision_3d(
         ``w1``, ``w2`` [rad/s] (default 0), each (x, y, z)
     normal_law : the keywords of :func:`normal_restitution_and_history` (``law``,
         ``params``, ``damping``, ``alpha``, ``separation``, ``n``); default Hertz
-    restitution : a given e [-] instead of the normal law (``rigid`` only)
+    restitution : a given e [-] instead of the normal law; with a tangential spring, which
+        needs the normal force history, Hertz with the Tsuji damping that gives e
+        (:func:`restitution_damping`), 0 < e <= 1
     mu : Coulomb friction coefficient, [-]
-    tangential : ``rigid`` or ``mindlin``
-    points : time points of the normal history of ``mindlin``
+    tangential : a model of :mod:`impactcli.laws.tangential` (``rigid``, ``mindlin``, ...)
+    points : time points of the normal history of a tangential spring
 
     Returns
     -------
     tuple
         The :class:`Collision3D` (one collision; with the normal law's ``warnings``) and
-        the :class:`NormalHistory` of ``mindlin`` (None for ``rigid``).
+        the :class:`NormalHistory` of a tangential spring (None for ``rigid``).
 
     Raises
     ------
@@ -1320,16 +1374,21 @@ def sphere_collision_3d(
             f"{u_n:.6g} m/s with n = ({n[0]:.6g}, {n[1]:.6g}, {n[2]:.6g}) from sphere 1 to "
             "sphere 2 (an impact needs > 0)"
         )
-    mindlin = tangential == "mindlin"
+    spring = get_tangential(tangential).needs_history
     history = shear = None
     warned: tuple[str, ...] = ()
+    law = dict(normal_law or {})
+    if restitution is not None and spring:  # Hertz with the damping that gives e
+        law["law"], law["params"] = ELASTIC_LAW, {}
+        law["damping"], law["alpha"] = restitution_damping(restitution)
+        restitution = None
     if restitution is None:
         normal = normal_restitution_and_history(
-            sphere1, sphere2, u_n, **dict(normal_law or {}), points=points if mindlin else None
+            sphere1, sphere2, u_n, **law, points=points if spring else None
         )
         restitution, history = normal
         warned = normal.warnings
-    if mindlin:
+    if spring:
         shear = effective_shear_modulus(
             sphere1.youngs_modulus, sphere1.poisson_ratio, sphere2.youngs_modulus,
             sphere2.poisson_ratio,

@@ -26,7 +26,8 @@ Each is written as two pairs of fractions, ``elastic`` (of delta - delta_p) and
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import math
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -39,6 +40,7 @@ __all__ = [
     "energy_columns",
     "energy_history",
     "film_contact_work",
+    "film_work_table",
     "kinetic_energy",
     "loading_work",
     "permanent_fractions",
@@ -58,6 +60,9 @@ def kinetic_energy(mass: ArrayLike, velocity: ArrayLike) -> NDArray:
     >>> float(kinetic_energy(2.0, 3.0)), float(kinetic_energy(np.inf, 0.0))
     (9.0, 0.0)
     """
+    if type(mass) is float and math.isfinite(mass):  # the common case: no fixed body
+        v = np.asarray(velocity, dtype=float)
+        return 0.5 * mass * v * v
     m, v = np.asarray(mass, dtype=float), np.asarray(velocity, dtype=float)
     with np.errstate(invalid="ignore"):
         return np.where(np.isinf(m) & (v == 0.0), 0.0, 0.5 * m * v * v)
@@ -172,7 +177,14 @@ def sphere_shares(
     raise ValueError(f"split must be mass, compliance or yield, got {split!r}")
 
 
-def film_contact_work(stages, laws, t: ArrayLike) -> NDArray:
+def film_contact_work(
+    stages,
+    laws,
+    t: ArrayLike,
+    film: Any = None,
+    delta: ArrayLike | None = None,
+    table: tuple | None = None,
+) -> NDArray:
     """Work done by the contact force up to times ``t`` along a FILM solution, [J].
 
     FILM integrates, on each segment, the chord-linearised law F = K_rs (delta - C_rs)
@@ -192,34 +204,41 @@ def film_contact_work(stages, laws, t: ArrayLike) -> NDArray:
     stages : the :class:`~impactcli.film.FilmStage` objects of one impact, in time order
     laws : the force law of each stage (``work(start, end)``, [J])
     t : times, [s]; clamped to the contact
+    film : the :class:`~impactcli.film.FilmSolution` of ``stages``, if the caller has it
+    delta : its indentation at ``t`` [m] (``film.evaluate(t)``), if the caller has it
+    table : :func:`film_work_table` of ``stages`` and ``laws``, if the caller has it
     """
     t = np.asarray(t, dtype=float)
+    table = film_work_table(stages, laws) if table is None else table
+    node_work, deltas, stiff, offset, base = table
+    if film is None:
+        from impactcli.film import FilmSolution
+
+        film = FilmSolution(tuple(stages))
+    if delta is None:
+        delta, _ = film.evaluate(t)
+    _, seg, end = film.segment_of(t)
+    d_r, c = deltas[seg], offset[seg]
+    work = node_work[seg] + 0.5 * stiff[seg] * (delta - d_r) * (delta + d_r - 2.0 * c)
+    return np.where(end, base, work)
+
+
+def film_work_table(stages, laws) -> tuple[NDArray, NDArray, NDArray, NDArray, float]:
+    """The segments of a FILM solution for :func:`film_contact_work`, across its stages:
+    the exact work up to each segment's start node [J], its start node delta_r [m], its
+    chord stiffness K_rs [N/m] and offset C_rs [m], and the work up to separation [J]."""
     base = 0.0
-    starts, ends, node_work, deltas, stiff, offset = [], [], [], [], [], []
+    node_work, deltas, stiff, offset = [], [], [], []
     for stage, law in zip(stages, laws):
         a = stage.delta[0]
         work = base + np.reshape(law.work(a, stage.delta), -1)
-        starts.append(stage.time[:-1])
-        ends.append(stage.time[1:])
         node_work.append(work[:-1])
         deltas.append(stage.delta[:-1])
         stiff.append(stage.stiffness)
         offset.append(stage.offset)
         base = float(work[-1])
-    starts, ends = np.concatenate(starts), np.concatenate(ends)
-    node_work, deltas = np.concatenate(node_work), np.concatenate(deltas)
-    stiff, offset = np.concatenate(stiff), np.concatenate(offset)
-    from impactcli.film import FilmSolution
-
-    film = FilmSolution(tuple(stages))
-    delta, _ = film.evaluate(t)
-    t0, t1 = film.start_time, film.end_time
-    tc = np.clip(t, t0, t1)
-    slack = 8.0 * np.finfo(float).eps * max(abs(t0), abs(t1))
-    seg = np.clip(np.searchsorted(starts, tc + slack, side="right") - 1, 0, starts.size - 1)
-    d_r, c = deltas[seg], offset[seg]
-    work = node_work[seg] + 0.5 * stiff[seg] * (delta - d_r) * (delta + d_r - 2.0 * c)
-    return np.where(tc + slack >= t1, base, work)
+    cat = np.concatenate
+    return cat(node_work), cat(deltas), cat(stiff), cat(offset), base
 
 
 def loading_work(laws, bounds, delta: ArrayLike) -> NDArray:
@@ -236,10 +255,11 @@ def loading_work(laws, bounds, delta: ArrayLike) -> NDArray:
     done = 0.0
     for k, (law, (a, b)) in enumerate(zip(laws, bounds)):
         last = k == len(laws) - 1
-        inside = (delta > a) & ((delta <= b) | last)
-        if np.any(inside):
+        inside = delta > a if last else (delta > a) & (delta <= b)
+        if inside.any():
             work[inside] = done + np.reshape(law.work(a, delta[inside]), -1)
-        done += float(np.reshape(law.work(a, b), -1)[0])
+        if not last:
+            done += float(np.reshape(law.work(a, b), -1)[0])
     return work
 
 
@@ -290,6 +310,7 @@ def plan_energy(
     contact_work: ArrayLike,
     t_max: float,
     delta_max: float,
+    constants: tuple | None = None,
 ) -> tuple[NDArray, NDArray]:
     """:func:`strain_and_dissipated` of an impact of a normal law, [J].
 
@@ -301,11 +322,11 @@ def plan_energy(
     t, delta : times [s] and indentation [m] of the history
     contact_work : W(t) along the solution (FILM's or an integration's), [J]
     t_max, delta_max : the solution's turning point, [s], [m]
+    constants : :func:`plan_energy_constants` of the impact, if the caller has them
     """
-    turning = plan.turning % len(plan.stages)
-    stages = plan.stages[: turning + 1]  # the loading stages; the rest unload
-    laws = [stage.law for stage in stages]
-    bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
+    if constants is None:
+        constants = plan_energy_constants(plan, contact, delta_max)
+    laws, bounds, recoverable_max, loading_max = constants
     delta = np.asarray(delta, dtype=float)
     return strain_and_dissipated(
         t,
@@ -313,6 +334,24 @@ def plan_energy(
         t_max,
         loading_work(laws, bounds, delta),
         np.reshape(contact.recoverable_work(delta), np.shape(delta)),
+        recoverable_max,
+        loading_max,
+    )
+
+
+def plan_energy_constants(
+    plan: ImpactPlan, contact: NormalContact, delta_max: float
+) -> tuple[list, list[tuple[float, float]], float, float]:
+    """What :func:`plan_energy` takes of the impact alone: the laws and ``(start, end)``
+    indentations of its loading stages (up to the plan's ``turning`` stage) [m], and the
+    recoverable and the loading work at delta_max [m], [J]."""
+    turning = plan.turning % len(plan.stages)
+    stages = plan.stages[: turning + 1]  # the loading stages; the rest unload
+    laws = [stage.law for stage in stages]
+    bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
+    return (
+        laws,
+        bounds,
         _first(contact.recoverable_work(np.array([delta_max]))),
         _first(loading_work(laws, bounds, np.array([delta_max]))),
     )

@@ -26,8 +26,11 @@ keeps the node times accurate to rounding for n up to millions (an ``arcsin`` of
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Protocol
+from functools import lru_cache
+from typing import NamedTuple, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -38,7 +41,10 @@ __all__ = [
     "ContactLaw",
     "FilmStage",
     "FilmSolution",
+    "FilmSummary",
+    "segment_time",
     "solve_stage",
+    "solve_stages",
     "swept_angles",
     "swept_rapidities",
 ]
@@ -64,6 +70,39 @@ class ContactLaw(Protocol):
     def work(self, start: ArrayLike, end: ArrayLike) -> Array:
         """Work integral of F from ``start`` to ``end``, [J]."""
         ...
+
+
+class FilmSummary(NamedTuple):
+    """One impact by FILM with n segments per stage, as floats (SI): its law's closed forms
+    and FILM's times, without the stage arrays (what a contact model's ``film_summary``
+    gives, :class:`impactcli.solution.PlanSolution`).
+
+    Attributes
+    ----------
+    delta_max : maximum indentation, [m]
+    force_max : maximum contact force, [N]
+    delta_res : residual indentation at separation, [m]
+    restitution : coefficient of restitution e, [-]
+    t_max : FILM time of the maximum indentation, [s]
+    end_time : FILM time of separation, [s]
+    delta_y : yield indentation of the contact, [m] (NaN: no yield point)
+    yield_velocity : V_y, [m/s] (NaN: no yield point)
+    recoverable_work : work unloading from delta_max gives back, [J]
+    normalised : the Hertz impact of the normalised Tables A1/A2
+    plastic : past the law's yield point
+    """
+
+    delta_max: float
+    force_max: float
+    delta_res: float
+    restitution: float
+    t_max: float
+    end_time: float
+    delta_y: float
+    yield_velocity: float
+    recoverable_work: float
+    normalised: bool
+    plastic: bool
 
 
 @dataclass(frozen=True)
@@ -298,6 +337,126 @@ def solve_stage(
     )
 
 
+@lru_cache(maxsize=32)
+def _fractions(n: int) -> Array:
+    """r / n for r = 0..n, read-only."""
+    frac = np.arange(n + 1, dtype=float) / n
+    frac.flags.writeable = False
+    return frac
+
+
+def solve_stages(
+    stages: Sequence[tuple[ContactLaw, float, float, float, bool]],
+    mass: float,
+    n: int,
+) -> tuple[FilmStage, ...]:
+    """The stages of one impact solved by FILM with n segments each and chained in time:
+    :func:`solve_stage` of each ``(law, delta_start, delta_end, speed_start, end_at_rest)``
+    (floats, [m], [m], [m/s]), the next starting when one ends, with the same operations
+    on one array of all the stages (each stage's arrays a row of it): the same numbers,
+    one pass over the stages instead of one per stage.
+
+    A stage whose law places its own nodes (``stage_nodes``) or decreases with delta (a
+    tensile branch: hyperbolic segments) is not of this one pass: the stages are then
+    solved one by one (:func:`solve_stage`, the same numbers).
+
+    Returns
+    -------
+    tuple of :class:`FilmStage`, in time order (1-D arrays)
+    """
+    n = check_size("n", n, MAX_SEGMENTS)
+    if any(getattr(stage[0], "stage_nodes", None) is not None for stage in stages):
+        return _chain_stages(stages, mass, n)
+    count = len(stages)
+    a = np.array([[stage[1]] for stage in stages], dtype=float)
+    b = np.array([[stage[2]] for stage in stages], dtype=float)
+    v_a = np.array([[stage[3]] for stage in stages], dtype=float)
+    m = np.asarray(mass, dtype=float)[..., None]
+    direction = np.sign(b - a)
+
+    nodes = a + (b - a) * _fractions(n)
+    nodes[:, -1] = b[:, 0]
+    force = np.empty_like(nodes)
+    work = np.empty_like(nodes)
+    for k, (law, *_) in enumerate(stages):  # each stage's law: a few stages, not rows
+        force[k] = law.force(nodes[k])
+        work[k] = law.work(a[k], nodes[k])
+    step = nodes[:, 1:] - nodes[:, :-1]
+    # Node velocities from the energy balance (eq. 13e).
+    speed_sq = v_a**2 - (2.0 / m) * work
+    velocity = direction * np.sqrt(np.maximum(speed_sq, 0.0))
+
+    stiffness = (force[:, 1:] - force[:, :-1]) / step
+    if not (stiffness > 0.0).all():  # a tensile branch, or a law that is not monotone
+        return _chain_stages(stages, mass, n)  # solve_stage's hyperbolic segments or error
+    omega = np.sqrt(stiffness / m)
+    force_r = force[:, :-1]
+    h = np.abs(step)
+    y0 = direction * force_r / stiffness
+    x0 = np.abs(velocity[:, :-1]) / omega
+
+    at_rest = [k for k, stage in enumerate(stages) if stage[4]]
+    velocity[at_rest, -1] = 0.0
+    swept, turning = _swept_rows(x0, y0, h, at_rest)
+    dt = swept / omega
+
+    time = np.empty_like(nodes)
+    time[:, 0] = 0.0
+    np.cumsum(dt, axis=-1, out=time[:, 1:])
+    for k in range(1, count):  # each stage starts when the previous one ends
+        time[k] += time[k - 1, -1:]
+    offset = nodes[:, :-1] - force_r / stiffness
+    return tuple(
+        FilmStage(
+            delta=nodes[k],
+            velocity=velocity[k],
+            time=time[k],
+            direction=direction[k],
+            stiffness=stiffness[k],
+            offset=offset[k],
+            omega=omega[k],
+            phase_x=x0[k],
+            phase_y=y0[k],
+            turning=turning[k],
+        )
+        for k in range(count)
+    )
+
+
+def _chain_stages(
+    stages: Sequence[tuple[ContactLaw, float, float, float, bool]], mass: float, n: int
+) -> tuple[FilmStage, ...]:
+    """:func:`solve_stages` one stage at a time (:func:`solve_stage`), chained in time."""
+    solved: list[FilmStage] = []
+    t_start = 0.0
+    for law, delta_start, delta_end, speed_start, end_at_rest in stages:
+        film = solve_stage(
+            law, delta_start, delta_end, speed_start, mass, n, t_start, end_at_rest=end_at_rest
+        )
+        solved.append(film)
+        t_start = film.end_time
+    return tuple(solved)
+
+
+def _swept_rows(
+    x0: Array, y0: Array, h: Array, at_rest: list[int]
+) -> tuple[Array, NDArray[np.bool_]]:
+    """:func:`swept_angles` of the rows of arrays of one shape, the rows ``at_rest``
+    ending at their turning point."""
+    x_end_sq = x0**2 - h * (2.0 * y0 + h)
+    turning = x_end_sq <= 0.0
+    turning[at_rest, -1] = True
+    x_end = np.sqrt(np.maximum(x_end_sq, 0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))
+    dot_node = x0 * x_end + y0 * (y0 + h)
+    swept = np.arctan2(cross_node, dot_node)
+    at = np.nonzero(turning)
+    if at[0].size:
+        swept[at] = np.arctan2(x0[at], y0[at])
+    return swept, turning
+
+
 def swept_angles(
     x0: ArrayLike, y0: ArrayLike, h: ArrayLike, end_at_rest: bool = False
 ) -> tuple[Array, NDArray[np.bool_]]:
@@ -329,8 +488,12 @@ def swept_angles(
     with np.errstate(divide="ignore", invalid="ignore"):
         cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))
     dot_node = x0 * x_end + y0 * (y0 + h)
-    # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0).
-    swept = np.where(turning, np.arctan2(x0, y0), np.arctan2(cross_node, dot_node))
+    swept = np.arctan2(cross_node, dot_node)
+    # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0) (taken
+    # where the segments turn alone: few of them, often the last one only).
+    at = np.nonzero(turning)
+    if at[0].size:
+        swept[at] = np.arctan2(x0[at], y0[at])
     return swept, turning
 
 
@@ -389,6 +552,52 @@ def swept_rapidities(
     return swept, turning
 
 
+def _swept(x0: float, y0: float, h: float, turning: bool = False) -> float:
+    """:func:`swept_angles` of one segment, on floats, [rad]."""
+    x_end_sq = x0 * x0 - h * (2.0 * y0 + h)
+    if turning or x_end_sq <= 0.0:
+        return math.atan2(x0, y0)
+    x_end = math.sqrt(x_end_sq)
+    return math.atan2(h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end)), x0 * x_end + y0 * (y0 + h))
+
+
+def segment_time(
+    force_start: float,
+    force_end: float,
+    delta_start: float,
+    delta_end: float,
+    speed_start: float,
+    mass: float,
+    end_at_rest: bool = False,
+) -> float:
+    """FILM time [s] of a stage solved as one segment (:func:`solve_stage` with n = 1), on
+    floats: the whole stage's duration for a law that is linear on it (its chord is the
+    law, so FILM is exact on every segment and n segments take the time of one).
+
+    Parameters
+    ----------
+    force_start, force_end : the law's force at the two ends, [N]
+    delta_start, delta_end : the ends of the stage, [m]
+    speed_start : |delta'| at the start, [m/s]
+    mass : effective mass m, [kg]
+    end_at_rest : the stage ends at the oscillator's turning point
+
+    Examples
+    --------
+    A linear spring k = 4 N/m, m = 1 kg, loaded from rest position at 1 m/s: a quarter period.
+
+    >>> segment_time(0.0, 2.0, 0.0, 0.5, 1.0, 1.0, end_at_rest=True) == math.pi / 4
+    True
+    """
+    step = delta_end - delta_start
+    direction = 1.0 if step > 0.0 else -1.0
+    stiffness = (force_end - force_start) / step
+    omega = math.sqrt(stiffness / mass)
+    x0 = abs(speed_start) / omega
+    y0 = direction * force_start / stiffness
+    return _swept(x0, y0, abs(step), end_at_rest) / omega
+
+
 @dataclass(frozen=True)
 class FilmSolution:
     """Consecutive FILM stages of one impact, chained in time (single collision).
@@ -403,30 +612,55 @@ class FilmSolution:
         if not self.stages:
             raise ValueError("a FILM solution needs at least one stage")
         cat = np.concatenate
-        starts = cat([s.time[:-1] for s in self.stages])
-        ends = cat([s.time[1:] for s in self.stages])
+        stages = self.stages
+        starts = cat([s.time[:-1] for s in stages])
         object.__setattr__(self, "_start", starts)
-        object.__setattr__(self, "_end", ends)
-        object.__setattr__(self, "_delta", cat([s.delta[:-1] for s in self.stages]))
+        object.__setattr__(self, "_end", cat([s.time[1:] for s in stages]))
+        # the segment constants of eq. 7a,b, one row each: taken at once by evaluate()
+        segments = np.empty((5, starts.size))
+        at = 0
+        for s in stages:
+            row = slice(at, at + s.n)
+            segments[0, row] = s.delta[:-1]
+            segments[1, row] = s.direction
+            segments[2, row] = s.omega
+            segments[3, row] = s.phase_x
+            segments[4, row] = s.phase_y
+            at += s.n
+        object.__setattr__(self, "_segments", segments)
+        object.__setattr__(self, "_delta", segments[0])
+        object.__setattr__(self, "_direction", segments[1])
+        object.__setattr__(self, "_omega", segments[2])
+        object.__setattr__(self, "_x", segments[3])
+        object.__setattr__(self, "_y", segments[4])
         object.__setattr__(
-            self, "_direction", cat([np.broadcast_to(s.direction, (s.n,)) for s in self.stages])
+            self, "_hyper", cat([np.broadcast_to(s.hyperbolic, (s.n,)) for s in stages])
         )
-        object.__setattr__(self, "_omega", cat([s.omega for s in self.stages]))
-        object.__setattr__(self, "_x", cat([s.phase_x for s in self.stages]))
-        object.__setattr__(self, "_y", cat([s.phase_y for s in self.stages]))
-        object.__setattr__(
-            self, "_hyper", cat([np.broadcast_to(s.hyperbolic, (s.n,)) for s in self.stages])
-        )
+        first, last = stages[0], stages[-1]
+        object.__setattr__(self, "_t0", float(first.time[0]))
+        object.__setattr__(self, "_t1", float(last.time[-1]))
+        object.__setattr__(self, "_final", (last.delta[-1], last.velocity[-1]))
 
     @property
     def start_time(self) -> float:
         """Time of first contact, [s]."""
-        return float(self.stages[0].time[0])
+        return self._t0  # type: ignore[attr-defined]
 
     @property
     def end_time(self) -> float:
         """Time of separation (end of the last stage), [s]."""
-        return float(self.stages[-1].time[-1])
+        return self._t1  # type: ignore[attr-defined]
+
+    def segment_of(self, t: ArrayLike) -> tuple[Array, NDArray[np.intp], NDArray[np.bool_]]:
+        """The times ``t`` [s] clamped to the contact, the segment each falls in (across the
+        stages) and where it is the end of the contact (to rounding)."""
+        t0, t1 = self._t0, self._t1  # type: ignore[attr-defined]
+        t = np.minimum(np.maximum(np.asarray(t, dtype=float), t0), t1)
+        slack = 8.0 * _EPS * max(abs(t0), abs(t1))
+        shifted = t + slack
+        seg = np.searchsorted(self._start, shifted, side="right") - 1  # type: ignore[attr-defined]
+        seg = np.minimum(np.maximum(seg, 0), self._start.size - 1)  # type: ignore[attr-defined]
+        return t, seg, shifted >= t1
 
     def evaluate(self, t: ArrayLike) -> tuple[Array, Array]:
         """Indentation [m] and its rate [m/s] at times ``t`` [s], clamped to the contact.
@@ -434,30 +668,25 @@ class FilmSolution:
         At a node time (to rounding) it gives the node's state (delta_r and the exact
         velocity of eq. 13e), the last node's at the end, not the oscillator that arrives.
         """
-        t = np.clip(np.asarray(t, dtype=float), self.start_time, self.end_time)
-        slack = 8.0 * np.finfo(float).eps * max(abs(self.start_time), abs(self.end_time))
-        seg = np.searchsorted(self._start, t + slack, side="right") - 1
-        seg = np.clip(seg, 0, self._start.size - 1)
-        tau = np.clip(t - self._start[seg], 0.0, self._end[seg] - self._start[seg])
-        args = (
-            tau,
-            self._delta[seg],
-            self._direction[seg],
-            self._omega[seg],
-            self._x[seg],
-            self._y[seg],
-        )
+        t, seg, end = self.segment_of(t)
+        start = self._start[seg]  # type: ignore[attr-defined]
+        tau = np.minimum(np.maximum(t - start, 0.0), self._end[seg] - start)  # type: ignore[attr-defined]
+        delta_r, direction, omega, x, y = self._segments[:, seg]  # type: ignore[attr-defined]
+        args = (tau, delta_r, direction, omega, x, y)
         delta, delta_dot = _oscillator(*args)
-        if self._hyper.any():  # segments of negative chord stiffness
-            hyper = self._hyper[seg]
+        if self._hyper.any():  # type: ignore[attr-defined]  # segments of negative chord stiffness
+            hyper = self._hyper[seg]  # type: ignore[attr-defined]
             with np.errstate(over="ignore", invalid="ignore"):
                 h_delta, h_rate = _hyperbolic_oscillator(*args)
             delta, delta_dot = np.where(hyper, h_delta, delta), np.where(hyper, h_rate, delta_dot)
             del h_delta, h_rate, hyper
-        del args, tau, seg  # the gathered segment data: no longer held (peak memory)
-        end = t + slack >= self.end_time
-        last = self.stages[-1]
-        return np.where(end, last.delta[-1], delta), np.where(end, last.velocity[-1], delta_dot)
+        # the gathered segment data: no longer held (peak memory)
+        del args, tau, seg, delta_r, direction, omega, x, y
+        final_delta, final_velocity = self._final  # type: ignore[attr-defined]
+        return np.where(end, final_delta, delta), np.where(end, final_velocity, delta_dot)
+
+
+_EPS = float(np.finfo(float).eps)
 
 
 def __getattr__(name: str):

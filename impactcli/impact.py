@@ -41,6 +41,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
@@ -62,6 +63,7 @@ from impactcli.model import (
     ContactModel,
     DampedPair,
     PairModel,
+    first_yield_velocities_of,
     solution_energy_summary,
 )
 from impactcli.pairs import (
@@ -73,9 +75,20 @@ from impactcli.pairs import (
     split_fractions,
     weaker_yield_strength,
 )
-from impactcli.solution import ContactSolution, PlanSolution, solve_plan
+from impactcli.solution import (
+    ContactSolution,
+    PlanSolution,
+    StagedSolution,
+    history_solution,
+    history_times,
+    solve_plan,
+)
 from impactcli.validation import (
+    SMALL_DEFORMATION_LIMIT,
+    contact_radius_warning,
+    first_yield_warning,
     input_errors,
+    mass_split_warning,
     pair_problems,
     raise_first,
     renamed_p0_factor,
@@ -277,34 +290,48 @@ class ImpactResult:
     @property
     def mass_ratios(self) -> tuple[float, float]:
         """m/m_1 and m/m_2, [-] (eq. 12)."""
-        m = float(effective_mass(self.m1, self.m2))
-        return m / self.m1, m / self.m2
+        return self._shares()[0]
 
     @property
     def split_fractions(self) -> tuple[float, float]:
         """delta_i / delta for each sphere, [-]: by mass or by compliance; for ``yield``
         the shares e_i of the recoverable part delta - delta_p (:attr:`permanent_fractions`
         gives those of delta_p)."""
-        f1, f2 = split_fractions(
-            self.split, self.m1, self.m2, self.sphere1.compliance, self.sphere2.compliance
-        )
-        return float(f1), float(f2)
+        return self._shares()[1]
 
     @property
     def permanent_fractions(self) -> tuple[float, float]:
         """Shares p_i of the permanent indentation delta_p, [-] (equal to
         :attr:`split_fractions` for ``mass`` and ``compliance``)."""
-        f1, f2 = split_fractions(
-            self.split,
-            self.m1,
-            self.m2,
-            self.sphere1.compliance,
-            self.sphere2.compliance,
-            _nan(self.sphere1.yield_strength),
-            _nan(self.sphere2.yield_strength),
-            permanent=True,
-        )
-        return float(f1), float(f2)
+        return self._shares()[2]
+
+    def _shares(self) -> tuple[tuple[float, float], ...]:
+        """(:attr:`mass_ratios`, :attr:`split_fractions`, :attr:`permanent_fractions`),
+        worked out on first use and kept."""
+        shares = self.__dict__.get("_shares_")
+        if shares is not None:
+            return shares
+        m1, m2 = self.m1, self.m2
+        m = _effective(m1, m2)
+        ratios = (m / m1, m / m2)
+        c1, c2 = self.sphere1.compliance, self.sphere2.compliance
+        if self.split == "mass":
+            split = ratios
+        elif self.split in ("compliance", "yield") and c1 + c2 > 0.0:
+            split = (c1 / (c1 + c2), c2 / (c1 + c2))
+        else:
+            f1, f2 = split_fractions(self.split, m1, m2, c1, c2)
+            split = (float(f1), float(f2))
+        permanent = split
+        if self.split == "yield":
+            f1, f2 = split_fractions(
+                self.split, m1, m2, c1, c2,
+                _nan(self.sphere1.yield_strength), _nan(self.sphere2.yield_strength),
+                permanent=True,
+            )  # fmt: skip
+            permanent = (float(f1), float(f2))
+        shares = self.__dict__["_shares_"] = (ratios, split, permanent)
+        return shares
 
     @property
     def contact_plane_velocity(self) -> float:
@@ -367,7 +394,7 @@ class ImpactResult:
         (2 <= points <= :data:`impactcli.limits.MAX_POINTS`)."""
         points = check_size("points", points, MAX_POINTS, minimum=2)
         method = self.method if method is None else method
-        return np.linspace(0.0, float(self._solution(method).end_time), points)
+        return history_times(self._solution(method), points)
 
     # -- histories ---------------------------------------------------------------------
     def history(
@@ -388,13 +415,15 @@ class ImpactResult:
         if method not in self.contact.methods:
             raise ValueError(self.contact.method_error(method))
         t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
-        source = self._solution(method)
-        t = np.clip(t, 0.0, float(source.end_time))  # d_i must match the clamped delta(t)
+        t = np.minimum(np.maximum(t, 0.0), float(self._solution(method).end_time))  # as delta(t)
+        source = history_solution(self._solution(method))
         if method == "table":
             delta, delta_dot = self._table_state(t)
         else:
             delta, delta_dot = source.evaluate(t)
-        return self._columns(t, delta, delta_dot, source.force(t, delta, delta_dot), source)
+        force = source.force(t, delta, delta_dot)
+        own = method != "table" and isinstance(source, StagedSolution)  # W(t) from delta
+        return self._columns(t, delta, delta_dot, force, source, own)
 
     def energy(
         self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
@@ -469,9 +498,11 @@ class ImpactResult:
         delta_dot: NDArray,
         force: NDArray,
         source: ContactSolution,
+        own: bool = False,
     ) -> dict[str, NDArray]:
         """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4, and the
-        energy of ``source`` (:meth:`~impactcli.solution.ContactSolution.energy`)."""
+        energy of ``source`` (:meth:`~impactcli.solution.ContactSolution.energy`; ``own``:
+        delta is the FILM stages' own, :class:`~impactcli.solution.StagedSolution`)."""
         from impactcli.energy import energy_columns
 
         v0 = self.impact_velocity
@@ -494,7 +525,7 @@ class ImpactResult:
             delta1, delta2 = e1 * (delta - dp) + p1_ * dp, e2 * (delta - dp) + p2_ * dp
             delta1_dot = e1 * (delta_dot - dp_dot) + p1_ * dp_dot
             delta2_dot = e2 * (delta_dot - dp_dot) + p2_ * dp_dot
-        strain, dissipated = source.energy(t, delta)
+        strain, dissipated = source.energy(t, delta, own=True) if own else source.energy(t, delta)
         return {
             "t": t,
             "delta": delta,
@@ -522,9 +553,18 @@ class ImpactResult:
             raise ValueError("the table method is for elastic impacts only")
         from impactcli.tables import normalised_elastic
 
-        v0, delta_m = self.impact_velocity, float(self.solution.delta_max)
+        v0, delta_m = self.impact_velocity, float(history_solution(self.solution).delta_max)
         d_bar, v_bar = FilmSolution(normalised_elastic(self.n)).evaluate(t * v0 / delta_m)
         return d_bar * delta_m, v_bar * v0
+
+
+def _effective(a: float, b: float) -> float:
+    """(1/a + 1/b)^-1 of two positive numbers (``inf`` for none), on floats
+    (:func:`impactcli.contact.effective_mass`)."""
+    try:
+        return 1.0 / (1.0 / a + 1.0 / b)
+    except ZeroDivisionError:
+        return float(effective_mass(a, b))
 
 
 def _nan(value: float | None) -> float:
@@ -562,6 +602,8 @@ def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -
     for name, sphere in (("sphere1", sphere1), ("sphere2", sphere2)):
         if not isinstance(sphere, Sphere):
             raise InputError(f"{name} must be a Sphere, got {type(sphere).__name__}")
+    if _plain_pair(sphere1, sphere2, v1, v2):  # plainly valid numbers: nothing to word
+        return
     raise_first(
         pair_problems(
             v1,
@@ -574,6 +616,30 @@ def check_pair(sphere1: Sphere, sphere2: Sphere, v1: ArrayLike, v2: ArrayLike) -
             sphere2.youngs_modulus,
         )
     )
+
+
+def _plain_pair(sphere1: Sphere, sphere2: Sphere, v1: object, v2: object) -> bool:
+    """True when two spheres of finite mass, size and modulus approach at finite velocities
+    V1, V2 [m/s] (plain numbers) with an effective mass and radius within range: the checks
+    of :func:`impactcli.validation.pair_problems` pass, told on floats. False sends the
+    pair through those checks, which word what is wrong."""
+    if type(v1) not in (float, int) or type(v2) not in (float, int):
+        return False
+    m1, m2 = sphere1.total_mass, sphere2.total_mass
+    d1, d2 = sphere1.diameter, sphere2.diameter
+    finite = math.isfinite
+    try:
+        if not (
+            finite(v1) and finite(v2) and v1 + v2 > 0.0  # type: ignore[operator]
+            and finite(m1) and finite(m2) and finite(d1) and finite(d2)
+            and finite(sphere1.youngs_modulus) and finite(sphere2.youngs_modulus)
+        ):  # fmt: skip
+            return False
+        m = 1.0 / (1.0 / m1 + 1.0 / m2)
+        r = 1.0 / (1.0 / (d1 / 2) + 1.0 / (d2 / 2))
+    except (OverflowError, ZeroDivisionError, TypeError):
+        return False
+    return 0.0 < m < math.inf and 0.0 < r < math.inf
 
 
 def impact_summary(
@@ -702,19 +768,79 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     """The summary of ``result``'s impact from ``solution`` (FILM's or the integration's):
     the elastic keys (:func:`impact_summary`, with the indentation at separation as
     delta_res), then the keys of the model's kind (:meth:`impactcli.model.PairModel.summary`)."""
-    values = ImpactPlan(
-        (),
-        np.asarray(solution.delta_max),
-        np.asarray(solution.force_max),
-        np.asarray(solution.delta_end),
-        np.asarray(solution.restitution),
-    )
     pair = result.contact
-    out = _summarise(
-        result, values, solution.t_max, solution.end_time, permanent=pair.permanent
-    )
+    quantities = getattr(solution, "quantities", None)  # FILM of a plan: floats already
+    if quantities is not None:
+        q = quantities
+        values = (q.delta_max, q.force_max, q.delta_res, q.restitution)
+        times = (q.t_max, q.end_time)
+    else:
+        values = (solution.delta_max, solution.force_max, solution.delta_end,
+                  solution.restitution)  # fmt: skip
+        times = (solution.t_max, solution.end_time)
+    try:  # on floats: impact_summary's operations, one impact
+        if quantities is None:
+            values, times = tuple(map(_float, values)), tuple(map(_float, times))
+        out = _summary_of_floats(result, pair.radius, pair.modulus, *values, *times,
+                                 pair.permanent)  # fmt: skip
+    except (ArithmeticError, TypeError, ValueError):
+        plan = ImpactPlan((), *(np.asarray(x) for x in values))
+        out = _summarise(result, plan, solution.t_max, solution.end_time, permanent=pair.permanent)
     out.update(pair.summary(result, solution))
     return out
+
+
+def _float(value: ArrayLike) -> float:
+    """A float, or the one value of a scalar or shape-(1,) array."""
+    return value if type(value) is float else _first(value)
+
+
+def _summary_of_floats(
+    result: ImpactResult,
+    r: float,
+    e: float,
+    delta_max: float,
+    force_max: float,
+    delta_res: float,
+    restitution: float,
+    t_max: float,
+    contact_time: float,
+    permanent: bool,
+) -> dict[str, float]:
+    """:func:`_summarise` on floats (the operations of :func:`impact_summary`, in order)."""
+    v1, v2 = float(result.v1), float(result.v2)
+    m1, m2 = result.m1, result.m2
+    m = 1.0 / (1.0 / m1 + 1.0 / m2)
+    r1, r2 = m / m1, m / m2
+    f1, f2 = result.split_fractions
+    v0, t_c = v1 + v2, contact_time
+    summary = {
+        "contact_time": t_c,
+        "delta_max": delta_max,
+        "force_max": force_max,
+        "t_max": t_max,
+        "v_cp": r2 * v1 - r1 * v2,
+        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_res),
+        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_res),
+        "v1_final": v1 - r1 * (1.0 + restitution) * v0,
+        "v2_final": v2 - r2 * (1.0 + restitution) * v0,
+        "delta1_max": f1 * delta_max,
+        "delta2_max": f2 * delta_max,
+        "restitution": restitution,
+        "effective_mass": m,
+        "effective_radius": r,
+        "effective_modulus": e,
+    }
+    if permanent:
+        p1, p2 = result.permanent_fractions
+        summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
+        summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
+    sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
+    if sy1 is not None or sy2 is not None:  # the weaker sphere's
+        fy1, fy2 = first_yield_velocities_of(result, m, r, e)
+        weaker = fy2 if sy1 is None or (sy2 is not None and sy2 < sy1) else fy1
+        summary["first_yield_velocity"] = weaker
+    return summary
 
 
 @input_errors
@@ -799,24 +925,43 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
     """
     if not isinstance(result, ImpactResult):
         raise InputError(f"impact_warnings takes an ImpactResult, got {type(result).__name__}")
-    from impactcli.validation import (
-        contact_radius_warning,
-        first_yield_warning,
-        mass_split_warning,
-    )
-
     s, v0 = result.summary, result.impact_velocity
     s1, s2 = result.sphere1, result.sphere2
     found = [
         first_yield_warning(v0, s["first_yield_velocity"])
         if first_yield and "first_yield_velocity" in s
         else None,
-        contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),
-        mass_split_warning(
+        None
+        if _small_contact(s["delta_max"], s["effective_radius"])
+        else contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),
+        None
+        if result.split != "mass" or _same_material(s1, s2)
+        else mass_split_warning(
             result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
         ),
     ]
     return tuple(message for message in found if message)
+
+
+def _small_contact(delta_max: float, radius: float) -> bool:
+    """True when the contact radius sqrt(delta_max R) is plainly within
+    :data:`~impactcli.validation.SMALL_DEFORMATION_LIMIT` R (floats): no warning to word."""
+    try:
+        return math.sqrt(delta_max / radius) <= SMALL_DEFORMATION_LIMIT
+    except (ArithmeticError, TypeError, ValueError):
+        return False
+
+
+def _same_material(sphere1: Sphere, sphere2: Sphere) -> bool:
+    """True when the spheres' compliances and yield strengths are the same finite numbers
+    (or both unknown): :func:`~impactcli.validation.materials_differ` is False, told on
+    floats."""
+    c1, c2 = sphere1.compliance, sphere2.compliance
+    sy1, sy2 = sphere1.yield_strength, sphere2.yield_strength
+    same_yield = (sy1 is None and sy2 is None) or (
+        sy1 is not None and sy1 == sy2 and math.isfinite(sy1)
+    )
+    return c1 == c2 and math.isfinite(c1) and same_yield
 
 
 def _warned(result: ImpactResult, first_yield: bool = False) -> ImpactResult:

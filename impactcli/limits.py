@@ -3,12 +3,12 @@
 Measured peak memory (resident set) of one run at the limits below (docs/about/guarantees.md,
 "Limits on sizes and memory"), about:
 
-- 650 bytes per FILM segment per stage for ``elastoplastic --n`` (6.5 GB at 10^7), 600 for
-  ``elastic --damping`` (5.7 GB), 440 for ``elastic --n`` (4.4 GB), 260 for ``tables --n``
+- 470 bytes per FILM segment per stage for ``elastoplastic --n`` (4.6 GB at 10^7), 600 for
+  ``elastic --damping`` (5.7 GB), 310 for ``elastic --n`` (3.1 GB), 260 for ``tables --n``
   (2.6 GB), 210 for a ``convergence`` n;
 - 350 bytes per history point: ``elastic/elastoplastic --points`` (3.5 GB at 10^7), 220
   for ``collide3d --tangential mindlin --points`` (2.1 GB);
-- 1.7 GB for ``compare-laws`` at laws x ``--n`` = 10^7 (two laws at 5 x 10^6: one law at a
+- 1.1 GB for ``compare-laws`` at laws x ``--n`` = 10^7 (two laws at 5 x 10^6: one law at a
   time);
 - 0.20 GB for ``restitution --count`` x ``--n`` at 10^7; 0.09 GB for ``fit`` at 10^5 data
   rows x ``--n`` 100;
@@ -17,7 +17,7 @@ Measured peak memory (resident set) of one run at the limits below (docs/about/g
 Work over many rows (``batch``, ``collide3d --rows``) or velocities (the sweeps of
 ``restitution``, ``compare-laws --plot``, ``fit``) is done in blocks
 (:data:`FILM_BLOCK`, :data:`DAMPED_BLOCK`, :data:`DAMPED_TABLE_ROWS`,
-:data:`HISTORY_BLOCK`), so its memory does not grow with the
+:data:`HISTORY_BLOCK`, :data:`ROW_BLOCK`), so its memory does not grow with the
 number of rows. The checks live here once; the command line states the limits in
 ``--help`` and refuses larger values up front, the library entry points refuse them with
 the same message.
@@ -32,6 +32,7 @@ __all__ = [
     "DAMPED_TABLE_ROWS",
     "FILM_BLOCK",
     "HISTORY_BLOCK",
+    "ROW_BLOCK",
     "MAX_SEGMENTS",
     "MAX_POINTS",
     "MAX_COUNT",
@@ -45,7 +46,7 @@ __all__ = [
     "check_size",
 ]
 
-#: FILM segments per stage (``--n``): 6.5 GB at the limit (``elastoplastic``).
+#: FILM segments per stage (``--n``): 4.6 GB at the limit (``elastoplastic``).
 MAX_SEGMENTS = 10_000_000
 #: Points of a history (``--points``): 3.5 GB at the limit.
 MAX_POINTS = 10_000_000
@@ -84,11 +85,18 @@ DAMPED_BLOCK = 524288
 #: :mod:`impactcli.damped_similar`): a row's summary is a table look-up, some 100 values of
 #: work arrays a row (about 50 MB a block).
 DAMPED_TABLE_ROWS = 65536
-#: History points (rows x ``points``) per block of ``collide3d --rows --tangential mindlin``
-#: rows: each row's normal history and the tangential spring integrated over a block of
+#: History points (rows x ``points``) per block of ``collide3d --rows`` rows with a
+#: tangential spring whose normal law is not self-similar (every law but Hertz, damped or
+#: not): each row's normal history and the tangential spring integrated over a block of
 #: rows at once; memory does not grow with the number of rows (one row a block when
 #: ``points`` is larger).
 HISTORY_BLOCK = 1_048_576
+#: Rows per block of ``collide3d --rows`` rows with a tangential spring on Hertz, damped or
+#: not: every row's normal history is a normalised history scaled (self-similar), so a
+#: block holds O(ROW_BLOCK + points) numbers (about 40 arrays of ROW_BLOCK floats: 2.6 MB,
+#: and a normalised history of ``points`` for each distinct damping in it), whatever the
+#: number of rows.
+ROW_BLOCK = 8192
 
 
 def check_size(name: str, value: int, maximum: int, minimum: int = 1) -> int:

@@ -22,6 +22,7 @@ solution. Everything is SI.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -30,8 +31,10 @@ from typing import TYPE_CHECKING, Any, ClassVar, Protocol, cast
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.contact import first_yield_velocity
 from impactcli.design import first_yield_velocities
 from impactcli.energy import kinetic_energy
+from impactcli.laws.base import MIN_YIELD_INDENTATION_RATIO as MIN_RATIO
 from impactcli.laws.base import Separation
 from impactcli.laws.registry import (
     DAMPING_LAWS,
@@ -41,12 +44,20 @@ from impactcli.laws.registry import (
     get_law,
 )
 from impactcli.pairs import effective_properties, weaker_yield_strength
+from impactcli.solution import PlanSolution
+from impactcli.validation import (
+    YIELD_STRENGTH_NEEDED,
+    needs_yield_strength,
+    plastic_range_problems,
+    raise_first,
+    yield_scale_problems,
+)
 
 if TYPE_CHECKING:
     from impactcli.impact import ImpactResult
     from impactcli.laws.base import ImpactPlan, LawSpec, NormalContact
     from impactcli.pairs import Sphere
-    from impactcli.solution import ContactSolution, PlanSolution
+    from impactcli.solution import ContactSolution
 
 __all__ = [
     "DAMPED_DEFAULT_N",
@@ -65,6 +76,11 @@ DEFAULT_N = 25
 #: FILM segments per stage of a damped impact by default: e and the contact time within
 #: 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
 DAMPED_DEFAULT_N = 400
+
+
+def _positive(value: object) -> bool:
+    """A float > 0 and finite: plainly valid, no array check needed."""
+    return type(value) is float and 0.0 < value < math.inf
 
 
 @dataclass(frozen=True)
@@ -136,7 +152,7 @@ class ContactModel:
     def elastic(cls) -> ContactModel:
         """Hertz as the paper's elastic impact (sec. 3, :func:`impactcli.impact.elastic_impact`):
         the elastic summary keys only, the stages checked by FILM itself."""
-        return _ElasticModel()
+        return _ELASTIC
 
     @classmethod
     def elastoplastic(
@@ -147,6 +163,8 @@ class ContactModel:
         sigma_y [Pa] (default the weaker sphere's) and p0 / sigma_y [-] (default the law's,
         2.57) checked first."""
         factor = _P0_FACTOR if pressure_factor is None else pressure_factor
+        if yield_strength is None and factor == _P0_FACTOR:
+            return _ELASTOPLASTIC  # the paper's, made once
         return _ElastoplasticModel(yield_strength=yield_strength, pressure_factor=factor)
 
     def check(self, method: str = "film") -> None:
@@ -286,10 +304,17 @@ class LawPair:
     permanent: ClassVar[bool] = True
     methods: ClassVar[tuple[str, ...]] = ("film", "table", "ode")
 
-    @cached_property
+    @property
     def normal_contact(self) -> NormalContact:
-        """The law's contact model for the pair (built on first use: the law's parameters
-        and the yield strength are checked then)."""
+        """The law's contact model for the pair (built on first use and kept: the law's
+        parameters and the yield strength are checked then)."""
+        contact = self.__dict__.get("_contact")
+        if contact is None:
+            contact = self.__dict__["_contact"] = self._contact()
+        return contact
+
+    def _contact(self) -> NormalContact:
+        """The law's contact model for the pair, built (:attr:`normal_contact`)."""
         return self.spec.contact(
             self.radius, self.modulus, self.yield_strength, **dict(self.model.law_params)
         )
@@ -311,27 +336,32 @@ class LawPair:
     def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
         """A plan past the law's yield point must resolve its elastic stage in double
         precision (:func:`impactcli.validation.plastic_range_problems`)."""
-        from impactcli.validation import plastic_range_problems, raise_first
-
         contact = self.normal_contact
+        if np.ndim(plan.delta_max) == 0 and np.ndim(contact.yield_indentation) == 0:
+            dm, dy = float(plan.delta_max), float(contact.yield_indentation)
+            if 0.0 < dm < math.inf and (not 0.0 < dy < math.inf or dy / dm >= MIN_RATIO):
+                return  # one impact, plainly within double precision: nothing to word
         raise_first(plastic_range_problems(contact, impact_velocity, self.mass, plan.delta_max))
 
     def solve(self, impact_velocity: float, n: int, must_end: bool = True) -> PlanSolution:
-        """Plan the impact at V0 [m/s], check the plan and solve its stages by FILM with n
-        segments each (:class:`~impactcli.solution.PlanSolution`)."""
-        from impactcli.solution import PlanSolution
-
+        """The impact at V0 [m/s] by FILM with n segments per stage
+        (:class:`~impactcli.solution.PlanSolution`): the contact model's closed forms and
+        FILM's stage times where it has them (``film_summary``), its stages solved when a
+        history asks for them; else the plan checked and its stages solved."""
+        contact = self.normal_contact
+        solution = PlanSolution.of_closed_forms(contact, impact_velocity, self.mass, n)
+        if solution is not None:  # checked: finite, resolved in double precision
+            return solution
         plan = self.plan(impact_velocity)
         self.check_plan(plan, impact_velocity)
-        return PlanSolution.of_plan(plan, self.normal_contact, impact_velocity, self.mass, n)
+        return PlanSolution.of_plan(plan, contact, impact_velocity, self.mass, n)
 
     def kind(self, solution: Any) -> str:
         """``elastic`` for the Hertz impact of the normalised tables, ``elastoplastic`` past
         the law's yield point, else the law's name."""
-        v0 = solution.impact_velocity
-        if solution.plan.is_normalised():
+        if solution.normalised:
             return "elastic"
-        if bool(np.all(self.normal_contact.yields(v0, self.mass))):
+        if solution.plastic:
             return "elastoplastic"
         return self.spec.name
 
@@ -346,18 +376,23 @@ class LawPair:
         """delta_y and V_y of the contact (closed forms), the residual indentation of the
         pair and of each sphere (shared by the permanent fractions), and the energy
         dissipated, (1/2) m V0^2 (1 - e^2)."""
-        contact = self.normal_contact
         f1, f2 = result.permanent_fractions
-        delta_res = solution.delta_end
-        values = {
-            "delta_y": contact.yield_indentation,
-            "yield_velocity": contact.yield_velocity(np.asarray(self.mass, dtype=float)),
+        delta_res = float(solution.delta_end)
+        quantities = getattr(solution, "quantities", None)  # FILM's: the closed forms
+        if quantities is not None:
+            delta_y, yield_velocity = quantities.delta_y, quantities.yield_velocity
+        else:
+            contact = self.normal_contact
+            delta_y = float(contact.yield_indentation)
+            yield_velocity = float(contact.yield_velocity(np.asarray(self.mass, dtype=float)))
+        return {
+            "delta_y": delta_y,
+            "yield_velocity": yield_velocity,
             "delta_res": delta_res,
-            "delta1_res": f1 * np.asarray(delta_res, dtype=float),
-            "delta2_res": f2 * np.asarray(delta_res, dtype=float),
-            "energy_dissipated": solution.dissipated,
+            "delta1_res": f1 * delta_res,
+            "delta2_res": f2 * delta_res,
+            "energy_dissipated": float(solution.dissipated),
         }
-        return {key: float(value) for key, value in values.items()}
 
     def method_error(self, method: str) -> str:
         return f"method must be film, table or ode, got {method!r}"
@@ -474,17 +509,15 @@ class _ElastoplasticModel(ContactModel):
     pressure_factor: float = _P0_FACTOR
 
     def for_spheres(self, sphere1: Sphere, sphere2: Sphere) -> PairModel:
-        from impactcli.validation import YIELD_STRENGTH_NEEDED, needs_yield_strength
-
         sigma_y = (
             self.yield_strength
             if self.yield_strength is not None
             else weaker_yield_strength(sphere1, sphere2)
         )
-        if sigma_y is None or needs_yield_strength(sigma_y, sigma_y):
+        if not _positive(sigma_y) and (sigma_y is None or needs_yield_strength(sigma_y, sigma_y)):
             raise ValueError(YIELD_STRENGTH_NEEDED)
         factor = self.pressure_factor
-        if not (np.isfinite(factor) and factor > 0):
+        if not _positive(factor) and not (np.isfinite(factor) and factor > 0):
             raise ValueError(f"the pressure factor must be positive, got {factor}")
         m, r, e = effective_properties(sphere1, sphere2)
         spec = get_law(self.law)
@@ -499,8 +532,7 @@ class _ElastoplasticPair(LawPair):
 
     pressure_factor: float = _P0_FACTOR
 
-    @cached_property
-    def normal_contact(self) -> NormalContact:
+    def _contact(self) -> NormalContact:
         params = {"p0_factor": self.pressure_factor}  # checked by _ElastoplasticModel
         return self.spec.build(self.radius, self.modulus, self.yield_strength, params)
 
@@ -509,13 +541,17 @@ class _ElastoplasticPair(LawPair):
             return self.normal_contact.plan(impact_velocity, self.mass)
 
     def check_plan(self, plan: ImpactPlan, impact_velocity: float) -> None:
-        from impactcli.validation import raise_first, yield_scale_problems
-
         if len(plan.stages) != 2:
             raise_first(yield_scale_problems(plan.stages[0].delta_end, plan.delta_max))
 
     def kind(self, solution: Any) -> str:
-        return "elastic" if len(solution.plan.stages) == 2 else "elastoplastic"
+        return "elastoplastic" if solution.plastic else "elastic"
+
+
+#: The paper's elastic and elastoplastic models (:meth:`ContactModel.elastic`,
+#: :meth:`ContactModel.elastoplastic` with the defaults), made once (a model is immutable).
+_ELASTIC = _ElasticModel()
+_ELASTOPLASTIC = _ElastoplasticModel()
 
 
 # -- Hertz with a damping model -------------------------------------------------------------------
@@ -674,34 +710,81 @@ def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> 
     impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
     without a yield strength: :func:`impactcli.design.first_yield_velocities`).
     """
-    m, r, e_star = effective_properties(result.sphere1, result.sphere2)
+    pair = result.contact
+    m, r, e_star = pair.mass, pair.radius, pair.modulus  # effective_properties of the pair
     v0 = result.impact_velocity
     relative = 0.5 * m * v0 * v0
-    restitution, delta_max = _one(solution.restitution), _one(solution.delta_max)
-    e1, e2 = result.split_fractions
-    p1, p2 = result.permanent_fractions
-    r1, r2 = result.mass_ratios
-    stored = min(_one(result.contact_model.recoverable_work(np.array([delta_max]))), relative)
+    restitution, delta_max = _float(solution.restitution), _float(solution.delta_max)
+    (r1, r2), (e1, e2), (p1, p2) = result._shares()
+    quantities = getattr(solution, "quantities", None)  # FILM's: the law's closed forms
+    if quantities is not None:
+        work = quantities.recoverable_work
+    else:
+        work = _one(result.contact_model.recoverable_work(np.array([delta_max])))
+    stored = min(work, relative)
     lost = relative * (1.0 - restitution**2)
-    v1_final = result.v1 - r1 * (1.0 + restitution) * v0
-    v2_final = result.v2 - r2 * (1.0 + restitution) * v0
-    fy1, fy2 = first_yield_velocities(
-        m, r, e_star, result.sphere1.yield_strength, result.sphere2.yield_strength
-    )
+    v1, v2, m1, m2 = result.v1, result.v2, result.m1, result.m2
+    v1_final = v1 - r1 * (1.0 + restitution) * v0
+    v2_final = v2 - r2 * (1.0 + restitution) * v0
+    sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
+    try:  # on floats
+        fy1, fy2 = first_yield_velocities_of(result, m, r, e_star)
+        kinetic = (
+            _kinetic_energy(m1, v1),
+            _kinetic_energy(m2, v2),
+            _kinetic_energy(m1, v1_final),
+            _kinetic_energy(m2, v2_final),
+        )
+    except (ArithmeticError, TypeError, ValueError):
+        fy1, fy2 = map(float, first_yield_velocities(m, r, e_star, sy1, sy2))
+        kinetic = tuple(
+            float(kinetic_energy(mass, v))
+            for mass, v in ((m1, v1), (m2, v2), (m1, v1_final), (m2, v2_final))
+        )
     return {
-        "kinetic_energy1_initial": float(kinetic_energy(result.m1, result.v1)),
-        "kinetic_energy2_initial": float(kinetic_energy(result.m2, result.v2)),
-        "kinetic_energy1_final": float(kinetic_energy(result.m1, v1_final)),
-        "kinetic_energy2_final": float(kinetic_energy(result.m2, v2_final)),
+        "kinetic_energy1_initial": kinetic[0],
+        "kinetic_energy2_initial": kinetic[1],
+        "kinetic_energy1_final": kinetic[2],
+        "kinetic_energy2_final": kinetic[3],
         "energy_dissipated1": p1 * lost,
         "energy_dissipated2": p2 * lost,
         "stored_share1": e1 * stored / relative,
         "stored_share2": e2 * stored / relative,
         "absorbed_share1": (e1 * stored + p1 * (relative - stored)) / relative,
         "absorbed_share2": (e2 * stored + p2 * (relative - stored)) / relative,
-        "first_yield_velocity1": float(fy1),
-        "first_yield_velocity2": float(fy2),
+        "first_yield_velocity1": fy1,
+        "first_yield_velocity2": fy2,
     }
+
+
+def first_yield_velocities_of(
+    result: ImpactResult, m: float, r: float, e: float
+) -> tuple[float, float]:
+    """The first-yield velocity of each sphere of ``result`` on floats, [m/s] (``inf``
+    without a yield strength), from the effective mass m [kg], radius R [m] and modulus E*
+    [Pa]; worked out once per result (:func:`impactcli.design.first_yield_velocities`)."""
+    found = result.__dict__.get("_first_yield_")
+    if found is None:
+        sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
+        found = (
+            math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1),
+            math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2),
+        )
+        result.__dict__["_first_yield_"] = found
+    return found
+
+
+def _kinetic_energy(mass: float, velocity: float) -> float:
+    """:func:`impactcli.energy.kinetic_energy` on floats: (1/2) m v^2, zero for a fixed
+    body at rest, [J]."""
+    if mass == math.inf and velocity == 0.0:
+        return 0.0
+    return 0.5 * mass * velocity * velocity
+
+
+def _float(value: ArrayLike) -> float:
+    """A float, or the one value of a scalar or shape-(1,) array."""
+    return value if type(value) is float else _one(value)  # type: ignore[return-value]
 
 
 def _one(value: ArrayLike) -> float:

@@ -17,6 +17,7 @@ and runs no physics beyond those constants; each sphere's share of the indentati
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, fields, replace
 from functools import cached_property
@@ -98,6 +99,8 @@ class Sphere:
             value = getattr(self, key)
             if value is not None:  # a number of float range (10**400 is not)
                 finite_float(key.replace("_", " "), value)
+        if _plain_sphere(self):  # plainly valid numbers: nothing to word
+            return
         raise_first(
             sphere_problems(
                 self.diameter,
@@ -159,17 +162,42 @@ class Sphere:
         """R_i = D_i / 2, [m]."""
         return 0.5 * self.diameter
 
-    @property
+    @cached_property
     def total_mass(self) -> float:
         """m_i, [kg]: as given, else rho pi D^3 / 6."""
         if self.mass is not None:
             return float(self.mass)
         return float(sphere_mass(self.diameter, self.density))
 
-    @property
+    @cached_property
     def compliance(self) -> float:
         """(1 - nu^2)/E, [1/Pa]; zero for a rigid body (:func:`.sphere_compliance`)."""
         return float(sphere_compliance(self.youngs_modulus, self.poisson_ratio))
+
+
+def _plain_sphere(sphere: Sphere) -> bool:
+    """True when every property of ``sphere`` is a plain number that plainly passes the
+    checks of :func:`impactcli.validation.sphere_problems` (finite D > 0, E > 0,
+    -1 < nu < 0.5, rho, m, sigma_y > 0 where given, a mass of range): the common case, told
+    on floats. False sends the sphere through those checks, which word what is wrong."""
+    values = (sphere.diameter, sphere.youngs_modulus, sphere.poisson_ratio)
+    extra = (sphere.density, sphere.mass, sphere.yield_strength)
+    if not all(type(x) in (float, int) for x in values):
+        return False
+    if not all(x is None or (type(x) in (float, int) and 0.0 < x < math.inf) for x in extra):
+        return False
+    d, e, nu = values
+    if not (0.0 < d < math.inf and 0.0 < e <= math.inf and -1.0 < nu < 0.5):
+        return False
+    if sphere.mass is not None:
+        return True
+    if sphere.density is None:
+        return False
+    try:
+        mass = sphere.density * (math.pi / 6.0) * d**3
+    except OverflowError:
+        return False
+    return 1e-300 < mass < 1e300  # within range by a margin: the checks judge the edges
 
 
 def split_fractions(
@@ -209,6 +237,17 @@ def split_fractions(
 def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float, float]:
     """Effective mass m [kg], radius R [m] and modulus E* [Pa] of the pair (paper eq. 2,
     docs/method.md §1)."""
+    try:  # on floats, the operations of the array functions below
+        nu1, nu2 = sphere1.poisson_ratio, sphere2.poisson_ratio
+        c1 = (1.0 - nu1 * nu1) * (1.0 / sphere1.youngs_modulus)
+        c2 = (1.0 - nu2 * nu2) * (1.0 / sphere2.youngs_modulus)
+        return (
+            1.0 / (1.0 / sphere1.total_mass + 1.0 / sphere2.total_mass),
+            1.0 / (1.0 / sphere1.radius + 1.0 / sphere2.radius),
+            1.0 / (c1 + c2),
+        )
+    except (ZeroDivisionError, OverflowError, TypeError):
+        pass
     m = float(effective_mass(sphere1.total_mass, sphere2.total_mass))
     r = float(effective_radius(sphere1.radius, sphere2.radius))
     e = float(
@@ -224,8 +263,10 @@ def effective_properties(sphere1: Sphere, sphere2: Sphere) -> tuple[float, float
 
 def weaker_yield_strength(sphere1: Sphere, sphere2: Sphere) -> float | None:
     """sigma_y of the sphere that yields first: the lower of the known ones."""
-    known = [s.yield_strength for s in (sphere1, sphere2) if s.yield_strength is not None]
-    return min(known) if known else None
+    sy1, sy2 = sphere1.yield_strength, sphere2.yield_strength
+    if sy1 is None or sy2 is None:
+        return sy2 if sy1 is None else sy1
+    return min(sy1, sy2)
 
 
 

@@ -627,8 +627,11 @@ def _fill(template: str, *columns) -> list[str]:
     for start in range(0, size, _WARNING_BLOCK):
         block = [c[start : start + _WARNING_BLOCK] for c in columns]
         block = [c if isinstance(c, list) else format_general(c, 4) for c in block]
-        values = tuple(x for row in zip(*block) for x in row)
-        text += ((template + "\n") * len(block[0]) % values).split("\n")[:-1]
+        rows, width = len(block[0]), len(block)
+        values: list = [None] * (rows * width)
+        for k, column in enumerate(block):  # row by row, each row's cells in column order
+            values[k::width] = column
+        text += ((template + "\n") * rows % tuple(values)).split("\n")[:-1]
     return text
 
 

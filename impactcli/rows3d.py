@@ -4,9 +4,9 @@ table of results out.
 One row per collision: vector columns ``p1_x, p1_y, p1_z`` (centres at contact, required),
 ``v1_x...`` (required), ``v2_x...``, ``w1_x...``, ``w2_x...`` (default 0), the sphere columns
 of ``impact batch`` (:data:`impactcli.rows.QUANTITY_COLUMNS` without ``v1``, ``v2``;
-``material``, ``material1``, ``material2``), and optionally ``mu`` and ``e`` per row (else
-the model's). The result columns are :data:`impactcli.collision3d.SUMMARY_KEYS` and
-``error``.
+``material``, ``material1``, ``material2``), and optionally ``mu``, ``e`` and
+``tangential`` (a model of :mod:`impactcli.laws.tangential` by name) per row (else the
+model's). The result columns are :data:`impactcli.collision3d.SUMMARY_KEYS` and ``error``.
 
 :func:`compute_rows3d` is vectorised over rows: each row's pair of spheres is the head-on
 impact at its normal approach velocity u_n (one :class:`~impactcli.pairs.SpherePairs`), its
@@ -14,13 +14,17 @@ coefficient of restitution one call of the batch kernel
 (:func:`impactcli.batch.pair_impacts`, any law of the library) or of
 :func:`impactcli.damping.solve_damped_impact` (damped Hertz, in blocks of about
 :data:`impactcli.limits.DAMPED_BLOCK` rows x segments), then one call of
-:func:`impactcli.collision3d.oblique_collision_3d` for all rows. The ``mindlin`` model
-needs each row's normal history: those are built row by row
-(:func:`impactcli.collision3d.normal_restitution_and_history`, a FILM run each), and the
-tangential spring is then integrated for a block of rows at once,
-:data:`impactcli.limits.HISTORY_BLOCK` history points (rows x points) a block, so memory
-does not grow with the rows. As in ``impact batch``, a bad row gets NaN results and its
-reason in ``error``; the others are computed. Pure NumPy: the cells are read by a
+:func:`impactcli.collision3d.oblique_collision_3d` for all rows. A tangential spring
+(``mindlin`` and the other models of :mod:`impactcli.laws.tangential`) needs each row's
+normal history: on Hertz, damped or not, every row's is a normalised history scaled
+(:func:`impactcli.tangential.hertz_steps`, :func:`impactcli.tangential.damped_steps`: one
+per damping at K = m = V0 = 1), :data:`impactcli.limits.ROW_BLOCK` rows a block; on
+another normal law they are built row by row
+(:func:`impactcli.collision3d.normal_restitution_and_history`, a FILM run each),
+:data:`impactcli.limits.HISTORY_BLOCK` history points (rows x points) a block; the spring
+is integrated for a block of rows at once, so memory does not grow with the rows. As in
+``impact batch``, a bad row gets NaN results and its reason in ``error``; the others are
+computed. Pure NumPy: the cells are read by a
 :class:`~impactcli.rows.ColumnReader` (the table layer's,
 :func:`impactcli.io.collisions3d.compute_collisions3d`).
 """
@@ -39,18 +43,20 @@ from numpy.typing import NDArray
 from impactcli.batch import material_properties, pair_impacts
 from impactcli.collision3d import (
     CONTACT_DISTANCE_RTOL,
+    HISTORY_N,
     SUMMARY_KEYS,
-    TANGENTIAL_MODELS,
     NormalHistory,
     collision_summary,
     contact_distance_problem,
     effective_shear_modulus,
     normal_restitution_and_history,
     oblique_collision_3d,
+    restitution_damping,
 )
 from impactcli.errors import InputError, first_line
-from impactcli.laws.registry import DAMPING_LAWS, ELASTIC_LAW
-from impactcli.limits import DAMPED_BLOCK, HISTORY_BLOCK
+from impactcli.laws.registry import DAMPING_LAWS, ELASTIC_LAW, get_law
+from impactcli.laws.tangential import get_tangential
+from impactcli.limits import DAMPED_BLOCK, HISTORY_BLOCK, ROW_BLOCK
 from impactcli.pairs import SpherePairs
 from impactcli.rows import QUANTITY_COLUMNS, ColumnReader
 from impactcli.spheres import missing_properties, resolve_properties
@@ -85,7 +91,7 @@ SCALAR_COLUMNS: dict[str, tuple[str, bool]] = {
     "mu": ("dimensionless", False),
     "e": ("dimensionless", False),
 }
-TEXT_COLUMNS: tuple[str, ...] = ("material", "material1", "material2")
+TEXT_COLUMNS: tuple[str, ...] = ("material", "material1", "material2", "tangential")
 #: Every column read; others are carried to the output unread.
 INPUT_COLUMNS: tuple[str, ...] = (
     *(f"{name}_{axis}" for name in VECTOR_COLUMNS for axis in "xyz"),
@@ -109,11 +115,15 @@ class CollisionModel:
         parameters (SI)
     damping, alpha, separation : damped Hertz instead: the damping model, its alpha (unit of
         the model) and the separation rule (``overlap`` or ``force``)
-    n : FILM segments per stage of the normal law, [-]
-    restitution : e [-] of rows without an ``e`` cell instead of the law (``rigid`` only)
+    n : FILM segments per stage of the normal law, [-]; None: 25 for rigid, 100 with a
+        spring (:data:`impactcli.collision3d.HISTORY_N`), 400 with damping
+    restitution : e [-] of rows without an ``e`` cell instead of the law; with a tangential
+        spring, Hertz with the Tsuji damping that gives e
+        (:func:`impactcli.collision3d.restitution_damping`)
     mu : Coulomb friction of rows without a ``mu`` cell, [-]
-    tangential : ``rigid`` or ``mindlin``
-    points : time points of each normal history (``mindlin``), [-]
+    tangential : a model of :mod:`impactcli.laws.tangential` (``rigid``, ``mindlin``, ...)
+        of rows without a ``tangential`` cell
+    points : time points of each normal history (a tangential spring), [-]
     """
 
     law: str | None = None
@@ -121,17 +131,14 @@ class CollisionModel:
     damping: str | None = None
     alpha: float | None = None
     separation: str = "overlap"
-    n: int = 25
+    n: int | None = None
     restitution: float | None = None
     mu: float = 0.0
     tangential: str = "rigid"
     points: int = 4001
 
     def __post_init__(self) -> None:
-        if self.tangential not in TANGENTIAL_MODELS:
-            raise ValueError(
-                f"the tangential model must be rigid or mindlin, got {self.tangential!r}"
-            )
+        get_tangential(self.tangential)  # the model of rows without a cell: a ValueError if unknown
 
     @property
     def normal_law(self) -> dict[str, Any]:
@@ -141,6 +148,12 @@ class CollisionModel:
             "params": dict(self.params or {}), "damping": self.damping, "alpha": self.alpha,
             "n": self.n, "separation": self.separation,
         }  # fmt: skip
+
+    @property
+    def self_similar(self) -> bool:
+        """True where the rows' normal histories are normalised ones, scaled: Hertz, damped
+        or not (one history per damping at K = m = V0 = 1)."""
+        return not self.params and (self.law is None or get_law(self.law).name == ELASTIC_LAW)
 
 
 def compute_rows3d(
@@ -162,8 +175,9 @@ def compute_rows3d(
     for name, (kind, allow_inf) in SCALAR_COLUMNS.items():
         q[name], bad = reader.quantity(name, kind, allow_inf)
         errors.add_messages(bad)
+    models, spring = _row_models(reader, model.tangential, errors)
     s1, s2 = _spheres(reader, q, errors)
-    friction, given_e, u_n = _row_checks(q, s1, s2, vectors, model, errors)
+    friction, given_e, u_n = _row_checks(q, s1, s2, vectors, spring, model, errors)
     # each row's pair of spheres, in the head-on impact at u_n: sphere 1 moves, unless it
     # is the fixed one
     with np.errstate(all="ignore"):
@@ -175,24 +189,50 @@ def compute_rows3d(
     result = {key: np.full(size, np.nan) for key in output_columns3d()[:-1]}
     ok = np.flatnonzero(~errors.bad)
     e = np.full(size, np.nan)
-    law_rows = ok[np.isnan(given_e[ok])]
+    law_rows = ok[np.isnan(given_e[ok]) & ~spring[ok]]
     e[ok] = given_e[ok]
-    if law_rows.size and model.tangential == "rigid":
+    if law_rows.size:
         e[law_rows], reasons = _restitutions(pairs, u_n, law_rows, model)
         errors.add_messages(_scatter(reasons, law_rows, size))
     ok = np.flatnonzero(~errors.bad)
-    blocks = [ok] if ok.size else []
-    if model.tangential == "mindlin":  # (rows, points) histories: blocks of HISTORY_BLOCK
-        rows_per_block = max(1, HISTORY_BLOCK // max(int(model.points), 2))
-        blocks = [ok[i : i + rows_per_block] for i in range(0, ok.size, rows_per_block)]
-    for rows in blocks:
-        _collide_block(rows, pairs, (vectors, e, friction, u_n), model, (errors, result))
-        # each row's FILM solution holds its history in reference cycles, which only the
-        # cyclic collector frees: collected per block, the memory stays that of one block
-        # (without it, it grew with the rows, as the collector's timing allowed)
-        gc.collect()
+    for name in dict.fromkeys(models[ok].tolist()):  # each row's model, in order of rows
+        chosen = ok[models[ok] == name]
+        blocks = [chosen]
+        if get_tangential(name).needs_history:
+            # one normalised Hertz history: ROW_BLOCK rows; else HISTORY_BLOCK points
+            rows_per_block = ROW_BLOCK if model.self_similar else max(
+                1, HISTORY_BLOCK // max(int(model.points), 2))  # fmt: skip
+            blocks = [chosen[i : i + rows_per_block] for i in range(0, chosen.size,
+                                                                     rows_per_block)]  # fmt: skip
+        for rows in blocks:
+            _collide_block(rows, pairs, (vectors, e, friction, u_n), model, name,
+                           (errors, result))  # fmt: skip
+            # each row's FILM solution holds its history in reference cycles, which only
+            # the cyclic collector frees: collected per block, the memory stays that of one
+            # block (without it, it grew with the rows, as the collector's timing allowed)
+            gc.collect()
     result["error"] = errors.messages
     return result
+
+
+def _row_models(
+    reader: ColumnReader, tangential: str, errors: Problems
+) -> tuple[NDArray, NDArray]:
+    """Each row's tangential model (its ``tangential`` cell, else the model's) and whether
+    it needs the normal history (a spring); an unknown name is the row's error."""
+    size = reader.size
+    given = reader.text("tangential", lower=True)
+    models = np.where(np.equal(given, None), tangential, given).astype(object)
+    spring = np.zeros(size, dtype=bool)
+    message = np.full(size, "", dtype=object)
+    for name in dict.fromkeys(models.tolist()):  # distinct names only
+        rows = models == name
+        try:
+            spring[rows] = get_tangential(name).needs_history
+        except ValueError as exc:
+            message[rows] = str(exc)
+    errors.add_messages(message)
+    return models, spring
 
 
 def _vectors(reader: ColumnReader, errors: Problems) -> dict[str, NDArray]:
@@ -243,11 +283,13 @@ def _row_checks(
     s1: Mapping[str, NDArray],
     s2: Mapping[str, NDArray],
     vectors: Mapping[str, NDArray],
+    spring: NDArray,
     model: CollisionModel,
     errors: Problems,
 ) -> tuple[NDArray, NDArray, NDArray]:
-    """The checks of a collision of each row; returns its friction mu, its given e (NaN:
-    the law's) and its normal approach velocity u_n [m/s]."""
+    """The checks of a collision of each row (``spring``: the rows with a tangential
+    spring); returns its friction mu, its given e (NaN: the law's) and its normal approach
+    velocity u_n [m/s]."""
     friction = np.where(np.isnan(q["mu"]), model.mu, q["mu"])
     with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, its error
         errors.add(~(np.isfinite(friction) & (friction >= 0.0)), "mu must be finite and >= 0")
@@ -256,9 +298,8 @@ def _row_checks(
         )
         errors.add(~np.isnan(given_e) & ~((given_e >= 0) & (given_e <= 1)),
                    "e must be in [0, 1], got {:g}", given_e)  # fmt: skip
-        if model.tangential == "mindlin":
-            errors.add(~np.isnan(given_e), "a given e cannot drive the mindlin model, which "
-                       "needs the normal force history of a law")  # fmt: skip
+        errors.add(spring & ~np.isnan(given_e) & ~(given_e > 0.0), "e = 0 has no normal "
+                   "force history for a tangential spring (its contact never ends)")  # fmt: skip
         for i, s in ((1, s1), (2, s2)):
             errors.add(np.isinf(s["d"]) & np.any(vectors[f"w{i}"] != 0.0, axis=-1),
                        f"a flat target cannot spin: w{i} must be 0")  # fmt: skip
@@ -286,26 +327,157 @@ def _collide_block(
     pairs: SpherePairs,
     state: tuple[Mapping[str, NDArray], NDArray, NDArray, NDArray],
     model: CollisionModel,
+    tangential: str,
     out: tuple[Problems, dict[str, NDArray]],
 ) -> None:
     """The collisions of ``rows`` (valid so far; their spheres ``pairs``, their vectors,
-    e, mu and u_n in ``state``): the normal histories for ``mindlin``, then
-    :func:`impactcli.collision3d.oblique_collision_3d`; the results written into the
-    result columns, each refused row's reason into the errors (``out``)."""
+    e, mu and u_n in ``state``) under the tangential model ``tangential``: the normal
+    histories of a spring (normalised ones scaled on Hertz, damped or not; else one FILM
+    run per row), then :func:`impactcli.collision3d.oblique_collision_3d`; the results
+    written into the result columns, each refused row's reason into the errors (``out``)."""
     vectors, e, friction, u_n = state
     errors, result = out
     size = e.size
-    shear = arrays = given = None
-    if model.tangential == "mindlin":
-        e[rows], histories, reasons = _histories(pairs, u_n, rows, model)
+    if not get_tangential(tangential).needs_history:
+        _collide_rows(rows, pairs, state, tangential, out)
+        return
+    if model.self_similar:
+        # Hertz, damped or not: one normalised history per group of rows with the same
+        # damping at K = m = V0 = 1 (tangential.hertz_steps, tangential.damped_steps)
+        chosen, reasons = _damped_pairs(pairs, u_n, rows, model.damping)
         errors.add_messages(_scatter(reasons, rows, size))
-        rows = rows[reasons == ""]  # the rows that ran, in the order of their histories
+        good = reasons == ""
+        rows = rows[good]
         if not rows.size:
             return
-        *arrays, impulse = histories
-        given = None if np.all(np.isnan(impulse)) else impulse  # None: J_n (no pull)
-        shear = effective_shear_modulus(pairs.E1[rows], pairs.nu1[rows], pairs.E2[rows],
-                                        pairs.nu2[rows])  # fmt: skip
+        chosen = chosen.take(np.flatnonzero(good))
+        m, radius, modulus = chosen.m, chosen.radius, chosen.modulus
+        shear = effective_shear_modulus(chosen.E1, chosen.nu1, chosen.E2, chosen.nu2)
+        keys, key_reasons = _similar_keys(rows, e, (m, radius, modulus), u_n, model)
+        errors.add_messages(_scatter(key_reasons, rows, size))
+        for key, at in keys:
+            steps, row_e, reason = _similar_steps(key, m[at], u_n[rows[at]], modulus[at],
+                                                  radius[at], shear[at], model.points)  # fmt: skip
+            if reason:
+                errors.add(_mask(rows[at], size), reason)
+                continue
+            e[rows[at]] = row_e
+            _collide_rows(rows[at], pairs, state, tangential, out, steps=steps)
+        return
+    e[rows], histories, reasons = _histories(pairs, u_n, rows, model, e)
+    errors.add_messages(_scatter(reasons, rows, size))
+    rows = rows[reasons == ""]  # the rows that ran, in the order of their histories
+    if not rows.size:
+        return
+    *arrays, given = histories
+    shear = effective_shear_modulus(pairs.E1[rows], pairs.nu1[rows], pairs.E2[rows],
+                                    pairs.nu2[rows])  # fmt: skip
+    _collide_rows(rows, pairs, state, tangential, out, arrays=arrays, given=given, shear=shear)
+
+
+def _mask(rows: NDArray[np.intp], size: int) -> NDArray[np.bool_]:
+    out = np.zeros(size, dtype=bool)
+    out[rows] = True
+    return out
+
+
+def _similar_keys(
+    rows: NDArray[np.intp],
+    e: NDArray,
+    scales: tuple[NDArray, NDArray, NDArray],
+    u_n: NDArray,
+    model: CollisionModel,
+) -> tuple[list[tuple[tuple, NDArray]], NDArray]:
+    """The rows' normalised histories: a list of (key, positions in ``rows``), the key
+    (damping model or None for Hertz, its alpha at K = m = V0 = 1, separation rule, n) as
+    :func:`_histories` would run each row (``scales``: their effective mass [kg], radius
+    [m] and modulus [Pa]): a given e is Hertz with the damping that gives it
+    (:func:`impactcli.collision3d.restitution_damping`), at that model's default n unless
+    it is the model's damping. Also the reasons of rows that have none."""
+    from impactcli.model import ContactModel
+
+    m, radius, modulus = scales
+    damping, alpha, n, separation = model.damping, model.alpha, model.n, model.separation
+    reasons = np.full(rows.size, "", dtype=object)
+    row_e = e[rows]
+    runs: dict[tuple, list[NDArray]] = {}  # (damping, alpha, n) -> positions
+    nan = np.isnan(row_e)
+    if nan.any():
+        runs[(damping, alpha, n)] = [np.flatnonzero(nan)]
+    for value in np.unique(row_e[~nan]).tolist():  # distinct e values only
+        at = np.flatnonzero(row_e == value)
+        try:
+            row_damping, row_alpha = restitution_damping(value)
+        except (ValueError, InputError) as exc:
+            reasons[at] = first_line(exc)
+            continue
+        row_n = n if row_damping is None or row_damping == damping else None
+        runs.setdefault((row_damping, row_alpha, row_n), []).append(at)
+    out: list[tuple[tuple, NDArray]] = []
+    for (row_damping, row_alpha, row_n), parts in runs.items():
+        at = np.sort(np.concatenate(parts))
+        if row_damping is None:
+            out.append(((None, None, None, HISTORY_N if row_n is None else int(row_n)), at))
+            continue
+        if row_n is None:
+            row_n = ContactModel(damping=row_damping, alpha=row_alpha).default_n
+        law = DAMPING_LAWS[row_damping]
+        with np.errstate(all="ignore"):  # a scale beyond double precision: the row's reason
+            similar = np.broadcast_to(law.similar_alpha(
+                row_alpha, law.stiffness(radius[at], modulus[at]), m[at], u_n[rows[at]]
+            ), at.shape)  # fmt: skip
+        finite = np.isfinite(similar)
+        reasons[at[~finite]] = _OUT_OF_RANGE
+        for value in np.unique(similar[finite]).tolist():
+            out.append(((row_damping, value, separation, int(row_n)), at[similar == value]))
+    return out, reasons
+
+
+def _similar_steps(
+    key: tuple,
+    m: NDArray,
+    u_n: NDArray,
+    modulus: NDArray,
+    radius: NDArray,
+    shear: NDArray,
+    points: int,
+) -> tuple[Any, NDArray | None, str]:
+    """The Steps of the rows of one key of :func:`_similar_keys`, their e and a reason
+    (``""``; else the reason of every one of them)."""
+    from impactcli.tangential import damped_steps, hertz_steps
+
+    name, similar, separation, n = key
+    try:
+        with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
+            if name is None:
+                steps, e = hertz_steps(m, u_n, modulus, radius, shear, n, points)
+            else:
+                steps, e = damped_steps(name, similar, separation, m, u_n, modulus, radius,
+                                        shear, n, points)  # fmt: skip
+    except (ValueError, InputError) as exc:
+        return None, None, str(exc).splitlines()[0]
+    return steps, e, ""
+
+
+def _collide_rows(
+    rows: NDArray[np.intp],
+    pairs: SpherePairs,
+    state: tuple[Mapping[str, NDArray], NDArray, NDArray, NDArray],
+    tangential: str,
+    out: tuple[Problems, dict[str, NDArray]],
+    *,
+    arrays: list[NDArray] | None = None,
+    given: NDArray | None = None,
+    shear: NDArray | None = None,
+    steps: Any = None,
+) -> None:
+    """:func:`impactcli.collision3d.oblique_collision_3d` on ``rows``, with their normal
+    histories row by row (``arrays``: t, delta, delta', F; ``given``: their impulses or
+    None, ``shear``: G*) or as normalised ones (``steps``); the results into the result
+    columns (``out``)."""
+    vectors, e, friction, _ = state
+    errors, result = out
+    size = e.size
     summaries: list[tuple[NDArray, dict[str, NDArray]]] = []
 
     def collide(start: int, stop: int) -> None:
@@ -316,21 +488,20 @@ def _collide_block(
         history = None if arrays is None else NormalHistory(
             *(a[part] for a in arrays), impulse=None if given is None else given[part]
         )
+        rows_steps = None if steps is None else steps.take(np.arange(start, stop))
         try:
             with np.errstate(all="ignore"):  # an extreme row: NaN or inf in its lanes, checked
                 collision = oblique_collision_3d(
                     pairs.mass1[at], pairs.mass2[at], vectors["v1"][at], vectors["v2"][at],
                     vectors["p1"][at], vectors["p2"][at], pairs.d1[at], pairs.d2[at],
-                    vectors["w1"][at], vectors["w2"][at], e[at], friction[at],
-                    model.tangential, history=history,
+                    vectors["w1"][at], vectors["w2"][at], e[at], friction[at], tangential,
+                    history=history, steps=rows_steps,
                     shear_modulus=None if shear is None else shear[part],
                 )  # fmt: skip
                 summaries.append((at, collision_summary(collision)))
         except (InputError, ValueError) as exc:
             if stop - start == 1:
-                row = np.zeros(size, dtype=bool)
-                row[at] = True
-                errors.add(row, _FIRST_AT.sub("", first_line(exc)))
+                errors.add(_mask(at, size), _FIRST_AT.sub("", first_line(exc)))
                 return
             middle = (start + stop) // 2
             collide(start, middle)
@@ -396,8 +567,8 @@ def _restitutions(
         while pending:  # a part the kernel refuses is halved down to the refused rows
             part = pending.pop()
             try:
-                out = pair_impacts(pairs.take(rows[part]), n=model.n, law=law,
-                                   law_params=model.params)  # fmt: skip
+                out = pair_impacts(pairs.take(rows[part]), n=25 if model.n is None else model.n,
+                                   law=law, law_params=model.params)  # fmt: skip
             except ValueError as exc:
                 if part.size > 1:
                     pending += [part[: part.size // 2], part[part.size // 2 :]]
@@ -428,26 +599,33 @@ def _restitutions(
 
 
 def _damped_pairs(
-    pairs: SpherePairs, u_n: NDArray, rows: NDArray[np.intp], damping: str
+    pairs: SpherePairs, u_n: NDArray, rows: NDArray[np.intp], damping: str | None
 ) -> tuple[SpherePairs, NDArray]:
     """The pairs of ``rows`` and each one's reason it cannot be computed: Hertz scales (those
-    of the elastic law the damping acts on) beyond double precision
-    (:func:`impactcli.batch.hertz_scale_problems`), ``""`` elsewhere."""
+    of the elastic law the damping acts on; Hertz's own for ``damping`` None) beyond double
+    precision (:func:`impactcli.batch.hertz_scale_problems`), ``""`` elsewhere."""
     from impactcli.batch import hertz_scale_problems
+    from impactcli.laws.viscous import DampingSpec
 
     chosen = pairs.take(rows)
     with np.errstate(all="ignore"):  # a scale beyond double precision: that row's reason
         m, radius, modulus = chosen.m, chosen.radius, chosen.modulus  # computed here, kept
-        stiffness = DAMPING_LAWS[damping].stiffness(radius, modulus)
+        spec = DampingSpec if damping is None else DAMPING_LAWS[damping]
+        stiffness = spec.stiffness(radius, modulus)
         return chosen, hertz_scale_problems(m, stiffness, u_n[rows])
 
 
 def _histories(
-    pairs: SpherePairs, u_n: NDArray, rows: NDArray[np.intp], model: CollisionModel
+    pairs: SpherePairs,
+    u_n: NDArray,
+    rows: NDArray[np.intp],
+    model: CollisionModel,
+    row_e: NDArray,
 ) -> tuple[NDArray, tuple[NDArray, ...], NDArray]:
-    """e and the normal history of each of ``rows`` (one FILM run per row). Returns (e,
-    (t, delta, delta_dot, force) of the rows that ran, shape (k, points), and their
-    impulse, shape (k,), NaN where it is J_n), reasons)."""
+    """e and the normal history of each of ``rows`` (one FILM run per row; a given e (not
+    NaN in ``row_e``) is Hertz with the Tsuji damping that gives it). Returns (e, (t,
+    delta, delta_dot, force) of the rows that ran, shape (k, points), and the impulse of
+    their F_n, shape (k,): J_n where the force never pulls), reasons)."""
     from impactcli.impact import Sphere
 
     e = np.full(rows.size, np.nan)
@@ -474,8 +652,14 @@ def _histories(
                            given(getattr(pairs, f"sy{i}")[row]))
                     for i in (1, 2)
                 ]  # fmt: skip
+                law = model.normal_law
+                if not np.isnan(row_e[row]):
+                    law["law"], law["params"] = ELASTIC_LAW, {}
+                    law["damping"], law["alpha"] = restitution_damping(float(row_e[row]))
+                    if law["damping"] is not None and law["damping"] != model.damping:
+                        law["n"] = None  # the default n of that damping
                 e[k], history = normal_restitution_and_history(
-                    *pair, float(u_n[row]), **model.normal_law, points=model.points
+                    *pair, float(u_n[row]), **law, points=model.points
                 )
         except (ValueError, InputError, ArithmeticError) as exc:
             reasons[k] = str(exc).splitlines()[0]
@@ -487,7 +671,12 @@ def _histories(
             continue
         for stack, array in zip(stacks, arrays):
             stack.append(array)
-        impulses.append(np.nan if history.impulse is None else float(history.impulse[0]))
+        if history.impulse is None:  # J_n = (1 + e) m u_n: the force never pulls
+            with np.errstate(all="ignore"):  # another row's scales may leave double precision
+                mass = pairs.m[row]
+            impulses.append(float((1.0 + e[k]) * mass * u_n[row]))
+        else:
+            impulses.append(float(history.impulse[0]))
     arrays = tuple(
         np.stack(s) if s else np.zeros((0, max(int(model.points), 2))) for s in stacks
     )

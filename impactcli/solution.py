@@ -6,8 +6,10 @@ delta(t), delta'(t) at any time, its contact force and its energy partition. Thr
 give it:
 
 - :class:`PlanSolution`: FILM of a normal law's :class:`~impactcli.laws.base.ImpactPlan`
-  (closed-form stages, :mod:`impactcli.film`), the :class:`~impactcli.film.FilmSolution`
-  with the plan and contact model that made it;
+  (closed-form stages, :mod:`impactcli.film`): its quantities from the law's closed forms
+  and FILM's stage times, its stages (:class:`StagedSolution`, the
+  :class:`~impactcli.film.FilmSolution` with the plan and contact model) solved when a
+  history asks for them;
 - :class:`impactcli.damping.DampedImpact`: FILM of Hertz with viscous damping, segment by
   segment;
 - :class:`impactcli.ode.OdeSolution`: SciPy integration of either, the reference.
@@ -21,18 +23,27 @@ Everything is SI and for one impact.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import FilmSolution, FilmStage, solve_stage
+from impactcli.film import FilmSolution, FilmStage, FilmSummary, solve_stage, solve_stages
+from impactcli.limits import MAX_SEGMENTS, check_size
 
 if TYPE_CHECKING:
     from impactcli.laws.base import ImpactPlan, NormalContact
     from impactcli.ode import OdeSolution
 
-__all__ = ["ContactSolution", "PlanSolution", "solve_plan"]
+__all__ = [
+    "ContactSolution",
+    "PlanSolution",
+    "StagedSolution",
+    "history_solution",
+    "history_times",
+    "solve_plan",
+]
 
 Array = NDArray[np.float64]
 
@@ -126,10 +137,11 @@ def _first(value: ArrayLike) -> float:
 
 
 @dataclass(frozen=True)
-class PlanSolution(FilmSolution):
-    """FILM solution of one impact of a normal law: the solved stages of its plan
-    (:class:`~impactcli.film.FilmSolution`) with the plan and the contact model, as a
-    :class:`ContactSolution`.
+class StagedSolution(FilmSolution):
+    """FILM solution of one impact of a normal law as its solved stages: the stages of its
+    plan (:class:`~impactcli.film.FilmSolution`) with the plan and the contact model, as a
+    :class:`ContactSolution` whose quantities come from the stages and the plan's arrays.
+    The histories of a :class:`PlanSolution` are evaluated on it (:attr:`PlanSolution.staged`).
 
     Attributes
     ----------
@@ -146,7 +158,7 @@ class PlanSolution(FilmSolution):
     with n = 25 lasts 2.9432487 (exact 2.9432752, docs/method.md §6):
 
     >>> from impactcli.laws.registry import get_law
-    >>> s = PlanSolution.solve(get_law("hertz").contact(1.0, 0.9375), 1.0, 1.0, 25)
+    >>> s = StagedSolution.solve(get_law("hertz").contact(1.0, 0.9375), 1.0, 1.0, 25)
     >>> s.restitution, round(s.contact_time, 7), round(s.t_max, 7)
     (1.0, 2.9432487, 1.4716277)
     """
@@ -159,7 +171,7 @@ class PlanSolution(FilmSolution):
     @classmethod
     def solve(
         cls, contact: NormalContact, impact_velocity: float, mass: float, n: int
-    ) -> PlanSolution:
+    ) -> StagedSolution:
         """Plan the impact at V0 [m/s] with effective mass m [kg] and solve its stages by
         FILM with n segments each."""
         plan = contact.plan(impact_velocity, mass)
@@ -173,7 +185,7 @@ class PlanSolution(FilmSolution):
         impact_velocity: float,
         mass: float,
         n: int,
-    ) -> PlanSolution:
+    ) -> StagedSolution:
         """Solve the stages of ``plan`` by FILM with n segments each (:func:`solve_plan`)."""
         return cls(solve_plan(plan, mass, n), plan, contact, mass, impact_velocity)
 
@@ -229,26 +241,53 @@ class PlanSolution(FilmSolution):
     ) -> Array:
         """Contact force F(delta) of the FILM stage each time [s] falls in, [N]."""
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
-        ends = [float(stage.end_time) for stage in self.stages]
-        stage = np.minimum(np.searchsorted(ends, t, side="left"), len(ends) - 1)
+        ends = self._stage_ends
+        stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
         return self.plan.force(stage, delta)
 
-    def contact_work(self, t: ArrayLike) -> Array:
+    @cached_property
+    def _stage_ends(self) -> Array:
+        """The time each stage ends, [s]."""
+        return np.array([float(stage.end_time) for stage in self.stages])
+
+    @cached_property
+    def _work_table(self) -> tuple:
+        """:func:`impactcli.energy.film_work_table` of the stages."""
+        from impactcli.energy import film_work_table
+
+        return film_work_table(self.stages, [stage.law for stage in self.plan.stages])
+
+    @cached_property
+    def _energy_constants(self) -> tuple:
+        """:func:`impactcli.energy.plan_energy_constants` of the impact."""
+        from impactcli.energy import plan_energy_constants
+
+        return plan_energy_constants(self.plan, self.contact, self.delta_max)
+
+    def contact_work(self, t: ArrayLike, delta: ArrayLike | None = None) -> Array:
         """W(t): work of the contact force up to times ``t`` [s] along FILM's segments
-        (:func:`impactcli.energy.film_contact_work`), [J]."""
+        (:func:`impactcli.energy.film_contact_work`), [J]; ``delta``: this solution's
+        indentation at ``t`` [m] (:meth:`evaluate`), if the caller has it."""
         from impactcli.energy import film_contact_work
 
         laws = [stage.law for stage in self.plan.stages]
-        return film_contact_work(self.stages, laws, t)
+        return film_contact_work(
+            self.stages, laws, t, film=self, delta=delta, table=self._work_table
+        )
 
-    def energy(self, t: ArrayLike, delta: ArrayLike) -> tuple[Array, Array]:
+    def energy(
+        self, t: ArrayLike, delta: ArrayLike, own: bool = False
+    ) -> tuple[Array, Array]:
         """Stored strain energy and dissipated (plastic) energy at times ``t`` [s] and
-        indentations ``delta`` [m], [J] (:func:`impactcli.energy.plan_energy`)."""
+        indentations ``delta`` [m], [J] (:func:`impactcli.energy.plan_energy`); ``own``:
+        ``delta`` is this solution's own at ``t`` (:meth:`evaluate`), used for W(t)."""
         from impactcli.energy import plan_energy
 
+        work = self.contact_work(t, delta if own else None)
         return plan_energy(
-            self.plan, self.contact, t, delta, self.contact_work(t), self.t_max, self.delta_max
-        )
+            self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
+            constants=self._energy_constants,
+        )  # fmt: skip
 
     def dissipated_at(self, t: ArrayLike) -> Array:
         """Energy dissipated from first contact to times ``t`` [s], [J]."""
@@ -264,6 +303,236 @@ class PlanSolution(FilmSolution):
         )
 
 
+@dataclass(frozen=True, eq=False)
+class PlanSolution:
+    """FILM solution of one impact of a normal law, as a :class:`ContactSolution`: its
+    quantities at once, its stages when first asked for.
+
+    The quantities (:class:`~impactcli.film.FilmSummary`) come from the contact model's
+    ``film_summary`` where it has one: the law's closed forms (delta_m, F_m, delta_res, e)
+    and FILM's times of its stages from the normalised Hertz solution scaled, the exact
+    time of a linear stage and the Hertz loading to first yield on floats (Hertz, Du & Wang,
+    Thornton, Walton & Braun; docs/method.md §3-§7). Otherwise (a tabulated law) from the
+    plan and its solved stages. The stage arrays, the plan and the histories, force and
+    energy at any time are those of :attr:`staged`, solved on first use; its times agree
+    with these to rounding (a few units in the last place).
+
+    Attributes
+    ----------
+    contact : the contact model that planned the impact (residual indentation,
+        recoverable work)
+    mass : effective mass m, [kg]
+    impact_velocity : V0, [m/s]
+    n : FILM segments per stage
+    quantities : the closed-form quantities and FILM times (:class:`~impactcli.film.FilmSummary`)
+
+    Examples
+    --------
+    The normalised Hertz impact (R = 1, E* = 15/16, so K_h = 5/4; m = V0 = delta_m = 1)
+    with n = 25 lasts 2.9432487 (exact 2.9432752, docs/method.md §6):
+
+    >>> from impactcli.laws.registry import get_law
+    >>> s = PlanSolution.solve(get_law("hertz").contact(1.0, 0.9375), 1.0, 1.0, 25)
+    >>> s.restitution, round(s.contact_time, 7), round(s.t_max, 7)
+    (1.0, 2.9432487, 1.4716277)
+    >>> len(s.stages), float(s.stages[-1].end_time) == s.staged.end_time
+    (2, True)
+    """
+
+    contact: NormalContact
+    mass: float
+    impact_velocity: float
+    n: int
+    quantities: FilmSummary
+
+    @classmethod
+    def solve(
+        cls, contact: NormalContact, impact_velocity: float, mass: float, n: int
+    ) -> PlanSolution:
+        """The impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage: the contact model's closed forms (:meth:`of_closed_forms`), else its plan
+        solved (:meth:`of_plan`)."""
+        solution = cls.of_closed_forms(contact, impact_velocity, mass, n)
+        if solution is not None:
+            return solution
+        return cls.of_plan(contact.plan(impact_velocity, mass), contact, impact_velocity, mass, n)
+
+    @classmethod
+    def of_closed_forms(
+        cls, contact: NormalContact, impact_velocity: float, mass: float, n: int
+    ) -> PlanSolution | None:
+        """The impact from the contact model's ``film_summary`` (its closed forms and FILM's
+        stage times on floats), its stages left to first use; None when the model has no
+        ``film_summary`` or leaves this impact to the plan (arrays, a scale beyond double
+        precision: the plan's checks word it)."""
+        n = check_size("n", n, MAX_SEGMENTS)
+        summary_of = getattr(contact, "film_summary", None)
+        quantities = None if summary_of is None else summary_of(impact_velocity, mass, n)
+        if quantities is None:
+            return None
+        return cls(contact, mass, impact_velocity, n, quantities)
+
+    @classmethod
+    def of_plan(
+        cls,
+        plan: ImpactPlan,
+        contact: NormalContact,
+        impact_velocity: float,
+        mass: float,
+        n: int,
+    ) -> PlanSolution:
+        """Solve the stages of ``plan`` by FILM with n segments each (:func:`solve_plan`):
+        the quantities are those of the plan and its stages."""
+        staged = StagedSolution.of_plan(plan, contact, impact_velocity, mass, n)
+        v0, m = impact_velocity, mass
+        quantities = FilmSummary(
+            staged.delta_max,
+            staged.force_max,
+            staged.delta_end,
+            staged.restitution,
+            staged.t_max,
+            staged.end_time,
+            _first(contact.yield_indentation),
+            _first(contact.yield_velocity(np.asarray(m, dtype=float))),
+            _first(contact.recoverable_work(np.array([staged.delta_max]))),
+            plan.is_normalised(),
+            bool(np.all(contact.yields(v0, m))),
+        )
+        solution = cls(contact, m, v0, int(n), quantities)
+        solution.__dict__.update(plan=plan, staged=staged)  # the stages solved already
+        return solution
+
+    # -- the stages, solved on first use ---------------------------------------------------
+    @cached_property
+    def staged(self) -> StagedSolution:
+        """The FILM stages of the plan, solved (:class:`StagedSolution`): the histories,
+        force and energy at any time."""
+        return StagedSolution.of_plan(
+            self.plan, self.contact, self.impact_velocity, self.mass, self.n
+        )
+
+    @cached_property
+    def plan(self) -> ImpactPlan:
+        """The stages' laws and ends and the closed-form quantities, as arrays
+        (:class:`~impactcli.laws.base.ImpactPlan`), made on first use."""
+        with np.errstate(all="ignore"):
+            return self.contact.plan(self.impact_velocity, self.mass)
+
+    @property
+    def stages(self) -> tuple[FilmStage, ...]:
+        """The FILM stages, solved in time order (:func:`solve_plan`)."""
+        return self.staged.stages
+
+    # -- the quantities of ContactSolution ------------------------------------------------
+    @property
+    def start_time(self) -> float:
+        """Time of first contact, [s]."""
+        return 0.0
+
+    @property
+    def end_time(self) -> float:
+        """Time of separation, [s]."""
+        return self.quantities.end_time
+
+    @property
+    def contact_time(self) -> float:
+        """Time of separation, [s]."""
+        return self.quantities.end_time
+
+    @property
+    def t_max(self) -> float:
+        """Time of the maximum indentation: the end of the last loading stage, [s]."""
+        return self.quantities.t_max
+
+    @property
+    def delta_max(self) -> float:
+        """Maximum indentation (the law's closed form), [m]."""
+        return self.quantities.delta_max
+
+    @property
+    def force_max(self) -> float:
+        """Maximum contact force (the law's closed form), [N]."""
+        return self.quantities.force_max
+
+    @property
+    def delta_end(self) -> float:
+        """Residual indentation delta_res: the indentation at separation, [m]."""
+        return self.quantities.delta_res
+
+    @property
+    def restitution(self) -> float:
+        """Coefficient of restitution e (the law's, from the exact energy balance), [-]."""
+        return self.quantities.restitution
+
+    @property
+    def normalised(self) -> bool:
+        """The Hertz impact of the normalised Tables A1/A2."""
+        return self.quantities.normalised
+
+    @property
+    def plastic(self) -> bool:
+        """The impact goes past the law's yield point."""
+        return self.quantities.plastic
+
+    @property
+    def dissipated(self) -> float:
+        """Kinetic energy lost, (1/2) m V0^2 (1 - e^2), [J]."""
+        m, v0, e = float(self.mass), float(self.impact_velocity), self.quantities.restitution
+        return 0.5 * m * (v0 * v0) * (1.0 - e * e)
+
+    @property
+    def stored(self) -> float:
+        """Zero: a normal law separates where its unloading force returns to 0, [J]."""
+        return 0.0
+
+    # -- the state, force and energy: the stages' ------------------------------------------
+    def evaluate(self, t: ArrayLike) -> tuple[Array, Array]:
+        """Indentation [m] and its rate [m/s] at times ``t`` [s], clamped to the contact
+        (:meth:`~impactcli.film.FilmSolution.evaluate` of :attr:`staged`)."""
+        return self.staged.evaluate(t)
+
+    def force(
+        self, t: ArrayLike, delta: ArrayLike, delta_dot: ArrayLike | None = None
+    ) -> Array:
+        """Contact force F(delta) of the FILM stage each time [s] falls in, [N]."""
+        return self.staged.force(t, delta, delta_dot)
+
+    def contact_work(self, t: ArrayLike) -> Array:
+        """W(t): work of the contact force up to times ``t`` [s] along FILM's segments, [J]."""
+        return self.staged.contact_work(t)
+
+    def energy(self, t: ArrayLike, delta: ArrayLike) -> tuple[Array, Array]:
+        """Stored strain energy and dissipated (plastic) energy at times ``t`` [s] and
+        indentations ``delta`` [m], [J]."""
+        return self.staged.energy(t, delta)
+
+    def dissipated_at(self, t: ArrayLike) -> Array:
+        """Energy dissipated from first contact to times ``t`` [s], [J]."""
+        return self.staged.dissipated_at(t)
+
+    def integrate(self) -> OdeSolution:
+        """SciPy integration of the same plan (:func:`impactcli.ode.integrate_plan`)."""
+        return self.staged.integrate()
+
+
+def history_solution(solution: ContactSolution) -> ContactSolution:
+    """The solution the histories of ``solution`` are evaluated on: a :class:`PlanSolution`'s
+    FILM stages (:attr:`PlanSolution.staged`, solved on first use), any other solution
+    itself."""
+    return solution.staged if isinstance(solution, PlanSolution) else solution
+
+
+def history_times(solution: ContactSolution, points: int) -> Array:
+    """``points`` (>= 2) evenly spaced times over the contact of ``solution``, [s]: over a
+    :class:`PlanSolution`'s FILM stages (:func:`history_solution`), the last one its contact
+    time (the stages' end to rounding, where the state is that of separation), so that a
+    history ends at the summary's time of separation."""
+    history = history_solution(solution)
+    t = np.linspace(0.0, float(history.end_time), points)
+    t[-1] = float(solution.end_time)
+    return t
+
+
 def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:
     """Solve every stage of ``plan`` by FILM with n segments, chained in time
     (:func:`impactcli.film.solve_stage`); arrays of a batch broadcast.
@@ -272,6 +541,14 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     -------
     tuple of :class:`~impactcli.film.FilmStage`
     """
+    values = [(s.delta_start, s.delta_end, s.speed_start) for s in plan.stages]
+    if np.ndim(mass) == 0 and all(np.ndim(x) == 0 for row in values for x in row):
+        return solve_stages(  # one impact: its stages in one pass
+            [(s.law, float(a), float(b), float(v), s.end_at_rest)
+             for s, (a, b, v) in zip(plan.stages, values)],
+            float(mass),
+            n,
+        )  # fmt: skip
     stages: list[FilmStage] = []
     t_start: ArrayLike = np.zeros_like(np.asarray(plan.delta_max, dtype=float))
     for stage in plan.stages:

@@ -14,13 +14,13 @@ warnings and notes are returned as text for the caller to show.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from functools import wraps
+from functools import lru_cache, wraps
 from typing import TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import YIELD_STRENGTH_NEEDED, YieldOnset
+from impactcli.laws.base import MIN_YIELD_INDENTATION_RATIO, YIELD_STRENGTH_NEEDED, YieldOnset
 
 # kept importable from here, where it was defined before the law's module held it
 from impactcli.laws.du_wang import du_wang_yield_velocity
@@ -278,13 +278,6 @@ def needs_yield_strength(sy1: ArrayLike, sy2: ArrayLike) -> NDArray[np.bool_]:
         return ~(np.isfinite(sigma_y) & (sigma_y > 0))
 
 
-#: Smallest delta_y / delta_max of an elastoplastic impact that is computed: below it the
-#: elastic loading stage is lost in the rounding of delta_max (double precision, eps 2.2e-16,
-#: squared by the Hertz force), and the stages give e = 0 or NaN times. Reached only by
-#: physically meaningless inputs (sigma_y of a few kPa against E = 210 GPa, E >= 1e40 Pa,
-#: rho >= 1e100 kg/m^3).
-MIN_YIELD_INDENTATION_RATIO = 1e-12
-
 
 def yield_scale_problems(
     delta_y: ArrayLike, delta_max: ArrayLike, problems: Problems | None = None
@@ -349,13 +342,24 @@ def _onset(law: str) -> YieldOnset:
     return onset
 
 
+@lru_cache(maxsize=1)
 def _first_yield_criterion() -> str:
+    """How a warning names the elastic law's first-yield criterion (worked out once)."""
     onset = _onset(ELASTIC_LAW)
     return onset.criterion(onset.pressure_factor({}))
 
 
+@lru_cache(maxsize=64)
+def _criterion_of(pressure_factor: float) -> str:
+    """How a warning names the default law's yield criterion at p0 / sigma_y."""
+    return _onset(DEFAULT_LAW).criterion(pressure_factor)
+
+
 def _yield_criterion(pressure_factor: float | None) -> str:
-    return _onset(DEFAULT_LAW).criterion(_pressure_factor(pressure_factor))
+    factor = _pressure_factor(pressure_factor)
+    if type(factor) is float:  # one number: its words once
+        return _criterion_of(factor)
+    return _onset(DEFAULT_LAW).criterion(factor)
 
 
 def _pressure_factor(pressure_factor: float | None) -> float:

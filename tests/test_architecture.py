@@ -39,6 +39,8 @@ LIBRARY = (
     "impactcli.sweep",
     "impactcli.batch",
     "impactcli.collision2d",
+    "impactcli.tangential",
+    "impactcli.moving",
     "impactcli.tables",
     "impactcli.materials",
     "impactcli.validation",
@@ -540,6 +542,10 @@ LAW_NAMES_ALLOWED: dict[tuple[str, str], str] = {
     "LAMMPS's conventions of each",
     ("impactcli/export/__init__.py", "tsuji"): "re-exports tsuji_coefficient of "
     "export.lammps (LAMMPS's damping tsuji)",
+    ("impactcli/laws/tangential.py", "hertz"): "LAMMPS's pair gran/hertz/history, one of "
+    "the codes that implement mindlin-displacement",
+    ("impactcli/tangential.py", "hertz"): "hertz_steps: the rows of undamped Hertz share one "
+    "normalised history (self-similar), scaled to each row",
     ("impactcli/cli/export_cmd.py", "*"): "its --help names the LAMMPS models it writes "
     "(hertz/material, damping tsuji, damping viscoelastic)",
 }

@@ -80,7 +80,7 @@ def test_table_output(impact):
         (["--v1=1,-3"], "three components"),
         (["--v1=1,0,3"], "not approaching"),
         (["--v1=1,0,-3", "--w1", "a,b,c"], "--w1"),
-        (["--v1=1,0,-3", "--e", "0.5", "--tangential", "mindlin"], "--e"),
+        (["--v1=1,0,-3", "--e", "0", "--tangential", "mindlin"], "--e 0"),
         (["--v1=1,0,-3", "--w2", "0,1,0"], "flat target cannot spin"),
     ],
 )
@@ -261,7 +261,8 @@ def _rows_table(angles) -> str:
     return "\n".join(lines) + "\n"
 
 
-@pytest.mark.parametrize("model", ["rigid", "mindlin"])
+@pytest.mark.parametrize("model", ["rigid", "mindlin", "mindlin-displacement",
+                                   "mindlin-deresiewicz"])  # fmt: skip
 def test_rows_equal_single_collisions(impact, tmp_path, model):
     """Each row of --rows gives the numbers of the single command; a bad row gets its
     reason in the error column, the others are computed."""
@@ -286,6 +287,37 @@ def test_rows_equal_single_collisions(impact, tmp_path, model):
         single = rows(one.stdout)
         for key in ("v1_final_x", "w1_final_y", "tangential_restitution", "rebound_angle"):
             assert float(row[key]) == pytest.approx(single[key], rel=1e-10, abs=1e-12)  # 12 digits
+
+
+def test_rows_name_their_own_tangential_model(impact, tmp_path):
+    """A ``tangential`` column gives each row its model by the names of --tangential (an
+    empty cell: the command's); each row has the numbers of the command run with its model,
+    and an unknown name is that row's error, naming the accepted ones."""
+    pytest.importorskip("pyarrow")
+    models = ["mindlin-displacement", "rigid", "", "mindlin-deresiewicz", "mindlin-rescal"]
+    lines = _rows_table([10.0] * len(models)).splitlines()
+    table = tmp_path / "in.csv"
+    table.write_text("\n".join([lines[0] + ",tangential"]
+                               + [f"{line},{m}" for line, m in zip(lines[1:], models)]) + "\n")
+    out = tmp_path / "out.csv"
+    r = impact("collide3d", "--rows", str(table), "-o", str(out), "--mu", "0.092",
+               "--tangential", "mindlin-force", "--points", "801")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    got = list(csv.DictReader(out.open()))
+    assert [row["tangential"] for row in got] == models
+    assert "unknown tangential model 'mindlin-rescal'; accepted: rigid, mindlin" in got[4]["error"]
+    vt, vn = 3.9 * float(np.sin(np.radians(10.0))), 3.9 * float(np.cos(np.radians(10.0)))
+    spins = set()
+    for row, model in zip(got[:4], ["mindlin-displacement", "rigid", "mindlin-force",
+                                    "mindlin-deresiewicz"]):  # fmt: skip
+        assert row["error"] == ""
+        one = impact(*ALUMINA_ON_PLANE, f"--v1={vt!r},0,{-vn!r}", "--tangential", model,
+                     "--points", "801", "-f", "csv")  # fmt: skip
+        single = rows(one.stdout)
+        for key in ("v1_final_x", "w1_final_y", "tangential_restitution"):
+            assert float(row[key]) == pytest.approx(single[key], rel=1e-10, abs=1e-12)
+        spins.add(round(float(row["w1_final_y"]), 3))
+    assert len(spins) == 4  # four models, four answers
 
 
 def test_rows_refuses_single_options_and_bad_headers(impact, tmp_path):
@@ -477,3 +509,113 @@ def test_rows_write_parquet_when_asked_as_batch_does(impact, tmp_path):
                     "inf", "--E2", "inf", "--p1", "0,0,0", "--p2=0,0,-1", "--v1", "0,0,-1",
                     "-f", "parquet")  # fmt: skip
     assert single.returncode == 2 and "-f parquet writes the table of --rows" in single.stderr
+
+
+def test_each_tangential_model_by_name_and_the_geometry_in_the_result(impact):
+    """--tangential names every model of the registry; JSON says the geometry used."""
+    from impactcli.laws.tangential import tangential_names
+
+    spins = {}
+    for name in tangential_names():
+        r = impact(*ALUMINA_ON_PLANE, "--v1", "3.9m/s@5deg", "--tangential", name, "-f", "json")
+        assert r.returncode == 0, r.stderr
+        document = json.loads(r.stdout)
+        assert document["inputs"]["tangential_model"] == name
+        assert document["inputs"]["geometry"] == "frozen"
+        spins[name] = document["summary"]["w1_final_y"]
+    assert len({round(v, 3) for v in spins.values()}) == len(spins)  # they differ at 5 deg
+
+
+def test_e_with_a_spring_is_hertz_with_the_tsuji_damping_that_gives_it(impact):
+    """--e 0.98 --tangential mindlin-displacement: e of the impact 0.98, the normal law said
+    (Chung & Ooi's test 4 at 10 deg: 204.5 rad/s, their curve 213 digitised)."""
+    r = impact(*ALUMINA_ON_PLANE, "--v1", "3.9m/s@10deg", "--e", "0.98", "--tangential",
+               "mindlin-displacement", "-f", "json")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    document = json.loads(r.stdout)
+    assert document["summary"]["normal_restitution"] == pytest.approx(0.98, abs=1e-9)
+    assert document["inputs"]["normal_model"].startswith("tsuji damping for e = 0.98")
+    assert document["summary"]["w1_final_y"] == pytest.approx(204.5, abs=0.1)
+
+
+def test_n_sets_the_film_segments_of_the_normal_history(impact):
+    """--n: the spin of a stick at 5 deg moves by 8e-5 between n = 25 and the default 100."""
+    got = {}
+    for n in ("25", "100"):
+        r = impact(*ALUMINA_ON_PLANE, "--v1", "3.9m/s@5deg", "--tangential", "mindlin",
+                   "--n", n, "-f", "json")  # fmt: skip
+        got[n] = json.loads(r.stdout)["summary"]["w1_final_y"]
+    default = impact(*ALUMINA_ON_PLANE, "--v1", "3.9m/s@5deg", "--tangential", "mindlin",
+                     "-f", "json")  # fmt: skip
+    assert json.loads(default.stdout)["summary"]["w1_final_y"] == got["100"]
+    assert 5e-5 < abs(got["25"] / got["100"] - 1.0) < 2e-4
+
+
+STEEL_PAIR = ["collide3d", "--d1", "20mm", "--d2", "20mm", "--material", "steel",
+              "--p1", "0,0,0.02", "--p2", "0,0,0"]  # fmt: skip
+
+
+def test_moving_geometry_turns_the_normal_of_two_spheres(impact):
+    """Two equal steel spheres at 75 deg without friction: the frozen geometry keeps e_n = 1
+    along the normal of first contact; the moving one turns the line of centres (0.64 deg)
+    and e_n along the first normal is 0.958. The result says its geometry."""
+    frozen = impact(*STEEL_PAIR, "--v1", "3.9m/s@75deg", "-f", "json")
+    moving = impact(*STEEL_PAIR, "--v1", "3.9m/s@75deg", "--geometry", "moving", "-f", "json")
+    assert moving.returncode == 0, moving.stderr
+    f, m = (json.loads(r.stdout) for r in (frozen, moving))
+    assert f["summary"]["normal_restitution"] == pytest.approx(1.0, abs=1e-12)
+    assert m["summary"]["normal_restitution"] == pytest.approx(0.958, abs=5e-4)
+    assert m["inputs"]["geometry"] == "moving"
+    # momentum is conserved in either geometry
+    for key in ("momentum_before_x", "momentum_before_z"):
+        after = key.replace("before", "after")
+        assert m["summary"][after] == pytest.approx(m["summary"][key], rel=1e-9, abs=1e-12)
+
+
+def test_moving_geometry_tends_to_the_frozen_one_as_the_normal_stops_turning():
+    """A sphere on a fixed sphere of 1 m radius (the normal turns by 1e-5 rad): the moving
+    geometry's spin within 1e-4 of the frozen one's."""
+    import math
+
+    from impactcli.collision3d import (
+        effective_shear_modulus,
+        normal_restitution_and_history,
+        oblique_collision_3d,
+    )
+    from impactcli.impact import Sphere
+    from impactcli.moving import moving_collision_3d
+
+    ball = Sphere.from_material(0.02, "steel")
+    big = Sphere.from_material(2.0, "steel", mass=math.inf)
+    v = 3.9 * np.array([np.sin(np.radians(5.0)), 0.0, -np.cos(np.radians(5.0))])
+    p1 = np.array([0.0, 0.0, ball.radius + big.radius])
+    moving = moving_collision_3d(ball, big, v, (0, 0, 0), p1, (0, 0, 0), mu=0.3,
+                                 tangential="mindlin", points=2001)  # fmt: skip
+    e, history = normal_restitution_and_history(ball, big, float(-v[2]), points=4001)
+    g = effective_shear_modulus(ball.youngs_modulus, ball.poisson_ratio, big.youngs_modulus,
+                                big.poisson_ratio)  # fmt: skip
+    frozen = oblique_collision_3d(ball.total_mass, math.inf, v, (0, 0, 0), p1, (0, 0, 0),
+                                  ball.diameter, big.diameter, restitution=e, mu=0.3,
+                                  tangential="mindlin", history=history,
+                                  shear_modulus=g)  # fmt: skip
+    assert float(moving.w1_final[1]) == pytest.approx(float(frozen.w1_final[0, 1]), rel=1e-4)
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--d1", "5mm", "--material", "steel", "--d2", "inf", "--m2", "inf", "--p1", "0,0,0",
+          "--p2=0,0,-1", "--v1", "1m/s@30deg", "--geometry", "moving"], "flat target"),
+        ([*STEEL_PAIR[1:], "--v1", "1m/s@30deg", "--mu", "0.3", "--geometry", "moving"],
+         "tangential spring"),
+        ([*STEEL_PAIR[1:], "--v1", "1m/s@30deg", "--model", "elastoplastic", "--geometry",
+          "moving"], "Hertz"),
+        # as the frozen geometry says it: u_n and the normal
+        ([*STEEL_PAIR[1:], "--v1=0,0,1", "--mu", "0.3", "--tangential", "mindlin",
+          "--geometry", "moving"], "(v1 - v2).n = -1 m/s with n = (0, 0, -1)"),
+    ],
+)  # fmt: skip
+def test_moving_geometry_refuses_what_it_does_not_cover(impact, args, message):
+    r = impact("collide3d", *args)
+    assert r.returncode == 2 and message in r.stderr, r.stderr
+    assert r.stderr.startswith("impact: error:") and len(r.stderr.splitlines()) == 1

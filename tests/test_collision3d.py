@@ -414,7 +414,7 @@ def test_fixed_target_angular_momentum_of_sphere_about_contact():
     [
         (dict(friction=-0.1), "friction"),
         (dict(restitution=1.5), "restitution"),
-        (dict(tangential="soft"), "rigid or mindlin"),
+        (dict(tangential="soft"), "accepted: rigid, mindlin, mindlin-force"),
         (dict(tangential="mindlin"), "history"),
         (dict(v1=(0.0, 0.0, 1.0)), "not approaching"),
         (dict(p2=(0.0, 0.0, 0.0)), "coincide"),

@@ -61,7 +61,7 @@ def _option_line(text: str, option: str) -> str:
         ("elastic", "--energy-plot", "FILE"),
         ("elastic", "--method", "[film|table|ode]"),
         ("elastic", "--split", "[mass|compliance|yield]"),
-        ("collide3d", "--tangential", "[rigid|mindlin]"),
+        ("collide3d", "--tangential", "MODEL"),
         ("elastic", "--damping", DAMPING_CHOICES),
         ("restitution", "--damping", DAMPING_CHOICES),
         ("collide3d", "--damping", DAMPING_CHOICES),

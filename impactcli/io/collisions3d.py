@@ -71,7 +71,7 @@ def compute_collisions3d(
     alpha: float | None = None,
     restitution: float | None = None,
     points: int = 4001,
-    n: int = 25,
+    n: int | None = None,
     faults: np.ndarray | None = None,
     separation: str = "overlap",
 ) -> dict[str, np.ndarray]:
@@ -83,12 +83,16 @@ def compute_collisions3d(
         :func:`impactcli.io.table.table_columns`): numbers in SI or text with units, read
         as ``impact batch`` reads them; columns as the module docstring
     mu : Coulomb friction of rows without a ``mu`` cell, [-]
-    tangential : ``rigid`` or ``mindlin``, every row
+    tangential : a model of :mod:`impactcli.laws.tangential` (``rigid``, ``mindlin``, ...)
+        of rows without a ``tangential`` cell
     law, params : the normal law of every row (None: the elastic law) and its parameters (SI)
     damping, alpha : damped Hertz instead (``tsuji`` or ``hunt-crossley``) and its alpha
-    restitution : e of rows without an ``e`` cell instead of the law (``rigid`` only)
-    points : time points of each normal history (``mindlin``)
-    n : FILM segments per stage of the normal law
+    restitution : e of rows without an ``e`` cell instead of the law; with a tangential
+        spring, Hertz with the Tsuji damping that gives e
+        (:func:`impactcli.collision3d.restitution_damping`)
+    points : time points of each normal history (a tangential spring)
+    n : FILM segments per stage of the normal law; default 25 for rigid, 100 with a spring
+        (:data:`impactcli.collision3d.HISTORY_N`), 400 with damping
     faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
         CSV line), which becomes its error
     separation : the separation rule of damped Hertz (``overlap`` or ``force``)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import os
 import sys
+import time
 from collections.abc import Callable, Collection, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import AbstractContextManager, contextmanager, nullcontext, suppress
@@ -46,6 +47,10 @@ from impactcli.io.writers import (
 from impactcli.output import atomic_output
 
 __all__ = ["BatchReport", "run_dask", "run_numpy", "run_table"]
+
+#: How long [s] the end of a ``--scheduler local`` run keeps removing its scratch folder
+#: while the cluster's workers finish shutting down.
+SCRATCH_REMOVAL_SECONDS = 10.0
 
 
 class BatchReport:
@@ -258,7 +263,15 @@ def _close_cluster(client, cluster, scratch: str | None) -> None:
             with suppress(Exception):
                 item.close()
     if scratch is not None:
-        shutil.rmtree(scratch, ignore_errors=True)
+        # a worker that is still shutting down may write into the folder while it goes: a
+        # file made after rmtree listed its folder leaves that folder behind, so remove
+        # again until it is gone (at most SCRATCH_REMOVAL_SECONDS)
+        deadline = time.monotonic() + SCRATCH_REMOVAL_SECONDS
+        while True:
+            shutil.rmtree(scratch, ignore_errors=True)
+            if not os.path.exists(scratch) or time.monotonic() > deadline:
+                break
+            time.sleep(0.05)
 
 
 @contextmanager

@@ -147,7 +147,11 @@ def _distinct(values: np.ndarray) -> tuple[list, np.ndarray]:
     if values.dtype != object:
         unique, codes = np.unique(values, return_inverse=True)
         return list(unique), codes.reshape(-1)
-    keys = [c if c.__class__ is str else (c.__class__, c) for c in values.tolist()]
+    cells = values.tolist()
+    if set(map(type, cells)) <= {str}:  # text alone (a CSV's cells): each cell its own key
+        order = {cell: k for k, cell in enumerate(dict.fromkeys(cells))}
+        return list(order), np.fromiter(map(order.__getitem__, cells), np.intp, len(cells))
+    keys = [c if c.__class__ is str else (c.__class__, c) for c in cells]
     index: dict[object, int] = {}
     codes = np.array([index.setdefault(k, len(index)) for k in keys], dtype=np.intp)
     return [k if k.__class__ is str else k[1] for k in index], codes

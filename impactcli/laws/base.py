@@ -15,6 +15,7 @@ arrays of shape (N, n + 1)).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal, Protocol
@@ -22,9 +23,10 @@ from typing import Any, Literal, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import ContactLaw
+from impactcli.film import ContactLaw, FilmSummary
 
 __all__ = [
+    "MIN_YIELD_INDENTATION_RATIO",
     "SEPARATIONS",
     "YIELD_MARGIN",
     "YIELD_STRENGTH_NEEDED",
@@ -38,8 +40,12 @@ __all__ = [
     "Parameter",
     "Reference",
     "StagePlan",
+    "TINY",
     "YieldOnset",
+    "as_float",
     "describe_model",
+    "finite_summary",
+    "floats",
 ]
 
 Array = NDArray[np.float64]
@@ -56,6 +62,61 @@ YIELD_STRENGTH_NEEDED = (
 #: Relative margin above the yield velocity below which an impact counts as elastic
 #: (:meth:`DuWangContact.yields`).
 YIELD_MARGIN = 1e-9
+
+#: Smallest delta_y / delta_max of an elastoplastic impact that is computed: below it the
+#: elastic loading stage is lost in the rounding of delta_max (double precision, eps 2.2e-16,
+#: squared by the Hertz force), and the stages give e = 0 or NaN times. Reached only by
+#: physically meaningless inputs (sigma_y of a few kPa against E = 210 GPa, E >= 1e40 Pa,
+#: rho >= 1e100 kg/m^3). :func:`impactcli.validation.yield_scale_problems` words it.
+MIN_YIELD_INDENTATION_RATIO = 1e-12
+
+
+#: Smallest positive normal double: a single impact whose scales fall below it (or are not
+#: finite) is left to the array path and its checks.
+TINY = 2.2250738585072014e-308
+
+
+def as_float(value: object) -> float | None:
+    """``value`` as a float if it is one number (a float, an int or a 0-d array), else None:
+    the single-impact paths of the laws run on floats, arrays take the NumPy paths.
+
+    >>> as_float(2), as_float(np.array(0.5)), as_float(np.ones(2))
+    (2.0, 0.5, None)
+    """
+    if type(value) is float:
+        return value
+    one = isinstance(value, (float, int)) and not isinstance(value, bool)
+    if one or (isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf"):
+        try:
+            return float(value)  # type: ignore[arg-type]
+        except OverflowError:
+            return None
+    return None
+
+
+def floats(*values: object) -> tuple[float, ...] | None:
+    """The values as floats (:func:`as_float`), or None if one of them is not one number."""
+    if all(type(x) is float for x in values):
+        return values  # type: ignore[return-value]
+    out = tuple(as_float(x) for x in values)
+    return None if None in out else out  # type: ignore[return-value]
+
+
+def finite_summary(summary: FilmSummary) -> bool:
+    """Every length, force and time of ``summary`` finite and positive (delta_res, e and the
+    recoverable work >= 0), delta_y and V_y not infinite: a single impact within double
+    precision, whose numbers the array path would give alike."""
+    s, inf = summary, math.inf
+    return (
+        TINY <= s.delta_max < inf
+        and TINY <= s.force_max < inf
+        and TINY <= s.t_max < inf
+        and TINY <= s.end_time < inf
+        and 0.0 <= s.delta_res < inf
+        and 0.0 <= s.restitution < inf
+        and 0.0 <= s.recoverable_work < inf
+        and not (math.isinf(s.delta_y) or math.isinf(s.yield_velocity))
+    )
 
 
 @dataclass(frozen=True)
@@ -130,7 +191,7 @@ class ImpactPlan:
         force = np.zeros_like(delta)
         for index, plan in enumerate(self.stages):  # a few stages, not rows
             mask = k == index
-            if np.any(mask):
+            if mask.any():
                 force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
         return force
 
@@ -420,6 +481,9 @@ class LawSpec:
         out: dict[str, Any] = {}
         for p in self.parameters:
             value = given.get(p.name, p.default)
+            if type(value) is float and 0.0 < value < math.inf and p.kind not in ("file", "choice"):
+                out[p.name] = value  # one positive, finite number: as it is
+                continue
             if value is not None and p.kind not in ("file", "choice"):
                 arr = np.asarray(value, dtype=float)
                 missing = np.isnan(arr)
@@ -462,8 +526,11 @@ class LawSpec:
     ) -> NormalContact:
         """The contact model for effective radius R [m], modulus E* [Pa] and yield strength
         sigma_y [Pa] (of the weaker sphere), one entry per collision; ``params`` by name."""
-        resolved = self.resolve(params)
+        resolved = self.resolve(params) if params or self.parameters else {}
         needed = self.yield_strength_needed(resolved)
+        plain = type(yield_strength) is float and 0.0 < yield_strength < math.inf
+        if needed is False or (needed is True and plain):  # nothing to check on arrays
+            return self.build(radius, modulus, yield_strength, resolved)
         if np.any(needed):
             sy = np.asarray(np.nan if yield_strength is None else yield_strength, dtype=float)
             if np.any(needed & ~(np.isfinite(sy) & (sy > 0))):

@@ -11,12 +11,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary, segment_time
 from impactcli.laws.base import (
+    MIN_YIELD_INDENTATION_RATIO,
+    TINY,
     YIELD_MARGIN,
     Fitting,
     ImpactPlan,
@@ -26,14 +30,19 @@ from impactcli.laws.base import (
     StagePlan,
     YieldOnset,
     col,
+    finite_summary,
+    floats,
 )
 from impactcli.laws.hertz import (
     FIRST_YIELD_PRESSURE_FACTOR,
     Hertz,
     HertzContact,
+    hertz_loading_seconds,
     hertz_maximum_indentation,
     hertz_stiffness,
+    hertz_summary,
     hertz_velocity,
+    rebound_time,
 )
 
 __all__ = [
@@ -42,6 +51,7 @@ __all__ = [
     "DuWangContact",
     "DuWangPlastic",
     "du_wang_yield_velocity",
+    "plastic_loading",
 ]
 
 #: p0 = 2.57 sigma_y: mean contact pressure of fully plastic contact (Du & Wang 2009, eq. 16).
@@ -78,14 +88,14 @@ class DuWangPlastic:
     #: F is linear in delta: FILM is exact on one segment (docs/method.md §4, item 5)
     linear: ClassVar[bool] = True
 
-    @property
+    @cached_property
     def slope(self) -> NDArray:
-        """dF/d delta = pi R p0, [N/m]."""
+        """dF/d delta = pi R p0, [N/m] (worked out once)."""
         return np.pi * np.asarray(self.radius) * self.mean_pressure
 
-    @property
+    @cached_property
     def intercept(self) -> NDArray:
-        """pi^3 R^2 p0^3 / (12 E*^2), [N]."""
+        """pi^3 R^2 p0^3 / (12 E*^2), [N] (worked out once)."""
         r, p0, e = (
             np.asarray(v, dtype=float) for v in (self.radius, self.mean_pressure, self.modulus)
         )
@@ -118,17 +128,17 @@ class DuWangContact:
     yield_strength: ArrayLike
     pressure_factor: float = DU_WANG_PRESSURE_FACTOR
 
-    @property
+    @cached_property
     def stiffness(self) -> NDArray:
         """Hertz stiffness K_h, [N/m^1.5]."""
         return hertz_stiffness(self.modulus, self.radius)
 
-    @property
+    @cached_property
     def mean_pressure(self) -> NDArray:
         """p0 = 2.57 sigma_y, [Pa]."""
         return self.pressure_factor * np.asarray(self.yield_strength, dtype=float)
 
-    @property
+    @cached_property
     def yield_indentation(self) -> NDArray:
         """delta_y = pi^2 R p0^2 / (4 E*^2), [m]."""
         r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
@@ -216,6 +226,82 @@ class DuWangContact:
         )
 
 
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:class:`~impactcli.film.FilmSummary`): the closed forms of
+        :meth:`plan` and FILM's times of its stages (:func:`plastic_loading`,
+        :func:`~impactcli.laws.hertz.rebound_time`). None for arrays, and for an impact
+        the array path must judge (a scale beyond double precision)."""
+        values = floats(self.radius, self.modulus, self.yield_strength, self.pressure_factor,
+                        impact_velocity, mass)  # fmt: skip
+        if values is None:
+            return None
+        r, e, sy, factor, v0, m = values
+        try:
+            loading = plastic_loading(r, e, factor * sy, v0, m, n)
+            if loading is None:
+                return None
+            k, dy, v_y, dm, t_max, force = loading
+            if math.isnan(t_max):  # below V_y: the Hertz impact, with this law's yield point
+                elastic = hertz_summary(k, v0, m, n)
+                if elastic is None:
+                    return None
+                dm = elastic.delta_max
+                work = 0.4 * k * max(dm - self._residual(r, e, factor * sy, dy, dm), 0.0) ** 2.5
+                summary = elastic._replace(delta_y=dy, yield_velocity=v_y, recoverable_work=work)
+                return summary if finite_summary(summary) else None
+            dres = self._residual(r, e, factor * sy, dy, dm)
+            restitution = math.sqrt(2.0 / m * 0.4 * k * (dm - dres) ** 2.5) / v0
+            t_c = t_max + rebound_time(dm, dres, restitution * v0, n)
+            work = 0.4 * k * max(dm - dres, 0.0) ** 2.5
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        summary = FilmSummary(dm, force, dres, restitution, t_max, t_c, dy, v_y, work, False, True)
+        return summary if finite_summary(summary) else None
+
+    @staticmethod
+    def _residual(r: float, e: float, p0: float, dy: float, dm: float) -> float:
+        """:meth:`residual_indentation` on floats."""
+        if not dm > dy:
+            return 0.0
+        # NumPy's cbrt, as the array path: near V_y delta_res is a difference of nearly
+        # equal numbers, whose last bits both paths then share
+        root = float(np.cbrt(math.pi * math.sqrt(r) * p0 / e * (0.75 * dm - 0.25 * dy)))
+        return dm - root * root
+
+
+def plastic_loading(
+    radius: float, modulus: float, p0: float, impact_velocity: float, mass: float, n: int
+) -> tuple[float, float, float, float, float, float] | None:
+    """The loading of Du & Wang's contact (p0 [Pa]) at V0 [m/s], m [kg] by FILM with n
+    segments per stage, on floats: (K_h, delta_y, V_y, delta_m, t_max, F_m). Below the
+    yield velocity (:meth:`DuWangContact.yields`) delta_m, t_max and F_m are NaN (the
+    impact is Hertz's); None when delta_y / delta_m is below the double-precision
+    limit (:func:`impactcli.validation.yield_scale_problems` words it).
+
+    Past V_y: delta_m from the energy balance (:meth:`DuWangContact.maximum_indentation`);
+    FILM's Hertz stage 0 -> delta_y (:func:`~impactcli.laws.hertz.hertz_loading_seconds`) and its
+    linear stage delta_y -> delta_m, on which FILM is exact: one segment gives the time of
+    n (:func:`impactcli.film.segment_time`).
+    """
+    r, e, v0, m = radius, modulus, impact_velocity, mass
+    k = 4.0 / 3.0 * e * math.sqrt(r)
+    dy = math.pi**2 * r * (p0 * p0) / (4.0 * (e * e))
+    dy25 = dy**2.5
+    v_y = math.sqrt(2.0 / m * 0.4 * k * dy25)  # as hertz_velocity: the same rounding
+    if not v0 > v_y * (1.0 + YIELD_MARGIN):
+        return k, dy, v_y, math.nan, math.nan, math.nan
+    slope = math.pi * r * p0
+    intercept = math.pi**3 * (r * r) * p0**3 / (12.0 * (e * e))
+    rest = 0.5 * m * (v0 * v0) - 0.4 * k * dy25 + 0.5 * slope * (dy * dy) - intercept * dy
+    dm = (intercept + math.sqrt(max(intercept * intercept + 2.0 * slope * rest, 0.0))) / slope
+    if not (TINY <= dm < math.inf and dy / dm >= MIN_YIELD_INDENTATION_RATIO):
+        return None
+    speed_y = math.sqrt(max(v0 * v0 - 2.0 / m * 0.4 * k * dy25, 0.0))
+    force_y, force = slope * dy - intercept, slope * dm - intercept
+    t_y = hertz_loading_seconds(dy, v0, k, m, n)
+    t_max = t_y + segment_time(force_y, force, dy, dm, speed_y, m, end_at_rest=True)
+    return k, dy, v_y, dm, t_max, force
 def du_wang_yield_velocity(
     first_yield_velocity: float, pressure_factor: float | None = None
 ) -> float:

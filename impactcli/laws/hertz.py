@@ -11,20 +11,24 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import swept_angles
+from impactcli.film import FilmSummary, solve_stage, swept_angles
 from impactcli.laws.base import (
+    TINY,
     Fitting,
     ImpactPlan,
     LawSpec,
     Reference,
     StagePlan,
     YieldOnset,
+    as_float,
     col,
+    finite_summary,
 )
 from impactcli.limits import MAX_SEGMENTS, check_size
 
@@ -37,9 +41,12 @@ __all__ = [
     "HertzContact",
     "first_yield_velocity",
     "hertz_contact_time",
+    "hertz_loading_seconds",
     "hertz_loading_time",
     "hertz_maximum_indentation",
     "hertz_stiffness",
+    "normalised_times",
+    "rebound_time",
 ]
 
 Array = NDArray[np.float64]
@@ -176,6 +183,57 @@ def hertz_contact_time(
         return HERTZ_CONTACT_TIME_FACTOR * hertz_maximum_indentation(mass, v0, stiffness) / v0
 
 
+@lru_cache(maxsize=32)
+def _hertz_loading_geometry(n: int) -> tuple[tuple[float, ...], ...]:
+    """Per segment of :func:`hertz_loading_time` with n steps, on floats: (4/5) xi_r^2.5,
+    h (2 y0 + h), y0, y0 (2 y0 + h), y0 (y0 + h) and sqrt(k_r)."""
+    h = 1.0 / n
+    xi = [r / n for r in range(n + 1)]
+    force = [x * math.sqrt(x) for x in xi]
+    out = []
+    for r in range(n):
+        slope = (force[r + 1] - force[r]) * n
+        y0 = force[r] / slope
+        out.append(
+            (0.8 * force[r] * xi[r], h * (2.0 * y0 + h), y0, y0 * (2.0 * y0 + h),
+             y0 * (y0 + h), math.sqrt(slope))
+        )  # fmt: skip
+    return tuple(out)
+
+
+#: Largest n for which :func:`hertz_loading_time` of one impact runs on floats (a loop of
+#: n segments): beyond it the NumPy arrays of n segments are faster.
+SCALAR_SEGMENTS = 48
+
+
+def hertz_loading_seconds(
+    delta_end: float, speed_start: float, stiffness: float, mass: float, n: int
+) -> float:
+    """:func:`hertz_loading_time` of one impact given as floats (n checked), [s]: a loop
+    over the n segments up to :data:`SCALAR_SEGMENTS`, the arrays beyond."""
+    if n <= SCALAR_SEGMENTS:
+        return _hertz_loading_time_scalar(delta_end, speed_start, stiffness, mass, n)
+    return float(hertz_loading_time(delta_end, speed_start, stiffness, mass, n))
+
+
+def _hertz_loading_time_scalar(d: float, v: float, k: float, m: float, n: int) -> float:
+    """:func:`hertz_loading_time` of one impact, on floats (n <= :data:`SCALAR_SEGMENTS`)."""
+    a = m * (v * v) / (k * (d * d) * math.sqrt(d))
+    h = 1.0 / n
+    sqrt, atan2 = math.sqrt, math.atan2
+    total = 0.0
+    for energy, c1, y0, q, p, root in _hertz_loading_geometry(n):
+        rest = a - energy
+        x0 = sqrt(rest) / root if rest > 0.0 else 0.0
+        x_end_sq = x0 * x0 - c1
+        if x_end_sq > 0.0:
+            x_end = sqrt(x_end_sq)
+            total += atan2(h * (x0 + q / (x0 + x_end)), x0 * x_end + p) / root
+        else:
+            total += atan2(x0, y0) / root
+    return total / sqrt(k * sqrt(d) / m)
+
+
 def hertz_loading_time(
     delta_end: ArrayLike,
     speed_start: ArrayLike,
@@ -201,6 +259,11 @@ def hertz_loading_time(
     mass : effective mass m, [kg]
     n : number of segments, >= 1
 
+    Returns
+    -------
+    The durations, [s]: a float for one impact given as floats (a loop over the n
+    segments up to :data:`SCALAR_SEGMENTS`, the same numbers to rounding).
+
     Notes
     -----
     With lengths in units of delta_end and Omega = sqrt(K_h delta_end^0.5 / m): chord slopes
@@ -218,6 +281,9 @@ def hertz_loading_time(
     0.96176108
     """
     n = check_size("n", n, MAX_SEGMENTS)
+    values = (delta_end, speed_start, stiffness, mass)
+    if n <= SCALAR_SEGMENTS and all(type(x) is float for x in values):  # one impact
+        return _hertz_loading_time_scalar(*values, n)  # type: ignore[arg-type, return-value]
     xi = np.arange(n + 1, dtype=float) / n
     force = xi * np.sqrt(xi)  # F / (K_h delta_end^1.5)
     slope = np.diff(force) * n  # k_r
@@ -245,12 +311,88 @@ def first_yield_velocity(
 
     docs/method.md §7.1: the Hertz peak pressure reaches 1.6 sigma_y (``pressure_factor``
     sigma_y) at delta_Y = pi^2 R (1.6 sigma_y)^2 / (4 E*^2);
-    V_Y = sqrt((2/m)(2/5) K_h delta_Y^2.5).
+    V_Y = sqrt((2/m)(2/5) K_h delta_Y^2.5). A float for one impact given as floats (the
+    same operations on floats).
     """
+    m, r, e, sy = mass, radius, modulus, yield_strength
+    if type(m) is float and type(r) is float and type(e) is float and type(sy) is float:
+        p = pressure_factor * sy  # one impact
+        delta_y = math.pi**2 * r * (p * p) / (4.0 * (e * e))
+        k = 4.0 / 3.0 * e * math.sqrt(r)
+        try:
+            return math.sqrt(2.0 / m * 0.4 * k * delta_y**2.5)  # type: ignore[return-value]
+        except (OverflowError, ValueError, ZeroDivisionError):
+            pass  # the arrays word it (inf, nan)
     r, e = np.asarray(radius, dtype=float), np.asarray(modulus, dtype=float)
     p = pressure_factor * np.asarray(yield_strength, dtype=float)
     delta_y = np.pi**2 * r * p**2 / (4.0 * e**2)
     return hertz_velocity(mass, hertz_stiffness(e, r), delta_y)
+
+
+@lru_cache(maxsize=32)
+def normalised_times(n: int) -> tuple[float, float]:
+    """FILM time of maximum indentation and contact time of the normalised Hertz impact
+    (m = V0 = delta_m = 1, K_h = 5/4; docs/method.md §3, §5) with n segments per stage,
+    ``(t_bar_max, t_bar_c)`` in units of delta_m / V0: every elastic Hertz impact is this
+    one scaled, one run per n.
+
+    >>> [round(t, 7) for t in normalised_times(25)]
+    [1.4716277, 2.9432487]
+    """
+    law = Hertz(NORMALISED_STIFFNESS)
+    loading = solve_stage(law, 0.0, 1.0, 1.0, 1.0, n)
+    restitution = solve_stage(law, 1.0, 0.0, 0.0, 1.0, n, loading.end_time)
+    return float(loading.end_time), float(restitution.end_time)
+
+
+#: K_h delta_m^(5/2) / (m V0^2) of every elastic Hertz impact (docs/method.md §3).
+NORMALISED_STIFFNESS = 1.25
+
+def hertz_summary(
+    stiffness: float, impact_velocity: float, mass: float, n: int
+) -> FilmSummary | None:
+    """The elastic Hertz impact of one pair on floats (:class:`~impactcli.film.FilmSummary`):
+    delta_m = (5 m V0^2 / (4 K_h))^(2/5), F_m = K_h delta_m^1.5, e = 1, and FILM's times the
+    normalised solution's (:func:`normalised_times`) times delta_m / V0. None when a scale
+    is not a positive, finite, normal double (the array path then gives what it gives)."""
+    k, v0, m = stiffness, impact_velocity, mass
+    if not (k > 0.0 and v0 > 0.0 and m > 0.0):
+        return None
+    try:
+        x = 5.0 * m * (v0 * v0) / (4.0 * k)
+        delta_m = x**0.4
+        force = k * delta_m**1.5
+        # the times' scale from delta_m to within an ulp (x**0.4 carries the float exponent's
+        # error times ln x, some 5 ulp at delta_m ~ 1e-5 m), as FILM's solved stages have it
+        scale = _two_fifths_power(x) / v0
+        work = 0.4 * k * delta_m**2.5
+    except (OverflowError, ZeroDivisionError):
+        return None
+    if not (TINY <= m < math.inf and TINY <= k < math.inf and TINY <= scale < math.inf):
+        return None  # delta_m, the force and the times: finite_summary
+    t_bar_max, t_bar_c = normalised_times(n)
+    summary = FilmSummary(
+        delta_m, force, 0.0, 1.0, t_bar_max * scale, t_bar_c * scale, math.nan, math.nan,
+        work, True, False,
+    )  # fmt: skip
+    return summary if finite_summary(summary) else None
+
+
+def _two_fifths_power(x: float) -> float:
+    """x^(2/5) of a positive, finite float to within an ulp: x = f 2^(5q + r) with f in
+    [0.5, 1) and r in 0..4, so that x^(2/5) = 4^q (f 2^r)^(2/5), whose base is within
+    [0.5, 16) and the float exponent 0.4's error (2e-17) barely counts."""
+    f, exponent = math.frexp(x)
+    q, r = divmod(exponent, 5)
+    return math.ldexp(math.ldexp(f, r) ** 0.4, 2 * q)
+
+
+def rebound_time(delta_max: float, delta_res: float, speed: float, n: int) -> float:
+    """FILM time [s] of a Hertz unloading from rest at delta_m [m] to delta_res [m], where it
+    separates at ``speed`` [m/s], with n segments: the normalised restitution stage
+    (docs/method.md §3) scaled by (delta_m - delta_res) / speed."""
+    t_bar_max, t_bar_c = normalised_times(n)
+    return (t_bar_c - t_bar_max) * ((delta_max - delta_res) / speed)
 
 
 @dataclass(frozen=True)
@@ -276,7 +418,9 @@ class HertzContact:
     @classmethod
     def for_pair(cls, radius: ArrayLike, modulus: ArrayLike) -> HertzContact:
         """The contact of a pair of spheres: effective radius R [m] and modulus E* [Pa]
-        (:func:`hertz_stiffness`)."""
+        (:func:`hertz_stiffness`; on floats for one pair, the same operations)."""
+        if type(radius) is float and type(modulus) is float and radius >= 0.0:
+            return cls(4.0 / 3.0 * modulus * math.sqrt(radius))
         return cls(hertz_stiffness(modulus, radius))
 
     @property
@@ -309,6 +453,12 @@ class HertzContact:
             delta_res=zero,
             restitution=np.ones_like(delta_m),
         )
+
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:func:`hertz_summary`); None for arrays."""
+        k = as_float(self.stiffness)
+        return None if k is None else hertz_summary(k, impact_velocity, mass, n)
 
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """Zero: an elastic contact leaves no permanent indentation, [m]."""

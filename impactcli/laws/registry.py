@@ -48,6 +48,7 @@ __all__ = [
     "ELASTIC_LAW",
     "LAWS",
     "MODELS",
+    "RESTITUTION_DAMPING",
     "alpha_label",
     "alpha_units",
     "check_alpha",
@@ -106,6 +107,10 @@ DEFAULT_LAW_PARAMETERS: dict[str, Any] = {
 #: The law of elastic impacts (``impact elastic``, ``--model elastic``) and of the first
 #: yield of an elastic contact: Hertz.
 ELASTIC_LAW = "hertz"
+#: The damping that a given e stands for where the normal force history is needed (``impact
+#: collide3d --e`` with a tangential spring): Tsuji's, whose alpha for e is that of any pair
+#: and impact velocity (LAMMPS's ``damping tsuji`` with ``coeff_restitution``).
+RESTITUTION_DAMPING = "tsuji"
 #: The law of the user's own loading curve (``impact elastic --curve FILE``).
 CURVE_LAW = "tabulated"
 
@@ -150,6 +155,8 @@ def law_names() -> tuple[str, ...]:
 def get_law(name: str) -> LawSpec:
     """The law called ``name`` (case and ``_`` for ``-`` ignored); a one-line ValueError
     listing the accepted names otherwise."""
+    if type(name) is str and name in LAWS:  # its own name
+        return LAWS[name]
     key = str(name).strip().lower().replace("_", "-").replace(" ", "-")
     if key in LAWS:
         return LAWS[key]

@@ -4,7 +4,10 @@ read by :mod:`impactcli.curves`."""
 
 from __future__ import annotations
 
+import math
+from bisect import bisect_right
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -16,6 +19,7 @@ from impactcli.curves import (
     read_unloading_curves,
 )
 from impactcli.errors import InputError
+from impactcli.film import FilmSummary, segment_time, swept_angles
 from impactcli.laws.base import (
     ImpactPlan,
     LawSpec,
@@ -24,6 +28,8 @@ from impactcli.laws.base import (
     StagePlan,
     col,
     energy_velocity,
+    finite_summary,
+    floats,
 )
 
 __all__ = [
@@ -36,6 +42,10 @@ __all__ = [
 ]
 
 Array = NDArray[np.float64]
+
+#: Most points of a linear curve whose batch rows are timed by its runs
+#: (:meth:`TabulatedLaw.stage_times`: a few array operations per point of the curve).
+RUN_CURVE_POINTS = 64
 
 #: How a tabulated curve is interpolated: the choices of ``--interpolation``.
 INTERPOLATIONS = ("linear", "pchip")
@@ -123,6 +133,38 @@ class TabulatedLaw:
                 lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
             delta = 0.5 * (lo + hi)
         return np.where(w > total[-1], np.inf, delta)
+
+    @property
+    def points(self) -> tuple[list[float], list[float], list[float], list[float]]:
+        """The curve as lists of floats: delta [m], force [N], the slope of each segment
+        [N/m] and the work up to each point [J] (the single-impact path on floats)."""
+        points = self.__dict__.get("_points")
+        if points is None:
+            points = self.__dict__["_points"] = (
+                self.delta.tolist(),
+                self.values.tolist(),
+                self.slope.tolist(),
+                self.cumulative_work.tolist(),
+            )
+        return points
+
+    def stage_times(
+        self,
+        delta_start: ArrayLike,
+        delta_end: ArrayLike,
+        speed_start: ArrayLike,
+        mass: ArrayLike,
+        n: int,
+        end_at_rest: bool = False,
+    ) -> Array | None:
+        """FILM time [s] of stages on this curve with n segments each, for many impacts
+        (:func:`linear_curve_stage_times`): a ``linear`` curve of no more points than n and
+        :data:`RUN_CURVE_POINTS` (else None: FILM's own stages are then no more work)."""
+        if self.interpolation != "linear" or self.delta.size > min(n, RUN_CURVE_POINTS):
+            return None
+        return linear_curve_stage_times(
+            self, delta_start, delta_end, speed_start, mass, n, end_at_rest
+        )
 
     def needed_indentation(self, work: ArrayLike) -> Array:
         """Indentation at which ``work`` [J] is reached with the last segment extended as a
@@ -295,6 +337,40 @@ class TabulatedContact:
             )
         return dm
 
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:class:`~impactcli.film.FilmSummary`), for an elastic curve
+        interpolated linearly: delta_m from the exact work of the curve
+        (:meth:`TabulatedLaw.indentation_for_work`), and FILM's time of each stage by
+        :func:`linear_curve_stage_time`. None otherwise (unloading curves, pchip, arrays, a
+        curve of more than :data:`CACHED_CURVE_POINTS` points) and for an impact the array
+        path must word (beyond the curve)."""
+        law = self.loading
+        values = floats(impact_velocity, mass)
+        if self.unloading is not None or law.interpolation != "linear" or values is None:
+            return None
+        if law.delta.size > CACHED_CURVE_POINTS:  # its points as floats would take memory
+            return None
+        v0, m = values
+        xs, ys, slopes, total = law.points
+        try:
+            energy = 0.5 * m * v0**2
+            if not (0.0 < energy <= total[-1]):
+                return None
+            i = min(max(bisect_right(total, energy) - 1, 0), len(total) - 2)
+            rest = energy - total[i]
+            f, k = ys[i], slopes[i]
+            dm = xs[i] + 2.0 * rest / (f + math.sqrt(f * f + 2.0 * k * rest))
+            force = _interp(law.points, dm)
+            t_max = linear_curve_stage_time(law, 0.0, dm, v0, m, n, end_at_rest=True)
+            t_c = t_max + linear_curve_stage_time(law, dm, 0.0, 0.0, m, n)
+            work = _primitive(law.points, dm) - _primitive(law.points, 0.0)
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        nan = math.nan
+        summary = FilmSummary(dm, force, 0.0, 1.0, t_max, t_c, nan, nan, work, False, False)
+        return summary if finite_summary(summary) else None
+
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """delta_res of the interpolated unloading curve (:class:`UnloadingCurves`); zero
         without unloading curves, [m]."""
@@ -349,6 +425,181 @@ class TabulatedContact:
         )
 
 
+def _interp(points: tuple[list[float], ...], x: float) -> float:
+    """:meth:`TabulatedLaw.force` of a linear curve (:attr:`TabulatedLaw.points`) at one
+    indentation [m], on floats, [N] (NumPy's ``interp``: the end values beyond the curve)."""
+    xs, ys = points[0], points[1]
+    if x >= xs[-1]:
+        return ys[-1]
+    if x <= xs[0]:
+        return ys[0]
+    j = bisect_right(xs, x) - 1
+    return (ys[j + 1] - ys[j]) / (xs[j + 1] - xs[j]) * (x - xs[j]) + ys[j]
+
+
+def _primitive(points: tuple[list[float], ...], x: float) -> float:
+    """:meth:`TabulatedLaw.primitive` of a linear curve (:attr:`TabulatedLaw.points`) at one
+    indentation [m], on floats, [J]."""
+    xs, ys, slopes, total = points
+    if x <= xs[0]:
+        x, i = xs[0], 0
+    elif x >= xs[-1]:
+        x, i = xs[-1], len(xs) - 2
+    else:
+        i = bisect_right(xs, x) - 1
+    s = x - xs[i]
+    return total[i] + s * (ys[i] + 0.5 * slopes[i] * s)
+
+
+def linear_curve_stage_time(
+    law: TabulatedLaw,
+    delta_start: float,
+    delta_end: float,
+    speed_start: float,
+    mass: float,
+    n: int,
+    end_at_rest: bool = False,
+) -> float:
+    """FILM time [s] of a stage on a linearly interpolated curve with n equal segments
+    (:func:`impactcli.film.solve_stage`), on floats, to rounding.
+
+    On a segment within one piece of the curve the law is linear, so FILM is exact there
+    (docs/method.md §4, item 5) and a run of such segments on the same piece takes the
+    time of one segment spanning the run (:func:`impactcli.film.segment_time`, the speed
+    at its start from the energy balance, eq. 13e); only a segment with a point of the
+    curve strictly inside is a chord of two pieces, solved as FILM solves it. The work is
+    O(points of the curve within the stage), not O(n).
+
+    Parameters
+    ----------
+    law : the curve (``linear``)
+    delta_start, delta_end : the ends of the stage, [m]
+    speed_start : |delta'| at the start, [m/s]
+    mass : effective mass m, [kg]
+    n : segments of the stage
+    end_at_rest : the stage ends at the turning point (the loading)
+
+    Examples
+    --------
+    A straight curve F = 4 delta (m = 1 kg, V0 = 1 m/s): FILM is exact, a quarter period.
+
+    >>> law = TabulatedLaw([0.0, 1.0], [0.0, 4.0])
+    >>> round(linear_curve_stage_time(law, 0.0, 0.5, 1.0, 1.0, 25, end_at_rest=True), 12)
+    0.785398163397
+    """
+    points = law.points
+    xs = points[0]
+    a, b = delta_start, delta_end
+    span = b - a
+    lo, hi = (a, b) if a < b else (b, a)
+
+    def node(r: int) -> float:
+        return b if r == n else a + span * (r / n)
+
+    # the nodes where the law's piece changes: a run ends there, or a segment straddles
+    cuts = {0, n}
+    for x in xs[bisect_right(xs, lo) : bisect_right(xs, hi)]:
+        if not x < hi:
+            continue
+        guess = min(max(int((x - a) / span * n), 1), n - 2)
+        for r in (guess - 1, guess, guess + 1):
+            if 0 <= r < n:
+                p, q = node(r), node(r + 1)
+                if (p < x < q) or (q < x < p):  # inside segment r: a chord of two pieces
+                    cuts.add(r)
+                    cuts.add(r + 1)
+                elif x == p:
+                    cuts.add(r)
+    ends = sorted(cuts)
+    work_start = _primitive(points, a)
+    rate = speed_start * speed_start
+    total = 0.0
+    d0 = a
+    f0 = _interp(points, a)
+    for j in ends[1:]:
+        d1 = node(j)
+        f1 = _interp(points, d1)
+        speed = math.sqrt(max(rate - 2.0 / mass * (_primitive(points, d0) - work_start), 0.0))
+        total += segment_time(f0, f1, d0, d1, speed, mass, end_at_rest and j == n)
+        d0, f0 = d1, f1
+    return total
+
+
+def linear_curve_stage_times(
+    law: TabulatedLaw,
+    delta_start: ArrayLike,
+    delta_end: ArrayLike,
+    speed_start: ArrayLike,
+    mass: ArrayLike,
+    n: int,
+    end_at_rest: bool = False,
+) -> Array:
+    """:func:`linear_curve_stage_time` of many impacts at once (arrays broadcast), [s]: the
+    nodes where the curve's piece changes found per point of the curve, then one segment
+    per run and per segment across a point, on arrays of (impacts, 2 x points). The time
+    FILM's n segments take (:func:`impactcli.film.solve_stage`), to rounding.
+    """
+    values = (delta_start, delta_end, speed_start, mass)
+    a, b, v, m = np.broadcast_arrays(*(np.asarray(x, dtype=float).reshape(-1) for x in values))
+    span = b - a
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    rows = np.arange(a.size)
+
+    def node(r: NDArray[np.intp]) -> Array:
+        at = a[:, None] if r.ndim == 2 else a
+        width = span[:, None] if r.ndim == 2 else span
+        end = b[:, None] if r.ndim == 2 else b
+        return np.where(r == n, end, at + width * (r / n))
+
+    cuts = [np.zeros(a.size, dtype=np.intp), np.full(a.size, n, dtype=np.intp)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for x in law.delta[1:-1].tolist():
+            inside = (lo < x) & (x < hi)
+            if not inside.any():  # a point beyond every stage: no cut
+                continue
+            guess = np.clip(np.nan_to_num((x - a) / span * n).astype(np.intp), 1, n - 2)
+            first, second = np.full(a.size, n), np.full(a.size, n)  # n: no cut
+            for shift in (-1, 0, 1):
+                r = np.clip(guess + shift, 0, n - 1)
+                p, q = node(r), node(r + 1)
+                across = inside & (((p < x) & (x < q)) | ((q < x) & (x < p)))
+                on = inside & (x == p)
+                first = np.where(across | on, r, first)
+                second = np.where(across, r + 1, second)
+            cuts += [first, second]
+    ends = np.sort(np.stack(cuts, axis=1), axis=1)
+    start, stop = ends[:, :-1], ends[:, 1:]
+    used = stop > start  # a run or a segment across a point (repeated cuts: none)
+    d0, d1 = node(start), node(stop)
+    f0, f1 = law.force(d0), law.force(d1)
+    work = law.primitive(d0) - law.primitive(a)[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        speed = np.sqrt(np.maximum(v[:, None] ** 2 - 2.0 / m[:, None] * work, 0.0))
+        step = d1 - d0
+        direction = np.sign(step)
+        stiffness = (f1 - f0) / step
+        omega = np.sqrt(stiffness / m[:, None])
+        swept, _ = swept_angles(speed / omega, direction * f0 / stiffness, np.abs(step))
+        if end_at_rest:  # the run that ends at delta_m ends at its turning point
+            last = used & (stop == n)
+            turned = np.arctan2(speed / omega, direction * f0 / stiffness)
+            swept = np.where(last, turned, swept)
+        return np.where(used, swept / omega, 0.0).sum(axis=1)[rows]
+
+
+@lru_cache(maxsize=16)
+def _checked_law(delta: bytes, force: bytes, interpolation: str) -> TabulatedLaw:
+    """The loading law of a curve given as arrays (their bytes), checked and built once."""
+    d, f = np.frombuffer(delta), np.frombuffer(force)
+    return TabulatedLaw(*check_loading_curve(d, f), interpolation=interpolation)
+
+
+#: Largest curve (points) whose checked law, given as arrays, is kept for the next impact,
+#: and whose impact is timed on floats (:meth:`TabulatedContact.film_summary`): a larger one
+#: stays in its arrays (a curve file of 10^6 points in 0.08 GB, docs/about/guarantees.md).
+CACHED_CURVE_POINTS = 10_000
+
+
 def _build(_radius, _modulus, _sy, params) -> TabulatedContact:
     curve = params["curve"]
     kind = params["interpolation"]
@@ -357,7 +608,11 @@ def _build(_radius, _modulus, _sy, params) -> TabulatedContact:
     if isinstance(curve, TabulatedLaw):
         loading = curve
     elif isinstance(curve, tuple):  # (delta [m], force [N]) arrays
-        loading = TabulatedLaw(*check_loading_curve(*curve), interpolation=kind)
+        d, f = (np.asarray(x, dtype=float).ravel() for x in curve)
+        if d.size <= CACHED_CURVE_POINTS and f.size == d.size:  # the same curve: built once
+            loading = _checked_law(d.tobytes(), f.tobytes(), kind)
+        else:
+            loading = TabulatedLaw(*check_loading_curve(*curve), interpolation=kind)
     else:
         loading = TabulatedLaw(*read_loading_curve(curve), interpolation=kind)
     unload = params["unload_curves"]

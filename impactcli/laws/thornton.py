@@ -3,11 +3,14 @@ radius, and its closed-form coefficient of restitution e(V_y/V0) (docs/method.md
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary
 from impactcli.laws.base import (
     Fitting,
     ImpactPlan,
@@ -18,9 +21,17 @@ from impactcli.laws.base import (
     YieldOnset,
     col,
     energy_velocity,
+    finite_summary,
+    floats,
 )
-from impactcli.laws.du_wang import DuWangContact
-from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR, Hertz, hertz_stiffness
+from impactcli.laws.du_wang import DuWangContact, plastic_loading
+from impactcli.laws.hertz import (
+    FIRST_YIELD_PRESSURE_FACTOR,
+    Hertz,
+    hertz_stiffness,
+    hertz_summary,
+    rebound_time,
+)
 
 __all__ = ["SPEC", "ThorntonContact", "thornton_restitution"]
 
@@ -79,17 +90,17 @@ class ThorntonContact:
     modulus: ArrayLike
     limit_pressure: ArrayLike
 
-    @property
+    @cached_property
     def _loading(self) -> DuWangContact:
         # Du & Wang's loading with p0 = p_y is Thornton's (delta_y, F_y, slope pi p_y R).
         return DuWangContact(self.radius, self.modulus, self.limit_pressure, 1.0)
 
-    @property
+    @cached_property
     def stiffness(self) -> Array:
         """Hertz stiffness K_h, [N/m^1.5]."""
         return hertz_stiffness(self.modulus, self.radius)
 
-    @property
+    @cached_property
     def yield_indentation(self) -> Array:
         """delta_y = pi^2 R p_y^2 / (4 E*^2), [m]."""
         return self._loading.yield_indentation
@@ -167,7 +178,57 @@ class ThorntonContact:
         )
 
 
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:class:`~impactcli.film.FilmSummary`): Du & Wang's loading with
+        p0 = p_y (:func:`~impactcli.laws.du_wang.plastic_loading`), then the closed forms of
+        :meth:`unloading` and the Hertz rebound on R_p
+        (:func:`~impactcli.laws.hertz.rebound_time`). None for arrays, and for an impact
+        the array path must judge."""
+        values = floats(self.radius, self.modulus, self.limit_pressure, impact_velocity, mass)
+        if values is None:
+            return None
+        r, e, p, v0, m = values
+        try:
+            loading = plastic_loading(r, e, p, v0, m, n)
+            if loading is None:
+                return None
+            k, dy, v_y, dm, t_max, _ = loading
+            if math.isnan(t_max):  # below V_y: the Hertz impact, with this law's yield point
+                elastic = hertz_summary(k, v0, m, n)
+                if elastic is None:
+                    return None
+                dm = elastic.delta_max
+                work = 0.4 * k * dm**2.5
+                if dm > dy:  # within the margin of V_y: Hertzian unloading on R_p
+                    fm, dres = self._unloading(k, dy, r, e, p, dm)
+                    work = 0.4 * fm * (dm - dres)
+                summary = elastic._replace(delta_y=dy, yield_velocity=v_y, recoverable_work=work)
+                return summary if finite_summary(summary) else None
+            fm, dres = self._unloading(k, dy, r, e, p, dm)
+            work = 0.4 * fm * (dm - dres)
+            restitution = math.sqrt(2.0 * work / m) / v0
+            t_c = t_max + rebound_time(dm, dres, restitution * v0, n)
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        summary = FilmSummary(dm, fm, dres, restitution, t_max, t_c, dy, v_y, work, False, True)
+        return summary if finite_summary(summary) else None
+
+    @staticmethod
+    def _unloading(
+        k: float, dy: float, r: float, e: float, p: float, dm: float
+    ) -> tuple[float, float]:
+        """F_m [N] and delta_res [m] of :meth:`unloading`, on floats."""
+        fy = k * dy**1.5
+        fm = fy + math.pi * r * p * (dm - dy)
+        am2 = (2.0 * fm + fy) / (2.0 * math.pi * p)
+        rp = 4.0 * e * am2 * math.sqrt(am2) / (3.0 * fm)
+        return fm, dm - am2 / rp
+
+
 def _build(radius, modulus, sy, params) -> ThorntonContact:
+    if params["py"] is None and type(sy) is float:  # one impact: 1.6 sigma_y
+        return ThorntonContact(radius, modulus, FIRST_YIELD_PRESSURE_FACTOR * sy)
     py = np.asarray(np.nan if params["py"] is None else params["py"], dtype=float)
     if np.any(np.isnan(py)):  # default: the Hertz peak pressure at first yield
         py = np.where(np.isnan(py), FIRST_YIELD_PRESSURE_FACTOR * np.asarray(sy, float), py)

@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary, segment_time
 from impactcli.laws.base import (
     Fitting,
     ImpactPlan,
@@ -17,6 +19,8 @@ from impactcli.laws.base import (
     Reference,
     StagePlan,
     col,
+    finite_summary,
+    floats,
 )
 from impactcli.laws.hertz import hertz_stiffness
 
@@ -37,6 +41,9 @@ class LinearSpring:
 
     stiffness: ArrayLike
     offset: ArrayLike = 0.0
+    #: F is linear in delta at and beyond the offset, where its stages run: FILM is exact on
+    #: one segment (docs/method.md §4, item 5)
+    linear: ClassVar[bool] = True
 
     def force(self, delta: ArrayLike) -> Array:
         return self.stiffness * np.maximum(np.asarray(delta, dtype=float) - self.offset, 0.0)
@@ -110,8 +117,36 @@ class WaltonBraunContact:
         )
 
 
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s] with effective mass m [kg] by FILM with n segments per
+        stage, on floats (:class:`~impactcli.film.FilmSummary`): the closed forms of
+        :meth:`plan`; FILM is exact on both linear stages, so each takes the time of one
+        segment (:func:`~impactcli.film.segment_time`: a quarter period). None for arrays,
+        and for an impact the array path must judge."""
+        values = floats(self.k_load, self.k_unload, impact_velocity, mass)
+        if values is None:
+            return None
+        k1, k2, v0, m = values
+        try:
+            dm = v0 * math.sqrt(m / k1)
+            dres = dm * (1.0 - k1 / k2)
+            force = k1 * dm
+            t_max = segment_time(0.0, force, 0.0, dm, v0, m, end_at_rest=True)
+            t_c = t_max + segment_time(k2 * (dm - dres), 0.0, dm, dres, 0.0, m)
+            work = 0.5 * k1 * k1 * (dm * dm) / k2
+            summary = FilmSummary(
+                dm, force, dres, math.sqrt(k1 / k2), t_max, t_c, 0.0, 0.0, work, False, v0 > 0.0
+            )  # fmt: skip
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        return summary if finite_summary(summary) else None
+
+
 def _build(_radius, _modulus, _sy, params) -> WaltonBraunContact:
-    k1, k2 = np.asarray(params["k_load"], float), np.asarray(params["k_unload"], float)
+    k1, k2 = params["k_load"], params["k_unload"]
+    if type(k1) is float and type(k2) is float and k2 >= k1:  # one impact, as given
+        return WaltonBraunContact(k1, k2)
+    k1, k2 = np.asarray(k1, float), np.asarray(k2, float)
     if np.any(k2 < k1):
         raise ValueError(
             "k_unload of law 'walton-braun' must be >= k_load (else e > 1: energy created)"
