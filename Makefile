@@ -74,6 +74,9 @@ run: $(VENV)/.run-installed
 	$(BIN)/impact compare-laws $(PAPER) --v1 0.25m/s --v2 0.75m/s --law du-wang \
 		--law thornton --law walton-braun --k-load 20MN/m --k-unload 80MN/m --law hertz \
 		-o figures/compare_laws.csv --plot docs/figures/compare_laws.png
+	$(BIN)/impact restitution --d1 20um --d2 20um --E 73GPa --nu 0.17 --rho 2200 --law jkr \
+		--work-of-adhesion 0.2J/m^2 --v-min 0.01m/s --v-max 1m/s --count 60 \
+		-o figures/jkr_restitution.csv --plot docs/figures/jkr_restitution.png
 	$(BIN)/impact fit docs/data/drop_tests_steel.csv --law du-wang --law thornton --damping tsuji --d1 20mm --d2 inf --m2 inf --material steel -f table --plot docs/figures/fit_drop_tests.png
 	@echo "Figures (paper sec. 4.1, 4.3, 4.4, 4.5) and their data: figures/"
 	@echo "Run the command as .venv/bin/impact, or after: source .venv/bin/activate"

@@ -105,6 +105,16 @@ WALTON_BRAUN = {"k_load": 20e6, "k_unload": 80e6}
 #: A five-point loading curve (Hertz K = 10^10 N/m^1.5 at its points), elastic, [m], [N].
 CURVE_DELTA = np.array([0.0, 1e-5, 1e-4, 1e-3, 1e-2])
 CURVE = (CURVE_DELTA, 1e10 * CURVE_DELTA**1.5)
+#: The adhesive laws' pair: two 20 um silica spheres (E 73 GPa, nu 0.17, 2200 kg/m^3), the
+#: work of adhesion 0.2 J/m^2, V0 = 0.1 m/s (JKR: e = 0.916, sticking below 0.040 m/s);
+#: Thornton & Ning with p_y = 1 GPa at 2 m/s, past its yield velocity (0.7 m/s).
+SILICA = (Sphere(20e-6, 73e9, 0.17, 2200.0), Sphere(20e-6, 73e9, 0.17, 2200.0))
+ADHESION = {"work_of_adhesion": 0.2}
+ADHESIVE_CASES = {
+    "jkr": (ADHESION, 0.1),
+    "dmt": (ADHESION, 0.1),
+    "thornton-ning": ({**ADHESION, "py": 1e9}, 2.0),
+}
 #: rtol of the reference integrations, and of its check.
 REFERENCE_RTOL, CHECK_RTOL = 1e-13, 1e-12
 
@@ -224,6 +234,35 @@ def scalar_force(law) -> Callable[[float], float]:
             i = min(max(bisect.bisect_right(xs, d) - 1, 0), len(xs) - 2)
             return ys[i] + (ys[i + 1] - ys[i]) * (d - xs[i]) / (xs[i + 1] - xs[i])
 
+    elif kind in ("JKRBranch", "JKRNeck"):  # JKR (1971) in s = sqrt(a / a0)
+        r, e, w, offset = f(law.radius), f(law.modulus), f(law.work_of_adhesion), f(law.offset)
+        a0 = (4.5 * math.pi * w * r * r / e) ** (1.0 / 3.0)
+        unit, f_c, grip = a0 * a0 / r, 1.5 * math.pi * w * r, (1.0 / 6.0) ** (1.0 / 3.0)
+
+        def force(d: float) -> float:
+            x = (d - offset) / unit  # s^4 - (2/3) s = x: Newton from above, to the grip end
+            s = max(x, 0.0) ** 0.25 + 1.0
+            for _ in range(100):
+                new = s - (s**4 - 2.0 * s / 3.0 - x) / (4.0 * s**3 - 2.0 / 3.0)
+                if new <= grip or new >= s:
+                    s = max(min(new, s), grip)
+                    break
+                s = new
+            cube = s**3
+            return 4.0 * f_c * cube * (cube - 1.0)
+
+    elif kind == "DMTForce":
+        k, pull = f(law.stiffness), f(law.pull)
+
+        def force(d: float) -> float:
+            return k * d * math.sqrt(d) - pull if d > 0.0 else -pull
+
+    elif kind == "PlasticLine":
+        f_y, d_y, slope = f(law.force_y), f(law.delta_y), f(law.slope)
+
+        def force(d: float) -> float:
+            return f_y + slope * (d - d_y)
+
     else:
         raise SystemExit(f"bench: no plain-Python force for {kind}")
     return force
@@ -231,29 +270,40 @@ def scalar_force(law) -> Callable[[float], float]:
 
 class Integration:
     """solve_ivp DOP853 of one impact's plan: m delta'' = -F(delta), the loading stages to
-    the turning point (an event), then the unloading to separation (an event)."""
+    the turning point (an event), then the unloading stages to separation (an event: the
+    plan's end of contact, below 0 for an adhesive neck) or, for a plan that sticks, to the
+    capture (delta' back to 0)."""
 
     def __init__(self, plan, mass: float, v0: float) -> None:
         stages = plan.stages
         self.mass, self.v0 = mass, v0
-        self.loading = [(float(np.ravel(s.delta_end)[0]), scalar_force(s.law)) for s in stages[:-1]]
-        self.unloading = scalar_force(stages[-1].law)
+        turning = plan.turning % len(stages)
+
+        def pieces(part):
+            return [(float(np.ravel(s.delta_end)[0]), scalar_force(s.law)) for s in part]
+
+        self.loading = pieces(stages[: turning + 1])
+        self.unloading = pieces(stages[turning + 1 :])
         self.delta_max = float(np.ravel(plan.delta_max)[0])
-        self.delta_res = float(np.ravel(plan.delta_res)[0])
-        for stage, (_, force) in zip(stages, [*self.loading, (0.0, self.unloading)]):
+        self.delta_res = float(np.ravel(plan.delta_end)[0])
+        self.captured = bool(np.ravel(plan.extras.get("captured", 0.0))[0])
+        for stage, (_, force) in zip(stages, [*self.loading, *self.unloading]):
             d = np.linspace(
                 float(np.ravel(stage.delta_start)[0]), float(np.ravel(stage.delta_end)[0]), 7
             )
             ours = np.array([force(x) for x in d.tolist()])
             theirs = np.ravel(stage.law.force(d))
-            assert np.allclose(ours, theirs, rtol=1e-12, atol=1e-12 * abs(theirs).max()), stage.name
+            # JKR's neck ends where d delta / d a = 0: a double root there, the force to
+            # about sqrt(eps) in either implementation
+            tol = np.where(np.arange(7) == 6, 1e-7, 1e-12) if stage.name == "neck" else 1e-12
+            assert np.all(np.abs(ours - theirs) <= tol * abs(theirs).max()), stage.name
 
     def run(self, rtol: float, dense: bool = False):
         """(e, t_c, (loading solution, unloading solution))."""
         from scipy.integrate import solve_ivp
 
         m, loading, unloading, res = self.mass, self.loading, self.unloading, self.delta_res
-        last = loading[-1][1]
+        last, final = loading[-1][1], unloading[-1][1]
 
         def first(_t, y):
             d = y[0]
@@ -263,7 +313,11 @@ class Integration:
             return (y[1], -last(d) / m)
 
         def second(_t, y):
-            return (y[1], -unloading(y[0]) / m)
+            d = y[0]
+            for end, force in unloading:
+                if d >= end:
+                    return (y[1], -force(d) / m)
+            return (y[1], -final(d) / m)
 
         def turn(_t, y):
             return y[1]
@@ -271,15 +325,21 @@ class Integration:
         def separation(_t, y):
             return y[0] - res
 
-        turn.terminal = separation.terminal = True
+        def capture(_t, y):
+            return y[1]
+
+        turn.terminal = separation.terminal = capture.terminal = True
         turn.direction = separation.direction = -1
+        capture.direction = 1
         atol = np.array([rtol * self.delta_max, rtol * self.v0])
         span = 40.0 * self.delta_max / self.v0
         options = dict(method="DOP853", rtol=rtol, atol=atol, dense_output=dense)
         a = solve_ivp(first, (0.0, span), (0.0, self.v0), events=turn, **options)
         t_turn, y_turn = a.t_events[0][0], a.y_events[0][0]
-        b = solve_ivp(second, (t_turn, t_turn + span), y_turn, events=separation, **options)
-        return -b.y_events[0][0][1] / self.v0, b.t_events[0][0], (a, b)
+        event = capture if self.captured else separation
+        b = solve_ivp(second, (t_turn, t_turn + span), y_turn, events=event, **options)
+        e = 0.0 if self.captured else -b.y_events[0][0][1] / self.v0
+        return e, b.t_events[0][0], (a, b)
 
     def history(self, rtol: float, points: int = 201) -> tuple[np.ndarray, np.ndarray]:
         """delta and delta' at ``points`` times over the contact, from the dense output."""
@@ -385,10 +445,26 @@ def laws() -> list[tuple[str, str, Callable]]:
             lambda: law_impact(s1, s2, V1, V2, "tabulated", {"curve": CURVE}),
         ),
     }
+    for name, (params, v0) in ADHESIVE_CASES.items():
+        calls[name] = (
+            f"law_impact(..., {name!r}, {', '.join(f'{k} {v:g}' for k, v in params.items())}), "
+            f"20 um silica, V0 {v0:g} m/s",
+            lambda name=name, params=params, v0=v0: law_impact(*SILICA, v0, 0.0, name, params),
+        )
     missing = set(LAWS) - set(calls)
     if missing:
         raise SystemExit(f"bench: no case for the law(s) {', '.join(sorted(missing))}")
     return [(name, *calls[name]) for name in LAWS]
+
+
+def pair_of(name: str) -> tuple[tuple[Sphere, Sphere], float, dict | None]:
+    """(spheres, V0 [m/s], parameters) of the law's case: the paper's steel spheres, or the
+    silica pair of :data:`ADHESIVE_CASES`."""
+    if name in ADHESIVE_CASES:
+        params, v0 = ADHESIVE_CASES[name]
+        return SILICA, v0, params
+    given = {"walton-braun": WALTON_BRAUN, "tabulated": {"curve": CURVE}}
+    return STEEL, V0, given.get(name)
 
 
 def reference(name: str, result, ode: Integration) -> tuple[float, float, str]:
@@ -408,11 +484,11 @@ def reference(name: str, result, ode: Integration) -> tuple[float, float, str]:
 
 def bench_single(rows: list[Row], quick: bool) -> None:
     repeat = 3 if quick else 7
-    m = effective_properties(*STEEL)[0]
     hertz_baseline = (math.nan, math.nan, math.nan)
     for name, label, call in laws():
         result = call()
-        ode = Integration(result.plan, m, V0)
+        spheres, v0, _ = pair_of(name)
+        ode = Integration(result.plan, effective_properties(*spheres)[0], v0)
         e_ref, t_ref, how = reference(name, result, ode)
         film_error = error_of(result.summary["restitution"], result.summary["contact_time"],
                               e_ref, t_ref)  # fmt: skip

@@ -53,8 +53,20 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import ImpactPlan
 from impactcli.film import solve_stage
-from impactcli.impact import DAMPED_DEFAULT_N, PLASTIC_SUMMARY_KEYS, impact_summary, plastic_summary
-from impactcli.laws.registry import DAMPING_LAWS, DEFAULT_LAW, DEFAULT_LAW_PARAMETERS, ELASTIC_LAW
+from impactcli.impact import (
+    ADHESIVE_SUMMARY_KEYS,
+    DAMPED_DEFAULT_N,
+    PLASTIC_SUMMARY_KEYS,
+    impact_summary,
+    plastic_summary,
+)
+from impactcli.laws.registry import (
+    DAMPING_LAWS,
+    DEFAULT_LAW,
+    DEFAULT_LAW_PARAMETERS,
+    ELASTIC_LAW,
+    LAWS,
+)
 from impactcli.limits import (
     DAMPED_BLOCK,
     DAMPED_TABLE_ROWS,
@@ -78,6 +90,7 @@ from impactcli.validation import (
 )
 
 __all__ = [
+    "ADHESIVE_KEYS",
     "BATCH_KEYS",
     "DAMPED_BLOCK",
     "DAMPED_TABLE_ROWS",
@@ -96,6 +109,17 @@ __all__ = [
 
 #: Result columns of a batch, in order: the elastoplastic summary keys (SI).
 BATCH_KEYS: tuple[str, ...] = PLASTIC_SUMMARY_KEYS
+
+#: Result columns of the rows of an adhesive law (a law of the registry with ``adhesive``:
+#: jkr, dmt, thornton-ning), after :data:`BATCH_KEYS`: the summary keys the single impact
+#: adds (:data:`impactcli.impact.ADHESIVE_SUMMARY_KEYS`, their units and meanings in
+#: :mod:`impactcli.quantities`), ``captured`` as 1.0 or 0.0. Empty while the registry has
+#: no adhesive law.
+ADHESIVE_KEYS: tuple[str, ...] = (
+    ADHESIVE_SUMMARY_KEYS if any(spec.adhesive for spec in LAWS.values()) else ()
+)
+#: What an adhesive law's plans give per impact (``ImpactPlan.extras``).
+_ADHESIVE_EXTRAS: tuple[str, ...] = ("captured", "pull_off_force", "energy_adhesion")
 
 
 
@@ -356,7 +380,8 @@ def batch_impacts(
     dict
         :data:`BATCH_KEYS` -> float arrays (NaN where a key does not apply: the plastic keys
         of elastic rows, ``first_yield_velocity`` without a yield strength, every key of an
-        invalid row), and ``error`` -> object array of one-line reasons (``""`` when valid).
+        invalid row), and ``error`` -> object array of one-line reasons (``""`` when valid);
+        an adhesive ``law`` adds :data:`ADHESIVE_KEYS`.
 
     Examples
     --------
@@ -435,7 +460,8 @@ def _impacts(
     if law is not None:  # the law's own need of a yield strength
         plastic = np.broadcast_to(_needs_yield_strength(law, law_params or {}), shape)
     errors = validate(pairs, plastic)
-    out = {key: np.full(shape, np.nan) for key in BATCH_KEYS}
+    adhesive = law is not None and _is_adhesive(law)
+    out = {key: np.full(shape, np.nan) for key in (*BATCH_KEYS, *(ADHESIVE_KEYS * adhesive))}
     out["error"] = errors
     ok = np.flatnonzero(errors == "")
     if ok.size == 0:
@@ -457,12 +483,48 @@ def _impacts(
     return refuse_out_of_range(out, pairs.v0)
 
 
+def _is_adhesive(law: str) -> bool:
+    """Whether ``law`` (a name of the registry) is adhesive; an unknown name is refused
+    where the law is run."""
+    from impactcli.laws.registry import get_law
+
+    try:
+        return get_law(law).adhesive
+    except ValueError:
+        return False
+
+
 def _needs_yield_strength(law: str, params: Mapping[str, Any]) -> bool | NDArray[np.bool_]:
     """Whether rows of ``law`` need sigma_y (Thornton's p_y, where given, replaces it)."""
     from impactcli.laws.registry import get_law
 
     spec = get_law(law)
     return spec.yield_strength_needed(spec.resolve(params))
+
+
+def _adhesive_summary(
+    contact: Any, m: NDArray, v0: NDArray, values: Mapping[str, NDArray], split: tuple
+) -> dict[str, NDArray]:
+    """:data:`ADHESIVE_KEYS` of a block of impacts of one adhesive law, as
+    :class:`impactcli.model.AdhesivePair` gives them for one: the energy the adhesion takes
+    at most the kinetic energy lost, (1/2) m V0^2 (1 - e^2) [J], shared between the spheres
+    by ``split`` (their shares of the indentation, as the strain energy is)."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        lost = 0.5 * m * v0 * v0 * (1.0 - values["e"] ** 2)
+        adhesion = np.minimum(values["energy_adhesion"], lost)
+        sticking = np.broadcast_to(contact.sticking_velocity(m), v0.shape)
+    e1, e2 = split
+    out = {
+        "delta_separation": values["dsep"],
+        "captured": values["captured"],
+        "sticking_velocity": sticking,
+        "pull_off_force": values["pull_off_force"],
+        "energy_adhesion": adhesion,
+        "energy_adhesion1": e1 * adhesion,
+        "energy_adhesion2": e2 * adhesion,
+    }
+    assert tuple(out) == ADHESIVE_SUMMARY_KEYS  # the columns are the single impact's keys
+    return out
 
 
 def law_stage_times(
@@ -498,7 +560,7 @@ def law_stage_times(
     if times is not None:
         return times
     stages = solve_plan(plan, m, n)
-    return stages[-2].end_time, stages[-1].end_time
+    return stages[plan.turning].end_time, stages[-1].end_time
 
 
 def _elastic_linear_elastic(plan: ImpactPlan) -> bool:
@@ -550,7 +612,10 @@ def _batch_law(
     if reach is not None:
         errors = reach(v0, m)
     good = np.flatnonzero(errors == "")
-    values = {k: np.full(v0.size, np.nan) for k in ("dm", "fm", "dres", "e", "tmax", "tc")}
+    values = {
+        k: np.full(v0.size, np.nan)
+        for k in ("dm", "fm", "dres", "dsep", "e", "tmax", "tc", *_ADHESIVE_EXTRAS)
+    }
     block = max(1, FILM_BLOCK // (n + 1))
     for start in range(0, good.size, block):
         chunk = good[start : start + block]
@@ -575,16 +640,22 @@ def _batch_law(
         for rows, plan in groups:
             values["dm"][rows], values["fm"][rows] = plan.delta_max, plan.force_max
             values["dres"][rows], values["e"][rows] = plan.delta_res, plan.restitution
+            values["dsep"][rows] = plan.delta_end  # where it parts (an adhesive law's)
+            for key in _ADHESIVE_EXTRAS:
+                if key in plan.extras:
+                    values[key][rows] = plan.extras[key]
             values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
     # a law's plastic stage beyond double precision (docs/method.md §7): the row's error
     scale = plastic_range_problems(contact, v0, m, values["dm"])
     refused = (errors == "") & scale.bad
     errors[refused] = scale.messages[refused]
-    plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"])
+    plan = ImpactPlan((), values["dm"], values["fm"], values["dres"], values["e"], values["dsep"])
     fractions = pairs.fractions(split)
     summary = _summary(pairs, plan, values["tmax"], values["tc"], fractions)
     if plastic_keys:
         summary.update(plastic_summary(contact, m, v0, plan, fractions[1]))
+    if spec.adhesive:
+        summary.update(_adhesive_summary(contact, m, v0, values, fractions[0]))
     for key, value in summary.items():
         column = np.broadcast_to(np.asarray(value, dtype=float), v0.shape).copy()
         column[errors != ""] = np.nan

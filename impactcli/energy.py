@@ -316,8 +316,8 @@ def plan_energy(
 
     Parameters
     ----------
-    plan : the impact's :class:`~impactcli.laws.base.ImpactPlan` (its loading stages: all
-        but the last)
+    plan : the impact's :class:`~impactcli.laws.base.ImpactPlan` (its loading stages: up to
+        its ``turning`` stage)
     contact : its contact model (``recoverable_work(delta)`` [J])
     t, delta : times [s] and indentation [m] of the history
     contact_work : W(t) along the solution (FILM's or an integration's), [J]
@@ -343,9 +343,10 @@ def plan_energy_constants(
     plan: ImpactPlan, contact: NormalContact, delta_max: float
 ) -> tuple[list, list[tuple[float, float]], float, float]:
     """What :func:`plan_energy` takes of the impact alone: the laws and ``(start, end)``
-    indentations of its loading stages [m], and the recoverable and the loading work at
-    delta_max [m], [J]."""
-    stages = plan.stages[:-1]  # the loading stages; the last one unloads
+    indentations of its loading stages (up to the plan's ``turning`` stage) [m], and the
+    recoverable and the loading work at delta_max [m], [J]."""
+    turning = plan.turning % len(plan.stages)
+    stages = plan.stages[: turning + 1]  # the loading stages; the rest unload
     laws = [stage.law for stage in stages]
     bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
     return (

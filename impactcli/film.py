@@ -46,16 +46,21 @@ __all__ = [
     "solve_stage",
     "solve_stages",
     "swept_angles",
+    "swept_rapidities",
 ]
 
 Array = NDArray[np.float64]
 
 
 class ContactLaw(Protocol):
-    """A force-indentation law for one stage: monotone increasing in delta on the stage.
+    """A force-indentation law for one stage: strictly monotone in delta on the stage
+    (increasing, or decreasing: the tensile branch of an adhesive contact past its
+    pull-off force, where each chord is an unstable, hyperbolic oscillator).
 
     Parameters of a law broadcast against the node arrays, so a batch of N collisions uses
-    parameters of shape (N, 1).
+    parameters of shape (N, 1). A law may place the stage's nodes itself
+    (``stage_nodes(delta_start, delta_end, n)`` -> node indentations, shape (..., n + 1), ends
+    exact), e.g. graded toward an end where dF/d delta grows without bound.
     """
 
     def force(self, delta: ArrayLike) -> Array:
@@ -120,6 +125,10 @@ class FilmStage:
     phase_y : s (delta_r - C_rs), [m]
     turning : True where the linearised oscillator turns before reaching the next node
         (the chord is stiffer than the curve; always the last loading segment), [-]
+
+    A segment whose chord stiffness is negative (a stage of a law that decreases with
+    delta) is a hyperbolic oscillator: ``omega`` is then sqrt(-K_rs/m) and ``phase_x``
+    |delta'_r| / omega_rs (:func:`swept_rapidities`).
     """
 
     delta: Array
@@ -137,6 +146,11 @@ class FilmStage:
     def n(self) -> int:
         """Number of segments."""
         return self.omega.shape[-1]
+
+    @property
+    def hyperbolic(self) -> NDArray[np.bool_]:
+        """True on segments whose chord stiffness is negative (hyperbolic oscillators)."""
+        return np.asarray(self.stiffness) < 0.0
 
     @property
     def start_time(self) -> Array:
@@ -180,6 +194,19 @@ def _oscillator(
     sin = np.sin(wt)
     delta = delta_r + direction * (x * sin - 2.0 * y * np.sin(0.5 * wt) ** 2)
     delta_dot = direction * omega * (x * np.cos(wt) - y * sin)
+    return delta, delta_dot
+
+
+def _hyperbolic_oscillator(
+    tau: Array, delta_r: Array, direction: ArrayLike, rate: Array, x: Array, y: Array
+) -> tuple[Array, Array]:
+    """Closed form of one segment of negative chord stiffness a time ``tau`` after its start
+    node: delta = delta_r + s [x sinh(l tau) + 2 y sinh^2(l tau / 2)],
+    delta' = s l [x cosh + y sinh], l = sqrt(-K_rs/m) (:func:`swept_rapidities`)."""
+    lt = rate * tau
+    sinh = np.sinh(lt)
+    delta = delta_r + direction * (x * sinh + 2.0 * y * np.sinh(0.5 * lt) ** 2)
+    delta_dot = direction * rate * (x * np.cosh(lt) + y * sinh)
     return delta, delta_dot
 
 
@@ -251,8 +278,12 @@ def solve_stage(
     m = np.asarray(mass, dtype=float)[..., None]
     direction = np.sign(b - a)
 
-    frac = np.arange(n + 1, dtype=float) / n
-    nodes = a + (b - a) * frac
+    placed = getattr(law, "stage_nodes", None)
+    if placed is not None:  # the law's own nodes (graded toward a singular end)
+        nodes = np.array(placed(a, b, n), dtype=float)
+    else:
+        frac = np.arange(n + 1, dtype=float) / n
+        nodes = a + (b - a) * frac
     nodes[..., -1] = b[..., 0]
 
     force = law.force(nodes)
@@ -267,9 +298,13 @@ def solve_stage(
     velocity = direction * np.sqrt(np.maximum(speed_sq, 0.0))
 
     stiffness = np.diff(force, axis=-1) / step
-    if not np.all(stiffness > 0.0):
-        raise ValueError("the contact force must increase strictly with indentation on a stage")
-    omega = np.sqrt(stiffness / m)
+    rising = np.all(stiffness > 0.0)
+    if not (rising or np.all(stiffness < 0.0)):
+        raise ValueError(
+            "the contact force must increase strictly with indentation on a stage (or decrease "
+            "strictly on all of it: a tensile branch)"
+        )
+    omega = np.sqrt(np.abs(stiffness) / m)
     force_r = force[..., :-1]
     h = np.abs(step)
     y0 = direction * force_r / stiffness
@@ -277,7 +312,10 @@ def solve_stage(
 
     if end_at_rest:
         velocity[..., -1] = 0.0
-    swept, turning = swept_angles(x0, y0, h, end_at_rest)
+    if rising:
+        swept, turning = swept_angles(x0, y0, h, end_at_rest)
+    else:  # a decreasing law: hyperbolic segments
+        swept, turning = swept_rapidities(x0, y0, h, end_at_rest)
     dt = swept / omega
 
     time = np.empty_like(nodes)
@@ -318,11 +356,17 @@ def solve_stages(
     on one array of all the stages (each stage's arrays a row of it): the same numbers,
     one pass over the stages instead of one per stage.
 
+    A stage whose law places its own nodes (``stage_nodes``) or decreases with delta (a
+    tensile branch: hyperbolic segments) is not of this one pass: the stages are then
+    solved one by one (:func:`solve_stage`, the same numbers).
+
     Returns
     -------
     tuple of :class:`FilmStage`, in time order (1-D arrays)
     """
     n = check_size("n", n, MAX_SEGMENTS)
+    if any(getattr(stage[0], "stage_nodes", None) is not None for stage in stages):
+        return _chain_stages(stages, mass, n)
     count = len(stages)
     a = np.array([[stage[1]] for stage in stages], dtype=float)
     b = np.array([[stage[2]] for stage in stages], dtype=float)
@@ -343,8 +387,8 @@ def solve_stages(
     velocity = direction * np.sqrt(np.maximum(speed_sq, 0.0))
 
     stiffness = (force[:, 1:] - force[:, :-1]) / step
-    if not (stiffness > 0.0).all():
-        raise ValueError("the contact force must increase strictly with indentation on a stage")
+    if not (stiffness > 0.0).all():  # a tensile branch, or a law that is not monotone
+        return _chain_stages(stages, mass, n)  # solve_stage's hyperbolic segments or error
     omega = np.sqrt(stiffness / m)
     force_r = force[:, :-1]
     h = np.abs(step)
@@ -377,6 +421,21 @@ def solve_stages(
         )
         for k in range(count)
     )
+
+
+def _chain_stages(
+    stages: Sequence[tuple[ContactLaw, float, float, float, bool]], mass: float, n: int
+) -> tuple[FilmStage, ...]:
+    """:func:`solve_stages` one stage at a time (:func:`solve_stage`), chained in time."""
+    solved: list[FilmStage] = []
+    t_start = 0.0
+    for law, delta_start, delta_end, speed_start, end_at_rest in stages:
+        film = solve_stage(
+            law, delta_start, delta_end, speed_start, mass, n, t_start, end_at_rest=end_at_rest
+        )
+        solved.append(film)
+        t_start = film.end_time
+    return tuple(solved)
 
 
 def _swept_rows(
@@ -435,6 +494,61 @@ def swept_angles(
     at = np.nonzero(turning)
     if at[0].size:
         swept[at] = np.arctan2(x0[at], y0[at])
+    return swept, turning
+
+
+def swept_rapidities(
+    x0: ArrayLike, y0: ArrayLike, h: ArrayLike, end_at_rest: bool = False
+) -> tuple[Array, NDArray[np.bool_]]:
+    """Rapidity each hyperbolic segment sweeps, [-], and where it turns: the segments of a
+    stage whose force decreases with indentation (negative chord stiffness K_rs < 0).
+
+    With l = sqrt(-K_rs/m), y = s (delta - C_rs) and x = |delta'| / l, a segment's state
+    moves on the hyperbola x^2 - y^2 = const: y' = l x, x' = l y, so that
+    (y, x) = (y0 cosh eta + x0 sinh eta, y0 sinh eta + x0 cosh eta), eta = l t. It ends at
+    the next node, y0 + h, or where x = 0 (the motion turns) if it gets there first; the
+    segment's duration is eta / l. The rapidity is taken from
+    exp(eta) = (x1 + y1)/(x0 + y0) = (x0 - y0)/(x1 - y1), written (log1p) so that nothing
+    cancels: with y0 >= 0 the first form, with y0 < 0 the second.
+
+    Parameters
+    ----------
+    x0 : |delta'_r| / l at the segment start, [m]
+    y0 : s (delta_r - C_rs), [m]
+    h : |delta_s - delta_r|, the segment length, [m]
+    end_at_rest : the last segment ends where the motion turns (a capture: the relative
+        velocity reaches zero at the stage's last node)
+
+    Returns
+    -------
+    (swept, turning), broadcast from the inputs.
+
+    Examples
+    --------
+    From rest at the unstable equilibrium's distance y0 = 1 the motion runs away,
+    y = cosh(eta): one unit further (y = 2) at eta = acosh(2):
+
+    >>> swept, turning = swept_rapidities(0.0, 1.0, 1.0)
+    >>> round(float(swept), 12), bool(turning)
+    (1.316957896925, False)
+    """
+    x0, y0, h = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x0, y0, h)))
+    y1 = y0 + h
+    x_end_sq = x0**2 + h * (2.0 * y0 + h)
+    turning = x_end_sq <= 0.0
+    if end_at_rest:
+        turning[..., -1] = True
+    x_end = np.where(turning, 0.0, np.sqrt(np.maximum(x_end_sq, 0.0)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ahead = np.log1p(h * (1.0 + (2.0 * y0 + h) / (x0 + x_end)) / (x0 + y0))
+        behind = -np.log1p(h * (y0 + y1 - x0 - x_end) / ((x0 + x_end) * (x0 - y0)))
+        # a turn inside a segment, where x reaches 0 short of the node: atanh(x0 / -y0)
+        inside = 0.5 * np.log1p(2.0 * x0 / (-y0 - x0))
+    node = np.where(y0 >= 0.0, ahead, behind)
+    at_node = ~turning
+    if end_at_rest:  # the last node is the turning point: it ends there, x1 = 0
+        at_node[..., -1] = True
+    swept = np.where(at_node, node, inside)
     return swept, turning
 
 
@@ -519,6 +633,9 @@ class FilmSolution:
         object.__setattr__(self, "_omega", segments[2])
         object.__setattr__(self, "_x", segments[3])
         object.__setattr__(self, "_y", segments[4])
+        object.__setattr__(
+            self, "_hyper", cat([np.broadcast_to(s.hyperbolic, (s.n,)) for s in stages])
+        )
         first, last = stages[0], stages[-1]
         object.__setattr__(self, "_t0", float(first.time[0]))
         object.__setattr__(self, "_t1", float(last.time[-1]))
@@ -555,7 +672,16 @@ class FilmSolution:
         start = self._start[seg]  # type: ignore[attr-defined]
         tau = np.minimum(np.maximum(t - start, 0.0), self._end[seg] - start)  # type: ignore[attr-defined]
         delta_r, direction, omega, x, y = self._segments[:, seg]  # type: ignore[attr-defined]
-        delta, delta_dot = _oscillator(tau, delta_r, direction, omega, x, y)
+        args = (tau, delta_r, direction, omega, x, y)
+        delta, delta_dot = _oscillator(*args)
+        if self._hyper.any():  # type: ignore[attr-defined]  # segments of negative chord stiffness
+            hyper = self._hyper[seg]  # type: ignore[attr-defined]
+            with np.errstate(over="ignore", invalid="ignore"):
+                h_delta, h_rate = _hyperbolic_oscillator(*args)
+            delta, delta_dot = np.where(hyper, h_delta, delta), np.where(hyper, h_rate, delta_dot)
+            del h_delta, h_rate, hyper
+        # the gathered segment data: no longer held (peak memory)
+        del args, tau, seg, delta_r, direction, omega, x, y
         final_delta, final_velocity = self._final  # type: ignore[attr-defined]
         return np.where(end, final_delta, delta), np.where(end, final_velocity, delta_dot)
 

@@ -792,6 +792,17 @@ def fit_named_law(
     both = [name for name in names if name in fixed]
     if both:
         raise ValueError(f"{both[0]} of law {law!r} is both fitted and held fixed")
+    # a required parameter neither fitted nor held (unless the law's starts stand in for
+    # it): named as fit takes it, not by the law's own option
+    spec = None if _fitting(law).starts_are_defaults else LAWS.get(law)
+    for p in spec.parameters if spec is not None else ():
+        if p.required and p.default is None and p.name not in (*names, *fixed):
+            option = p.name.replace("_", "-")
+            raise ValueError(
+                f"law {law!r} needs the parameter {p.name} [{p.unit}]: fit it (--param "
+                f"{option}) or hold it (--fix {option}=VALUE; in Python, fixed={{{p.name!r}: "
+                "value})"
+            )
     for name, guess in _data_starts(law, data, sphere1, sphere2).items():
         if name in available:
             p = available[name]

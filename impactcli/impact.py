@@ -98,6 +98,7 @@ if TYPE_CHECKING:
     from impactcli.laws.base import NormalContact
 
 __all__ = [
+    "ADHESIVE_SUMMARY_KEYS",
     "HISTORY_COLUMNS",
     "ELASTIC_SUMMARY_KEYS",
     "ENERGY_COLUMNS",
@@ -671,8 +672,9 @@ def impact_summary(
 
     Notes
     -----
-    At separation delta = delta_res and delta' = -e V0 (exact node values, eq. 13e), so by
-    eq. 12: d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
+    At separation delta = delta_res (or the plan's ``delta_end``: where an adhesive
+    contact parts) and delta' = -e V0 (exact node values, eq. 13e), so by eq. 12:
+    d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
     """
     v1, v2 = pairs.v1, pairs.v2
     m = pairs.m
@@ -682,6 +684,7 @@ def impact_summary(
     t_c = np.asarray(contact_time, dtype=float)
     delta_max = np.asarray(plan.delta_max, dtype=float)
     delta_res = np.asarray(plan.delta_res, dtype=float)
+    delta_end = np.asarray(plan.delta_end, dtype=float)  # delta_res, or where it parts
     restitution = np.asarray(plan.restitution, dtype=float)
     summary = {
         "contact_time": t_c,
@@ -689,8 +692,8 @@ def impact_summary(
         "force_max": np.asarray(plan.force_max, dtype=float),
         "t_max": np.asarray(t_max, dtype=float),
         "v_cp": r2 * v1 - r1 * v2,
-        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_res),
-        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_res),
+        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_end),
+        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_end),
         "v1_final": v1 - r1 * (1.0 + restitution) * v0,
         "v2_final": v2 - r2 * (1.0 + restitution) * v0,
         "delta1_max": f1 * delta_max,
@@ -1147,7 +1150,7 @@ def law_impact(
     v2: float,
     law: str = DEFAULT_LAW,
     law_params: dict[str, Any] | None = None,
-    n: int = 25,
+    n: int | None = None,
     split: Split = "mass",
     yield_strength: float | None = None,
     method: Method = "film",
@@ -1173,7 +1176,9 @@ def law_impact(
     law_params : the law's parameters by name (SI; files for ``tabulated``), as
         :func:`impactcli.batch.batch_impacts` takes them (``params=``, the former name,
         works until 0.3 with a DeprecationWarning)
-    n, split, method : as for :func:`elastic_impact`
+    n : FILM segments per stage; default the law's (:attr:`ContactModel.default_n`: 25,
+        200 for an adhesive law)
+    split, method : as for :func:`elastic_impact`
     yield_strength : sigma_y, [Pa]; default the lower of the spheres' yield strengths
 
     Returns
@@ -1218,6 +1223,25 @@ DAMPED_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "alpha",
     "energy_dissipated",
     "energy_stored",
+)
+
+#: Summary keys an adhesive law (jkr, dmt, thornton-ning: ``impact laws``) adds to
+#: :data:`PLASTIC_SUMMARY_KEYS` and :data:`ENERGY_SUMMARY_KEYS`
+#: (:class:`impactcli.model.AdhesivePair`): the indentation where the contact ends [m]
+#: (in tension, < 0; or where it is captured), ``captured`` (True: the spheres do not part,
+#: e = 0, and the contact time is the time to capture, when the relative velocity first
+#: returns to zero), the sticking velocity of the pair [m/s] (the largest V0 that sticks),
+#: the pull-off force [N] and the energy the adhesion takes [J] (the work of the
+#: attraction on the way out less that on the way in; all of (1/2) m V0^2 less the plastic
+#: work when captured), shared between the spheres as the strain energy is.
+ADHESIVE_SUMMARY_KEYS: tuple[str, ...] = (
+    "delta_separation",
+    "captured",
+    "sticking_velocity",
+    "pull_off_force",
+    "energy_adhesion",
+    "energy_adhesion1",
+    "energy_adhesion2",
 )
 
 #: Columns of :meth:`ImpactResult.energy`: the time and :data:`ENERGY_COLUMNS`.

@@ -62,6 +62,7 @@ if TYPE_CHECKING:
 __all__ = [
     "DAMPED_DEFAULT_N",
     "DEFAULT_N",
+    "AdhesivePair",
     "ContactModel",
     "DampedPair",
     "LawPair",
@@ -126,9 +127,12 @@ class ContactModel:
 
     @property
     def default_n(self) -> int:
-        """FILM segments per stage when none is given: :data:`DEFAULT_N`, or
+        """FILM segments per stage when none is given: :data:`DEFAULT_N`, the law's own
+        (:attr:`~impactcli.laws.base.LawSpec.default_n`: an adhesive law's), or
         :data:`DAMPED_DEFAULT_N` with a damping model."""
-        return DEFAULT_N if self.damping is None else DAMPED_DEFAULT_N
+        if self.damping is not None:
+            return DAMPED_DEFAULT_N
+        return get_law(self.law).default_n or DEFAULT_N
 
     @classmethod
     def named(
@@ -207,7 +211,8 @@ class ContactModel:
                 else weaker_yield_strength(sphere1, sphere2)
             )
             m, r, e = effective_properties(sphere1, sphere2)
-            return LawPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+            pair = AdhesivePair if spec.adhesive else LawPair
+            return pair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
         m, r, e = effective_properties(sphere1, sphere2)
         return DampedPair(self, sphere1, sphere2, m, r, e)
 
@@ -406,6 +411,65 @@ class LawPair:
     def pushing_impulse(self, solution: Any, impact_velocity: float, n: int) -> None:
         """A normal law's force never pulls: None (the impulse is (1 + e) m V0)."""
         return None
+
+
+@dataclass(frozen=True)
+class AdhesivePair(LawPair):
+    """An adhesive law of the registry (:attr:`~impactcli.laws.base.LawSpec.adhesive`) for
+    one pair of spheres: a :class:`LawPair` whose summary adds the keys of
+    :data:`impactcli.impact.ADHESIVE_SUMMARY_KEYS` (docs/laws.md).
+
+    The contact may end in tension, at delta < 0, or not at all (``captured``: the bound
+    state, the relative velocity back to zero on the neck, e = 0); ``delta_separation`` is where,
+    ``delta_res`` the permanent indentation alone. The energy the adhesion takes is shared
+    as the strain energy is (the neck deforms both spheres elastically), the rest of the
+    energy lost as the permanent indentation is.
+    """
+
+    @property
+    def permanent(self) -> bool:  # type: ignore[override]
+        """An elastoplastic adhesive law leaves a permanent indentation; an elastic one
+        none."""
+        return self.spec.kind != "elastic"
+
+    def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
+        """The keys of :meth:`LawPair.summary` and the adhesive ones, SI (``captured`` a
+        bool)."""
+        out = LawPair.summary(self, result, solution)
+        contact = self.normal_contact
+        plan = solution.plan
+        delta_max = np.array([float(solution.delta_max)])
+        delta_res = float(np.reshape(contact.residual_indentation(delta_max), -1)[0])
+        e1, e2 = result.split_fractions
+        p1, p2 = result.permanent_fractions if self.permanent else (e1, e2)
+        relative = 0.5 * self.mass * float(result.impact_velocity) ** 2
+        restitution = float(solution.restitution)
+        lost = relative * (1.0 - restitution**2)
+        extras = {key: float(np.reshape(value, -1)[0]) for key, value in plan.extras.items()}
+        adhesion = min(extras["energy_adhesion"], lost)
+        plastic = lost - adhesion
+        dm = float(solution.delta_max)
+        out.update(
+            {
+                "delta1_max": e1 * (dm - delta_res) + p1 * delta_res,
+                "delta2_max": e2 * (dm - delta_res) + p2 * delta_res,
+                "delta_res": delta_res,
+                "delta1_res": p1 * delta_res,
+                "delta2_res": p2 * delta_res,
+                "energy_dissipated1": e1 * adhesion + p1 * plastic,
+                "energy_dissipated2": e2 * adhesion + p2 * plastic,
+                "delta_separation": float(solution.delta_end),
+                "captured": bool(extras["captured"]),
+                "sticking_velocity": float(
+                    np.reshape(contact.sticking_velocity(np.asarray(self.mass)), -1)[0]
+                ),
+                "pull_off_force": extras["pull_off_force"],
+                "energy_adhesion": adhesion,
+                "energy_adhesion1": e1 * adhesion,
+                "energy_adhesion2": e2 * adhesion,
+            }
+        )
+        return out
 
 
 @dataclass(frozen=True)

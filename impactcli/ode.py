@@ -30,7 +30,7 @@ histories, the force and the energy of the integrated path, as FILM's solutions 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -99,6 +99,9 @@ class OdeSolution:
     #: :meth:`evaluate` returns at and after t_c
     end_state: tuple[float, float]
     plan: ImpactPlan | None = None
+    #: the indentation [m] at which each stage of a plan ended along the integrated path
+    #: (its event), or empty
+    stage_ends: tuple[float, ...] = ()
     law: Any = None
     contact: Any = None
     mass: float = float("nan")
@@ -169,8 +172,11 @@ class OdeSolution:
         other stage at its plan's ``delta_end`` (where its event put it)."""
         plan = self._plan()
         bounds, start = [], _scalar(plan.stages[0].delta_start)
-        for stage in plan.stages:
-            end = self.delta_max if stage.end_at_rest else _scalar(stage.delta_end)
+        for k, stage in enumerate(plan.stages):
+            if k < len(self.stage_ends):  # where the integration ended it
+                end = self.stage_ends[k]
+            else:
+                end = self.delta_max if stage.end_at_rest else _scalar(stage.delta_end)
             bounds.append((start, end))
             start = end
         return bounds
@@ -258,7 +264,9 @@ class _Stage:
     ``rhs`` the equation, ``events``, ``horizon`` its longest duration, ``atol``;
     ``target`` the (scaled) indentation an ``end`` event stops at; ``at_rest`` a ``turn``
     that ends it is its planned end (else it is an error); ``force`` F [N] of a state
-    (delta [m], delta' [m/s]); ``unfinished`` the error when no terminal event fires.
+    (delta [m], delta' [m/s]); ``unfinished`` the error when no terminal event fires;
+    ``loading`` the stage's indentation grows (its turn is the maximum indentation; an
+    unloading stage's turn is a capture: the relative velocity returns to zero).
     """
 
     name: str
@@ -270,6 +278,7 @@ class _Stage:
     unfinished: Callable[[Any], Exception]
     target: float = 0.0
     at_rest: bool = False
+    loading: bool = True
 
 
 def _solve(stage: _Stage, tau: float, state: NDArray, rtol: float):
@@ -304,6 +313,13 @@ class _Path:
     turn_force: float | None = None
     end: float = 0.0
     state: NDArray | None = None
+    #: the (scaled) indentation at which each stage ended
+    ends: list[float] = field(default_factory=list)
+
+
+def _crossing(t: float, dense: Any, target: float) -> float:
+    """The (scaled) indentation less ``target`` on a dense solution at time ``t``."""
+    return float(dense(t)[0]) - target
 
 
 def _run(stages: Sequence[_Stage], state: NDArray, length: float, time: float, rtol: float):
@@ -311,6 +327,7 @@ def _run(stages: Sequence[_Stage], state: NDArray, length: float, time: float, r
     path = _Path([], [])
     tau = 0.0
     for stage in stages:
+        began = tau
         sol = _solve(stage, tau, state, rtol)
         turns = [i for i, e in enumerate(stage.events) if e.role == "turn"]
         if turns and path.t_max is None and not stage.events[turns[0]].terminal:
@@ -329,6 +346,23 @@ def _run(stages: Sequence[_Stage], state: NDArray, length: float, time: float, r
         tau, fired = min(ended)
         state = np.array(sol.y_events[fired][0], dtype=float)
         role = stage.events[fired].role
+        if role == "turn" and not stage.at_rest and not stage.loading and state[0] < stage.target:
+            # the motion passed the stage's end and turned back within one step (an
+            # adhesive contact that parts in tension with little speed to spare): the
+            # sign change of the end event was lost; its crossing is the end
+            from scipy.optimize import brentq
+
+            tau = brentq(_crossing, began, tau, args=(sol.sol, stage.target),
+                         xtol=1e-15 * tau, rtol=4 * np.finfo(float).eps)  # fmt: skip
+            state = np.array(sol.sol(tau), dtype=float)
+            role = "end"
+        if role == "turn" and not stage.at_rest and not stage.loading:
+            # captured sooner than planned (the plan's capture point lies just past this
+            # stage's end, where the relative velocity all but vanishes): the
+            # integration's own capture ends the contact
+            state[1] = 0.0
+            path.ends.append(float(state[0]))
+            break
         if role == "turn":
             if not stage.at_rest:
                 raise ValueError(
@@ -336,10 +370,12 @@ def _run(stages: Sequence[_Stage], state: NDArray, length: float, time: float, r
                     f"before its end {stage.target * length:.6g} m"
                 )
             state[1] = 0.0  # the event: at rest
-            path.t_max, path.delta_max = tau * time, state[0] * length
-            path.turn_force = stage.force(path.delta_max, 0.0)
+            if stage.loading:  # the maximum indentation (an unloading's turn: a capture)
+                path.t_max, path.delta_max = tau * time, state[0] * length
+                path.turn_force = stage.force(path.delta_max, 0.0)
         elif role == "end":
             state[0] = stage.target  # the event: at the stage's end
+        path.ends.append(float(state[0]))
     path.end, path.state = tau, state
     return path
 
@@ -448,7 +484,6 @@ def _integrate_plan(
     for stage in plan.stages:
         law = stage.law
         a, b = _scalar(stage.delta_start) / length, _scalar(stage.delta_end) / length
-
         def rhs(_t: float, y: NDArray, law=law) -> list[float]:
             return [y[1], -accel * _scalar(law.force(length * y[0]))]
 
@@ -459,8 +494,10 @@ def _integrate_plan(
             events = [_Event(turn, -1.0, True, "turn")]
             if not stage.end_at_rest:
                 events.append(_Event(reach, 1.0, True, "end"))
-        else:
-            events = [_Event(reach, -1.0, True, "end")]
+        elif stage.end_at_rest:  # captured: the relative velocity returns to zero
+            events = [_Event(turn, 1.0, True, "turn")]
+        else:  # to its end, or captured on the way (an adhesive law near its boundary)
+            events = [_Event(reach, -1.0, True, "end"), _Event(turn, 1.0, True, "turn")]
 
         def unfinished(sol: Any, name: str = stage.name) -> Exception:
             return ValueError(f"the {name} stage did not reach its end: {sol.message}")
@@ -476,6 +513,7 @@ def _integrate_plan(
                 unfinished,
                 target=b,
                 at_rest=stage.end_at_rest,
+                loading=b > a,
             )
         )
     first = plan.stages[0]
@@ -489,7 +527,7 @@ def _integrate_plan(
     end = path.state
     assert end is not None and path.delta_max is not None and path.turn_force is not None
     delta_end, delta_dot_end = end[0] * length, end[1] * length / time
-    restitution = float(-delta_dot_end * time / length)
+    restitution = float(-delta_dot_end * time / length) + 0.0  # no -0 for a capture
     return OdeSolution(
         stage_start=np.array(path.starts) * time,
         t_max=float(path.t_max),
@@ -509,6 +547,7 @@ def _integrate_plan(
         contact=contact,
         mass=m,
         impact_velocity=v0,
+        stage_ends=tuple(x * length for x in path.ends),
     )
 
 

@@ -649,6 +649,17 @@ def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float
         )
     if force.size and np.nanmin(force) < 0.0:  # a damped contact that pulls before it ends
         ax.axhline(0.0, color="0.5", linewidth=0.6)
+    if summary and "pull_off_force" in summary and force.size and summary["pull_off_force"] > 0:
+        # an adhesive loop: the snap-in at first touch and the jump off at separation (no
+        # displacement, no work), which close the loop whose area the neck takes
+        ends = [(delta[0], force[0], "snap-in at first touch", "force:snap-in")]
+        if not summary.get("captured", False):
+            ends.append((delta[-1], force[-1], "separation (the neck breaks)", "force:jump-off"))
+        for k, (x, f, label, gid) in enumerate(ends):
+            ax.plot([x / xs.factor] * 2, [0.0, f / fs.factor], color=("tab:red", "tab:green")[k],
+                    linestyle=":", label=label, gid=gid)  # fmt: skip
+        ax.axhline(-summary["pull_off_force"] / fs.factor, color="0.5", linestyle="-.",
+                   linewidth=0.8, label="pull-off force")  # fmt: skip
     if summary and summary.get("delta_separation", 0.0) > 0:
         ds = summary["delta_separation"]
         ax.plot(
@@ -825,6 +836,7 @@ def restitution_figure(
     indentation_title: str = "(c) Permanent indentation",
     indentation_label: str = r"permanent indentation $\delta_{res}$",
     law: str = DEFAULT_LAW,
+    sticking_velocity: float | None = None,
 ) -> Figure:
     """Three panels over a sweep of impact velocity V0: e, contact time, permanent indentation.
 
@@ -846,6 +858,9 @@ def restitution_figure(
     indentation_title, indentation_label : title and axis label of the third panel (a
         damped sweep draws the maximum indentation and that at separation there)
     law : the law whose yield velocity ``yield_velocity`` is (by default the default law)
+    sticking_velocity : V_s of an adhesive law, [m/s]: below it the spheres stick (e = 0,
+        drawn as the sticking branch, gid ``captured``; their contact time is the time to
+        capture); a dash-dot line on every panel, as the yield velocities are
 
     Returns
     -------
@@ -884,7 +899,25 @@ def restitution_figure(
     vs = unit_scale(v0, "m/s")
     x = v0 / vs.factor
 
-    ax_e.plot(x, np.asarray(restitution, dtype=float), marker=".", gid="restitution")
+    e = np.asarray(restitution, dtype=float)
+    line_x, line_e = x, e
+    if sticking_velocity is not None and np.isfinite(sticking_velocity) and v0.size > 1:
+        # e(V_s) = 0 exactly, and e rises with an infinite slope past it: the line runs
+        # through (V_s, 0) rather than across the corner
+        order = np.argsort(v0)
+        at = float(sticking_velocity) / vs.factor
+        if x[order][0] < at < x[order][-1] and not np.any(x == at):
+            line_x = np.append(x[order], at)
+            line_e = np.append(e[order], 0.0)
+            keep = np.argsort(line_x, kind="stable")
+            line_x, line_e = line_x[keep], line_e[keep]
+    ax_e.plot(line_x, line_e, marker=".", markevery=[i for i, v in enumerate(line_x)
+              if np.any(x == v)], gid="restitution")  # fmt: skip
+    if sticking_velocity is not None:
+        captured = (e == 0.0) & (v0 <= sticking_velocity)
+        if np.any(captured):
+            ax_e.plot(x[captured], e[captured], "o", color="C3", markersize=4, gid="captured",
+                      label="captured (e = 0: the spheres do not part)")  # fmt: skip
     ax_e.set_ylabel("coefficient of restitution $e$ (-)")
     ax_e.set_title("(a) Restitution", fontsize="medium")
 
@@ -905,6 +938,7 @@ def restitution_figure(
         for velocity, text, style in (
             (first_yield_velocity, _onset_mark(ELASTIC_LAW), "--"),
             (yield_velocity, _onset_mark(law), ":"),
+            (sticking_velocity, "sticking, $V_s$", "-."),
         )
         if velocity is not None and np.isfinite(velocity)
     ]
@@ -930,6 +964,8 @@ def restitution_figure(
                 ax.plot([], [], " ", label=f"{label} ({where} this range)")
         if marks or ax is ax_r and len(residual) > 1:
             ax.legend(fontsize="small")
+    if sticking_velocity is not None:
+        ax_t.set_title("(b) Contact time (captured: time to capture)", fontsize="medium")
     fig.suptitle(title, fontsize="large")
     return fig
 

@@ -67,6 +67,13 @@ SUMMARY_QUANTITIES: dict[str, Quantity] = {
     "absorbed_share2": Quantity("", "absorbed by sphere 2 at delta_max *"),
     "first_yield_velocity1": Quantity("m/s", "first yield of sphere 1 (inf: none)"),
     "first_yield_velocity2": Quantity("m/s", "first yield of sphere 2 (inf: none)"),
+    "delta_separation": Quantity("m", "total indentation where the contact ends (or is captured)"),
+    "captured": Quantity("", "captured: the spheres do not part, e = 0 (the bound state)"),
+    "sticking_velocity": Quantity("m/s", "largest V0 at which the spheres stick"),
+    "pull_off_force": Quantity("N", "pull-off force of the contact the impact leaves"),
+    "energy_adhesion": Quantity("J", "energy taken by the adhesion (the neck)"),
+    "energy_adhesion1": Quantity("J", "taken by the adhesion, sphere 1"),
+    "energy_adhesion2": Quantity("J", "taken by the adhesion, sphere 2"),
 }
 
 #: Summary keys of a damped impact whose unit or meaning differ (or that are its own);
@@ -121,6 +128,7 @@ KINDS: dict[str, tuple[str, tuple[str, ...]]] = {
     "ANGLE": ("deg", ("deg", "rad")),
     "RATE": ("rad/s", ("rad/s",)),
     "STIFFNESS": ("N/m", ()),
+    "SURFACE-ENERGY": ("J/m^2", ("J/m^2",)),
     "INVERSE_VELOCITY": ("s/m", ()),
     "NUMBER": ("-", ("-",)),
     "INTEGER": ("", ()),

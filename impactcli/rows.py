@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from impactcli.batch import (
+    ADHESIVE_KEYS,
     BATCH_KEYS,
     damped_pair_impacts,
     material_properties,
@@ -32,7 +33,7 @@ from impactcli.design import first_yield_velocities
 from impactcli.energy import permanent_fractions
 from impactcli.impact import DAMPED_DEFAULT_N
 from impactcli.laws.base import SEPARATIONS
-from impactcli.laws.registry import DAMPING_LAWS, ELASTIC_LAW, LAWS, get_law
+from impactcli.laws.registry import DAMPING_LAWS, ELASTIC_LAW, LAWS, get_law, parameter_laws
 from impactcli.pairs import SPLITS, SpherePairs, split_fractions
 from impactcli.spheres import missing_properties, resolve_properties
 from impactcli.units import KINDS
@@ -115,9 +116,10 @@ def law_parameter_columns() -> dict[str, tuple[str, str]]:
 
 
 def output_columns() -> tuple[str, ...]:
-    """Columns added after the input ones: the summary keys (SI), then ``error`` and
-    ``warning`` (text)."""
-    return (*BATCH_KEYS, *EXTRA_KEYS, *TEXT_OUTPUTS)
+    """Columns added after the input ones: the summary keys (SI), :data:`EXTRA_KEYS`, the
+    adhesive laws' keys (:data:`impactcli.batch.ADHESIVE_KEYS`, empty on the other rows),
+    then ``error`` and ``warning`` (text)."""
+    return (*BATCH_KEYS, *EXTRA_KEYS, *ADHESIVE_KEYS, *TEXT_OUTPUTS)
 
 
 def used_columns(names: Sequence[str]) -> list[str]:
@@ -189,13 +191,12 @@ def compute_rows(
     )  # fmt: skip
     damped, damping = _row_damping(reader, errors, laws, key)
     rows = _Dispatch(pairs, plastic, laws, law_params, damped, damping)
-    result = _kernel_results(rows, errors, 25 if n is None else n,
-                             DAMPED_DEFAULT_N if n is None else n)  # fmt: skip
+    result = _kernel_results(rows, errors, n, DAMPED_DEFAULT_N if n is None else n)
     splits = reader.text("split", lower=True)
     splits = np.where(np.equal(splits, None), split, splits).astype(str)
     errors.add(~np.isin(splits, SPLITS), f"split must be {', '.join(SPLITS)}")
     notes = _sphere_shares(result, splits, pairs, ~errors.bad)
-    for k in (*BATCH_KEYS, *EXTRA_KEYS):
+    for k in (*BATCH_KEYS, *EXTRA_KEYS, *ADHESIVE_KEYS):
         result[k][errors.bad] = np.nan
     result["error"] = errors.messages
     result["warning"] = row_warnings(
@@ -265,13 +266,15 @@ def _row_models(
 
 
 def _kernel_results(
-    rows: _Dispatch, errors: Problems, n: int, n_damped: int
+    rows: _Dispatch, errors: Problems, n: int | None, n_damped: int
 ) -> dict[str, NDArray]:
     """The summary keys of the rows without an error so far, by one kernel call per group
     (damping model and separation rule; the model column; law and its files); a kernel's
-    reason for a row becomes its error."""
+    reason for a row becomes its error. ``n`` None: 25, or a law's own default (an
+    adhesive law's) for its rows."""
+    n_given, n = n, 25 if n is None else n
     size = rows.pairs.size
-    result = {k: np.full(size, np.nan) for k in (*BATCH_KEYS, *EXTRA_KEYS)}
+    result = {k: np.full(size, np.nan) for k in (*BATCH_KEYS, *EXTRA_KEYS, *ADHESIVE_KEYS)}
     kernel = np.full(size, "", dtype=object)
     for chosen, name, rule in _damping_groups(rows.damped, rows.damping, ~errors.bad):
         out = damped_pair_impacts(
@@ -290,9 +293,11 @@ def _kernel_results(
             result[k][ok] = out[k]
         kernel[ok] = out["error"]
     for chosen, name, params in _law_groups(rows.laws, rows.law_params, ~errors.bad & undamped):
-        for part, out in _law_rows(rows.pairs.take(chosen), chosen, name, params, n):
-            for k in BATCH_KEYS:
-                result[k][part] = out[k]
+        own_n = n if n_given is not None else (get_law(name).default_n or n)
+        for part, out in _law_rows(rows.pairs.take(chosen), chosen, name, params, own_n):
+            for k in (*BATCH_KEYS, *ADHESIVE_KEYS):
+                if k in out:  # the adhesive keys: an adhesive law's rows
+                    result[k][part] = out[k]
             kernel[part] = out["error"]
     errors.add_messages(kernel)
     return result
@@ -323,6 +328,7 @@ def _row_laws(
         elastic[rows] = spec.kind == "elastic"
     errors.add_messages(message)
 
+    declared = parameter_laws()
     params: dict[str, NDArray] = {}
     for column, (kind, takers) in law_parameter_columns().items():
         if column not in reader:
@@ -330,6 +336,16 @@ def _row_laws(
         if kind in ("file", "choice"):
             params[column] = reader.text(column)
             present = ~np.equal(params[column], None)
+            if column in TEXT_COLUMNS:  # shared with the damping columns (separation)
+                choices = declared[column][0].choices
+                mine = present & np.isin(params[column].astype(str), list(choices))
+                takes = np.isin(laws.astype(str), takers.split(", "))
+                errors.add(
+                    present & ~mine & takes,
+                    f"{column} of law(s) {takers} must be {' or '.join(choices)}",
+                )
+                params[column] = np.where(mine, params[column], None)
+                present = mine
         else:
             params[column] = _law_number(reader, column, kind, laws, errors)
             present = ~np.isnan(params[column])
@@ -342,17 +358,21 @@ def _law_number(
     reader: ColumnReader, column: str, kind: str, laws: NDArray, errors: Problems
 ) -> NDArray:
     """A numeric law-parameter column in SI (a kind the units parser does not know, e.g.
-    stiffness, is read as SI); a value that is not a positive finite number is the row's
-    error, with its law's name."""
+    stiffness, is read as SI); a value that is not a positive finite number (finite and
+    >= 0 for a parameter that may be zero, the work of adhesion) is the row's error, with
+    its law's name."""
     unit_kind = kind if kind in KINDS else "dimensionless"
     values, bad = reader.quantity(column, unit_kind, False)
     errors.add_messages(bad)
     present = ~np.isnan(values)
+    zero_allowed = parameter_laws()[column][0].zero_allowed
     with np.errstate(invalid="ignore"):
-        wrong = np.flatnonzero(present & ~(values > 0) & ~errors.bad)
+        floor = (values >= 0) if zero_allowed else (values > 0)
+        wrong = np.flatnonzero(present & ~floor & ~errors.bad)
+    what = "finite number >= 0" if zero_allowed else "positive, finite number"
     message = np.full(reader.size, "", dtype=object)
     message[wrong] = [  # the refused rows only, each with its law's name
-        f"{column} of law {law!r} must be a positive, finite number, got {v:g}"
+        f"{column} of law {law!r} must be a {what}, got {v:g}"
         for law, v in zip(laws[wrong].tolist(), values[wrong].tolist())
     ]
     errors.add_messages(message)

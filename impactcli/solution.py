@@ -197,8 +197,9 @@ class StagedSolution(FilmSolution):
 
     @property
     def t_max(self) -> float:
-        """Time of the maximum indentation: the end of the last loading stage, [s]."""
-        return float(self.stages[-2].end_time)
+        """Time of the maximum indentation: the end of the last loading stage (the plan's
+        ``turning`` stage), [s]."""
+        return float(self.stages[self.plan.turning].end_time)
 
     @property
     def delta_max(self) -> float:
@@ -212,8 +213,9 @@ class StagedSolution(FilmSolution):
 
     @property
     def delta_end(self) -> float:
-        """Residual indentation delta_res: the indentation at separation, [m]."""
-        return _first(self.plan.delta_res)
+        """The indentation at separation, [m]: the residual indentation delta_res, or where
+        an adhesive contact parts in tension or is captured (the plan's ``delta_end``)."""
+        return _first(self.plan.delta_end)
 
     @property
     def restitution(self) -> float:

@@ -51,6 +51,7 @@ __all__ = [
     "restitution_sweep",
     "sweep_contact_warning",
     "sweep_is_elastic",
+    "sweep_sticking_velocity",
     "sweep_yield_velocity",
 ]
 
@@ -268,6 +269,25 @@ def sweep_yield_velocity(
     law without a yield point, or without a yield strength)."""
     contact, m = _contact(sphere1, sphere2, yield_strength, pressure_factor, law, law_params)
     return float(contact.yield_velocity(m))
+
+
+def sweep_sticking_velocity(
+    sphere1: Sphere,
+    sphere2: Sphere,
+    yield_strength: float | None = None,
+    law: str | None = None,
+    law_params: dict[str, Any] | None = None,
+) -> float:
+    """The largest impact velocity [m/s] at which the spheres stick under an adhesive law
+    (its contact's ``sticking_velocity``: JKR's closed form, Thornton & Ning's solved for
+    the pair; 0 for a law whose spheres never stick); NaN for a law without adhesion."""
+    contact, m = _contact(
+        sphere1, sphere2, yield_strength, DEFAULT_LAW_PARAMETERS["p0_factor"], law, law_params
+    )
+    sticking = getattr(contact, "sticking_velocity", None)
+    if sticking is None:
+        return float("nan")
+    return float(np.reshape(sticking(np.asarray(m, dtype=float)), -1)[0])
 
 
 def sweep_first_yield_velocity(

@@ -71,6 +71,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "force": ("N", "150 N, 2 kN"),
     "dimensionless": ("", "0.3"),
     "inverse velocity": ("s/m", "0.5 s/m, 0.5 ms/mm"),
+    "surface energy": ("J/m^2", "0.2 J/m^2, 200 mJ/m^2"),
 }
 
 #: The longest quantity text read [characters]; longer text is refused unread.
@@ -91,6 +92,7 @@ _DIMS: dict[str, Dims] = {
     "force": (1, 1, -2, 0),
     "dimensionless": (0, 0, 0, 0),
     "inverse velocity": (-1, 0, 1, 0),
+    "surface energy": (0, 1, -2, 0),
 }
 _DIMENSION_NAMES = ("length", "mass", "time", "angle")
 
@@ -110,6 +112,7 @@ _PREFIXABLE: dict[str, tuple[Fraction, Dims]] = {
     "s": (Fraction(1), (0, 0, 1, 0)),
     "Pa": (Fraction(1), (-1, 1, -2, 0)),
     "N": (Fraction(1), (1, 1, -2, 0)),
+    "J": (Fraction(1), (2, 1, -2, 0)),
     "rad": (Fraction(1), (0, 0, 0, 1)),
     "L": (Fraction(1, 1000), (3, 0, 0, 0)),
     "l": (Fraction(1, 1000), (3, 0, 0, 0)),

@@ -506,6 +506,18 @@ LAW_NAMES_ALLOWED: dict[tuple[str, str], str] = {
     ("impactcli/laws/thornton.py", "du-wang"): "its loading is Du & Wang's with p0 = p_y",
     ("impactcli/laws/walton_braun.py", "hertz"): "a fit starts its stiffnesses from the "
     "pair's Hertz contact",
+    ("impactcli/laws/jkr.py", "hertz"): "at W = 0 the impact is Hertz's (its plan), and the "
+    "pair's Hertz stiffness",
+    ("impactcli/laws/dmt.py", "hertz"): "Hertz plus a constant pull: Hertz's stiffness, and "
+    "its plan at W = 0",
+    ("impactcli/laws/dmt.py", "jkr"): "the work of adhesion is one parameter of the adhesive "
+    "laws, declared with its bound in jkr",
+    ("impactcli/laws/thornton_ning.py", "jkr"): "its loading, unloading and neck are JKR "
+    "branches (of R, then of the enlarged R_p)",
+    ("impactcli/laws/thornton_ning.py", "thornton"): "at W = 0 it is Thornton's (1997) law, "
+    "whose plastic line it keeps (and its name contains Thornton's)",
+    ("impactcli/laws/thornton_ning.py", "hertz"): "the Hertz peak pressure at first yield, "
+    "its default p_y, and the pair's Hertz stiffness",
     ("impactcli/laws/tsuji.py", "hertz"): "a DampedHertz (Hertz plus its viscous term); "
     "tsuji_alpha_hertz_mindlin: LIGGGHTS/EDEM's Hertz-Mindlin damping is a relation of it",
     ("impactcli/laws/hunt_crossley.py", "hertz"): "a DampedHertz: Hertz plus its viscous term",

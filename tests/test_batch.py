@@ -14,13 +14,19 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from impactcli.batch import BATCH_KEYS, batch_impacts, material_properties, normalised_times
+from impactcli.batch import (
+    ADHESIVE_KEYS,
+    BATCH_KEYS,
+    batch_impacts,
+    material_properties,
+    normalised_times,
+)
 from impactcli.impact import Sphere, elastic_impact, elastoplastic_impact
 from impactcli.io.table import EXTRA_KEYS
 from impactcli.tables import normalised_contact_duration
 
 STEEL = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0, yield_strength=1e9)
-OUTPUT = (*BATCH_KEYS, *EXTRA_KEYS, "error", "warning")
+OUTPUT = (*BATCH_KEYS, *EXTRA_KEYS, *ADHESIVE_KEYS, "error", "warning")
 
 
 def reference(row: dict, split: str = "mass", n: int = 25) -> dict:

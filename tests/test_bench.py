@@ -54,15 +54,16 @@ def test_every_undamped_law_has_its_case_and_its_baseline_integrates_it(bench):
 
     cases = bench.laws()
     assert [name for name, _, _ in cases] == list(LAWS)
-    m = effective_properties(*bench.STEEL)[0]
-    params = {"walton-braun": bench.WALTON_BRAUN, "tabulated": {"curve": bench.CURVE}}
     for name, _, call in cases:
         result = call()
-        fine = law_impact(*bench.STEEL, bench.V1, bench.V2, name, params.get(name), n=4000)
-        e, t_c, _ = bench.Integration(result.plan, m, bench.V0).run(1e-12)
+        spheres, v0, params = bench.pair_of(name)
+        m = effective_properties(*spheres)[0]
+        v1, v2 = (bench.V1, bench.V2) if spheres is bench.STEEL else (v0, 0.0)
+        fine = law_impact(*spheres, v1, v2, name, params, n=4000)
+        e, t_c, _ = bench.Integration(result.plan, m, v0).run(1e-12)
         assert e == pytest.approx(fine.summary["restitution"], rel=1e-9), name
         assert t_c == pytest.approx(fine.summary["contact_time"], rel=1e-8), name
-        e_ref, t_ref, _ = bench.reference(name, result, bench.Integration(result.plan, m, bench.V0))
+        e_ref, t_ref, _ = bench.reference(name, result, bench.Integration(result.plan, m, v0))
         assert t_ref == pytest.approx(fine.summary["contact_time"], rel=1e-8), name
 
 

@@ -19,7 +19,12 @@ from impactcli.compare import (
     reference_yield_velocity,
     restitution_curves,
 )
-from impactcli.impact import ENERGY_SUMMARY_KEYS, PLASTIC_SUMMARY_KEYS, Sphere
+from impactcli.impact import (
+    ADHESIVE_SUMMARY_KEYS,
+    ENERGY_SUMMARY_KEYS,
+    PLASTIC_SUMMARY_KEYS,
+    Sphere,
+)
 from impactcli.lawlib import LAWS, comparison_laws
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -29,6 +34,7 @@ SPHERES = ["--d1", "20mm", "--d2", "40mm", "--material", "steel"]
 PAPER_4_4 = [*SPHERES, "--v1", "0.25m/s", "--v2", "0.75m/s"]
 WALTON = ["--k-load", "20MN/m", "--k-unload", "80MN/m"]
 WALTON_PARAMS = {"k_load": 2e7, "k_unload": 8e7}
+ADHESION = ["--work-of-adhesion", "200mJ/m^2"]
 
 #: Hertz of the sec. 4.4 spheres: E* = E / (2 (1 - nu^2)), R = (1/R1 + 1/R2)^-1.
 E_STAR = 210e9 / (2 * (1 - 0.3**2))
@@ -79,6 +85,9 @@ def law_arguments(name: str, curves: dict[str, str]) -> list[str]:
         "tabulated": [
             "--law", "tabulated", "--curve", curves["curve"], "--unload-curves", curves["unload"]
         ],
+        "jkr": ["--law", "jkr", *ADHESION],
+        "dmt": ["--law", "dmt", *ADHESION],
+        "thornton-ning": ["--law", "thornton-ning", *ADHESION, "--py", "1.8GPa"],
     }[name]  # fmt: skip
 
 
@@ -103,7 +112,8 @@ def test_elastoplastic_runs_every_law_and_names_it(impact, curves, name):
     assert set(doc["inputs"]["law_parameters"]) == expected
     for entry in doc["inputs"]["law_parameters"].values():
         assert set(entry) == {"value", "unit"}
-    assert list(doc["summary"]) == [*PLASTIC_SUMMARY_KEYS, *ENERGY_SUMMARY_KEYS]  # any law
+    adhesive = ADHESIVE_SUMMARY_KEYS if LAWS[name].adhesive else ()
+    assert list(doc["summary"]) == [*PLASTIC_SUMMARY_KEYS, *ENERGY_SUMMARY_KEYS, *adhesive]
     e = doc["summary"]["restitution"]
     assert 0.0 < e <= 1.0 + 1e-12  # energy never created
 
@@ -169,6 +179,9 @@ def _params(name: str, curves: dict[str, str]) -> dict:
         "thornton": {"py": 1.8e9},
         "walton-braun": WALTON_PARAMS,
         "tabulated": {"curve": curves["curve"], "unload_curves": curves["unload"]},
+        "jkr": {"work_of_adhesion": 0.2},
+        "dmt": {"work_of_adhesion": 0.2},
+        "thornton-ning": {"work_of_adhesion": 0.2, "py": 1.8e9},
     }[name]
 
 
@@ -300,8 +313,11 @@ def test_impact_beyond_the_curve_names_both_indentations(impact, curves):
 @pytest.mark.parametrize(
     ("arguments", "fragments"),
     [
-        (["--law", "jkr"], ["--law: unknown law 'jkr'", "thornton"]),
-        (["--py", "2GPa"], ["--py is a parameter of law thornton, not of du-wang"]),
+        (["--law", "maugis"], ["--law: unknown law 'maugis'", "thornton"]),
+        (
+            ["--py", "2GPa"],
+            ["--py is a parameter of law thornton or thornton-ning, not of du-wang"],
+        ),
         (["--law", "thornton", "--py", "3m"], ["--py: expected a pressure"]),
         (["--law", "thornton", "--py=-1GPa"], ["py of law 'thornton' must be a positive"]),
         (["--law", "walton-braun", "--k-load", "2e7"], ["needs the parameter k_unload"]),

@@ -30,6 +30,7 @@ def test_laws_json_lists_every_law(impact):
         "yield_factor": None,
         "valid": "> 0",
         "choices": [],
+        "zero_allowed": False,
     }
     assert listed["thornton"]["parameters"][0]["yield_factor"] == 1.6
     assert listed["walton-braun"]["parameters"][0]["required"] is True

@@ -436,3 +436,38 @@ def test_from_fit_refuses_the_law_s_own_parameters(impact, tmp_path):
     assert result.returncode == 2 and "--from-fit takes the law" in result.stderr
     result = impact("export", "lammps", *WALL, "--from-fit", path, "--law", "thornton")
     assert result.returncode == 2 and "has no fit of 'thornton'" in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("law", "params", "exact"),
+    [
+        ("jkr", {"work_of_adhesion": 0.2, "separation": "pull-off"}, True),
+        ("jkr", {"work_of_adhesion": 0.2}, False),
+        ("dmt", {"work_of_adhesion": 0.2}, True),
+    ],
+)
+def test_adhesive_laws_take_lammps_jkr_and_dmt_with_the_cohesion_w_over_2(law, params, exact):
+    """LAMMPS's jkr/dmt take the surface energy of each surface, gamma = W/2; its jkr ends
+    the contact at the pull-off point, so only the pull-off rule is exact."""
+    from impactcli.export.lammps import lammps_input
+    from impactcli.impact import ContactModel, Sphere
+
+    silica = Sphere(20e-6, 73e9, 0.17, 2200.0)
+    out = lammps_input(silica, silica, ContactModel(law, params))
+    words = out.lines[-1].split()
+    assert words[:8] == ["pair_coeff", "*", "*", law, "73000000000", "0", "0.17", "0.1"]
+    assert out.exact is exact
+    assert out.model.law == law and out.model.law_params.get("separation") in (
+        None if law == "dmt" else "pull-off",
+    )
+    # the run stops once the spheres have parted: delta = 0 (dmt), the neck's end (jkr)
+    parted = re.search(r'parted equal "v_delta < (\S+) &&', out.script(0.1)).group(1)
+    ends = solve_impact_end(silica, ContactModel(law, out.model.law_params))
+    assert float(parted) == pytest.approx(ends, rel=1e-9, abs=0.0)
+
+
+def solve_impact_end(silica, model) -> float:
+    """Where the head-on contact of the script ends, [m] (0 for dmt, < 0 for jkr)."""
+    from impactcli.impact import solve_impact
+
+    return min(solve_impact(silica, silica, 0.1, 0.0, model).summary["delta_separation"], 0.0)

@@ -265,3 +265,41 @@ def test_the_tangential_dashpot_is_lammps_s_x_gamma_t(angle):
     without = collide3d(16001, *args[:-2])
     assert abs(without["w1_final_y"] - ours[1]["w1_final_y"]) > 10 * abs(
         lammps[0]["w1_final_y"][0] - lammps[1]["w1_final_y"][0])
+
+
+# -- adhesive laws ----------------------------------------------------------------------------
+
+SILICA20 = Sphere(20e-6, 73e9, 0.17, 2200.0)
+
+
+@pytest.mark.parametrize(
+    ("law", "params"),
+    [
+        ("jkr", {"work_of_adhesion": 0.2, "separation": "pull-off"}),
+        ("dmt", {"work_of_adhesion": 0.2}),
+    ],
+)
+def test_adhesive_laws_are_lammps_jkr_and_dmt(law, params):
+    """LAMMPS's jkr (cohesion gamma = W/2, snap-in at first touch, the contact ends at the
+    load-controlled pull-off point) is the jkr law with --separation pull-off; its dmt is
+    the dmt law: e < 1 by the neck's work, and e = 1, with their contact times."""
+    model = ContactModel(law, params)
+    inp = lammps_input(SILICA20, SILICA20, model)
+    assert inp.exact, inp.notes
+    measured = agree((*NORMAL, "v1_final_z", "v2_final_z"), lammps_pair(inp, 0.1),
+                     head_on(SILICA20, SILICA20, 0.1, 0.0, model))  # fmt: skip
+    e = measured["restitution"][1]
+    assert (e < 0.97) if law == "jkr" else (e == pytest.approx(1.0, abs=1e-9))
+
+
+def test_jkr_with_the_instability_rule_is_exported_as_lammps_computes_it():
+    """The instability rule has no LAMMPS counterpart: the lines are the pull-off rule's,
+    said so, and LAMMPS's e is that rule's, above the instability rule's."""
+    asked = ContactModel("jkr", {"work_of_adhesion": 0.2})
+    inp = lammps_input(SILICA20, SILICA20, asked)
+    assert not inp.exact and "pull-off" in inp.notes[0]
+    pull_off = ContactModel("jkr", {"work_of_adhesion": 0.2, "separation": "pull-off"})
+    ours_pull_off = head_on(SILICA20, SILICA20, 0.06, 0.0, pull_off)
+    agree(("restitution",), lammps_pair(inp, 0.06), ours_pull_off)
+    ours = solve_impact(SILICA20, SILICA20, 0.06, 0.0, asked).summary["restitution"]
+    assert run_lammps(inp.script(0.06))["restitution"][0] > ours + 0.1

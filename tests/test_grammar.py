@@ -29,7 +29,7 @@ def _help(command: str) -> str:
 
 def _option_line(text: str, option: str) -> str:
     """The entry of ``option`` in the Options section of a help screen, its continuation
-    lines joined."""
+    lines joined (a word the help screen broke at its hyphen, 'du-' + 'wang', made whole)."""
     lines = text[text.index("\nOptions:\n") :].splitlines()
     for i, line in enumerate(lines):
         if re.match(rf"\s+(-\w, )?{re.escape(option)}(?=\s|$)", line):
@@ -38,7 +38,11 @@ def _option_line(text: str, option: str) -> str:
                 if re.match(r" {1,2}-", more) or not more.strip():
                     break
                 entry.append(more)
-            return " ".join(" ".join(entry).split())
+            joined = entry[0]
+            for more in entry[1:]:
+                glue = "" if joined.endswith("-") and not joined.endswith(" -") else " "
+                joined = joined + glue + more.strip()
+            return " ".join(joined.split())
     raise AssertionError(f"{option} not in the help")
 
 

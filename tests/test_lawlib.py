@@ -139,8 +139,8 @@ def test_registry_names_parameters_units_and_references():
 
 
 def test_bad_law_name_and_parameters_are_one_line_errors():
-    with pytest.raises(ValueError, match=r"unknown law 'jkr' \(accepted: hertz, du-wang"):
-        get_law("jkr")
+    with pytest.raises(ValueError, match=r"unknown law 'maugis' \(accepted: hertz, du-wang"):
+        get_law("maugis")
     with pytest.raises(ValueError, match="has no parameter 'p0' .accepted: p0_factor"):
         LAWS["du-wang"].resolve({"p0": 2.0})
     with pytest.raises(ValueError, match=r"py of law 'thornton' must be a positive.*\[Pa\]"):

@@ -16,6 +16,7 @@ import pytest
 
 import impactcli
 from impactcli.film import hertz_loading_time, segment_time, solve_stage, solve_stages
+from impactcli.impact import effective_properties
 from impactcli.laws import get_law
 from impactcli.laws.hertz import Hertz, normalised_times
 from impactcli.solution import PlanSolution, StagedSolution, solve_plan
@@ -480,3 +481,45 @@ def test_the_two_du_wang_contact_times_against_film_in_extended_precision():
     summary, staged = plastic.summary["contact_time"], float(plastic.solution.staged.end_time)
     assert _ulps(staged, exact) <= 1.0
     assert _ulps(staged, exact) <= _ulps(summary, exact) <= 2.0
+
+
+#: (law, parameters, V0 [m/s]) of the adhesive laws: a tensile branch of hyperbolic
+#: segments, the neck's law-placed nodes, a capture (a stage that ends at rest in tension)
+#: and the plastic flattening of Thornton & Ning.
+ADHESIVE = [
+    ("jkr", {"work_of_adhesion": 0.2}, 0.1),
+    ("jkr", {"work_of_adhesion": 0.2}, 0.03),
+    ("jkr", {"work_of_adhesion": 0.2, "separation": "pull-off"}, 0.1),
+    ("dmt", {"work_of_adhesion": 0.2}, 0.1),
+    ("thornton-ning", {"work_of_adhesion": 0.2, "py": 1e9}, 2.0),
+]
+
+
+@pytest.mark.parametrize(("law", "params", "v0"), ADHESIVE)
+def test_an_adhesive_impact_is_its_plan_solved_stage_by_stage(law, params, v0):
+    """An adhesive law has no summary on floats (its tensile, hyperbolic and capture stages
+    are not the closed forms of the fast path): its impact is its plan's stages solved, and
+    the one-impact pass (solve_stages) gives exactly the stages of solve_stage chained in
+    time, hyperbolic segments and law-placed nodes included."""
+    silica = impactcli.Sphere(20e-6, 73e9, 0.17, 2200.0)
+    m, radius, modulus = effective_properties(silica, silica)
+    contact = get_law(law).contact(radius, modulus, **params)
+    assert PlanSolution.of_closed_forms(contact, v0, m, 200) is None
+    plan = contact.plan(v0, m)
+    solved = solve_plan(plan, m, 200)
+    t_start = 0.0
+    for stage, got in zip(plan.stages, solved, strict=True):
+        expected = solve_stage(stage.law, stage.delta_start, stage.delta_end,
+                               stage.speed_start, m, 200, t_start,
+                               end_at_rest=stage.end_at_rest)  # fmt: skip
+        for name in ("delta", "velocity", "time", "omega", "phase_x", "phase_y"):
+            assert np.array_equal(np.ravel(getattr(got, name)),
+                                  np.ravel(getattr(expected, name))), name  # fmt: skip
+        t_start = expected.end_time
+    # past the pull-off point (the instability rule) the neck's force falls: hyperbolic
+    tensile = law != "dmt" and params.get("separation", "instability") == "instability"
+    assert any(bool(np.any(s.hyperbolic)) for s in solved) == tensile
+    summary = impactcli.solve_impact(silica, silica, v0, 0.0,
+                                     impactcli.ContactModel(law, params)).summary  # fmt: skip
+    assert summary["contact_time"] == pytest.approx(float(np.ravel(solved[-1].time)[-1]),
+                                                    rel=1e-15)  # fmt: skip

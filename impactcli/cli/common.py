@@ -351,11 +351,32 @@ DAMPED_N_REASON = "e and the contact time within 1e-6 of SciPy integration of th
 
 def damped_segments_help(where: str) -> str:
     """The --n help of a command that runs damped impacts: 'Default 25, 400 ``where``
-    (why; impact fit ...)'. ``where``: 'with --damping', 'on damped rows', ..."""
+    (why; impact fit ...)'. ``where``: 'with --damping', 'on damped rows', ...; and the
+    laws that declare their own default (:func:`law_defaults`)."""
+    own = law_defaults()
     return (
         f"Default 25, {DAMPED_DEFAULT_N} {where} ({DAMPED_N_REASON}; impact fit takes 50 "
-        "with --damping, for speed, as its help says)."
+        "with --damping, for speed, as its help says)" + (f"; {own}" if own else "") + "."
     )
+
+
+def law_defaults() -> str:
+    """'200 with --law jkr, dmt or thornton-ning': the laws of the registry that declare
+    their own default n (:attr:`impactcli.laws.base.LawSpec.default_n`), or ''."""
+    from impactcli.laws.registry import LAWS
+
+    by_n: dict[int, list[str]] = {}
+    for name, spec in LAWS.items():
+        if spec.default_n:
+            by_n.setdefault(spec.default_n, []).append(name)
+    return "; ".join(f"{n} with --law {' or '.join(names)}" for n, names in by_n.items())
+
+
+def law_segments_help() -> str:
+    """The --n help of a command that runs any law: 'Default 25; 200 with --law jkr, dmt or
+    thornton-ning (why)' (:func:`law_defaults`)."""
+    own = law_defaults()
+    return "Default 25" + (f"; {own} ({DAMPED_N_REASON})" if own else "") + "."
 
 
 def segments_option(more: str = ""):  # -> typer.models.OptionInfo

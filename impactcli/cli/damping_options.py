@@ -25,9 +25,17 @@ from impactcli.errors import InputError
 __all__ = ["DampingOptions", "damping_help", "with_damping_options"]
 
 
-class Separation(enum.StrEnum):
-    overlap = "overlap"
-    force = "force"
+def _separations() -> type[enum.StrEnum]:
+    """The values of --separation: a damped contact's rules (overlap, force) and those of
+    the laws of the registry that have a separation rule (the adhesive laws' neck)."""
+    from impactcli.cli.law_options import shared_choices
+
+    rules = {"overlap": "overlap", "force": "force"}
+    rules.update({c.replace("-", "_"): c for c in shared_choices("separation")})
+    return enum.StrEnum("Separation", rules)  # type: ignore[return-value]
+
+
+Separation = _separations()
 
 
 #: How the --e of a target e says that collide2d's and collide3d's --e differs.
@@ -83,8 +91,18 @@ def damping_help() -> dict[str, str]:
         "separation": "When the contact ends. overlap (default): when the indentation returns "
         "to 0; the damping force may then pull, as DEM codes integrate it and as the published "
         "alpha(e) relations assume. force: when the total force returns to 0 (no "
-        "tension); the spheres part at an indentation delta_separation > 0.",
+        "tension); the spheres part at an indentation delta_separation > 0."
+        + _law_rules(),
     }
+
+
+def _law_rules() -> str:
+    """' With law ...: ...' for the laws whose parameter --separation is, or ''."""
+    from impactcli.cli.law_options import shared_help
+
+    words = shared_help("separation")
+    return f" {words}" if words else ""
+
 
 
 @dataclass(frozen=True)
@@ -115,7 +133,15 @@ class DampingOptions:
             ] + (["--separation"] if self.separation is not None else [])
             if extra:
                 verb = "needs" if len(extra) == 1 else "need"
-                raise InputError(f"{', '.join(extra)} {verb} {_either()}")
+                laws = ""
+                if self.separation is not None:  # the rules of a law's neck (jkr, ...)
+                    from impactcli.cli.law_options import shared_choices, shared_help
+
+                    rules = shared_choices("separation")
+                    if rules:
+                        owners = shared_help("separation").split(":", 1)[0].lower()
+                        laws = f" ({owners} it is {' or '.join(rules)})"
+                raise InputError(f"{', '.join(extra)} {verb} {_either()}{laws}")
             return None, None, None, "overlap"
         from impactcli.damping import check_alpha
         from impactcli.units import parse_quantity

@@ -15,7 +15,6 @@ from impactcli.cli.common import (
     OutputFile,
     OutputFormat,
     PlotFile,
-    Segments,
     Split,
     SummaryFile,
     append_help,
@@ -24,6 +23,7 @@ from impactcli.cli.common import (
     console,
     damped_segments_help,
     format_option,
+    law_segments_help,
     no_negative_zero,
     note,
     resolve_format,
@@ -36,7 +36,7 @@ from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
-from impactcli.laws.registry import CURVE_LAW, DAMPING_LAWS, DEFAULT_LAW
+from impactcli.laws.registry import CURVE_LAW, DAMPING_LAWS, DEFAULT_LAW, ELASTIC_LAW
 from impactcli.limits import MAX_COUNT, MAX_POINTS, MAX_SWEEP_SEGMENTS
 from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.quantities import HISTORY_QUANTITIES, summary_quantities
@@ -68,6 +68,8 @@ def _opt(help_text: str, *names: str, **kw: Any):
 
 #: --n of the commands that take --damping: its default depends on it.
 N_DAMPED = Annotated[Optional[int], segments_option(damped_segments_help("with --damping"))]
+#: --n of a command that runs any law: its default is the law's.
+N_LAW = Annotated[Optional[int], segments_option(law_segments_help())]
 POINTS = Annotated[
     int,
     typer.Option(
@@ -167,6 +169,7 @@ def _run(
     damping: DampingOptions | None = None,
 ) -> None:
     from impactcli.impact import (
+        ADHESIVE_SUMMARY_KEYS,
         ELASTIC_SUMMARY_KEYS,
         ENERGY_SUMMARY_KEYS,
         ContactModel,
@@ -201,8 +204,9 @@ def _run(
         result = solve_impact(s1, s2, v1, v2, contact, n, split.value, method.value)
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    if model == "elastic" and law is not None:  # a user's curve: the elastic summary keys
-        kept = ELASTIC_SUMMARY_KEYS + ENERGY_SUMMARY_KEYS
+    if model == "elastic" and law is not None:  # an elastic law: the elastic summary keys
+        _refuse_plastic(result, law)
+        kept = ELASTIC_SUMMARY_KEYS + ENERGY_SUMMARY_KEYS + ADHESIVE_SUMMARY_KEYS
         for key in [k for k in result.summary if k not in kept]:
             del result.summary[key]
     if method is Method.table and result.model != "elastic":
@@ -221,6 +225,8 @@ def _run(
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
     _split_notes(split, s1, s2)
+    if s.get("captured"):
+        note(_captured_note(s, v0))
 
     history = result.history(points=points)
     differences, reference = _check(result, history) if check else (None, None)
@@ -271,6 +277,30 @@ def _run(
             history, title, summary=result.summary, relative_energy=result.relative_energy
         )
         save_plot(fig, energy_plot)
+
+
+def _refuse_plastic(result, law: LawChoice) -> None:
+    """``impact elastic`` with a law whose impact at this V0 is plastic (a tabulated curve
+    with unloading curves): one line, to run it with impact elastoplastic."""
+    m = np.asarray(result.summary["effective_mass"])
+    if np.any(result.contact.normal_contact.yields(result.impact_velocity, m)):
+        raise InputError(
+            f"this impact is plastic under law {law.name} (with these parameters): impact "
+            f"elastic runs elastic impacts; use impact elastoplastic --law {law.name}"
+        )
+
+
+def _captured_note(s: dict, v0: float) -> str:
+    """The bound state of an adhesive impact that sticks, in words."""
+    from impactcli.formatting import format_quantity
+
+    return (
+        f"the spheres stick: V0 = {v0:.6g} m/s is below the sticking velocity "
+        f"{s['sticking_velocity']:.6g} m/s, so e = 0; their relative velocity returns to zero "
+        f"at delta = {format_quantity(s['delta_separation'], 'm')} (in the neck) at "
+        f"t = {format_quantity(s['contact_time'], 's')} (the contact_time given), and they "
+        "stay bound: without damping the contact oscillates between there and delta_max"
+    )
 
 
 def _split_messages(split: Split, s1, s2) -> None:
@@ -325,8 +355,12 @@ def _model_title(result, law: LawChoice | None) -> str:
         return damped
     if law is None:
         return "Elastic (Hertz)"
-    kind = "Elastic" if result.model in ("elastic", CURVE_LAW) else "Elastoplastic"
-    return f"{kind} ({law.title})"
+    from impactcli.laws.registry import LAWS
+
+    elastic = result.model in ("elastic", CURVE_LAW) or (
+        result.model == law.name and LAWS[law.name].kind == "elastic"
+    )
+    return f"{'Elastic' if elastic else 'Elastoplastic'} ({law.title})"
 
 
 def _print(
@@ -382,7 +416,10 @@ def _print(
     units = _summary_units(result)
     for key, value in result.summary.items():
         unit, meaning = units.get(key, ("", ""))
-        summary.add_row(key, *screen_value(value, unit), meaning)
+        if isinstance(value, bool):
+            summary.add_row(key, "yes" if value else "no", unit, meaning)
+        else:
+            summary.add_row(key, *screen_value(value, unit), meaning)
     out.print(summary)
 
 
@@ -465,9 +502,11 @@ def _material_parts(p: SphereOptions, s1, s2) -> list[str]:
 
 
 @with_sphere_options()
+@with_law_options(default=ELASTIC_LAW)
 @with_damping_options()
 def elastic(
     spheres: SphereOptions,
+    law: LawOptions = None,
     damping: DampingOptions = None,  # type: ignore[assignment]
     n: N_DAMPED = None,
     points: POINTS = 201,
@@ -500,12 +539,16 @@ def elastic(
     as an elastic, reversible law; an impact beyond the curve is an error naming the largest
     indentation of the curve and the one needed.
 
+    --law NAME runs another elastic law of 'impact laws' (an adhesive one: the spheres snap
+    together at first touch, may part in tension or stick; the summary then adds captured,
+    sticking_velocity, pull_off_force and energy_adhesion).
+
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
     """
+    own = _elastic_law(law, curve)
     if n is None:
-        n = DAMPED_DEFAULT_N if damping is not None and damping.given else 25
-    own = None if curve is None else LawChoice(CURVE_LAW, {"curve": curve})
+        n = DAMPED_DEFAULT_N if damping is not None and damping.given else _law_n(own)
     _run(
         "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
         fmt=fmt, output=output, plot=plot, summary=summary, law=own, damping=damping,
@@ -516,12 +559,46 @@ def elastic(
 append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 
+def _elastic_law(law: LawOptions | None, curve: str | None) -> LawChoice | None:
+    """The law of ``impact elastic``: None for Hertz as the paper runs it, the user's curve
+    (--curve), or an elastic law named by --law; an elastoplastic law is refused."""
+    from impactcli.laws.registry import LAWS
+
+    names = law.names if law is not None else ()
+    given = dict(law.given) if law is not None else {}
+    if curve is not None:
+        given["curve"] = curve
+    if not names and not given:
+        return None
+    default = (CURVE_LAW,) if curve is not None else (ELASTIC_LAW,)
+    (choice,) = resolve_laws(LawOptions(tuple(names), given), default=default)
+    spec = LAWS[choice.name]
+    if not spec.kind.startswith("elastic"):
+        elastic = ", ".join(n for n, s in LAWS.items() if s.kind.startswith("elastic"))
+        raise InputError(
+            f"--law {choice.name} is {spec.kind}: impact elastic runs elastic laws ({elastic}); "
+            f"use impact elastoplastic --law {choice.name}"
+        )
+    if choice.name == ELASTIC_LAW:
+        return None  # Hertz, as without --law
+    return choice
+
+
+def _law_n(choice: LawChoice | None) -> int:
+    """FILM segments per stage when --n is not given: the law's own default
+    (:attr:`impactcli.laws.base.LawSpec.default_n`), else 25."""
+    from impactcli.laws.registry import LAWS
+
+    spec = None if choice is None else LAWS.get(choice.name)
+    return (spec.default_n if spec is not None else None) or 25
+
+
 @with_sphere_options()
 @with_law_options()
 def elastoplastic(
     spheres: SphereOptions,
     law: LawOptions = None,
-    n: Segments = 25,
+    n: N_LAW = None,
     points: POINTS = 201,
     method: METHOD = Method.film,
     check: CHECK = False,
@@ -549,6 +626,7 @@ def elastoplastic(
     --v2 0.75m/s --material steel
     """
     (choice,) = resolve_laws(law)
+    n = _law_n(choice) if n is None else n
     _run(
         "elastoplastic", spheres, n=n, points=points, method=method, check=check,
         split=split, fmt=fmt, output=output, plot=plot, summary=summary, law=choice,
@@ -641,16 +719,22 @@ def restitution(
         return
     if damping is not None:
         damping.parse()  # refuses --alpha, --e or --separation without --damping
-    n = 25 if n is None else n
     (choice,) = resolve_laws(law)
+    n = _law_n(choice) if n is None else n
     s1, s2 = spheres_from_options(spheres)
     velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
     try:
         data = restitution_sweep(
             s1, s2, velocities, n, split=split.value, law=choice.name, law_params=choice.params
         )
+        sticking = _sticking_velocity(choice, s1, s2)
     except ValueError as exc:
         raise InputError(str(exc)) from None
+    if sticking is not None:
+        note(
+            f"sticking velocity V_s = {sticking:.6g} m/s ({choice.title}): at and below it the "
+            "spheres stick, e = 0, and the contact time given is the time to capture"
+        )
     _sweep_contact_warning(s1, s2, velocities, data["delta_max"])
     _split_messages(split, s1, s2)
     elastic_only = sweep_is_elastic(s1, s2, law=choice.name)
@@ -672,6 +756,7 @@ def restitution(
                         "split": split.value,
                         **law_inputs(choice, weaker_yield_strength(s1, s2)),
                     },
+                    **({} if sticking is None else {"sticking_velocity": sticking}),
                     "sweep": data,
                 },
             )
@@ -700,11 +785,28 @@ def restitution(
                     f"{data['delta_max'][i] * 1e6:.4g}",
                     f"{data['delta_res'][i] * 1e6:.4g}",
                     f"{data['energy_dissipated'][i] * 1e3:.4g}",
-                    "plastic" if data["plastic"][i] else "elastic",
+                    _regime(data, i, sticking),
                 )
             console(stream if output not in (None, "-") else None).print(table)
     if plot:
-        _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear)
+        _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear, sticking=sticking)
+
+
+def _sticking_velocity(law: LawChoice, s1, s2) -> float | None:
+    """The sticking velocity of the pair under an adhesive law [m/s], else None."""
+    from impactcli.laws.registry import LAWS
+    from impactcli.sweep import sweep_sticking_velocity
+
+    if not LAWS[law.name].adhesive:
+        return None
+    return sweep_sticking_velocity(s1, s2, law=law.name, law_params=law.params)
+
+
+def _regime(data: dict, i: int, sticking: float | None) -> str:
+    """'captured' (an adhesive law's e = 0), 'plastic' or 'elastic' for row i of a sweep."""
+    if sticking is not None and data["restitution"][i] == 0.0:
+        return "captured"
+    return "plastic" if data["plastic"][i] else "elastic"
 
 
 def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
@@ -833,8 +935,11 @@ def _plot_sweep(
     *,
     n: int,
     linear: bool,
+    sticking: float | None = None,
 ) -> None:
-    """e, contact time and permanent indentation against V0, written to ``path``."""
+    """e, contact time and permanent indentation against V0, written to ``path`` (an
+    adhesive law's sticking velocity ``sticking`` [m/s] marked, its sticking branch
+    drawn)."""
     from impactcli.formatting import format_quantity
     from impactcli.plots import restitution_figure
     from impactcli.sweep import sweep_first_yield_velocity, sweep_is_elastic, sweep_yield_velocity
@@ -881,6 +986,7 @@ def _plot_sweep(
         ),
         first_yield_velocity=first_yield,
         log_velocity=not linear,
+        sticking_velocity=sticking,
     )
     save_plot(fig, path)
 

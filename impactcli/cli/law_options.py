@@ -23,14 +23,26 @@ import typer
 
 from impactcli.errors import InputError
 
-__all__ = ["LawChoice", "LawOptions", "law_inputs", "resolve_laws", "with_law_options"]
+__all__ = [
+    "LawChoice",
+    "LawOptions",
+    "law_inputs",
+    "resolve_laws",
+    "shared_choices",
+    "shared_help",
+    "with_law_options",
+]
 
 #: The law options' names in the command's signature: parameter ``name`` -> ``law_<name>``
 #: (so that e.g. ``curve`` cannot clash with a command's own option).
 _PREFIX = "law_"
 
-#: Parameter kinds of the library read as quantities (:func:`impactcli.units.parse_quantity`).
-_QUANTITY_KINDS = ("pressure", "stiffness", "dimensionless")
+def _quantity_kind(kind: str) -> bool:
+    """A parameter of this kind is read as a quantity (:func:`impactcli.units.parse_quantity`:
+    pressure, stiffness, surface energy, ...), not as a file or a choice."""
+    from impactcli.units import KINDS
+
+    return kind in KINDS
 
 
 @dataclass(frozen=True)
@@ -62,7 +74,7 @@ class LawChoice:
 
 #: A parameter's kind -> the word ``--help`` shows for its value (else the kind itself:
 #: ``--py PRESSURE``, ``--k-load STIFFNESS``; a choice lists its values, ``[linear|pchip]``).
-_METAVARS = {"file": "FILE", "dimensionless": "NUMBER"}
+_METAVARS = {"file": "FILE", "dimensionless": "NUMBER", "surface energy": "SURFACE-ENERGY"}
 
 
 def _metavar(param) -> str:
@@ -97,7 +109,31 @@ def _parameter_help(param, owners: tuple[str, ...]) -> str:
     return f"Law {', '.join(owners)}: {param.description}{unit}.{default}{required}"
 
 
-def _parameters(multiple: bool, default: str | None = None) -> list[inspect.Parameter]:
+def shared_help(name: str) -> str:
+    """The words a command's own option of the same name as a law parameter (``--separation``
+    of the damping options) adds for that parameter: 'With law jkr or thornton-ning:
+    instability (default) or pull-off: when the neck breaks ...'."""
+    from impactcli.laws.registry import parameter_laws
+
+    declared = parameter_laws().get(name)
+    if declared is None:
+        return ""
+    param, owners = declared
+    return f"With law {' or '.join(owners)}: {param.description} ({param.default} if not given)."
+
+
+def shared_choices(name: str) -> tuple[str, ...]:
+    """The values of the law parameter ``name`` when it is a choice (``separation``: the
+    adhesive laws' rules), for a command's own option of that name to accept."""
+    from impactcli.laws.registry import parameter_laws
+
+    declared = parameter_laws().get(name)
+    return declared[0].choices if declared is not None else ()
+
+
+def _parameters(
+    multiple: bool, default: str | None = None, taken: frozenset[str] = frozenset()
+) -> list[inspect.Parameter]:
     from impactcli.laws.registry import parameter_laws
 
     law_type = Optional[list[str]] if multiple else Optional[str]
@@ -113,6 +149,8 @@ def _parameters(multiple: bool, default: str | None = None) -> list[inspect.Para
         )
     ]
     for name, (param, owners) in parameter_laws().items():
+        if name in taken:  # the command's own option of that name takes it (shared_help)
+            continue
         metavar = _metavar(param)
         out.append(
             inspect.Parameter(
@@ -139,10 +177,15 @@ def with_law_options(
     without ``--law`` when it is not the library's default law."""
 
     def decorate(command: Callable) -> Callable:
+        from impactcli.laws.registry import parameter_laws
+
         signature = inspect.signature(command, eval_str=True)
         params = list(signature.parameters.values())
         where = [p.name for p in params].index("law")
-        added = _parameters(multiple, default)
+        # a law parameter named as one of the command's own options (--separation of the
+        # damping options) is given through that option: its law values go to the law
+        taken = frozenset(p.name for p in params) & frozenset(parameter_laws())
+        added = _parameters(multiple, default, taken)
         params[where : where + 1] = added
         names = [p.name for p in added]
 
@@ -152,10 +195,13 @@ def with_law_options(
             given_names = raw.pop(f"{_PREFIX}name")
             if isinstance(given_names, str):
                 given_names = [given_names]
-            options = LawOptions(
-                tuple(given_names or ()),
-                {k[len(_PREFIX) :]: v for k, v in raw.items() if v is not None},
-            )
+            given = {k[len(_PREFIX) :]: v for k, v in raw.items() if v is not None}
+            for name in taken:
+                value = kwargs.get(name)
+                if value is not None and str(value) in shared_choices(name):
+                    given[name] = str(value)
+                    kwargs[name] = None
+            options = LawOptions(tuple(given_names or ()), given)
             return command(law=options, **kwargs)
 
         wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
@@ -201,7 +247,7 @@ def resolve_laws(
                 f"{param.option} is a parameter of law {law_list}, not of {', '.join(chosen)}: "
                 f"add --law {owners[0]} (see 'impact laws')"
             )
-        if param.kind in _QUANTITY_KINDS:
+        if _quantity_kind(param.kind):
             values[key] = parse_quantity(text, param.kind, param.option)
         else:
             values[key] = text

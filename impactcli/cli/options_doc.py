@@ -50,6 +50,9 @@ BY_NATURE = {
     "--d2": "as --d1 (timestep: sphere 2 copies sphere 1 without any sphere-2 option)",
     "--model": "elastic (Hertz, e = 1) or elastoplastic (Du & Wang); batch fills empty cells "
     "of its model column with it",
+    "--separation": "the rule of a damped contact (overlap, the default, or force) or of an "
+    "adhesive law's neck (instability, its default, or pull-off); elastoplastic takes no "
+    "damping, so only the law's",
 }
 
 
@@ -121,13 +124,18 @@ MEANINGS: dict[str, dict[str, tuple[str, ...]]] = {
         "export",
     )},
     "--law": {"the contact law (fit: to fit; yield-limit: whose yield point is asked)": (
-        "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws", "fit",
-        "yield-limit", "export",
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "fit", "yield-limit", "export",
     )},
     "--p0-factor": {"p0 / sigma_y of the default elastoplastic law": (
-        "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
         "yield-limit", "export",
     )},
+    "--separation": {
+        "when a damped contact ends, or an adhesive law's neck breaks (the values name which)":
+        ("elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
+         "export"),
+    },
     "--count": {"the number of impact velocities of a sweep": ("restitution", "compare-laws")},
     "--p1": {"centre of sphere 1 at contact": ("collide2d", "collide3d")},
     "--p2": {"centre of sphere 2 at contact": ("collide2d", "collide3d")},

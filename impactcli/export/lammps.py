@@ -23,6 +23,10 @@ running it, tests/test_export_lammps_run.py):
   alpha = sqrt(5) (-ln e) / sqrt(ln^2 e + pi^2) in every release.
 - Viscoelastic damping (Brilliantov et al. 1996), c = 2 E* A a: ``damping viscoelastic``
   with eta_n0 = 2 E* A / m_eff.
+- The adhesive laws of their registry entries (:attr:`~impactcli.laws.base.LawSpec.lammps`):
+  ``dmt E eta nu gamma`` and ``jkr E eta nu gamma`` with the cohesion gamma = W/2; LAMMPS's
+  JKR ends the contact at the load-controlled pull-off point, so ``jkr`` is exact with
+  ``separation pull-off`` (the ``instability`` rule is exported as that, said so).
 - The separation rule: ``overlap`` is LAMMPS's default; ``force`` is ``limit_damping``.
 - Coulomb friction with a Mindlin spring of impactcli (:mod:`impactcli.laws.tangential`),
   each the LAMMPS variant of its name: ``mindlin`` (incremental, scaled down while the
@@ -31,9 +35,10 @@ running it, tests/test_export_lammps_run.py):
   ``mindlin_rescale``. LAMMPS has no Mindlin-Deresiewicz partial slip.
 
 A normal law LAMMPS does not have (Du & Wang, Thornton, Walton & Braun, a tabulated curve,
-Hunt & Crossley damping) is said so, and the nearest LAMMPS model is fitted to the law's
-e(V0) over a velocity range (:class:`NearestFit`): Hertz with Tsuji damping (a constant e)
-or with viscoelastic damping (e falling with V0), whichever has the smaller worst error.
+Thornton & Ning, Hunt & Crossley damping) is said so, and the nearest LAMMPS model is fitted
+to the law's e(V0) over a velocity range (:class:`NearestFit`): Hertz with Tsuji damping (a
+constant e) or with viscoelastic damping (e falling with V0), whichever has the smaller worst
+error.
 """
 
 from __future__ import annotations
@@ -540,6 +545,15 @@ def _normal_model(sphere1, sphere2, source, restitution, v_range, version, notes
     if source.damping is None and law == ELASTIC_LAW and not source.law_params:
         comments.append(_NO_DAMPING)
         return ContactModel(separation=separation), _undamped(), None
+    counterpart = get_law(law).lammps
+    if source.damping is None and counterpart is not None:  # LAMMPS has the law (jkr, dmt)
+        params = get_law(law).resolve(source.law_params)
+        difference = counterpart.difference(params)
+        if difference:
+            notes.append(difference)
+        comments.append(_NO_DAMPING)
+        exported = ContactModel(law, counterpart.exported(params), separation=separation)
+        return exported, _undamped(), None
     if source.damping is not None:
         if source.alpha is None:
             raise ValueError(
@@ -769,15 +783,30 @@ def _lines(sphere1, sphere2, exported, source, restitution, damping, limit, mu, 
            version, pair, notes, comments, x_t: float = 0.0) -> list[str]:  # fmt: skip
     """The comment lines and the LAMMPS lines."""
     from impactcli import __version__
+    from impactcli.laws.registry import get_law
 
     m, radius, e_star, g_star = pair
     wall = math.isinf(sphere2.diameter)
+    counterpart = get_law(exported.law).lammps if exported.damping is None else None
+    normal, extra = LAMMPS_NORMAL_MODEL, ""
+    described = (
+        f"# {LAMMPS_NORMAL_MODEL} E eta nu: F = (4/3) E* a delta, a = sqrt(R delta); for two "
+        "atom types LAMMPS mixes E, nu as Hertz does, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2, and "
+        "(tangential NULL) k_t = 8 G* a from 1/G* = 2(2-nu1)(1+nu1)/E1 + 2(2-nu2)(1+nu2)/E2"
+    )
+    if counterpart is not None:
+        resolved = get_law(exported.law).resolve(exported.law_params)
+        normal = counterpart.name
+        extra = " ".join(_num(c) for c in counterpart.coefficients(resolved)) + " "
+        described = counterpart.comment + "; E, nu mixed as for Hertz"
     asked = "coefficient of restitution e = " + f"{restitution:g}" if restitution is not None \
         else _title(source)  # fmt: skip
     rule = {"overlap": "overlap (LAMMPS's default: contact ends at delta = 0, the damping force "
                        "may pull)",
             "force": "force (limit_damping: no tension, contact ends when the total force "
                      "returns to 0)"}[exported.separation]  # fmt: skip
+    if counterpart is not None:  # an adhesive law: its own end of contact
+        rule = f"of the law (LAMMPS's {normal}: see below)"
     friction = "frictionless (mu = 0)" if mu == 0.0 else f"Coulomb friction mu = {mu:g}"
     out = [
         f"# impactcli {__version__} -> LAMMPS {version}, units si (docs/export.md)",
@@ -786,9 +815,7 @@ def _lines(sphere1, sphere2, exported, source, restitution, damping, limit, mu, 
         *(f"#   {note}" for note in notes),
         f"# E*, G*, R, m of this pair: {e_star:.6g} Pa, {g_star:.6g} Pa, {radius:.6g} m, "
         f"{m:.6g} kg",
-        f"# {LAMMPS_NORMAL_MODEL} E eta nu: F = (4/3) E* a delta, a = sqrt(R delta); for two "
-        "atom types LAMMPS mixes E, nu as Hertz does, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2, and "
-        "(tangential NULL) k_t = 8 G* a from 1/G* = 2(2-nu1)(1+nu1)/E1 + 2(2-nu2)(1+nu2)/E2",
+        described,
         *comments,
     ]
     if limit:
@@ -813,7 +840,7 @@ def _lines(sphere1, sphere2, exported, source, restitution, damping, limit, mu, 
 
     def coeff(e: float, nu: float, e_line: float, m_line: float) -> str:
         eta = damping.coefficient(e_line, m_line)
-        return f"{LAMMPS_NORMAL_MODEL} {_num(e)} {_num(eta)} {_num(nu)} "
+        return f"{normal} {_num(e)} {_num(eta)} {_num(nu)} {extra}"
 
     e1, nu1, m1 = sphere1.youngs_modulus, sphere1.poisson_ratio, sphere1.total_mass
     e2, nu2, m2 = sphere2.youngs_modulus, sphere2.poisson_ratio, sphere2.total_mass
@@ -911,8 +938,8 @@ def _expected(inp: LammpsInput, v1, v2, w1, w2) -> _Expected:
         "contact_time": float(summary["contact_time"]),
         "delta_max": float(summary["delta_max"]),
     }
-    if model.separation == "force" and model.damping is not None:
-        values["delta_separation"] = float(summary["delta_separation"])
+    if model.separation == "force" and model.damping is not None or "pull_off_force" in summary:
+        values["delta_separation"] = float(summary["delta_separation"])  # adhesive: < 0
     from impactcli.laws.tangential import get_tangential
 
     tangential = inp.tangential if inp.mu > 0.0 else "rigid"
@@ -997,6 +1024,9 @@ def _script(inp: LammpsInput, v1, v2, w1, w2, dt, summary) -> str:
     z1 = r1 + r2 if not wall else r1
     separation = inp.model.separation
     limit = separation == "force" and inp.model.damping is not None
+    # where the contact ends: delta = 0, or an adhesive law's neck at delta < 0
+    end = 0.0 if limit else min(expected.values.get("delta_separation", 0.0), 0.0)
+    ends = _num(end) if end < 0.0 else "0"
     lines = [
         f"# One collision in LAMMPS, written by impactcli {__version__} (impact export lammps)",
         "# sphere 2 " + ("(a flat wall, the plane z = 0) " if wall else "")
@@ -1061,7 +1091,7 @@ def _script(inp: LammpsInput, v1, v2, w1, w2, dt, summary) -> str:
         f"variable        fn equal {force}",
         'variable        approaching equal "v_un > 0"',
         'variable        pushing equal "v_fn > 0"',
-        'variable        parted equal "v_delta < 0 && v_un < 0"',
+        f'variable        parted equal "v_delta < {ends} && v_un < 0"',
         "fix             hdelta all vector 1 v_delta",
         "fix             hfn all vector 1 v_fn",
         "fix             happ all vector 1 v_approaching",
@@ -1100,9 +1130,11 @@ def _script(inp: LammpsInput, v1, v2, w1, w2, dt, summary) -> str:
         ]
     else:
         lines += [
-            "# contact time: delta returns to 0, from the free flight after it (linear in t)",
-            "variable        tc equal time-v_delta/v_un",
-        ]
+            f"# contact time: delta returns to {ends}, from the free flight after it (linear "
+            "in t)",
+            "variable        tc equal time-v_delta/v_un" if end == 0.0 else
+            f"variable        tc equal time-(v_delta-({ends}))/v_un",
+        ]  # fmt: skip
     rows = [("restitution", "v_e", "-"), ("contact_time", "v_tc", "s"),
             ("delta_max", "v_dmax", "m")]  # fmt: skip
     if limit:

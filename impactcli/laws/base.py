@@ -34,6 +34,7 @@ __all__ = [
     "FitStart",
     "Fitting",
     "ImpactPlan",
+    "LammpsModel",
     "LawSpec",
     "NormalContact",
     "Parameter",
@@ -145,6 +146,13 @@ class ImpactPlan:
     force_max : maximum contact force, [N]
     delta_res : residual (permanent) indentation at separation, [m]
     restitution : coefficient of restitution e = |delta'| at separation / V0, [-]
+    delta_separation : the indentation where the contact ends, [m], when it is not
+        ``delta_res`` (an adhesive contact parts in tension, at delta < 0, or is captured:
+        its relative velocity returns to zero at the stage's end); None: ``delta_res``
+    turning : index into :attr:`stages` of the stage that ends at the maximum indentation
+        (default -2: the one before the last)
+    extras : further closed-form quantities of the impacts by name (an adhesive law's
+        ``captured``, ``pull_off_force``, ``energy_adhesion``), arrays as ``delta_max``
     """
 
     stages: tuple[StagePlan, ...]
@@ -152,6 +160,15 @@ class ImpactPlan:
     force_max: NDArray
     delta_res: NDArray
     restitution: NDArray
+    delta_separation: NDArray | None = None
+    turning: int = -2
+    extras: Mapping[str, NDArray] = field(default_factory=dict)
+
+    @property
+    def delta_end(self) -> NDArray:
+        """The indentation at which the contact ends, [m]: :attr:`delta_separation`, or
+        :attr:`delta_res` when the plan does not give one."""
+        return self.delta_res if self.delta_separation is None else self.delta_separation
 
     def is_normalised(self) -> bool:
         """True for the elastic impact of the normalised Tables A1/A2 (one impact, or every
@@ -295,6 +312,8 @@ class Parameter:
     valid: str = "> 0"
     #: the accepted values of a parameter of kind ``choice`` (its option lists them)
     choices: tuple[str, ...] = ()
+    #: 0 is an accepted value (>= 0 rather than > 0: a work of adhesion of 0 is no adhesion)
+    zero_allowed: bool = False
 
     @property
     def option(self) -> str:
@@ -384,6 +403,30 @@ class YieldOnset:
 
 
 @dataclass(frozen=True)
+class LammpsModel:
+    """A law's counterpart among LAMMPS's ``pair_style granular`` normal models
+    (:mod:`impactcli.export.lammps`, docs/export.md).
+
+    Attributes
+    ----------
+    name : LAMMPS's keyword of the model (``jkr``, ``dmt``)
+    coefficients : the law's resolved parameters -> the model's coefficients after
+        ``E eta nu`` (the cohesion gamma = W/2 [J/m^2] of ``jkr`` and ``dmt``)
+    exported : the law's resolved parameters -> the parameters of the same law that the
+        LAMMPS model computes (JKR with LAMMPS's own separation rule)
+    difference : the law's resolved parameters -> why LAMMPS's model is not the contact
+        asked for, or "" when it is
+    comment : the comment line that states the model's force and coefficients
+    """
+
+    name: str
+    coefficients: Callable[[Mapping[str, Any]], tuple[float, ...]] = field(repr=False)
+    exported: Callable[[Mapping[str, Any]], dict[str, Any]] = field(repr=False)
+    difference: Callable[[Mapping[str, Any]], str] = field(repr=False)
+    comment: str = ""
+
+
+@dataclass(frozen=True)
 class LawSpec:
     """A law of the library: metadata and the factory of its contact model.
 
@@ -411,6 +454,16 @@ class LawSpec:
     #: the closed-form duration of an impact: ``contact_time(m, R, E*, V0)`` -> t_c [s]
     #: (an elastic law's; None: the law has none)
     contact_time: Callable[..., Array] | None = field(default=None, repr=False)
+    #: FILM segments per stage when none is given (None: the library's default, 25): a law
+    #: whose stages need more for e and t_c within 1e-6 of SciPy integration says so
+    default_n: int | None = None
+    #: the law's contact attracts: it snaps in at first touch and may hold the spheres
+    #: (its contact model gives ``sticking_velocity(m)``, ``pull_off_force`` and its
+    #: plans the ``extras`` captured, pull_off_force and energy_adhesion)
+    adhesive: bool = False
+    #: the law's LAMMPS normal model (None: LAMMPS has none; ``impact export lammps`` then
+    #: fits the nearest model LAMMPS has)
+    lammps: LammpsModel | None = field(default=None, repr=False)
 
     def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """The parameters with defaults filled in (also for NaN entries of per-row arrays);
@@ -439,9 +492,11 @@ class LawSpec:
                 elif p.required and np.any(missing):
                     value = None
                 rest = arr[~np.isnan(arr)]
-                if not np.all(np.isfinite(rest) & (rest > 0)):
+                floor = (rest >= 0) if p.zero_allowed else (rest > 0)
+                if not np.all(np.isfinite(rest) & floor):
+                    what = "finite number >= 0" if p.zero_allowed else "positive, finite number"
                     raise ValueError(
-                        f"{p.name} of law {self.name!r} must be a positive, finite number "
+                        f"{p.name} of law {self.name!r} must be a {what} "
                         f"[{p.unit}] (option {p.option}), got {value}"
                     )
                 if value is not None:

@@ -17,11 +17,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws import (
+    dmt,
     du_wang,
     hertz,
     hunt_crossley,
+    jkr,
     tabulated,
     thornton,
+    thornton_ning,
     tsuji,
     viscoelastic,
     walton_braun,
@@ -73,6 +76,9 @@ MODELS: dict[str, LawSpec | DampingSpec] = {
         thornton.SPEC,
         walton_braun.SPEC,
         tabulated.SPEC,
+        jkr.SPEC,
+        dmt.SPEC,
+        thornton_ning.SPEC,
         tsuji.SPEC,
         hunt_crossley.SPEC,
         viscoelastic.SPEC,
@@ -164,7 +170,9 @@ def plan_groups(
     take: Callable[[NDArray[np.intp]], NormalContact] | None = None,
 ) -> Iterator[tuple[NDArray[np.intp], ImpactPlan]]:
     """Plans of many impacts of one law, as (row indices, plan) for the elastic and the
-    plastic rows (each a batch FILM solves at once, :func:`impactcli.impact.solve_plan`).
+    plastic rows (each a batch FILM solves at once, :func:`impactcli.impact.solve_plan`),
+    or for each of the contact's ``plan_keys`` where it has them (impacts whose plans
+    have the same stages: an adhesive contact's that separate and those captured).
 
     Parameters
     ----------
@@ -175,8 +183,14 @@ def plan_groups(
     """
     v0 = np.atleast_1d(np.asarray(impact_velocity, dtype=float))
     m = np.broadcast_to(np.asarray(mass, dtype=float), v0.shape)
-    plastic = np.broadcast_to(contact.yields(v0, m), v0.shape)
-    for mask in (~plastic, plastic):
+    keys = getattr(contact, "plan_keys", None)
+    if keys is not None:
+        key = np.broadcast_to(keys(v0, m), v0.shape)
+        masks = [key == k for k in np.unique(key)]
+    else:
+        plastic = np.broadcast_to(contact.yields(v0, m), v0.shape)
+        masks = [~plastic, plastic]
+    for mask in masks:
         rows = np.flatnonzero(mask)
         if rows.size:
             model = contact if take is None else take(rows)

@@ -1,0 +1,842 @@
+"""Johnson, Kendall & Roberts (1971): adhesive elastic contact of two spheres.
+
+The JKR contact of two spheres of effective radius R and modulus E* whose surfaces adhere
+with the work of adhesion W [J/m^2] (W = gamma1 + gamma2 - gamma12, 2 gamma for like
+surfaces) is, in terms of its contact radius a,
+
+    delta(a) = a^2 / R - sqrt(2 pi W a / E*),   F(a) = 4 E* a^3 / (3 R) - sqrt(8 pi W E* a^3),
+
+F > 0 pushing. With a0^3 = 9 pi W R^2 / (2 E*) (the contact radius at zero force),
+s = sqrt(a / a0), the unit of length a0^2 / R and the pull-off force F_c = (3/2) pi W R,
+both are polynomials: delta = (a0^2/R)(s^4 - (2/3) s), F = 4 F_c (s^6 - s^3), and so is
+the work, W(s) = F_c (a0^2/R)(1.6 s^10 - (8/3) s^7 + (2/3) s^4) (docs/laws.md).
+
+An impact (docs/laws.md, ``jkr``):
+
+- **snap-in** at first touch, delta = 0: the contact jumps to s^3 = 2/3 and the force to
+  -(8/9) F_c, at no displacement (no work);
+- **loading** 0 -> delta_m along the branch, the attraction first speeding the approach;
+- **unloading** from rest along the same branch: to delta = 0 (speed V0 again), then the
+  **tensile branch** delta < 0 (the neck) to the load-controlled pull-off point
+  s^3 = 1/2 (F = -F_c, delta_c = -(3 pi^2 W^2 R / (64 E*^2))^(1/3));
+- **separation** by the rule ``separation``: ``pull-off`` there (LAMMPS's ``jkr``), or
+  ``instability`` (default; Thornton & Ning 1998) further along the neck, at the
+  fixed-grip instability s^3 = 1/6 where d delta / d a = 0 (F = -(5/9) F_c,
+  delta_f = 3^(2/3) delta_c = -(3/4)(pi^2 W^2 R / E*^2)^(1/3)); past the pull-off point
+  the force falls as the neck stretches (a stage of negative stiffness, FILM's hyperbolic
+  segments, its nodes uniform in s: graded toward the singular end where dF/d delta is
+  infinite);
+- **capture**: when the kinetic energy (1/2) m V0^2 does not pay for the neck, the
+  relative velocity returns to zero on the tensile branch and the spheres stay bound
+  (e = 0, ``captured``; the stage ends at rest). The largest V0 that sticks, the sticking
+  velocity, is V_s = sqrt(2 E_neck / m), E_neck the work of the neck from delta = 0 to the
+  separation point; above it e = sqrt(1 - (V_s / V0)^2).
+
+Everything here is SI and broadcasts over impacts (parameters of shape (N, 1) against
+node arrays of shape (N, n + 1)). A work of adhesion of 0 is Hertz: those impacts are
+planned by :class:`~impactcli.laws.hertz.HertzContact` itself.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.laws.base import (
+    Fitting,
+    ImpactPlan,
+    LammpsModel,
+    LawSpec,
+    Parameter,
+    Reference,
+    StagePlan,
+    col,
+)
+from impactcli.laws.hertz import HertzContact, hertz_stiffness
+
+__all__ = [
+    "GRIP_S",
+    "JKR_SEPARATIONS",
+    "LAMMPS",
+    "LAMMPS_NORMAL_MODEL",
+    "PULL_OFF_S",
+    "SEPARATION_PARAMETER",
+    "SNAP_S",
+    "SPEC",
+    "WORK_OF_ADHESION",
+    "JKRBranch",
+    "JKRContact",
+    "JKRNeck",
+    "check_adhesion",
+    "jkr_contact_radius_at_rest",
+    "jkr_neck_energy",
+    "jkr_overlap",
+    "jkr_force",
+    "jkr_pull_off_force",
+    "jkr_restitution",
+    "jkr_sticking_velocity",
+    "unloading_plan",
+]
+
+Array = NDArray[np.float64]
+
+#: The rules by which the neck breaks (``--separation``): the fixed-grip instability
+#: (Thornton & Ning 1998), or the load-controlled pull-off point (LAMMPS's ``jkr``).
+JKR_SEPARATIONS: tuple[str, ...] = ("instability", "pull-off")
+
+#: LAMMPS's normal model of this law (``pair_style granular``; docs/export.md).
+LAMMPS_NORMAL_MODEL = "jkr"
+
+#: s = sqrt(a / a0) at snap-in (delta = 0: s^3 = 2/3), at the load-controlled pull-off point
+#: (F = -F_c, dF/da = 0: s^3 = 1/2) and at the fixed-grip instability (d delta/da = 0:
+#: s^3 = 1/6), [-].
+SNAP_S = (2.0 / 3.0) ** (1.0 / 3.0)
+PULL_OFF_S = 0.5 ** (1.0 / 3.0)
+GRIP_S = (1.0 / 6.0) ** (1.0 / 3.0)
+
+#: The work of adhesion, a parameter of every adhesive law.
+WORK_OF_ADHESION = Parameter(
+    "work_of_adhesion",
+    "J/m^2",
+    "surface energy",
+    None,
+    "work of adhesion W = gamma1 + gamma2 - gamma12 (2 gamma for like surfaces; LAMMPS's "
+    "cohesion is gamma = W/2); 0 is no adhesion",
+    required=True,
+    valid=">= 0, with the JKR contact radius at rest below R: W < 2 E* R / (9 pi)",
+    zero_allowed=True,
+)
+#: The separation rule of JKR's neck, a parameter of the laws that have one.
+SEPARATION_PARAMETER = Parameter(
+    "separation",
+    "-",
+    "choice",
+    "instability",
+    "when the neck breaks: instability (the fixed-grip instability on the unloading path, "
+    "Thornton & Ning 1998) or pull-off (the load-controlled pull-off point F = -(3/2) pi W R, "
+    "as LAMMPS's jkr)",
+    valid="instability or pull-off",
+    choices=JKR_SEPARATIONS,
+)
+
+
+def _overlap(s: ArrayLike) -> Array:
+    """delta / (a0^2 / R) = s^4 - (2/3) s, [-]."""
+    s = np.asarray(s, dtype=float)
+    return s**4 - (2.0 / 3.0) * s
+
+
+def _force(s: ArrayLike) -> Array:
+    """F / F_c = 4 (s^6 - s^3), [-]."""
+    cube = np.asarray(s, dtype=float) ** 3
+    return 4.0 * cube * (cube - 1.0)
+
+
+def _potential(s: ArrayLike) -> Array:
+    """The work of F along the branch, an antiderivative in units F_c a0^2 / R:
+    1.6 s^10 - (8/3) s^7 + (2/3) s^4, [-]."""
+    s = np.asarray(s, dtype=float)
+    cube = s**3
+    return s**4 * (1.6 * cube * cube - (8.0 / 3.0) * cube + 2.0 / 3.0)
+
+
+#: The work of the neck in units F_c a0^2 / R, from delta = 0 to each separation point:
+#: 0.12712805 (pull-off) and 0.25741351 (instability), [-].
+_NECK = {
+    "pull-off": float(_potential(PULL_OFF_S) - _potential(SNAP_S)),
+    "instability": float(_potential(GRIP_S) - _potential(SNAP_S)),
+}
+#: s at each rule's separation point.
+_END_S = {"pull-off": PULL_OFF_S, "instability": GRIP_S}
+
+
+def jkr_contact_radius_at_rest(
+    radius: ArrayLike, modulus: ArrayLike, work_of_adhesion: ArrayLike
+) -> Array:
+    """a0 = (9 pi W R^2 / (2 E*))^(1/3): JKR's contact radius at zero force, [m].
+
+    Parameters
+    ----------
+    radius, modulus : effective R [m] and E* [Pa]
+    work_of_adhesion : W, [J/m^2]
+    """
+    r, e, w = (np.asarray(x, dtype=float) for x in (radius, modulus, work_of_adhesion))
+    return np.cbrt(4.5 * np.pi * w * r * r / e)
+
+
+def jkr_pull_off_force(radius: ArrayLike, work_of_adhesion: ArrayLike) -> Array:
+    """F_c = (3/2) pi W R: the largest tension of a JKR contact (load control), [N].
+
+    >>> round(float(jkr_pull_off_force(5e-6, 0.2)), 12)  # 20 um spheres, W = 0.2 J/m^2
+    4.712389e-06
+    """
+    return 1.5 * np.pi * np.asarray(work_of_adhesion, dtype=float) * np.asarray(radius, float)
+
+
+def jkr_overlap(
+    contact_radius: ArrayLike, radius: ArrayLike, modulus: ArrayLike, work_of_adhesion: ArrayLike
+) -> Array:
+    """delta(a) = a^2 / R - sqrt(2 pi W a / E*): JKR's overlap at contact radius a, [m]."""
+    a, r, e, w = (
+        np.asarray(x, dtype=float) for x in (contact_radius, radius, modulus, work_of_adhesion)
+    )
+    return a * a / r - np.sqrt(2.0 * np.pi * w * a / e)
+
+
+def jkr_force(
+    contact_radius: ArrayLike, radius: ArrayLike, modulus: ArrayLike, work_of_adhesion: ArrayLike
+) -> Array:
+    """F(a) = 4 E* a^3 / (3 R) - sqrt(8 pi W E* a^3): JKR's force at contact radius a, [N]."""
+    a, r, e, w = (
+        np.asarray(x, dtype=float) for x in (contact_radius, radius, modulus, work_of_adhesion)
+    )
+    return 4.0 * e * a**3 / (3.0 * r) - np.sqrt(8.0 * np.pi * w * e * a**3)
+
+
+def jkr_neck_energy(
+    radius: ArrayLike,
+    modulus: ArrayLike,
+    work_of_adhesion: ArrayLike,
+    separation: str = "instability",
+) -> Array:
+    """The work the neck takes from delta = 0 to the separation point of ``separation``,
+    [J]: c F_c a0^2 / R, c = 0.25741351 (``instability``; 7.0922 (W^5 R^4 / E*^2)^(1/3),
+    Thornton & Ning 1998) or 0.12712805 (``pull-off``; 3.5026 (W^5 R^4 / E*^2)^(1/3)).
+
+    >>> round(float(jkr_neck_energy(1.0, 1.0, 1.0)), 4), round(float(
+    ...     jkr_neck_energy(1.0, 1.0, 1.0, "pull-off")), 4)
+    (7.0922, 3.5026)
+    """
+    _check_separation(separation)
+    r = np.asarray(radius, dtype=float)
+    a0 = jkr_contact_radius_at_rest(r, modulus, work_of_adhesion)
+    return _NECK[separation] * jkr_pull_off_force(r, work_of_adhesion) * a0 * a0 / r
+
+
+def jkr_sticking_velocity(
+    mass: ArrayLike,
+    radius: ArrayLike,
+    modulus: ArrayLike,
+    work_of_adhesion: ArrayLike,
+    separation: str = "instability",
+) -> Array:
+    """V_s = sqrt(2 E_neck / m): the largest impact velocity at which JKR spheres stick, [m/s]
+    (:func:`jkr_neck_energy`). With ``instability`` it is Thornton & Ning's (1998)
+    (1/2) m V_s^2 = 7.09 (W^5 R^4 / E*^2)^(1/3); ``pull-off`` gives 0.703 of it.
+
+    Parameters
+    ----------
+    mass, radius, modulus : effective m [kg], R [m], E* [Pa]
+    work_of_adhesion : W, [J/m^2]
+    separation : ``instability`` or ``pull-off``
+    """
+    energy = jkr_neck_energy(radius, modulus, work_of_adhesion, separation)
+    return np.sqrt(2.0 * energy / np.asarray(mass, dtype=float))
+
+
+def jkr_restitution(impact_velocity: ArrayLike, sticking_velocity: ArrayLike) -> Array:
+    """e = sqrt(1 - (V_s / V0)^2) above the sticking velocity, 0 at and below it, [-]
+    (Thornton & Ning 1998: the elastic impact loses the work of the neck alone).
+
+    >>> [round(float(e), 6) for e in jkr_restitution([0.5, 1.0, 2.0], 1.0)]
+    [0.0, 0.0, 0.866025]
+    """
+    v0 = np.asarray(impact_velocity, dtype=float)
+    ratio = np.asarray(sticking_velocity, dtype=float) / v0
+    return np.sqrt(np.maximum(1.0 - ratio * ratio, 0.0))
+
+
+def _check_separation(separation: Any) -> None:
+    for value in [separation] if isinstance(separation, str) else list(np.ravel(separation)):
+        if value not in JKR_SEPARATIONS:
+            raise ValueError(
+                f"separation of an adhesive law must be one of {', '.join(JKR_SEPARATIONS)}, "
+                f"got {value!r}"
+            )
+
+
+def check_adhesion(
+    radius: ArrayLike,
+    modulus: ArrayLike,
+    work_of_adhesion: ArrayLike,
+    factor: float = 4.5,
+    law: str = "JKR",
+) -> None:
+    """Raise a one-line ValueError unless 0 <= W < E* R / (factor pi), finite: the contact
+    radius at rest, a0 = (factor pi W R^2 / E*)^(1/3) (JKR's: factor 9/2), must stay below
+    the effective radius R, or the spheres would coalesce rather than approach and part as
+    contact mechanics (a << R) describes them.
+
+    Parameters
+    ----------
+    radius, modulus : effective R [m] and E* [Pa]
+    work_of_adhesion : W, [J/m^2]
+    factor : a0^3 = factor pi W R^2 / E* (9/2 for JKR, 3/2 for DMT), [-]
+    law : how the message names the contact
+    """
+    w = np.asarray(work_of_adhesion, dtype=float)
+    good = np.isfinite(w) & (w >= 0.0)
+    if not np.all(good):
+        bad = float(np.ravel(w)[~np.ravel(good)][0])
+        raise ValueError(
+            f"the work of adhesion must be a finite number >= 0 [J/m^2] (option "
+            f"--work-of-adhesion), got {bad:g}"
+        )
+    limit = np.asarray(modulus, dtype=float) * np.asarray(radius, dtype=float) / (factor * np.pi)
+    with np.errstate(invalid="ignore"):
+        over = ~(w < limit) & (w > 0.0)
+    if np.any(over):
+        shape = np.broadcast(w, limit).shape
+        i = int(np.argmax(np.ravel(np.broadcast_to(over, shape))))
+        w_i = float(np.ravel(np.broadcast_to(w, shape))[i])
+        limit_i = float(np.ravel(np.broadcast_to(limit, shape))[i])
+        raise ValueError(
+            f"a work of adhesion of {w_i:g} J/m^2 is too large for these spheres: the {law} "
+            f"contact radius at rest, ({factor:g} pi W R^2 / E*)^(1/3), would reach the "
+            "effective radius R, and the spheres would coalesce rather than approach and "
+            f"part; accepted: W < E* R / ({factor:g} pi) = {limit_i:.4g} J/m^2"
+        )
+
+
+@dataclass(frozen=True)
+class JKRBranch:
+    """F(delta) on JKR's displacement-controlled branch (module docstring), the force law of
+    an adhesive stage.
+
+    Contact radius from overlap by Newton's method on delta(s) = (a0^2/R)(s^4 - (2/3) s)
+    from above (convex, increasing for s above the fixed-grip instability, where it is
+    clamped: the branch ends there); force and work as polynomials of s.
+
+    Parameters
+    ----------
+    radius : radius of curvature of the branch, [m]: the effective radius, or the enlarged
+        radius of a flattened contact (Thornton & Ning)
+    modulus : effective modulus E*, [Pa]
+    work_of_adhesion : W > 0, [J/m^2]
+    offset : the overlap at which the branch's own delta is 0, [m] (a permanent
+        indentation)
+
+    Examples
+    --------
+    With R = E* = 1 and W = 2 / (9 pi) (a0 = 1 / 3^(1/3)), F at delta = 0 is -(8/9) F_c:
+
+    >>> import math
+    >>> law = JKRBranch(1.0, 1.0, 2 / (9 * math.pi))
+    >>> round(float(law.force(0.0) / (1.5 * math.pi * law.work_of_adhesion)), 12)
+    -0.888888888889
+    """
+
+    radius: ArrayLike
+    modulus: ArrayLike
+    work_of_adhesion: ArrayLike
+    offset: ArrayLike = 0.0
+
+    @property
+    def contact_radius_at_rest(self) -> Array:
+        """a0, [m]."""
+        return jkr_contact_radius_at_rest(self.radius, self.modulus, self.work_of_adhesion)
+
+    @property
+    def length_unit(self) -> Array:
+        """a0^2 / R, [m]."""
+        a0 = self.contact_radius_at_rest
+        return a0 * a0 / np.asarray(self.radius, dtype=float)
+
+    @property
+    def force_unit(self) -> Array:
+        """F_c = (3/2) pi W R, the branch's pull-off force, [N]."""
+        return jkr_pull_off_force(self.radius, self.work_of_adhesion)
+
+    @property
+    def energy_unit(self) -> Array:
+        """F_c a0^2 / R, [J]."""
+        return self.force_unit * self.length_unit
+
+    def overlap_at(self, s: ArrayLike) -> Array:
+        """The overlap at s = sqrt(a / a0), [m]."""
+        return self.offset + self.length_unit * _overlap(s)
+
+    def force_at(self, s: ArrayLike) -> Array:
+        """The force at s, [N]."""
+        return self.force_unit * _force(s)
+
+    def potential_at(self, s: ArrayLike) -> Array:
+        """The work of the branch's force from s = 0 (an antiderivative), [J]."""
+        return self.energy_unit * _potential(s)
+
+    def s_of(self, delta: ArrayLike) -> Array:
+        """s = sqrt(a / a0) at overlap ``delta`` on the branch, [-]; the fixed-grip end of the
+        branch below its overlap."""
+        d = (np.asarray(delta, dtype=float) - self.offset) / self.length_unit
+        d_grip = float(_overlap(GRIP_S))
+        start = np.maximum(d, 0.0) ** 0.25 + (2.0 / 3.0) ** (1.0 / 3.0)
+        near = GRIP_S + np.sqrt(np.maximum(d - d_grip, 0.0) / (6.0 * GRIP_S * GRIP_S))
+        s = np.maximum(np.minimum(start, near), GRIP_S)  # above the root: Newton descends
+        for _ in range(100):
+            slope = 4.0 * s**3 - 2.0 / 3.0
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = np.where(slope > 0.0, (_overlap(s) - d) / slope, 0.0)
+            new = np.maximum(np.minimum(s - step, s), GRIP_S)
+            if np.array_equal(new, s):
+                break
+            s = new
+        return s
+
+    def contact_radius(self, delta: ArrayLike) -> Array:
+        """The contact radius a at overlap ``delta``, [m]."""
+        return self.contact_radius_at_rest * self.s_of(delta) ** 2
+
+    def force(self, delta: ArrayLike) -> Array:
+        """F(delta), [N] (module docstring)."""
+        return self.force_at(self.s_of(delta))
+
+    def work(self, start: ArrayLike, end: ArrayLike) -> Array:
+        """Integral of F from ``start`` to ``end`` along the branch, [J]."""
+        return self.energy_unit * (_potential(self.s_of(end)) - _potential(self.s_of(start)))
+
+
+@dataclass(frozen=True)
+class JKRNeck(JKRBranch):
+    """The neck past the pull-off point (:class:`JKRBranch`, where F falls as the overlap
+    grows): its FILM nodes are equally spaced in s, not in delta, so that they close in
+    on the fixed-grip end, where delta(s) turns and dF/d delta is infinite."""
+
+    def stage_nodes(self, start: ArrayLike, end: ArrayLike, n: int) -> Array:
+        """n + 1 node overlaps from ``start`` to ``end``, equally spaced in s, [m]."""
+        s_a, s_b = self.s_of(start), self.s_of(end)
+        frac = np.arange(n + 1, dtype=float) / n
+        nodes = self.overlap_at(s_a + (s_b - s_a) * frac)
+        nodes[..., 0] = np.asarray(start, dtype=float)[..., 0]
+        nodes[..., -1] = np.asarray(end, dtype=float)[..., 0]
+        return nodes
+
+
+def _rows(value: ArrayLike, shape: tuple[int, ...]) -> Array:
+    return np.broadcast_to(np.asarray(value, dtype=float), shape).copy()
+
+
+def _same(values: Array, what: str) -> Any:
+    flat = np.ravel(values)
+    if flat.size and not np.all(flat == flat[0]):
+        raise ValueError(f"a batch must share its {what}: split it with plan_keys()")
+    return flat[0] if flat.size else None
+
+
+def _capture_s(target: Array, low: ArrayLike) -> Array:
+    """s in [low, 1] where the branch's potential equals ``target`` (it falls there: the
+    force pulls while the neck grows), by bisection to rounding, [-]."""
+    lo = np.broadcast_to(np.asarray(low, dtype=float), target.shape).copy()
+    hi = np.ones_like(target)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        above = _potential(mid) > target
+        lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
+        if np.all(hi - lo <= 2.0 * np.finfo(float).eps * hi):
+            break
+    return 0.5 * (lo + hi)
+
+
+#: Where an unloading stops (:func:`unloading_plan` keys): it separates, or it is captured
+#: before the branch's delta = 0, on its tensile part before pull-off, or in the neck.
+_PARTS = ("separates", "captured in compression", "captured in tension", "captured in the neck")
+
+
+def unloading_keys(s_max: ArrayLike, separation: ArrayLike) -> NDArray[np.int_]:
+    """How an unloading from rest at s_max on a JKR branch ends: 0 separates, 1, 2, 3
+    captured before delta = 0, on the tensile branch before pull-off, in the neck.
+
+    Parameters
+    ----------
+    s_max : s = sqrt(a_m / a0) at the maximum overlap, [-]
+    separation : the rule of each impact (``instability`` or ``pull-off``)
+    """
+    s_m = np.asarray(s_max, dtype=float)
+    rule = np.broadcast_to(np.asarray(separation, dtype=object), s_m.shape)
+    end = np.where(rule == "pull-off", PULL_OFF_S, GRIP_S)
+    top = _potential(s_m)
+    return np.select(
+        [top > _potential(end), top <= _potential(SNAP_S), top <= _potential(PULL_OFF_S)],
+        [0, 1, 2],
+        3,
+    )
+
+
+def unloading_plan(
+    branch: JKRBranch,
+    delta_max: Array,
+    s_max: Array,
+    mass: Array,
+    separation: str,
+) -> tuple[list[StagePlan], dict[str, Array]]:
+    """The unloading stages of impacts on one JKR branch from rest at delta_max, and how
+    they end: the branch to its delta = 0, its tensile part to the pull-off point and
+    (``instability``) the neck to the fixed-grip point, each a FILM stage; cut short
+    where the relative velocity returns to zero (capture: the stage ends at rest). A batch
+    must share :func:`unloading_keys`.
+
+    Parameters
+    ----------
+    branch : the branch (parameters of shape (N, 1))
+    delta_max : the maximum overlap, [m], shape (N,)
+    s_max : s there, [-]
+    mass : effective mass m, [kg]
+    separation : ``instability`` or ``pull-off``
+
+    Returns
+    -------
+    (stages, ends)
+        ``ends``: ``delta_end`` (where the contact ends or is captured) [m], ``speed``
+        there [m/s], ``captured`` (1.0 where captured) and ``s_end``.
+    """
+    _check_separation(separation)
+    s_m = np.asarray(s_max, dtype=float)
+    key = int(_same(unloading_keys(s_m, separation), "way of ending (unloading_keys)"))
+    m = np.asarray(mass, dtype=float)
+    top = _potential(s_m)
+    unit = branch.energy_unit[..., 0]
+
+    def speed(s: Array) -> Array:  # the speed at s from rest at s_max: energy balance
+        return np.sqrt(np.maximum(2.0 * unit * (top - _potential(s)) / m, 0.0))
+
+    rule_end = _END_S[separation]
+    captured = key != 0
+    snap, pull = np.full_like(s_m, SNAP_S), np.full_like(s_m, PULL_OFF_S)
+    if not captured:  # to delta = 0, the tensile branch to pull-off, the neck
+        s_end = np.full_like(s_m, rule_end)
+        points = [s_m, snap, pull] + ([s_end] if separation == "instability" else [])
+        names = ["unloading", "tension", "neck"]
+    else:  # captured: the stages up to there, the last one ending at rest
+        s_end = _capture_s(top, rule_end)
+        if key == 3:  # in the neck
+            points, names = [s_m, snap, pull, s_end], ["unloading", "tension", "neck"]
+        else:  # before pull-off: one stage (its speed at delta = 0 may all but vanish)
+            points, names = [s_m, s_end], ["unloading"]
+    deltas = [delta_max] + [branch.overlap_at(col(x))[..., 0] for x in points[1:]]
+    stages = []
+    for k in range(len(points) - 1):
+        law = JKRNeck(**_fields(branch)) if names[k] == "neck" else branch
+        last = k == len(points) - 2
+        stages.append(
+            StagePlan(
+                names[k],
+                law,
+                deltas[k],
+                deltas[k + 1],
+                np.zeros_like(s_m) if k == 0 else speed(points[k]),
+                end_at_rest=captured and last,
+            )
+        )
+    ends = {
+        "delta_end": deltas[-1],
+        "speed": np.zeros_like(s_m) if captured else speed(s_end),
+        "captured": np.full_like(s_m, 1.0 if captured else 0.0),
+        "s_end": s_end,
+    }
+    return stages, ends
+
+
+def _fields(branch: JKRBranch) -> dict[str, Any]:
+    return {
+        "radius": branch.radius,
+        "modulus": branch.modulus,
+        "work_of_adhesion": branch.work_of_adhesion,
+        "offset": branch.offset,
+    }
+
+
+def loading_s(branch_top: Array, energy: Array, unit: Array) -> Array:
+    """s_m >= 1 where the branch's potential reaches ``branch_top`` + ``energy`` / ``unit``
+    (the turning point of a loading that has ``energy`` [J] left at s with potential
+    ``branch_top``), by Newton's method from above (convex, increasing for s >= 1), [-]."""
+    target = branch_top + energy / unit
+    s = np.maximum((10.0 / 3.0) ** (1.0 / 3.0), (np.maximum(target, 0.0) / 0.8) ** 0.1)
+    for _ in range(200):
+        cube = s**3
+        slope = 4.0 * cube * (cube - 1.0) * (4.0 * cube - 2.0 / 3.0)  # dP/ds = F delta'
+        new = np.maximum(np.minimum(s - (_potential(s) - target) / slope, s), 1.0)
+        if np.array_equal(new, s):
+            break
+        s = new
+    return s
+
+
+@dataclass(frozen=True)
+class JKRContact:
+    """The JKR contact of a pair of spheres (module docstring), with the interface of a
+    :class:`~impactcli.laws.base.NormalContact`: elastic (no yield point), no permanent
+    indentation; an impact's plan has the loading stage and the unloading stages of
+    :func:`unloading_plan`.
+
+    Parameters
+    ----------
+    radius : effective radius R, [m]
+    modulus : effective modulus E*, [Pa]
+    work_of_adhesion : W >= 0, [J/m^2] (0: Hertz)
+    separation : ``instability`` or ``pull-off``
+
+    Examples
+    --------
+    Two 20 um silica spheres (E = 73 GPa, nu = 0.17, 2200 kg/m^3) with W = 0.2 J/m^2:
+
+    >>> import math
+    >>> r, e_star = 5e-6, 73e9 / (2 * (1 - 0.17**2))
+    >>> m = 2200 * math.pi * 20e-6**3 / 6 / 2
+    >>> contact = JKRContact(r, e_star, 0.2)
+    >>> round(float(contact.sticking_velocity(m)), 6)
+    0.040055
+    >>> round(float(contact.plan(0.1, m).restitution), 6)
+    0.916274
+    """
+
+    radius: ArrayLike
+    modulus: ArrayLike
+    work_of_adhesion: ArrayLike
+    separation: Any = "instability"
+
+    def __post_init__(self) -> None:
+        _check_separation(self.separation)
+        check_adhesion(self.radius, self.modulus, self.work_of_adhesion)
+
+    @property
+    def stiffness(self) -> Array:
+        """Hertz stiffness K_h of the pair, [N/m^1.5]."""
+        return hertz_stiffness(self.modulus, self.radius)
+
+    @property
+    def pull_off_force(self) -> Array:
+        """F_c = (3/2) pi W R, [N]."""
+        return jkr_pull_off_force(self.radius, self.work_of_adhesion)
+
+    @property
+    def yield_indentation(self) -> Array:
+        """NaN: the elastic law has no yield point, [m]."""
+        return np.full(np.shape(self.stiffness), np.nan)
+
+    def yield_velocity(self, mass: ArrayLike) -> Array:
+        """NaN: the elastic law has no yield point, [m/s]."""
+        return np.full(np.broadcast(self.stiffness, np.asarray(mass)).shape, np.nan)
+
+    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
+        """False: an impact of the elastic law is elastic at any V0, [-]."""
+        shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass), self.stiffness).shape
+        return np.zeros(shape, dtype=bool)
+
+    def neck_energy(self) -> Array:
+        """E_neck, the work the neck takes (:func:`jkr_neck_energy`), [J]; 0 at W = 0."""
+        w = np.asarray(self.work_of_adhesion, dtype=float)
+        rule = np.broadcast_to(np.asarray(self.separation, dtype=object), w.shape)
+        constant = np.where(rule == "pull-off", _NECK["pull-off"], _NECK["instability"])
+        r = np.asarray(self.radius, dtype=float)
+        a0 = jkr_contact_radius_at_rest(r, self.modulus, w)
+        return constant * jkr_pull_off_force(r, w) * a0 * a0 / r
+
+    def sticking_velocity(self, mass: ArrayLike) -> Array:
+        """V_s = sqrt(2 E_neck / m): the largest V0 at which the spheres stick, [m/s]."""
+        return np.sqrt(2.0 * self.neck_energy() / np.asarray(mass, dtype=float))
+
+    def _branch(self, rows: tuple[int, ...]) -> JKRBranch:
+        return JKRBranch(
+            col(_rows(self.radius, rows)),
+            col(_rows(self.modulus, rows)),
+            col(_rows(self.work_of_adhesion, rows)),
+        )
+
+    def _turning_s(self, v0: Array, m: Array) -> Array:
+        branch = self._branch(v0.shape)
+        unit = branch.energy_unit[..., 0]
+        return loading_s(np.full_like(v0, float(_potential(SNAP_S))), 0.5 * m * v0 * v0, unit)
+
+    def plan_keys(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.int_]:
+        """Impacts of one key share a plan's stages (:func:`impactcli.laws.registry.
+        plan_groups`): 0 to 3 as :func:`unloading_keys`, 4 for W = 0 (Hertz), [-]."""
+        v0 = np.asarray(impact_velocity, dtype=float)
+        shape = np.broadcast(v0, np.asarray(mass), self.stiffness).shape
+        v0, m = _rows(v0, shape), _rows(mass, shape)
+        w = _rows(self.work_of_adhesion, shape)
+        keys = np.full(shape, 4)
+        sticky = w > 0.0
+        if np.any(sticky):
+            rule = np.broadcast_to(np.asarray(self.separation, dtype=object), shape)
+            contact = JKRContact(
+                _rows(self.radius, shape)[sticky], _rows(self.modulus, shape)[sticky],
+                w[sticky], rule[sticky] if rule.ndim else self.separation,
+            )  # fmt: skip
+            s_m = contact._turning_s(v0[sticky], m[sticky])
+            keys[sticky] = unloading_keys(s_m, rule[sticky])
+        return keys
+
+    def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
+        """Snap-in at delta = 0, loading to delta_m (end at rest), then the unloading
+        stages of :func:`unloading_plan`; the Hertz plan where W = 0. A batch must share
+        :meth:`plan_keys`."""
+        v0 = np.asarray(impact_velocity, dtype=float)
+        shape = np.broadcast(v0, np.asarray(mass), self.stiffness).shape
+        v0, m = _rows(v0, shape), _rows(mass, shape)
+        w = _rows(self.work_of_adhesion, shape)
+        if np.all(w == 0.0):
+            return _hertz_plan(self.stiffness, v0, m)
+        if np.any(w == 0.0):
+            raise ValueError("a batch must be all with or all without adhesion: plan_keys()")
+        separation = str(_same(np.broadcast_to(np.asarray(self.separation, dtype=object),
+                                               shape), "separation rule"))  # fmt: skip
+        branch = self._branch(shape)
+        s_m = self._turning_s(v0, m)
+        delta_m = branch.overlap_at(col(s_m))[..., 0]
+        loading = StagePlan("loading", branch, np.zeros_like(v0), delta_m, v0, end_at_rest=True)
+        stages, ends = unloading_plan(branch, delta_m, s_m, m, separation)
+        restitution = ends["speed"] / v0
+        energy = 0.5 * m * v0 * v0
+        return ImpactPlan(
+            stages=(loading, *stages),
+            delta_max=delta_m,
+            force_max=branch.force_at(col(s_m))[..., 0],
+            delta_res=np.zeros_like(v0),
+            restitution=restitution,
+            delta_separation=ends["delta_end"],
+            turning=0,
+            extras={
+                "captured": ends["captured"],
+                "pull_off_force": branch.force_unit[..., 0],
+                "energy_adhesion": energy * (1.0 - restitution * restitution),
+            },
+        )
+
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """Zero: an elastic contact leaves no permanent indentation, [m]."""
+        return np.zeros(np.broadcast(np.asarray(delta_max), self.stiffness).shape)
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """What unloading from ``delta`` gives back to the motion, [J]: the work of the
+        branch from delta to the separation point, W(0, delta) - E_neck, or 0 where the
+        spheres would be captured (docs/method.md §12; at W = 0 Hertz's)."""
+        d = np.asarray(delta, dtype=float)
+        w = np.asarray(self.work_of_adhesion, dtype=float)
+        hertz = 0.4 * self.stiffness * np.maximum(d, 0.0) ** 2.5
+        if np.all(w == 0.0):
+            return hertz
+        shape = np.broadcast(d, w).shape
+        safe = JKRBranch(self.radius, self.modulus, np.where(w > 0.0, w, 1.0))
+        with np.errstate(all="ignore"):
+            given = safe.work(0.0, d) - self.neck_energy()
+        return np.broadcast_to(np.where(w > 0.0, np.maximum(given, 0.0), hertz), shape)
+
+
+def _hertz_plan(stiffness: ArrayLike, v0: Array, m: Array) -> ImpactPlan:
+    """Hertz's plan (W = 0) with the adhesive extras: nothing sticks, no neck."""
+    plan = HertzContact(stiffness).plan(v0, m)
+    zero = np.zeros_like(v0)
+    return ImpactPlan(
+        plan.stages, plan.delta_max, plan.force_max, plan.delta_res, plan.restitution,
+        extras={"captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
+    )  # fmt: skip
+
+
+def _build(radius, modulus, _sy, params) -> JKRContact:
+    check_adhesion(radius, modulus, params["work_of_adhesion"])
+    return JKRContact(radius, modulus, params["work_of_adhesion"], params["separation"])
+
+
+def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
+    """W from the sticking velocity V_s = V_ref / 2 (e = 0.87 at V_ref), within x/1e4 to
+    x*1e4, and below the largest W of the pair (:func:`check_adhesion`)."""
+    separation = fixed.get("separation", "instability")
+    _check_separation(separation)
+    per_work = float(jkr_sticking_velocity(mass, radius, modulus, 1.0, separation))
+    # V_s grows as W^(5/6)
+    w = (0.5 * reference_velocity / per_work) ** 1.2
+    ceiling = 0.99 * 2.0 * modulus * radius / (9.0 * math.pi)
+    w = min(w, ceiling / 10.0)
+    return {"work_of_adhesion": ("J/m^2", w, w / 1e4, min(w * 1e4, ceiling))}
+
+
+def _data_starts(e, impact_velocity, mass, radius, modulus) -> dict:
+    """W from the measured points through e = sqrt(1 - (V_s/V0)^2): V_s^2 = V0^2 (1 - e^2),
+    its median."""
+    vs = float(np.median(np.asarray(impact_velocity) * np.sqrt(1.0 - np.asarray(e) ** 2)))
+    per_work = float(jkr_sticking_velocity(mass, radius, modulus, 1.0))
+    ceiling = 0.99 * 2.0 * modulus * radius / (9.0 * math.pi)
+    return {"work_of_adhesion": min((vs / per_work) ** 1.2, ceiling / 10.0)}
+
+
+def _run_parameters(params) -> dict:
+    return {k: params[k] for k in ("work_of_adhesion", "separation") if k in params}
+
+
+def _closed_form(contact: JKRContact, mass, impact_velocity) -> tuple[str, Array]:
+    """e = sqrt(1 - (V_s / V0)^2) (Thornton & Ning 1998) with the contact's V_s."""
+    return "JKR closed form", jkr_restitution(impact_velocity, contact.sticking_velocity(mass))
+
+
+def _lammps_difference(params) -> str:
+    if params["separation"] == "pull-off":
+        return ""
+    return (
+        "LAMMPS's jkr ends the contact at the load-controlled pull-off point (the pull-off "
+        "rule); the instability rule asked for ends it later, at the fixed-grip point: these "
+        "lines are JKR with the pull-off rule (a higher e; it sticks below 0.70 of the "
+        "instability rule's V_s)"
+    )
+
+
+#: LAMMPS's counterpart: ``jkr E eta nu gamma``, the cohesion gamma = W/2, the contact from
+#: first touch to the load-controlled pull-off point (its pulloff_distance), that is
+#: ``separation pull-off`` (src/GRANULAR/gran_sub_mod_normal.cpp).
+LAMMPS = LammpsModel(
+    LAMMPS_NORMAL_MODEL,
+    coefficients=lambda params: (0.5 * float(params["work_of_adhesion"]),),
+    exported=lambda params: {
+        "work_of_adhesion": float(params["work_of_adhesion"]),
+        "separation": "pull-off",
+    },
+    difference=_lammps_difference,
+    comment=(
+        "# jkr E eta nu gamma: JKR from first touch (snap-in) to the pull-off point, "
+        "F = (4/3) E* a^3/R - 2 pi a^2 sqrt(4 gamma E*/(pi a)), gamma = W/2 (LAMMPS's "
+        "cohesion is the surface energy of each surface; W the work of adhesion)"
+    ),
+)
+
+#: The registry entry of the law.
+SPEC = LawSpec(
+    name="jkr",
+    title="JKR",
+    kind="elastic",
+    description=(
+        "Adhesive elastic contact: snap-in at first touch, the JKR branch "
+        "delta = a^2/R - sqrt(2 pi W a/E*), F = 4 E* a^3/(3R) - sqrt(8 pi W E* a^3) in "
+        "compression and in tension (the neck), separation at the fixed-grip instability "
+        "or at the pull-off force (3/2) pi W R; sticks below V_s."
+    ),
+    parameters=(WORK_OF_ADHESION, SEPARATION_PARAMETER),
+    reference=Reference(
+        "K. L. Johnson, K. Kendall, A. D. Roberts",
+        1971,
+        "Surface energy and the contact of elastic solids",
+        "Proc. R. Soc. Lond. A 324(1558):301-313",
+        "10.1098/rspa.1971.0141",
+        "JKR relations; impacts, sticking velocity and the fixed-grip separation: "
+        "C. Thornton, Z. Ning (1998), Powder Technol. 99:154-162, "
+        "doi:10.1016/S0032-5910(98)00099-0",
+    ),
+    validity=(
+        "elastic spheres with a short-ranged adhesion (Tabor parameter above about 5: soft, "
+        "large or strongly adhering), a << R; any V0"
+    ),
+    needs_yield_strength=False,
+    build=_build,
+    fitting=Fitting(
+        default=("work_of_adhesion",),
+        starts=_fit_starts,
+        run_parameters=_run_parameters,
+        yield_onset="none",
+        data_starts=_data_starts,
+    ),
+    closed_form=_closed_form,
+    default_n=200,
+    adhesive=True,
+    lammps=LAMMPS,
+)

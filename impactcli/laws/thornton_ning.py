@@ -1,0 +1,536 @@
+"""Thornton & Ning (1998): adhesive, elastic-perfectly plastic contact of two spheres.
+
+JKR loading (:mod:`impactcli.laws.jkr`: snap-in at first touch, then the JKR branch of the
+effective radius R) until the Hertzian part of the contact pressure at the centre,
+2 E* a / (pi R), reaches the limiting contact pressure p_y, at a_y = pi R p_y / (2 E*)
+(delta_y, F_y on the JKR branch); then plastic loading along the line
+
+    F = F_y + pi p_y R (delta - delta_y),   a^2 = a_y^2 + R (delta - delta_y)
+
+(Thornton's 1997 line, continuous in force at delta_y); unloading from delta_m, F_m, a_m
+along the JKR branch of the enlarged radius R_p of the flattened contact, through the
+turning point:
+
+    R_p = 4 E* a_m^3 / (3 (F_m + sqrt(8 pi W E* a_m^3))),
+    delta = delta_p + a^2 / R_p - sqrt(2 pi W a / E*),
+
+delta_p the permanent indentation (the branch's own overlap 0), then its tensile part and
+neck to the separation point of the rule ``separation`` (as for ``jkr``), or to a capture.
+The pull-off force of the flattened contact is (3/2) pi W R_p, larger than the elastic
+contact's: plastic flattening strengthens the bond. At W = 0 the law is Thornton's (1997),
+whose plan it then is.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from impactcli.laws.base import (
+    YIELD_MARGIN,
+    Fitting,
+    ImpactPlan,
+    LawSpec,
+    Parameter,
+    Reference,
+    StagePlan,
+    col,
+)
+from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR, hertz_stiffness
+from impactcli.laws.jkr import (
+    SEPARATION_PARAMETER,
+    SNAP_S,
+    WORK_OF_ADHESION,
+    JKRBranch,
+    JKRContact,
+    _check_separation,
+    _potential,
+    _rows,
+    _same,
+    check_adhesion,
+    jkr_contact_radius_at_rest,
+    jkr_sticking_velocity,
+    unloading_keys,
+    unloading_plan,
+)
+from impactcli.laws.thornton import ThorntonContact
+
+__all__ = ["SPEC", "PlasticLine", "ThorntonNingContact", "snap_in_pressure"]
+
+Array = NDArray[np.float64]
+
+#: Velocities above the first plastic impact at which the sticking velocity is sought, as a
+#: multiple of the larger of V_y and the elastic V_s, [-].
+STICKING_SEARCH = 1e4
+
+
+def snap_in_pressure(radius: ArrayLike, modulus: ArrayLike, work_of_adhesion: ArrayLike) -> Array:
+    """2 E* a_1 / (pi R): the Hertzian contact pressure at the centre of JKR's contact at
+    first touch (a_1^3 = 2 pi W R^2 / E*, the snap-in contact radius), [Pa]; the limiting
+    pressure must exceed it, or the contact would yield as it touches.
+
+    >>> round(float(snap_in_pressure(5e-6, 3.7586e10, 0.2)) / 1e9, 4)
+    0.4508
+    """
+    r, e = np.asarray(radius, dtype=float), np.asarray(modulus, dtype=float)
+    a1 = jkr_contact_radius_at_rest(r, e, work_of_adhesion) * SNAP_S**2
+    return 2.0 * e * a1 / (np.pi * r)
+
+
+@dataclass(frozen=True)
+class PlasticLine:
+    """F = F_y + k (delta - delta_y): the plastic loading (module docstring), linear, so
+    FILM is exact on it.
+
+    Parameters
+    ----------
+    force_y : F_y, [N]
+    delta_y : delta_y, [m]
+    slope : k = pi p_y R, [N/m]
+    """
+
+    force_y: ArrayLike
+    delta_y: ArrayLike
+    slope: ArrayLike
+    #: F is linear in delta: FILM is exact on one segment (docs/method.md §4, item 5)
+    linear = True
+
+    def force(self, delta: ArrayLike) -> Array:
+        """F_y + k (delta - delta_y), [N]."""
+        return self.force_y + self.slope * (np.asarray(delta, dtype=float) - self.delta_y)
+
+    def work(self, start: ArrayLike, end: ArrayLike) -> Array:
+        """Integral of F from ``start`` to ``end``, [J]."""
+        a = np.asarray(start, dtype=float) - self.delta_y
+        b = np.asarray(end, dtype=float) - self.delta_y
+        return self.force_y * (b - a) + 0.5 * self.slope * (b * b - a * a)
+
+
+@dataclass(frozen=True)
+class _Unloading:
+    """The unloading of plastic impacts: turning point and enlarged-radius branch."""
+
+    delta_max: Array
+    force_max: Array
+    branch: JKRBranch  # parameters of shape (N, 1)
+    s_max: Array
+
+
+@dataclass(frozen=True)
+class ThorntonNingContact:
+    """Thornton & Ning's (1998) contact of a pair of spheres (module docstring), with the
+    interface of a :class:`~impactcli.laws.base.NormalContact`.
+
+    Parameters
+    ----------
+    radius : effective radius R, [m]
+    modulus : effective modulus E*, [Pa]
+    work_of_adhesion : W >= 0, [J/m^2] (0: Thornton 1997)
+    limit_pressure : limiting contact pressure p_y, [Pa]; above JKR's contact pressure at
+        first touch (:func:`snap_in_pressure`)
+    separation : ``instability`` or ``pull-off``
+
+    Examples
+    --------
+    >>> import math
+    >>> r, e_star = 5e-6, 73e9 / (2 * (1 - 0.17**2))
+    >>> m = 2200 * math.pi * 20e-6**3 / 6 / 2
+    >>> contact = ThorntonNingContact(r, e_star, 0.2, 3e9)
+    >>> round(float(contact.yield_velocity(m)), 4), round(float(contact.sticking_velocity(m)), 6)
+    (5.3755, 0.040055)
+    """
+
+    radius: ArrayLike
+    modulus: ArrayLike
+    work_of_adhesion: ArrayLike
+    limit_pressure: ArrayLike
+    separation: Any = "instability"
+
+    def __post_init__(self) -> None:
+        _check_separation(self.separation)
+        check_adhesion(self.radius, self.modulus, self.work_of_adhesion)
+        w = np.asarray(self.work_of_adhesion, dtype=float)
+        py = np.asarray(self.limit_pressure, dtype=float)
+        least = snap_in_pressure(self.radius, self.modulus, w)
+        low = np.broadcast_to((w > 0.0) & ~(py > least), np.broadcast(w, py, least).shape)
+        if np.any(low):
+            i = int(np.argmax(np.ravel(low)))
+            py_i = float(np.ravel(np.broadcast_to(py, low.shape))[i])
+            least_i = float(np.ravel(np.broadcast_to(least, low.shape))[i])
+            raise ValueError(
+                f"the limiting contact pressure p_y = {py_i:.4g} Pa is below the JKR contact "
+                f"pressure at first touch, 2 E* a_1 / (pi R) = {least_i:.4g} Pa (a_1 the "
+                "snap-in contact radius): the contact would yield as it touches; give p_y "
+                f"above it (option --py) or a smaller W"
+            )
+
+    # -- the elastic part and the yield point -------------------------------------------------
+    @property
+    def stiffness(self) -> Array:
+        """Hertz stiffness K_h of the pair, [N/m^1.5]."""
+        return hertz_stiffness(self.modulus, self.radius)
+
+    def _safe(self, shape: tuple[int, ...]) -> tuple[Array, Array, Array, Array, NDArray]:
+        """R, E*, W (1 where W = 0) and p_y as rows, and where W > 0."""
+        w = _rows(self.work_of_adhesion, shape)
+        sticky = w > 0.0
+        return (
+            _rows(self.radius, shape),
+            _rows(self.modulus, shape),
+            np.where(sticky, w, 1.0),
+            _rows(self.limit_pressure, shape),
+            sticky,
+        )
+
+    def _shape(self, *others: ArrayLike) -> tuple[int, ...]:
+        return np.broadcast(
+            *(np.asarray(x) for x in others), self.stiffness,
+            np.asarray(self.work_of_adhesion), np.asarray(self.limit_pressure),
+        ).shape  # fmt: skip
+
+    def _yield_point(self, shape: tuple[int, ...]) -> dict[str, Array]:
+        """s_y, delta_y, F_y and the work Phi_y from first touch to delta_y (W > 0 rows;
+        Thornton's where W = 0)."""
+        r, e, w, py, sticky = self._safe(shape)
+        branch = JKRBranch(r, e, w)
+        a_y = np.pi * r * py / (2.0 * e)
+        s_y = np.sqrt(a_y / branch.contact_radius_at_rest)
+        return {
+            "s": s_y,
+            "delta": branch.overlap_at(s_y),
+            "force": branch.force_at(s_y),
+            "work": branch.energy_unit * (_potential(s_y) - _potential(SNAP_S)),
+            "a": a_y,
+            "sticky": sticky,
+        }
+
+    def _thornton(self, shape: tuple[int, ...]) -> ThorntonContact:
+        return ThorntonContact(
+            _rows(self.radius, shape), _rows(self.modulus, shape),
+            _rows(self.limit_pressure, shape),
+        )  # fmt: skip
+
+    @property
+    def yield_indentation(self) -> Array:
+        """delta_y on the JKR branch where 2 E* a / (pi R) = p_y, [m]."""
+        shape = self._shape()
+        point = self._yield_point(shape)
+        return np.where(point["sticky"], point["delta"], self._thornton(shape).yield_indentation)
+
+    def yield_velocity(self, mass: ArrayLike) -> Array:
+        """V_y = sqrt(2 Phi_y / m), Phi_y the work from first touch to delta_y (0 when the
+        attraction alone carries the contact there), [m/s]."""
+        shape = self._shape(mass)
+        point = self._yield_point(shape)
+        m = _rows(mass, shape)
+        adhesive = np.sqrt(2.0 * np.maximum(point["work"], 0.0) / m)
+        return np.where(point["sticky"], adhesive, self._thornton(shape).yield_velocity(m))
+
+    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
+        """True where V0 > V_y (1 + 1e-9) (a plastic impact), [-]."""
+        v0 = np.asarray(impact_velocity, dtype=float)
+        return v0 > self.yield_velocity(mass) * (1.0 + YIELD_MARGIN)
+
+    # -- the plastic impact --------------------------------------------------------------------
+    def _unloading(self, delta_max_or_none: Array | None, v0: Array, m: Array) -> _Unloading:
+        """The turning point and the enlarged-radius branch of plastic impacts (W > 0) at V0,
+        or (``delta_max_or_none``) of a given maximum overlap."""
+        shape = v0.shape
+        r, e, w, py, _ = self._safe(shape)
+        point = self._yield_point(shape)
+        slope = np.pi * py * r
+        f_y = point["force"]
+        if delta_max_or_none is None:
+            rest = np.maximum(0.5 * m * v0 * v0 - point["work"], 0.0)
+            root = np.sqrt(f_y * f_y + 2.0 * slope * rest)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                x = np.where(f_y >= 0.0, 2.0 * rest / (f_y + root), (root - f_y) / slope)
+            x = np.where(rest > 0.0, x, 0.0)
+        else:
+            x = np.maximum(delta_max_or_none - point["delta"], 0.0)
+        delta_m = point["delta"] + x
+        f_m = f_y + slope * x
+        a_m = np.sqrt(point["a"] ** 2 + r * x)
+        r_p = 4.0 * e * a_m**3 / (3.0 * (f_m + np.sqrt(8.0 * np.pi * w * e * a_m**3)))
+        unloading = JKRBranch(r_p, e, w)
+        s_m = np.sqrt(a_m / unloading.contact_radius_at_rest)
+        offset = delta_m - unloading.length_unit * (s_m**4 - (2.0 / 3.0) * s_m)
+        branch = JKRBranch(col(r_p), col(e), col(w), col(offset))
+        return _Unloading(delta_m, f_m, branch, s_m)
+
+    def _rules(self, shape: tuple[int, ...]) -> NDArray:
+        return np.broadcast_to(np.asarray(self.separation, dtype=object), shape)
+
+    def plan_keys(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.int_]:
+        """Impacts of one key share a plan's stages: 0-3 elastic (JKR's keys), 10-13
+        plastic (the keys of the unloading, :func:`impactcli.laws.jkr.unloading_keys`),
+        100 and 101 Thornton's elastic and plastic impacts (W = 0), [-]."""
+        shape = self._shape(impact_velocity, mass)
+        v0, m = _rows(impact_velocity, shape), _rows(mass, shape)
+        plastic = np.broadcast_to(self.yields(v0, m), shape)
+        _, _, _, _, sticky = self._safe(shape)
+        keys = np.array(100 + plastic.astype(int))
+        rules = self._rules(shape)
+        elastic = sticky & ~plastic
+        if np.any(elastic):
+            keys[elastic] = self._jkr(shape, elastic).plan_keys(v0[elastic], m[elastic])
+        hard = sticky & plastic
+        if np.any(hard):
+            part = self._subset(shape, hard)
+            out = part._unloading(None, v0[hard], m[hard])
+            keys[hard] = 10 + unloading_keys(out.s_max, rules[hard])
+        return keys
+
+    def _subset(self, shape: tuple[int, ...], rows: NDArray) -> ThorntonNingContact:
+        return ThorntonNingContact(
+            _rows(self.radius, shape)[rows], _rows(self.modulus, shape)[rows],
+            _rows(self.work_of_adhesion, shape)[rows], _rows(self.limit_pressure, shape)[rows],
+            self._rules(shape)[rows],
+        )  # fmt: skip
+
+    def _jkr(self, shape: tuple[int, ...], rows: NDArray) -> JKRContact:
+        return JKRContact(
+            _rows(self.radius, shape)[rows], _rows(self.modulus, shape)[rows],
+            _rows(self.work_of_adhesion, shape)[rows], self._rules(shape)[rows],
+        )  # fmt: skip
+
+    def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
+        """Below V_y JKR's plan; above it JKR loading to delta_y, the plastic line to
+        delta_m (end at rest) and the unloading stages of
+        :func:`impactcli.laws.jkr.unloading_plan` on the enlarged-radius branch; Thornton's
+        plan where W = 0. A batch must share :meth:`plan_keys`."""
+        shape = self._shape(impact_velocity, mass)
+        v0, m = _rows(impact_velocity, shape), _rows(mass, shape)
+        _, _, _, _, sticky = self._safe(shape)
+        everything = Ellipsis  # every row, keeping a single impact's shape ()
+        if not np.any(sticky):
+            return _with_extras(self._thornton(shape).plan(v0, m), v0)
+        if not np.all(sticky):
+            raise ValueError("a batch must be all with or all without adhesion: plan_keys()")
+        plastic = self.yields(v0, m)
+        if not np.any(plastic):
+            return self._jkr(shape, everything).plan(v0, m)
+        if not np.all(plastic):
+            raise ValueError("a batch must be all above or all below the yield velocity")
+        separation = str(_same(self._rules(shape), "separation rule"))
+        r, e, w, py, _ = self._safe(shape)
+        point = self._yield_point(shape)
+        loading = JKRBranch(col(r), col(e), col(w))
+        out = self._unloading(None, v0, m)
+        speed_y = np.sqrt(np.maximum(v0 * v0 - 2.0 * point["work"] / m, 0.0))
+        line = PlasticLine(col(point["force"]), col(point["delta"]), col(np.pi * py * r))
+        stages, ends = unloading_plan(out.branch, out.delta_max, out.s_max, m, separation)
+        restitution = ends["speed"] / v0
+        # the attraction's work on the way out less that on the way in (docs/laws.md)
+        unit, unit_p = loading.energy_unit[..., 0], out.branch.energy_unit[..., 0]
+        s_y, f_y = point["s"], point["force"]
+        inward = unit * (_potential(SNAP_S) - _potential(np.minimum(s_y, 1.0)))
+        inward = inward + np.where(f_y < 0.0, 0.5 * f_y * f_y / (np.pi * py * r), 0.0)
+        outward = unit_p * (_potential(ends["s_end"]) - _potential(1.0))
+        lost = 0.5 * m * v0 * v0 * (1.0 - restitution * restitution)
+        return ImpactPlan(
+            stages=(
+                StagePlan("elastic loading", loading, np.zeros_like(v0), point["delta"], v0),
+                StagePlan(
+                    "plastic loading", line, point["delta"], out.delta_max, speed_y,
+                    end_at_rest=True,
+                ),
+                *stages,
+            ),  # fmt: skip
+            delta_max=out.delta_max,
+            force_max=out.force_max,
+            delta_res=np.asarray(out.branch.offset, dtype=float)[..., 0],
+            restitution=restitution,
+            delta_separation=ends["delta_end"],
+            turning=1,
+            extras={
+                "captured": ends["captured"],
+                "pull_off_force": out.branch.force_unit[..., 0],
+                "energy_adhesion": np.minimum(np.maximum(outward - inward, 0.0), lost),
+            },
+        )
+
+    # -- closed forms --------------------------------------------------------------------------
+    def residual_indentation(self, delta_max: ArrayLike) -> Array:
+        """delta_p, the offset of the enlarged-radius branch, past delta_y; 0 below it;
+        Thornton's delta_res where W = 0, [m]."""
+        dm = np.asarray(delta_max, dtype=float)
+        shape = self._shape(dm)
+        dm = _rows(dm, shape)
+        point = self._yield_point(shape)
+        plastic = dm > point["delta"]
+        with np.errstate(all="ignore"):
+            out = self._unloading(np.where(plastic, dm, point["delta"]), dm, np.ones(shape))
+            adhesive = np.where(plastic, np.asarray(out.branch.offset)[..., 0], 0.0)
+        return np.where(point["sticky"], adhesive, self._thornton(shape).residual_indentation(dm))
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """What unloading from ``delta`` gives back to the motion, [J]: the work of the
+        unloading branch from delta to the separation point, or 0 where the spheres would
+        be captured (JKR's below delta_y, Thornton's where W = 0)."""
+        d = np.asarray(delta, dtype=float)
+        shape = self._shape(d)
+        d = _rows(d, shape)
+        point = self._yield_point(shape)
+        plastic = d > point["delta"]
+        with np.errstate(all="ignore"):
+            elastic = self._jkr(shape, np.ones(shape, dtype=bool)).recoverable_work(d)
+            out = self._unloading(np.where(plastic, d, point["delta"]), d, np.ones(shape))
+            rules = self._rules(shape)
+            end = np.where(rules == "pull-off", 0.5 ** (1.0 / 3.0), (1.0 / 6.0) ** (1.0 / 3.0))
+            unit = out.branch.energy_unit[..., 0]
+            given = np.maximum(unit * (_potential(out.s_max) - _potential(end)), 0.0)
+        adhesive = np.where(plastic, given, elastic)
+        return np.where(point["sticky"], adhesive, self._thornton(shape).recoverable_work(d))
+
+    def sticking_velocity(self, mass: ArrayLike) -> Array:
+        """The largest V0 at which the spheres stick, [m/s]: JKR's V_s when it lies below
+        V_y; else the boundary of the plastic impacts that are captured, found by bisection
+        of the plan's closed forms above the last captured one of 400 velocities from V_y
+        to 1e4 V_y (:data:`STICKING_SEARCH`); 0 where W = 0."""
+        shape = self._shape(mass)
+        size = int(np.prod(shape))
+        m = _rows(mass, shape).reshape(size)
+        r, e, w, py, sticky = (x.reshape(size) for x in self._safe(shape))
+        rules = self._rules(shape).reshape(size)
+        v_y = np.asarray(self.yield_velocity(mass), dtype=float)
+        v_y = np.broadcast_to(v_y, shape).reshape(size)
+        out = np.zeros(size)
+        for i in range(size):
+            if not sticky[i]:
+                continue
+            v_s = float(jkr_sticking_velocity(m[i], r[i], e[i], w[i], rules[i]))
+            if v_s <= v_y[i]:
+                out[i] = v_s
+                continue
+            one = ThorntonNingContact(r[i], e[i], w[i], py[i], rules[i])
+            out[i] = one._plastic_sticking(float(m[i]), float(v_y[i]), v_s)
+        return out.reshape(shape)
+
+    def _captured(self, v0: Array, mass: float) -> NDArray[np.bool_]:
+        """Plastic impacts at V0 (one pair, many V0) that are captured."""
+        m = np.full_like(v0, mass)
+        many = ThorntonNingContact(
+            np.full_like(v0, float(np.ravel(self.radius)[0])),
+            np.full_like(v0, float(np.ravel(self.modulus)[0])),
+            np.full_like(v0, float(np.ravel(self.work_of_adhesion)[0])),
+            np.full_like(v0, float(np.ravel(self.limit_pressure)[0])),
+            str(np.ravel(np.asarray(self.separation, dtype=object))[0]),
+        )
+        out = many._unloading(None, v0, m)
+        rule = np.full(v0.shape, str(np.ravel(np.asarray(self.separation, dtype=object))[0]),
+                       dtype=object)  # fmt: skip
+        return unloading_keys(out.s_max, rule) != 0
+
+    def _plastic_sticking(self, mass: float, v_y: float, v_s: float) -> float:
+        low = max(v_y, 1e-300) * (1.0 + 2.0 * YIELD_MARGIN)
+        grid = np.geomspace(low, STICKING_SEARCH * max(v_y, v_s), 400)
+        captured = self._captured(grid, mass)
+        if not np.any(captured):
+            return v_y
+        last = int(np.flatnonzero(captured)[-1])
+        if last == grid.size - 1:
+            return math.inf  # sticks as far as the search goes
+        lo, hi = float(grid[last]), float(grid[last + 1])
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if self._captured(np.array([mid]), mass)[0]:
+                lo = mid
+            else:
+                hi = mid
+            if hi - lo <= 4.0 * np.finfo(float).eps * hi:
+                break
+        return lo
+
+
+def _with_extras(plan: ImpactPlan, v0: Array) -> ImpactPlan:
+    """Thornton's plan (W = 0) with the adhesive extras: nothing sticks, no neck."""
+    zero = np.zeros_like(v0)
+    return ImpactPlan(
+        plan.stages, plan.delta_max, plan.force_max, plan.delta_res, plan.restitution,
+        extras={"captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
+    )  # fmt: skip
+
+
+def _build(radius, modulus, sy, params) -> ThorntonNingContact:
+    py = np.asarray(np.nan if params["py"] is None else params["py"], dtype=float)
+    if np.any(np.isnan(py)):  # default: the Hertz peak pressure at first yield
+        py = np.where(np.isnan(py), FIRST_YIELD_PRESSURE_FACTOR * np.asarray(sy, float), py)
+    return ThorntonNingContact(
+        radius, modulus, params["work_of_adhesion"], py, params["separation"]
+    )
+
+
+def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
+    """W as ``jkr``'s start (V_s = V_ref / 2), p_y = 1.6 sigma_y and sigma_y, each within
+    x/1e3 to x*1e3 (W within x/1e4 to x*1e4, below the largest W of the pair)."""
+    separation = fixed.get("separation", "instability")
+    _check_separation(separation)
+    per_work = float(jkr_sticking_velocity(mass, radius, modulus, 1.0, separation))
+    w = (0.5 * reference_velocity / per_work) ** 1.2
+    ceiling = 0.99 * 2.0 * modulus * radius / (9.0 * math.pi)
+    w = min(w, ceiling / 10.0)
+    sy = yield_strength
+    py = FIRST_YIELD_PRESSURE_FACTOR * sy
+    return {
+        "work_of_adhesion": ("J/m^2", w, w / 1e4, min(w * 1e4, ceiling)),
+        "py": ("Pa", py, py / 1e3, py * 1e3),
+        "sy": ("Pa", sy, sy / 1e3, sy * 1e3),
+    }
+
+
+def _run_parameters(params) -> dict:
+    return {k: params[k] for k in ("work_of_adhesion", "py", "separation") if k in params}
+
+
+#: The registry entry of the law.
+SPEC = LawSpec(
+    name="thornton-ning",
+    title="Thornton & Ning",
+    kind="elastoplastic",
+    description=(
+        "Adhesive elastic-perfectly plastic contact: JKR loading until the Hertzian centre "
+        "pressure reaches p_y, then F = F_y + pi p_y R (delta - delta_y); unloading and neck "
+        "on the JKR branch of the enlarged radius R_p (pull-off (3/2) pi W R_p); "
+        "Thornton (1997) at W = 0."
+    ),
+    parameters=(
+        WORK_OF_ADHESION,
+        Parameter(
+            "py",
+            "Pa",
+            "pressure",
+            None,
+            "limiting contact pressure p_y; default 1.6 sigma_y (Hertz peak pressure at "
+            "first yield, Johnson 1985)",
+            yield_factor=FIRST_YIELD_PRESSURE_FACTOR,
+        ),
+        SEPARATION_PARAMETER,
+    ),
+    reference=Reference(
+        "C. Thornton, Z. Ning",
+        1998,
+        "A theoretical model for the stick/bounce behaviour of adhesive, elastic-plastic "
+        "spheres",
+        "Powder Technol. 99(2):154-162",
+        "10.1016/S0032-5910(98)00099-0",
+        "JKR loading, plastic loading at p_y, unloading with R_p; sticking velocity",
+    ),
+    validity=(
+        "adhesive elastic-perfectly-plastic spheres (JKR regime), a << R; any V0 (JKR below "
+        "V_y)"
+    ),
+    needs_yield_strength=True,
+    build=_build,
+    fitting=Fitting(
+        default=("work_of_adhesion", "py"),
+        starts=_fit_starts,
+        run_parameters=_run_parameters,
+    ),
+    default_n=200,
+    adhesive=True,
+)
