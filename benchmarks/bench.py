@@ -722,6 +722,7 @@ def bench_batch(rows: list[Row], quick: bool) -> None:
     budget, most = (0.5, 10**5) if quick else (2.0, 10**6)
     n, n_damped = batch_n(), batch_n(damped=True)
     params = {"walton-braun": WALTON_BRAUN, "tabulated": {"curve": CURVE}}
+    params |= {name: given for name, (given, _) in ADHESIVE_CASES.items()}
     for name, _, _ in laws():
 
         def compute(r, name=name):

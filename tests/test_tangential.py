@@ -249,3 +249,27 @@ def test_one_collision_with_a_given_e_and_a_spring_is_hertz_with_tsuji_s_damping
     assert float(np.squeeze(got.restitution)) == pytest.approx(0.98, abs=1e-6)
     rigid, none = sphere_collision_3d(ball, plane, motion, restitution=0.7, mu=0.092)
     assert none is None and float(rigid.restitution) == 0.7
+
+
+@pytest.mark.parametrize("model", ["mindlin", "mindlin-force", "mindlin-displacement",
+                                   "mindlin-rescale"])  # fmt: skip
+@pytest.mark.parametrize("degrees", [1.0, 2.0, 10.0, 20.0, 45.0])
+def test_one_collision_on_floats_is_the_arrays_loop_bit_for_bit(model, degrees, monkeypatch):
+    """One collision's spring steps on floats (tangential._spring_steps_one) give the
+    arrays' loop's numbers exactly: impulse, slip, stick and the recorded forces."""
+    import impactcli.tangential as tangential
+
+    assert model in SPRING_MODELS
+    v = velocity_from_angles(SPEED, np.radians(degrees), 0.0, (0.0, 0.0, -1.0))
+    steps, _ = hertz_steps(M, np.array([float(-v[2])]), E_STAR, R, G, 100, 4001)
+    u_t = np.array([SPEED * np.sin(np.radians(degrees))])
+    results = []
+    for floats in (True, False):
+        if not floats:
+            monkeypatch.setattr(tangential, "_finite_row", lambda args: False)
+        results.append(integrate_tangential(model, steps, u_t, 2.0 * M / 7.0, MU, record=True))
+    one, arrays = results
+    assert one.impulse.tolist() == arrays.impulse.tolist()
+    assert one.slip.tolist() == arrays.slip.tolist()
+    assert one.stuck.tolist() == arrays.stuck.tolist()
+    assert np.array_equal(one.force, arrays.force) and np.any(one.force != 0.0)
