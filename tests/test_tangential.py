@@ -255,14 +255,16 @@ def test_one_collision_with_a_given_e_and_a_spring_is_hertz_with_tsuji_s_damping
                                    "mindlin-rescale"])  # fmt: skip
 @pytest.mark.parametrize("degrees", [1.0, 2.0, 10.0, 20.0, 45.0])
 def test_one_collision_on_floats_is_the_arrays_loop_bit_for_bit(model, degrees, monkeypatch):
-    """One collision's spring steps on floats (tangential._spring_steps_one) give the
-    arrays' loop's numbers exactly: impulse, slip, stick and the recorded forces."""
+    """One collision's spring steps on floats (tangential._spring_steps_one, in blocks of
+    steps) give the arrays' loop's numbers exactly: impulse, slip, stick and the recorded
+    forces."""
     import impactcli.tangential as tangential
 
     assert model in SPRING_MODELS
     v = velocity_from_angles(SPEED, np.radians(degrees), 0.0, (0.0, 0.0, -1.0))
     steps, _ = hertz_steps(M, np.array([float(-v[2])]), E_STAR, R, G, 100, 4001)
     u_t = np.array([SPEED * np.sin(np.radians(degrees))])
+    monkeypatch.setattr(tangential, "FLOAT_STEP_BLOCK", 1000)  # four blocks and a part
     results = []
     for floats in (True, False):
         if not floats:
