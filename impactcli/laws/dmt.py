@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.laws.base import ImpactPlan, LammpsModel, LawSpec, Reference, StagePlan, col
-from impactcli.laws.hertz import HertzContact, hertz_stiffness
+from impactcli.laws.hertz import HertzContact, NoYieldPoint, hertz_stiffness
 from impactcli.laws.jkr import WORK_OF_ADHESION, check_adhesion
 
 __all__ = ["LAMMPS", "LAMMPS_NORMAL_MODEL", "SPEC", "DMTContact", "DMTForce", "dmt_pull_off_force"]
@@ -99,7 +99,7 @@ def _turning(stiffness: Array, pull: Array, energy: Array) -> Array:
 
 
 @dataclass(frozen=True)
-class DMTContact:
+class DMTContact(NoYieldPoint):
     """DMT contact of a pair of spheres with the interface of a
     :class:`~impactcli.laws.base.NormalContact`: elastic, no permanent indentation, e = 1.
 
@@ -132,20 +132,6 @@ class DMTContact:
     def pull_off_force(self) -> Array:
         """F_0 = 2 pi W R, [N]."""
         return dmt_pull_off_force(self.radius, self.work_of_adhesion)
-
-    @property
-    def yield_indentation(self) -> Array:
-        """NaN: the elastic law has no yield point, [m]."""
-        return np.full(np.shape(self.stiffness), np.nan)
-
-    def yield_velocity(self, mass: ArrayLike) -> Array:
-        """NaN: the elastic law has no yield point, [m/s]."""
-        return np.full(np.broadcast(self.stiffness, np.asarray(mass)).shape, np.nan)
-
-    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
-        """False: an impact of the elastic law is elastic at any V0, [-]."""
-        shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass), self.stiffness).shape
-        return np.zeros(shape, dtype=bool)
 
     def sticking_velocity(self, mass: ArrayLike) -> Array:
         """0: DMT's attraction gives back on the way out what it gave on the way in, so

@@ -395,8 +395,27 @@ def rebound_time(delta_max: float, delta_res: float, speed: float, n: int) -> fl
     return (t_bar_c - t_bar_max) * ((delta_max - delta_res) / speed)
 
 
+class NoYieldPoint:
+    """The yield onset of an elastic law (Hertz and the adhesive elastic laws built on its
+    stiffness ``self.stiffness``): no yield point, no yield velocity, never yields."""
+
+    @property
+    def yield_indentation(self) -> Array:
+        """NaN: the elastic law has no yield point, [m]."""
+        return np.full(np.shape(self.stiffness), np.nan)
+
+    def yield_velocity(self, mass: ArrayLike) -> Array:
+        """NaN: the elastic law has no yield point, [m/s]."""
+        return np.full(np.broadcast(self.stiffness, np.asarray(mass)).shape, np.nan)
+
+    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
+        """False: an impact of the elastic law is elastic at any V0, [-]."""
+        shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass), self.stiffness).shape
+        return np.zeros(shape, dtype=bool)
+
+
 @dataclass(frozen=True)
-class HertzContact:
+class HertzContact(NoYieldPoint):
     """Elastic Hertz contact F = K_h delta^1.5 (docs/method.md §3) with the common interface
     of a normal contact: no yield (delta_y and V_y are NaN), e = 1, delta_res = 0.
 
@@ -422,20 +441,6 @@ class HertzContact:
         if type(radius) is float and type(modulus) is float and radius >= 0.0:
             return cls(4.0 / 3.0 * modulus * math.sqrt(radius))
         return cls(hertz_stiffness(modulus, radius))
-
-    @property
-    def yield_indentation(self) -> Array:
-        """NaN: the elastic law has no yield point, [m]."""
-        return np.full(np.shape(self.stiffness), np.nan)
-
-    def yield_velocity(self, mass: ArrayLike) -> Array:
-        """NaN: the elastic law has no yield point, [m/s]."""
-        return np.full(np.broadcast(self.stiffness, np.asarray(mass)).shape, np.nan)
-
-    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
-        """False: an impact of the elastic law is elastic at any V0, [-]."""
-        shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass), self.stiffness).shape
-        return np.zeros(shape, dtype=bool)
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Loading 0 -> delta_m from V0, then restitution delta_m -> 0 from rest; e = 1."""

@@ -56,7 +56,7 @@ from impactcli.laws.base import (
     StagePlan,
     col,
 )
-from impactcli.laws.hertz import HertzContact, hertz_stiffness
+from impactcli.laws.hertz import HertzContact, NoYieldPoint, hertz_stiffness
 
 __all__ = [
     "GRIP_S",
@@ -565,7 +565,7 @@ def loading_s(branch_top: Array, energy: Array, unit: Array) -> Array:
 
 
 @dataclass(frozen=True)
-class JKRContact:
+class JKRContact(NoYieldPoint):
     """The JKR contact of a pair of spheres (module docstring), with the interface of a
     :class:`~impactcli.laws.base.NormalContact`: elastic (no yield point), no permanent
     indentation; an impact's plan has the loading stage and the unloading stages of
@@ -610,20 +610,6 @@ class JKRContact:
     def pull_off_force(self) -> Array:
         """F_c = (3/2) pi W R, [N]."""
         return jkr_pull_off_force(self.radius, self.work_of_adhesion)
-
-    @property
-    def yield_indentation(self) -> Array:
-        """NaN: the elastic law has no yield point, [m]."""
-        return np.full(np.shape(self.stiffness), np.nan)
-
-    def yield_velocity(self, mass: ArrayLike) -> Array:
-        """NaN: the elastic law has no yield point, [m/s]."""
-        return np.full(np.broadcast(self.stiffness, np.asarray(mass)).shape, np.nan)
-
-    def yields(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray[np.bool_]:
-        """False: an impact of the elastic law is elastic at any V0, [-]."""
-        shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass), self.stiffness).shape
-        return np.zeros(shape, dtype=bool)
 
     def neck_energy(self) -> Array:
         """E_neck, the work the neck takes (:func:`jkr_neck_energy`), [J]; 0 at W = 0."""
