@@ -247,18 +247,27 @@ def hertz_steps(
     )
     t, delta, force, e = _normalised_hertz(int(n), int(points))
     delta_m = (15.0 * m * v0**2 / (16.0 * e_star * np.sqrt(r))) ** 0.4
-    steps = Steps(
+    steps = _scaled_steps(t, delta, force, delta_m, m, v0, g, r, (1.0 + e) * m * v0,
+                          slip_bound=np.ravel(e_star * v0 / (4.0 * g)))  # fmt: skip
+    return steps, np.full(np.shape(m), e)
+
+
+def _scaled_steps(t, delta, force, length, m, v0, g, r, impulse, **extra) -> Steps:
+    """The steps of one normalised normal history (times t in units of L/V0, indentations
+    delta of L, forces of m V0^2/L) scaled to each row: L [m], m [kg], V0 [m/s], the shear
+    modulus G* [Pa] and radius R [m] of the tangential stiffness 8 G* sqrt(R delta), the
+    normal impulse [N s]; ``extra`` the damping's fields."""
+    return Steps(
         time=t[None],
         stiffness=np.sqrt(delta)[None],
         force=force[None],
         share=_shares(t[None], force[None]),
-        time_scale=np.ravel(delta_m / v0),
-        stiffness_scale=np.ravel(8.0 * g * np.sqrt(r * delta_m)),
-        force_scale=np.ravel(m * v0**2 / delta_m),
-        impulse=np.ravel((1.0 + e) * m * v0),
-        slip_bound=np.ravel(e_star * v0 / (4.0 * g)),
+        time_scale=np.ravel(length / v0),
+        stiffness_scale=np.ravel(8.0 * g * np.sqrt(r * length)),
+        force_scale=np.ravel(m * v0**2 / length),
+        impulse=np.ravel(impulse),
+        **extra,
     )
-    return steps, np.full(np.shape(m), e)
 
 
 def _normalised_law(damping: str, alpha: float):
@@ -356,15 +365,8 @@ def damped_steps(
     k = DAMPING_LAWS[damping].stiffness(r, e_star)
     law = _normalised_law(damping, float(similar_alpha))
     length = (m * v0**2 / k) ** 0.4
-    steps = Steps(
-        time=t[None],
-        stiffness=np.sqrt(delta)[None],
-        force=force[None],
-        share=_shares(t[None], force[None]),
-        time_scale=np.ravel(length / v0),
-        stiffness_scale=np.ravel(8.0 * g * np.sqrt(r * length)),
-        force_scale=np.ravel(m * v0**2 / length),
-        impulse=np.ravel(impulse * m * v0),
+    steps = _scaled_steps(
+        t, delta, force, length, m, v0, g, r, impulse * m * v0,
         # eta_n in units of m V0/L = m/(L/V0), the time scale
         damping=np.asarray(law.damping_coefficient(delta), dtype=float)[None],
         damping_scale=np.ravel(m * v0 / length),
