@@ -443,14 +443,28 @@ def _swept_rows(
 ) -> tuple[Array, NDArray[np.bool_]]:
     """:func:`swept_angles` of the rows of arrays of one shape, the rows ``at_rest``
     ending at their turning point."""
+    ends = np.zeros(np.shape(x0), dtype=bool)
+    ends[at_rest, -1] = True
+    return _swept_turning(x0, y0, h, ends)
+
+
+def _swept_turning(
+    x0: Array, y0: Array, h: Array, ends: NDArray[np.bool_] | None
+) -> tuple[Array, NDArray[np.bool_]]:
+    """The angles of :func:`swept_angles` (x0, y0, h of one shape), the segments ``ends``
+    (or none) ending at their turning point."""
+    # Mirrored end state at the next node, from the oscillator's own energy.
     x_end_sq = x0**2 - h * (2.0 * y0 + h)
     turning = x_end_sq <= 0.0
-    turning[at_rest, -1] = True
+    if ends is not None:
+        turning |= ends
     x_end = np.sqrt(np.maximum(x_end_sq, 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))
     dot_node = x0 * x_end + y0 * (y0 + h)
     swept = np.arctan2(cross_node, dot_node)
+    # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0) (taken
+    # where the segments turn alone: few of them, often the last one only).
     at = np.nonzero(turning)
     if at[0].size:
         swept[at] = np.arctan2(x0[at], y0[at])
@@ -479,22 +493,11 @@ def swept_angles(
     (swept, turning), broadcast from the inputs.
     """
     x0, y0, h = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x0, y0, h)))
-    # Mirrored end state at the next node, from the oscillator's own energy.
-    x_end_sq = x0**2 - h * (2.0 * y0 + h)
-    turning = x_end_sq <= 0.0
+    ends = None
     if end_at_rest:
-        turning[..., -1] = True
-    x_end = np.sqrt(np.maximum(x_end_sq, 0.0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))
-    dot_node = x0 * x_end + y0 * (y0 + h)
-    swept = np.arctan2(cross_node, dot_node)
-    # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0) (taken
-    # where the segments turn alone: few of them, often the last one only).
-    at = np.nonzero(turning)
-    if at[0].size:
-        swept[at] = np.arctan2(x0[at], y0[at])
-    return swept, turning
+        ends = np.zeros(x0.shape, dtype=bool)
+        ends[..., -1] = True
+    return _swept_turning(x0, y0, h, ends)
 
 
 def swept_rapidities(
