@@ -56,6 +56,14 @@ BY_NATURE = {
 }
 
 
+#: The commands that take a sphere's options (--d1, --d2, --m1, --m2, --material, --sy).
+_SPHERE_TAKERS = (
+    "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws", "fit",
+    "yield-limit", "timestep", "export",
+)  # fmt: skip
+#: The commands that take the spheres' velocities before the impact (--v1, --v2).
+_MOTION_TAKERS = ("elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws", "export")
+
 #: What an option means, for each option whose help is not word for word the same in every
 #: command that takes it: option -> {meaning: the commands where it means that}. An option
 #: may be worded for its command and keep one meaning; an option of two meanings is listed
@@ -74,36 +82,14 @@ MEANINGS: dict[str, dict[str, tuple[str, ...]]] = {
         "collide2d", "collide3d", "batch", "laws", "compare-laws", "fit", "yield-limit",
         "timestep",
     )},
-    "--d1": {"diameter of sphere 1": (
-        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep", "export",
-    )},
-    "--d2": {"diameter of sphere 2": (
-        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep", "export",
-    )},
-    "--v1": {"velocity of sphere 1 before the impact": (
-        "elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws", "export",
-    )},
-    "--v2": {"velocity of sphere 2 before the impact": (
-        "elastic", "elastoplastic", "collide2d", "collide3d", "compare-laws", "export",
-    )},
-    "--material": {"material of both spheres": (
-        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep", "export",
-    )},
-    "--m1": {"mass of sphere 1": (
-        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep", "export",
-    )},
-    "--m2": {"mass of sphere 2": (
-        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep", "export",
-    )},
-    "--sy": {"yield strength of both spheres": (
-        "elastic", "elastoplastic", "restitution", "collide2d", "collide3d", "compare-laws",
-        "fit", "yield-limit", "timestep", "export",
-    )},
+    "--d1": {"diameter of sphere 1": _SPHERE_TAKERS},
+    "--d2": {"diameter of sphere 2": _SPHERE_TAKERS},
+    "--v1": {"velocity of sphere 1 before the impact": _MOTION_TAKERS},
+    "--v2": {"velocity of sphere 2 before the impact": _MOTION_TAKERS},
+    "--material": {"material of both spheres": _SPHERE_TAKERS},
+    "--m1": {"mass of sphere 1": _SPHERE_TAKERS},
+    "--m2": {"mass of sphere 2": _SPHERE_TAKERS},
+    "--sy": {"yield strength of both spheres": _SPHERE_TAKERS},
     "--damping": {"the damping model added to Hertz": (
         "elastic", "restitution", "collide2d", "collide3d", "compare-laws", "fit", "export",
     )},
