@@ -188,6 +188,40 @@ def _series(
     return ys
 
 
+#: Panels (d) and (e) of :func:`impact_figure`: column suffix -> the labels of delta_1,
+#: delta_2 and delta (or of their rates), the quantity and its SI unit.
+_INDENTATION_PANELS = {
+    "": (
+        r"sphere 1, $\delta_1$", r"sphere 2, $\delta_2$", r"total, $\delta = \delta_1 + \delta_2$",
+        r"indentation $\delta$", "m",
+    ),
+    "_dot": (
+        r"sphere 1, $\dot\delta_1$", r"sphere 2, $\dot\delta_2$", r"total, $\dot\delta$",
+        r"indentation rate $\dot\delta$", "m/s",
+    ),
+}  # fmt: skip
+
+
+def _indentation_panel(
+    ax: Axes,
+    t: NDArray,
+    ts: UnitScale,
+    h: Mapping[str, NDArray],
+    reference: Mapping[str, NDArray] | None,
+    suffix: str,
+) -> None:
+    """Each sphere's indentation and the total (``suffix`` ""), or their rates
+    (``suffix`` "_dot"), against time, with the reference's markers."""
+    label1, label2, label, quantity, unit = _INDENTATION_PANELS[suffix]
+    keys = ("delta1" + suffix, "delta2" + suffix, "delta" + suffix)
+    colours = (*SPHERE_COLOURS, TOTAL_COLOUR)
+    total = {"color": TOTAL_COLOUR, "linestyle": "--", "linewidth": 1.2}
+    styles = ({"color": colours[0]}, {"color": colours[1]}, total)
+    lines = [(k, lab, h[k], st) for k, lab, st in zip(keys, (label1, label2, label), styles)]
+    ys = _series(ax, t, ts, lines, quantity, unit)
+    _reference(ax, t, ts, ys, reference, list(zip(keys, colours)))
+
+
 def _reference(
     ax: Axes,
     x: NDArray,
@@ -318,7 +352,6 @@ def impact_figure(
     t = h["t"]
     ts = unit_scale(t, "s")
     c1, c2 = SPHERE_COLOURS
-    total = {"color": TOTAL_COLOUR, "linestyle": "--", "linewidth": 1.2}
 
     ys = _series(
         ax_d,
@@ -359,41 +392,10 @@ def impact_figure(
         fontsize="medium",
     )
 
-    ys = _series(
-        ax_i,
-        t,
-        ts,
-        [
-            ("delta1", r"sphere 1, $\delta_1$", h["delta1"], {"color": c1}),
-            ("delta2", r"sphere 2, $\delta_2$", h["delta2"], {"color": c2}),
-            ("delta", r"total, $\delta = \delta_1 + \delta_2$", h["delta"], total),
-        ],
-        r"indentation $\delta$",
-        "m",
-    )
-    _reference(ax_i, t, ts, ys, ref, [("delta1", c1), ("delta2", c2), ("delta", TOTAL_COLOUR)])
+    _indentation_panel(ax_i, t, ts, h, ref, "")
     ax_i.set_title(f"(d) Indentations (paper {figs['delta']})", fontsize="medium")
 
-    ys = _series(
-        ax_r,
-        t,
-        ts,
-        [
-            ("delta1_dot", r"sphere 1, $\dot\delta_1$", h["delta1_dot"], {"color": c1}),
-            ("delta2_dot", r"sphere 2, $\dot\delta_2$", h["delta2_dot"], {"color": c2}),
-            ("delta_dot", r"total, $\dot\delta$", h["delta_dot"], total),
-        ],
-        r"indentation rate $\dot\delta$",
-        "m/s",
-    )
-    _reference(
-        ax_r,
-        t,
-        ts,
-        ys,
-        ref,
-        [("delta1_dot", c1), ("delta2_dot", c2), ("delta_dot", TOTAL_COLOUR)],
-    )
+    _indentation_panel(ax_r, t, ts, h, ref, "_dot")
     ax_r.set_title(f"(e) Indentation rates (paper {figs['delta_dot']})", fontsize="medium")
 
     momentum_change = _momentum_panel(ax_p, t, ts, h, ref)
