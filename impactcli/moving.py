@@ -304,6 +304,17 @@ class _Contact:
         beyond = gap - (self.r1 + self.r2)
         return min(max(beyond / rate, 0.0), dt) if rate > 0.0 else 0.0
 
+    def _kick(self, current, v1, v2, w1, w2, dt: float):
+        """A half step of velocity Verlet: the velocities and spins after dt/2 under the
+        force and torques ``current`` (a fixed sphere 2 keeps its own)."""
+        f, t1, t2 = current
+        v1 = v1 + 0.5 * dt * f / self.m1
+        w1 = w1 + 0.5 * dt * t1 / self.i1
+        if not self.fixed:
+            v2 = v2 - 0.5 * dt * f / self.m2
+            w2 = w2 + 0.5 * dt * t2 / self.i2
+        return v1, v2, w1, w2
+
     def run(self, start, dt):
         """Velocity Verlet from first contact to separation at the step dt: the velocities,
         spins and centres after the impact (the centres at the end of the contact)."""
@@ -313,24 +324,14 @@ class _Contact:
         current = self.forces(x1, x2, v1, v2, w1, w2, state, 0.0) or (np.zeros(3),) * 3
         limit = 100_000_000
         for _ in range(limit):
-            f, t1, t2 = current
-            v1 = v1 + 0.5 * dt * f / self.m1
-            w1 = w1 + 0.5 * dt * t1 / self.i1
-            if not self.fixed:
-                v2 = v2 - 0.5 * dt * f / self.m2
-                w2 = w2 + 0.5 * dt * t2 / self.i2
+            v1, v2, w1, w2 = self._kick(current, v1, v2, w1, w2, dt)
             x1 = x1 + dt * v1
             x2 = x2 + dt * v2
             step = self.forces(x1, x2, v1, v2, w1, w2, state, dt)
             if step is None:
                 break
             current = step
-            f, t1, t2 = current
-            v1 = v1 + 0.5 * dt * f / self.m1
-            w1 = w1 + 0.5 * dt * t1 / self.i1
-            if not self.fixed:
-                v2 = v2 - 0.5 * dt * f / self.m2
-                w2 = w2 + 0.5 * dt * t2 / self.i2
+            v1, v2, w1, w2 = self._kick(current, v1, v2, w1, w2, dt)
         # the centres when the contact ends: back from the first step without it
         back = self._overshoot(x1, x2, v1, v2, dt)
         return v1, v2, w1, w2, x1 - back * v1, x2 - back * v2
