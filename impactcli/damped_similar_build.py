@@ -39,6 +39,7 @@ from impactcli.damped_similar import (
 )
 from impactcli.damping import (
     SUMMARY_KEYS,
+    _illinois,
     _law_force_nodes,
     _march,
     _maximum_force,
@@ -90,25 +91,12 @@ def _restitution_summary(name: str, alphas: Array, separation: str, n: int = TAB
     return out
 
 
-def _illinois(func, lo: Array, hi: Array, f_lo: Array, f_hi: Array, iters: int = 80) -> Array:
-    """Roots of func (vectorised) on brackets with f_lo f_hi <= 0, to rounding."""
-    side = np.zeros(lo.size, dtype=int)
-    x = 0.5 * (lo + hi)
-    for _ in range(iters):
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-        x = np.where(np.isfinite(x) & (x > lo) & (x < hi), x, 0.5 * (lo + hi))
-        fx = func(x)
-        same = np.sign(fx) == np.sign(f_lo)
-        lo, f_lo_new = np.where(same, x, lo), np.where(same, fx, f_lo)
-        hi, f_hi_new = np.where(same, hi, x), np.where(same, f_hi, fx)
-        f_hi_new = np.where(same & (side == 1), 0.5 * f_hi_new, f_hi_new)
-        f_lo_new = np.where(~same & (side == -1), 0.5 * f_lo_new, f_lo_new)
-        side = np.where(same, 1, -1)
-        f_lo, f_hi = f_lo_new, f_hi_new
-        if np.all((hi - lo <= 4.0 * np.finfo(float).eps * np.abs(hi)) | (fx == 0.0)):
-            break
-    return x
+def _root(func, lo: Array, hi: Array, f_lo: Array, f_hi: Array) -> Array:
+    """Roots of func (vectorised) on brackets with f_lo f_hi <= 0, to rounding: the Illinois
+    regula falsi of :mod:`impactcli.damping` on s func, s = sign(f_lo), so that the value at
+    the lower end is the positive one."""
+    s = np.where(f_lo < 0.0, -1.0, 1.0)
+    return _illinois(lambda x: s * func(x), lo, hi, s * f_lo, s * f_hi, iters=80)
 
 
 def _crossings(grid: Array, values: Array) -> tuple[Array, Array, Array]:
@@ -304,7 +292,7 @@ def build(
     def gap(a: Array, target: Array = target) -> Array:
         return _loading_summary(name, a)[:, 0] - target
 
-    turn = _illinois(gap, grid[i], grid[i + 1], load[i, 0] - target, load[i + 1, 0] - target)
+    turn = _root(gap, grid[i], grid[i + 1], load[i, 0] - target, load[i + 1, 0] - target)
     turn = np.sort(turn)
     say(f"{name}: {turn.size} loading breakpoints, {time.perf_counter() - clock:.1f} s")
     # The tables end at the first loading breakpoint beyond ``top``.
@@ -324,7 +312,7 @@ def build(
     def reduced(a: Array, col: Array = col) -> Array:
         return _separation_function(name, a)[np.arange(a.size), col]
 
-    sep = _illinois(reduced, grid[i], grid[i + 1], g[i, col], g[i + 1, col]) if col.size else col
+    sep = _root(reduced, grid[i], grid[i + 1], g[i, col], g[i + 1, col]) if col.size else col
     say(f"{name}: {sep.size} separation breakpoints, {time.perf_counter() - clock:.1f} s")
     out: dict[str, Array] = {}
     for table, extra in (("load", peaks), ("overlap", ()), ("force", sep)):

@@ -246,3 +246,17 @@ def test_a_law_whose_mass_is_not_the_impacts_marches():
     assert float(solve_damped_impact(law, 0.0125, 0.05).restitution) == pytest.approx(
         0.653551476663643, rel=1e-13
     )
+
+
+def test_build_root_finds_roots_of_either_sign_order():
+    """The tables' breakpoints come from brackets where the function falls or rises: both
+    give the root to rounding (here of x^3 - c, against the closed form c^(1/3))."""
+    c = np.array([0.2, 0.5, 0.9, 0.3])
+    sign = np.array([1.0, -1.0, 1.0, -1.0])  # rising, falling, ...
+
+    def func(x):
+        return sign * (x**3 - c)
+
+    lo, hi = np.zeros(4), np.ones(4)
+    roots = damped_similar_build._root(func, lo, hi, func(lo), func(hi))
+    np.testing.assert_allclose(roots, np.cbrt(c), rtol=1e-14)
