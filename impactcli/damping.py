@@ -1130,6 +1130,7 @@ def damping_for_restitution(
     model = DAMPING_LAWS[name]
     similar = getattr(model, "similar_alpha", None)
     found = np.zeros_like(todo)
+    problem = _Inverse(name, e_t, v0, k, m, separation, rtol)
     if similar is not None and np.any(todo):
         with np.errstate(all="ignore"):
             unit = np.broadcast_to(np.asarray(similar(1.0, k, m, v0), dtype=float), e_t.shape)
@@ -1138,17 +1139,33 @@ def damping_for_restitution(
         alpha[found] = a_hat[found] / unit[found]
         if n != damped_similar.TABLE_N or rtol < TABLE_RTOL:
             idx = np.flatnonzero(found)
-            alpha[idx] = _refine_alpha(
-                name, e_t[idx], v0[idx], k[idx], m[idx], n, separation, rtol, alpha[idx]
-            )
+            alpha[idx] = _refine_alpha(problem.rows(idx), n, alpha[idx])
     rest = np.flatnonzero(todo & ~found)
     if rest.size:  # beyond the tables: bracketing with FILM at a coarse n, then at n
-        args = (name, e_t[rest], v0[rest], k[rest], m[rest])
         coarse = min(n, _COARSE_N)
-        alpha[rest] = _alpha_by_illinois(*args, coarse, separation, rtol)
+        alpha[rest] = _alpha_by_illinois(problem.rows(rest), coarse)
         if n > coarse:
-            alpha[rest] = _refine_alpha(*args, n, separation, rtol, alpha[rest])
+            alpha[rest] = _refine_alpha(problem.rows(rest), n, alpha[rest])
     return alpha.reshape(shape)
+
+
+@dataclass(frozen=True)
+class _Inverse:
+    """The inverse problem of :func:`damping_for_restitution` for a batch (1-D arrays): the
+    model ``name``, the target e ``e_t`` [-], V0 ``v0`` [m/s], K ``k`` [N/m^1.5], the mass
+    ``m`` [kg], the rule of ``separation`` and the relative tolerance ``rtol`` on alpha."""
+
+    name: str
+    e_t: Array
+    v0: Array
+    k: Array
+    m: Array
+    separation: str
+    rtol: float
+
+    def rows(self, idx: Array) -> _Inverse:
+        """The problem of the collisions ``idx``."""
+        return replace(self, e_t=self.e_t[idx], v0=self.v0[idx], k=self.k[idx], m=self.m[idx])
 
 
 #: The relative accuracy of alpha from the tables' inverse at their n (the tables give e
@@ -1162,22 +1179,15 @@ TABLE_RTOL = 1e-12
 _COARSE_N = 50
 
 
-def _alpha_by_illinois(
-    name: str,
-    e_t: Array,
-    v0: Array,
-    k: Array,
-    m: Array,
-    n: int,
-    separation: str,
-    rtol: float,
-) -> Array:
+def _alpha_by_illinois(p: _Inverse, n: int) -> Array:
     """Root of e_FILM(alpha) - e with n segments: bracketing from alpha = 0 (e = 1), the
     upper end doubling from a published estimate, then vectorised Illinois."""
 
+    name, e_t, v0, k, m = p.name, p.e_t, p.v0, p.k, p.m
+
     def gap(alpha: Array) -> Array:
         law = make_damping_law(name, k, m, alpha)
-        return solve_damped_impact(law, v0, m, n, separation).restitution - e_t
+        return solve_damped_impact(law, v0, m, n, p.separation).restitution - e_t
 
     guess = DAMPING_LAWS[name].alpha_estimate(e_t, v0, k, m)  # a published estimate, > 0
     todo = e_t < 1.0
@@ -1198,28 +1208,19 @@ def _alpha_by_illinois(
         np.where(todo, f_lo, 1.0),
         np.where(todo, f_hi, -1.0),
         iters=100,
-        rtol=rtol,
+        rtol=p.rtol,
     )
     return np.where(todo, alpha, 0.0)
 
 
-def _refine_alpha(
-    name: str,
-    e_t: Array,
-    v0: Array,
-    k: Array,
-    m: Array,
-    n: int,
-    separation: str,
-    rtol: float,
-    alpha: Array,
-) -> Array:
+def _refine_alpha(p: _Inverse, n: int, alpha: Array) -> Array:
     """Correct the coarse alpha to FILM with n segments: e at three alphas around the
     estimate, solved as one batch, and quadratic inverse interpolation, repeated with a
     narrower spread until the correction is within ``rtol``. FILM's e(alpha) differs
     between n and the coarse n by O(1/n^2), so two or three rounds suffice; a target the
     three points do not bracket widens the spread, and after 12 rounds the plain
     bracketing solver at n decides."""
+    e_t, v0, k, m = p.e_t, p.v0, p.k, p.m
     todo = (e_t < 1.0) & (alpha > 0.0)
     spread = np.full_like(alpha, 1e-3)
     offsets = np.array([-1.0, 0.0, 1.0])
@@ -1228,8 +1229,8 @@ def _refine_alpha(
             return alpha
         idx = np.flatnonzero(todo)
         a = alpha[idx, None] * (1.0 + spread[idx, None] * offsets)
-        law = make_damping_law(name, k[idx, None], m[idx, None], a)
-        e = solve_damped_impact(law, v0[idx, None], m[idx, None], n, separation).restitution
+        law = make_damping_law(p.name, k[idx, None], m[idx, None], a)
+        e = solve_damped_impact(law, v0[idx, None], m[idx, None], n, p.separation).restitution
         target = e_t[idx]
         inside = (np.min(e, axis=1) <= target) & (target <= np.max(e, axis=1))
         inside &= np.all(np.diff(e, axis=1) < 0.0, axis=1)  # e falls as alpha grows
@@ -1243,12 +1244,10 @@ def _refine_alpha(
         alpha[idx] = np.where(ok, new, alpha[idx])
         # The quadratic's error is about (spread)^3: the next spread covers the step made.
         spread[idx] = np.where(ok, np.maximum(4.0 * step, 1e-9), 10.0 * spread[idx])
-        todo[idx] = ~(ok & (step <= rtol))
+        todo[idx] = ~(ok & (step <= p.rtol))
         todo &= spread < 0.5
     if np.any(todo):
-        alpha[todo] = _alpha_by_illinois(
-            name, e_t[todo], v0[todo], k[todo], m[todo], n, separation, rtol
-        )
+        alpha[todo] = _alpha_by_illinois(p.rows(todo), n)
     return alpha
 
 
