@@ -679,34 +679,19 @@ def impact_summary(
     v1, v2 = pairs.v1, pairs.v2
     m = pairs.m
     r1, r2 = m / pairs.mass1, m / pairs.mass2
-    f1, f2 = fractions
-    v0 = v1 + v2
     t_c = np.asarray(contact_time, dtype=float)
     delta_max = np.asarray(plan.delta_max, dtype=float)
     delta_res = np.asarray(plan.delta_res, dtype=float)
     delta_end = np.asarray(plan.delta_end, dtype=float)  # delta_res, or where it parts
     restitution = np.asarray(plan.restitution, dtype=float)
-    summary = {
-        "contact_time": t_c,
-        "delta_max": delta_max,
-        "force_max": np.asarray(plan.force_max, dtype=float),
-        "t_max": np.asarray(t_max, dtype=float),
-        "v_cp": r2 * v1 - r1 * v2,
-        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_end),
-        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_end),
-        "v1_final": v1 - r1 * (1.0 + restitution) * v0,
-        "v2_final": v2 - r2 * (1.0 + restitution) * v0,
-        "delta1_max": f1 * delta_max,
-        "delta2_max": f2 * delta_max,
-        "restitution": restitution,
-        "effective_mass": m,
-        "effective_radius": pairs.radius,
-        "effective_modulus": pairs.modulus,
-    }
-    if permanent is not None:
-        p1, p2 = permanent
-        summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
-        summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
+    summary = _summary_values(
+        (v1, v2),
+        (m, r1, r2),
+        (np.asarray(t_max, dtype=float), t_c),
+        (delta_max, np.asarray(plan.force_max, dtype=float), delta_end, restitution),
+        _sphere_maxima(fractions, permanent, delta_max, delta_res),
+        (pairs.radius, pairs.modulus),
+    )
     summary["first_yield_velocity"] = first_yield_velocity(
         m, pairs.radius, pairs.modulus, pairs.sigma_y
     )
@@ -781,13 +766,67 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     try:  # on floats: impact_summary's operations, one impact
         if quantities is None:
             values, times = tuple(map(_float, values)), tuple(map(_float, times))
-        out = _summary_of_floats(result, pair.radius, pair.modulus, *values, *times,
-                                 pair.permanent)  # fmt: skip
+        out = _summary_of_floats(result, pair.radius, pair.modulus, values, times, pair.permanent)
     except (ArithmeticError, TypeError, ValueError):
         plan = ImpactPlan((), *(np.asarray(x) for x in values))
         out = _summarise(result, plan, solution.t_max, solution.end_time, permanent=pair.permanent)
     out.update(pair.summary(result, solution))
     return out
+
+
+def _sphere_maxima(
+    fractions: tuple[Any, Any],
+    permanent: tuple[Any, Any] | None,
+    delta_max: Any,
+    delta_res: Any,
+) -> tuple[Any, Any]:
+    """Each sphere's maximum indentation delta_i_max, [m]: f_i delta_max, or with the shares
+    p_i of the permanent indentation e_i (delta_max - delta_res) + p_i delta_res (floats or
+    arrays)."""
+    f1, f2 = fractions
+    if permanent is None:
+        return f1 * delta_max, f2 * delta_max
+    p1, p2 = permanent
+    elastic = delta_max - delta_res
+    return f1 * elastic + p1 * delta_res, f2 * elastic + p2 * delta_res
+
+
+def _summary_values(
+    velocities: tuple[Any, Any],
+    masses: tuple[Any, Any, Any],
+    times: tuple[Any, Any],
+    plan: tuple[Any, Any, Any, Any],
+    maxima: tuple[Any, Any],
+    effective: tuple[Any, Any],
+) -> dict[str, Any]:
+    """The summary of :func:`impact_summary` but the first-yield velocity (floats or arrays):
+    ``velocities`` V_1, V_2 [m/s]; ``masses`` m [kg] and m/m_1, m/m_2 [-]; ``times`` t_max and
+    t_c [s]; ``plan`` delta_max [m], F_max [N], delta at separation [m] and e [-]; ``maxima``
+    delta_1_max, delta_2_max [m] (:func:`_sphere_maxima`); ``effective`` R [m] and E* [Pa].
+    The motion after separation is eq. 12 at delta', delta there (see :func:`impact_summary`).
+    """
+    v1, v2 = velocities
+    m, r1, r2 = masses
+    t_max, t_c = times
+    delta_max, force_max, delta_end, restitution = plan
+    v0 = v1 + v2
+    return {
+        "contact_time": t_c,
+        "delta_max": delta_max,
+        "force_max": force_max,
+        "t_max": t_max,
+        "v_cp": r2 * v1 - r1 * v2,
+        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_end),
+        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_end),
+        "v1_final": v1 - r1 * (1.0 + restitution) * v0,
+        "v2_final": v2 - r2 * (1.0 + restitution) * v0,
+        "delta1_max": maxima[0],
+        "delta2_max": maxima[1],
+        "restitution": restitution,
+        "effective_mass": m,
+        "effective_radius": effective[0],
+        "effective_modulus": effective[1],
+    }
 
 
 def _float(value: ArrayLike) -> float:
@@ -799,42 +838,20 @@ def _summary_of_floats(
     result: ImpactResult,
     r: float,
     e: float,
-    delta_max: float,
-    force_max: float,
-    delta_res: float,
-    restitution: float,
-    t_max: float,
-    contact_time: float,
+    values: tuple[float, float, float, float],
+    times: tuple[float, float],
     permanent: bool,
 ) -> dict[str, float]:
-    """:func:`_summarise` on floats (the operations of :func:`impact_summary`, in order)."""
+    """:func:`_summarise` on floats (the operations of :func:`impact_summary`, in order):
+    ``values`` delta_max [m], F_max [N], delta_res [m] and e [-]; ``times`` t_max and t_c
+    [s]; ``r``, ``e`` the effective radius [m] and modulus [Pa]."""
     v1, v2 = float(result.v1), float(result.v2)
     m1, m2 = result.m1, result.m2
     m = 1.0 / (1.0 / m1 + 1.0 / m2)
     r1, r2 = m / m1, m / m2
-    f1, f2 = result.split_fractions
-    v0, t_c = v1 + v2, contact_time
-    summary = {
-        "contact_time": t_c,
-        "delta_max": delta_max,
-        "force_max": force_max,
-        "t_max": t_max,
-        "v_cp": r2 * v1 - r1 * v2,
-        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_res),
-        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_res),
-        "v1_final": v1 - r1 * (1.0 + restitution) * v0,
-        "v2_final": v2 - r2 * (1.0 + restitution) * v0,
-        "delta1_max": f1 * delta_max,
-        "delta2_max": f2 * delta_max,
-        "restitution": restitution,
-        "effective_mass": m,
-        "effective_radius": r,
-        "effective_modulus": e,
-    }
-    if permanent:
-        p1, p2 = result.permanent_fractions
-        summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
-        summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
+    permanent_fractions = result.permanent_fractions if permanent else None
+    maxima = _sphere_maxima(result.split_fractions, permanent_fractions, values[0], values[2])
+    summary = _summary_values((v1, v2), (m, r1, r2), times, values, maxima, (r, e))
     sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
     if sy1 is not None or sy2 is not None:  # the weaker sphere's
         fy1, fy2 = first_yield_velocities_of(result, m, r, e)
