@@ -5,7 +5,7 @@ from __future__ import annotations
 import csv
 import math
 from collections.abc import Sequence
-from typing import IO, Annotated, Optional
+from typing import IO, Annotated, Any, Optional
 
 import numpy as np
 import typer
@@ -120,6 +120,12 @@ def _bounds(text: str, unit: str, name: str) -> tuple[float, float]:
     return low, high
 
 
+def _repeatable(flag: str, metavar: str, help: str) -> Any:
+    """The type of an option that may be given several times (a list of strings, None when
+    not given)."""
+    return Annotated[Optional[list[str]], typer.Option(flag, metavar=metavar, help=help)]
+
+
 @with_sphere_options(velocities=False)
 def fit(
     data: Annotated[
@@ -130,25 +136,12 @@ def fit(
             "e.g. 2.5m/s, or in the header, e.g. 'v0 [m/s]'); '-' is stdin.",
         ),
     ],
-    law: Annotated[
-        Optional[list[str]], typer.Option("--law", metavar="NAME", help=LAW_HELP)
-    ] = None,
-    damping: Annotated[
-        Optional[list[str]],
-        typer.Option("--damping", metavar=f"[{'|'.join(DAMPING_LAWS)}]", help=DAMPING_HELP),
-    ] = None,
-    param: Annotated[
-        Optional[list[str]], typer.Option("--param", metavar="NAME", help=PARAM_HELP)
-    ] = None,
-    start: Annotated[
-        Optional[list[str]], typer.Option("--start", metavar="NAME=VALUE", help=START_HELP)
-    ] = None,
-    bounds: Annotated[
-        Optional[list[str]], typer.Option("--bounds", metavar="NAME=LO:HI", help=BOUNDS_HELP)
-    ] = None,
-    fix: Annotated[
-        Optional[list[str]], typer.Option("--fix", metavar="NAME=VALUE", help=FIX_HELP)
-    ] = None,
+    law: _repeatable("--law", "NAME", LAW_HELP) = None,
+    damping: _repeatable("--damping", f"[{'|'.join(DAMPING_LAWS)}]", DAMPING_HELP) = None,
+    param: _repeatable("--param", "NAME", PARAM_HELP) = None,
+    start: _repeatable("--start", "NAME=VALUE", START_HELP) = None,
+    bounds: _repeatable("--bounds", "NAME=LO:HI", BOUNDS_HELP) = None,
+    fix: _repeatable("--fix", "NAME=VALUE", FIX_HELP) = None,
     spheres: SphereOptions = None,
     n: Annotated[Optional[int], segments_option(N_HELP)] = None,
     fmt: OutputFormat = None,
