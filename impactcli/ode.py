@@ -441,20 +441,13 @@ def integrate_plan(
     Parameters
     ----------
     plan : the impact's stages (force law, ends, start speed); scalar or shape-(1,) values
-    mass : effective mass m, [kg]
-    impact_velocity : V0 = V1 + V2 > 0, [m/s]
-    rtol : relative tolerance of :func:`scipy.integrate.solve_ivp` (DOP853), [-]
-    contact : the plan's contact model, for the energy of the path (optional)
+    mass, impact_velocity, rtol, contact : as :func:`integrate` ([kg], [m/s], [-]; the
+        plan's contact model, optional)
 
     Returns
     -------
     OdeSolution
-        Turning point and separation found by events, dense output for any time.
-
-    Raises
-    ------
-    ValueError
-        When a stage does not reach its end (the plan does not fit the motion).
+        As :func:`integrate`; a :class:`ValueError` when a stage does not reach its end.
 
     Examples
     --------
