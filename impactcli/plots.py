@@ -662,26 +662,14 @@ def _force_panel(ax: Axes, h: Mapping[str, NDArray], summary: Mapping[str, float
                     linestyle=":", label=label, gid=gid)  # fmt: skip
         ax.axhline(-summary["pull_off_force"] / fs.factor, color="0.5", linestyle="-.",
                    linewidth=0.8, label="pull-off force")  # fmt: skip
-    if summary and summary.get("delta_separation", 0.0) > 0:
-        ds = summary["delta_separation"]
-        ax.plot(
-            [ds / xs.factor],
-            [0.0],
-            linestyle="none",
-            marker="s",
-            color="tab:green",
-            label=rf"separation, $\delta_{{sep}}$ = {ds / xs.factor:.4g} {xs.unit}",
-        )
-    if summary and summary.get("delta_res", 0.0) > 0:
-        dr = summary["delta_res"]
-        ax.plot(
-            [dr / xs.factor],
-            [0.0],
-            linestyle="none",
-            marker="o",
-            color="tab:green",
-            label=rf"permanent, $\delta_{{res}}$ = {dr / xs.factor:.4g} {xs.unit}",
-        )
+    # where the force is zero at the end: a damped contact's separation, the permanent
+    # indentation of a plastic one
+    for key, marker, label, sub in (("delta_separation", "s", "separation", "sep"),
+                                    ("delta_res", "o", "permanent", "res")):  # fmt: skip
+        if summary and summary.get(key, 0.0) > 0:
+            x = summary[key] / xs.factor
+            ax.plot([x], [0.0], linestyle="none", marker=marker, color="tab:green",
+                    label=rf"{label}, $\delta_{{{sub}}}$ = {x:.4g} {xs.unit}")  # fmt: skip
     ax.set_xlabel(rf"total indentation $\delta$ ({xs.unit})")
     ax.set_ylabel(f"contact force $F$ ({fs.unit})")
     ax.grid(True, linewidth=0.4, alpha=0.5)
