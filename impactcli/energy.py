@@ -383,8 +383,7 @@ def energy_columns(
     Returns
     -------
     dict
-        ``ke1``, ``ke2``, ``strain_energy``, ``strain_energy1``, ``strain_energy2``,
-        ``dissipated``, ``dissipated1``, ``dissipated2``, [J].
+        The columns of :func:`energy_history`, [J].
     """
     (e1, e2), (p1, p2) = shares
     return {
