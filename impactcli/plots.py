@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -202,16 +202,20 @@ _INDENTATION_PANELS = {
 }  # fmt: skip
 
 
-def _indentation_panel(
-    ax: Axes,
-    t: NDArray,
-    ts: UnitScale,
-    h: Mapping[str, NDArray],
-    reference: Mapping[str, NDArray] | None,
-    suffix: str,
-) -> None:
+class _History(NamedTuple):
+    """What the time panels of :func:`impact_figure` draw: the times ``t`` [s] and their
+    display scale ``ts``, the history's columns ``h`` (SI) and the reference's, or None."""
+
+    t: NDArray
+    ts: UnitScale
+    h: Mapping[str, NDArray]
+    ref: Mapping[str, NDArray] | None
+
+
+def _indentation_panel(ax: Axes, history: _History, suffix: str) -> None:
     """Each sphere's indentation and the total (``suffix`` ""), or their rates
     (``suffix`` "_dot"), against time, with the reference's markers."""
+    t, ts, h, reference = history
     label1, label2, label, quantity, unit = _INDENTATION_PANELS[suffix]
     keys = ("delta1" + suffix, "delta2" + suffix, "delta" + suffix)
     colours = (*SPHERE_COLOURS, TOTAL_COLOUR)
@@ -392,13 +396,14 @@ def impact_figure(
         fontsize="medium",
     )
 
-    _indentation_panel(ax_i, t, ts, h, ref, "")
+    history = _History(t, ts, h, ref)
+    _indentation_panel(ax_i, history, "")
     ax_i.set_title(f"(d) Indentations (paper {figs['delta']})", fontsize="medium")
 
-    _indentation_panel(ax_r, t, ts, h, ref, "_dot")
+    _indentation_panel(ax_r, history, "_dot")
     ax_r.set_title(f"(e) Indentation rates (paper {figs['delta_dot']})", fontsize="medium")
 
-    momentum_change = _momentum_panel(ax_p, t, ts, h, ref)
+    momentum_change = _momentum_panel(ax_p, history)
     ax_p.set_title(
         f"(c) Momentum {'change from the start' if momentum_change else 'exchange'} "
         f"(paper {figs['p']})",
@@ -551,14 +556,9 @@ def _summary_text(summary: Mapping[str, float] | None) -> str:
     return "\n" + ",  ".join(parts) if parts else ""
 
 
-def _momentum_panel(
-    ax: Axes,
-    t: NDArray,
-    ts: UnitScale,
-    h: Mapping[str, NDArray],
-    ref: Mapping[str, NDArray] | None,
-) -> bool:
+def _momentum_panel(ax: Axes, history: _History) -> bool:
     """Momenta (or their changes, see :func:`change_offsets`); True if changes are drawn."""
+    t, ts, h, ref = history
     c1, c2 = SPHERE_COLOURS
     fixed = not np.all(np.isfinite(h["p2"]))
     p0 = change_offsets(h, ("p1",) if fixed else ("p1", "p2"))
