@@ -211,6 +211,17 @@ def approach_velocity(v1: ArrayLike, v2: ArrayLike, p1: ArrayLike, p2: ArrayLike
     return np.sum((v1 - v2) * line_of_centres(p1, p2), axis=-1)
 
 
+def _component(vector: str, axis: str, doc: str) -> property:
+    """A property of :class:`ObliqueCollision`: the component of its velocity ``vector``
+    along its unit vector ``axis`` (``normal`` n_hat or ``tangent`` t_hat), [m/s]; ``doc``
+    is its docstring, to which the unit is added."""
+
+    def component(self: ObliqueCollision) -> Array:
+        return np.sum(getattr(self, vector) * getattr(self, axis), axis=-1)
+
+    return property(component, doc=doc[:-1] + ", [m/s].")
+
+
 @dataclass(frozen=True)
 class ObliqueCollision:
     """Velocities before and after an oblique collision of two smooth spheres (docs/method.md §8).
@@ -264,48 +275,16 @@ class ObliqueCollision:
         """Effective mass m = (1/m1 + 1/m2)^-1, [kg] (docs/method.md §1)."""
         return self.m1 * self.m2 / (self.m1 + self.m2)
 
-    def _along(self, vector: Array, axis: Array) -> Array:
-        return np.sum(vector * axis, axis=-1)
-
-    @property
-    def v1_normal(self) -> Array:
-        """Normal component of v1 before the impact, along n_hat, [m/s] (eq. 18a)."""
-        return self._along(self.v1, self.normal)
-
-    @property
-    def v2_normal(self) -> Array:
-        """Normal component of v2 before the impact, along n_hat, [m/s] (eq. 18b)."""
-        return self._along(self.v2, self.normal)
-
-    @property
-    def v1_tangential(self) -> Array:
-        """Tangential component of v1, along t_hat, [m/s] (eq. 19a); unchanged by the impact."""
-        return self._along(self.v1, self.tangent)
-
-    @property
-    def v2_tangential(self) -> Array:
-        """Tangential component of v2, along t_hat, [m/s] (eq. 19b); unchanged by the impact."""
-        return self._along(self.v2, self.tangent)
-
-    @property
-    def v1_final_normal(self) -> Array:
-        """Normal component of v1 after the impact, along n_hat, [m/s] (eq. 20)."""
-        return self._along(self.v1_final, self.normal)
-
-    @property
-    def v2_final_normal(self) -> Array:
-        """Normal component of v2 after the impact, along n_hat, [m/s] (eq. 20)."""
-        return self._along(self.v2_final, self.normal)
-
-    @property
-    def v1_final_tangential(self) -> Array:
-        """Tangential component of v1 after the impact, along t_hat, [m/s]."""
-        return self._along(self.v1_final, self.tangent)
-
-    @property
-    def v2_final_tangential(self) -> Array:
-        """Tangential component of v2 after the impact, along t_hat, [m/s]."""
-        return self._along(self.v2_final, self.tangent)
+    # the components of the velocities along n_hat and t_hat, [m/s]; the tangential ones
+    # are unchanged by the impact (eq. 19)
+    v1_normal = _component("v1", "normal", "Normal component of v1, along n_hat (eq. 18a).")
+    v2_normal = _component("v2", "normal", "Normal component of v2, along n_hat (eq. 18b).")
+    v1_tangential = _component("v1", "tangent", "Tangential component of v1 along t_hat (eq. 19a).")
+    v2_tangential = _component("v2", "tangent", "Tangential component of v2 along t_hat (eq. 19b).")
+    v1_final_normal = _component("v1_final", "normal", "Normal component of v1' (eq. 20).")
+    v2_final_normal = _component("v2_final", "normal", "Normal component of v2' (eq. 20).")
+    v1_final_tangential = _component("v1_final", "tangent", "Tangential component of v1'.")
+    v2_final_tangential = _component("v2_final", "tangent", "Tangential component of v2'.")
 
     @property
     def approach_velocity(self) -> Array:
