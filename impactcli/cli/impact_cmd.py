@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import enum
 import math
+from collections.abc import Callable
 from typing import IO, Annotated, Any, Optional
 
 import numpy as np
@@ -740,54 +741,23 @@ def restitution(
     elastic_only = sweep_is_elastic(s1, s2, law=choice.name)
     if elastic_only:
         note("no yield strength given: the sweep is of the elastic (Hertz) impact, e = 1")
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            matrix = np.column_stack([data[c] for c in SWEEP_COLUMNS])
-            write_csv(stream, SWEEP_COLUMNS, [((), matrix)])
-        elif kind is Format.json:
-            write_json(
-                stream,
-                {
-                    "inputs": {
-                        "d1": s1.diameter,
-                        "d2": s2.diameter,
-                        "n": n,
-                        "split": split.value,
-                        **law_inputs(choice, weaker_yield_strength(s1, s2)),
-                    },
-                    **({} if sticking is None else {"sticking_velocity": sticking}),
-                    "sweep": data,
-                },
-            )
-        elif elastic_only:
-            _print_elastic_sweep(stream if output not in (None, "-") else None, data)
-        else:
-            from impactcli.cli.common import Table
 
-            table = Table(title=f"Restitution against impact velocity ({choice.title}, FILM)")
-            heads = (
-                "V0 (m/s)",
-                "e",
-                "t_c (µs)",
-                "delta_max (µm)",
-                "delta_res (µm)",
-                "E_diss (mJ)",
-                "regime",
-            )
-            for h in heads:
-                table.add_column(h, justify="right")
-            for i in range(velocities.size):
-                table.add_row(
-                    f"{data['impact_velocity'][i]:.4g}",
-                    f"{data['restitution'][i]:.5f}",
-                    f"{data['contact_time'][i] * 1e6:.4g}",
-                    f"{data['delta_max'][i] * 1e6:.4g}",
-                    f"{data['delta_res'][i] * 1e6:.4g}",
-                    f"{data['energy_dissipated'][i] * 1e3:.4g}",
-                    _regime(data, i, sticking),
-                )
-            console(stream if output not in (None, "-") else None).print(table)
+    def document() -> dict:
+        inputs = {"d1": s1.diameter, "d2": s2.diameter, "n": n, "split": split.value,
+                  **law_inputs(choice, weaker_yield_strength(s1, s2))}  # fmt: skip
+        extra = {} if sticking is None else {"sticking_velocity": sticking}
+        return {"inputs": inputs, **extra, "sweep": data}
+
+    def table(stream: IO[str] | None) -> None:
+        if elastic_only:
+            _print_sweep(stream, "Elastic (Hertz) impact against impact velocity (FILM)", data,
+                         _ELASTIC_SWEEP_TABLE)  # fmt: skip
+        else:
+            title = f"Restitution against impact velocity ({choice.title}, FILM)"
+            _print_sweep(stream, title, data, _SWEEP_TABLE,
+                         regime=lambda i: _regime(data, i, sticking))  # fmt: skip
+
+    _write_sweep(fmt, output, SWEEP_COLUMNS, data, document, table)
     if plot:
         _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear, sticking=sticking)
 
@@ -809,20 +779,67 @@ def _regime(data: dict, i: int, sticking: float | None) -> str:
     return "plastic" if data["plastic"][i] else "elastic"
 
 
-def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
-    """The elastic sweep on screen: V0, contact time, delta_max, force_max."""
+#: The cells of a sweep on screen: column -> heading, factor to the unit of the heading,
+#: format (e's: :func:`_print_sweep`'s ``e_format``).
+_SWEEP_CELLS = {
+    "impact_velocity": ("V0 (m/s)", 1.0, ".4g"),
+    "restitution": ("e", 1.0, None),
+    "contact_time": ("t_c (µs)", 1e6, ".4g"),
+    "delta_max": ("delta_max (µm)", 1e6, ".4g"),
+    "delta_res": ("delta_res (µm)", 1e6, ".4g"),
+    "delta_separation": ("delta_sep (µm)", 1e6, ".4g"),
+    "energy_dissipated": ("E_diss (mJ)", 1e3, ".4g"),
+    "force_max": ("force_max (N)", 1.0, ".4g"),
+}
+#: The columns of the sweeps on screen: elastoplastic (and a regime, :func:`_regime`),
+#: elastic, damped.
+_SWEEP_TABLE = ("impact_velocity", "restitution", "contact_time", "delta_max", "delta_res",
+                "energy_dissipated")  # fmt: skip
+_ELASTIC_SWEEP_TABLE = ("impact_velocity", "contact_time", "delta_max", "force_max")
+_DAMPED_SWEEP_TABLE = ("impact_velocity", "restitution", "contact_time", "delta_max",
+                       "delta_separation", "energy_dissipated")  # fmt: skip
+
+
+def _write_sweep(
+    fmt: Format | None,
+    output: str | None,
+    columns: tuple[str, ...],
+    data: dict,
+    document: Callable[[], dict],
+    table: Callable[[IO[str] | None], None],
+) -> None:
+    """A sweep in the format asked, to ``output`` (stdout for None or '-'): CSV of
+    ``columns``, the JSON ``document()``, or ``table(stream)`` on screen."""
+    kind = resolve_format(fmt, output)
+    with atomic_output(output) as stream:
+        if kind is Format.csv:
+            matrix = np.column_stack([data[c] for c in columns])
+            write_csv(stream, columns, [((), matrix)])
+        elif kind is Format.json:
+            write_json(stream, document())
+        else:
+            table(stream if output not in (None, "-") else None)
+
+
+def _print_sweep(
+    stream: IO[str] | None,
+    title: str,
+    data: dict,
+    columns: tuple[str, ...],
+    e_format: str = ".5f",
+    regime: Callable[[int], str] | None = None,
+) -> None:
+    """A sweep on screen: one row per V0, the ``columns`` (:data:`_SWEEP_CELLS`; e in
+    ``e_format``), then the ``regime`` of row i if given."""
     from impactcli.cli.common import Table
 
-    table = Table(title="Elastic (Hertz) impact against impact velocity (FILM)")
-    for head in ("V0 (m/s)", "t_c (µs)", "delta_max (µm)", "force_max (N)"):
+    cells = [(key, *_SWEEP_CELLS[key]) for key in columns]
+    table = Table(title=title)
+    for head in [head for _key, head, _factor, _spec in cells] + ["regime"] * bool(regime):
         table.add_column(head, justify="right")
     for i in range(data["impact_velocity"].size):
-        table.add_row(
-            f"{data['impact_velocity'][i]:.4g}",
-            f"{data['contact_time'][i] * 1e6:.4g}",
-            f"{data['delta_max'][i] * 1e6:.4g}",
-            f"{data['force_max'][i]:.4g}",
-        )
+        row = [format(data[key][i] * factor, spec or e_format) for key, _, factor, spec in cells]
+        table.add_row(*row, *((regime(i),) if regime else ()))
     console(stream).print(table)
 
 
@@ -876,32 +893,16 @@ def _damped_sweep(
     model = (
         f"Hertz with {damping_label(law)}, {alpha_label(law, alpha)}, {separation} separation"
     )
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            matrix = np.column_stack([data[c] for c in DAMPED_SWEEP_COLUMNS])
-            write_csv(stream, DAMPED_SWEEP_COLUMNS, [((), matrix)])
-        elif kind is Format.json:
-            inputs = {"d1": s1.diameter, "d2": s2.diameter, "n": n, "split": split.value}
-            inputs.update(damping=law, alpha=alpha, separation=separation)
-            write_json(stream, {"inputs": inputs, "sweep": data})
-        else:
-            from impactcli.cli.common import Table
+    def document() -> dict:
+        inputs = {"d1": s1.diameter, "d2": s2.diameter, "n": n, "split": split.value}
+        inputs.update(damping=law, alpha=alpha, separation=separation)
+        return {"inputs": inputs, "sweep": data}
 
-            table = Table(title=f"Restitution against impact velocity ({model}, FILM n = {n})")
-            heads = ("V0 (m/s)", "e", "t_c (µs)", "delta_max (µm)", "delta_sep (µm)")
-            for h in heads + ("E_diss (mJ)",):
-                table.add_column(h, justify="right")
-            for i in range(velocities.size):
-                table.add_row(
-                    f"{data['impact_velocity'][i]:.4g}",
-                    f"{data['restitution'][i]:.6f}",
-                    f"{data['contact_time'][i] * 1e6:.4g}",
-                    f"{data['delta_max'][i] * 1e6:.4g}",
-                    f"{data['delta_separation'][i] * 1e6:.4g}",
-                    f"{data['energy_dissipated'][i] * 1e3:.4g}",
-                )
-            console(stream if output not in (None, "-") else None).print(table)
+    def table(stream: IO[str] | None) -> None:
+        _print_sweep(stream, f"Restitution against impact velocity ({model}, FILM n = {n})",
+                     data, _DAMPED_SWEEP_TABLE, ".6f")  # fmt: skip
+
+    _write_sweep(fmt, output, DAMPED_SWEEP_COLUMNS, data, document, table)
     if plot:
         from impactcli.formatting import format_quantity
         from impactcli.plots import restitution_figure
