@@ -23,6 +23,7 @@ from impactcli.cli.common import (
     save_plot,
     screen_values,
     segments_option,
+    spin_options,
     warn,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
@@ -119,18 +120,7 @@ V2_OPTION = typer.Option(
     metavar="X,Y,Z|SPEED@THETA[@PHI]",
     help="Velocity of sphere 2, as --v1; at rest by default.",
 )
-W1_OPTION = typer.Option(
-    "0,0,0",
-    "--w1",
-    help="Angular velocity of sphere 1, x,y,z: rad/s (a bare number), rpm, deg/s, 1/s; "
-    "e.g. --w1 100rad/s,0,0 or --w1 0,0,600rpm.",
-)
-W2_OPTION = typer.Option(
-    "0,0,0",
-    "--w2",
-    metavar="X,Y,Z",
-    help="Angular velocity of sphere 2, as --w1 (0 for a flat target).",
-)
+W1_OPTION, W2_OPTION = spin_options("--w1 100rad/s,0,0 or --w1 0,0,600rpm")
 P1_OPTION = typer.Option(
     None, "--p1", help="Centre of sphere 1 at contact, x,y,z (m). Write --p1=-1,0,0 when x < 0."
 )

@@ -386,6 +386,24 @@ def segments_option(more: str = ""):  # -> typer.models.OptionInfo
     return typer.Option("--n", "-n", min=1, max=MAX_SEGMENTS, help=help_text)
 
 
+def spin_options(example: str):  # -> tuple of typer.models.OptionInfo
+    """``--w1`` and ``--w2``: the angular velocities of the spheres before the impact, x,y,z
+    (impact collide3d and impact export); ``example`` ends the help of --w1."""
+    w1 = typer.Option(
+        "0,0,0",
+        "--w1",
+        help="Angular velocity of sphere 1, x,y,z: rad/s (a bare number), rpm, deg/s, 1/s; "
+        f"e.g. {example}.",
+    )
+    w2 = typer.Option(
+        "0,0,0",
+        "--w2",
+        metavar="X,Y,Z",
+        help="Angular velocity of sphere 2, as --w1 (0 for a flat target).",
+    )
+    return w1, w2
+
+
 #: ``--n/-n``: FILM segments per stage (the command gives the default).
 Segments = Annotated[int, segments_option()]
 

@@ -9,6 +9,7 @@ from typing import Any, Optional
 
 import typer
 
+from impactcli.cli.common import spin_options
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
@@ -51,6 +52,7 @@ VELOCITY_HELP = (
     "collide3d takes it, with the normal n = (0,0,-1) from sphere 1 to sphere 2 (the script "
     "puts sphere 2, or the flat target, below sphere 1). Also gives V0 for --v-range."
 )
+_W1_OPTION, _W2_OPTION = spin_options("--w1 0,-300rpm,0")
 
 
 @with_law_options(default=f"{ELASTIC_LAW}, e = 1")
@@ -68,18 +70,8 @@ def export(
         metavar="VELOCITY|X,Y,Z|SPEED@THETA[@PHI]",
         help="Velocity of sphere 2, as --v1 (a number: toward sphere 1); at rest by default.",
     ),
-    w1: str = typer.Option(
-        "0,0,0",
-        "--w1",
-        help="Angular velocity of sphere 1, x,y,z: rad/s (a bare number), rpm, deg/s, 1/s; "
-        "e.g. --w1 0,-300rpm,0.",
-    ),
-    w2: str = typer.Option(
-        "0,0,0",
-        "--w2",
-        metavar="X,Y,Z",
-        help="Angular velocity of sphere 2, as --w1 (0 for a flat target).",
-    ),
+    w1: str = _W1_OPTION,
+    w2: str = _W2_OPTION,
     law: LawOptions = None,  # type: ignore[assignment]  # --law and the law parameters
     damping: DampingOptions = None,  # type: ignore[assignment]  # --damping, --alpha, --separation
     e: Optional[float] = typer.Option(
