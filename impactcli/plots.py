@@ -212,6 +212,52 @@ class _History(NamedTuple):
     ref: Mapping[str, NDArray] | None
 
 
+def _displacement_panel(ax: Axes, history: _History) -> None:
+    """Panel (a) of :func:`impact_figure`: each sphere's rigid-body displacement d_i."""
+    t, ts, h, ref = history
+    c1, c2 = SPHERE_COLOURS
+    ys = _series(
+        ax,
+        t,
+        ts,
+        [("d1", "sphere 1", h["d1"], {"color": c1}), ("d2", "sphere 2", h["d2"], {"color": c2})],
+        "displacement $d_i$",
+        "m",
+    )
+    _reference(ax, t, ts, ys, ref, [("d1", c1), ("d2", c2)])
+
+
+def _velocity_panel(ax: Axes, history: _History) -> dict[str, float]:
+    """Panel (b) of :func:`impact_figure`: each sphere's rigid-body velocity, less its
+    initial value when the change is small (:func:`change_offsets`, returned)."""
+    t, ts, h, ref = history
+    c1, c2 = SPHERE_COLOURS
+    v0 = change_offsets(h, ("v1", "v2"))
+    ys = _series(
+        ax,
+        t,
+        ts,
+        [
+            (
+                "v1",
+                "sphere 1" + _initial("V_1", v0, "v1", "m/s"),
+                h["v1"] - v0.get("v1", 0.0),
+                {"color": c1},
+            ),
+            (
+                "v2",
+                "sphere 2" + _initial("V_2", v0, "v2", "m/s"),
+                h["v2"] - v0.get("v2", 0.0),
+                {"color": c2},
+            ),
+        ],  # fmt: skip
+        "velocity change $\\dot d_i - V_i$" if v0 else "velocity $\\dot d_i$",
+        "m/s",
+    )
+    _reference(ax, t, ts, ys, ref, [("v1", c1), ("v2", c2)], v0)
+    return v0
+
+
 def _indentation_panel(ax: Axes, history: _History, suffix: str) -> None:
     """Each sphere's indentation and the total (``suffix`` ""), or their rates
     (``suffix`` "_dot"), against time, with the reference's markers."""
@@ -354,49 +400,16 @@ def impact_figure(
         fig = _new_figure(15.0, 8.8)
         (ax_d, ax_v, ax_p), (ax_i, ax_r, ax_f) = fig.subplots(2, 3)
     t = h["t"]
-    ts = unit_scale(t, "s")
-    c1, c2 = SPHERE_COLOURS
-
-    ys = _series(
-        ax_d,
-        t,
-        ts,
-        [("d1", "sphere 1", h["d1"], {"color": c1}), ("d2", "sphere 2", h["d2"], {"color": c2})],
-        "displacement $d_i$",
-        "m",
-    )
-    _reference(ax_d, t, ts, ys, ref, [("d1", c1), ("d2", c2)])
+    history = _History(t, unit_scale(t, "s"), h, ref)
+    _displacement_panel(ax_d, history)
     ax_d.set_title(f"(a) Rigid-body displacements (paper {figs['d']})", fontsize="medium")
 
-    v0 = change_offsets(h, ("v1", "v2"))
-    ys = _series(
-        ax_v,
-        t,
-        ts,
-        [
-            (
-                "v1",
-                "sphere 1" + _initial("V_1", v0, "v1", "m/s"),
-                h["v1"] - v0.get("v1", 0.0),
-                {"color": c1},
-            ),
-            (
-                "v2",
-                "sphere 2" + _initial("V_2", v0, "v2", "m/s"),
-                h["v2"] - v0.get("v2", 0.0),
-                {"color": c2},
-            ),
-        ],  # fmt: skip
-        "velocity change $\\dot d_i - V_i$" if v0 else "velocity $\\dot d_i$",
-        "m/s",
-    )
-    _reference(ax_v, t, ts, ys, ref, [("v1", c1), ("v2", c2)], v0)
+    v0 = _velocity_panel(ax_v, history)
     ax_v.set_title(
         f"(b) Rigid-body velocities{' less their initial $V_i$' if v0 else ''} (paper {figs['v']})",
         fontsize="medium",
     )
 
-    history = _History(t, ts, h, ref)
     _indentation_panel(ax_i, history, "")
     ax_i.set_title(f"(d) Indentations (paper {figs['delta']})", fontsize="medium")
 
@@ -413,7 +426,7 @@ def impact_figure(
     _force_panel(ax_f, h, summary)
     ax_f.set_title("(f) Force against indentation", fontsize="medium")
     if energy:
-        _energy_panel(axes["g"], t, ts, h)
+        _energy_panel(axes["g"], history)
         axes["g"].set_title(
             "(g) Energy: kinetic energy of each sphere, stored (recoverable) strain energy, "
             "dissipated; their sum is constant",
@@ -432,8 +445,9 @@ def impact_figure(
     return fig
 
 
-def _energy_panel(ax: Axes, t: NDArray, ts: UnitScale, h: Mapping[str, NDArray]) -> None:
+def _energy_panel(ax: Axes, history: _History) -> None:
     """ke1, ke2, strain energy, dissipated energy and their sum against time."""
+    t, ts, h, _ref = history
     c1, c2 = SPHERE_COLOURS
     total = h["ke1"] + h["ke2"] + h["strain_energy"] + h["dissipated"]
     _series(
