@@ -161,7 +161,7 @@ def fit(
     Example: impact fit drops.csv --law du-wang --damping tsuji --d1 20mm --d2 inf --m2 inf
     --material steel
     """
-    from impactcli.fit import DEFAULT_FIT, FIT_LAWS, fit_named_law, law_parameters, rank_fits
+    from impactcli.fit import FIT_LAWS, fit_named_law, rank_fits
     from impactcli.io.fitdata import read_fit_data
     from impactcli.spheres import spheres_from_options
 
@@ -175,6 +175,54 @@ def fit(
         "--fix": _pairs(fix, "--fix"),
     }
     s1, s2 = spheres_from_options(spheres)
+    plan = _fit_plan(laws, names, given, s1, s2)
+    measured = read_fit_data(data, max(len(p[1]) for p in plan))
+
+    fits = []
+    for key, chosen, starts, limits, held in plan:
+        try:
+            result, model = fit_named_law(
+                s1,
+                s2,
+                key,
+                measured,
+                chosen,
+                start={k: v for k, v in starts.items() if k in chosen},
+                bounds={k: v for k, v in limits.items() if k in chosen},
+                fixed=held,
+                n=n,
+            )
+        except ValueError as exc:
+            raise InputError(f"--law {key}: {exc}") from None
+        fits.append((result, model, held))
+    ranked = rank_fits([r for r, _, _ in fits])
+    rank = {r.law: (delta, weight) for r, delta, weight in ranked}
+    for result, _, _ in fits:
+        for message in result.warnings:
+            warn(f"{result.law}: {message}")
+    meaning = yield_strength_meaning(s1, s2)
+
+    with atomic_output(output) as stream:
+        if kind is Format.json:
+            write_json(stream, _document(measured, fits, rank, data, meaning))
+        elif kind is Format.csv:
+            _write_csv(stream, fits, rank)
+        else:
+            _print_tables(
+                stream if output not in (None, "-") else None, measured, fits, ranked, meaning
+            )
+    if plot:
+        _plot(plot, measured, fits, ranked, s1, s2)
+
+
+def _fit_plan(
+    laws: list[str], names: list[str], given: dict[str, dict[str, str]], s1: Any, s2: Any
+) -> list[tuple[str, tuple[str, ...], dict, dict, dict]]:
+    """What each law fits: (law, the parameters it fits, --start values, --bounds, --fix
+    values), read in its units, from --param ``names`` and the ``given`` NAME=VALUE options;
+    one line for a parameter no model or none of ``laws`` has."""
+    from impactcli.fit import DEFAULT_FIT, FIT_LAWS, law_parameters
+
     owns = {key: law_parameters(s1, s2, key) for key in laws}
     everywhere = {name for key in FIT_LAWS for name in law_parameters(s1, s2, key)}
     for option, items in (("--param", names), *given.items()):
@@ -213,43 +261,7 @@ def fit(
                 raise InputError(
                     f"{option} {_option_name(name)}: not a parameter of {', '.join(laws)}"
                 )
-    measured = read_fit_data(data, max(len(p[1]) for p in plan))
-
-    fits = []
-    for key, chosen, starts, limits, held in plan:
-        try:
-            result, model = fit_named_law(
-                s1,
-                s2,
-                key,
-                measured,
-                chosen,
-                start={k: v for k, v in starts.items() if k in chosen},
-                bounds={k: v for k, v in limits.items() if k in chosen},
-                fixed=held,
-                n=n,
-            )
-        except ValueError as exc:
-            raise InputError(f"--law {key}: {exc}") from None
-        fits.append((result, model, held))
-    ranked = rank_fits([r for r, _, _ in fits])
-    rank = {r.law: (delta, weight) for r, delta, weight in ranked}
-    for result, _, _ in fits:
-        for message in result.warnings:
-            warn(f"{result.law}: {message}")
-    meaning = yield_strength_meaning(s1, s2)
-
-    with atomic_output(output) as stream:
-        if kind is Format.json:
-            write_json(stream, _document(measured, fits, rank, data, meaning))
-        elif kind is Format.csv:
-            _write_csv(stream, fits, rank)
-        else:
-            _print_tables(
-                stream if output not in (None, "-") else None, measured, fits, ranked, meaning
-            )
-    if plot:
-        _plot(plot, measured, fits, ranked, s1, s2)
+    return plan
 
 
 def _models(laws: list[str], dampings: list[str], accepted: Sequence[str]) -> list[str]:
