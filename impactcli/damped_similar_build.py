@@ -30,8 +30,8 @@ from impactcli.damped_similar import (
     POINTS,
     TABLE_N,
     _alpha_of,
+    _clear,
     _models,
-    _piece_ends,
     _Table,
     _tables,
     _variable,
@@ -47,7 +47,7 @@ from impactcli.damping import (
     _unit_law,
 )
 
-__all__ = ["TOLERANCE", "build", "check", "regenerate"]
+__all__ = ["TOLERANCE", "build", "check", "reach", "regenerate", "tops"]
 
 Array = NDArray[np.float64]
 
@@ -280,13 +280,20 @@ def _fit(name: str, table: str, edges: Array, upper: Array, points: int, say):
 
 
 def build(
-    name: str, top: float, points: int = POINTS, log: Callable[[str], Any] | None = None
+    name: str,
+    top: float | dict[str, float],
+    points: int = POINTS,
+    log: Callable[[str], Any] | None = None,
 ) -> dict[str, Array]:
-    """The tables of the model ``name`` from alpha = 0 to about ``top`` (module docstring):
-    arrays ``<table>__edges``, ``<table>__upper``, ``<table>__coef``."""
+    """The tables of the model ``name`` from alpha = 0 to about ``top`` (module docstring),
+    one alpha for both rules or one per rule (``{"overlap": ..., "force": ...}``; the
+    loading's table reaches the larger): arrays ``<table>__edges``, ``<table>__upper``,
+    ``<table>__root``, ``<table>__coef``."""
     say = log or (lambda *_: None)
     n = TABLE_N
     clock = time.perf_counter()
+    tops = top if isinstance(top, dict) else {"overlap": top, "force": top}
+    top = max(tops.values())
     # A grid uniform in delta_max, 16 points per loading node: first delta_max on a coarse
     # grid in alpha, then alpha at the delta_max wanted by interpolation.
     coarse = np.linspace(0.0, 1.05 * top, 2001)
@@ -307,8 +314,10 @@ def build(
     turn = _illinois(gap, grid[i], grid[i + 1], load[i, 0] - target, load[i + 1, 0] - target)
     turn = np.sort(turn)
     say(f"{name}: {turn.size} loading breakpoints, {time.perf_counter() - clock:.1f} s")
-    # The tables end at the first loading breakpoint beyond ``top``.
-    end = float(turn[np.searchsorted(turn, top)])
+    # Each table ends at the first loading breakpoint beyond its rule's top (the loading's
+    # beyond the larger).
+    ends = {rule: float(turn[np.searchsorted(turn, value)]) for rule, value in tops.items()}
+    end = ends["load"] = max(ends.values())
     turn = turn[turn <= end]
     # F_max: the peak enters or leaves a node (continuously differentiable: the grid's
     # linear estimate suffices).
@@ -318,7 +327,7 @@ def build(
     # force rule: the separation passes a restitution node (a kink: to rounding).
     g = _separation_function(name, grid)
     col, i, _ = _crossings(grid, g)
-    keep = grid[i + 1] <= end
+    keep = grid[i + 1] <= ends["force"]
     col, i = col[keep], i[keep]
 
     def reduced(a: Array, col: Array = col) -> Array:
@@ -329,10 +338,10 @@ def build(
     out: dict[str, Array] = {}
     for table, extra in (("load", peaks), ("overlap", ()), ("force", sep)):
         inner = np.concatenate([turn, np.asarray(extra, dtype=float)])
-        inner = np.unique(inner[(inner > 0.0) & (inner < end)])
+        inner = np.unique(inner[(inner > 0.0) & (inner < ends[table])])
         # breakpoints closer than rounding of each other are one
         inner = inner[np.concatenate([[True], np.diff(inner) > 1e-13 * inner[1:]])]
-        edges = np.concatenate([[0.0], inner, [end]])
+        edges = np.concatenate([[0.0], inner, [ends[table]]])
         upper = turn[np.searchsorted(turn, edges[1:] * (1.0 - 1e-15), side="left")]
         upper = np.maximum(upper, edges[1:])
         edges, upper, root, coef = _fit(name, table, edges, upper, points, say)
@@ -344,36 +353,61 @@ def build(
     return out
 
 
-def _top(name: str) -> float:
-    """The alpha at K = m = V0 = 1 where e of the ``overlap`` rule falls to
-    :data:`MIN_RESTITUTION` (FILM; to 1e-6 relative: the end of the tables)."""
+def _top(name: str, rule: str = "overlap", floor: float = MIN_RESTITUTION) -> float:
+    """The alpha at K = m = V0 = 1 where e of ``rule`` falls to ``floor`` (FILM; to 1e-6
+    relative: the end of a table)."""
     grid = np.geomspace(1e-3, 1e3, 61)
-    e = _restitution_summary(name, grid, "overlap", n=50)[:, 0]
-    i = int(np.argmax(e < MIN_RESTITUTION))
+    e = _restitution_summary(name, grid, rule)[:, 0]  # a bracket (e falls with alpha)
+    i = int(np.argmax(e < floor))
     lo, hi = grid[i - 1], grid[i]
     for _ in range(12):  # FILM at the tables' n, bisection on a bracket of 10 points
         inner = np.linspace(lo, hi, 10)
-        e = _restitution_summary(name, inner, "overlap")[:, 0]
-        j = int(np.argmax(e < MIN_RESTITUTION))
+        e = _restitution_summary(name, inner, rule)[:, 0]
+        j = int(np.argmax(e < floor))
         lo, hi = inner[j - 1], inner[j]
         if hi - lo < 1e-6 * hi:
             break
     return float(lo)
 
 
-def regenerate(path: Path = DATA, log: Callable[[str], Any] = print) -> None:
+def reach(name: str) -> dict[str, float]:
+    """The e [-] down to which the tables of the model ``name`` reach, per rule: its
+    registry entry's ``similar_reach``, or both rules to where e of the ``overlap`` rule
+    falls to :data:`MIN_RESTITUTION` (as ``{"overlap": MIN_RESTITUTION}``)."""
+    from impactcli.laws.registry import DAMPING_LAWS
+
+    given = DAMPING_LAWS[name].similar_reach
+    return dict(given) if given is not None else {"overlap": MIN_RESTITUTION}
+
+
+def tops(name: str) -> dict[str, float]:
+    """The alphas (at K = m = V0 = 1) to which the tables of ``name`` reach, per rule
+    (:func:`reach`)."""
+    floors = reach(name)
+    if set(floors) == {"overlap"}:
+        top = _top(name, "overlap", floors["overlap"])
+        return {"overlap": top, "force": top}
+    return {rule: _top(name, rule, floor) for rule, floor in floors.items()}
+
+
+def regenerate(
+    path: Path = DATA, log: Callable[[str], Any] = print, models: list[str] | None = None
+) -> None:
     """Build the tables of every self-similar damping model of the registry (to
-    :data:`MIN_RESTITUTION`) and write them to ``path``."""
+    :func:`reach`), or of ``models`` only (the others' kept as the file has them), and
+    write them to ``path``."""
     arrays: dict[str, Any] = {}
-    for name in _models():
-        top = _top(name)
-        log(f"{name}: tables to alpha = {top:.6g} at K = m = V0 = 1")
+    if models is not None and path.exists():
+        with np.load(path) as data:
+            arrays = {key: data[key] for key in data.files if key.split("__")[0] not in models}
+    for name in _models() if models is None else models:
+        top = tops(name)
+        log(f"{name}: tables to alpha = {top} at K = m = V0 = 1")
         for key, value in build(name, top, log=log).items():
             arrays[f"{name}__{key}"] = value
     path.parent.mkdir(parents=True, exist_ok=True)
     np.savez_compressed(path, **arrays)
-    _tables.cache_clear()
-    _piece_ends.cache_clear()
+    _clear()
     log(f"wrote {path} ({path.stat().st_size / 1e6:.2f} MB)")
 
 
@@ -386,8 +420,8 @@ def check(count: int = 200, seed: int = 0, log: Callable[[str], Any] = print) ->
     floor = np.array([_FLOOR.get(key, 1e-300) for key in SUMMARY_KEYS])
     worst = 0.0
     for name in _models():
-        top = _tables()[name, "overlap"].top
         for rule in ("overlap", "force"):
+            top = _tables()[name, rule].top
             alphas = np.concatenate(
                 [rng.uniform(0.0, top, count // 2), top * 10 ** rng.uniform(-6, 0, count // 2)]
             )
@@ -413,12 +447,14 @@ def _film(name: str, alphas: Array, separation: str) -> Array:
 
 def main(argv: list[str] | None = None) -> None:
     args = sys.argv[1:] if argv is None else argv
-    if args == ["--regenerate"]:
-        regenerate()
+    if args[:1] == ["--regenerate"] and set(args[1:]) <= set(_models()):
+        regenerate(models=args[1:] or None)
     elif args == ["--check"]:
         check()
     else:
-        usage = "usage: python -m impactcli.damped_similar_build --regenerate | --check"
+        usage = (
+            "usage: python -m impactcli.damped_similar_build --regenerate [MODEL ...] | --check"
+        )
         print(usage, file=sys.stderr)
         raise SystemExit(2)
 
