@@ -62,21 +62,27 @@ def test_the_tables_are_at_the_default_n_for_every_model():
             assert 0.8 * floors[judge] < e <= floors[judge]
 
 
+@pytest.fixture
+def marched(monkeypatch) -> list[int]:
+    """The collisions of each march of FILM (damping._march) while a test runs."""
+    counts: list[int] = []
+    real = damping._march
+
+    def counted(flat, *args, **kwargs):
+        counts.append(np.size(flat.alpha))
+        return real(flat, *args, **kwargs)
+
+    monkeypatch.setattr(damping, "_march", counted)
+    return counts
+
+
 @pytest.mark.parametrize("rule", RULES)
-def test_realistic_viscoelastic_rows_do_not_march(monkeypatch, rule):
+def test_realistic_viscoelastic_rows_do_not_march(marched, rule):
     # Steel spheres of 1-50 mm and 1-100 mm at 0.5-6 m/s with the A that gives the paper's
     # pair e = 0.8 at 1 m/s (the bench's rows): the small spheres' e falls to 1e-3 (their
     # A (K/m)^(2/5) V0^(1/5) to about 4), and every row is a look-up in the tables.
     from impactcli.batch import batch_damped_impacts
 
-    marched = []
-    real = damping._march
-
-    def counted(flat, *args, **kwargs):
-        marched.append(np.size(flat.alpha))
-        return real(flat, *args, **kwargs)
-
-    monkeypatch.setattr(damping, "_march", counted)
     rng = np.random.default_rng(5)
     size = 20000
     d1, d2 = rng.uniform(1e-3, 0.05, size), rng.uniform(1e-3, 0.1, size)
@@ -190,15 +196,7 @@ def test_one_summary_does_not_march(monkeypatch):
     assert float(sol.force(t_c, delta[1], rate[1])) == 0.0
 
 
-def test_only_the_collisions_beyond_the_tables_march(monkeypatch):
-    marched = []
-    real = damping._march
-
-    def counted(flat, *args, **kwargs):
-        marched.append(np.size(flat.alpha))
-        return real(flat, *args, **kwargs)
-
-    monkeypatch.setattr(damping, "_march", counted)
+def test_only_the_collisions_beyond_the_tables_march(marched):
     top = damped_similar._tables()["tsuji", "overlap"].top
     alpha = np.array([0.1, 0.2, 1.2 * top, 0.3, 1.5 * top])
     solve_damped_impact(make_damping_law("tsuji", 1.25e10, 0.03, alpha), 0.1, 0.03)
