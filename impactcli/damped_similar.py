@@ -48,9 +48,10 @@ turns within its segment, and its separation time under ``force`` carries a roun
 
 The tables are data of the package, ``impactcli/data/damped_similar_n400.npz`` (1.04 MB),
 made by ``python -m impactcli.damped_similar_build --regenerate [MODEL ...]`` (a few
-minutes; :mod:`impactcli.damped_similar_build`); ``--check`` compares them with FILM at
-random alphas. This module only reads them, each model's when first asked for, and
-imports nothing of FILM.
+minutes; :mod:`impactcli.damped_similar_build`; the viscoelastic model's part beyond
+e = 0.01 by ``--extend viscoelastic``, its part below kept bit for bit); ``--check``
+compares them with FILM at random alphas. This module only reads them, each model's when
+first asked for, and imports nothing of FILM.
 """
 
 from __future__ import annotations

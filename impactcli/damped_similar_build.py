@@ -5,9 +5,10 @@ the summary's analytic pieces, the pieces' breakpoints (where the loading turns 
 where the peak force passes a node, where the ``force`` rule's separation passes a node of
 the restitution), each piece checked against FILM and halved while it misses by more than
 :data:`TOLERANCE` (the look-up module's docstring states the method).
-``python -m impactcli.damped_similar_build --regenerate`` writes the data file (a few
-minutes); ``--check`` compares the tables with FILM at random alphas. The look-up does not
-import this module: the tables are FILM's, and FILM reads the tables.
+``python -m impactcli.damped_similar_build --regenerate [MODEL ...]`` writes the data file
+(a few minutes), ``--extend MODEL ...`` builds a model's tables on beyond the file's first
+part (:func:`regenerate`); ``--check`` compares the tables with FILM at random alphas. The
+look-up does not import this module: the tables are FILM's, and FILM reads the tables.
 """
 
 from __future__ import annotations
@@ -284,11 +285,13 @@ def build(
     top: float | dict[str, float],
     points: int = POINTS,
     log: Callable[[str], Any] | None = None,
+    bottom: float = 0.0,
 ) -> dict[str, Array]:
-    """The tables of the model ``name`` from alpha = 0 to about ``top`` (module docstring),
-    one alpha for both rules or one per rule (``{"overlap": ..., "force": ...}``; the
-    loading's table reaches the larger): arrays ``<table>__edges``, ``<table>__upper``,
-    ``<table>__root``, ``<table>__coef``."""
+    """The tables of the model ``name`` from alpha = ``bottom`` (0, or a loading breakpoint
+    where stored tables end) to about ``top`` (module docstring), one alpha for both rules
+    or one per rule (``{"overlap": ..., "force": ...}``; the loading's table reaches the
+    larger): arrays ``<table>__edges``, ``<table>__upper``, ``<table>__root``,
+    ``<table>__coef``."""
     say = log or (lambda *_: None)
     n = TABLE_N
     clock = time.perf_counter()
@@ -296,11 +299,11 @@ def build(
     top = max(tops.values())
     # A grid uniform in delta_max, 16 points per loading node: first delta_max on a coarse
     # grid in alpha, then alpha at the delta_max wanted by interpolation.
-    coarse = np.linspace(0.0, 1.05 * top, 2001)
+    coarse = np.linspace(bottom, 1.05 * top, 2001)
     d_coarse = _loading_summary(name, coarse)[:, 0]
     h = (5.0 / 4.0) ** 0.4 / n
     want = np.arange(d_coarse[0], d_coarse[-1], -h / 16.0)
-    grid = np.unique(np.concatenate([[0.0], np.interp(-want, -d_coarse, coarse)]))
+    grid = np.unique(np.concatenate([[bottom], np.interp(-want, -d_coarse, coarse)]))
     load = _loading_summary(name, grid)
     say(f"{name}: grid of {grid.size} alphas, {time.perf_counter() - clock:.1f} s")
     # Loading breakpoints: delta_max = J h.
@@ -338,10 +341,11 @@ def build(
     out: dict[str, Array] = {}
     for table, extra in (("load", peaks), ("overlap", ()), ("force", sep)):
         inner = np.concatenate([turn, np.asarray(extra, dtype=float)])
-        inner = np.unique(inner[(inner > 0.0) & (inner < ends[table])])
+        # (a breakpoint at ``bottom`` itself, found again to rounding, is the first edge)
+        inner = np.unique(inner[(inner > bottom * (1.0 + 1e-12)) & (inner < ends[table])])
         # breakpoints closer than rounding of each other are one
         inner = inner[np.concatenate([[True], np.diff(inner) > 1e-13 * inner[1:]])]
-        edges = np.concatenate([[0.0], inner, [ends[table]]])
+        edges = np.concatenate([[bottom], inner, [ends[table]]])
         upper = turn[np.searchsorted(turn, edges[1:] * (1.0 - 1e-15), side="left")]
         upper = np.maximum(upper, edges[1:])
         edges, upper, root, coef = _fit(name, table, edges, upper, points, say)
@@ -391,24 +395,62 @@ def tops(name: str) -> dict[str, float]:
 
 
 def regenerate(
-    path: Path = DATA, log: Callable[[str], Any] = print, models: list[str] | None = None
+    path: Path = DATA,
+    log: Callable[[str], Any] = print,
+    models: list[str] | None = None,
+    extend: bool = False,
 ) -> None:
-    """Build the tables of every self-similar damping model of the registry (to
-    :func:`reach`), or of ``models`` only (the others' kept as the file has them), and
-    write them to ``path``."""
-    arrays: dict[str, Any] = {}
-    if models is not None and path.exists():
+    """Build the tables of every self-similar damping model of the registry, or of
+    ``models`` only (the others' kept as the file has them), and write them to ``path``.
+
+    The tables of a model are built in two parts: to where e of the ``overlap`` rule falls
+    to :data:`MIN_RESTITUTION` (every model's), and on from there to its registry entry's
+    reach (:func:`reach`) where that is further. With ``extend`` the first part is the
+    file's own, kept bit for bit (so that no number within it changes: FILM's tables made
+    again differ from it by rounding), and only the part beyond is built.
+    """
+    stored: dict[str, Array] = {}
+    if (models is not None or extend) and path.exists():
         with np.load(path) as data:
-            arrays = {key: data[key] for key in data.files if key.split("__")[0] not in models}
-    for name in _models() if models is None else models:
-        top = tops(name)
-        log(f"{name}: tables to alpha = {top} at K = m = V0 = 1")
-        for key, value in build(name, top, log=log).items():
-            arrays[f"{name}__{key}"] = value
+            stored = {key: data[key] for key in data.files}
+    chosen = _models() if models is None else models
+    arrays = {key: value for key, value in stored.items() if key.split("__")[0] not in chosen}
+    for name in chosen:
+        if extend:
+            first = {key.split("__", 1)[1]: value for key, value in stored.items()
+                     if key.split("__")[0] == name}  # fmt: skip
+        else:
+            top = _top(name)
+            log(f"{name}: tables to alpha = {top:.6g} at K = m = V0 = 1")
+            first = build(name, top, log=log)
+        if set(reach(name)) != {"overlap"}:
+            ends = {float(first[f"{table}__edges"][-1]) for table in OUTPUTS}
+            if len(ends) != 1:
+                raise ValueError(f"{name}: the stored tables reach beyond their first part")
+            bottom, further = ends.pop(), tops(name)
+            log(f"{name}: tables on from alpha = {bottom:.6g} to {further} at K = m = V0 = 1")
+            first = _joined(first, build(name, further, log=log, bottom=bottom))
+        arrays.update({f"{name}__{key}": value for key, value in first.items()})
     path.parent.mkdir(parents=True, exist_ok=True)
     np.savez_compressed(path, **arrays)
     _clear()
     log(f"wrote {path} ({path.stat().st_size / 1e6:.2f} MB)")
+
+
+def _joined(first: dict[str, Array], second: dict[str, Array]) -> dict[str, Array]:
+    """The arrays of two parts of a model's tables (:func:`build`), the second starting
+    where the first ends, as one."""
+    out = {}
+    for table in OUTPUTS:
+        edges = first[f"{table}__edges"], second[f"{table}__edges"]
+        if edges[1][0] != edges[0][-1]:
+            raise ValueError(f"{table}: the second part does not start where the first ends")
+        out[f"{table}__edges"] = np.concatenate([edges[0], edges[1][1:]])
+        for key in ("upper", "root", "coef"):
+            out[f"{table}__{key}"] = np.concatenate(
+                [first[f"{table}__{key}"], second[f"{table}__{key}"]]
+            )
+    return out
 
 
 def check(count: int = 200, seed: int = 0, log: Callable[[str], Any] = print) -> float:
@@ -449,11 +491,14 @@ def main(argv: list[str] | None = None) -> None:
     args = sys.argv[1:] if argv is None else argv
     if args[:1] == ["--regenerate"] and set(args[1:]) <= set(_models()):
         regenerate(models=args[1:] or None)
+    elif args[:1] == ["--extend"] and args[1:] and set(args[1:]) <= set(_models()):
+        regenerate(models=args[1:], extend=True)
     elif args == ["--check"]:
         check()
     else:
         usage = (
-            "usage: python -m impactcli.damped_similar_build --regenerate [MODEL ...] | --check"
+            "usage: python -m impactcli.damped_similar_build --regenerate [MODEL ...] | "
+            "--extend MODEL ... | --check"
         )
         print(usage, file=sys.stderr)
         raise SystemExit(2)
