@@ -23,18 +23,35 @@ On each piece each output is a Chebyshev series of :data:`POINTS` terms in s, fr
 at the piece's Chebyshev points; each piece is checked against FILM near its ends and in
 its middle and halved while it misses by more than
 :data:`~impactcli.damped_similar_build.TOLERANCE`. Over the whole
-range the tables are within 1e-12 of the march, relative (e and t_c within 1e-14; the
+range the tables are within 1e-12 of the march, relative (e and t_c within 1e-14, within
+5e-13 over the viscoelastic model's further reach, where FILM rounds them to that order; the
 energy dissipated, whose rounding in FILM is absolute, within 2e-14 m V0^2):
 tests/test_damped_similar.py. They cover alpha from 0 to where e of the ``overlap`` rule
-falls to :data:`MIN_RESTITUTION` (:func:`ranges`; leading pieces that still miss are left
-out: Tsuji's ``force`` rule below alpha = 7.8e-5, where delta_sep grows as
-alpha^(4/5)); beyond, and for another n,
-:func:`impactcli.damping.solve_damped_impact` marches.
+falls to :data:`MIN_RESTITUTION`, or as far as the model's registry entry asks, per rule
+(its ``similar_reach``; :func:`ranges`; leading pieces that still miss are left out:
+Tsuji's ``force`` rule below alpha = 7.8e-5, where delta_sep grows as alpha^(4/5));
+beyond, and for another n, :func:`impactcli.damping.solve_damped_impact` marches.
 
-The tables are data of the package, ``impactcli/data/damped_similar_n400.npz``, made by
-``python -m impactcli.damped_similar_build --regenerate`` (a few minutes;
-:mod:`impactcli.damped_similar_build`); ``--check`` compares them with FILM at random
-alphas. This module only reads them, and imports nothing of FILM.
+The viscoelastic model's e falls fast with its number A (K/m)^(2/5) V0^(1/5) (``overlap``:
+e = 0.8 at 0.13, 0.01 at 2.32, 1e-3 at 3.7), so that a batch of one material over a range
+of sizes reaches far below e = 0.01: its tables reach to e = 1e-5 under ``overlap``
+(the number 9.42) and to e = 0.01 under ``force`` (12.26). Against SciPy (``solve_ivp``
+DOP853, rtol 1e-12, of the same force at K = m = V0 = 1: FILM's own accuracy at n = 400,
+tests/test_viscoelastic.py), over that whole range: e within 6.2e-6 (``overlap``) and
+4.7e-7 (``force``), absolute; t_c within 4.4e-5 relative where e >= 0.01 under
+``overlap``, growing to 6.7e-2 at e = 1e-5 (the contact ends by a slow creep back to
+delta = 0, which FILM's last segments follow coarsely), and within 3.5e-4 under ``force``;
+delta_max within 1.2e-5 and F_max within 4.2e-5 relative, the energy dissipated within
+7e-7 m V0^2. Beyond, FILM's contact under ``overlap`` ends or sticks by where the loading
+turns within its segment, and its separation time under ``force`` carries a rounding of
+1e-11: there it marches.
+
+The tables are data of the package, ``impactcli/data/damped_similar_n400.npz`` (1.04 MB),
+made by ``python -m impactcli.damped_similar_build --regenerate [MODEL ...]`` (a few
+minutes; :mod:`impactcli.damped_similar_build`; the viscoelastic model's part beyond
+e = 0.01 by ``--extend viscoelastic``, its part below kept bit for bit); ``--check``
+compares them with FILM at random alphas. This module only reads them, each model's when
+first asked for, and imports nothing of FILM.
 """
 
 from __future__ import annotations
@@ -65,7 +82,7 @@ TABLE_N = 400
 #: Chebyshev points (terms) per piece.
 POINTS = 12
 #: The tables of a model reach to the alpha (at K = m = V0 = 1) where e of the ``overlap``
-#: rule falls to this, [-].
+#: rule falls to this, [-] (unless its registry entry's ``similar_reach`` says how far).
 MIN_RESTITUTION = 0.01
 #: The outputs of each table: the loading's (both rules) and each rule's restitution.
 OUTPUTS: dict[str, tuple[str, ...]] = {
@@ -242,25 +259,46 @@ def _alpha_of(s: Array, upper: Array, root: Array) -> Array:
 
 
 @cache
-def _tables() -> dict[tuple[str, str], _Table]:
-    """The tables of the data file, by (model, table); none if it is missing."""
+def _names() -> tuple[str, ...]:
+    """The models of the data file (its directory only); none if it is missing."""
     if not DATA.exists():
-        return {}
+        return ()
     with np.load(DATA) as data:
-        names = {key.split("__")[0] for key in data.files if "__" in key}
-        out = {}
-        for name in names:
-            for table in OUTPUTS:
-                prefix = f"{name}__{table}__"
-                if prefix + "coef" in data.files:
-                    out[name, table] = _Table(
-                        data[prefix + "edges"],
-                        data[prefix + "upper"],
-                        data[prefix + "root"],
-                        data[prefix + "coef"],
-                        OUTPUTS[table],
-                    )
+        return tuple(sorted({key.split("__")[0] for key in data.files if "__" in key}))
+
+
+@cache
+def _model_tables(name: str) -> dict[str, _Table]:
+    """The tables of the model ``name``, by table, read on first use: each model's alone (a
+    Tsuji impact does not read the viscoelastic tables); none if there are none."""
+    if name not in _names():
+        return {}
+    out = {}
+    with np.load(DATA) as data:
+        for table in OUTPUTS:
+            prefix = f"{name}__{table}__"
+            if prefix + "coef" in data.files:
+                out[table] = _Table(
+                    data[prefix + "edges"],
+                    data[prefix + "upper"],
+                    data[prefix + "root"],
+                    data[prefix + "coef"],
+                    OUTPUTS[table],
+                )
     return out
+
+
+def _tables() -> dict[tuple[str, str], _Table]:
+    """The tables of every model of the data file, by (model, table)."""
+    return {
+        (name, table): value for name in _names() for table, value in _model_tables(name).items()
+    }
+
+
+def _clear() -> None:
+    """Forget the tables read (after the data file is written anew)."""
+    for cached in (_names, _model_tables, _piece_ends):
+        cached.cache_clear()
 
 
 def summary(name: str, alpha: Array, separation: str) -> tuple[Array, NDArray[np.bool_]]:
@@ -274,8 +312,8 @@ def summary(name: str, alpha: Array, separation: str) -> tuple[Array, NDArray[np
     """
     alpha = np.asarray(alpha, dtype=float).ravel()
     values = np.full((alpha.size, 7), np.nan)
-    tables = _tables()
-    load, rest = tables.get((name, "load")), tables.get((name, separation))
+    tables = _model_tables(name)
+    load, rest = tables.get("load"), tables.get(separation)
     if load is None or rest is None:
         return values, np.zeros(alpha.size, dtype=bool)
     inside = (alpha >= max(load.bottom, rest.bottom)) & (alpha <= min(load.top, rest.top))
@@ -296,8 +334,8 @@ def summary(name: str, alpha: Array, separation: str) -> tuple[Array, NDArray[np
 
 def summary_one(name: str, alpha: float, separation: str) -> Array | None:
     """:func:`summary` of one alpha: (7,) values, or None beyond the tables."""
-    tables = _tables()
-    load, rest = tables.get((name, "load")), tables.get((name, separation))
+    tables = _model_tables(name)
+    load, rest = tables.get("load"), tables.get(separation)
     if load is None or rest is None:
         return None
     if not max(load.bottom, rest.bottom) <= alpha <= min(load.top, rest.top):
@@ -319,7 +357,7 @@ def alpha_for_restitution(
     """
     e = np.asarray(restitution, dtype=float).ravel()
     alpha = np.full(e.size, np.nan)
-    table = _tables().get((name, separation))
+    table = _model_tables(name).get(separation)
     if table is None:
         return alpha, np.zeros(e.size, dtype=bool)
     ends = _piece_ends(name, separation)  # e at the pieces' edges, falling
@@ -364,7 +402,7 @@ def alpha_for_restitution(
 @cache
 def _piece_ends(name: str, separation: str) -> Array:
     """e at the edges of the pieces of a rule's table (falling)."""
-    table = _tables()[name, separation]
+    table = _model_tables(name)[separation]
     return table(table.edges)[:, 0]
 
 

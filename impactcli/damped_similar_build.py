@@ -5,9 +5,10 @@ the summary's analytic pieces, the pieces' breakpoints (where the loading turns 
 where the peak force passes a node, where the ``force`` rule's separation passes a node of
 the restitution), each piece checked against FILM and halved while it misses by more than
 :data:`TOLERANCE` (the look-up module's docstring states the method).
-``python -m impactcli.damped_similar_build --regenerate`` writes the data file (a few
-minutes); ``--check`` compares the tables with FILM at random alphas. The look-up does not
-import this module: the tables are FILM's, and FILM reads the tables.
+``python -m impactcli.damped_similar_build --regenerate [MODEL ...]`` writes the data file
+(a few minutes), ``--extend MODEL ...`` builds a model's tables on beyond the file's first
+part (:func:`regenerate`); ``--check`` compares the tables with FILM at random alphas. The
+look-up does not import this module: the tables are FILM's, and FILM reads the tables.
 """
 
 from __future__ import annotations
@@ -30,8 +31,8 @@ from impactcli.damped_similar import (
     POINTS,
     TABLE_N,
     _alpha_of,
+    _clear,
     _models,
-    _piece_ends,
     _Table,
     _tables,
     _variable,
@@ -48,7 +49,7 @@ from impactcli.damping import (
     _unit_law,
 )
 
-__all__ = ["TOLERANCE", "build", "check", "regenerate"]
+__all__ = ["TOLERANCE", "build", "check", "reach", "regenerate", "tops"]
 
 Array = NDArray[np.float64]
 
@@ -268,20 +269,29 @@ def _fit(name: str, table: str, edges: Array, upper: Array, points: int, say):
 
 
 def build(
-    name: str, top: float, points: int = POINTS, log: Callable[[str], Any] | None = None
+    name: str,
+    top: float | dict[str, float],
+    points: int = POINTS,
+    log: Callable[[str], Any] | None = None,
+    bottom: float = 0.0,
 ) -> dict[str, Array]:
-    """The tables of the model ``name`` from alpha = 0 to about ``top`` (module docstring):
-    arrays ``<table>__edges``, ``<table>__upper``, ``<table>__coef``."""
+    """The tables of the model ``name`` from alpha = ``bottom`` (0, or a loading breakpoint
+    where stored tables end) to about ``top`` (module docstring), one alpha for both rules
+    or one per rule (``{"overlap": ..., "force": ...}``; the loading's table reaches the
+    larger): arrays ``<table>__edges``, ``<table>__upper``, ``<table>__root``,
+    ``<table>__coef``."""
     say = log or (lambda *_: None)
     n = TABLE_N
     clock = time.perf_counter()
+    tops = top if isinstance(top, dict) else {"overlap": top, "force": top}
+    top = max(tops.values())
     # A grid uniform in delta_max, 16 points per loading node: first delta_max on a coarse
     # grid in alpha, then alpha at the delta_max wanted by interpolation.
-    coarse = np.linspace(0.0, 1.05 * top, 2001)
+    coarse = np.linspace(bottom, 1.05 * top, 2001)
     d_coarse = _loading_summary(name, coarse)[:, 0]
     h = (5.0 / 4.0) ** 0.4 / n
     want = np.arange(d_coarse[0], d_coarse[-1], -h / 16.0)
-    grid = np.unique(np.concatenate([[0.0], np.interp(-want, -d_coarse, coarse)]))
+    grid = np.unique(np.concatenate([[bottom], np.interp(-want, -d_coarse, coarse)]))
     load = _loading_summary(name, grid)
     say(f"{name}: grid of {grid.size} alphas, {time.perf_counter() - clock:.1f} s")
     # Loading breakpoints: delta_max = J h.
@@ -295,8 +305,10 @@ def build(
     turn = _root(gap, grid[i], grid[i + 1], load[i, 0] - target, load[i + 1, 0] - target)
     turn = np.sort(turn)
     say(f"{name}: {turn.size} loading breakpoints, {time.perf_counter() - clock:.1f} s")
-    # The tables end at the first loading breakpoint beyond ``top``.
-    end = float(turn[np.searchsorted(turn, top)])
+    # Each table ends at the first loading breakpoint beyond its rule's top (the loading's
+    # beyond the larger).
+    ends = {rule: float(turn[np.searchsorted(turn, value)]) for rule, value in tops.items()}
+    end = ends["load"] = max(ends.values())
     turn = turn[turn <= end]
     # F_max: the peak enters or leaves a node (continuously differentiable: the grid's
     # linear estimate suffices).
@@ -306,7 +318,7 @@ def build(
     # force rule: the separation passes a restitution node (a kink: to rounding).
     g = _separation_function(name, grid)
     col, i, _ = _crossings(grid, g)
-    keep = grid[i + 1] <= end
+    keep = grid[i + 1] <= ends["force"]
     col, i = col[keep], i[keep]
 
     def reduced(a: Array, col: Array = col) -> Array:
@@ -317,10 +329,11 @@ def build(
     out: dict[str, Array] = {}
     for table, extra in (("load", peaks), ("overlap", ()), ("force", sep)):
         inner = np.concatenate([turn, np.asarray(extra, dtype=float)])
-        inner = np.unique(inner[(inner > 0.0) & (inner < end)])
+        # (a breakpoint at ``bottom`` itself, found again to rounding, is the first edge)
+        inner = np.unique(inner[(inner > bottom * (1.0 + 1e-12)) & (inner < ends[table])])
         # breakpoints closer than rounding of each other are one
         inner = inner[np.concatenate([[True], np.diff(inner) > 1e-13 * inner[1:]])]
-        edges = np.concatenate([[0.0], inner, [end]])
+        edges = np.concatenate([[bottom], inner, [ends[table]]])
         upper = turn[np.searchsorted(turn, edges[1:] * (1.0 - 1e-15), side="left")]
         upper = np.maximum(upper, edges[1:])
         edges, upper, root, coef = _fit(name, table, edges, upper, points, say)
@@ -332,37 +345,100 @@ def build(
     return out
 
 
-def _top(name: str) -> float:
-    """The alpha at K = m = V0 = 1 where e of the ``overlap`` rule falls to
-    :data:`MIN_RESTITUTION` (FILM; to 1e-6 relative: the end of the tables)."""
+def _top(name: str, rule: str = "overlap", floor: float = MIN_RESTITUTION) -> float:
+    """The alpha at K = m = V0 = 1 where e of ``rule`` falls to ``floor`` (FILM; to 1e-6
+    relative: the end of a table)."""
     grid = np.geomspace(1e-3, 1e3, 61)
-    e = _restitution_summary(name, grid, "overlap", n=50)[:, 0]
-    i = int(np.argmax(e < MIN_RESTITUTION))
+    e = _restitution_summary(name, grid, rule)[:, 0]  # a bracket (e falls with alpha)
+    i = int(np.argmax(e < floor))
     lo, hi = grid[i - 1], grid[i]
     for _ in range(12):  # FILM at the tables' n, bisection on a bracket of 10 points
         inner = np.linspace(lo, hi, 10)
-        e = _restitution_summary(name, inner, "overlap")[:, 0]
-        j = int(np.argmax(e < MIN_RESTITUTION))
+        e = _restitution_summary(name, inner, rule)[:, 0]
+        j = int(np.argmax(e < floor))
         lo, hi = inner[j - 1], inner[j]
         if hi - lo < 1e-6 * hi:
             break
     return float(lo)
 
 
-def regenerate(path: Path = DATA, log: Callable[[str], Any] = print) -> None:
-    """Build the tables of every self-similar damping model of the registry (to
-    :data:`MIN_RESTITUTION`) and write them to ``path``."""
-    arrays: dict[str, Any] = {}
-    for name in _models():
-        top = _top(name)
-        log(f"{name}: tables to alpha = {top:.6g} at K = m = V0 = 1")
-        for key, value in build(name, top, log=log).items():
-            arrays[f"{name}__{key}"] = value
+def reach(name: str) -> dict[str, float]:
+    """The e [-] down to which the tables of the model ``name`` reach, per rule: its
+    registry entry's ``similar_reach``, or both rules to where e of the ``overlap`` rule
+    falls to :data:`MIN_RESTITUTION` (as ``{"overlap": MIN_RESTITUTION}``)."""
+    from impactcli.laws.registry import DAMPING_LAWS
+
+    given = DAMPING_LAWS[name].similar_reach
+    return dict(given) if given is not None else {"overlap": MIN_RESTITUTION}
+
+
+def tops(name: str) -> dict[str, float]:
+    """The alphas (at K = m = V0 = 1) to which the tables of ``name`` reach, per rule
+    (:func:`reach`)."""
+    floors = reach(name)
+    if set(floors) == {"overlap"}:
+        top = _top(name, "overlap", floors["overlap"])
+        return {"overlap": top, "force": top}
+    return {rule: _top(name, rule, floor) for rule, floor in floors.items()}
+
+
+def regenerate(
+    path: Path = DATA,
+    log: Callable[[str], Any] = print,
+    models: list[str] | None = None,
+    extend: bool = False,
+) -> None:
+    """Build the tables of every self-similar damping model of the registry, or of
+    ``models`` only (the others' kept as the file has them), and write them to ``path``.
+
+    The tables of a model are built in two parts: to where e of the ``overlap`` rule falls
+    to :data:`MIN_RESTITUTION` (every model's), and on from there to its registry entry's
+    reach (:func:`reach`) where that is further. With ``extend`` the first part is the
+    file's own, kept bit for bit (so that no number within it changes: FILM's tables made
+    again differ from it by rounding), and only the part beyond is built.
+    """
+    stored: dict[str, Array] = {}
+    if (models is not None or extend) and path.exists():
+        with np.load(path) as data:
+            stored = {key: data[key] for key in data.files}
+    chosen = _models() if models is None else models
+    arrays = {key: value for key, value in stored.items() if key.split("__")[0] not in chosen}
+    for name in chosen:
+        if extend:
+            first = {key.split("__", 1)[1]: value for key, value in stored.items()
+                     if key.split("__")[0] == name}  # fmt: skip
+        else:
+            top = _top(name)
+            log(f"{name}: tables to alpha = {top:.6g} at K = m = V0 = 1")
+            first = build(name, top, log=log)
+        if set(reach(name)) != {"overlap"}:
+            ends = {float(first[f"{table}__edges"][-1]) for table in OUTPUTS}
+            if len(ends) != 1:
+                raise ValueError(f"{name}: the stored tables reach beyond their first part")
+            bottom, further = ends.pop(), tops(name)
+            log(f"{name}: tables on from alpha = {bottom:.6g} to {further} at K = m = V0 = 1")
+            first = _joined(first, build(name, further, log=log, bottom=bottom))
+        arrays.update({f"{name}__{key}": value for key, value in first.items()})
     path.parent.mkdir(parents=True, exist_ok=True)
     np.savez_compressed(path, **arrays)
-    _tables.cache_clear()
-    _piece_ends.cache_clear()
+    _clear()
     log(f"wrote {path} ({path.stat().st_size / 1e6:.2f} MB)")
+
+
+def _joined(first: dict[str, Array], second: dict[str, Array]) -> dict[str, Array]:
+    """The arrays of two parts of a model's tables (:func:`build`), the second starting
+    where the first ends, as one."""
+    out = {}
+    for table in OUTPUTS:
+        edges = first[f"{table}__edges"], second[f"{table}__edges"]
+        if edges[1][0] != edges[0][-1]:
+            raise ValueError(f"{table}: the second part does not start where the first ends")
+        out[f"{table}__edges"] = np.concatenate([edges[0], edges[1][1:]])
+        for key in ("upper", "root", "coef"):
+            out[f"{table}__{key}"] = np.concatenate(
+                [first[f"{table}__{key}"], second[f"{table}__{key}"]]
+            )
+    return out
 
 
 def check(count: int = 200, seed: int = 0, log: Callable[[str], Any] = print) -> float:
@@ -374,8 +450,8 @@ def check(count: int = 200, seed: int = 0, log: Callable[[str], Any] = print) ->
     floor = np.array([_FLOOR.get(key, 1e-300) for key in SUMMARY_KEYS])
     worst = 0.0
     for name in _models():
-        top = _tables()[name, "overlap"].top
         for rule in ("overlap", "force"):
+            top = _tables()[name, rule].top
             alphas = np.concatenate(
                 [rng.uniform(0.0, top, count // 2), top * 10 ** rng.uniform(-6, 0, count // 2)]
             )
@@ -401,12 +477,17 @@ def _film(name: str, alphas: Array, separation: str) -> Array:
 
 def main(argv: list[str] | None = None) -> None:
     args = sys.argv[1:] if argv is None else argv
-    if args == ["--regenerate"]:
-        regenerate()
+    if args[:1] == ["--regenerate"] and set(args[1:]) <= set(_models()):
+        regenerate(models=args[1:] or None)
+    elif args[:1] == ["--extend"] and args[1:] and set(args[1:]) <= set(_models()):
+        regenerate(models=args[1:], extend=True)
     elif args == ["--check"]:
         check()
     else:
-        usage = "usage: python -m impactcli.damped_similar_build --regenerate | --check"
+        usage = (
+            "usage: python -m impactcli.damped_similar_build --regenerate [MODEL ...] | "
+            "--extend MODEL ... | --check"
+        )
         print(usage, file=sys.stderr)
         raise SystemExit(2)
 

@@ -121,6 +121,60 @@ def test_restitution_falls_with_v0_to_the_fifth_root():
     assert (1.0 - e[1]) / (1.0 - e[0]) == pytest.approx(2.0, rel=0.02)  # 32^(1/5) = 2
 
 
+def test_restitution_and_contact_time_depend_on_one_number():
+    """SciPy integration of impacts of different K, m, V0 and A that share
+    A (K/m)^(2/5) V0^(1/5): the same e, and the same contact time and maximum indentation in
+    units of L/V0 and L, L = (m V0^2/K)^(2/5) (the ground of the normalised tables,
+    impactcli.damped_similar); another value of the number, another e."""
+    number = 0.7
+    cases = [(1.0, 1.0, 1.0), (1.3e10, 0.03, 2.5), (4.0e8, 2.0e-6, 0.05)]
+    found = []
+    for k, m, v0 in cases:
+        a_const = number / ((k / m) ** 0.4 * v0**0.2)
+        law = ViscoelasticDamping(k, a_const)
+        assert float(DAMPING_LAWS["viscoelastic"].similar_alpha(a_const, k, m, v0)) == (
+            pytest.approx(number, rel=1e-14)
+        )
+        for rule in ("overlap", "force"):
+            ref = damped_impact_ode(law, v0, m, rule)
+            length = (m * v0 * v0 / k) ** 0.4
+            found.append((rule, ref["restitution"], ref["contact_time"] * v0 / length,
+                          ref["delta_max"] / length))  # fmt: skip
+    for rule in ("overlap", "force"):
+        (e0, t0, d0), *others = [row[1:] for row in found if row[0] == rule]
+        for e, t, d in others:
+            assert e == pytest.approx(e0, rel=1e-9)
+            assert t == pytest.approx(t0, rel=1e-9)
+            assert d == pytest.approx(d0, rel=1e-9)
+    other = damped_impact_ode(ViscoelasticDamping(1.0, 0.8), 1.0, 1.0)["restitution"]
+    assert abs(other - found[0][1]) > 0.01
+
+
+#: A (K/m)^(2/5) V0^(1/5) across the normalised tables (to e = 1e-5 under ``overlap``, 9.42;
+#: to e = 0.01 under ``force``, 12.26), and the largest differences from SciPy that
+#: impactcli.damped_similar states: |e - e_ref|, and t_c relative where e >= 0.01 and below.
+SCIPY_CASES = {
+    "overlap": ([0.05, 0.6, 2.0, 4.0, 6.0, 8.5, 9.4], 7e-6, 1e-4, 7e-2),
+    "force": ([0.05, 0.6, 2.0, 5.0, 9.0, 12.2], 5e-7, 5e-4, 5e-4),
+}
+
+
+@pytest.mark.parametrize("rule", ["overlap", "force"])
+def test_the_tables_against_scipy(rule):
+    """The summary at the default n, read from the normalised tables (no march), against
+    SciPy integration of the same force at K = m = V0 = 1, over the tables' whole range."""
+    from impactcli import damped_similar
+
+    numbers, e_abs, t_rel, t_rel_low_e = SCIPY_CASES[rule]
+    table, inside = damped_similar.summary("viscoelastic", np.array(numbers), rule)
+    assert inside.all()
+    for number, (e, t_c, *_rest) in zip(numbers, table):
+        ref = damped_impact_ode(ViscoelasticDamping(1.0, number), 1.0, 1.0, rule)
+        assert abs(e - ref["restitution"]) < e_abs
+        bound = t_rel if ref["restitution"] >= 0.01 else t_rel_low_e
+        assert t_c == pytest.approx(ref["contact_time"], rel=bound)
+
+
 def test_alpha_for_restitution_is_exact_by_the_model():
     alpha = damping_for_restitution("viscoelastic", 0.8, V0, K, M, n=400)
     film = solve_damped_impact(ViscoelasticDamping(K, float(alpha)), V0, M, n=400)

@@ -535,56 +535,67 @@ def linear_curve_stage_times(
     end_at_rest: bool = False,
 ) -> Array:
     """:func:`linear_curve_stage_time` of many impacts at once (arrays broadcast), [s]: the
-    nodes where the curve's piece changes found per point of the curve, then one segment
-    per run and per segment across a point, on arrays of (impacts, 2 x points). The time
-    FILM's n segments take (:func:`impactcli.film.solve_stage`), to rounding.
+    nodes where the curve's piece changes found per point of the curve (among the stages
+    the point lies in), then one segment per run and per segment across a point, on the
+    flat array of those segments of every impact (at most 2 x points + 1 per impact). The
+    time FILM's n segments take (:func:`impactcli.film.solve_stage`), to rounding.
+
+    Examples
+    --------
+    A straight curve F = 4 delta (m = 1 kg): FILM is exact, a quarter period whatever V0.
+
+    >>> law = TabulatedLaw([0.0, 0.2, 1.0], [0.0, 0.8, 4.0])
+    >>> times = linear_curve_stage_times(law, 0.0, [0.25, 0.5], [0.5, 1.0], 1.0, 25, True)
+    >>> [round(t, 12) for t in times.tolist()]
+    [0.785398163397, 0.785398163397]
     """
     values = (delta_start, delta_end, speed_start, mass)
     a, b, v, m = np.broadcast_arrays(*(np.asarray(x, dtype=float).reshape(-1) for x in values))
     span = b - a
     lo, hi = np.minimum(a, b), np.maximum(a, b)
-    rows = np.arange(a.size)
-
-    def node(r: NDArray[np.intp]) -> Array:
-        at = a[:, None] if r.ndim == 2 else a
-        width = span[:, None] if r.ndim == 2 else span
-        end = b[:, None] if r.ndim == 2 else b
-        return np.where(r == n, end, at + width * (r / n))
 
     cuts = [np.zeros(a.size, dtype=np.intp), np.full(a.size, n, dtype=np.intp)]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for x in law.delta[1:-1].tolist():
-            inside = (lo < x) & (x < hi)
-            if not inside.any():  # a point beyond every stage: no cut
-                continue
-            guess = np.clip(np.nan_to_num((x - a) / span * n).astype(np.intp), 1, n - 2)
-            first, second = np.full(a.size, n), np.full(a.size, n)  # n: no cut
-            for shift in (-1, 0, 1):
-                r = np.clip(guess + shift, 0, n - 1)
-                p, q = node(r), node(r + 1)
-                across = inside & (((p < x) & (x < q)) | ((q < x) & (x < p)))
-                on = inside & (x == p)
-                first = np.where(across | on, r, first)
-                second = np.where(across, r + 1, second)
-            cuts += [first, second]
+    for x in law.delta[1:-1].tolist():
+        within = np.flatnonzero((lo < x) & (x < hi))  # the stages this point lies in
+        if not within.size:  # a point beyond every stage: no cut
+            continue
+        a_w, span_w, b_w = a[within], span[within], b[within]
+        guess = np.clip(((x - a_w) / span_w * n).astype(np.intp), 1, n - 2)
+        # the segments guess - 1, guess and guess + 1 (within 0 .. n - 1): x strictly
+        # inside one of them, or on its first node
+        at = [
+            np.where(guess + shift == n, b_w, a_w + span_w * ((guess + shift) / n))
+            for shift in (-1, 0, 1, 2)
+        ]
+        first_w, second_w = np.full(within.size, n), np.full(within.size, n)  # n: no cut
+        for shift, p, q in zip((-1, 0, 1), at[:-1], at[1:]):
+            across = ((p < x) & (x < q)) | ((q < x) & (x < p))
+            first_w = np.where(across | (x == p), guess + shift, first_w)
+            second_w = np.where(across, guess + shift + 1, second_w)
+        first, second = np.full(a.size, n), np.full(a.size, n)
+        first[within], second[within] = first_w, second_w
+        cuts += [first, second]
     ends = np.sort(np.stack(cuts, axis=1), axis=1)
-    start, stop = ends[:, :-1], ends[:, 1:]
-    used = stop > start  # a run or a segment across a point (repeated cuts: none)
-    d0, d1 = node(start), node(stop)
+    # the runs and the segments across a point (repeated cuts: none), row by row
+    row, column = np.nonzero(ends[:, 1:] > ends[:, :-1])
+    start, stop = ends[row, column], ends[row, column + 1]
+    a_r, span_r, b_r, m_r = a[row], span[row], b[row], m[row]
+    d0, d1 = (np.where(r == n, b_r, a_r + span_r * (r / n)) for r in (start, stop))
     f0, f1 = law.force(d0), law.force(d1)
-    work = law.primitive(d0) - law.primitive(a)[:, None]
+    work = law.primitive(d0) - law.primitive(a)[row]
     with np.errstate(divide="ignore", invalid="ignore"):
-        speed = np.sqrt(np.maximum(v[:, None] ** 2 - 2.0 / m[:, None] * work, 0.0))
+        speed = np.sqrt(np.maximum(v[row] ** 2 - 2.0 / m_r * work, 0.0))
         step = d1 - d0
-        direction = np.sign(step)
         stiffness = (f1 - f0) / step
-        omega = np.sqrt(stiffness / m[:, None])
-        swept, _ = swept_angles(speed / omega, direction * f0 / stiffness, np.abs(step))
+        omega = np.sqrt(stiffness / m_r)
+        x0, y0 = speed / omega, np.sign(step) * f0 / stiffness
+        swept, _ = swept_angles(x0, y0, np.abs(step))
         if end_at_rest:  # the run that ends at delta_m ends at its turning point
-            last = used & (stop == n)
-            turned = np.arctan2(speed / omega, direction * f0 / stiffness)
-            swept = np.where(last, turned, swept)
-        return np.where(used, swept / omega, 0.0).sum(axis=1)[rows]
+            last = np.nonzero(stop == n)
+            swept[last] = np.arctan2(x0[last], y0[last])
+        times = np.zeros((a.size, ends.shape[1] - 1))
+        times[row, column] = swept / omega
+        return times.sum(axis=1)
 
 
 @lru_cache(maxsize=16)

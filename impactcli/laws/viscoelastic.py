@@ -184,4 +184,10 @@ SPEC = DampingSpec(
     ),
     restitution_depends_on="alpha (K/m)^(2/5) V0^(1/5)",
     lammps_damping="viscoelastic",
+    # e falls fast with A (K/m)^(2/5) V0^(1/5) (overlap rule: e = 0.8 at 0.13, 1e-3 at 3.7):
+    # the tables reach to e = 1e-5 under the overlap rule and e = 0.01 under the force rule
+    # (to about 9.3 and 12.0 of that number; docs/damping.md). Beyond, FILM's contact under
+    # the overlap rule sticks or not by where the loading turns within its segment, and its
+    # separation time under the force rule carries a rounding of 1e-11
+    similar_reach=(("overlap", 1e-5), ("force", 1e-2)),
 )

@@ -180,6 +180,10 @@ class DampingSpec:
     lammps_damping : LAMMPS's name of this damping (``pair_style granular``; docs/export.md),
         or None where LAMMPS has none
     tables : its tables of ``python -m impactcli.damping_tables``
+    similar_reach : the e [-] of each separation rule (``overlap``, ``force``) down to which
+        the normalised tables of its summary (:mod:`impactcli.damped_similar`) reach, or
+        None: both rules to where e of the ``overlap`` rule falls to
+        :data:`~impactcli.damped_similar.MIN_RESTITUTION`
     """
 
     name: str
@@ -193,6 +197,7 @@ class DampingSpec:
     self_similar: bool = False
     lammps_damping: str | None = None
     tables: tuple[RestitutionTable, ...] = field(default=(), repr=False)
+    similar_reach: tuple[tuple[str, float], ...] | None = None
     #: the kind of contact model, as the registry lists it
     kind: ClassVar[str] = "damping"
 
