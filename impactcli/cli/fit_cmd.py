@@ -168,8 +168,14 @@ def fit(
     Example: impact fit drops.csv --law du-wang --damping tsuji --d1 20mm --d2 inf --m2 inf
     --material steel
     """
-    from impactcli.fit import DEFAULT_FIT, FIT_LAWS, fit_named_law, law_parameters, rank_fits
-    from impactcli.io.fitdata import read_fit_data
+    from impactcli.fit import (
+        DEFAULT_FIT,
+        FIT_LAWS,
+        fit_named_law,
+        law_parameters,
+        rank_fits,
+        read_fit_data,
+    )
     from impactcli.spheres import spheres_from_options
 
     check_plot(plot, output)
