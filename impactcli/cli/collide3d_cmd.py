@@ -434,11 +434,11 @@ def _degrees(text: str, name: str) -> float:
 
 
 def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
-    """``--rows TABLE``: every row through :func:`impactcli.io.collisions3d.run_collisions3d`,
+    """``--rows TABLE``: every row through :func:`impactcli.table_runs.run_collisions3d`,
     file to file; ``single`` names the options of one collision that were given."""
     from impactcli.cli.common import warn
-    from impactcli.io.collisions3d import run_collisions3d
     from impactcli.io.writers import table_format
+    from impactcli.table_runs import run_collisions3d
 
     if single:
         raise InputError(
