@@ -162,30 +162,34 @@ def batch_kernel(
     )
 
 
+def _kernel_of(options: dict[str, Any]) -> TableKernel:
+    """:func:`batch_kernel` of the ``n``, ``split`` and ``model`` taken out of ``options``."""
+    return batch_kernel(
+        options.pop("n", None), options.pop("split", "mass"), options.pop("model", None)
+    )
+
+
 def run_numpy(
     path: str,
     output: str | None,
     fmt: TableFormat = TableFormat.csv,
     *,
-    n: int | None = None,
-    split: str = "mass",
-    model: str | None = None,
-    strict: bool = False,
-    rows: int = 100_000,
     progress: Callable[[int, int | None], None] | None = None,
+    **options: Any,
 ) -> BatchReport:
     """Compute every row of the table at ``path`` (CSV or Parquet, ``-`` for stdin) and
     write the input columns with the results to ``output`` (``None`` or ``-`` for stdout),
-    ``rows`` rows at a time, so memory stays bounded: ``impact batch --engine numpy``
+    chunk by chunk, so memory stays bounded: ``impact batch --engine numpy``
     (:func:`impactcli.io.engines.run_table` with :func:`batch_kernel`).
 
-    ``n``, ``split`` and ``model`` are as for :func:`compute_frame`;
-    ``progress(rows_done, rows_expected)`` is called after each chunk (``rows_expected``
-    is an estimate for CSV, None on stdin). Returns the
-    :class:`~impactcli.io.engines.BatchReport` of the invalid rows.
+    ``options`` are the rows' ``n`` (None), ``split`` (``mass``) and ``model`` (None), as
+    for :func:`compute_frame`, and the run's ``strict`` (False: an invalid row is reported,
+    not an error) and ``rows`` (100,000 a chunk). ``progress(rows_done, rows_expected)``
+    is called after each chunk (``rows_expected`` is an estimate for CSV, None on stdin).
+    Returns the :class:`~impactcli.io.engines.BatchReport` of the invalid rows.
     """
-    kernel = batch_kernel(n, split, model)
-    return run_table(path, output, fmt, kernel, strict=strict, rows=rows, progress=progress)
+    kernel = _kernel_of(options)
+    return run_table(path, output, fmt, kernel, progress=progress, **options)
 
 
 def run_dask(
@@ -193,23 +197,21 @@ def run_dask(
     output: str,
     fmt: TableFormat = TableFormat.csv,
     *,
-    n: int | None = None,
-    split: str = "mass",
-    model: str | None = None,
-    strict: bool = False,
-    rows: int = 100_000,
     progress: Callable[[], AbstractContextManager] | None = None,
     scheduler: str | None = None,
+    **options: Any,
 ) -> BatchReport:
     """As :func:`run_numpy` on a Dask DataFrame: ``impact batch --engine dask``
     (:func:`impactcli.io.engines.run_dask_table` with :func:`batch_kernel`: files, folders
-    of Parquet parts or URLs in and out; ``rows`` sets the CSV block size, ``scheduler``
-    and ``progress`` as there)."""
-    kernel = batch_kernel(n, split, model)
+    of Parquet parts or URLs in and out; ``scheduler`` and ``progress`` as there).
+
+    ``options`` are those of :func:`run_numpy`: ``n``, ``split``, ``model``, ``strict`` and
+    ``rows`` (here the CSV block size, about 100 bytes a row).
+    """
+    kernel = _kernel_of(options)
     return run_dask_table(
-        path, output, fmt, kernel, strict=strict, rows=rows, progress=progress,
-        scheduler=scheduler,
-    )  # fmt: skip
+        path, output, fmt, kernel, progress=progress, scheduler=scheduler, **options
+    )
 
 
 # -- impact collide3d --rows --------------------------------------------------------------

@@ -41,6 +41,9 @@ _REQUIRED = ("v0", "e")
 #: The largest data file read, [bytes] (100,000 rows of four quantities fit in 10 MB).
 MAX_FIT_BYTES = 10 * 1024 * 1024
 
+#: The header a data file needs, in messages.
+_EXPECTED = "v0,e (and optionally contact_time, weight)"
+
 _HEADER = re.compile(r"^\s*([A-Za-z_0-9]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
@@ -109,30 +112,10 @@ def read_fit_columns(
         raise InputError(f"{name}: not a CSV file ({exc})") from None
     rows = [(i, r) for i, r in lines if r and any(c.strip() for c in r)]
     rows = [(i, r) for i, r in rows if not r[0].lstrip().startswith("#")]
-    expected = "v0,e (and optionally contact_time, weight)"
     if not rows:
-        raise InputError(f"{name}: empty; expected a header {expected} and one row per impact")
+        raise InputError(f"{name}: empty; expected a header {_EXPECTED} and one row per impact")
     line, header = rows[0]
-    columns: list[str] = []
-    factors: list[float] = []
-    header_units: list[str] = []
-    where = f"{name} line {line}"
-    for cell in header:
-        match = _HEADER.match(cell)
-        column = match.group(1).lower() if match else cell.strip()
-        if match is None or column not in FIT_COLUMNS:
-            raise InputError(
-                f"{where}: unknown column {cell.strip()!r}: the columns are {expected}, "
-                "optionally with units, e.g. 'v0 [m/s]'"
-            )
-        if column in columns:
-            raise InputError(f"{where}: column {column} is given twice")
-        columns.append(column)
-        header_units.append(match.group(2) or "")
-        factors.append(_unit_factor(header_units[-1], column, where))
-    missing = [c for c in _REQUIRED if c not in columns]
-    if missing:
-        raise InputError(f"{where}: no column {' or '.join(missing)}; the columns are {expected}")
+    columns, factors, header_units = _read_header(header, f"{name} line {line}")
     body = rows[1:]
     if not body:
         raise InputError(f"{name}: no data rows after the header")
@@ -162,6 +145,32 @@ def read_fit_columns(
                 )
         values[column] = parsed * factor
     return values, [f"{name} line {i}" for i in numbers]
+
+
+def _read_header(header: list[str], where: str) -> tuple[list[str], list[float], list[str]]:
+    """The columns of a header (``v0``, ``v0 [mm/s]``, ...), the SI value of each one's unit
+    (1 without) and the unit as written (``""`` without); ``where`` is the header's line, in
+    the message of an unknown, repeated or missing column."""
+    columns: list[str] = []
+    factors: list[float] = []
+    header_units: list[str] = []
+    for cell in header:
+        match = _HEADER.match(cell)
+        column = match.group(1).lower() if match else cell.strip()
+        if match is None or column not in FIT_COLUMNS:
+            raise InputError(
+                f"{where}: unknown column {cell.strip()!r}: the columns are {_EXPECTED}, "
+                "optionally with units, e.g. 'v0 [m/s]'"
+            )
+        if column in columns:
+            raise InputError(f"{where}: column {column} is given twice")
+        columns.append(column)
+        header_units.append(match.group(2) or "")
+        factors.append(_unit_factor(header_units[-1], column, where))
+    missing = [c for c in _REQUIRED if c not in columns]
+    if missing:
+        raise InputError(f"{where}: no column {' or '.join(missing)}; the columns are {_EXPECTED}")
+    return columns, factors, header_units
 
 
 def _plain_number(cell: str) -> bool:
