@@ -749,33 +749,41 @@ def restitution(
         elif elastic_only:
             _print_elastic_sweep(stream if output not in (None, "-") else None, data)
         else:
-            from impactcli.cli.common import Table
-
-            table = Table(title=f"Restitution against impact velocity ({choice.title}, FILM)")
-            heads = (
-                "V0 (m/s)",
-                "e",
-                "t_c (µs)",
-                "delta_max (µm)",
-                "delta_res (µm)",
-                "E_diss (mJ)",
-                "regime",
-            )
-            for h in heads:
-                table.add_column(h, justify="right")
-            for i in range(velocities.size):
-                table.add_row(
-                    f"{data['impact_velocity'][i]:.4g}",
-                    f"{data['restitution'][i]:.5f}",
-                    f"{data['contact_time'][i] * 1e6:.4g}",
-                    f"{data['delta_max'][i] * 1e6:.4g}",
-                    f"{data['delta_res'][i] * 1e6:.4g}",
-                    f"{data['energy_dissipated'][i] * 1e3:.4g}",
-                    _regime(data, i, sticking),
-                )
-            console(stream if output not in (None, "-") else None).print(table)
+            _print_sweep(stream if output not in (None, "-") else None, data, choice, sticking)
     if plot:
         _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear, sticking=sticking)
+
+
+def _print_sweep(
+    stream: IO[str] | None, data: dict, choice: LawChoice, sticking: float | None
+) -> None:
+    """The elastoplastic sweep on screen: V0, e, t_c, delta_max, delta_res, the dissipated
+    energy and each row's regime."""
+    from impactcli.cli.common import Table
+
+    table = Table(title=f"Restitution against impact velocity ({choice.title}, FILM)")
+    heads = (
+        "V0 (m/s)",
+        "e",
+        "t_c (µs)",
+        "delta_max (µm)",
+        "delta_res (µm)",
+        "E_diss (mJ)",
+        "regime",
+    )
+    for h in heads:
+        table.add_column(h, justify="right")
+    for i in range(data["impact_velocity"].size):
+        table.add_row(
+            f"{data['impact_velocity'][i]:.4g}",
+            f"{data['restitution'][i]:.5f}",
+            f"{data['contact_time'][i] * 1e6:.4g}",
+            f"{data['delta_max'][i] * 1e6:.4g}",
+            f"{data['delta_res'][i] * 1e6:.4g}",
+            f"{data['energy_dissipated'][i] * 1e3:.4g}",
+            _regime(data, i, sticking),
+        )
+    console(stream).print(table)
 
 
 def _sticking_velocity(law: LawChoice, s1, s2) -> float | None:
