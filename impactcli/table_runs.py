@@ -14,7 +14,9 @@ reads, partitions and writes; what is computed is passed in from here.
   :func:`collisions3d_kernel` and :func:`run_collisions3d`.
 
 The kernels are made of module-level functions, so that Dask's process and distributed
-schedulers can send them to their workers.
+schedulers can send them to their workers. The 3-D collisions (:mod:`impactcli.rows3d`) are
+imported by the functions of ``impact collide3d --rows``, off the start-up of
+``impact batch``.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from contextlib import AbstractContextManager
 from functools import partial
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -38,14 +40,9 @@ from impactcli.rows import (
     output_columns,
     used_columns,
 )
-from impactcli.rows3d import (
-    INPUT_COLUMNS,
-    REQUIRED_VECTORS,
-    TEXT_COLUMNS,
-    CollisionModel,
-    compute_rows3d,
-    output_columns3d,
-)
+
+if TYPE_CHECKING:
+    from impactcli.rows3d import CollisionModel
 
 __all__ = [
     "batch_kernel",
@@ -220,6 +217,8 @@ def run_dask(
 def check_collision_columns(names: Sequence[str]) -> None:
     """Reject a header that cannot give any valid row of ``impact collide3d --rows`` (one
     line, exit status 2)."""
+    from impactcli.rows3d import REQUIRED_VECTORS, output_columns3d
+
     check_unique(names)
     present = set(names)
     missing = [
@@ -281,6 +280,8 @@ def compute_collisions3d(
     >>> out["error"][2]
     'the spheres are not approaching along the line of centres ((v1 - v2) . n_hat <= 0)'
     """
+    from impactcli.rows3d import CollisionModel, compute_rows3d
+
     if model is None:
         model = CollisionModel(**options)
     elif options:
@@ -300,6 +301,8 @@ def _collisions3d_chunk(
 
 def _used_collision_columns(names: Sequence[str]) -> list[str]:
     """The columns of a table of 3-D collisions that are read, in table order."""
+    from impactcli.rows3d import INPUT_COLUMNS
+
     return [c for c in names if c in INPUT_COLUMNS]
 
 
@@ -314,6 +317,8 @@ def collisions3d_kernel(**options: Any) -> TableKernel:
     >>> kernel.outputs[-1], kernel.used(["id", "v1_x", "tangential", "d1"])
     ('error', ['v1_x', 'tangential', 'd1'])
     """
+    from impactcli.rows3d import INPUT_COLUMNS, TEXT_COLUMNS, output_columns3d
+
     return TableKernel(
         compute=partial(_collisions3d_chunk, **options),
         check=check_collision_columns,
