@@ -132,8 +132,10 @@ def run_table(
                 # One chunk is written (pyarrow, without the GIL) while the next is computed.
                 writing = None
                 for batch, faults in source.batches:
-                    columns = compute_input(batch, read, kernel.quantities)
-                    result = kernel.compute(columns, faults=faults)
+                    # the input arrays are a temporary: freed as soon as the chunk is computed
+                    result = kernel.compute(
+                        compute_input(batch, read, kernel.quantities), faults=faults
+                    )
                     report.add(result["error"], report.rows)
                     if writing is not None:
                         writing.result()
