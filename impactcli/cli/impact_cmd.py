@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import enum
 import math
+from collections.abc import Callable
 from typing import IO, Annotated, Any, Optional
 
 import numpy as np
@@ -759,30 +760,32 @@ def _print_sweep(
 ) -> None:
     """The elastoplastic sweep on screen: V0, e, t_c, delta_max, delta_res, the dissipated
     energy and each row's regime."""
+    _print_sweep_table(
+        stream, f"Restitution against impact velocity ({choice.title}, FILM)", data,
+        [
+            ("V0 (m/s)", lambda i: f"{data['impact_velocity'][i]:.4g}"),
+            ("e", lambda i: f"{data['restitution'][i]:.5f}"),
+            ("t_c (µs)", lambda i: f"{data['contact_time'][i] * 1e6:.4g}"),
+            ("delta_max (µm)", lambda i: f"{data['delta_max'][i] * 1e6:.4g}"),
+            ("delta_res (µm)", lambda i: f"{data['delta_res'][i] * 1e6:.4g}"),
+            ("E_diss (mJ)", lambda i: f"{data['energy_dissipated'][i] * 1e3:.4g}"),
+            ("regime", lambda i: _regime(data, i, sticking)),
+        ],
+    )  # fmt: skip
+
+
+def _print_sweep_table(
+    stream: IO[str] | None, title: str, data: dict, columns: list[tuple[str, Callable]]
+) -> None:
+    """A sweep on screen: one row per impact velocity, each column a head and the text of
+    row i."""
     from impactcli.cli.common import Table
 
-    table = Table(title=f"Restitution against impact velocity ({choice.title}, FILM)")
-    heads = (
-        "V0 (m/s)",
-        "e",
-        "t_c (µs)",
-        "delta_max (µm)",
-        "delta_res (µm)",
-        "E_diss (mJ)",
-        "regime",
-    )
-    for h in heads:
-        table.add_column(h, justify="right")
+    table = Table(title=title)
+    for head, _ in columns:
+        table.add_column(head, justify="right")
     for i in range(data["impact_velocity"].size):
-        table.add_row(
-            f"{data['impact_velocity'][i]:.4g}",
-            f"{data['restitution'][i]:.5f}",
-            f"{data['contact_time'][i] * 1e6:.4g}",
-            f"{data['delta_max'][i] * 1e6:.4g}",
-            f"{data['delta_res'][i] * 1e6:.4g}",
-            f"{data['energy_dissipated'][i] * 1e3:.4g}",
-            _regime(data, i, sticking),
-        )
+        table.add_row(*(text(i) for _, text in columns))
     console(stream).print(table)
 
 
@@ -805,19 +808,15 @@ def _regime(data: dict, i: int, sticking: float | None) -> str:
 
 def _print_elastic_sweep(stream: IO[str] | None, data: dict) -> None:
     """The elastic sweep on screen: V0, contact time, delta_max, force_max."""
-    from impactcli.cli.common import Table
-
-    table = Table(title="Elastic (Hertz) impact against impact velocity (FILM)")
-    for head in ("V0 (m/s)", "t_c (µs)", "delta_max (µm)", "force_max (N)"):
-        table.add_column(head, justify="right")
-    for i in range(data["impact_velocity"].size):
-        table.add_row(
-            f"{data['impact_velocity'][i]:.4g}",
-            f"{data['contact_time'][i] * 1e6:.4g}",
-            f"{data['delta_max'][i] * 1e6:.4g}",
-            f"{data['force_max'][i]:.4g}",
-        )
-    console(stream).print(table)
+    _print_sweep_table(
+        stream, "Elastic (Hertz) impact against impact velocity (FILM)", data,
+        [
+            ("V0 (m/s)", lambda i: f"{data['impact_velocity'][i]:.4g}"),
+            ("t_c (µs)", lambda i: f"{data['contact_time'][i] * 1e6:.4g}"),
+            ("delta_max (µm)", lambda i: f"{data['delta_max'][i] * 1e6:.4g}"),
+            ("force_max (N)", lambda i: f"{data['force_max'][i]:.4g}"),
+        ],
+    )  # fmt: skip
 
 
 def _sweep_contact_warning(s1, s2, velocities: np.ndarray, delta_max: np.ndarray) -> None:
