@@ -3,9 +3,10 @@
 One entry per collision, SI NumPy arrays in, a dict of summary arrays out: the same numbers
 as :func:`impactcli.impact.elastic_impact` and :func:`~impactcli.impact.elastoplastic_impact`
 give for each row (their ``summary``, :data:`~impactcli.impact.PLASTIC_SUMMARY_KEYS`), with
-no Python loop over rows. No pandas, files or units here: :mod:`impactcli.io.table`
-(:func:`~impactcli.io.table.compute_frame`) reads the tables and maps :func:`batch_impacts`
-over their chunks.
+no Python loop over rows. No pandas, files or units here: :mod:`impactcli.rows` says what
+the rows of a table mean and calls these kernels, and :mod:`impactcli.table_runs`
+(:func:`~impactcli.table_runs.compute_frame`) runs them over the chunks that
+:mod:`impactcli.io` reads.
 
 How each row is computed
 ------------------------

@@ -129,6 +129,7 @@ __all__ = [
     "oblique_collision_3d",
     "restitution_damping",
     "oblique_impact",
+    "impact_plane_coordinates",
     "reference_tangent",
     "sphere_collision_3d",
     "velocity_from_angles",
@@ -540,6 +541,46 @@ def reference_tangent(normal: ArrayLike) -> Array:
     axis = np.where(along_x, [0.0, 1.0, 0.0], [1.0, 0.0, 0.0])
     t = axis - np.sum(axis * n, axis=-1, keepdims=True) * n
     return t / np.linalg.norm(t, axis=-1, keepdims=True)
+
+
+def impact_plane_coordinates(
+    vectors: ArrayLike, normal: ArrayLike, slip_direction: ArrayLike
+) -> Array:
+    """Vectors of one collision in the plane of the impact, [their unit]: x along the
+    initial slip t_hat, y along the normal n_hat (sphere 1 to sphere 2), as
+    ``impact collide3d --plot`` draws them (:func:`impactcli.plots.collision2d_figure`).
+
+    Without slip (``slip_direction`` zero: a head-on impact, or one that sticks from the
+    start), t_hat is n_hat x (1, 0, 0) normalised, or n_hat x (0, 1, 0) when n_hat is
+    within 1e-6 of the x axis. Components out of the plane (along n_hat x t_hat) are
+    dropped.
+
+    Parameters
+    ----------
+    vectors : one vector (3,) or several (k, 3)
+    normal : n_hat (3,), [-]
+    slip_direction : t_hat (3,), [-] (:attr:`Collision3D.slip_direction`)
+
+    Returns
+    -------
+    ndarray
+        (2,) or (k, 2): (v . t_hat, v . n_hat)
+
+    >>> impact_plane_coordinates([[1.95, 0.0, -3.3775], [0.0, 2.0, 1.0]], (0, 0, -1),
+    ...                          (1, 0, 0)).round(4).tolist()
+    [[1.95, 3.3775], [0.0, -1.0]]
+    """
+    n = np.asarray(normal)
+    t = np.asarray(slip_direction)
+    if not np.any(t):
+        t = np.cross(n, [1.0, 0.0, 0.0])
+        if np.linalg.norm(t) < 1e-6:
+            t = np.cross(n, [0.0, 1.0, 0.0])
+        t = t / np.linalg.norm(t)
+    v = np.asarray(vectors)
+    if v.ndim == 1:
+        return np.array([np.dot(v, t), np.dot(v, n)])
+    return np.array([[np.dot(row, t), np.dot(row, n)] for row in v])
 
 
 def velocity_from_angles(

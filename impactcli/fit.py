@@ -35,6 +35,7 @@ Springer, 2002.
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
@@ -61,6 +62,7 @@ __all__ = [
     "law_parameters",
     "prediction_band",
     "rank_fits",
+    "read_fit_data",
     "validate_fit_data",
 ]
 
@@ -216,6 +218,54 @@ def validate_fit_data(
             f"{'s' if parameters > 1 else ''}: need more points than parameters"
         )
     return FitData(v0, e, tc, w)
+
+
+def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
+    """The measurements of a data file, checked, in SI: ``impact fit DATA``.
+
+    The file is read by :func:`impactcli.io.fitdata.read_fit_columns` (a CSV file with the
+    columns ``v0``, ``e`` and optionally ``contact_time``, ``weight``; numbers with units, or
+    a unit in the header; at most :data:`MAX_FIT_POINTS` rows) and its values checked by
+    :func:`validate_fit_data`; each fault is one :class:`~impactcli.errors.InputError` line
+    naming the file and its line.
+
+    Parameters
+    ----------
+    path : CSV file, or ``-`` for standard input
+    parameters : the number of parameters to fit (the data need more points)
+
+    Returns
+    -------
+    FitData
+        V0 [m/s], e [-], and the contact times [s] and weights when the file has them.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
+    ...     _ = f.write("v0 [mm/s],e\\n250,0.95\\n1000,0.86\\n")
+    >>> data = read_fit_data(f.name)
+    >>> os.remove(f.name)
+    >>> data.impact_velocity.tolist(), data.restitution.tolist()
+    ([0.25, 1.0], [0.95, 0.86])
+    """
+    from impactcli.errors import InputError
+    from impactcli.io.fitdata import read_fit_columns
+
+    name = os.fspath(path)
+    values, rows = read_fit_columns(name, MAX_FIT_POINTS)
+    try:
+        return validate_fit_data(
+            values["v0"],
+            values["e"],
+            values.get("contact_time"),
+            values.get("weight"),
+            parameters=parameters,
+            rows=rows,
+        )
+    except ValueError as exc:
+        text = str(exc)
+        raise InputError(text if text.startswith(name) else f"{name}: {text}") from None
 
 
 def _residuals(
@@ -754,7 +804,7 @@ def fit_named_law(
     sphere1, sphere2 : :class:`impactcli.impact.Sphere`
     law : a name of :data:`FIT_LAWS`
     data : the measurements: V0 [m/s], e [-], optional contact times [s] and weights
-        (:class:`FitData`; :func:`impactcli.io.fitdata.read_fit_data` reads them)
+        (:class:`FitData`; :func:`read_fit_data` reads them)
     names : the parameters to fit; default :data:`DEFAULT_FIT` of the law
     start : starting values by name, SI (Pa for ``sy`` and ``py``, N/m for ``k_load``)
     bounds : ``(low, high)`` by name, SI

@@ -8,7 +8,8 @@ registry, :data:`DAMPING_COLUMNS`), the checks of each row, which kernel compute
 each sphere's share of the indentation and of the dissipated energy, and each row's
 warning. Pure NumPy: no files, no units. :func:`compute_rows` reads its columns through a
 :class:`ColumnReader`, which turns the cells into SI numbers and text: the table layer's
-(:func:`impactcli.io.table.compute_frame`), whose readers parse text with units.
+(:class:`impactcli.io.table.TableReader`, which parses text with units), through
+:func:`impactcli.table_runs.compute_frame`.
 """
 
 from __future__ import annotations
@@ -169,7 +170,7 @@ def compute_rows(
     faults: NDArray | None = None,
 ) -> dict[str, NDArray]:
     """The result columns of a chunk of rows (arguments and result as
-    :func:`impactcli.io.table.compute_frame`, which reads the cells): each row's first
+    :func:`impactcli.table_runs.compute_frame`, which reads the cells): each row's first
     fault is its error, in the order of its columns and checks; the others are computed
     by one kernel call per model, law, and damping model."""
     size = reader.size

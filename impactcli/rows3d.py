@@ -26,8 +26,9 @@ another normal law they are built row by row
 is integrated for a block of rows at once, so memory does not grow with the rows. As in
 ``impact batch``, a bad row gets NaN results and its reason in ``error``; the others are
 computed. Pure NumPy: the cells are read by a
-:class:`~impactcli.rows.ColumnReader` (the table layer's,
-:func:`impactcli.io.collisions3d.compute_collisions3d`).
+:class:`~impactcli.rows.ColumnReader` (the table layer's
+:class:`impactcli.io.table.TableReader`, through
+:func:`impactcli.table_runs.compute_collisions3d`).
 """
 
 from __future__ import annotations
@@ -165,7 +166,7 @@ def compute_rows3d(
     reader: ColumnReader, model: CollisionModel, faults: NDArray | None = None
 ) -> dict[str, NDArray]:
     """The result columns of a chunk of rows, read through ``reader`` (arguments and result
-    as :func:`impactcli.io.collisions3d.compute_collisions3d`): each row's checks, its e
+    as :func:`impactcli.table_runs.compute_collisions3d`): each row's checks, its e
     by the kernels and its collision."""
     size = reader.size
     if size == 0:

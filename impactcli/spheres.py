@@ -3,7 +3,7 @@
 One rule for every command and for Python callers: a sphere's property comes from its own
 option (``E1``), else from the shared one (``E``), else from its material (``material1``,
 else ``material``) (:func:`resolve_properties`, vectorised, also used row by row by
-:func:`impactcli.io.table.compute_frame` and ``impact collide3d --rows``;
+:func:`impactcli.table_runs.compute_frame` and ``impact collide3d --rows``;
 :func:`missing_properties` says what none of them gives). :class:`SphereOptions` holds the
 21 options of a pair (d1, d2, v1, v2, material, material1, material2, E, E1, E2, nu, nu1,
 nu2, rho, rho1, rho2, m1, m2, sy, sy1, sy2); :func:`spheres_from_options` turns them into

@@ -53,6 +53,7 @@ __all__ = [
     "sweep_is_elastic",
     "sweep_sticking_velocity",
     "sweep_yield_velocity",
+    "velocity_grid",
 ]
 
 SWEEP_COLUMNS: tuple[str, ...] = (
@@ -67,6 +68,34 @@ SWEEP_COLUMNS: tuple[str, ...] = (
     "energy_dissipated",
     "plastic",
 )
+
+
+def velocity_grid(
+    v_min: float,
+    v_max: float,
+    count: int,
+    linear: bool = False,
+    names: tuple[str, str] = ("v_min", "v_max"),
+) -> NDArray:
+    """The impact velocities of a sweep, [m/s]: ``count`` of them from ``v_min`` to ``v_max``
+    [m/s], in geometric progression (equal ratios, :func:`numpy.geomspace`; e changes with
+    log V0) or evenly spaced with ``linear`` (``impact restitution --linear``).
+
+    Raises :class:`~impactcli.errors.InputError` (one line) unless 0 < v_min <= v_max, and
+    unless 1 <= count <= :data:`impactcli.limits.MAX_COUNT`; ``names`` are how the message
+    calls the two bounds (``--v-min``, ``--v-max`` on the command line).
+
+    >>> velocity_grid(0.1, 10.0, 3).tolist(), velocity_grid(1.0, 2.0, 3, linear=True).tolist()
+    ([0.1, 1.0, 10.0], [1.0, 1.5, 2.0])
+    """
+    from impactcli.errors import InputError
+
+    if not 0 < v_min <= v_max:
+        raise InputError(
+            f"need 0 < {names[0]} <= {names[1]}, got {v_min:g} and {v_max:g} m/s"
+        )
+    count = check_size("count", count, MAX_COUNT)
+    return np.linspace(v_min, v_max, count) if linear else np.geomspace(v_min, v_max, count)
 
 
 @input_errors

@@ -319,12 +319,13 @@ def test_dask_engine_reads_malformed_lines_as_the_numpy_engine(batch, tmp_path, 
 
 def test_dask_quoted_line_break_across_blocks_is_two_rows(dask_dataframe):
     from impactcli.io.partitions import dask_csv_block
+    from impactcli.table_runs import batch_kernel
 
     names = HEADER.decode().strip().split(",")
     data = HEADER + GOOD + b'"two\nlines",20mm,40mm,1,0,elastic,steel\n' + GOOD
     cut = data.index(b"two\n") + 4
-    first = dask_csv_block(data[:cut], names, True, 0)
-    second = dask_csv_block(data[cut:], names, False, 1)
+    first = dask_csv_block(data[:cut], names, True, 0, batch_kernel())
+    second = dask_csv_block(data[cut:], names, False, 1, batch_kernel())
     assert first["error"].tolist() == ["", "malformed line: an unterminated quote"]
     assert second["error"].tolist()[0] == "malformed line: an unterminated quote"
     assert second["error"].tolist()[1] == ""

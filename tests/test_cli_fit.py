@@ -76,6 +76,24 @@ def test_bad_data_is_one_line_naming_the_line(tmp_path, text, message):
     assert "\n" not in str(caught.value)
 
 
+def test_the_reader_returns_what_it_read_and_the_fit_checks_the_values(tmp_path):
+    """io/ reads the cells into SI and says where each row was; whether a value may be fitted
+    (0 < e <= 1) is the fit's: the reader keeps e = 1.2, read_fit_data refuses it at its line."""
+    from impactcli.errors import InputError
+    from impactcli.fit import read_fit_data as fit_reader
+    from impactcli.io.fitdata import read_fit_columns
+
+    path = write(tmp_path / "d.csv", "# drops\nv0 [mm/s],e\n250,0.9\n\n500,1.2\n")
+    columns, rows = read_fit_columns(path, max_rows=10)
+    assert columns["v0"].tolist() == [0.25, 0.5] and columns["e"].tolist() == [0.9, 1.2]
+    assert rows == [f"{path} line 3", f"{path} line 5"]
+    with pytest.raises(InputError, match="line 5: e = 1.2 is not a coefficient"):
+        fit_reader(path)
+    assert read_fit_data is fit_reader  # the name kept where it was
+    with pytest.raises(InputError, match="2 data rows; a fit takes at most 1"):
+        read_fit_columns(path, max_rows=1)
+
+
 def test_a_file_past_the_size_limit_is_refused_unread(tmp_path, monkeypatch):
     import impactcli.io.fitdata as fitdata
     from impactcli.errors import InputError

@@ -305,3 +305,29 @@ def test_du_wang_yield_velocity_from_first_yield_matches_the_elastoplastic_summa
     assert du_wang_yield_velocity(summary["first_yield_velocity"]) == pytest.approx(
         summary["yield_velocity"], rel=1e-12
     )
+
+
+def test_the_sweep_velocities_are_the_library_grid(impact):
+    """``impact restitution``'s velocities are impactcli.sweep.velocity_grid's: equal ratios
+    (or steps with --linear) from --v-min to --v-max, and its one-line refusal."""
+    from impactcli.errors import InputError
+    from impactcli.sweep import velocity_grid
+
+    grid = velocity_grid(0.1, 10.0, 5)
+    np.testing.assert_allclose(grid[1:] / grid[:-1], 10 ** 0.5, rtol=1e-14)
+    assert (grid[0], grid[-1]) == (0.1, 10.0)
+    np.testing.assert_allclose(np.diff(velocity_grid(1.0, 2.0, 5, linear=True)), 0.25)
+    for lo, hi in ((0.0, 1.0), (2.0, 1.0), (float("nan"), 1.0)):
+        with pytest.raises(InputError, match="need 0 < v_min <= v_max"):
+            velocity_grid(lo, hi, 3)
+    with pytest.raises(InputError, match="count"):
+        velocity_grid(1.0, 2.0, 0)
+    out = impact("restitution", "--d1", "20mm", "--d2", "40mm", "--material", "steel",
+                 "--v-min", "0.1", "--v-max", "10", "--count", "5", "-f", "csv")  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    swept = [float(r["impact_velocity"]) for r in csv.DictReader(io.StringIO(out.stdout))]
+    np.testing.assert_allclose(swept, grid, rtol=1e-11)  # as printed: 12 digits
+    bad = impact("restitution", "--d1", "20mm", "--d2", "40mm", "--material", "steel",
+                 "--v-min", "2", "--v-max", "1")  # fmt: skip
+    assert bad.returncode == 2
+    assert bad.stderr.strip() == "impact: error: need 0 < --v-min <= --v-max, got 2 and 1 m/s"

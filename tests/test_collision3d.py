@@ -759,3 +759,23 @@ def test_oblique_impact_is_deprecated_and_gives_the_same_bits():
                                (0.05, 0, 0), 0.04, 0.06, mu=0.3)  # fmt: skip
     for name in ("v1_final", "v2_final", "w1_final", "w2_final", "normal_impulse"):
         assert np.array_equal(getattr(old, name), getattr(new, name)), name
+
+
+def test_the_plane_of_the_impact_keeps_the_in_plane_vectors_lengths():
+    """``impact collide3d --plot`` draws the collision in the plane of n and the initial
+    slip (impactcli.collision3d.impact_plane_coordinates): a vector in that plane keeps its
+    length and its normal component; without slip the x axis is a unit tangent."""
+    from impactcli.collision3d import impact_plane_coordinates
+
+    n = np.array([0.0, 0.6, -0.8])
+    t = np.array([1.0, 0.0, 0.0])
+    v = 3.0 * t - 2.0 * n
+    np.testing.assert_allclose(impact_plane_coordinates(v, n, t), [3.0, -2.0], atol=1e-15)
+    several = impact_plane_coordinates([v, n, np.cross(n, t)], n, t)
+    np.testing.assert_allclose(several, [[3.0, -2.0], [0.0, 1.0], [0.0, 0.0]], atol=1e-15)
+    for normal in ([0.0, 0.6, -0.8], [1.0, 0.0, 0.0]):  # no slip: a tangent of its own
+        # the axes' components, read off the images of e_x, e_y, e_z: t_hat and n_hat
+        tangent, normal_seen = impact_plane_coordinates(np.eye(3), normal, np.zeros(3)).T
+        np.testing.assert_allclose(normal_seen, normal)
+        np.testing.assert_allclose(tangent @ tangent, 1.0)
+        np.testing.assert_allclose(tangent @ normal_seen, 0.0, atol=1e-15)

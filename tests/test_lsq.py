@@ -14,10 +14,10 @@ from impactcli.fit import (
     fit_law,
     fit_named_law,
     law_model,
+    read_fit_data,
     validate_fit_data,
 )
 from impactcli.impact import Sphere
-from impactcli.io.fitdata import read_fit_data
 from impactcli.lsq import LeastSquaresSolution, bounded_least_squares, student_t_quantile
 from impactcli.sweep import restitution_sweep
 from tests.conftest import ROOT

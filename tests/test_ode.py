@@ -270,3 +270,27 @@ def test_cli_check_with_plot_integrates_once(capsys, monkeypatch, tmp_path):
     )  # fmt: skip
     assert len(calls) == 1 and len(figures) == 1
     assert max(json.loads(out)["check"].values()) < 1e-4
+
+
+def test_film_ode_differences_fall_as_film_converges_at_second_order():
+    """``impact elastic --check``'s numbers (impactcli.ode.film_ode_differences): FILM's
+    largest relative difference from the SciPy integration falls at least as 1/n^2 (16x from
+    n = 10 to 40), and the same comparison made from the ODE's side gives the same numbers
+    to the integration's tolerance."""
+    from impactcli.ode import film_ode_differences
+
+    steel = dict(youngs_modulus=210e9, poisson_ratio=0.3, density=7800.0)
+    s1, s2 = Sphere(0.02, **steel), Sphere(0.04, **steel)
+    largest = {}
+    for n in (10, 40):
+        result = elastic_impact(s1, s2, 5e-3, 7.5e-3, n=n)
+        history = result.history(points=201)
+        differences, ode = film_ode_differences(result, history)
+        assert "t" not in differences and {"delta", "force", "v1", "v2"} <= set(differences)
+        np.testing.assert_array_equal(ode["t"], history["t"])
+        largest[n] = max(differences.values())
+    assert 0 < largest[40] < largest[10] / 16
+    by_ode = elastic_impact(s1, s2, 5e-3, 7.5e-3, n=40, method="ode")
+    from_ode, film = film_ode_differences(by_ode, by_ode.history(points=201))
+    assert film["force"].max() == pytest.approx(result.summary["force_max"], rel=1e-4)
+    assert from_ode["force"] == pytest.approx(differences["force"], rel=1e-3, abs=1e-7)

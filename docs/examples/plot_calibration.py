@@ -15,7 +15,7 @@ import numpy as np
 
 from impactcli import Sphere
 from impactcli.fit import fit_named_law, prediction_band, rank_fits
-from impactcli.io.fitdata import read_fit_data
+from impactcli.fit import read_fit_data
 from impactcli.plots import fit_figure
 
 data = read_fit_data(Path("..") / "data" / "drop_tests_steel.csv")

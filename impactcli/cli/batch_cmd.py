@@ -1,8 +1,9 @@
 """``impact batch``: one impact per row of a CSV or Parquet table, streamed in chunks.
 
-Parses the options and calls :func:`impactcli.io.engines.run_numpy` or
-:func:`~impactcli.io.engines.run_dask` (the table layer, :mod:`impactcli.io`); prints the
-invalid rows and draws the progress bar on stderr.
+Parses the options and calls :func:`impactcli.table_runs.run_numpy` or
+:func:`~impactcli.table_runs.run_dask` (the batch layer, which runs the rows through the
+engines of :mod:`impactcli.io`); prints the invalid rows and draws the progress bar on
+stderr.
 """
 
 from __future__ import annotations
@@ -43,7 +44,7 @@ def _show_progress(enabled: bool | None) -> bool:
 @contextmanager
 def _progress(enabled: bool | None) -> Iterator[Callable[[int, int | None], None] | None]:
     """A Rich progress bar on stderr when it is a terminal (or forced): yields the
-    ``progress(rows_done, rows_expected)`` callback of :func:`impactcli.io.engines.run_numpy`,
+    ``progress(rows_done, rows_expected)`` callback of :func:`impactcli.table_runs.run_numpy`,
     or None."""
     if not _show_progress(enabled):
         yield None
@@ -167,7 +168,7 @@ def batch(
     if scheduler is not None and engine is not Engine.dask:
         raise InputError("--scheduler is for --engine dask")
     fmt = table_format(fmt, output, "impact batch")
-    from impactcli.io import engines
+    from impactcli import table_runs
     from impactcli.io.allocator import keep_freed_memory
 
     keep_freed_memory()  # the chunks reuse their freed temporaries (about 2.5x elastic rows)
@@ -178,10 +179,12 @@ def batch(
     start = time.monotonic()
     if engine is Engine.dask:
         bar = _dask_progress if _show_progress(progress) else None
-        report = engines.run_dask(source, output, fmt, **options, progress=bar, scheduler=scheduler)
+        report = table_runs.run_dask(
+            source, output, fmt, **options, progress=bar, scheduler=scheduler
+        )
     else:
         with _progress(progress) as update:
-            report = engines.run_numpy(source, output, fmt, **options, progress=update)
+            report = table_runs.run_numpy(source, output, fmt, **options, progress=update)
     for line in report.lines:
         warn(line)
     if report.summary():
@@ -193,9 +196,9 @@ def batch(
 def _law_columns() -> str:
     """The paragraph of ``impact batch --help`` on the law and damping columns, from the
     registry: every law, parameter column and damping model the rows may name."""
-    from impactcli.io.table import DAMPING_COLUMNS, SPLITS, law_parameter_columns
     from impactcli.laws.base import SEPARATIONS
     from impactcli.laws.registry import DAMPING_LAWS, LAWS, alpha_units
+    from impactcli.rows import DAMPING_COLUMNS, SPLITS, law_parameter_columns
 
     parameters = ", ".join(
         f"{column} ({laws})" for column, (_, laws) in law_parameter_columns().items()

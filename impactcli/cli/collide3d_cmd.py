@@ -424,11 +424,11 @@ def _degrees(text: str, name: str) -> float:
 
 
 def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
-    """``--rows TABLE``: every row through :func:`impactcli.io.collisions3d.run_collisions3d`,
+    """``--rows TABLE``: every row through :func:`impactcli.table_runs.run_collisions3d`,
     file to file; ``single`` names the options of one collision that were given."""
     from impactcli.cli.common import warn
-    from impactcli.io.collisions3d import run_collisions3d
     from impactcli.io.writers import table_format
+    from impactcli.table_runs import run_collisions3d
 
     if single:
         raise InputError(
@@ -452,24 +452,16 @@ def _plot(path: str, c, inputs: dict) -> None:
     of the impact: horizontal along the initial slip t (or any tangent), vertical along n."""
     import numpy as np
 
+    from impactcli.collision3d import impact_plane_coordinates
     from impactcli.plots import collision2d_figure
 
-    n = np.asarray(c.normal)
-    t = np.asarray(c.slip_direction)
-    if not np.any(t):
-        t = np.cross(n, [1.0, 0.0, 0.0])
-        if np.linalg.norm(t) < 1e-6:
-            t = np.cross(n, [0.0, 1.0, 0.0])
-        t = t / np.linalg.norm(t)
-
-    def plane(v):
-        return np.array([np.dot(v, t), np.dot(v, n)])
-
-    radii = (float(c.r1), float(c.r2))
     origin = np.asarray(c.p1)
+    vectors = (c.v1, c.v2, c.v1_final, c.v2_final, np.asarray(c.p1) - origin,
+               np.asarray(c.p2) - origin)  # fmt: skip
+    in_plane = impact_plane_coordinates(vectors, c.normal, c.slip_direction)
+    radii = (float(c.r1), float(c.r2))
     fig = collision2d_figure(
-        plane(c.v1), plane(c.v2), plane(c.v1_final), plane(c.v2_final),
-        plane(np.asarray(c.p1) - origin), plane(np.asarray(c.p2) - origin),
+        *in_plane,
         radii=radii if all(np.isfinite(radii)) else None,
         title=f"Oblique 3-D collision ({inputs['tangential_model']}, mu = {inputs['mu']:.6g}) "
         "in the plane of the impact: x along the initial slip, y along n",

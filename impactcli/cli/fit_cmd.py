@@ -161,8 +161,7 @@ def fit(
     Example: impact fit drops.csv --law du-wang --damping tsuji --d1 20mm --d2 inf --m2 inf
     --material steel
     """
-    from impactcli.fit import FIT_LAWS, fit_named_law, rank_fits
-    from impactcli.io.fitdata import read_fit_data
+    from impactcli.fit import FIT_LAWS, fit_named_law, rank_fits, read_fit_data
     from impactcli.spheres import spheres_from_options
 
     check_plot(plot, output)

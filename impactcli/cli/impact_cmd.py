@@ -176,6 +176,7 @@ def _run(
         ContactModel,
         solve_impact,
     )
+    from impactcli.ode import film_ode_differences
     from impactcli.spheres import spheres_from_options, velocities_from_options
     from impactcli.validation import (
         below_yield_note,
@@ -230,7 +231,7 @@ def _run(
         note(_captured_note(s, v0))
 
     history = result.history(points=points)
-    differences, reference = _check(result, history) if check else (None, None)
+    differences, reference = film_ode_differences(result, history) if check else (None, None)
     inputs = {
         "model": model,
         **pair_inputs(s1, s2, v1, v2),
@@ -324,23 +325,6 @@ def _split_notes(split: Split, s1, s2) -> None:
 
     for text in brittle_notes(split.value, s1.yield_strength, s2.yield_strength):
         note(text)
-
-
-def _check(result, history: dict) -> tuple[dict[str, float], dict]:
-    """Largest FILM - ODE difference of each column at the history's times, and the other
-    method's history there (the ODE's, or FILM's for --method ode)."""
-    t = history["t"]
-    film = history if result.method == "film" else result.history(t=t, method="film")
-    ode = history if result.method == "ode" else result.history(t=t, method="ode")
-    out = {}
-    for col in film:
-        if col == "t":
-            continue
-        scale = np.nanmax(np.abs(film[col]))
-        if not np.isfinite(scale) or scale == 0:
-            continue
-        out[col] = float(np.nanmax(np.abs(film[col] - ode[col])) / scale)
-    return out, (film if result.method == "ode" else ode)
 
 
 #: The compact history's columns by quantity kind: one SI prefix per kind, so that v1 and
@@ -691,12 +675,16 @@ def restitution(
     from impactcli.cli.law_options import law_inputs
     from impactcli.impact import weaker_yield_strength
     from impactcli.spheres import spheres_from_options
-    from impactcli.sweep import SWEEP_COLUMNS, restitution_sweep, sweep_is_elastic
+    from impactcli.sweep import (
+        SWEEP_COLUMNS,
+        restitution_sweep,
+        sweep_is_elastic,
+        velocity_grid,
+    )
 
     check_plot(plot, output)
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
-    if not 0 < lo <= hi:
-        raise InputError(f"need 0 < --v-min <= --v-max, got {lo:g} and {hi:g} m/s")
+    velocities = velocity_grid(lo, hi, count, linear, names=("--v-min", "--v-max"))
     if damping is not None and damping.given:
         if damping.e is not None and not DAMPING_LAWS[damping.damping].self_similar:
             model = DAMPING_LAWS[damping.damping]
@@ -711,7 +699,6 @@ def restitution(
                 "--law and its parameters are for the elastoplastic sweep; --damping sweeps "
                 "Hertz with viscous damping"
             )
-        velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
         _damped_sweep(
             damping, spheres, velocities, n=DAMPED_DEFAULT_N if n is None else n, split=split,
             fmt=fmt,
@@ -723,7 +710,6 @@ def restitution(
     (choice,) = resolve_laws(law)
     n = _law_n(choice) if n is None else n
     s1, s2 = spheres_from_options(spheres)
-    velocities = np.linspace(lo, hi, count) if linear else np.geomspace(lo, hi, count)
     try:
         data = restitution_sweep(
             s1, s2, velocities, n, split=split.value, law=choice.name, law_params=choice.params

@@ -1,10 +1,12 @@
-"""The two engines of ``impact batch``: many collisions from a table file to a table file.
+"""The two engines of the tables of collisions: a table file to a table file, its rows
+computed by the batch layer's per-chunk function (:class:`~impactcli.io.table.TableKernel`).
 
-:func:`run_numpy` streams the chunks of a CSV or Parquet file in this process;
-:func:`run_dask` maps the same per-chunk function (:func:`impactcli.io.table.compute_frame`,
-through :func:`~impactcli.io.partitions.dask_partition`) over the partitions of a Dask
-DataFrame. Both write the output whole or not at all and return a :class:`BatchReport` of
-the invalid rows; printing it, and any progress bar, is the caller's.
+:func:`run_table` streams the chunks of a CSV or Parquet file in this process;
+:func:`run_dask_table` maps the same per-chunk function (through
+:func:`~impactcli.io.partitions.dask_partition`) over the partitions of a Dask DataFrame.
+Both write the output whole or not at all and return a :class:`BatchReport` of the invalid
+rows; printing it, and any progress bar, is the caller's. ``impact batch``'s runs,
+``run_numpy`` and ``run_dask``, are the batch layer's (:mod:`impactcli.table_runs`).
 """
 
 from __future__ import annotations
@@ -13,7 +15,7 @@ import io
 import os
 import sys
 import time
-from collections.abc import Callable, Collection, Iterator, Sequence
+from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import AbstractContextManager, contextmanager, nullcontext, suppress
 
@@ -23,20 +25,12 @@ from impactcli.errors import InputError
 from impactcli.io.partitions import dask_csv_block, dask_partition, partition_errors
 from impactcli.io.readers import (
     PARQUET_SUFFIXES,
-    ColumnCheck,
     compute_input,
     first_line,
     open_source,
     open_stream,
 )
-from impactcli.io.table import (
-    MAX_ROW_WARNINGS,
-    QUANTITY_COLUMNS,
-    RowError,
-    check_columns,
-    compute_frame,
-    used_columns,
-)
+from impactcli.io.table import MAX_ROW_WARNINGS, RowError, TableKernel
 from impactcli.io.writers import (
     TableFormat,
     TableSink,
@@ -46,7 +40,17 @@ from impactcli.io.writers import (
 )
 from impactcli.output import atomic_output
 
-__all__ = ["BatchReport", "run_dask", "run_numpy", "run_table"]
+__all__ = ["BatchReport", "run_dask_table", "run_table"]
+
+
+def __getattr__(name: str):
+    """``run_numpy`` and ``run_dask``, the runs of ``impact batch``, are the batch layer's
+    (:mod:`impactcli.table_runs`)."""
+    if name in ("run_numpy", "run_dask"):
+        from impactcli import table_runs
+
+        return getattr(table_runs, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 #: How long [s] the end of a ``--scheduler local`` run keeps removing its scratch folder
 #: while the cluster's workers finish shutting down.
@@ -90,64 +94,32 @@ class BatchReport:
         )
 
 
-def run_numpy(
+def run_table(
     path: str,
     output: str | None,
-    fmt: TableFormat = TableFormat.csv,
+    fmt: TableFormat,
+    kernel: TableKernel,
     *,
-    n: int | None = None,
-    split: str = "mass",
-    model: str | None = None,
     strict: bool = False,
     rows: int = 100_000,
     progress: Callable[[int, int | None], None] | None = None,
 ) -> BatchReport:
     """Compute every row of the table at ``path`` (CSV or Parquet, ``-`` for stdin) and
     write the input columns with the results to ``output`` (``None`` or ``-`` for stdout),
-    ``rows`` rows at a time, so memory stays bounded.
-
-    ``n``, ``split`` and ``model`` are as for :func:`~impactcli.io.table.compute_frame`;
-    ``progress(rows_done, rows_expected)`` is called after each chunk (``rows_expected``
-    is an estimate for CSV, None on stdin).
-    """
-
-    def compute(columns: dict[str, np.ndarray], faults: np.ndarray | None):
-        return compute_frame(columns, n=n, split=split, model=model, faults=faults)
-
-    return run_table(
-        path, output, fmt, compute=compute, model=model, strict=strict, rows=rows,
-        progress=progress,
-    )  # fmt: skip
-
-
-def run_table(
-    path: str,
-    output: str | None,
-    fmt: TableFormat,
-    *,
-    compute: Callable[[dict[str, np.ndarray], np.ndarray | None], dict[str, np.ndarray]],
-    model: str | None = None,
-    check: ColumnCheck | None = None,
-    used: Callable[[Sequence[str]], list[str]] = used_columns,
-    quantities: Collection[str] = QUANTITY_COLUMNS,
-    outputs: Sequence[str] | None = None,
-    strict: bool = False,
-    rows: int = 100_000,
-    progress: Callable[[int, int | None], None] | None = None,
-) -> BatchReport:
-    """The loop of :func:`run_numpy`, for any per-chunk function: the table at ``path`` read
-    in chunks (:func:`~impactcli.io.readers.open_source`: its header checked by ``check``,
-    else :func:`~impactcli.io.table.check_columns` with ``model``), the ``used(names)``
-    columns of each through :func:`~impactcli.io.readers.compute_input` (``quantities``
-    cast at once when all numbers) and ``compute(columns, faults)``, which returns the
-    result columns ``outputs`` (default: those of ``impact batch``) with ``error``; the
-    input columns and the results written to ``output`` whole or not at all."""
+    ``rows`` rows at a time, so memory stays bounded: the table read in chunks
+    (:func:`~impactcli.io.readers.open_source`, its header checked by ``kernel.check``),
+    the ``kernel.used(names)`` columns of each through
+    :func:`~impactcli.io.readers.compute_input` and ``kernel.compute``, which returns the
+    result columns ``kernel.outputs``; the input columns and the results written to
+    ``output`` whole or not at all. With ``strict``, the first invalid row is an
+    :class:`~impactcli.errors.InputError`. ``progress(rows_done, rows_expected)`` is called
+    after each chunk (``rows_expected`` is an estimate for CSV, None on stdin)."""
     stream = open_stream(path)
     report = BatchReport(strict)
     try:
-        source = open_source(path, stream, model, rows, check)
-        read = used(source.schema.names)
-        schema = output_schema(source.schema, outputs)
+        source = open_source(path, stream, rows, kernel.check)
+        read = kernel.used(source.schema.names)
+        schema = output_schema(source.schema, kernel.outputs, kernel.text_outputs)
         check_writable(schema, fmt)
         with (
             atomic_output(output, binary=True) as out,
@@ -160,7 +132,10 @@ def run_table(
                 # One chunk is written (pyarrow, without the GIL) while the next is computed.
                 writing = None
                 for batch, faults in source.batches:
-                    result = compute(compute_input(batch, read, quantities), faults)
+                    # the input arrays are a temporary: freed as soon as the chunk is computed
+                    result = kernel.compute(
+                        compute_input(batch, read, kernel.quantities), faults=faults
+                    )
                     report.add(result["error"], report.rows)
                     if writing is not None:
                         writing.result()
@@ -442,7 +417,7 @@ def _new_stage(target: str, output: str, stages: list[_Stage]) -> str:
     return path
 
 
-def _output_schema_of(path: str):
+def _output_schema_of(path: str, kernel: TableKernel):
     """The Arrow schema of the Parquet output of a Parquet input at ``path`` (its columns,
     lists, structs and bytes too, then the results), or ``"infer"`` when the input's
     schema cannot be read here (a URL: the writer infers it from the partitions)."""
@@ -455,10 +430,10 @@ def _output_schema_of(path: str):
     except (OSError, ValueError, TypeError, pa.ArrowException):
         return "infer"
     schema = pa.schema([f.with_name(f.name.strip()) for f in schema]).remove_metadata()
-    return output_schema(schema)
+    return output_schema(schema, kernel.outputs, kernel.text_outputs)
 
 
-def _dask_csv(path: str, rows: int, options: dict, strict: bool):
+def _dask_csv(path: str, rows: int, kernel: TableKernel, strict: bool):
     """A CSV file (or glob, URL) as a Dask DataFrame of result partitions: blocks of whole
     lines (:func:`dask.bytes.read_bytes`), each read and computed by
     :func:`~impactcli.io.partitions.dask_csv_block`."""
@@ -477,70 +452,44 @@ def _dask_csv(path: str, rows: int, options: dict, strict: bool):
         raise InputError(f"{path}: {first_line(exc)}") from None
     sniff(sample[: 1 << 16], path)
     names, _ = read_header(io.BytesIO(sample), path)
-    check_columns(names, options["model"])
-    meta = dask_csv_block(b"", names, False, 0, **options)
+    kernel.check(names)
+    meta = dask_csv_block(b"", names, False, 0, kernel)
     parts, number = [], 0
     for blocks in files:
         for k, block in enumerate(blocks):
             parts.append(
-                dask.delayed(dask_csv_block)(block, names, k == 0, number, **options, strict=strict)
+                dask.delayed(dask_csv_block)(block, names, k == 0, number, kernel, strict=strict)
             )
             number += 1
     return dd.from_delayed(parts, meta=meta, verify_meta=False)
 
 
-def run_dask(
-    path: str,
-    output: str,
-    fmt: TableFormat = TableFormat.csv,
-    *,
-    n: int | None = None,
-    split: str = "mass",
-    model: str | None = None,
-    strict: bool = False,
-    rows: int = 100_000,
-    progress: Callable[[], AbstractContextManager] | None = None,
-    scheduler: str | None = None,
-) -> BatchReport:
-    """As :func:`run_numpy` on a Dask DataFrame: files, folders of Parquet parts or URLs in
-    and out, :func:`~impactcli.io.partitions.dask_partition` mapped over the partitions.
+def _dask_results(path: str, kernel: TableKernel, rows: int, strict: bool):
+    """The table at ``path`` as a Dask DataFrame of its input columns and their results,
+    and whether it is Parquet: a Parquet file or folder (by its name, or a file by its magic
+    bytes) mapped partition by partition, else CSV (:func:`_dask_csv`)."""
+    import dask.dataframe as dd
 
-    ``rows`` sets the CSV block size (about 100 bytes a row); ``scheduler`` is ``threads``
-    (default), ``processes``, ``synchronous``, ``local`` (a LocalCluster) or the address of
-    a distributed scheduler; ``progress()`` gives a context manager (e.g. dask's
-    ``ProgressBar``) entered around the computation on a local scheduler. A local output
-    is written in a new private folder beside it (:func:`_new_stage`), moved into place when
-    complete; the folders of killed runs found there are removed first
-    (:func:`remove_stale_stages`).
-    """
-    import pandas as pd
-
-    try:
-        import dask
-        import dask.dataframe as dd
-    except ImportError:
-        raise InputError("--engine dask needs dask: pip install 'impactcli[dask]'") from None
-    if path == "-" or output in (None, "-"):
-        raise InputError(
-            "--engine dask reads and writes files or URLs, not stdin/stdout: give IN and -o OUT"
-        )
     parquet = path.lower().endswith(PARQUET_SUFFIXES) or os.path.isdir(path)
     if not parquet and not _is_url(path) and os.path.isfile(path):
         with open(path, "rb") as handle:
             parquet = handle.read(4) == b"PAR1"
-    options = {"n": n, "split": split, "model": model}
-    if parquet:
-        try:
-            ddf = dd.read_parquet(path)
-        except (OSError, ValueError, TypeError) as exc:
-            raise InputError(f"{path}: {first_line(exc)}") from None
-        ddf = ddf.rename(columns={c: c.strip() for c in ddf.columns})
-        check_columns(list(ddf.columns), model)
-        meta = dask_partition(ddf._meta, **options)
-        out = ddf.map_partitions(dask_partition, **options, strict=strict, meta=meta)
-    else:
-        out = _dask_csv(path, rows, options, strict)
+    if not parquet:
+        return _dask_csv(path, rows, kernel, strict), False
+    try:
+        ddf = dd.read_parquet(path)
+    except (OSError, ValueError, TypeError) as exc:
+        raise InputError(f"{path}: {first_line(exc)}") from None
+    ddf = ddf.rename(columns={c: c.strip() for c in ddf.columns})
+    kernel.check(list(ddf.columns))
+    meta = dask_partition(ddf._meta, kernel)
+    return ddf.map_partitions(dask_partition, kernel, strict=strict, meta=meta), True
 
+
+def _local_target(output: str, fmt: TableFormat) -> tuple[str, bool]:
+    """Where the Dask engine writes ``output`` and whether it is a local file it replaces
+    whole (not a URL, nor a device or a pipe, written in place); a folder, or a file where
+    Parquet's folder of part files would go, is refused in one line."""
     local = not _is_url(output)
     target = os.path.realpath(output) if local else output
     if local and os.path.isdir(target):
@@ -552,6 +501,60 @@ def run_dask(
             f"{output!r} is a file; --engine dask writes Parquet as a folder of part files: "
             "remove it or choose another OUT"
         )
+    return target, local
+
+
+def _add_partition_errors(report: BatchReport, parts: list) -> None:
+    """The invalid rows of every partition (:func:`~impactcli.io.partitions.partition_errors`),
+    numbered through the table, added to ``report`` with the number of rows."""
+    import pandas as pd
+
+    info = pd.concat(parts, ignore_index=True)
+    offset = 0
+    for _, part in info.groupby("partition", sort=True):
+        first = part.iloc[0]
+        listed = part[part["row"] >= 0]
+        rows = listed["row"].to_numpy()
+        report.add(listed["error"].to_numpy(dtype=object), offset, rows)
+        report.invalid += int(first["invalid"]) - rows.size
+        offset += int(first["length"])
+    report.rows = offset
+
+
+def run_dask_table(
+    path: str,
+    output: str,
+    fmt: TableFormat,
+    kernel: TableKernel,
+    *,
+    strict: bool = False,
+    rows: int = 100_000,
+    progress: Callable[[], AbstractContextManager] | None = None,
+    scheduler: str | None = None,
+) -> BatchReport:
+    """As :func:`run_table` on a Dask DataFrame: files, folders of Parquet parts or URLs in
+    and out, :func:`~impactcli.io.partitions.dask_partition` (``kernel``'s per-chunk
+    function) mapped over the partitions.
+
+    ``rows`` sets the CSV block size (about 100 bytes a row); ``scheduler`` is ``threads``
+    (default), ``processes``, ``synchronous``, ``local`` (a LocalCluster) or the address of
+    a distributed scheduler; ``progress()`` gives a context manager (e.g. dask's
+    ``ProgressBar``) entered around the computation on a local scheduler. A local output
+    is written in a new private folder beside it (:func:`_new_stage`), moved into place when
+    complete; the folders of killed runs found there are removed first
+    (:func:`remove_stale_stages`).
+    """
+    try:
+        import dask
+        import dask.dataframe  # noqa: F401 (dask's DataFrame and its needs: pandas)
+    except ImportError:
+        raise InputError("--engine dask needs dask: pip install 'impactcli[dask]'") from None
+    if path == "-" or output in (None, "-"):
+        raise InputError(
+            "--engine dask reads and writes files or URLs, not stdin/stdout: give IN and -o OUT"
+        )
+    out, parquet = _dask_results(path, kernel, rows, strict)
+    target, local = _local_target(output, fmt)
     report = BatchReport(strict=False)
     stages: list[_Stage] = []
     try:  # the stage and the scheduler start inside: a signal while they start cleans up too
@@ -559,7 +562,7 @@ def run_dask(
         if local:
             write_to = os.path.join(_new_stage(target, output, stages), os.path.basename(target))
         if fmt is TableFormat.parquet:
-            schema = _output_schema_of(path) if parquet else "infer"
+            schema = _output_schema_of(path, kernel) if parquet else "infer"
             try:
                 write = out.to_parquet(write_to, write_index=False, compute=False, schema=schema)
             except (ValueError, TypeError, OSError) as exc:  # pyarrow's ArrowInvalid too
@@ -586,16 +589,7 @@ def run_dask(
                     lengths = out.partitions[: exc.partition].map_partitions(len)
                     offset = int(lengths.compute(**kwargs).sum())
                 raise InputError(f"row {offset + exc.row + 1}: {exc.reason}") from None
-        info = pd.concat(parts, ignore_index=True)
-        offset = 0
-        for _, part in info.groupby("partition", sort=True):
-            first = part.iloc[0]
-            listed = part[part["row"] >= 0]
-            rows = listed["row"].to_numpy()
-            report.add(listed["error"].to_numpy(dtype=object), offset, rows)
-            report.invalid += int(first["invalid"]) - rows.size
-            offset += int(first["length"])
-        report.rows = offset
+        _add_partition_errors(report, parts)
         if local:
             os.replace(write_to, target)
     finally:

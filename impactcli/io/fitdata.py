@@ -7,11 +7,12 @@ common factor), in any order. A value is a number in SI or a number with its uni
 ``v0 [m/s]`` or ``contact_time [us]``, and then its cells are plain numbers. Blank lines and
 lines starting with ``#`` (a comment saying where the data come from) are skipped.
 
-At most :data:`MAX_FIT_BYTES` bytes and :data:`impactcli.fit.MAX_FIT_POINTS` rows are read.
-Each fault is one :class:`~impactcli.errors.InputError` line naming the file and its line:
-a missing or unknown column, a cell that is not a quantity of its column's kind, an empty
-cell, and the checks of :func:`impactcli.fit.validate_fit_data` (V0 > 0, 0 < e <= 1,
-contact time > 0, weight > 0, more points than fitted parameters).
+At most :data:`MAX_FIT_BYTES` bytes and the caller's number of rows are read. Each fault
+is one :class:`~impactcli.errors.InputError` line naming the file and its line: a missing
+or unknown column, a cell that is not a quantity of its column's kind, an empty cell.
+:func:`read_fit_columns` returns the columns read, in SI, and where each row was; what the
+values may be (V0 > 0, 0 < e <= 1, ...) is the fit's to check
+(:func:`impactcli.fit.read_fit_data`, :func:`impactcli.fit.validate_fit_data`).
 """
 
 from __future__ import annotations
@@ -25,9 +26,8 @@ import sys
 import numpy as np
 
 from impactcli.errors import InputError
-from impactcli.fit import MAX_FIT_POINTS, FitData, validate_fit_data
 
-__all__ = ["FIT_COLUMNS", "MAX_FIT_BYTES", "read_fit_data"]
+__all__ = ["FIT_COLUMNS", "MAX_FIT_BYTES", "read_fit_columns"]
 
 #: column -> kind for :func:`impactcli.units.parse_quantity`; v0 and e are required.
 FIT_COLUMNS: dict[str, str] = {
@@ -40,6 +40,9 @@ _REQUIRED = ("v0", "e")
 
 #: The largest data file read, [bytes] (100,000 rows of four quantities fit in 10 MB).
 MAX_FIT_BYTES = 10 * 1024 * 1024
+
+#: The header a data file needs, in messages.
+_EXPECTED = "v0,e (and optionally contact_time, weight)"
 
 _HEADER = re.compile(r"^\s*([A-Za-z_0-9]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
@@ -71,28 +74,33 @@ def _unit_factor(unit: str, column: str, where: str) -> float:
     return parse_quantity(f"1 {unit}", FIT_COLUMNS[column], f"{where}: unit of {column}")
 
 
-def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
-    """The measurements of a data file (module docstring), checked, in SI.
+def read_fit_columns(
+    path: str | os.PathLike[str], max_rows: int
+) -> tuple[dict[str, np.ndarray], list[str]]:
+    """The columns of a data file (module docstring) in SI, and where each row is.
 
     Parameters
     ----------
     path : CSV file, or ``-`` for standard input
-    parameters : the number of parameters to fit (the data need more points)
+    max_rows : the most data rows read; a file with more is refused in one line
 
     Returns
     -------
-    FitData
-        V0 [m/s], e [-], and the contact times [s] and weights when the file has them.
+    columns : dict
+        ``v0`` [m/s], ``e`` [-], and ``contact_time`` [s] and ``weight`` [-] when the file
+        has them: float arrays, one value per data row, no cell empty
+    rows : list of str
+        each data row's place, ``"FILE line N"``, for the messages of the checks
 
     Examples
     --------
     >>> import os, tempfile
     >>> with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
     ...     _ = f.write("v0 [mm/s],e\\n250,0.95\\n1000,0.86\\n")
-    >>> data = read_fit_data(f.name)
+    >>> columns, rows = read_fit_columns(f.name, max_rows=10)
     >>> os.remove(f.name)
-    >>> data.impact_velocity.tolist(), data.restitution.tolist()
-    ([0.25, 1.0], [0.95, 0.86])
+    >>> columns["v0"].tolist(), columns["e"].tolist(), [r.split()[-2:] for r in rows]
+    ([0.25, 1.0], [0.95, 0.86], [['line', '2'], ['line', '3']])
     """
     from impactcli.units import parse_quantities
 
@@ -104,35 +112,15 @@ def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
         raise InputError(f"{name}: not a CSV file ({exc})") from None
     rows = [(i, r) for i, r in lines if r and any(c.strip() for c in r)]
     rows = [(i, r) for i, r in rows if not r[0].lstrip().startswith("#")]
-    expected = "v0,e (and optionally contact_time, weight)"
     if not rows:
-        raise InputError(f"{name}: empty; expected a header {expected} and one row per impact")
+        raise InputError(f"{name}: empty; expected a header {_EXPECTED} and one row per impact")
     line, header = rows[0]
-    columns: list[str] = []
-    factors: list[float] = []
-    header_units: list[str] = []
-    where = f"{name} line {line}"
-    for cell in header:
-        match = _HEADER.match(cell)
-        column = match.group(1).lower() if match else cell.strip()
-        if match is None or column not in FIT_COLUMNS:
-            raise InputError(
-                f"{where}: unknown column {cell.strip()!r}: the columns are {expected}, "
-                "optionally with units, e.g. 'v0 [m/s]'"
-            )
-        if column in columns:
-            raise InputError(f"{where}: column {column} is given twice")
-        columns.append(column)
-        header_units.append(match.group(2) or "")
-        factors.append(_unit_factor(header_units[-1], column, where))
-    missing = [c for c in _REQUIRED if c not in columns]
-    if missing:
-        raise InputError(f"{where}: no column {' or '.join(missing)}; the columns are {expected}")
+    columns, factors, header_units = _read_header(header, f"{name} line {line}")
     body = rows[1:]
     if not body:
         raise InputError(f"{name}: no data rows after the header")
-    if len(body) > MAX_FIT_POINTS:
-        raise InputError(f"{name}: {len(body)} data rows; a fit takes at most {MAX_FIT_POINTS}")
+    if len(body) > max_rows:
+        raise InputError(f"{name}: {len(body)} data rows; a fit takes at most {max_rows}")
     for i, row in body:
         if len(row) != len(columns):
             raise InputError(f"{name} line {i}: {len(row)} fields, expected {len(columns)}")
@@ -156,18 +144,33 @@ def read_fit_data(path: str | os.PathLike[str], parameters: int = 1) -> FitData:
                     "the header: give it in one place"
                 )
         values[column] = parsed * factor
-    try:
-        return validate_fit_data(
-            values["v0"],
-            values["e"],
-            values.get("contact_time"),
-            values.get("weight"),
-            parameters=parameters,
-            rows=[f"{name} line {i}" for i in numbers],
-        )
-    except ValueError as exc:
-        text = str(exc)
-        raise InputError(text if text.startswith(name) else f"{name}: {text}") from None
+    return values, [f"{name} line {i}" for i in numbers]
+
+
+def _read_header(header: list[str], where: str) -> tuple[list[str], list[float], list[str]]:
+    """The columns of a header (``v0``, ``v0 [mm/s]``, ...), the SI value of each one's unit
+    (1 without) and the unit as written (``""`` without); ``where`` is the header's line, in
+    the message of an unknown, repeated or missing column."""
+    columns: list[str] = []
+    factors: list[float] = []
+    header_units: list[str] = []
+    for cell in header:
+        match = _HEADER.match(cell)
+        column = match.group(1).lower() if match else cell.strip()
+        if match is None or column not in FIT_COLUMNS:
+            raise InputError(
+                f"{where}: unknown column {cell.strip()!r}: the columns are {_EXPECTED}, "
+                "optionally with units, e.g. 'v0 [m/s]'"
+            )
+        if column in columns:
+            raise InputError(f"{where}: column {column} is given twice")
+        columns.append(column)
+        header_units.append(match.group(2) or "")
+        factors.append(_unit_factor(header_units[-1], column, where))
+    missing = [c for c in _REQUIRED if c not in columns]
+    if missing:
+        raise InputError(f"{where}: no column {' or '.join(missing)}; the columns are {_EXPECTED}")
+    return columns, factors, header_units
 
 
 def _plain_number(cell: str) -> bool:
@@ -176,3 +179,12 @@ def _plain_number(cell: str) -> bool:
     except ValueError:
         return False
     return True
+
+
+def __getattr__(name: str):
+    """``read_fit_data``, which checks the values too, is the fit's (:mod:`impactcli.fit`)."""
+    if name == "read_fit_data":
+        from impactcli.fit import read_fit_data
+
+        return read_fit_data
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

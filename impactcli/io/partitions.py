@@ -1,11 +1,11 @@
-"""The partitions of the Dask engine of ``impact batch``: each computed as a chunk of the
-NumPy engine is.
+"""The partitions of the Dask engine: each computed as a chunk of the NumPy engine is.
 
 A partition's used columns go through :func:`impactcli.io.readers.compute_input` (the same
 spellings of "missing", one line for a column that cannot hold a quantity or a name) and
-:func:`impactcli.io.table.compute_frame`; a block of a CSV file is read as the NumPy engine
-reads it (:func:`impactcli.io.csvblocks.parse_block`). pandas and pyarrow are imported
-inside the functions.
+the per-chunk function of its table (:class:`impactcli.io.table.TableKernel`, the batch
+layer's); a block of a CSV file is read as the NumPy engine reads it
+(:func:`impactcli.io.csvblocks.parse_block`). pandas and pyarrow are imported inside the
+functions.
 """
 
 from __future__ import annotations
@@ -15,24 +15,16 @@ import numpy as np
 from impactcli.errors import InputError
 from impactcli.io.csvblocks import parse_block
 from impactcli.io.readers import compute_input
-from impactcli.io.table import (
-    MAX_ROW_WARNINGS,
-    TEXT_OUTPUTS,
-    RowError,
-    compute_frame,
-    output_columns,
-    used_columns,
-)
+from impactcli.io.table import MAX_ROW_WARNINGS, RowError, TableKernel
 
 __all__ = ["dask_csv_block", "dask_partition", "partition_errors"]
 
 
 def dask_partition(
-    part, n: int | None = None, split: str = "mass", model: str | None = None,
-    strict: bool = False,
+    part, kernel: TableKernel, strict: bool = False,
     partition_info: dict | None = None, faults: np.ndarray | None = None,
 ):  # fmt: skip
-    """One Dask partition: its input columns followed by :func:`compute_frame`'s.
+    """One Dask partition: its input columns followed by the results of ``kernel.compute``.
 
     The used columns go through :func:`impactcli.io.readers.compute_input` as in the NumPy
     engine (the same spellings of "missing", one line for a column that cannot hold a
@@ -40,26 +32,26 @@ def dask_partition(
     import pandas as pd
     import pyarrow as pa
 
-    used = used_columns(list(part.columns))
+    used = kernel.used(list(part.columns))
     try:
         batch = pa.Table.from_pandas(part[used], preserve_index=False)
     except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError) as exc:
         raise InputError(f"a column cannot be read: {str(exc).splitlines()[0]}") from None
-    result = compute_frame(compute_input(batch, used), n=n, split=split, model=model, faults=faults)
+    result = kernel.compute(compute_input(batch, used, kernel.quantities), faults=faults)
     if strict:
         bad = np.flatnonzero(result["error"] != "")
         if bad.size:
             number = partition_info["number"] if partition_info else None
             raise RowError(int(bad[0]), str(result["error"][bad[0]]), number)
-    extra = {c: result[c] for c in output_columns() if c not in TEXT_OUTPUTS}
-    for c in TEXT_OUTPUTS:
+    extra = {c: result[c] for c in kernel.outputs if c not in kernel.text_outputs}
+    for c in kernel.text_outputs:
         extra[c] = pd.Series(result[c], index=part.index, dtype="string")
     return pd.concat([part, pd.DataFrame(extra, index=part.index)], axis=1)
 
 
 def dask_csv_block(
-    block: bytes, names: list[str], header: bool, number: int, n: int | None = None,
-    split: str = "mass", model: str | None = None, strict: bool = False,
+    block: bytes, names: list[str], header: bool, number: int, kernel: TableKernel,
+    strict: bool = False,
 ):  # fmt: skip
     """One block of a CSV file (whole lines; the file's header first when ``header``) as
     the Dask engine's partition ``number``: its rows read as by the NumPy engine
@@ -72,9 +64,8 @@ def dask_csv_block(
     part = batch.to_pandas()
     part.columns = names
     return dask_partition(
-        part, n=n, split=split, model=model, strict=strict,
-        partition_info={"number": number}, faults=faults,
-    )  # fmt: skip
+        part, kernel, strict=strict, partition_info={"number": number}, faults=faults
+    )
 
 
 def partition_errors(part, partition_info: dict | None = None):

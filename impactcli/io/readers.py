@@ -13,7 +13,7 @@ from collections.abc import Callable, Collection, Iterator, Sequence
 import numpy as np
 
 from impactcli.errors import InputError, first_line
-from impactcli.io.table import NULL_VALUES, QUANTITY_COLUMNS, check_columns
+from impactcli.io.table import NULL_VALUES
 
 __all__ = [
     "PARQUET_SUFFIXES",
@@ -53,22 +53,11 @@ def open_stream(path: str) -> io.BufferedReader:
 ColumnCheck = Callable[[Sequence[str]], None]
 
 
-def open_source(
-    path: str,
-    stream: io.BufferedReader,
-    model: str | None,
-    rows: int,
-    check: ColumnCheck | None = None,
-) -> TableSource:
+def open_source(path: str, stream: io.BufferedReader, rows: int, check: ColumnCheck) -> TableSource:
     """The table on ``stream`` in chunks of ``rows`` rows: Parquet by its magic bytes (any
     name, stdin too), else CSV (a malformed line is a row with its reason; gzip, UTF-16
-    and binary input are refused in one line). Its header is checked first: by ``check``,
-    else by :func:`~impactcli.io.table.check_columns` with ``model`` (``impact batch``)."""
-    if check is None:
-
-        def check(names: Sequence[str]) -> None:
-            check_columns(names, model)
-
+    and binary input are refused in one line). Its header is checked first by ``check``
+    (:attr:`impactcli.io.table.TableKernel.check`)."""
     parquet = stream.peek(4)[:4] == b"PAR1"
     return (_parquet_source if parquet else _csv_source)(path, stream, check, rows)
 
@@ -124,13 +113,14 @@ def _label(path: str) -> str:
 
 
 def compute_input(
-    batch, used: list[str], quantities: Collection[str] = QUANTITY_COLUMNS
+    batch, used: list[str], quantities: Collection[str] = ()
 ) -> dict[str, np.ndarray]:
-    """The columns of a RecordBatch (or Table) that :func:`~impactcli.io.table.compute_frame`
-    reads, as NumPy arrays: the spellings of "missing" (:data:`~impactcli.io.table.NULL_VALUES`)
-    become null, and text columns of ``quantities`` (default: the quantity columns of
-    ``impact batch``) that are then all numbers become floats by one Arrow cast;
-    only the others go through its slower path (numbers, then units). Text is an object
+    """The ``used`` columns of a RecordBatch (or Table), as a table's per-chunk function
+    reads them (:attr:`impactcli.io.table.TableKernel.compute`), as NumPy arrays: the
+    spellings of "missing" (:data:`~impactcli.io.table.NULL_VALUES`) become null, and text
+    columns of ``quantities`` (:attr:`~impactcli.io.table.TableKernel.quantities`) that are
+    then all numbers become floats by one Arrow cast; only the others go through its slower
+    path (numbers, then units). Text is an object
     array (None where null), numbers float or int (NaN where null), booleans bool (an
     object array where one is null). A column that cannot hold a quantity or a name (a
     list, a struct, bytes that are not UTF-8) is one line."""

@@ -1,61 +1,59 @@
-"""The table layer of ``impact batch``: the cells of a chunk of rows -> SI arrays and text.
+"""The cells of a chunk of rows -> SI arrays and text: what io/ knows of a table's rows.
 
-:func:`compute_frame` is the public, pure per-chunk function: the input columns as NumPy
-arrays (numbers in SI or strings with units, materials, the model of each row; or a pandas
-DataFrame) in, the result columns (:func:`~impactcli.rows.output_columns`) out. This module
-reads the cells (:class:`TableReader`: numbers, units, the spellings of "missing") and
-leaves what the rows mean, and their physics, to :func:`impactcli.rows.compute_rows`. Both
-engines map it (:mod:`impactcli.io.engines`): the NumPy engine over the chunks of a stream,
-the Dask engine over the partitions of a Dask DataFrame
-(:func:`impactcli.io.partitions.dask_partition`); a Dask worker imports this module and the
-physics, never the command line. The NumPy engine never imports pandas.
+:class:`TableReader` reads the cells of a chunk (numbers, units, the spellings of
+"missing": :data:`NULL_VALUES`) for the batch layer, which says what the rows mean and
+computes them (:mod:`impactcli.rows`, :mod:`impactcli.rows3d`). :class:`TableKernel` is
+what the engines (:mod:`impactcli.io.engines`) need of a kind of table: its header check,
+the columns it reads, its per-chunk function and its result columns; the batch layer
+makes one per command (:mod:`impactcli.table_runs`). Nothing here computes a collision.
+The names of the rows of ``impact batch`` once defined here
+(:func:`impactcli.table_runs.compute_frame`, :data:`impactcli.rows.QUANTITY_COLUMNS`, ...)
+are kept importable from here; they are the batch layer's.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
 from impactcli.errors import InputError
-from impactcli.rows import (
-    DAMPING_COLUMNS,
-    EXTRA_KEYS,
-    MODELS,
-    QUANTITY_COLUMNS,
-    REQUIRED_COLUMNS,
-    SPLITS,
-    TEXT_COLUMNS,
-    TEXT_OUTPUTS,
-    compute_rows,
-    law_parameter_columns,
-    output_columns,
-    row_warnings,
-    used_columns,
-)
 
 __all__ = [
-    "DAMPING_COLUMNS",
-    "EXTRA_KEYS",
     "MAX_ROW_WARNINGS",
-    "MODELS",
     "NULL_VALUES",
-    "QUANTITY_COLUMNS",
-    "REQUIRED_COLUMNS",
-    "TEXT_COLUMNS",
-    "SPLITS",
-    "TEXT_OUTPUTS",
     "RowError",
+    "TableKernel",
     "TableReader",
-    "check_columns",
-    "compute_frame",
-    "law_parameter_columns",
-    "output_columns",
-    "row_warnings",
+    "check_output_clash",
+    "check_unique",
     "table_columns",
-    "used_columns",
 ]
+
+#: Names kept importable from here that moved to the batch layer: name -> its module.
+_MOVED = {
+    **dict.fromkeys(
+        ("DAMPING_COLUMNS", "EXTRA_KEYS", "MODELS", "QUANTITY_COLUMNS", "REQUIRED_COLUMNS",
+         "SPLITS", "TEXT_COLUMNS", "TEXT_OUTPUTS", "law_parameter_columns", "output_columns",
+         "row_warnings", "used_columns"),
+        "impactcli.rows",
+    ),
+    **dict.fromkeys(
+        ("check_columns", "check_sphere_sources", "compute_frame"), "impactcli.table_runs"
+    ),
+}  # fmt: skip
+
+
+def __getattr__(name: str):
+    """The names of the rows of ``impact batch`` (:data:`_MOVED`), imported on first use."""
+    if name in _MOVED:
+        import importlib
+
+        return getattr(importlib.import_module(_MOVED[name]), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 #: Cells of the quantity and text columns read as missing (both engines); other columns
 #: are carried through as written.
@@ -72,24 +70,37 @@ class RowError(ValueError):
         self.row, self.reason, self.partition = row, reason, partition
 
 
-def check_columns(names: Sequence[str], model: str | None) -> None:
-    """Reject a table whose header cannot give any valid row (one line, exit 2)."""
-    present = set(names)
-    if len(present) != len(names):
+def check_unique(names: Sequence[str]) -> None:
+    """Refuse a header that names a column twice: one line."""
+    if len(set(names)) != len(names):
         dup = sorted({c for c in names if list(names).count(c) > 1})
         raise InputError(f"duplicate input column(s): {', '.join(dup)}")
-    missing = [c for c in REQUIRED_COLUMNS if c not in present]
-    if missing:
-        raise InputError(
-            f"missing input column(s) {', '.join(missing)}; each row needs d1, d2, v1, v2, "
-            "model, and material (or material1, material2) or E1, nu1, rho1, E2, nu2, rho2"
-        )
-    if "model" not in present and "law" not in present and model is None:
-        raise InputError(
-            "missing input column model (elastic or elastoplastic) or law; or give --model"
-        )
-    check_sphere_sources(present)
-    check_output_clash(present, output_columns(), "impact batch")
+
+
+@dataclass(frozen=True)
+class TableKernel:
+    """What the engines need of a kind of table (``impact batch``'s rows, ``impact
+    collide3d --rows``'): the batch layer's functions, passed to io/.
+
+    Attributes
+    ----------
+    compute : ``compute(columns, faults=faults)``: the result columns of a chunk (name ->
+        array, ``error`` among them) from its used columns as NumPy arrays
+        (:func:`impactcli.io.readers.compute_input`) and the reason each row could not be
+        read (``""`` where it was; None: every row was); picklable for Dask's processes
+    check : ``check(names)`` refuses, in one line, a header that cannot give a valid row
+    used : ``used(names)``: the columns ``compute`` reads, in table order
+    outputs : the result columns written after the input ones
+    quantities : columns of numbers (cast at once when every cell is a number)
+    text_outputs : those of ``outputs`` that are text (the others are floats)
+    """
+
+    compute: Callable[..., dict[str, np.ndarray]]
+    check: Callable[[Sequence[str]], None]
+    used: Callable[[Sequence[str]], list[str]]
+    outputs: tuple[str, ...]
+    quantities: Collection[str] = ()
+    text_outputs: tuple[str, ...] = ("error",)
 
 
 #: A cell read as a plain number without the units parser: ASCII digits with an optional
@@ -229,8 +240,8 @@ def _text_column(
 
 class TableReader:
     """The columns of a chunk (:func:`table_columns`) read cell by cell: the
-    :class:`impactcli.rows.ColumnReader` of :func:`compute_frame` and of the rows of
-    ``impact collide3d --rows``."""
+    :class:`impactcli.rows.ColumnReader` of the rows of ``impact batch``
+    (:func:`impactcli.table_runs.compute_frame`) and of ``impact collide3d --rows``."""
 
     def __init__(self, frame) -> None:
         self.columns, self.size = table_columns(frame)
@@ -248,63 +259,6 @@ class TableReader:
     def text(self, name: str, lower: bool = False) -> np.ndarray:
         """The column as text, None where missing: :func:`_text_column`."""
         return _text_column(self.columns, name, self.size, lower)
-
-
-def compute_frame(
-    frame,
-    n: int | None = None,
-    split: str = "mass",
-    model: str | None = None,
-    faults: np.ndarray | None = None,
-) -> dict[str, np.ndarray]:
-    """The result columns of a chunk of rows: its input columns, name -> array.
-
-    Parameters
-    ----------
-    frame : the chunk, a mapping of column name -> 1-D array or a pandas DataFrame
-        (:func:`table_columns`); columns as :data:`QUANTITY_COLUMNS` (numbers in SI or
-        strings with units) and :data:`TEXT_COLUMNS`; others are ignored
-    n : FILM segments per stage; None: 25, and :data:`impactcli.impact.DAMPED_DEFAULT_N`
-        (400) on damped rows, as every command and :func:`impactcli.impact.damped_impact`
-    split : ``mass``, ``compliance`` or ``yield`` share of the indentation between the
-        spheres, for rows whose ``split`` cell is empty
-    model : model of the rows whose ``model`` cell is empty (or of all, without the column)
-    faults : the reason each row could not be read (``""`` where it was; e.g. a malformed
-        CSV line, :func:`impactcli.io.csvblocks.parse_block`): such a row's error, first
-
-    Returns
-    -------
-    dict
-        :func:`output_columns` -> arrays: the summary keys (SI floats, NaN where not
-        applicable or the row is invalid), ``error`` (object array, ``""`` when valid) and
-        ``warning`` (:func:`row_warnings`).
-        Rows are independent: any chunking gives the same rows.
-
-    Examples
-    --------
-    The paper's sec. 4.3 impact and a row with no yield strength for its model:
-
-    >>> rows = {"d1": ["20mm", "20mm"], "d2": ["40mm", "40mm"],
-    ...         "v1": ["5mm/s", "1"], "v2": ["7.5mm/s", "0"],
-    ...         "model": ["elastic", "elastoplastic"], "E": [None, "210GPa"],
-    ...         "nu": [None, "0.3"], "rho": [None, "7800"], "material": ["steel", None]}
-    >>> out = compute_frame(rows)
-    >>> round(float(out["contact_time"][0]) * 1e6, 2), out["error"][0]
-    (171.32, '')
-    >>> out["error"][1]
-    'the elastoplastic model needs a yield strength: give sy, sy1/sy2 or a material that has one'
-    """
-    return compute_rows(TableReader(frame), n=n, split=split, model=model, faults=faults)
-
-
-def check_sphere_sources(present: set[str]) -> None:
-    """Refuse a table whose columns give no material (or E) for a sphere: one line."""
-    for i in (1, 2):
-        if not present & {"material", f"material{i}", "E", f"E{i}"}:
-            raise InputError(
-                f"nothing gives sphere {i}'s material: add a column material, material{i}, "
-                f"or E{i}, nu{i}, rho{i}"
-            )
 
 
 def check_output_clash(present: set[str], outputs: Sequence[str], command: str) -> None:

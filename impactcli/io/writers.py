@@ -8,13 +8,12 @@ from __future__ import annotations
 
 import enum
 import os
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import IO
 
 import numpy as np
 
 from impactcli.errors import InputError
-from impactcli.io.table import TEXT_OUTPUTS, output_columns
 
 __all__ = [
     "TABLE_EXTENSIONS",
@@ -157,16 +156,12 @@ def result_batch(batch, result: dict[str, np.ndarray], schema):
     return pa.RecordBatch.from_arrays(columns, schema=schema)
 
 
-def output_schema(schema, outputs: Sequence[str] | None = None):
+def output_schema(schema, outputs: Sequence[str], text: Collection[str] = ("error",)):
     """The Arrow schema of the output: the input's fields, then the result columns
-    ``outputs`` (default: those of ``impact batch``), float64 but for the text ones
-    (:data:`~impactcli.io.table.TEXT_OUTPUTS`: error, warning)."""
+    ``outputs``, float64 but for the ``text`` ones (strings)."""
     import pyarrow as pa
 
-    fields = [
-        pa.field(c, pa.string() if c in TEXT_OUTPUTS else pa.float64())
-        for c in (output_columns() if outputs is None else outputs)
-    ]
+    fields = [pa.field(c, pa.string() if c in text else pa.float64()) for c in outputs]
     return pa.schema([*schema, *fields])
 
 
