@@ -177,6 +177,40 @@ def test_the_local_cluster_leaves_no_scratch_space_after_a_signal(tmp_path):
     assert _stages(tmp_path) == []
 
 
+def test_a_signal_while_the_local_cluster_starts_leaves_no_scratch_space(tmp_path):
+    """A signal that arrives while LocalCluster starts (its scratch folder made, its
+    workers not yet ready) is delivered once the cluster has started, so that the run
+    closes it: a cluster stopped half-way went on starting in its own thread and wrote
+    its lock files into the folder after the run had removed it (about one run in three)."""
+    pytest.importorskip("distributed")
+    _rows(tmp_path, 20_000)
+    for attempt in range(5):
+        temporary = tmp_path / f"tmp{attempt}"
+        temporary.mkdir()
+        env = {**os.environ, "TMPDIR": str(temporary), "PYTHONPATH": str(ROOT)}
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "impactcli", "batch", "big.csv", "-o", "o.csv", "--engine",
+             "dask", "--scheduler", "local"],
+            cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+            text=True, start_new_session=True,
+        )  # fmt: skip
+        try:
+            deadline = time.monotonic() + 120
+            while proc.poll() is None and time.monotonic() < deadline:
+                if any(temporary.glob("impact-dask-*/dask-scratch-space")):
+                    break
+                time.sleep(0.01)
+            assert proc.poll() is None, proc.stderr.read()
+            proc.send_signal(signal.SIGTERM)
+            status = proc.wait(timeout=60)
+        finally:
+            _end(proc)
+        assert status == 143
+        assert _scratch(temporary) == [], attempt
+        assert _stages(tmp_path) == []
+        assert not (tmp_path / "o.csv").exists()
+
+
 def test_the_staging_folder_of_a_killed_run_goes_with_the_next_run(tmp_path):
     pytest.importorskip("dask")
     _rows(tmp_path, 400_000)

@@ -18,6 +18,7 @@ import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import AbstractContextManager, contextmanager, nullcontext, suppress
+from typing import Any
 
 import numpy as np
 
@@ -209,7 +210,7 @@ def _dask_scheduler(scheduler: str | None) -> Iterator[dict]:
         if scheduler == "local":
             # dask's default scratch space, $TMPDIR/dask-scratch-space, outlives the run
             scratch = tempfile.mkdtemp(prefix="impact-dask-")
-            with dask.config.set({"temporary-directory": scratch}):
+            with dask.config.set({"temporary-directory": scratch}), _signals_deferred():
                 cluster = LocalCluster(
                     n_workers=os.cpu_count() or 1, threads_per_worker=1,
                     dashboard_address=None, local_directory=scratch,
@@ -328,6 +329,46 @@ def _signals_held() -> Iterator[None]:
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+@contextmanager
+def _signals_deferred() -> Iterator[None]:
+    """SIGINT, SIGTERM and SIGHUP that arrive inside the block are delivered when it ends,
+    to the handlers in place before it (a second one at once): a LocalCluster stopped
+    while it starts would go on starting in its own thread, and write into its scratch
+    folder after the run has removed it. A no-op outside the main thread."""
+    import signal
+
+    caught: list[int] = []
+    previous: dict[int, Any] = {}
+
+    def defer(signum: int, frame: object) -> None:
+        if caught:  # asked twice: stop now
+            _restore(previous)
+            signal.raise_signal(signum)
+        caught.append(signum)
+
+    for name in _HELD_SIGNALS:
+        number = getattr(signal, name, None)
+        if number is not None:
+            with suppress(ValueError, OSError):  # not the main thread
+                previous[number] = signal.signal(number, defer)
+    try:
+        yield
+    finally:
+        _restore(previous)
+        for signum in caught[:1]:
+            signal.raise_signal(signum)
+
+
+def _restore(handlers: dict[int, Any]) -> None:
+    """Put back the signal handlers of :func:`_signals_deferred` (once)."""
+    import signal
+
+    while handlers:
+        number, handler = handlers.popitem()
+        with suppress(ValueError, OSError, TypeError):
+            signal.signal(number, handler)
 
 
 class _Stage:
