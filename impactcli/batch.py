@@ -533,7 +533,9 @@ def law_stage_times(
     """FILM time of maximum indentation and contact time [s] of a batch of impacts of any
     law (one plan), n segments per stage.
 
-    The fast paths, where the stage laws declare what they are: an elastic plan of the
+    The fast paths, where the law or its stage laws declare what they are: a plan that
+    times itself (its ``timing``: an adhesive law's quadrature of the energy balance at its
+    default n, :func:`impactcli.laws.jkr.motion_time`) by its own times; an elastic plan of the
     normalised tables (:meth:`~impactcli.laws.base.ImpactPlan.is_normalised`) is the
     normalised solution scaled (:func:`normalised_times`); a plan of a loading from 0 that
     times itself (``loading_time``), a ``linear`` stage (FILM exact) and an unloading of
@@ -546,6 +548,9 @@ def law_stage_times(
     """
     from impactcli.impact import solve_plan
 
+    own = None if plan.timing is None else plan.timing(n)
+    if own is not None:
+        return own
     v0 = np.asarray(impact_velocity, dtype=float)
     m = np.broadcast_to(np.asarray(mass, dtype=float), v0.shape)
     if plan.is_normalised() and np.all(np.asarray(plan.stages[0].law.offset) == 0):

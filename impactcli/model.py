@@ -437,7 +437,6 @@ class AdhesivePair(LawPair):
         bool)."""
         out = LawPair.summary(self, result, solution)
         contact = self.normal_contact
-        plan = solution.plan
         delta_max = np.array([float(solution.delta_max)])
         delta_res = float(np.reshape(contact.residual_indentation(delta_max), -1)[0])
         e1, e2 = result.split_fractions
@@ -445,7 +444,10 @@ class AdhesivePair(LawPair):
         relative = 0.5 * self.mass * float(result.impact_velocity) ** 2
         restitution = float(solution.restitution)
         lost = relative * (1.0 - restitution**2)
-        extras = {key: float(np.reshape(value, -1)[0]) for key, value in plan.extras.items()}
+        given = getattr(contact, "summary_extras", None)  # the law's floats of this impact
+        extras = None if given is None else given(result.impact_velocity, self.mass)
+        if extras is None:
+            extras = {k: float(np.reshape(v, -1)[0]) for k, v in solution.plan.extras.items()}
         adhesion = min(extras["energy_adhesion"], lost)
         plastic = lost - adhesion
         dm = float(solution.delta_max)

@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary
 from impactcli.laws.base import (
     YIELD_MARGIN,
     Fitting,
@@ -42,6 +43,9 @@ from impactcli.laws.base import (
 )
 from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR, hertz_stiffness
 from impactcli.laws.jkr import (
+    BRANCH,
+    DEFAULT_N,
+    QUADRATURE_MARGIN,
     SEPARATION_PARAMETER,
     SNAP_S,
     WORK_OF_ADHESION,
@@ -54,6 +58,10 @@ from impactcli.laws.jkr import (
     check_adhesion,
     jkr_contact_radius_at_rest,
     jkr_sticking_velocity,
+    motion_time,
+    plan_summary,
+    quadrature_fits,
+    remembered_plan,
     unloading_keys,
     unloading_plan,
 )
@@ -282,8 +290,56 @@ class ThorntonNingContact:
         if np.any(hard):
             part = self._subset(shape, hard)
             out = part._unloading(None, v0[hard], m[hard])
-            keys[hard] = 10 + unloading_keys(out.s_max, rules[hard])
+            film = ~part._quadrature_fits(out, v0[hard], m[hard], rules[hard])
+            keys[hard] = 10 + unloading_keys(out.s_max, rules[hard]) + 50 * film
         return keys
+
+    def _quadrature_fits(
+        self, out: _Unloading, v0: Array, m: Array, rules: ArrayLike
+    ) -> NDArray[np.bool_]:
+        """Whether the quadrature times plastic impacts (:meth:`_times`): their speed at
+        the yield point at least sqrt(:data:`~impactcli.laws.jkr.QUADRATURE_MARGIN`) of V0,
+        their kinetic energy at first touch that fraction of the snap-in well's depth at
+        least, and an unloading :func:`~impactcli.laws.jkr.quadrature_fits` takes."""
+        r, e, w, _, _ = self._safe(v0.shape)
+        point = self._yield_point(v0.shape)
+        with np.errstate(all="ignore"):
+            kinetic = 0.5 * m * v0 * v0
+            yield_share = 1.0 - point["work"] / kinetic  # (speed at delta_y / V0)^2
+            depth = JKRBranch(r, e, w).energy_unit * float(_potential(SNAP_S) - _potential(1.0))
+            return (
+                (yield_share >= QUADRATURE_MARGIN)
+                & (kinetic >= QUADRATURE_MARGIN * depth)
+                & quadrature_fits(out.s_max, rules)
+            )
+
+    def _times(
+        self, loading: JKRBranch, out: _Unloading, ends: dict, v0: Array, m: Array, py: Array
+    ) -> tuple[Array, Array]:
+        """The time of maximum indentation and the contact time of plastic impacts, [s]:
+        the quadrature of the energy balance on the JKR loading to delta_y and on the
+        unloading branch (:func:`impactcli.laws.jkr.branch_times`), the plastic line's
+        quarter of a harmonic oscillation in closed form (its force is linear)."""
+        shape = v0.shape
+        point = self._yield_point(shape)
+        unit = loading.energy_unit[..., 0]
+        energy = float(_potential(SNAP_S)) + 0.5 * m * v0 * v0 / unit
+        scale = np.sqrt(m * loading.length_unit[..., 0] / loading.force_unit[..., 0])
+        elastic = scale * motion_time(BRANCH, SNAP_S, point["s"], energy=energy)
+        r = self._safe(shape)[0]
+        stiffness = np.pi * py * r
+        omega = np.sqrt(stiffness / m)
+        speed_y = np.sqrt(np.maximum(v0 * v0 - 2.0 * point["work"] / m, 0.0))
+        # F = F_y + k (delta - delta_y): the oscillator's phase at delta_y, a quarter to rest
+        phase = np.arctan2(point["force"] / stiffness, speed_y / omega)
+        plastic = (0.5 * np.pi - phase) / omega
+        branch = out.branch
+        unit_p = np.sqrt(m * branch.length_unit[..., 0] / branch.force_unit[..., 0])
+        back = motion_time(
+            BRANCH, ends["s_end"], out.s_max, turning_low=ends["captured"] > 0
+        )  # fmt: skip
+        t_max = elastic + plastic
+        return t_max, t_max + unit_p * back
 
     def _subset(self, shape: tuple[int, ...], rows: NDArray) -> ThorntonNingContact:
         return ThorntonNingContact(
@@ -303,6 +359,9 @@ class ThorntonNingContact:
         delta_m (end at rest) and the unloading stages of
         :func:`impactcli.laws.jkr.unloading_plan` on the enlarged-radius branch; Thornton's
         plan where W = 0. A batch must share :meth:`plan_keys`."""
+        remembered = remembered_plan(self, impact_velocity, mass)
+        if remembered is not None:
+            return remembered
         shape = self._shape(impact_velocity, mass)
         v0, m = _rows(impact_velocity, shape), _rows(mass, shape)
         _, _, _, _, sticky = self._safe(shape)
@@ -332,6 +391,14 @@ class ThorntonNingContact:
         inward = inward + np.where(f_y < 0.0, 0.5 * f_y * f_y / (np.pi * py * r), 0.0)
         outward = unit_p * (_potential(ends["s_end"]) - _potential(1.0))
         lost = 0.5 * m * v0 * v0 * (1.0 - restitution * restitution)
+        timing = None
+        if np.all(self._quadrature_fits(out, v0, m, separation)):
+
+            def timing(n: int) -> tuple[Array, Array] | None:
+                if n != DEFAULT_N:
+                    return None
+                return self._times(loading, out, ends, v0, m, py)
+
         return ImpactPlan(
             stages=(
                 StagePlan("elastic loading", loading, np.zeros_like(v0), point["delta"], v0),
@@ -352,7 +419,14 @@ class ThorntonNingContact:
                 "pull_off_force": out.branch.force_unit[..., 0],
                 "energy_adhesion": np.minimum(np.maximum(outward - inward, 0.0), lost),
             },
+            timing=timing,
         )
+
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s], m [kg] at the default n: the plan's closed forms and the
+        quadrature's times, on floats (:func:`~impactcli.laws.jkr.plan_summary`); else
+        None (FILM)."""
+        return plan_summary(self, impact_velocity, mass, n)
 
     # -- closed forms --------------------------------------------------------------------------
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
@@ -531,6 +605,6 @@ SPEC = LawSpec(
         starts=_fit_starts,
         run_parameters=_run_parameters,
     ),
-    default_n=200,
+    default_n=DEFAULT_N,
     adhesive=True,
 )
