@@ -466,6 +466,9 @@ class LawSpec:
     #: (its contact model gives ``sticking_velocity(m)``, ``pull_off_force`` and its
     #: plans the ``extras`` captured, pull_off_force and energy_adhesion)
     adhesive: bool = False
+    #: the n at which the law's plans time themselves (their ``timing``, no FILM stages),
+    #: so that a batch takes them in blocks of rows not bounded by FILM's n; None: none
+    timed_n: int | None = None
     #: the law's LAMMPS normal model (None: LAMMPS has none; ``impact export lammps`` then
     #: fits the nearest model LAMMPS has)
     lammps: LammpsModel | None = field(default=None, repr=False)

@@ -346,5 +346,6 @@ SPEC = LawSpec(
     build=_build,
     default_n=DEFAULT_N,
     adhesive=True,
+    timed_n=DEFAULT_N,
     lammps=LAMMPS,
 )

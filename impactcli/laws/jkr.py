@@ -78,12 +78,14 @@ __all__ = [
     "JKRBranch",
     "JKRContact",
     "JKRNeck",
+    "Pieces",
     "Polynomial",
     "branch_times",
     "check_adhesion",
     "jkr_contact_radius_at_rest",
     "jkr_neck_energy",
     "jkr_overlap",
+    "impact_times",
     "jkr_force",
     "jkr_pull_off_force",
     "jkr_restitution",
@@ -186,10 +188,13 @@ def _potential(s: ArrayLike) -> Array:
 # 2e-7 for DMT: docs/laws.md): they are FILM's limit, what the adhesive laws' summaries give
 # at their default n (:data:`impactcli.laws.jkr.SPEC`'s ``default_n``).
 
-#: Gauss-Legendre nodes of one time integral (1e-14 relative wherever the motion's speed
+#: Gauss-Legendre nodes of one time integral (1e-13 relative wherever the motion's speed
 #: stays above about 1e-3 of its largest; nearer a standstill the callers leave the impact
 #: to FILM).
-NODES = 32
+NODES = 48
+
+#: Impacts per block of :func:`motion_time` (its memory: this times ``nodes`` values).
+QUADRATURE_BLOCK = 8192
 
 
 @cache
@@ -279,6 +284,19 @@ def motion_time(
         integral of delta'(x) / sqrt(2 (E - P(x))) from ``low`` to ``high``, shape of the
         ends broadcast together.
     """
+    shape = np.broadcast(*(np.asarray(x) for x in (low, high, energy, turning_low))).shape
+    size = int(np.prod(shape))
+    if size > QUADRATURE_BLOCK:  # in blocks: memory of QUADRATURE_BLOCK x nodes values
+        parts = [np.broadcast_to(np.asarray(x, dtype=float), shape).reshape(-1)
+                 for x in (low, high, 0.0 if energy is None else energy, turning_low)]  # fmt: skip
+        out = np.empty(size)
+        for start in range(0, size, QUADRATURE_BLOCK):
+            cut = slice(start, start + QUADRATURE_BLOCK)
+            out[cut] = motion_time(
+                law, parts[0][cut], parts[1][cut], None if energy is None else parts[2][cut],
+                parts[3][cut] > 0.0, nodes,
+            )  # fmt: skip
+        return out.reshape(shape)
     sin, cos, weights = _gauss(nodes)
     a = np.asarray(low, dtype=float)[..., None]
     b = np.asarray(high, dtype=float)[..., None]
@@ -296,6 +314,79 @@ def motion_time(
         rest = (e - law(b)) + (b - x) * law.first(x, b)  # E - P(x), exact near b
         integrand = law.slope(x) * width * sin * cos / np.sqrt(2.0 * rest)
     return integrand @ weights
+
+
+class Pieces:
+    """A function of one variable on [lo, hi] as Chebyshev series on pieces, each of
+    :data:`PIECE_DEGREE` from its values at the piece's Chebyshev points and halved while
+    it misses the function by more than ``tolerance`` (relative to the function's largest
+    value) midway between them: a table of the quadrature (:func:`motion_time`) that costs
+    a few operations per value.
+
+    Parameters
+    ----------
+    function : vectorised, of the variable
+    lo, hi : the range
+    tolerance : the largest miss, relative, [-]
+
+    Examples
+    --------
+    >>> table = Pieces(np.exp, 0.0, 1.0)
+    >>> bool(abs(float(table(np.array([0.3]))[0]) / np.exp(0.3) - 1) < 1e-14)
+    True
+    """
+
+    def __init__(self, function: Any, lo: float, hi: float, tolerance: float = 1e-14) -> None:
+        k = np.arange(PIECE_DEGREE + 1)
+        nodes = np.cos(np.pi * (k + 0.5) / (PIECE_DEGREE + 1))[::-1]
+        checks = np.cos(np.pi * k[1:] / (PIECE_DEGREE + 1))[::-1]  # between the nodes
+        todo, done = [(float(lo), float(hi), 0)], []
+        while todo:
+            a, b, depth = todo.pop()
+            mid, half = 0.5 * (a + b), 0.5 * (b - a)
+            coefficients = np.polynomial.chebyshev.chebfit(
+                nodes, function(mid + half * nodes), PIECE_DEGREE
+            )
+            exact = function(mid + half * checks)
+            miss = np.abs(np.polynomial.chebyshev.chebval(checks, coefficients) - exact)
+            if depth < 30 and not np.all(miss <= tolerance * np.max(np.abs(exact))):
+                todo += [(mid, b, depth + 1), (a, mid, depth + 1)]
+            else:
+                done.append((a, b, coefficients))
+        done.sort(key=lambda piece: piece[0])
+        self.edges = np.array([piece[1] for piece in done[:-1]])
+        self.middle = np.array([0.5 * (piece[0] + piece[1]) for piece in done])
+        self.half = np.array([0.5 * (piece[1] - piece[0]) for piece in done])
+        self.coefficients = np.array([piece[2] for piece in done])
+        self.columns = np.ascontiguousarray(self.coefficients.T)  # a row per degree
+
+    def __call__(self, x: ArrayLike) -> Array:
+        """The function at ``x`` (Clenshaw's recurrence on each value's piece), [-]."""
+        x = np.asarray(x, dtype=float)
+        if self.edges.size:
+            i = np.searchsorted(self.edges, x)
+            t = (x - self.middle.take(i)) / self.half.take(i)
+            terms = [row.take(i) for row in self.columns]
+        else:  # one piece
+            t = (x - self.middle[0]) / self.half[0]
+            terms = list(self.columns[:, 0])
+        twice = 2.0 * t
+        b1 = terms[PIECE_DEGREE] + np.zeros_like(t)
+        b2 = np.zeros_like(t)
+        for j in range(PIECE_DEGREE - 1, 0, -1):
+            b1, b2 = terms[j] + twice * b1 - b2, b1
+        return terms[0] + t * b1 - b2
+
+
+#: The degree of each piece of a :class:`Pieces` table.
+PIECE_DEGREE = 16
+
+#: Gauss-Legendre nodes of the quadrature that builds the tables (:class:`Pieces`).
+TABLE_NODES = 160
+
+#: Impacts of one plan from which their times come from the tables (:class:`Pieces`, built
+#: on first use in some 0.1 s) rather than from the quadrature itself.
+TABLE_ROWS = 2048
 
 
 #: The branch as a polynomial in s (:func:`motion_time`): the potential
@@ -617,7 +708,68 @@ def quadrature_fits(s_max: ArrayLike, separation: ArrayLike) -> NDArray[np.bool_
     snap = float(_potential(SNAP_S))
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = (_potential(end) - snap) / (_potential(s_m) - snap)  # (V_s / V0)^2
-    return (np.abs(1.0 - ratio) >= QUADRATURE_MARGIN) & (ratio <= 25.0)
+    return (np.abs(1.0 - ratio) >= QUADRATURE_MARGIN) & (ratio > 0.0) & (ratio <= 25.0)
+
+
+def _branch_range(separation: str, ratio: float) -> float:
+    """s_m >= 1 whose (V_s / V0)^2 is ``ratio`` under the rule ``separation``, [-]."""
+    snap, end = float(_potential(SNAP_S)), float(_potential(_END_S[separation]))
+    target = snap + (end - snap) / ratio
+    lo, hi = 1.0, 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if float(_potential(mid)) < target else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+@cache
+def _tables(separation: str) -> tuple[Pieces, Pieces, Pieces, float]:
+    """The loading time x tau_load, the separating unloading's x tau_back and the captured
+    one's tau_back as functions of x = 1 / s_m (:class:`Pieces`, from :func:`motion_time`
+    with :data:`TABLE_NODES` nodes) over the impacts :func:`quadrature_fits` takes under
+    ``separation``, and the x where the captured ones begin, [-]."""
+    wide = 1.0 + 1e-9  # past the ends of quadrature_fits, by rounding
+    low = _branch_range("pull-off", 25.0 * wide)  # the slowest impact of either rule
+    parts = _branch_range(separation, (1.0 - QUADRATURE_MARGIN) / wide)
+    stuck_top = _branch_range(separation, (1.0 + QUADRATURE_MARGIN) * wide)
+    stuck_low = _branch_range(separation, 25.0 * wide)
+    end = _END_S[separation]
+
+    def loading(x: Array) -> Array:
+        return motion_time(BRANCH, SNAP_S, 1.0 / x, nodes=TABLE_NODES) / x
+
+    def separating(x: Array) -> Array:
+        return motion_time(BRANCH, end, 1.0 / x, nodes=TABLE_NODES) / x
+
+    def captured(x: Array) -> Array:
+        s_m = 1.0 / x
+        s_end = _capture_s(_potential(s_m), end)
+        return motion_time(BRANCH, s_end, s_m, turning_low=True, nodes=TABLE_NODES)
+
+    tiny = 1e-9  # x = 0 is s_m = inf: the series there is the limit
+    return (
+        Pieces(loading, tiny, 1.0 / low),
+        Pieces(separating, tiny, 1.0 / parts),
+        Pieces(captured, 1.0 / stuck_top, 1.0 / stuck_low),
+        1.0 / stuck_top,
+    )
+
+
+def impact_times(
+    s_max: ArrayLike, s_end: ArrayLike, captured: bool, separation: str, loading: bool = True
+) -> tuple[Array | None, Array]:
+    """:func:`branch_times` from snap-in of impacts :func:`quadrature_fits` takes, one rule
+    and one way of ending (``captured``) for all: from the tables (:func:`_tables`, within
+    2e-14 of the quadrature) for :data:`TABLE_ROWS` impacts or more, [-]; the loading's
+    time None without ``loading``."""
+    if np.size(s_max) < TABLE_ROWS:
+        if not loading:
+            return None, motion_time(BRANCH, s_end, s_max, turning_low=captured)
+        return branch_times(SNAP_S, s_max, s_end, captured)
+    load, separating, stuck, _ = _tables(separation)
+    x = 1.0 / np.asarray(s_max, dtype=float)
+    back = stuck(x) if captured else separating(x) * x
+    return (load(x) * x if loading else None), back
 
 
 def branch_times(
@@ -867,7 +1019,7 @@ def jkr_impact(
     s_m, top = s, _p(s)
     end = _END_S[separation]
     ratio = (_p(end) - snap) / (top - snap)  # (V_s / V0)^2: quadrature_fits
-    if not (abs(1.0 - ratio) >= QUADRATURE_MARGIN and ratio <= 25.0):
+    if not (abs(1.0 - ratio) >= QUADRATURE_MARGIN and 0.0 < ratio <= 25.0):
         return None
     captured = not top > _p(end)
     if captured:  # _capture_s on a float
@@ -1057,8 +1209,10 @@ class JKRContact(NoYieldPoint):
                 if n != DEFAULT_N:
                     return None
                 unit = np.sqrt(m * branch.length_unit[..., 0] / branch.force_unit[..., 0])
-                load, back = branch_times(SNAP_S, s_m, ends["s_end"], ends["captured"] > 0)
+                load, back = impact_times(s_m, ends["s_end"], captured_all, separation)
                 return unit * load, unit * (load + back)
+
+            captured_all = bool(np.all(ends["captured"] > 0))
 
         return ImpactPlan(
             stages=(loading, *stages),
@@ -1228,5 +1382,6 @@ SPEC = LawSpec(
     closed_form=_closed_form,
     default_n=DEFAULT_N,
     adhesive=True,
+    timed_n=DEFAULT_N,
     lammps=LAMMPS,
 )

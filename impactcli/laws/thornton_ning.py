@@ -45,6 +45,7 @@ from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR, hertz_stiffness
 from impactcli.laws.jkr import (
     BRANCH,
     DEFAULT_N,
+    NODES,
     QUADRATURE_MARGIN,
     SEPARATION_PARAMETER,
     SNAP_S,
@@ -56,6 +57,7 @@ from impactcli.laws.jkr import (
     _rows,
     _same,
     check_adhesion,
+    impact_times,
     jkr_contact_radius_at_rest,
     jkr_sticking_velocity,
     motion_time,
@@ -314,18 +316,29 @@ class ThorntonNingContact:
             )
 
     def _times(
-        self, loading: JKRBranch, out: _Unloading, ends: dict, v0: Array, m: Array, py: Array
+        self,
+        loading: JKRBranch,
+        out: _Unloading,
+        ends: dict,
+        v0: Array,
+        m: Array,
+        py: Array,
+        separation: str,
     ) -> tuple[Array, Array]:
         """The time of maximum indentation and the contact time of plastic impacts, [s]:
-        the quadrature of the energy balance on the JKR loading to delta_y and on the
-        unloading branch (:func:`impactcli.laws.jkr.branch_times`), the plastic line's
+        the quadrature of the energy balance on the JKR loading to delta_y (24 nodes where
+        the speed there is at least sqrt(0.75) V0, 16 from sqrt(0.999) V0: 3e-14) and on the
+        unloading branch (:func:`impactcli.laws.jkr.impact_times`), the plastic line's
         quarter of a harmonic oscillation in closed form (its force is linear)."""
         shape = v0.shape
         point = self._yield_point(shape)
         unit = loading.energy_unit[..., 0]
-        energy = float(_potential(SNAP_S)) + 0.5 * m * v0 * v0 / unit
+        kinetic = 0.5 * m * v0 * v0
+        energy = float(_potential(SNAP_S)) + kinetic / unit
         scale = np.sqrt(m * loading.length_unit[..., 0] / loading.force_unit[..., 0])
-        elastic = scale * motion_time(BRANCH, SNAP_S, point["s"], energy=energy)
+        share = float(np.min(1.0 - point["work"] / kinetic, initial=1.0))  # (V(delta_y)/V0)^2
+        nodes = 16 if share >= 0.999 else 24 if share >= 0.75 else NODES
+        elastic = scale * motion_time(BRANCH, SNAP_S, point["s"], energy=energy, nodes=nodes)
         r = self._safe(shape)[0]
         stiffness = np.pi * py * r
         omega = np.sqrt(stiffness / m)
@@ -335,9 +348,8 @@ class ThorntonNingContact:
         plastic = (0.5 * np.pi - phase) / omega
         branch = out.branch
         unit_p = np.sqrt(m * branch.length_unit[..., 0] / branch.force_unit[..., 0])
-        back = motion_time(
-            BRANCH, ends["s_end"], out.s_max, turning_low=ends["captured"] > 0
-        )  # fmt: skip
+        captured = bool(np.all(ends["captured"] > 0))
+        _, back = impact_times(out.s_max, ends["s_end"], captured, separation, loading=False)
         t_max = elastic + plastic
         return t_max, t_max + unit_p * back
 
@@ -397,7 +409,7 @@ class ThorntonNingContact:
             def timing(n: int) -> tuple[Array, Array] | None:
                 if n != DEFAULT_N:
                     return None
-                return self._times(loading, out, ends, v0, m, py)
+                return self._times(loading, out, ends, v0, m, py, separation)
 
         return ImpactPlan(
             stages=(
@@ -473,16 +485,11 @@ class ThorntonNingContact:
         rules = self._rules(shape).reshape(size)
         v_y = np.asarray(self.yield_velocity(mass), dtype=float)
         v_y = np.broadcast_to(v_y, shape).reshape(size)
-        out = np.zeros(size)
-        for i in range(size):
-            if not sticky[i]:
-                continue
-            v_s = float(jkr_sticking_velocity(m[i], r[i], e[i], w[i], rules[i]))
-            if v_s <= v_y[i]:
-                out[i] = v_s
-                continue
+        elastic = JKRContact(r, e, np.where(sticky, w, 0.0), rules).sticking_velocity(m)
+        out = np.where(sticky, elastic, 0.0)
+        for i in np.flatnonzero(sticky & (elastic > v_y)):  # sticks past V_y: sought
             one = ThorntonNingContact(r[i], e[i], w[i], py[i], rules[i])
-            out[i] = one._plastic_sticking(float(m[i]), float(v_y[i]), v_s)
+            out[i] = one._plastic_sticking(float(m[i]), float(v_y[i]), float(elastic[i]))
         return out.reshape(shape)
 
     def _captured(self, v0: Array, mass: float) -> NDArray[np.bool_]:
@@ -607,4 +614,5 @@ SPEC = LawSpec(
     ),
     default_n=DEFAULT_N,
     adhesive=True,
+    timed_n=DEFAULT_N,
 )
