@@ -994,6 +994,18 @@ def _p(s: float) -> float:
     return s**4 * (1.6 * cube * cube - (8.0 / 3.0) * cube + 2.0 / 3.0)
 
 
+def _capture_float(target: float, low: float) -> float:
+    """:func:`_capture_s` on floats."""
+    lo, hi = low, 1.0
+    eps = float(np.finfo(float).eps)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if _p(mid) > target else (lo, mid)
+        if hi - lo <= 2.0 * eps * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
 def jkr_impact(
     radius: float, modulus: float, work_of_adhesion: float, separation: str, v0: float, m: float
 ) -> tuple[FilmSummary, dict[str, float]] | None:
@@ -1022,14 +1034,8 @@ def jkr_impact(
     if not (abs(1.0 - ratio) >= QUADRATURE_MARGIN and 0.0 < ratio <= 25.0):
         return None
     captured = not top > _p(end)
-    if captured:  # _capture_s on a float
-        lo, hi = end, 1.0
-        for _ in range(80):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if _p(mid) > top else (lo, mid)
-            if hi - lo <= 2.0 * np.finfo(float).eps * hi:
-                break
-        end = 0.5 * (lo + hi)
+    if captured:
+        end = _capture_float(top, end)
     speed = 0.0 if captured else math.sqrt(max(2.0 * unit * (top - _p(end)) / m, 0.0))
     restitution = speed / v0
     load, back = branch_times(SNAP_S, s_m, end, captured)

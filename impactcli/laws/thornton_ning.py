@@ -43,6 +43,8 @@ from impactcli.laws.base import (
 )
 from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR, hertz_stiffness
 from impactcli.laws.jkr import (
+    _END_S,
+    _NECK,
     BRANCH,
     DEFAULT_N,
     NODES,
@@ -52,24 +54,34 @@ from impactcli.laws.jkr import (
     WORK_OF_ADHESION,
     JKRBranch,
     JKRContact,
+    _capture_float,
     _check_separation,
+    _p,
     _potential,
     _rows,
     _same,
     check_adhesion,
     impact_times,
     jkr_contact_radius_at_rest,
+    jkr_impact,
     jkr_sticking_velocity,
     motion_time,
     plan_summary,
     quadrature_fits,
+    remembered_extras,
     remembered_plan,
     unloading_keys,
     unloading_plan,
 )
 from impactcli.laws.thornton import ThorntonContact
 
-__all__ = ["SPEC", "PlasticLine", "ThorntonNingContact", "snap_in_pressure"]
+__all__ = [
+    "SPEC",
+    "PlasticLine",
+    "ThorntonNingContact",
+    "snap_in_pressure",
+    "thornton_ning_impact",
+]
 
 Array = NDArray[np.float64]
 
@@ -89,6 +101,92 @@ def snap_in_pressure(radius: ArrayLike, modulus: ArrayLike, work_of_adhesion: Ar
     r, e = np.asarray(radius, dtype=float), np.asarray(modulus, dtype=float)
     a1 = jkr_contact_radius_at_rest(r, e, work_of_adhesion) * SNAP_S**2
     return 2.0 * e * a1 / (np.pi * r)
+
+
+def thornton_ning_impact(
+    radius: float,
+    modulus: float,
+    work_of_adhesion: float,
+    limit_pressure: float,
+    separation: str,
+    v0: float,
+    m: float,
+) -> tuple[FilmSummary, dict[str, float]] | None:
+    """One Thornton & Ning impact on floats (W > 0, V0 [m/s], m [kg]): the closed forms of
+    :meth:`ThorntonNingContact.plan` and the times of :meth:`ThorntonNingContact._times`,
+    [SI] (JKR's, :func:`~impactcli.laws.jkr.jkr_impact`, below V_y); with the plan's
+    ``extras`` and the pair's ``delta_res`` and, where JKR's V_s lies below V_y,
+    ``sticking_velocity``. None where the quadrature leaves the impact to FILM."""
+    r, e, w, py = radius, modulus, work_of_adhesion, limit_pressure
+    a0 = float(np.cbrt(4.5 * np.pi * w * r * r / e))
+    length, force = a0 * a0 / r, 1.5 * math.pi * w * r
+    unit = force * length
+    a_y = math.pi * r * py / (2.0 * e)
+    s_y = math.sqrt(a_y / a0)
+    cube = s_y**3
+    delta_y, f_y = length * (s_y**4 - (2.0 / 3.0) * s_y), force * (4.0 * cube * (cube - 1.0))
+    snap = _p(SNAP_S)
+    work_y = unit * (_p(s_y) - snap)
+    v_y = math.sqrt(2.0 * max(work_y, 0.0) / m)
+    v_s = math.sqrt(2.0 * _NECK[separation] * unit / m)
+    known = {"sticking_velocity": v_s} if v_s <= v_y else {}
+    if not v0 > v_y * (1.0 + YIELD_MARGIN):  # JKR's impact, this law's yield point
+        found = jkr_impact(r, e, w, separation, v0, m)
+        if found is None:
+            return None
+        summary, extras = found
+        summary = summary._replace(delta_y=delta_y, yield_velocity=v_y)
+        return summary, {**extras, "delta_res": 0.0, **known}
+    kinetic = 0.5 * m * v0 * v0
+    share = 1.0 - work_y / kinetic  # (speed at delta_y / V0)^2
+    if not (share >= QUADRATURE_MARGIN and kinetic >= QUADRATURE_MARGIN * unit * (snap - _p(1.0))):
+        return None
+    slope = math.pi * py * r
+    rest = max(kinetic - work_y, 0.0)
+    root = math.sqrt(f_y * f_y + 2.0 * slope * rest)
+    x = (2.0 * rest / (f_y + root) if f_y >= 0.0 else (root - f_y) / slope) if rest > 0 else 0.0
+    delta_m, f_m = delta_y + x, f_y + slope * x
+    a_m = math.sqrt(a_y**2 + r * x)
+    r_p = 4.0 * e * a_m**3 / (3.0 * (f_m + math.sqrt(8.0 * math.pi * w * e * a_m**3)))
+    a0_p = float(np.cbrt(4.5 * np.pi * w * r_p * r_p / e))
+    length_p, force_p = a0_p * a0_p / r_p, 1.5 * math.pi * w * r_p
+    unit_p = force_p * length_p
+    s_m = math.sqrt(a_m / a0_p)
+    offset = delta_m - length_p * (s_m**4 - (2.0 / 3.0) * s_m)
+    top, rule_end = _p(s_m), _END_S[separation]
+    ratio = (_p(rule_end) - snap) / (top - snap)  # quadrature_fits on the unloading
+    if not (abs(1.0 - ratio) >= QUADRATURE_MARGIN and 0.0 < ratio <= 25.0):
+        return None
+    captured = not top > _p(rule_end)
+    end = _capture_float(top, rule_end) if captured else rule_end
+    speed = 0.0 if captured else math.sqrt(max(2.0 * unit_p * (top - _p(end)) / m, 0.0))
+    restitution = speed / v0
+    nodes = 16 if share >= 0.999 else 24 if share >= 0.75 else NODES
+    energy = snap + kinetic / unit
+    elastic = math.sqrt(m * length / force) * float(
+        motion_time(BRANCH, SNAP_S, s_y, energy=energy, nodes=nodes)
+    )
+    omega = math.sqrt(slope / m)
+    speed_y = math.sqrt(max(v0 * v0 - 2.0 * work_y / m, 0.0))
+    plastic = (0.5 * math.pi - math.atan2(f_y / slope, speed_y / omega)) / omega
+    back = float(motion_time(BRANCH, end, s_m, turning_low=captured))
+    t_max = elastic + plastic
+    inward = unit * (snap - _p(min(s_y, 1.0))) + (0.5 * f_y * f_y / slope if f_y < 0.0 else 0.0)
+    outward = unit_p * (_p(end) - _p(1.0))
+    lost = kinetic * (1.0 - restitution * restitution)
+    summary = FilmSummary(
+        delta_m, f_m, offset + length_p * (end**4 - (2.0 / 3.0) * end), restitution, t_max,
+        t_max + math.sqrt(m * length_p / force_p) * back, delta_y, v_y,
+        max(unit_p * (top - _p(rule_end)), 0.0), False, True,
+    )  # fmt: skip
+    extras = {
+        "captured": 1.0 if captured else 0.0,
+        "pull_off_force": force_p,
+        "energy_adhesion": min(max(outward - inward, 0.0), lost),
+        "delta_res": offset,
+        **known,
+    }
+    return summary, extras
 
 
 @dataclass(frozen=True)
@@ -439,6 +537,22 @@ class ThorntonNingContact:
         quadrature's times, on floats (:func:`~impactcli.laws.jkr.plan_summary`); else
         None (FILM)."""
         return plan_summary(self, impact_velocity, mass, n)
+
+    def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
+        """:func:`thornton_ning_impact` of this pair (one pair, W > 0; else None)."""
+        values = [self.radius, self.modulus, self.work_of_adhesion, self.limit_pressure]
+        if any(np.ndim(x) for x in values) or not isinstance(self.separation, str):
+            return None
+        r, e, w, py = (float(x) for x in values)
+        if not (w > 0.0 and py > 0.0):
+            return None
+        return thornton_ning_impact(r, e, w, py, self.separation, v0, m)
+
+    def summary_extras(self, impact_velocity: Any, mass: Any) -> dict[str, float] | None:
+        """The plan's ``extras`` of the one impact :meth:`film_summary` gave last, with
+        ``delta_res`` and (where known) ``sticking_velocity``
+        (:func:`~impactcli.laws.jkr.remembered_extras`); None."""
+        return remembered_extras(self, impact_velocity, mass)
 
     # -- closed forms --------------------------------------------------------------------------
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
