@@ -13,26 +13,26 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cache
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.film import FilmSummary
 from impactcli.laws.base import ImpactPlan, LammpsModel, LawSpec, Reference, StagePlan, col
-from impactcli.laws.hertz import HertzContact, NoYieldPoint, hertz_stiffness
+from impactcli.laws.hertz import HertzContact, NoYieldPoint
 from impactcli.laws.jkr import (
     DEFAULT_N,
+    NODES,
     TABLE_NODES,
     TABLE_ROWS,
     WORK_OF_ADHESION,
+    AdhesiveContact,
     Pieces,
     Polynomial,
     check_adhesion,
     motion_time,
-    plan_summary,
-    remembered_extras,
     remembered_plan,
+    without_adhesion,
 )
 
 __all__ = [
@@ -197,7 +197,10 @@ def dmt_impact(
         if new == d:
             break
         d = new
-    load = math.sqrt(m * length / pull) * float(loading_times(math.sqrt(d / length)))
+    scaled = energy / (pull * length)  # 24 nodes from 1 F_0 delta_0 up, 32 from 0.1: 2e-15
+    nodes = 24 if scaled >= 1.0 else 32 if scaled >= 0.1 else NODES
+    time = float(motion_time(CURVE, 0.0, math.sqrt(d / length), nodes=nodes))
+    load = math.sqrt(m * length / pull) * time
     summary = FilmSummary(
         d, k * d**1.5 - pull, 0.0, 1.0, load, 2.0 * load, math.nan, math.nan,
         0.4 * k * (d * d * math.sqrt(d)) - pull * d, False, False,
@@ -206,7 +209,7 @@ def dmt_impact(
 
 
 @dataclass(frozen=True)
-class DMTContact(NoYieldPoint):
+class DMTContact(AdhesiveContact, NoYieldPoint):
     """DMT contact of a pair of spheres with the interface of a
     :class:`~impactcli.laws.base.NormalContact`: elastic, no permanent indentation, e = 1.
 
@@ -223,17 +226,8 @@ class DMTContact(NoYieldPoint):
     (1.0, 1.0)
     """
 
-    radius: ArrayLike
-    modulus: ArrayLike
-    work_of_adhesion: ArrayLike
-
     def __post_init__(self) -> None:
         check_adhesion(self.radius, self.modulus, self.work_of_adhesion, _REST_FACTOR, "DMT")
-
-    @property
-    def stiffness(self) -> Array:
-        """K_h = (4/3) E* sqrt(R), [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
 
     @property
     def pull_off_force(self) -> Array:
@@ -274,13 +268,7 @@ class DMTContact(NoYieldPoint):
         k = np.broadcast_to(np.asarray(self.stiffness, dtype=float), shape)
         pull = np.broadcast_to(self.pull_off_force, shape)
         if np.all(pull == 0.0):
-            hertz = HertzContact(k).plan(v0, m)
-            zero = np.zeros_like(v0)
-            extras = {
-                "captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()
-            }  # fmt: skip
-            return ImpactPlan(hertz.stages, hertz.delta_max, hertz.force_max, hertz.delta_res,
-                              hertz.restitution, extras=extras)  # fmt: skip
+            return without_adhesion(HertzContact(k).plan(v0, m), v0)
         if np.any(pull == 0.0):
             raise ValueError("a batch must be all with or all without adhesion: plan_keys()")
         delta_m = _turning(k, pull, 0.5 * m * v0 * v0)
@@ -311,12 +299,6 @@ class DMTContact(NoYieldPoint):
             timing=timing,
         )
 
-    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
-        """One impact at V0 [m/s], m [kg] at the default n: the plan's closed forms and the
-        quadrature's times, on floats (:func:`~impactcli.laws.jkr.plan_summary`); else
-        None (FILM)."""
-        return plan_summary(self, impact_velocity, mass, n)
-
     def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
         """:func:`dmt_impact` of this pair (floats; None for arrays, at W = 0 and below
         :data:`QUADRATURE_ENERGY`)."""
@@ -324,11 +306,6 @@ class DMTContact(NoYieldPoint):
         if not all(type(x) is float for x in values) or not values[2] > 0.0:
             return None
         return dmt_impact(*values, v0, m)
-
-    def summary_extras(self, impact_velocity: Any, mass: Any) -> dict[str, float] | None:
-        """The plan's ``extras`` of the one impact :meth:`film_summary` gave last
-        (:func:`~impactcli.laws.jkr.remembered_extras`); None."""
-        return remembered_extras(self, impact_velocity, mass)
 
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """Zero: an elastic contact leaves no permanent indentation, [m]."""
@@ -381,10 +358,7 @@ SPEC = LawSpec(
         "stiff, small spheres with a long-ranged adhesion (Tabor parameter below about 0.1), "
         "a << R; any V0"
     ),
-    needs_yield_strength=False,
-    build=_build,
-    default_n=DEFAULT_N,
-    adhesive=True,
-    timed_n=DEFAULT_N,
+    needs_yield_strength=False, build=_build,
+    default_n=DEFAULT_N, adhesive=True, timed_n=DEFAULT_N,
     lammps=LAMMPS,
-)
+)  # fmt: skip

@@ -71,6 +71,7 @@ __all__ = [
     "SNAP_S",
     "SPEC",
     "WORK_OF_ADHESION",
+    "AdhesiveContact",
     "BRANCH",
     "DEFAULT_N",
     "NODES",
@@ -97,6 +98,7 @@ __all__ = [
     "remembered_extras",
     "remembered_plan",
     "unloading_plan",
+    "without_adhesion",
 ]
 
 Array = NDArray[np.float64]
@@ -1088,7 +1090,46 @@ def loading_s(branch_top: Array, energy: Array, unit: Array) -> Array:
 
 
 @dataclass(frozen=True)
-class JKRContact(NoYieldPoint):
+class AdhesiveContact:
+    """What the adhesive laws' contacts share (:class:`JKRContact`, ``dmt``'s and
+    ``thornton-ning``'s): the pair's R, E* and W, Hertz's stiffness, and one impact's
+    summary on floats at the default n from the law's ``one_impact(V0, m)``
+    (:func:`plan_summary`).
+
+    Parameters
+    ----------
+    radius : effective radius R, [m]
+    modulus : effective modulus E*, [Pa]
+    work_of_adhesion : W >= 0, [J/m^2]
+    """
+
+    radius: ArrayLike
+    modulus: ArrayLike
+    work_of_adhesion: ArrayLike
+
+    @property
+    def stiffness(self) -> Array:
+        """Hertz stiffness K_h = (4/3) E* sqrt(R) of the pair, [N/m^1.5]."""
+        return hertz_stiffness(self.modulus, self.radius)
+
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s], m [kg] at the default n: the plan's closed forms and the
+        quadrature's times, on floats (:func:`plan_summary`); else None (FILM)."""
+        return plan_summary(self, impact_velocity, mass, n)
+
+    def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
+        """The law's impact on floats, with its plan's ``extras``; None: from the plan."""
+        return None
+
+    def summary_extras(self, impact_velocity: Any, mass: Any) -> dict[str, float] | None:
+        """The plan's ``extras`` of the one impact :meth:`film_summary` gave last, as
+        floats (:func:`remembered_extras`; ``delta_res`` and ``sticking_velocity`` where the
+        law knew them); None."""
+        return remembered_extras(self, impact_velocity, mass)
+
+
+@dataclass(frozen=True)
+class JKRContact(AdhesiveContact, NoYieldPoint):
     """The JKR contact of a pair of spheres (module docstring), with the interface of a
     :class:`~impactcli.laws.base.NormalContact`: elastic (no yield point), no permanent
     indentation; an impact's plan has the loading stage and the unloading stages of
@@ -1115,19 +1156,11 @@ class JKRContact(NoYieldPoint):
     0.916274
     """
 
-    radius: ArrayLike
-    modulus: ArrayLike
-    work_of_adhesion: ArrayLike
     separation: Any = "instability"
 
     def __post_init__(self) -> None:
         _check_separation(self.separation)
         check_adhesion(self.radius, self.modulus, self.work_of_adhesion)
-
-    @property
-    def stiffness(self) -> Array:
-        """Hertz stiffness K_h of the pair, [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
 
     @property
     def pull_off_force(self) -> Array:
@@ -1196,7 +1229,7 @@ class JKRContact(NoYieldPoint):
         v0, m = _rows(v0, shape), _rows(mass, shape)
         w = _rows(self.work_of_adhesion, shape)
         if np.all(w == 0.0):
-            return _hertz_plan(self.stiffness, v0, m)
+            return without_adhesion(HertzContact(self.stiffness).plan(v0, m), v0)
         if np.any(w == 0.0):
             raise ValueError("a batch must be all with or all without adhesion: plan_keys()")
         separation = str(_same(np.broadcast_to(np.asarray(self.separation, dtype=object),
@@ -1236,11 +1269,6 @@ class JKRContact(NoYieldPoint):
             timing=timing,
         )
 
-    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
-        """One impact at V0 [m/s], m [kg] at the default n: the plan's closed forms and the
-        quadrature's times, on floats (:func:`plan_summary`); else None (FILM)."""
-        return plan_summary(self, impact_velocity, mass, n)
-
     def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
         """:func:`jkr_impact` of this pair (floats; None for arrays, at W = 0 or where FILM
         times the impact)."""
@@ -1249,11 +1277,6 @@ class JKRContact(NoYieldPoint):
             return None
         r, e, w = values
         return jkr_impact(r, e, w, self.separation, v0, m) if w > 0.0 else None
-
-    def summary_extras(self, impact_velocity: Any, mass: Any) -> dict[str, float] | None:
-        """The plan's ``extras`` of the one impact :meth:`film_summary` gave last, as
-        floats (:func:`remembered_extras`); None."""
-        return remembered_extras(self, impact_velocity, mass)
 
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """Zero: an elastic contact leaves no permanent indentation, [m]."""
@@ -1275,10 +1298,10 @@ class JKRContact(NoYieldPoint):
         return np.broadcast_to(np.where(w > 0.0, np.maximum(given, 0.0), hertz), shape)
 
 
-def _hertz_plan(stiffness: ArrayLike, v0: Array, m: Array) -> ImpactPlan:
-    """Hertz's plan (W = 0) with the adhesive extras: nothing sticks, no neck."""
-    plan = HertzContact(stiffness).plan(v0, m)
-    zero = np.zeros_like(v0)
+def without_adhesion(plan: ImpactPlan, v0: ArrayLike) -> ImpactPlan:
+    """The plan of a law without adhesion (W = 0: Hertz's, Thornton's) with the adhesive
+    extras: nothing sticks, no neck, no pull-off force."""
+    zero = np.zeros_like(np.asarray(v0, dtype=float))
     return ImpactPlan(
         plan.stages, plan.delta_max, plan.force_max, plan.delta_res, plan.restitution,
         extras={"captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
@@ -1376,8 +1399,7 @@ SPEC = LawSpec(
         "elastic spheres with a short-ranged adhesion (Tabor parameter above about 5: soft, "
         "large or strongly adhering), a << R; any V0"
     ),
-    needs_yield_strength=False,
-    build=_build,
+    needs_yield_strength=False, build=_build,
     fitting=Fitting(
         default=("work_of_adhesion",),
         starts=_fit_starts,
@@ -1386,8 +1408,6 @@ SPEC = LawSpec(
         data_starts=_data_starts,
     ),
     closed_form=_closed_form,
-    default_n=DEFAULT_N,
-    adhesive=True,
-    timed_n=DEFAULT_N,
+    default_n=DEFAULT_N, adhesive=True, timed_n=DEFAULT_N,
     lammps=LAMMPS,
-)
+)  # fmt: skip

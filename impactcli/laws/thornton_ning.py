@@ -31,17 +31,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from impactcli.film import FilmSummary
-from impactcli.laws.base import (
-    YIELD_MARGIN,
-    Fitting,
-    ImpactPlan,
-    LawSpec,
-    Parameter,
-    Reference,
-    StagePlan,
-    col,
-)
-from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR, hertz_stiffness
+from impactcli.laws import base
+from impactcli.laws.base import YIELD_MARGIN, ImpactPlan, StagePlan, col
+from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR
 from impactcli.laws.jkr import (
     _END_S,
     _NECK,
@@ -52,6 +44,7 @@ from impactcli.laws.jkr import (
     SEPARATION_PARAMETER,
     SNAP_S,
     WORK_OF_ADHESION,
+    AdhesiveContact,
     JKRBranch,
     JKRContact,
     _capture_float,
@@ -64,14 +57,15 @@ from impactcli.laws.jkr import (
     impact_times,
     jkr_contact_radius_at_rest,
     jkr_impact,
-    jkr_sticking_velocity,
     motion_time,
-    plan_summary,
     quadrature_fits,
-    remembered_extras,
     remembered_plan,
     unloading_keys,
     unloading_plan,
+    without_adhesion,
+)
+from impactcli.laws.jkr import (
+    _fit_starts as jkr_fit_starts,
 )
 from impactcli.laws.thornton import ThorntonContact
 
@@ -229,7 +223,7 @@ class _Unloading:
 
 
 @dataclass(frozen=True)
-class ThorntonNingContact:
+class ThorntonNingContact(AdhesiveContact):
     """Thornton & Ning's (1998) contact of a pair of spheres (module docstring), with the
     interface of a :class:`~impactcli.laws.base.NormalContact`.
 
@@ -252,9 +246,6 @@ class ThorntonNingContact:
     (5.3755, 0.040055)
     """
 
-    radius: ArrayLike
-    modulus: ArrayLike
-    work_of_adhesion: ArrayLike
     limit_pressure: ArrayLike
     separation: Any = "instability"
 
@@ -277,11 +268,6 @@ class ThorntonNingContact:
             )
 
     # -- the elastic part and the yield point -------------------------------------------------
-    @property
-    def stiffness(self) -> Array:
-        """Hertz stiffness K_h of the pair, [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
-
     def _safe(self, shape: tuple[int, ...]) -> tuple[Array, Array, Array, Array, NDArray]:
         """R, E*, W (1 where W = 0) and p_y as rows, and where W > 0."""
         w = _rows(self.work_of_adhesion, shape)
@@ -459,10 +445,8 @@ class ThorntonNingContact:
         )  # fmt: skip
 
     def _jkr(self, shape: tuple[int, ...], rows: NDArray) -> JKRContact:
-        return JKRContact(
-            _rows(self.radius, shape)[rows], _rows(self.modulus, shape)[rows],
-            _rows(self.work_of_adhesion, shape)[rows], self._rules(shape)[rows],
-        )  # fmt: skip
+        part = self._subset(shape, rows)
+        return JKRContact(part.radius, part.modulus, part.work_of_adhesion, part.separation)
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Below V_y JKR's plan; above it JKR loading to delta_y, the plastic line to
@@ -477,7 +461,7 @@ class ThorntonNingContact:
         _, _, _, _, sticky = self._safe(shape)
         everything = Ellipsis  # every row, keeping a single impact's shape ()
         if not np.any(sticky):
-            return _with_extras(self._thornton(shape).plan(v0, m), v0)
+            return without_adhesion(self._thornton(shape).plan(v0, m), v0)
         if not np.all(sticky):
             raise ValueError("a batch must be all with or all without adhesion: plan_keys()")
         plastic = self.yields(v0, m)
@@ -532,12 +516,6 @@ class ThorntonNingContact:
             timing=timing,
         )
 
-    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
-        """One impact at V0 [m/s], m [kg] at the default n: the plan's closed forms and the
-        quadrature's times, on floats (:func:`~impactcli.laws.jkr.plan_summary`); else
-        None (FILM)."""
-        return plan_summary(self, impact_velocity, mass, n)
-
     def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
         """:func:`thornton_ning_impact` of this pair (one pair, W > 0; else None)."""
         values = [self.radius, self.modulus, self.work_of_adhesion, self.limit_pressure]
@@ -548,38 +526,35 @@ class ThorntonNingContact:
             return None
         return thornton_ning_impact(r, e, w, py, self.separation, v0, m)
 
-    def summary_extras(self, impact_velocity: Any, mass: Any) -> dict[str, float] | None:
-        """The plan's ``extras`` of the one impact :meth:`film_summary` gave last, with
-        ``delta_res`` and (where known) ``sticking_velocity``
-        (:func:`~impactcli.laws.jkr.remembered_extras`); None."""
-        return remembered_extras(self, impact_velocity, mass)
-
     # -- closed forms --------------------------------------------------------------------------
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """delta_p, the offset of the enlarged-radius branch, past delta_y; 0 below it;
         Thornton's delta_res where W = 0, [m]."""
-        dm = np.asarray(delta_max, dtype=float)
-        shape = self._shape(dm)
-        dm = _rows(dm, shape)
-        point = self._yield_point(shape)
-        plastic = dm > point["delta"]
-        with np.errstate(all="ignore"):
-            out = self._unloading(np.where(plastic, dm, point["delta"]), dm, np.ones(shape))
-            adhesive = np.where(plastic, np.asarray(out.branch.offset)[..., 0], 0.0)
+        dm, point, plastic, out = self._unloading_from(delta_max)
+        adhesive = np.where(plastic, np.asarray(out.branch.offset)[..., 0], 0.0)
+        shape = dm.shape
         return np.where(point["sticky"], adhesive, self._thornton(shape).residual_indentation(dm))
 
-    def recoverable_work(self, delta: ArrayLike) -> Array:
-        """What unloading from ``delta`` gives back to the motion, [J]: the work of the
-        unloading branch from delta to the separation point, or 0 where the spheres would
-        be captured (JKR's below delta_y, Thornton's where W = 0)."""
+    def _unloading_from(self, delta: ArrayLike) -> tuple[Array, dict, Array, _Unloading]:
+        """The overlaps as rows, the yield point, where they are past it and the unloading
+        from each (from delta_y where they are not)."""
         d = np.asarray(delta, dtype=float)
         shape = self._shape(d)
         d = _rows(d, shape)
         point = self._yield_point(shape)
         plastic = d > point["delta"]
         with np.errstate(all="ignore"):
-            elastic = self._jkr(shape, np.ones(shape, dtype=bool)).recoverable_work(d)
             out = self._unloading(np.where(plastic, d, point["delta"]), d, np.ones(shape))
+        return d, point, plastic, out
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """What unloading from ``delta`` gives back to the motion, [J]: the work of the
+        unloading branch from delta to the separation point, or 0 where the spheres would
+        be captured (JKR's below delta_y, Thornton's where W = 0)."""
+        d, point, plastic, out = self._unloading_from(delta)
+        shape = d.shape
+        with np.errstate(all="ignore"):
+            elastic = self._jkr(shape, np.ones(shape, dtype=bool)).recoverable_work(d)
             rules = self._rules(shape)
             end = np.where(rules == "pull-off", 0.5 ** (1.0 / 3.0), (1.0 / 6.0) ** (1.0 / 3.0))
             unit = out.branch.energy_unit[..., 0]
@@ -642,15 +617,6 @@ class ThorntonNingContact:
         return lo
 
 
-def _with_extras(plan: ImpactPlan, v0: Array) -> ImpactPlan:
-    """Thornton's plan (W = 0) with the adhesive extras: nothing sticks, no neck."""
-    zero = np.zeros_like(v0)
-    return ImpactPlan(
-        plan.stages, plan.delta_max, plan.force_max, plan.delta_res, plan.restitution,
-        extras={"captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
-    )  # fmt: skip
-
-
 def _build(radius, modulus, sy, params) -> ThorntonNingContact:
     py = np.asarray(np.nan if params["py"] is None else params["py"], dtype=float)
     if np.any(np.isnan(py)):  # default: the Hertz peak pressure at first yield
@@ -663,16 +629,10 @@ def _build(radius, modulus, sy, params) -> ThorntonNingContact:
 def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
     """W as ``jkr``'s start (V_s = V_ref / 2), p_y = 1.6 sigma_y and sigma_y, each within
     x/1e3 to x*1e3 (W within x/1e4 to x*1e4, below the largest W of the pair)."""
-    separation = fixed.get("separation", "instability")
-    _check_separation(separation)
-    per_work = float(jkr_sticking_velocity(mass, radius, modulus, 1.0, separation))
-    w = (0.5 * reference_velocity / per_work) ** 1.2
-    ceiling = 0.99 * 2.0 * modulus * radius / (9.0 * math.pi)
-    w = min(w, ceiling / 10.0)
     sy = yield_strength
     py = FIRST_YIELD_PRESSURE_FACTOR * sy
     return {
-        "work_of_adhesion": ("J/m^2", w, w / 1e4, min(w * 1e4, ceiling)),
+        **jkr_fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed),
         "py": ("Pa", py, py / 1e3, py * 1e3),
         "sy": ("Pa", sy, sy / 1e3, sy * 1e3),
     }
@@ -683,7 +643,7 @@ def _run_parameters(params) -> dict:
 
 
 #: The registry entry of the law.
-SPEC = LawSpec(
+SPEC = base.LawSpec(
     name="thornton-ning",
     title="Thornton & Ning",
     kind="elastoplastic",
@@ -695,7 +655,7 @@ SPEC = LawSpec(
     ),
     parameters=(
         WORK_OF_ADHESION,
-        Parameter(
+        base.Parameter(
             "py",
             "Pa",
             "pressure",
@@ -706,7 +666,7 @@ SPEC = LawSpec(
         ),
         SEPARATION_PARAMETER,
     ),
-    reference=Reference(
+    reference=base.Reference(
         "C. Thornton, Z. Ning",
         1998,
         "A theoretical model for the stick/bounce behaviour of adhesive, elastic-plastic "
@@ -721,12 +681,10 @@ SPEC = LawSpec(
     ),
     needs_yield_strength=True,
     build=_build,
-    fitting=Fitting(
+    fitting=base.Fitting(
         default=("work_of_adhesion", "py"),
         starts=_fit_starts,
         run_parameters=_run_parameters,
     ),
-    default_n=DEFAULT_N,
-    adhesive=True,
-    timed_n=DEFAULT_N,
-)
+    default_n=DEFAULT_N, adhesive=True, timed_n=DEFAULT_N,
+)  # fmt: skip
