@@ -196,7 +196,7 @@ def _potential(s: ArrayLike) -> Array:
 NODES = 48
 
 #: Impacts per block of :func:`motion_time` (its memory: this times ``nodes`` values).
-QUADRATURE_BLOCK = 8192
+QUADRATURE_BLOCK = 2048
 
 
 @cache
@@ -511,7 +511,8 @@ def jkr_restitution(impact_velocity: ArrayLike, sticking_velocity: ArrayLike) ->
 
 
 def _check_separation(separation: Any) -> None:
-    for value in [separation] if isinstance(separation, str) else list(np.ravel(separation)):
+    values = [separation] if isinstance(separation, str) else set(np.ravel(separation).tolist())
+    for value in values:
         if value not in JKR_SEPARATIONS:
             raise ValueError(
                 f"separation of an adhesive law must be one of {', '.join(JKR_SEPARATIONS)}, "
@@ -1078,15 +1079,20 @@ def loading_s(branch_top: Array, energy: Array, unit: Array) -> Array:
     (the turning point of a loading that has ``energy`` [J] left at s with potential
     ``branch_top``), by Newton's method from above (convex, increasing for s >= 1), [-]."""
     target = branch_top + energy / unit
-    s = np.maximum((10.0 / 3.0) ** (1.0 / 3.0), (np.maximum(target, 0.0) / 0.8) ** 0.1)
+    start = np.maximum((10.0 / 3.0) ** (1.0 / 3.0), (np.maximum(target, 0.0) / 0.8) ** 0.1)
+    s = start.reshape(-1).copy()
+    goal = np.broadcast_to(target, start.shape).reshape(-1)
+    rows = np.arange(s.size)  # the rows still moving: a row at its fixed point stays there
     for _ in range(200):
-        cube = s**3
+        x, t = s[rows], goal[rows]
+        cube = x**3
         slope = 4.0 * cube * (cube - 1.0) * (4.0 * cube - 2.0 / 3.0)  # dP/ds = F delta'
-        new = np.maximum(np.minimum(s - (_potential(s) - target) / slope, s), 1.0)
-        if np.array_equal(new, s):
+        new = np.maximum(np.minimum(x - (_potential(x) - t) / slope, x), 1.0)
+        s[rows] = new
+        rows = rows[new != x]
+        if not rows.size:
             break
-        s = new
-    return s
+    return s.reshape(start.shape)
 
 
 @dataclass(frozen=True)
