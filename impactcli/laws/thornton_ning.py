@@ -183,6 +183,14 @@ def thornton_ning_impact(
     return summary, extras
 
 
+def _read_only(values: dict[str, Array]) -> dict[str, Array]:
+    """``values`` with their arrays made read-only (kept and shared between calls)."""
+    for value in values.values():
+        if isinstance(value, np.ndarray):
+            value.setflags(write=False)
+    return values
+
+
 @dataclass(frozen=True)
 class PlasticLine:
     """F = F_y + k (delta - delta_y): the plastic loading (module docstring), linear, so
@@ -288,7 +296,14 @@ class ThorntonNingContact(AdhesiveContact):
 
     def _yield_point(self, shape: tuple[int, ...]) -> dict[str, Array]:
         """s_y, delta_y, F_y and the work Phi_y from first touch to delta_y (W > 0 rows;
-        Thornton's where W = 0)."""
+        Thornton's where W = 0); worked out once per shape (read-only arrays)."""
+        known = self.__dict__.setdefault("_yield_points", {})
+        if shape not in known:
+            known.clear()  # the last shape only: a batch asks for one at a time
+            known[shape] = _read_only(self._new_yield_point(shape))
+        return known[shape]
+
+    def _new_yield_point(self, shape: tuple[int, ...]) -> dict[str, Array]:
         r, e, w, py, sticky = self._safe(shape)
         branch = JKRBranch(r, e, w)
         a_y = np.pi * r * py / (2.0 * e)
