@@ -39,6 +39,7 @@ planned by :class:`~impactcli.laws.hertz.HertzContact` itself.
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
 from functools import cache
@@ -330,6 +331,8 @@ class Pieces:
     function : vectorised, of the variable
     lo, hi : the range
     tolerance : the largest miss, relative, [-]
+    pieces : a stored table's (lo, hi, coefficients) of each piece (:attr:`pieces`,
+        :meth:`stored`) instead of ``function``
 
     Examples
     --------
@@ -338,7 +341,12 @@ class Pieces:
     True
     """
 
-    def __init__(self, function: Any, lo: float, hi: float, tolerance: float = 1e-14) -> None:
+    def __init__(
+        self, function: Any, lo: float, hi: float, tolerance: float = 1e-14, pieces: Any = None
+    ) -> None:
+        if pieces is not None:  # stored: (lo, hi, coefficients) of each piece
+            self._keep([(a, b, np.array(c, dtype=float)) for a, b, c in pieces])
+            return
         k = np.arange(PIECE_DEGREE + 1)
         nodes = np.cos(np.pi * (k + 0.5) / (PIECE_DEGREE + 1))[::-1]
         checks = np.cos(np.pi * k[1:] / (PIECE_DEGREE + 1))[::-1]  # between the nodes
@@ -355,12 +363,41 @@ class Pieces:
                 todo += [(mid, b, depth + 1), (a, mid, depth + 1)]
             else:
                 done.append((a, b, coefficients))
+        self._keep(done)
+
+    @classmethod
+    def stored(cls, pieces: Any) -> Pieces:
+        """A table from its pieces, (lo, hi, coefficients) each (:attr:`pieces`)."""
+        return cls(None, 0.0, 0.0, pieces=pieces)
+
+    @property
+    def pieces(self) -> list[tuple[float, float, list[float]]]:
+        """(lo, hi, coefficients) of each piece, to store the table (:meth:`stored`)."""
+        return [
+            (float(m - h), float(m + h), c.tolist())
+            for m, h, c in zip(self.middle, self.half, self.coefficients)
+        ]
+
+    def _keep(self, done: list) -> None:
         done.sort(key=lambda piece: piece[0])
+        self._bounds = [float(piece[1]) for piece in done[:-1]]
+        self._floats = [
+            (0.5 * (a + b), 0.5 * (b - a), [float(x) for x in c]) for a, b, c in done
+        ]
         self.edges = np.array([piece[1] for piece in done[:-1]])
         self.middle = np.array([0.5 * (piece[0] + piece[1]) for piece in done])
         self.half = np.array([0.5 * (piece[1] - piece[0]) for piece in done])
         self.coefficients = np.array([piece[2] for piece in done])
         self.columns = np.ascontiguousarray(self.coefficients.T)  # a row per degree
+
+    def one(self, x: float) -> float:
+        """The function at one ``x``, on floats (Clenshaw's recurrence), [-]."""
+        middle, half, c = self._floats[bisect.bisect_left(self._bounds, x)]
+        t = (x - middle) / half
+        twice, b1, b2 = 2.0 * t, c[PIECE_DEGREE], 0.0
+        for j in range(PIECE_DEGREE - 1, 0, -1):
+            b1, b2 = c[j] + twice * b1 - b2, b1
+        return c[0] + t * b1 - b2
 
     def __call__(self, x: ArrayLike) -> Array:
         """The function at ``x`` (Clenshaw's recurrence on each value's piece), [-]."""
