@@ -382,7 +382,8 @@ class Pieces:
         done.sort(key=lambda piece: piece[0])
         self._bounds = [float(piece[1]) for piece in done[:-1]]
         self._floats = [
-            (0.5 * (a + b), 0.5 * (b - a), [float(x) for x in c]) for a, b, c in done
+            (0.5 * (float(a) + float(b)), 0.5 * (float(b) - float(a)), [float(x) for x in c])
+            for a, b, c in done
         ]
         self.edges = np.array([piece[1] for piece in done[:-1]])
         self.middle = np.array([0.5 * (piece[0] + piece[1]) for piece in done])
