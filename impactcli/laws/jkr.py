@@ -42,7 +42,7 @@ from __future__ import annotations
 import bisect
 import math
 from dataclasses import dataclass
-from functools import cache
+from functools import cache, cached_property
 from typing import Any
 
 import numpy as np
@@ -634,23 +634,23 @@ class JKRBranch:
     work_of_adhesion: ArrayLike
     offset: ArrayLike = 0.0
 
-    @property
+    @cached_property
     def contact_radius_at_rest(self) -> Array:
         """a0, [m]."""
         return jkr_contact_radius_at_rest(self.radius, self.modulus, self.work_of_adhesion)
 
-    @property
+    @cached_property
     def length_unit(self) -> Array:
         """a0^2 / R, [m]."""
         a0 = self.contact_radius_at_rest
         return a0 * a0 / np.asarray(self.radius, dtype=float)
 
-    @property
+    @cached_property
     def force_unit(self) -> Array:
         """F_c = (3/2) pi W R, the branch's pull-off force, [N]."""
         return jkr_pull_off_force(self.radius, self.work_of_adhesion)
 
-    @property
+    @cached_property
     def energy_unit(self) -> Array:
         """F_c a0^2 / R, [J]."""
         return self.force_unit * self.length_unit
