@@ -688,6 +688,14 @@ def batch_n(damped: bool = False) -> int:
     return n if n is not None else (DAMPED_DEFAULT_N if damped else DEFAULT_N)
 
 
+def law_n(name: str, n: int) -> int:
+    """The n ``impact batch`` runs rows of law ``name`` at: its ``--n`` (``n``) when given,
+    else the law's own default n where it has one (200 for the adhesive laws)."""
+    from impactcli.laws.registry import get_law
+
+    return n if batch_option("n") is not None else (get_law(name).default_n or n)
+
+
 def chunks(rows: dict[str, np.ndarray], size: int) -> Iterator[dict[str, np.ndarray]]:
     """``rows`` in chunks of ``size``, as ``impact batch`` gives them to the kernel."""
     total = len(next(iter(rows.values())))
@@ -724,13 +732,14 @@ def bench_batch(rows: list[Row], quick: bool) -> None:
     params = {"walton-braun": WALTON_BRAUN, "tabulated": {"curve": CURVE}}
     params |= {name: given for name, (given, _) in ADHESIVE_CASES.items()}
     for name, _, _ in laws():
+        own_n = law_n(name, n)
 
-        def compute(r, name=name):
-            return batch_impacts(r["d1"], r["d2"], r["v1"], r["v2"], **steel, n=n, law=name,
-                                 law_params=params.get(name))  # fmt: skip
+        def compute(r, name=name, own_n=own_n):
+            return batch_impacts(r["d1"], r["d2"], r["v1"], r["v2"], **steel, n=own_n,
+                                 law=name, law_params=params.get(name))  # fmt: skip
 
         value, size = throughput(compute, budget, most)
-        rows.append(_batch_row(f"(d) batch_impacts, law {name}", size, n, value))
+        rows.append(_batch_row(f"(d) batch_impacts, law {name}", size, own_n, value))
         if name == "hertz" and DEFAULT_ALLOCATOR:
             before, size = DEFAULT_ALLOCATOR
             rows.append(Row(

@@ -534,7 +534,9 @@ def law_stage_times(
     """FILM time of maximum indentation and contact time [s] of a batch of impacts of any
     law (one plan), n segments per stage.
 
-    The fast paths, where the stage laws declare what they are: an elastic plan of the
+    The fast paths, where the law or its stage laws declare what they are: a plan that
+    times itself (its ``timing``: an adhesive law's quadrature of the energy balance at its
+    default n, :func:`impactcli.laws.jkr.motion_time`) by its own times; an elastic plan of the
     normalised tables (:meth:`~impactcli.laws.base.ImpactPlan.is_normalised`) is the
     normalised solution scaled (:func:`normalised_times`); a plan of a loading from 0 that
     times itself (``loading_time``), a ``linear`` stage (FILM exact) and an unloading of
@@ -547,6 +549,9 @@ def law_stage_times(
     """
     from impactcli.impact import solve_plan
 
+    own = None if plan.timing is None else plan.timing(n)
+    if own is not None:
+        return own
     v0 = np.asarray(impact_velocity, dtype=float)
     m = np.broadcast_to(np.asarray(mass, dtype=float), v0.shape)
     if plan.is_normalised() and np.all(np.asarray(plan.stages[0].law.offset) == 0):
@@ -617,7 +622,8 @@ def _batch_law(
         k: np.full(v0.size, np.nan)
         for k in ("dm", "fm", "dres", "dsep", "e", "tmax", "tc", *_ADHESIVE_EXTRAS)
     }
-    block = max(1, FILM_BLOCK // (n + 1))
+    film_block = max(1, FILM_BLOCK // (n + 1))
+    block = FILM_BLOCK if spec.timed_n == n else film_block  # plans that time themselves
     for start in range(0, good.size, block):
         chunk = good[start : start + block]
         groups = list(_plan_groups_of(contact_of(chunk), v0[chunk], m[chunk], contact_of, chunk))
@@ -645,7 +651,8 @@ def _batch_law(
             for key in _ADHESIVE_EXTRAS:
                 if key in plan.extras:
                     values[key][rows] = plan.extras[key]
-            values["tmax"][rows], values["tc"][rows] = law_stage_times(plan, m[rows], v0[rows], n)
+            times = _group_times(plan, rows, contact_of, v0, m, n, film_block)
+            values["tmax"][rows], values["tc"][rows] = times
     # a law's plastic stage beyond double precision (docs/method.md §7): the row's error
     scale = plastic_range_problems(contact, v0, m, values["dm"])
     refused = (errors == "") & scale.bad
@@ -663,6 +670,32 @@ def _batch_law(
         out[key][ok] = column
     out["error"][ok] = errors
     return out
+
+
+def _group_times(
+    plan: ImpactPlan,
+    rows: NDArray[np.intp],
+    contact_of,
+    v0: NDArray,
+    m: NDArray,
+    n: int,
+    film_block: int,
+) -> tuple[NDArray, NDArray]:
+    """:func:`law_stage_times` of one plan group: the plan's own times where it has them,
+    else FILM's stages, the group re-planned in blocks of ``film_block`` rows when it
+    is larger (a block of plans that time themselves may hold rows that do not)."""
+    own = None if plan.timing is None else plan.timing(n)
+    if own is not None:
+        return own
+    if rows.size <= film_block:
+        return law_stage_times(plan, m[rows], v0[rows], n)
+    t_max, t_c = np.empty(rows.size), np.empty(rows.size)
+    for start in range(0, rows.size, film_block):
+        part = rows[start : start + film_block]
+        part_plan = contact_of(part).plan(v0[part], m[part])
+        times = law_stage_times(part_plan, m[part], v0[part], n)
+        t_max[start : start + part.size], t_c[start : start + part.size] = times
+    return t_max, t_c
 
 
 def _plan_groups_of(contact, v0: NDArray, m: NDArray, contact_of, chunk: NDArray[np.intp]):

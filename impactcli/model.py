@@ -437,18 +437,25 @@ class AdhesivePair(LawPair):
         bool)."""
         out = LawPair.summary(self, result, solution)
         contact = self.normal_contact
-        plan = solution.plan
+        given = getattr(contact, "summary_extras", None)  # the law's floats of this impact
+        extras = None if given is None else given(result.impact_velocity, self.mass)
+        if extras is None:
+            extras = {k: float(np.reshape(v, -1)[0]) for k, v in solution.plan.extras.items()}
         delta_max = np.array([float(solution.delta_max)])
-        delta_res = float(np.reshape(contact.residual_indentation(delta_max), -1)[0])
+        delta_res = extras.get("delta_res")
+        if delta_res is None:
+            delta_res = float(np.reshape(contact.residual_indentation(delta_max), -1)[0])
         e1, e2 = result.split_fractions
         p1, p2 = result.permanent_fractions if self.permanent else (e1, e2)
         relative = 0.5 * self.mass * float(result.impact_velocity) ** 2
         restitution = float(solution.restitution)
         lost = relative * (1.0 - restitution**2)
-        extras = {key: float(np.reshape(value, -1)[0]) for key, value in plan.extras.items()}
         adhesion = min(extras["energy_adhesion"], lost)
         plastic = lost - adhesion
         dm = float(solution.delta_max)
+        sticking = extras.get("sticking_velocity")
+        if sticking is None:
+            sticking = float(np.reshape(contact.sticking_velocity(np.asarray(self.mass)), -1)[0])
         out.update(
             {
                 "delta1_max": e1 * (dm - delta_res) + p1 * delta_res,
@@ -460,9 +467,7 @@ class AdhesivePair(LawPair):
                 "energy_dissipated2": e2 * adhesion + p2 * plastic,
                 "delta_separation": float(solution.delta_end),
                 "captured": bool(extras["captured"]),
-                "sticking_velocity": float(
-                    np.reshape(contact.sticking_velocity(np.asarray(self.mass)), -1)[0]
-                ),
+                "sticking_velocity": sticking,
                 "pull_off_force": extras["pull_off_force"],
                 "energy_adhesion": adhesion,
                 "energy_adhesion1": e1 * adhesion,

@@ -497,20 +497,23 @@ ADHESIVE = [
 
 @pytest.mark.parametrize(("law", "params", "v0"), ADHESIVE)
 def test_an_adhesive_impact_is_its_plan_solved_stage_by_stage(law, params, v0):
-    """An adhesive law has no summary on floats (its tensile, hyperbolic and capture stages
-    are not the closed forms of the fast path): its impact is its plan's stages solved, and
+    """At an n other than its default an adhesive impact is its plan's stages solved (its
+    tensile, hyperbolic and capture stages are not the closed forms of the fast path), and
     the one-impact pass (solve_stages) gives exactly the stages of solve_stage chained in
-    time, hyperbolic segments and law-placed nodes included."""
+    time, hyperbolic segments and law-placed nodes included; at the default n (200) its
+    summary is on floats, the times the quadrature of the energy balance, FILM's limit,
+    within FILM's accuracy of its stages (tests/test_adhesive_times.py)."""
     silica = impactcli.Sphere(20e-6, 73e9, 0.17, 2200.0)
     m, radius, modulus = effective_properties(silica, silica)
     contact = get_law(law).contact(radius, modulus, **params)
-    assert PlanSolution.of_closed_forms(contact, v0, m, 200) is None
+    n = 100
+    assert PlanSolution.of_closed_forms(contact, v0, m, n) is None
     plan = contact.plan(v0, m)
-    solved = solve_plan(plan, m, 200)
+    solved = solve_plan(plan, m, n)
     t_start = 0.0
     for stage, got in zip(plan.stages, solved, strict=True):
         expected = solve_stage(stage.law, stage.delta_start, stage.delta_end,
-                               stage.speed_start, m, 200, t_start,
+                               stage.speed_start, m, n, t_start,
                                end_at_rest=stage.end_at_rest)  # fmt: skip
         for name in ("delta", "velocity", "time", "omega", "phase_x", "phase_y"):
             assert np.array_equal(np.ravel(getattr(got, name)),
@@ -520,6 +523,11 @@ def test_an_adhesive_impact_is_its_plan_solved_stage_by_stage(law, params, v0):
     tensile = law != "dmt" and params.get("separation", "instability") == "instability"
     assert any(bool(np.any(s.hyperbolic)) for s in solved) == tensile
     summary = impactcli.solve_impact(silica, silica, v0, 0.0,
-                                     impactcli.ContactModel(law, params)).summary  # fmt: skip
+                                     impactcli.ContactModel(law, params), n=n).summary  # fmt: skip
     assert summary["contact_time"] == pytest.approx(float(np.ravel(solved[-1].time)[-1]),
                                                     rel=1e-15)  # fmt: skip
+    quadrature = PlanSolution.of_closed_forms(contact, v0, m, 200)
+    film = solve_plan(contact.plan(v0, m), m, 200)
+    assert quadrature is not None
+    assert quadrature.contact_time == pytest.approx(float(np.ravel(film[-1].time)[-1]), rel=4e-7)
+    assert quadrature.contact_time != float(np.ravel(film[-1].time)[-1])

@@ -153,6 +153,10 @@ class ImpactPlan:
         (default -2: the one before the last)
     extras : further closed-form quantities of the impacts by name (an adhesive law's
         ``captured``, ``pull_off_force``, ``energy_adhesion``), arrays as ``delta_max``
+    timing : the law's own times of these impacts, ``timing(n)`` -> (time of maximum
+        indentation, contact time) [s] as arrays like ``delta_max``, or None where it has
+        none for that n (an adhesive law's quadrature of the energy balance at its
+        default n, :func:`impactcli.laws.jkr.motion_time`); None: FILM's stages give them
     """
 
     stages: tuple[StagePlan, ...]
@@ -163,6 +167,7 @@ class ImpactPlan:
     delta_separation: NDArray | None = None
     turning: int = -2
     extras: Mapping[str, NDArray] = field(default_factory=dict)
+    timing: Callable[[int], tuple[NDArray, NDArray] | None] | None = None
 
     @property
     def delta_end(self) -> NDArray:
@@ -461,6 +466,9 @@ class LawSpec:
     #: (its contact model gives ``sticking_velocity(m)``, ``pull_off_force`` and its
     #: plans the ``extras`` captured, pull_off_force and energy_adhesion)
     adhesive: bool = False
+    #: the n at which the law's plans time themselves (their ``timing``, no FILM stages),
+    #: so that a batch takes them in blocks of rows not bounded by FILM's n; None: none
+    timed_n: int | None = None
     #: the law's LAMMPS normal model (None: LAMMPS has none; ``impact export lammps`` then
     #: fits the nearest model LAMMPS has)
     lammps: LammpsModel | None = field(default=None, repr=False)

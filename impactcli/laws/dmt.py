@@ -10,16 +10,44 @@ shorter than Hertz's. This is LAMMPS's ``dmt`` without damping (docs/export.md).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary
 from impactcli.laws.base import ImpactPlan, LammpsModel, LawSpec, Reference, StagePlan, col
-from impactcli.laws.hertz import HertzContact, NoYieldPoint, hertz_stiffness
-from impactcli.laws.jkr import WORK_OF_ADHESION, check_adhesion
+from impactcli.laws.hertz import HertzContact, NoYieldPoint
+from impactcli.laws.jkr import (
+    DEFAULT_N,
+    TABLE_NODES,
+    TABLE_ROWS,
+    WORK_OF_ADHESION,
+    AdhesiveContact,
+    Pieces,
+    Polynomial,
+    check_adhesion,
+    motion_time,
+    remembered_plan,
+    without_adhesion,
+)
 
-__all__ = ["LAMMPS", "LAMMPS_NORMAL_MODEL", "SPEC", "DMTContact", "DMTForce", "dmt_pull_off_force"]
+__all__ = [
+    "CURVE",
+    "LAMMPS",
+    "LAMMPS_NORMAL_MODEL",
+    "QUADRATURE_ENERGY",
+    "SPEC",
+    "DMTContact",
+    "DMTForce",
+    "dmt_impact",
+    "build_table",
+    "dmt_pull_off_force",
+    "loading_times",
+]
 
 Array = NDArray[np.float64]
 
@@ -28,6 +56,17 @@ LAMMPS_NORMAL_MODEL = "dmt"
 
 #: a0^3 = (3/2) pi W R^2 / E*: DMT's contact radius at zero force, the bound of W.
 _REST_FACTOR = 1.5
+
+#: The law in y = sqrt(delta / delta_0), delta_0 = (F_0 / K_h)^(2/3) where the force is 0:
+#: the potential 0.4 y^5 - y^2 [F_0 delta_0] and d delta / dy = 2 y [delta_0]
+#: (:func:`impactcli.laws.jkr.motion_time`).
+CURVE = Polynomial({5: 0.4, 2: -1.0}, {1: 2.0})
+
+#: The quadrature times impacts whose kinetic energy is at least this in units F_0 delta_0
+#: (1e-14 there; the well is 0.6 deep); slower ones, which all but stop at first touch, FILM
+#: times, [-].
+QUADRATURE_ENERGY = 0.03
+
 
 
 def dmt_pull_off_force(radius: ArrayLike, work_of_adhesion: ArrayLike) -> Array:
@@ -98,8 +137,92 @@ def _turning(stiffness: Array, pull: Array, energy: Array) -> Array:
     return d
 
 
+#: The stored pieces of :func:`_table` (x_lo, x_hi and the Chebyshev coefficients of each),
+#: as :func:`build_table` makes them (tests/test_adhesive_times.py: within 3e-14 of the
+#: quadrature, and equal to a fresh build): data of the package.
+TABLE_DATA = Path(__file__).parent.parent / "data" / "dmt_loading_time.npz"
+
+
+@cache
+def _table() -> Pieces:
+    """sqrt(y_m) tau_load as a function of x = 1 / y_m (:class:`~impactcli.laws.jkr.Pieces`),
+    as stored (:data:`TABLE_DATA`, made by :func:`build_table`)."""
+    with np.load(TABLE_DATA) as data:
+        return Pieces.stored(zip(data["lo"], data["hi"], data["coefficients"]))
+
+
+def build_table() -> Pieces:
+    """sqrt(y_m) tau_load as a function of x = 1 / y_m (:class:`~impactcli.laws.jkr.Pieces`,
+    from :func:`~impactcli.laws.jkr.motion_time`) over the impacts the quadrature times
+    (kinetic energy from :data:`QUADRATURE_ENERGY` F_0 delta_0 up), [-]: what
+    :data:`TABLE_DATA` stores (its ``pieces``)."""
+    lo, hi = 1.0, 2.0  # y_m of the slowest: 0.4 y^5 - y^2 = QUADRATURE_ENERGY
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if 0.4 * mid**5 - mid * mid < QUADRATURE_ENERGY else (lo, mid)
+
+    def scaled(x: Array) -> Array:
+        return motion_time(CURVE, 0.0, 1.0 / x, nodes=TABLE_NODES) / np.sqrt(x)
+
+    return Pieces(scaled, 1e-9, (1.0 + 1e-9) / lo)
+
+
+def loading_times(y_max: ArrayLike) -> Array:
+    """DMT's loading time from first touch to rest at y_m = sqrt(delta_m / delta_0), in
+    units sqrt(m delta_0 / F_0), [-]: the quadrature of the energy balance
+    (:func:`~impactcli.laws.jkr.motion_time`), from its table for
+    :data:`~impactcli.laws.jkr.TABLE_ROWS` impacts or more (within 2e-14 of it).
+
+    Far above the pull, Hertz's loading time 1.4716376 delta_m / V0 (docs/method.md §3):
+
+    >>> round(float(loading_times(1e4) * 1e4**0.5 * 0.8**0.5), 6)
+    1.471638
+    """
+    y = np.asarray(y_max, dtype=float)
+    if y.size < TABLE_ROWS:
+        return motion_time(CURVE, 0.0, y)
+    x = 1.0 / y
+    return _table()(x) * np.sqrt(x)
+
+
+def dmt_impact(
+    radius: float, modulus: float, work_of_adhesion: float, v0: float, m: float
+) -> tuple[FilmSummary, dict[str, float]] | None:
+    """One DMT impact on floats (W > 0, V0 [m/s], m [kg]): the closed forms of
+    :meth:`DMTContact.plan` and its times, the loading's by the quadrature of the energy
+    balance (:func:`~impactcli.laws.jkr.motion_time`) and the restitution's the same, [SI];
+    with the plan's ``extras``. None below :data:`QUADRATURE_ENERGY` (FILM's stages).
+
+    >>> s, extras = dmt_impact(5e-6, 3.7586e10, 0.2, 0.1, 4.6077e-12)
+    >>> round(s.restitution, 12), round(s.end_time * 1e9, 3), extras["captured"]
+    (1.0, 100.568, 0.0)
+    """
+    k = 4.0 / 3.0 * modulus * math.sqrt(radius)
+    pull = 2.0 * math.pi * work_of_adhesion * radius
+    length = (pull / k) ** (2.0 / 3.0)
+    energy = 0.5 * m * v0 * v0
+    if not energy / (pull * length) >= QUADRATURE_ENERGY:
+        return None
+    k4 = 0.4 * k
+    d = (energy / k4) ** 0.4 + (pull / k4) ** (2.0 / 3.0)
+    for _ in range(200):  # _turning on a float
+        value = k4 * d * d * math.sqrt(d) - pull * d - energy
+        slope = 2.5 * k4 * d * math.sqrt(d) - pull
+        new = min(d - value / slope, d)
+        if new == d:
+            break
+        d = new
+    x = math.sqrt(length / d)  # 1 / y_m: the table's variable
+    load = math.sqrt(m * length / pull) * _table().one(x) * math.sqrt(x)
+    summary = FilmSummary(
+        d, k * d**1.5 - pull, 0.0, 1.0, load, 2.0 * load, math.nan, math.nan,
+        0.4 * k * (d * d * math.sqrt(d)) - pull * d, False, False,
+    )  # fmt: skip
+    return summary, {"captured": 0.0, "pull_off_force": pull, "energy_adhesion": 0.0}
+
+
 @dataclass(frozen=True)
-class DMTContact(NoYieldPoint):
+class DMTContact(AdhesiveContact, NoYieldPoint):
     """DMT contact of a pair of spheres with the interface of a
     :class:`~impactcli.laws.base.NormalContact`: elastic, no permanent indentation, e = 1.
 
@@ -116,17 +239,8 @@ class DMTContact(NoYieldPoint):
     (1.0, 1.0)
     """
 
-    radius: ArrayLike
-    modulus: ArrayLike
-    work_of_adhesion: ArrayLike
-
     def __post_init__(self) -> None:
         check_adhesion(self.radius, self.modulus, self.work_of_adhesion, _REST_FACTOR, "DMT")
-
-    @property
-    def stiffness(self) -> Array:
-        """K_h = (4/3) E* sqrt(R), [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
 
     @property
     def pull_off_force(self) -> Array:
@@ -143,30 +257,47 @@ class DMTContact(NoYieldPoint):
         share a plan (:func:`impactcli.laws.registry.plan_groups`), [-]."""
         shape = np.broadcast(np.asarray(impact_velocity), np.asarray(mass), self.stiffness).shape
         w = np.broadcast_to(np.asarray(self.work_of_adhesion, dtype=float), shape)
-        return np.where(w > 0.0, 0, 1)
+        with np.errstate(all="ignore"):  # the slow impacts FILM times: a group of their own
+            slow = ~(self._energy(impact_velocity, mass) >= QUADRATURE_ENERGY)
+        return np.where(w > 0.0, 2 * slow, 1)
+
+    def _energy(self, impact_velocity: ArrayLike, mass: ArrayLike) -> Array:
+        """(1/2) m V0^2 in units F_0 delta_0, [-]."""
+        v0 = np.asarray(impact_velocity, dtype=float)
+        pull = self.pull_off_force
+        unit = pull * (pull / np.asarray(self.stiffness, dtype=float)) ** (2.0 / 3.0)
+        return 0.5 * np.asarray(mass, dtype=float) * v0 * v0 / unit
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Loading 0 -> delta_m from V0 (snap-in: F = -F_0 at delta = 0), restitution
         delta_m -> 0 from rest; e = 1. Hertz's plan where W = 0 (a batch must share
         :meth:`plan_keys`)."""
+        remembered = remembered_plan(self, impact_velocity, mass)
+        if remembered is not None:
+            return remembered
         v0, m = np.asarray(impact_velocity, dtype=float), np.asarray(mass, dtype=float)
         shape = np.broadcast(v0, m, self.stiffness).shape
         v0 = np.broadcast_to(v0, shape).copy()
         k = np.broadcast_to(np.asarray(self.stiffness, dtype=float), shape)
         pull = np.broadcast_to(self.pull_off_force, shape)
         if np.all(pull == 0.0):
-            hertz = HertzContact(k).plan(v0, m)
-            zero = np.zeros_like(v0)
-            extras = {
-                "captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()
-            }  # fmt: skip
-            return ImpactPlan(hertz.stages, hertz.delta_max, hertz.force_max, hertz.delta_res,
-                              hertz.restitution, extras=extras)  # fmt: skip
+            return without_adhesion(HertzContact(k).plan(v0, m), v0)
         if np.any(pull == 0.0):
             raise ValueError("a batch must be all with or all without adhesion: plan_keys()")
         delta_m = _turning(k, pull, 0.5 * m * v0 * v0)
         law = DMTForce(col(k), col(pull))
         zero = np.zeros_like(delta_m)
+        timing = None
+        if np.all(self._energy(v0, m) >= QUADRATURE_ENERGY):
+
+            def timing(n: int) -> tuple[Array, Array] | None:
+                if n != DEFAULT_N:
+                    return None
+                length = (pull / k) ** (2.0 / 3.0)
+                unit = np.sqrt(m * length / pull)
+                load = unit * loading_times(np.sqrt(delta_m / length))
+                return load, 2.0 * load
+
         return ImpactPlan(
             stages=(
                 StagePlan("loading", law, zero, delta_m, v0, end_at_rest=True),
@@ -178,7 +309,16 @@ class DMTContact(NoYieldPoint):
             restitution=np.ones_like(delta_m),
             extras={"captured": zero.copy(), "pull_off_force": pull.copy(),
                     "energy_adhesion": zero.copy()},  # fmt: skip
+            timing=timing,
         )
+
+    def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
+        """:func:`dmt_impact` of this pair (floats; None for arrays, at W = 0 and below
+        :data:`QUADRATURE_ENERGY`)."""
+        values = [self.radius, self.modulus, self.work_of_adhesion]
+        if not all(type(x) is float for x in values) or not values[2] > 0.0:
+            return None
+        return dmt_impact(*values, v0, m)
 
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """Zero: an elastic contact leaves no permanent indentation, [m]."""
@@ -231,9 +371,7 @@ SPEC = LawSpec(
         "stiff, small spheres with a long-ranged adhesion (Tabor parameter below about 0.1), "
         "a << R; any V0"
     ),
-    needs_yield_strength=False,
-    build=_build,
-    default_n=200,
-    adhesive=True,
+    needs_yield_strength=False, build=_build,
+    default_n=DEFAULT_N, adhesive=True, timed_n=DEFAULT_N,
     lammps=LAMMPS,
-)
+)  # fmt: skip

@@ -39,14 +39,18 @@ planned by :class:`~impactcli.laws.hertz.HertzContact` itself.
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
+from functools import cache, cached_property
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from impactcli.film import FilmSummary
 from impactcli.laws.base import (
+    MIN_YIELD_INDENTATION_RATIO,
     Fitting,
     ImpactPlan,
     LammpsModel,
@@ -68,18 +72,34 @@ __all__ = [
     "SNAP_S",
     "SPEC",
     "WORK_OF_ADHESION",
+    "AdhesiveContact",
+    "BRANCH",
+    "DEFAULT_N",
+    "NODES",
+    "QUADRATURE_MARGIN",
     "JKRBranch",
     "JKRContact",
     "JKRNeck",
+    "Pieces",
+    "Polynomial",
+    "branch_times",
     "check_adhesion",
     "jkr_contact_radius_at_rest",
     "jkr_neck_energy",
     "jkr_overlap",
+    "impact_times",
     "jkr_force",
     "jkr_pull_off_force",
     "jkr_restitution",
     "jkr_sticking_velocity",
+    "motion_time",
+    "jkr_impact",
+    "plan_summary",
+    "quadrature_fits",
+    "remembered_extras",
+    "remembered_plan",
     "unloading_plan",
+    "without_adhesion",
 ]
 
 Array = NDArray[np.float64]
@@ -143,6 +163,284 @@ def _potential(s: ArrayLike) -> Array:
     cube = s**3
     return s**4 * (1.6 * cube * cube - (8.0 / 3.0) * cube + 2.0 / 3.0)
 
+
+# -- times by quadrature of the energy balance ------------------------------------------------
+# Times of motion in a polynomial potential by Gauss quadrature, for the adhesive laws.
+#
+# Along a force law whose overlap and potential are polynomials of one variable x (JKR's
+# s = sqrt(a / a0), delta = L (s^4 - 2 s / 3), docs/laws.md; DMT's y = sqrt(delta / delta_0)),
+# the energy balance gives the speed at every x, and the time from x = a to x = b is
+#
+#     t = integral_a^b  delta'(x) dx / sqrt(2 (E - P(x))),
+#
+# in units where m = 1 and the potential P is the work of the force (E the energy of the
+# motion). At a turning point (E = P(b), the end of a loading or a capture) the integrand
+# has an inverse square-root singularity. The substitution x = a + (b - a) sin^2(theta / 2)
+# and the divided differences of P,
+#
+#     E - P(x) = (b - x) Q(x, b)                  (one turning point, at b),
+#     E - P(x) = (b - x)(x - a) G(a, x, b)        (two: a and b),
+#
+# make the integrand an analytic function of theta on [0, pi] (Q, G polynomials, positive
+# where the motion is), so that Gauss-Legendre quadrature in theta converges spectrally:
+# :data:`NODES` nodes give the time to about 1e-14 relative (tests/test_adhesive_times.py,
+# against the same quadrature with 400 nodes and SciPy's ``solve_ivp``). Every function works
+# on arrays of impacts (the nodes on a last axis of their own).
+#
+# FILM with n segments approaches these times as n grows (at n = 200, within 5e-8 for JKR,
+# 2e-7 for DMT: docs/laws.md): they are FILM's limit, what the adhesive laws' summaries give
+# at their default n (:data:`impactcli.laws.jkr.SPEC`'s ``default_n``).
+
+#: Gauss-Legendre nodes of one time integral (1e-13 relative wherever the motion's speed
+#: stays above about 1e-3 of its largest; nearer a standstill the callers leave the impact
+#: to FILM).
+NODES = 48
+
+#: Impacts per block of :func:`motion_time` (its memory: this times ``nodes`` values).
+QUADRATURE_BLOCK = 2048
+
+
+@cache
+def _gauss(nodes: int) -> tuple[Array, Array, Array]:
+    """sin(theta / 2), cos(theta / 2) at the Gauss-Legendre nodes on [0, pi], and the
+    weights."""
+    x, w = np.polynomial.legendre.leggauss(nodes)
+    theta = 0.5 * np.pi * (x + 1.0)
+    return np.sin(0.5 * theta), np.cos(0.5 * theta), 0.5 * np.pi * w
+
+
+class Polynomial:
+    """A potential P(x) = sum_k c_k x^k and the slope of the overlap, delta'(x), both
+    polynomials in x, [-] (normalised units).
+
+    Parameters
+    ----------
+    potential : {k: c_k}, powers k >= 2
+    slope : {k: d_k}, delta'(x) = sum_k d_k x^k
+
+    Examples
+    --------
+    >>> p = Polynomial({2: 0.5}, {0: 1.0})  # a linear spring, m = k = 1: x = sin t
+    >>> round(float(motion_time(p, 0.0, 1.0)), 12)  # a quarter period
+    1.570796326795
+    """
+
+    def __init__(self, potential: dict[int, float], slope: dict[int, float]) -> None:
+        self.potential = dict(potential)
+        self.slope_terms = dict(slope)
+        self.degree = max(self.potential)
+
+    def __call__(self, x: ArrayLike) -> Array:
+        """P(x), [-]."""
+        x = np.asarray(x, dtype=float)
+        return sum(c * x**k for k, c in self.potential.items())
+
+    def slope(self, x: Array) -> Array:
+        """delta'(x), [-]."""
+        return sum(c * x**k for k, c in self.slope_terms.items())
+
+    def _sums(self, x: Array, y: Array) -> list[Array]:
+        """h_j(x, y) = sum_{i <= j} x^i y^(j - i), j = 0 .. degree - 1."""
+        out = [1.0, x + y]
+        power = y
+        for _ in range(2, self.degree):
+            power = power * y
+            out.append(x * out[-1] + power)
+        return out
+
+    def first(self, x: Array, y: Array) -> Array:
+        """(P(y) - P(x)) / (y - x), the first divided difference, [-]."""
+        h = self._sums(x, y)
+        return sum(c * h[k - 1] for k, c in self.potential.items())
+
+    def second(self, x: Array, y: Array, z: Array) -> Array:
+        """The second divided difference P[x, y, z], [-]."""
+        h = self._sums(x, y)
+        g = [h[0]]
+        for j in range(1, self.degree - 1):
+            g.append(h[j] + z * g[-1])
+        return sum(c * g[k - 2] for k, c in self.potential.items())
+
+
+def motion_time(
+    law: Polynomial,
+    low: ArrayLike,
+    high: ArrayLike,
+    energy: ArrayLike | None = None,
+    turning_low: ArrayLike = False,
+    nodes: int = NODES,
+) -> Array:
+    """The time of the motion from x = ``low`` to x = ``high`` (either way: the same), [-].
+
+    Parameters
+    ----------
+    law : the potential P and the overlap's slope
+    low, high : the ends, low < high
+    energy : E; None: E = P(high), a turning point at ``high``
+    turning_low : where also E = P(low) (a capture), so that the motion turns there too
+        (``energy`` None)
+    nodes : Gauss-Legendre nodes
+
+    Returns
+    -------
+    Array
+        integral of delta'(x) / sqrt(2 (E - P(x))) from ``low`` to ``high``, shape of the
+        ends broadcast together.
+    """
+    shape = np.broadcast(*(np.asarray(x) for x in (low, high, energy, turning_low))).shape
+    size = int(np.prod(shape))
+    if size > QUADRATURE_BLOCK:  # in blocks: memory of QUADRATURE_BLOCK x nodes values
+        parts = [np.broadcast_to(np.asarray(x, dtype=float), shape).reshape(-1)
+                 for x in (low, high, 0.0 if energy is None else energy, turning_low)]  # fmt: skip
+        out = np.empty(size)
+        for start in range(0, size, QUADRATURE_BLOCK):
+            cut = slice(start, start + QUADRATURE_BLOCK)
+            out[cut] = motion_time(
+                law, parts[0][cut], parts[1][cut], None if energy is None else parts[2][cut],
+                parts[3][cut] > 0.0, nodes,
+            )  # fmt: skip
+        return out.reshape(shape)
+    sin, cos, weights = _gauss(nodes)
+    a = np.asarray(low, dtype=float)[..., None]
+    b = np.asarray(high, dtype=float)[..., None]
+    width = b - a
+    x = a + width * (sin * sin)
+    if energy is None:
+        both = np.asarray(turning_low, dtype=bool)[..., None]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            one = None if both.all() else np.sqrt(width) * sin / np.sqrt(2.0 * law.first(x, b))
+            two = None if not both.any() else 1.0 / np.sqrt(2.0 * law.second(a, x, b))
+        factor = two if one is None else one if two is None else np.where(both, two, one)
+        integrand = law.slope(x) * factor
+    else:
+        e = np.asarray(energy, dtype=float)[..., None]
+        rest = (e - law(b)) + (b - x) * law.first(x, b)  # E - P(x), exact near b
+        integrand = law.slope(x) * width * sin * cos / np.sqrt(2.0 * rest)
+    return integrand @ weights
+
+
+class Pieces:
+    """A function of one variable on [lo, hi] as Chebyshev series on pieces, each of
+    :data:`PIECE_DEGREE` from its values at the piece's Chebyshev points and halved while
+    it misses the function by more than ``tolerance`` (relative to the function's largest
+    value) midway between them: a table of the quadrature (:func:`motion_time`) that costs
+    a few operations per value.
+
+    Parameters
+    ----------
+    function : vectorised, of the variable
+    lo, hi : the range
+    tolerance : the largest miss, relative, [-]
+    pieces : a stored table's (lo, hi, coefficients) of each piece (:attr:`pieces`,
+        :meth:`stored`) instead of ``function``
+
+    Examples
+    --------
+    >>> table = Pieces(np.exp, 0.0, 1.0)
+    >>> bool(abs(float(table(np.array([0.3]))[0]) / np.exp(0.3) - 1) < 1e-14)
+    True
+    """
+
+    def __init__(
+        self, function: Any, lo: float, hi: float, tolerance: float = 1e-14, pieces: Any = None
+    ) -> None:
+        if pieces is not None:  # stored: (lo, hi, coefficients) of each piece
+            self._keep([(a, b, np.array(c, dtype=float)) for a, b, c in pieces])
+            return
+        k = np.arange(PIECE_DEGREE + 1)
+        nodes = np.cos(np.pi * (k + 0.5) / (PIECE_DEGREE + 1))[::-1]
+        checks = np.cos(np.pi * k[1:] / (PIECE_DEGREE + 1))[::-1]  # between the nodes
+        todo, done = [(float(lo), float(hi), 0)], []
+        while todo:
+            a, b, depth = todo.pop()
+            mid, half = 0.5 * (a + b), 0.5 * (b - a)
+            coefficients = np.polynomial.chebyshev.chebfit(
+                nodes, function(mid + half * nodes), PIECE_DEGREE
+            )
+            exact = function(mid + half * checks)
+            miss = np.abs(np.polynomial.chebyshev.chebval(checks, coefficients) - exact)
+            if depth < 30 and not np.all(miss <= tolerance * np.max(np.abs(exact))):
+                todo += [(mid, b, depth + 1), (a, mid, depth + 1)]
+            else:
+                done.append((a, b, coefficients))
+        self._keep(done)
+
+    @classmethod
+    def stored(cls, pieces: Any) -> Pieces:
+        """A table from its pieces, (lo, hi, coefficients) each (:attr:`pieces`)."""
+        return cls(None, 0.0, 0.0, pieces=pieces)
+
+    @property
+    def pieces(self) -> list[tuple[float, float, list[float]]]:
+        """(lo, hi, coefficients) of each piece, to store the table (:meth:`stored`)."""
+        return [
+            (float(m - h), float(m + h), c.tolist())
+            for m, h, c in zip(self.middle, self.half, self.coefficients)
+        ]
+
+    def _keep(self, done: list) -> None:
+        done.sort(key=lambda piece: piece[0])
+        self._bounds = [float(piece[1]) for piece in done[:-1]]
+        self._floats = [
+            (0.5 * (float(a) + float(b)), 0.5 * (float(b) - float(a)), [float(x) for x in c])
+            for a, b, c in done
+        ]
+        self.edges = np.array([piece[1] for piece in done[:-1]])
+        self.middle = np.array([0.5 * (piece[0] + piece[1]) for piece in done])
+        self.half = np.array([0.5 * (piece[1] - piece[0]) for piece in done])
+        self.coefficients = np.array([piece[2] for piece in done])
+        self.columns = np.ascontiguousarray(self.coefficients.T)  # a row per degree
+
+    def one(self, x: float) -> float:
+        """The function at one ``x``, on floats (Clenshaw's recurrence), [-]."""
+        middle, half, c = self._floats[bisect.bisect_left(self._bounds, x)]
+        t = (x - middle) / half
+        twice, b1, b2 = 2.0 * t, c[PIECE_DEGREE], 0.0
+        for j in range(PIECE_DEGREE - 1, 0, -1):
+            b1, b2 = c[j] + twice * b1 - b2, b1
+        return c[0] + t * b1 - b2
+
+    def __call__(self, x: ArrayLike) -> Array:
+        """The function at ``x`` (Clenshaw's recurrence on each value's piece), [-]."""
+        x = np.asarray(x, dtype=float)
+        if self.edges.size:
+            i = np.searchsorted(self.edges, x)
+            t = (x - self.middle.take(i)) / self.half.take(i)
+            terms = [row.take(i) for row in self.columns]
+        else:  # one piece
+            t = (x - self.middle[0]) / self.half[0]
+            terms = list(self.columns[:, 0])
+        twice = 2.0 * t
+        b1 = terms[PIECE_DEGREE] + np.zeros_like(t)
+        b2 = np.zeros_like(t)
+        for j in range(PIECE_DEGREE - 1, 0, -1):
+            b1, b2 = terms[j] + twice * b1 - b2, b1
+        return terms[0] + t * b1 - b2
+
+
+#: The degree of each piece of a :class:`Pieces` table.
+PIECE_DEGREE = 16
+
+#: Gauss-Legendre nodes of the quadrature that builds the tables (:class:`Pieces`).
+TABLE_NODES = 160
+
+#: Impacts of one plan from which their times come from the tables (:class:`Pieces`, built
+#: on first use in some 0.1 s) rather than from the quadrature itself.
+TABLE_ROWS = 2048
+
+
+#: The branch as a polynomial in s (:func:`motion_time`): the potential
+#: 1.6 s^10 - (8/3) s^7 + (2/3) s^4 [F_c a0^2 / R] and d delta / ds = 4 s^3 - 2/3 [a0^2 / R].
+BRANCH = Polynomial({10: 1.6, 7: -8.0 / 3.0, 4: 2.0 / 3.0}, {3: 4.0, 0: -2.0 / 3.0})
+
+#: The n of an adhesive law's default (its ``default_n``), at which its summary's times are
+#: the quadrature of the energy balance (:func:`branch_times`), FILM's limit.
+DEFAULT_N = 200
+
+#: The quadrature times an impact whose speed stays above this fraction of the speed scale
+#: of the well on its way (1e-14 there); nearer a standstill, at V0 within 2 % of the
+#: sticking velocity or below 0.2 of it, FILM times it, [-].
+QUADRATURE_MARGIN = 0.04
 
 #: The work of the neck in units F_c a0^2 / R, from delta = 0 to each separation point:
 #: 0.12712805 (pull-off) and 0.25741351 (instability), [-].
@@ -251,7 +549,8 @@ def jkr_restitution(impact_velocity: ArrayLike, sticking_velocity: ArrayLike) ->
 
 
 def _check_separation(separation: Any) -> None:
-    for value in [separation] if isinstance(separation, str) else list(np.ravel(separation)):
+    values = [separation] if isinstance(separation, str) else set(np.ravel(separation).tolist())
+    for value in values:
         if value not in JKR_SEPARATIONS:
             raise ValueError(
                 f"separation of an adhesive law must be one of {', '.join(JKR_SEPARATIONS)}, "
@@ -335,23 +634,23 @@ class JKRBranch:
     work_of_adhesion: ArrayLike
     offset: ArrayLike = 0.0
 
-    @property
+    @cached_property
     def contact_radius_at_rest(self) -> Array:
         """a0, [m]."""
         return jkr_contact_radius_at_rest(self.radius, self.modulus, self.work_of_adhesion)
 
-    @property
+    @cached_property
     def length_unit(self) -> Array:
         """a0^2 / R, [m]."""
         a0 = self.contact_radius_at_rest
         return a0 * a0 / np.asarray(self.radius, dtype=float)
 
-    @property
+    @cached_property
     def force_unit(self) -> Array:
         """F_c = (3/2) pi W R, the branch's pull-off force, [N]."""
         return jkr_pull_off_force(self.radius, self.work_of_adhesion)
 
-    @property
+    @cached_property
     def energy_unit(self) -> Array:
         """F_c a0^2 / R, [J]."""
         return self.force_unit * self.length_unit
@@ -438,6 +737,114 @@ def _capture_s(target: Array, low: ArrayLike) -> Array:
         if np.all(hi - lo <= 2.0 * np.finfo(float).eps * hi):
             break
     return 0.5 * (lo + hi)
+
+
+def quadrature_fits(s_max: ArrayLike, separation: ArrayLike) -> NDArray[np.bool_]:
+    """Whether :func:`branch_times` times an impact that reaches s_max on a JKR branch from
+    snap-in: its (V_s / V0)^2 at least :data:`QUADRATURE_MARGIN` from 1 and V0 at least
+    0.2 V_s (the motion never all but stops on its way), [-]."""
+    s_m = np.asarray(s_max, dtype=float)
+    rule = np.broadcast_to(np.asarray(separation, dtype=object), s_m.shape)
+    end = np.where(rule == "pull-off", PULL_OFF_S, GRIP_S)
+    snap = float(_potential(SNAP_S))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = (_potential(end) - snap) / (_potential(s_m) - snap)  # (V_s / V0)^2
+    return (np.abs(1.0 - ratio) >= QUADRATURE_MARGIN) & (ratio > 0.0) & (ratio <= 25.0)
+
+
+def _branch_range(separation: str, ratio: float) -> float:
+    """s_m >= 1 whose (V_s / V0)^2 is ``ratio`` under the rule ``separation``, [-]."""
+    snap, end = float(_potential(SNAP_S)), float(_potential(_END_S[separation]))
+    target = snap + (end - snap) / ratio
+    lo, hi = 1.0, 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if float(_potential(mid)) < target else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+@cache
+def _tables(separation: str) -> tuple[Pieces, Pieces, Pieces, float]:
+    """The loading time x tau_load, the separating unloading's x tau_back and the captured
+    one's tau_back as functions of x = 1 / s_m (:class:`Pieces`, from :func:`motion_time`
+    with :data:`TABLE_NODES` nodes) over the impacts :func:`quadrature_fits` takes under
+    ``separation``, and the x where the captured ones begin, [-]."""
+    wide = 1.0 + 1e-9  # past the ends of quadrature_fits, by rounding
+    low = _branch_range("pull-off", 25.0 * wide)  # the slowest impact of either rule
+    parts = _branch_range(separation, (1.0 - QUADRATURE_MARGIN) / wide)
+    stuck_top = _branch_range(separation, (1.0 + QUADRATURE_MARGIN) * wide)
+    stuck_low = _branch_range(separation, 25.0 * wide)
+    end = _END_S[separation]
+
+    def loading(x: Array) -> Array:
+        return motion_time(BRANCH, SNAP_S, 1.0 / x, nodes=TABLE_NODES) / x
+
+    def separating(x: Array) -> Array:
+        return motion_time(BRANCH, end, 1.0 / x, nodes=TABLE_NODES) / x
+
+    def captured(x: Array) -> Array:
+        s_m = 1.0 / x
+        s_end = _capture_s(_potential(s_m), end)
+        return motion_time(BRANCH, s_end, s_m, turning_low=True, nodes=TABLE_NODES)
+
+    tiny = 1e-9  # x = 0 is s_m = inf: the series there is the limit
+    return (
+        Pieces(loading, tiny, 1.0 / low),
+        Pieces(separating, tiny, 1.0 / parts),
+        Pieces(captured, 1.0 / stuck_top, 1.0 / stuck_low),
+        1.0 / stuck_top,
+    )
+
+
+def impact_times(
+    s_max: ArrayLike, s_end: ArrayLike, captured: bool, separation: str, loading: bool = True
+) -> tuple[Array | None, Array]:
+    """:func:`branch_times` from snap-in of impacts :func:`quadrature_fits` takes, one rule
+    and one way of ending (``captured``) for all: from the tables (:func:`_tables`, within
+    2e-14 of the quadrature) for :data:`TABLE_ROWS` impacts or more, [-]; the loading's
+    time None without ``loading``."""
+    if np.size(s_max) < TABLE_ROWS:
+        if not loading:
+            return None, motion_time(BRANCH, s_end, s_max, turning_low=captured)
+        return branch_times(SNAP_S, s_max, s_end, captured)
+    load, separating, stuck, _ = _tables(separation)
+    x = 1.0 / np.asarray(s_max, dtype=float)
+    back = stuck(x) if captured else separating(x) * x
+    return (load(x) * x if loading else None), back
+
+
+def branch_times(
+    s_start: ArrayLike, s_max: ArrayLike, s_end: ArrayLike, captured: ArrayLike, **turning: Any
+) -> tuple[Array, Array]:
+    """The times of a loading from s_start to rest at s_max on a JKR branch and of the
+    unloading from there to s_end (the separation point, or the capture), in units of
+    sqrt(m (a0^2 / R) / F_c), [-]: the quadrature of the energy balance
+    (:func:`motion_time`), FILM's limit as n grows.
+
+    Parameters
+    ----------
+    s_start, s_max, s_end : s = sqrt(a / a0) at the start of the loading (snap-in), at the
+        maximum and at the end, [-]
+    captured : where the unloading ends at rest (a capture), [-]
+    turning : passed on (``nodes``)
+
+    Examples
+    --------
+    The two halves of an impact that just turns past snap-in take the same time:
+
+    >>> load, back = branch_times(SNAP_S, 1.2, SNAP_S, False)
+    >>> bool(abs(load / back - 1) < 1e-13)
+    True
+    """
+    if np.ndim(s_start) == np.ndim(s_max) == np.ndim(s_end) == np.ndim(captured) == 0:
+        both = motion_time(  # one impact: both integrals in one pass
+            BRANCH, np.array([s_start, s_end], dtype=float), np.array([s_max, s_max], float),
+            turning_low=np.array([False, bool(captured)]), **turning,
+        )  # fmt: skip
+        return both[0], both[1]
+    load = motion_time(BRANCH, s_start, s_max, **turning)
+    back = motion_time(BRANCH, s_end, s_max, turning_low=captured, **turning)
+    return load, back
 
 
 #: Where an unloading stops (:func:`unloading_plan` keys): it separates, or it is captured
@@ -539,6 +946,163 @@ def unloading_plan(
     return stages, ends
 
 
+def _velocity_key(impact_velocity: Any, mass: Any) -> tuple[float, float] | None:
+    """(V0, m) of one impact given as numbers, the key of a remembered plan; None for
+    arrays."""
+    numbers = (int, float)
+    if isinstance(impact_velocity, numbers) and isinstance(mass, numbers):
+        return float(impact_velocity), float(mass)
+    return None
+
+
+def remembered_plan(contact: Any, impact_velocity: Any, mass: Any) -> ImpactPlan | None:
+    """The plan :func:`plan_summary` made for this one impact (V0, m numbers), or None."""
+    memo = contact.__dict__.get("_plan")
+    key = _velocity_key(impact_velocity, mass)
+    return memo[1] if memo is not None and key is not None and memo[0] == key else None
+
+
+def remembered_extras(contact: Any, impact_velocity: Any, mass: Any) -> dict[str, float] | None:
+    """The plan's ``extras`` (``captured``, ``pull_off_force``, ``energy_adhesion``) of the
+    one impact :func:`plan_summary` summarised last (V0, m numbers), as floats; or None."""
+    memo = contact.__dict__.get("_extras")
+    key = _velocity_key(impact_velocity, mass)
+    return memo[1] if memo is not None and key is not None and memo[0] == key else None
+
+
+def plan_summary(contact: Any, impact_velocity: Any, mass: Any, n: int) -> FilmSummary | None:
+    """One impact of an adhesive law (V0 [m/s], m [kg] numbers) at its default n: the
+    closed forms of its plan and its own times (the quadrature of the energy balance), as
+    floats (:class:`~impactcli.film.FilmSummary`), from the law's ``one_impact`` on floats
+    where it has one, else from its plan (kept for the histories, :func:`remembered_plan`);
+    the plan's ``extras`` kept for the summary (:func:`remembered_extras`). None at another
+    n, for arrays, and where the law has no times of its own for the impact or the plan
+    path must word a problem (FILM's stages then)."""
+    key = _velocity_key(impact_velocity, mass)
+    if n != DEFAULT_N or key is None:
+        return None
+    v0, m = key
+    try:
+        with np.errstate(all="ignore"):
+            one = getattr(contact, "one_impact", None)
+            found = None if one is None else one(v0, m)
+            if found is None:
+                found = _plan_floats(contact, v0, m, n)
+            if found is None:
+                return None
+            summary, extras = found
+    except (ArithmeticError, ValueError):
+        return None
+    values = summary[:6]
+    dm, dy = summary.delta_max, summary.delta_y
+    if not (all(map(math.isfinite, values)) and 0.0 < dm and summary.end_time > 0.0):
+        return None
+    if 0.0 < dy < math.inf and dy / dm < MIN_YIELD_INDENTATION_RATIO:
+        return None  # the plan's checks word it
+    contact.__dict__["_extras"] = (key, extras)
+    return summary
+
+
+def _plan_floats(
+    contact: Any, v0: float, m: float, n: int
+) -> tuple[FilmSummary, dict[str, float]] | None:
+    """:func:`plan_summary` from the contact's plan (kept: :func:`remembered_plan`)."""
+    plan = contact.plan(v0, m)
+    times = None if plan.timing is None else plan.timing(n)
+    if times is None:
+        return None
+    dm = float(plan.delta_max)
+    summary = FilmSummary(
+        dm,
+        float(plan.force_max),
+        float(plan.delta_end),
+        float(plan.restitution),
+        float(times[0]),
+        float(times[1]),
+        float(np.reshape(contact.yield_indentation, -1)[0]),
+        float(np.reshape(contact.yield_velocity(np.asarray(m)), -1)[0]),
+        float(np.reshape(contact.recoverable_work(np.array([dm])), -1)[0]),
+        False,
+        bool(np.all(contact.yields(v0, m))),
+    )
+    contact.__dict__["_plan"] = ((v0, m), plan)
+    return summary, {key: float(np.reshape(x, -1)[0]) for key, x in plan.extras.items()}
+
+
+def _p(s: float) -> float:
+    """:func:`_potential` on a float."""
+    cube = s**3
+    return s**4 * (1.6 * cube * cube - (8.0 / 3.0) * cube + 2.0 / 3.0)
+
+
+def _capture_float(target: float, low: float) -> float:
+    """:func:`_capture_s` on floats."""
+    lo, hi = low, 1.0
+    eps = float(np.finfo(float).eps)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if _p(mid) > target else (lo, mid)
+        if hi - lo <= 2.0 * eps * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
+def jkr_impact(
+    radius: float, modulus: float, work_of_adhesion: float, separation: str, v0: float, m: float
+) -> tuple[FilmSummary, dict[str, float]] | None:
+    """One JKR impact on floats (W > 0, V0 [m/s], m [kg]): the closed forms of
+    :meth:`JKRContact.plan` and the times of :func:`branch_times`, [SI]; with the plan's
+    ``extras``. None where the quadrature leaves the impact to FILM
+    (:func:`quadrature_fits`)."""
+    a0 = float(np.cbrt(4.5 * np.pi * work_of_adhesion * radius * radius / modulus))
+    length = a0 * a0 / radius
+    force = 1.5 * math.pi * work_of_adhesion * radius
+    unit = force * length
+    snap = _p(SNAP_S)
+    energy = 0.5 * m * v0 * v0
+    target = snap + energy / unit
+    s = max((10.0 / 3.0) ** (1.0 / 3.0), (max(target, 0.0) / 0.8) ** 0.1)
+    for _ in range(200):  # loading_s on a float
+        cube = s**3
+        slope = 4.0 * cube * (cube - 1.0) * (4.0 * cube - 2.0 / 3.0)
+        new = max(min(s - (_p(s) - target) / slope, s), 1.0)
+        if new == s:
+            break
+        s = new
+    s_m, top = s, _p(s)
+    end = _END_S[separation]
+    ratio = (_p(end) - snap) / (top - snap)  # (V_s / V0)^2: quadrature_fits
+    if not (abs(1.0 - ratio) >= QUADRATURE_MARGIN and 0.0 < ratio <= 25.0):
+        return None
+    captured = not top > _p(end)
+    if captured:
+        end = _capture_float(top, end)
+    speed = 0.0 if captured else math.sqrt(max(2.0 * unit * (top - _p(end)) / m, 0.0))
+    restitution = speed / v0
+    load, back = branch_times(SNAP_S, s_m, end, captured)
+    scale = math.sqrt(m * length / force)
+    cube = s_m**3
+    summary = FilmSummary(
+        length * (s_m**4 - (2.0 / 3.0) * s_m),
+        force * (4.0 * cube * (cube - 1.0)),
+        length * (end**4 - (2.0 / 3.0) * end),
+        restitution,
+        scale * float(load),
+        scale * float(load + back),
+        math.nan,
+        math.nan,
+        max(unit * (top - snap) - _NECK[separation] * unit, 0.0),
+        False,
+        False,
+    )
+    extras = {
+        "captured": 1.0 if captured else 0.0,
+        "pull_off_force": force,
+        "energy_adhesion": energy * (1.0 - restitution * restitution),
+    }
+    return summary, extras
+
+
 def _fields(branch: JKRBranch) -> dict[str, Any]:
     return {
         "radius": branch.radius,
@@ -553,19 +1117,63 @@ def loading_s(branch_top: Array, energy: Array, unit: Array) -> Array:
     (the turning point of a loading that has ``energy`` [J] left at s with potential
     ``branch_top``), by Newton's method from above (convex, increasing for s >= 1), [-]."""
     target = branch_top + energy / unit
-    s = np.maximum((10.0 / 3.0) ** (1.0 / 3.0), (np.maximum(target, 0.0) / 0.8) ** 0.1)
+    start = np.maximum((10.0 / 3.0) ** (1.0 / 3.0), (np.maximum(target, 0.0) / 0.8) ** 0.1)
+    s = start.reshape(-1).copy()
+    goal = np.broadcast_to(target, start.shape).reshape(-1)
+    rows = np.arange(s.size)  # the rows still moving: a row at its fixed point stays there
     for _ in range(200):
-        cube = s**3
+        x, t = s[rows], goal[rows]
+        cube = x**3
         slope = 4.0 * cube * (cube - 1.0) * (4.0 * cube - 2.0 / 3.0)  # dP/ds = F delta'
-        new = np.maximum(np.minimum(s - (_potential(s) - target) / slope, s), 1.0)
-        if np.array_equal(new, s):
+        new = np.maximum(np.minimum(x - (_potential(x) - t) / slope, x), 1.0)
+        s[rows] = new
+        rows = rows[new != x]
+        if not rows.size:
             break
-        s = new
-    return s
+    return s.reshape(start.shape)
 
 
 @dataclass(frozen=True)
-class JKRContact(NoYieldPoint):
+class AdhesiveContact:
+    """What the adhesive laws' contacts share (:class:`JKRContact`, ``dmt``'s and
+    ``thornton-ning``'s): the pair's R, E* and W, Hertz's stiffness, and one impact's
+    summary on floats at the default n from the law's ``one_impact(V0, m)``
+    (:func:`plan_summary`).
+
+    Parameters
+    ----------
+    radius : effective radius R, [m]
+    modulus : effective modulus E*, [Pa]
+    work_of_adhesion : W >= 0, [J/m^2]
+    """
+
+    radius: ArrayLike
+    modulus: ArrayLike
+    work_of_adhesion: ArrayLike
+
+    @property
+    def stiffness(self) -> Array:
+        """Hertz stiffness K_h = (4/3) E* sqrt(R) of the pair, [N/m^1.5]."""
+        return hertz_stiffness(self.modulus, self.radius)
+
+    def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
+        """One impact at V0 [m/s], m [kg] at the default n: the plan's closed forms and the
+        quadrature's times, on floats (:func:`plan_summary`); else None (FILM)."""
+        return plan_summary(self, impact_velocity, mass, n)
+
+    def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
+        """The law's impact on floats, with its plan's ``extras``; None: from the plan."""
+        return None
+
+    def summary_extras(self, impact_velocity: Any, mass: Any) -> dict[str, float] | None:
+        """The plan's ``extras`` of the one impact :meth:`film_summary` gave last, as
+        floats (:func:`remembered_extras`; ``delta_res`` and ``sticking_velocity`` where the
+        law knew them); None."""
+        return remembered_extras(self, impact_velocity, mass)
+
+
+@dataclass(frozen=True)
+class JKRContact(AdhesiveContact, NoYieldPoint):
     """The JKR contact of a pair of spheres (module docstring), with the interface of a
     :class:`~impactcli.laws.base.NormalContact`: elastic (no yield point), no permanent
     indentation; an impact's plan has the loading stage and the unloading stages of
@@ -592,19 +1200,11 @@ class JKRContact(NoYieldPoint):
     0.916274
     """
 
-    radius: ArrayLike
-    modulus: ArrayLike
-    work_of_adhesion: ArrayLike
     separation: Any = "instability"
 
     def __post_init__(self) -> None:
         _check_separation(self.separation)
         check_adhesion(self.radius, self.modulus, self.work_of_adhesion)
-
-    @property
-    def stiffness(self) -> Array:
-        """Hertz stiffness K_h of the pair, [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
 
     @property
     def pull_off_force(self) -> Array:
@@ -613,6 +1213,11 @@ class JKRContact(NoYieldPoint):
 
     def neck_energy(self) -> Array:
         """E_neck, the work the neck takes (:func:`jkr_neck_energy`), [J]; 0 at W = 0."""
+        values = (self.radius, self.modulus, self.work_of_adhesion)
+        if all(type(x) is float for x in values) and isinstance(self.separation, str):
+            r, e, w = values  # one pair: on floats
+            a0 = float(np.cbrt(4.5 * np.pi * w * r * r / e))
+            return np.asarray(_NECK[self.separation] * 1.5 * math.pi * w * r * a0 * a0 / r)
         w = np.asarray(self.work_of_adhesion, dtype=float)
         rule = np.broadcast_to(np.asarray(self.separation, dtype=object), w.shape)
         constant = np.where(rule == "pull-off", _NECK["pull-off"], _NECK["instability"])
@@ -652,19 +1257,23 @@ class JKRContact(NoYieldPoint):
                 w[sticky], rule[sticky] if rule.ndim else self.separation,
             )  # fmt: skip
             s_m = contact._turning_s(v0[sticky], m[sticky])
-            keys[sticky] = unloading_keys(s_m, rule[sticky])
+            film = ~quadrature_fits(s_m, rule[sticky])  # timed by FILM: a group of their own
+            keys[sticky] = unloading_keys(s_m, rule[sticky]) + 50 * film
         return keys
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Snap-in at delta = 0, loading to delta_m (end at rest), then the unloading
         stages of :func:`unloading_plan`; the Hertz plan where W = 0. A batch must share
         :meth:`plan_keys`."""
+        remembered = remembered_plan(self, impact_velocity, mass)
+        if remembered is not None:
+            return remembered
         v0 = np.asarray(impact_velocity, dtype=float)
         shape = np.broadcast(v0, np.asarray(mass), self.stiffness).shape
         v0, m = _rows(v0, shape), _rows(mass, shape)
         w = _rows(self.work_of_adhesion, shape)
         if np.all(w == 0.0):
-            return _hertz_plan(self.stiffness, v0, m)
+            return without_adhesion(HertzContact(self.stiffness).plan(v0, m), v0)
         if np.any(w == 0.0):
             raise ValueError("a batch must be all with or all without adhesion: plan_keys()")
         separation = str(_same(np.broadcast_to(np.asarray(self.separation, dtype=object),
@@ -676,6 +1285,18 @@ class JKRContact(NoYieldPoint):
         stages, ends = unloading_plan(branch, delta_m, s_m, m, separation)
         restitution = ends["speed"] / v0
         energy = 0.5 * m * v0 * v0
+        timing = None
+        if np.all(quadrature_fits(s_m, separation)):
+
+            def timing(n: int) -> tuple[Array, Array] | None:
+                if n != DEFAULT_N:
+                    return None
+                unit = np.sqrt(m * branch.length_unit[..., 0] / branch.force_unit[..., 0])
+                load, back = impact_times(s_m, ends["s_end"], captured_all, separation)
+                return unit * load, unit * (load + back)
+
+            captured_all = bool(np.all(ends["captured"] > 0))
+
         return ImpactPlan(
             stages=(loading, *stages),
             delta_max=delta_m,
@@ -689,7 +1310,17 @@ class JKRContact(NoYieldPoint):
                 "pull_off_force": branch.force_unit[..., 0],
                 "energy_adhesion": energy * (1.0 - restitution * restitution),
             },
+            timing=timing,
         )
+
+    def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
+        """:func:`jkr_impact` of this pair (floats; None for arrays, at W = 0 or where FILM
+        times the impact)."""
+        values = [self.radius, self.modulus, self.work_of_adhesion]
+        if not all(type(x) is float for x in values) or not isinstance(self.separation, str):
+            return None
+        r, e, w = values
+        return jkr_impact(r, e, w, self.separation, v0, m) if w > 0.0 else None
 
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """Zero: an elastic contact leaves no permanent indentation, [m]."""
@@ -711,10 +1342,10 @@ class JKRContact(NoYieldPoint):
         return np.broadcast_to(np.where(w > 0.0, np.maximum(given, 0.0), hertz), shape)
 
 
-def _hertz_plan(stiffness: ArrayLike, v0: Array, m: Array) -> ImpactPlan:
-    """Hertz's plan (W = 0) with the adhesive extras: nothing sticks, no neck."""
-    plan = HertzContact(stiffness).plan(v0, m)
-    zero = np.zeros_like(v0)
+def without_adhesion(plan: ImpactPlan, v0: ArrayLike) -> ImpactPlan:
+    """The plan of a law without adhesion (W = 0: Hertz's, Thornton's) with the adhesive
+    extras: nothing sticks, no neck, no pull-off force."""
+    zero = np.zeros_like(np.asarray(v0, dtype=float))
     return ImpactPlan(
         plan.stages, plan.delta_max, plan.force_max, plan.delta_res, plan.restitution,
         extras={"captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
@@ -812,8 +1443,7 @@ SPEC = LawSpec(
         "elastic spheres with a short-ranged adhesion (Tabor parameter above about 5: soft, "
         "large or strongly adhering), a << R; any V0"
     ),
-    needs_yield_strength=False,
-    build=_build,
+    needs_yield_strength=False, build=_build,
     fitting=Fitting(
         default=("work_of_adhesion",),
         starts=_fit_starts,
@@ -822,7 +1452,6 @@ SPEC = LawSpec(
         data_starts=_data_starts,
     ),
     closed_form=_closed_form,
-    default_n=200,
-    adhesive=True,
+    default_n=DEFAULT_N, adhesive=True, timed_n=DEFAULT_N,
     lammps=LAMMPS,
-)
+)  # fmt: skip

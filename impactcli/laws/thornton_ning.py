@@ -30,36 +30,52 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.laws.base import (
-    YIELD_MARGIN,
-    Fitting,
-    ImpactPlan,
-    LawSpec,
-    Parameter,
-    Reference,
-    StagePlan,
-    col,
-)
-from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR, hertz_stiffness
+from impactcli.film import FilmSummary
+from impactcli.laws import base
+from impactcli.laws.base import YIELD_MARGIN, ImpactPlan, StagePlan, col
+from impactcli.laws.hertz import FIRST_YIELD_PRESSURE_FACTOR
 from impactcli.laws.jkr import (
+    _END_S,
+    _NECK,
+    BRANCH,
+    DEFAULT_N,
+    NODES,
+    QUADRATURE_MARGIN,
     SEPARATION_PARAMETER,
     SNAP_S,
     WORK_OF_ADHESION,
+    AdhesiveContact,
     JKRBranch,
     JKRContact,
+    _capture_float,
     _check_separation,
+    _p,
     _potential,
     _rows,
     _same,
     check_adhesion,
+    impact_times,
     jkr_contact_radius_at_rest,
-    jkr_sticking_velocity,
+    jkr_impact,
+    motion_time,
+    quadrature_fits,
+    remembered_plan,
     unloading_keys,
     unloading_plan,
+    without_adhesion,
+)
+from impactcli.laws.jkr import (
+    _fit_starts as jkr_fit_starts,
 )
 from impactcli.laws.thornton import ThorntonContact
 
-__all__ = ["SPEC", "PlasticLine", "ThorntonNingContact", "snap_in_pressure"]
+__all__ = [
+    "SPEC",
+    "PlasticLine",
+    "ThorntonNingContact",
+    "snap_in_pressure",
+    "thornton_ning_impact",
+]
 
 Array = NDArray[np.float64]
 
@@ -79,6 +95,100 @@ def snap_in_pressure(radius: ArrayLike, modulus: ArrayLike, work_of_adhesion: Ar
     r, e = np.asarray(radius, dtype=float), np.asarray(modulus, dtype=float)
     a1 = jkr_contact_radius_at_rest(r, e, work_of_adhesion) * SNAP_S**2
     return 2.0 * e * a1 / (np.pi * r)
+
+
+def thornton_ning_impact(
+    radius: float,
+    modulus: float,
+    work_of_adhesion: float,
+    limit_pressure: float,
+    separation: str,
+    v0: float,
+    m: float,
+) -> tuple[FilmSummary, dict[str, float]] | None:
+    """One Thornton & Ning impact on floats (W > 0, V0 [m/s], m [kg]): the closed forms of
+    :meth:`ThorntonNingContact.plan` and the times of :meth:`ThorntonNingContact._times`,
+    [SI] (JKR's, :func:`~impactcli.laws.jkr.jkr_impact`, below V_y); with the plan's
+    ``extras`` and the pair's ``delta_res`` and, where JKR's V_s lies below V_y,
+    ``sticking_velocity``. None where the quadrature leaves the impact to FILM."""
+    r, e, w, py = radius, modulus, work_of_adhesion, limit_pressure
+    a0 = float(np.cbrt(4.5 * np.pi * w * r * r / e))
+    length, force = a0 * a0 / r, 1.5 * math.pi * w * r
+    unit = force * length
+    a_y = math.pi * r * py / (2.0 * e)
+    s_y = math.sqrt(a_y / a0)
+    cube = s_y**3
+    delta_y, f_y = length * (s_y**4 - (2.0 / 3.0) * s_y), force * (4.0 * cube * (cube - 1.0))
+    snap = _p(SNAP_S)
+    work_y = unit * (_p(s_y) - snap)
+    v_y = math.sqrt(2.0 * max(work_y, 0.0) / m)
+    v_s = math.sqrt(2.0 * _NECK[separation] * unit / m)
+    known = {"sticking_velocity": v_s} if v_s <= v_y else {}
+    if not v0 > v_y * (1.0 + YIELD_MARGIN):  # JKR's impact, this law's yield point
+        found = jkr_impact(r, e, w, separation, v0, m)
+        if found is None:
+            return None
+        summary, extras = found
+        summary = summary._replace(delta_y=delta_y, yield_velocity=v_y)
+        return summary, {**extras, "delta_res": 0.0, **known}
+    kinetic = 0.5 * m * v0 * v0
+    share = 1.0 - work_y / kinetic  # (speed at delta_y / V0)^2
+    if not (share >= QUADRATURE_MARGIN and kinetic >= QUADRATURE_MARGIN * unit * (snap - _p(1.0))):
+        return None
+    slope = math.pi * py * r
+    rest = max(kinetic - work_y, 0.0)
+    root = math.sqrt(f_y * f_y + 2.0 * slope * rest)
+    x = (2.0 * rest / (f_y + root) if f_y >= 0.0 else (root - f_y) / slope) if rest > 0 else 0.0
+    delta_m, f_m = delta_y + x, f_y + slope * x
+    a_m = math.sqrt(a_y**2 + r * x)
+    r_p = 4.0 * e * a_m**3 / (3.0 * (f_m + math.sqrt(8.0 * math.pi * w * e * a_m**3)))
+    a0_p = float(np.cbrt(4.5 * np.pi * w * r_p * r_p / e))
+    length_p, force_p = a0_p * a0_p / r_p, 1.5 * math.pi * w * r_p
+    unit_p = force_p * length_p
+    s_m = math.sqrt(a_m / a0_p)
+    offset = delta_m - length_p * (s_m**4 - (2.0 / 3.0) * s_m)
+    top, rule_end = _p(s_m), _END_S[separation]
+    ratio = (_p(rule_end) - snap) / (top - snap)  # quadrature_fits on the unloading
+    if not (abs(1.0 - ratio) >= QUADRATURE_MARGIN and 0.0 < ratio <= 25.0):
+        return None
+    captured = not top > _p(rule_end)
+    end = _capture_float(top, rule_end) if captured else rule_end
+    speed = 0.0 if captured else math.sqrt(max(2.0 * unit_p * (top - _p(end)) / m, 0.0))
+    restitution = speed / v0
+    nodes = 16 if share >= 0.999 else 24 if share >= 0.75 else NODES
+    energy = snap + kinetic / unit
+    elastic = math.sqrt(m * length / force) * float(
+        motion_time(BRANCH, SNAP_S, s_y, energy=energy, nodes=nodes)
+    )
+    omega = math.sqrt(slope / m)
+    speed_y = math.sqrt(max(v0 * v0 - 2.0 * work_y / m, 0.0))
+    plastic = (0.5 * math.pi - math.atan2(f_y / slope, speed_y / omega)) / omega
+    back = float(motion_time(BRANCH, end, s_m, turning_low=captured))
+    t_max = elastic + plastic
+    inward = unit * (snap - _p(min(s_y, 1.0))) + (0.5 * f_y * f_y / slope if f_y < 0.0 else 0.0)
+    outward = unit_p * (_p(end) - _p(1.0))
+    lost = kinetic * (1.0 - restitution * restitution)
+    summary = FilmSummary(
+        delta_m, f_m, offset + length_p * (end**4 - (2.0 / 3.0) * end), restitution, t_max,
+        t_max + math.sqrt(m * length_p / force_p) * back, delta_y, v_y,
+        max(unit_p * (top - _p(rule_end)), 0.0), False, True,
+    )  # fmt: skip
+    extras = {
+        "captured": 1.0 if captured else 0.0,
+        "pull_off_force": force_p,
+        "energy_adhesion": min(max(outward - inward, 0.0), lost),
+        "delta_res": offset,
+        **known,
+    }
+    return summary, extras
+
+
+def _read_only(values: dict[str, Array]) -> dict[str, Array]:
+    """``values`` with their arrays made read-only (kept and shared between calls)."""
+    for value in values.values():
+        if isinstance(value, np.ndarray):
+            value.setflags(write=False)
+    return values
 
 
 @dataclass(frozen=True)
@@ -121,7 +231,7 @@ class _Unloading:
 
 
 @dataclass(frozen=True)
-class ThorntonNingContact:
+class ThorntonNingContact(AdhesiveContact):
     """Thornton & Ning's (1998) contact of a pair of spheres (module docstring), with the
     interface of a :class:`~impactcli.laws.base.NormalContact`.
 
@@ -144,9 +254,6 @@ class ThorntonNingContact:
     (5.3755, 0.040055)
     """
 
-    radius: ArrayLike
-    modulus: ArrayLike
-    work_of_adhesion: ArrayLike
     limit_pressure: ArrayLike
     separation: Any = "instability"
 
@@ -169,11 +276,6 @@ class ThorntonNingContact:
             )
 
     # -- the elastic part and the yield point -------------------------------------------------
-    @property
-    def stiffness(self) -> Array:
-        """Hertz stiffness K_h of the pair, [N/m^1.5]."""
-        return hertz_stiffness(self.modulus, self.radius)
-
     def _safe(self, shape: tuple[int, ...]) -> tuple[Array, Array, Array, Array, NDArray]:
         """R, E*, W (1 where W = 0) and p_y as rows, and where W > 0."""
         w = _rows(self.work_of_adhesion, shape)
@@ -194,7 +296,14 @@ class ThorntonNingContact:
 
     def _yield_point(self, shape: tuple[int, ...]) -> dict[str, Array]:
         """s_y, delta_y, F_y and the work Phi_y from first touch to delta_y (W > 0 rows;
-        Thornton's where W = 0)."""
+        Thornton's where W = 0); worked out once per shape (read-only arrays)."""
+        known = self.__dict__.setdefault("_yield_points", {})
+        if shape not in known:
+            known.clear()  # the last shape only: a batch asks for one at a time
+            known[shape] = _read_only(self._new_yield_point(shape))
+        return known[shape]
+
+    def _new_yield_point(self, shape: tuple[int, ...]) -> dict[str, Array]:
         r, e, w, py, sticky = self._safe(shape)
         branch = JKRBranch(r, e, w)
         a_y = np.pi * r * py / (2.0 * e)
@@ -282,8 +391,66 @@ class ThorntonNingContact:
         if np.any(hard):
             part = self._subset(shape, hard)
             out = part._unloading(None, v0[hard], m[hard])
-            keys[hard] = 10 + unloading_keys(out.s_max, rules[hard])
+            film = ~part._quadrature_fits(out, v0[hard], m[hard], rules[hard])
+            keys[hard] = 10 + unloading_keys(out.s_max, rules[hard]) + 50 * film
         return keys
+
+    def _quadrature_fits(
+        self, out: _Unloading, v0: Array, m: Array, rules: ArrayLike
+    ) -> NDArray[np.bool_]:
+        """Whether the quadrature times plastic impacts (:meth:`_times`): their speed at
+        the yield point at least sqrt(:data:`~impactcli.laws.jkr.QUADRATURE_MARGIN`) of V0,
+        their kinetic energy at first touch that fraction of the snap-in well's depth at
+        least, and an unloading :func:`~impactcli.laws.jkr.quadrature_fits` takes."""
+        r, e, w, _, _ = self._safe(v0.shape)
+        point = self._yield_point(v0.shape)
+        with np.errstate(all="ignore"):
+            kinetic = 0.5 * m * v0 * v0
+            yield_share = 1.0 - point["work"] / kinetic  # (speed at delta_y / V0)^2
+            depth = JKRBranch(r, e, w).energy_unit * float(_potential(SNAP_S) - _potential(1.0))
+            return (
+                (yield_share >= QUADRATURE_MARGIN)
+                & (kinetic >= QUADRATURE_MARGIN * depth)
+                & quadrature_fits(out.s_max, rules)
+            )
+
+    def _times(
+        self,
+        loading: JKRBranch,
+        out: _Unloading,
+        ends: dict,
+        v0: Array,
+        m: Array,
+        py: Array,
+        separation: str,
+    ) -> tuple[Array, Array]:
+        """The time of maximum indentation and the contact time of plastic impacts, [s]:
+        the quadrature of the energy balance on the JKR loading to delta_y (24 nodes where
+        the speed there is at least sqrt(0.75) V0, 16 from sqrt(0.999) V0: 3e-14) and on the
+        unloading branch (:func:`impactcli.laws.jkr.impact_times`), the plastic line's
+        quarter of a harmonic oscillation in closed form (its force is linear)."""
+        shape = v0.shape
+        point = self._yield_point(shape)
+        unit = loading.energy_unit[..., 0]
+        kinetic = 0.5 * m * v0 * v0
+        energy = float(_potential(SNAP_S)) + kinetic / unit
+        scale = np.sqrt(m * loading.length_unit[..., 0] / loading.force_unit[..., 0])
+        share = float(np.min(1.0 - point["work"] / kinetic, initial=1.0))  # (V(delta_y)/V0)^2
+        nodes = 16 if share >= 0.999 else 24 if share >= 0.75 else NODES
+        elastic = scale * motion_time(BRANCH, SNAP_S, point["s"], energy=energy, nodes=nodes)
+        r = self._safe(shape)[0]
+        stiffness = np.pi * py * r
+        omega = np.sqrt(stiffness / m)
+        speed_y = np.sqrt(np.maximum(v0 * v0 - 2.0 * point["work"] / m, 0.0))
+        # F = F_y + k (delta - delta_y): the oscillator's phase at delta_y, a quarter to rest
+        phase = np.arctan2(point["force"] / stiffness, speed_y / omega)
+        plastic = (0.5 * np.pi - phase) / omega
+        branch = out.branch
+        unit_p = np.sqrt(m * branch.length_unit[..., 0] / branch.force_unit[..., 0])
+        captured = bool(np.all(ends["captured"] > 0))
+        _, back = impact_times(out.s_max, ends["s_end"], captured, separation, loading=False)
+        t_max = elastic + plastic
+        return t_max, t_max + unit_p * back
 
     def _subset(self, shape: tuple[int, ...], rows: NDArray) -> ThorntonNingContact:
         return ThorntonNingContact(
@@ -293,22 +460,23 @@ class ThorntonNingContact:
         )  # fmt: skip
 
     def _jkr(self, shape: tuple[int, ...], rows: NDArray) -> JKRContact:
-        return JKRContact(
-            _rows(self.radius, shape)[rows], _rows(self.modulus, shape)[rows],
-            _rows(self.work_of_adhesion, shape)[rows], self._rules(shape)[rows],
-        )  # fmt: skip
+        part = self._subset(shape, rows)
+        return JKRContact(part.radius, part.modulus, part.work_of_adhesion, part.separation)
 
     def plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
         """Below V_y JKR's plan; above it JKR loading to delta_y, the plastic line to
         delta_m (end at rest) and the unloading stages of
         :func:`impactcli.laws.jkr.unloading_plan` on the enlarged-radius branch; Thornton's
         plan where W = 0. A batch must share :meth:`plan_keys`."""
+        remembered = remembered_plan(self, impact_velocity, mass)
+        if remembered is not None:
+            return remembered
         shape = self._shape(impact_velocity, mass)
         v0, m = _rows(impact_velocity, shape), _rows(mass, shape)
         _, _, _, _, sticky = self._safe(shape)
         everything = Ellipsis  # every row, keeping a single impact's shape ()
         if not np.any(sticky):
-            return _with_extras(self._thornton(shape).plan(v0, m), v0)
+            return without_adhesion(self._thornton(shape).plan(v0, m), v0)
         if not np.all(sticky):
             raise ValueError("a batch must be all with or all without adhesion: plan_keys()")
         plastic = self.yields(v0, m)
@@ -332,6 +500,14 @@ class ThorntonNingContact:
         inward = inward + np.where(f_y < 0.0, 0.5 * f_y * f_y / (np.pi * py * r), 0.0)
         outward = unit_p * (_potential(ends["s_end"]) - _potential(1.0))
         lost = 0.5 * m * v0 * v0 * (1.0 - restitution * restitution)
+        timing = None
+        if np.all(self._quadrature_fits(out, v0, m, separation)):
+
+            def timing(n: int) -> tuple[Array, Array] | None:
+                if n != DEFAULT_N:
+                    return None
+                return self._times(loading, out, ends, v0, m, py, separation)
+
         return ImpactPlan(
             stages=(
                 StagePlan("elastic loading", loading, np.zeros_like(v0), point["delta"], v0),
@@ -352,34 +528,48 @@ class ThorntonNingContact:
                 "pull_off_force": out.branch.force_unit[..., 0],
                 "energy_adhesion": np.minimum(np.maximum(outward - inward, 0.0), lost),
             },
+            timing=timing,
         )
+
+    def one_impact(self, v0: float, m: float) -> tuple[FilmSummary, dict[str, float]] | None:
+        """:func:`thornton_ning_impact` of this pair (one pair, W > 0; else None)."""
+        values = [self.radius, self.modulus, self.work_of_adhesion, self.limit_pressure]
+        if any(np.ndim(x) for x in values) or not isinstance(self.separation, str):
+            return None
+        r, e, w, py = (float(x) for x in values)
+        if not (w > 0.0 and py > 0.0):
+            return None
+        return thornton_ning_impact(r, e, w, py, self.separation, v0, m)
 
     # -- closed forms --------------------------------------------------------------------------
     def residual_indentation(self, delta_max: ArrayLike) -> Array:
         """delta_p, the offset of the enlarged-radius branch, past delta_y; 0 below it;
         Thornton's delta_res where W = 0, [m]."""
-        dm = np.asarray(delta_max, dtype=float)
-        shape = self._shape(dm)
-        dm = _rows(dm, shape)
-        point = self._yield_point(shape)
-        plastic = dm > point["delta"]
-        with np.errstate(all="ignore"):
-            out = self._unloading(np.where(plastic, dm, point["delta"]), dm, np.ones(shape))
-            adhesive = np.where(plastic, np.asarray(out.branch.offset)[..., 0], 0.0)
+        dm, point, plastic, out = self._unloading_from(delta_max)
+        adhesive = np.where(plastic, np.asarray(out.branch.offset)[..., 0], 0.0)
+        shape = dm.shape
         return np.where(point["sticky"], adhesive, self._thornton(shape).residual_indentation(dm))
 
-    def recoverable_work(self, delta: ArrayLike) -> Array:
-        """What unloading from ``delta`` gives back to the motion, [J]: the work of the
-        unloading branch from delta to the separation point, or 0 where the spheres would
-        be captured (JKR's below delta_y, Thornton's where W = 0)."""
+    def _unloading_from(self, delta: ArrayLike) -> tuple[Array, dict, Array, _Unloading]:
+        """The overlaps as rows, the yield point, where they are past it and the unloading
+        from each (from delta_y where they are not)."""
         d = np.asarray(delta, dtype=float)
         shape = self._shape(d)
         d = _rows(d, shape)
         point = self._yield_point(shape)
         plastic = d > point["delta"]
         with np.errstate(all="ignore"):
-            elastic = self._jkr(shape, np.ones(shape, dtype=bool)).recoverable_work(d)
             out = self._unloading(np.where(plastic, d, point["delta"]), d, np.ones(shape))
+        return d, point, plastic, out
+
+    def recoverable_work(self, delta: ArrayLike) -> Array:
+        """What unloading from ``delta`` gives back to the motion, [J]: the work of the
+        unloading branch from delta to the separation point, or 0 where the spheres would
+        be captured (JKR's below delta_y, Thornton's where W = 0)."""
+        d, point, plastic, out = self._unloading_from(delta)
+        shape = d.shape
+        with np.errstate(all="ignore"):
+            elastic = self._jkr(shape, np.ones(shape, dtype=bool)).recoverable_work(d)
             rules = self._rules(shape)
             end = np.where(rules == "pull-off", 0.5 ** (1.0 / 3.0), (1.0 / 6.0) ** (1.0 / 3.0))
             unit = out.branch.energy_unit[..., 0]
@@ -399,16 +589,11 @@ class ThorntonNingContact:
         rules = self._rules(shape).reshape(size)
         v_y = np.asarray(self.yield_velocity(mass), dtype=float)
         v_y = np.broadcast_to(v_y, shape).reshape(size)
-        out = np.zeros(size)
-        for i in range(size):
-            if not sticky[i]:
-                continue
-            v_s = float(jkr_sticking_velocity(m[i], r[i], e[i], w[i], rules[i]))
-            if v_s <= v_y[i]:
-                out[i] = v_s
-                continue
+        elastic = JKRContact(r, e, np.where(sticky, w, 0.0), rules).sticking_velocity(m)
+        out = np.where(sticky, elastic, 0.0)
+        for i in np.flatnonzero(sticky & (elastic > v_y)):  # sticks past V_y: sought
             one = ThorntonNingContact(r[i], e[i], w[i], py[i], rules[i])
-            out[i] = one._plastic_sticking(float(m[i]), float(v_y[i]), v_s)
+            out[i] = one._plastic_sticking(float(m[i]), float(v_y[i]), float(elastic[i]))
         return out.reshape(shape)
 
     def _captured(self, v0: Array, mass: float) -> NDArray[np.bool_]:
@@ -447,15 +632,6 @@ class ThorntonNingContact:
         return lo
 
 
-def _with_extras(plan: ImpactPlan, v0: Array) -> ImpactPlan:
-    """Thornton's plan (W = 0) with the adhesive extras: nothing sticks, no neck."""
-    zero = np.zeros_like(v0)
-    return ImpactPlan(
-        plan.stages, plan.delta_max, plan.force_max, plan.delta_res, plan.restitution,
-        extras={"captured": zero, "pull_off_force": zero.copy(), "energy_adhesion": zero.copy()},
-    )  # fmt: skip
-
-
 def _build(radius, modulus, sy, params) -> ThorntonNingContact:
     py = np.asarray(np.nan if params["py"] is None else params["py"], dtype=float)
     if np.any(np.isnan(py)):  # default: the Hertz peak pressure at first yield
@@ -468,16 +644,10 @@ def _build(radius, modulus, sy, params) -> ThorntonNingContact:
 def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
     """W as ``jkr``'s start (V_s = V_ref / 2), p_y = 1.6 sigma_y and sigma_y, each within
     x/1e3 to x*1e3 (W within x/1e4 to x*1e4, below the largest W of the pair)."""
-    separation = fixed.get("separation", "instability")
-    _check_separation(separation)
-    per_work = float(jkr_sticking_velocity(mass, radius, modulus, 1.0, separation))
-    w = (0.5 * reference_velocity / per_work) ** 1.2
-    ceiling = 0.99 * 2.0 * modulus * radius / (9.0 * math.pi)
-    w = min(w, ceiling / 10.0)
     sy = yield_strength
     py = FIRST_YIELD_PRESSURE_FACTOR * sy
     return {
-        "work_of_adhesion": ("J/m^2", w, w / 1e4, min(w * 1e4, ceiling)),
+        **jkr_fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed),
         "py": ("Pa", py, py / 1e3, py * 1e3),
         "sy": ("Pa", sy, sy / 1e3, sy * 1e3),
     }
@@ -488,7 +658,7 @@ def _run_parameters(params) -> dict:
 
 
 #: The registry entry of the law.
-SPEC = LawSpec(
+SPEC = base.LawSpec(
     name="thornton-ning",
     title="Thornton & Ning",
     kind="elastoplastic",
@@ -500,7 +670,7 @@ SPEC = LawSpec(
     ),
     parameters=(
         WORK_OF_ADHESION,
-        Parameter(
+        base.Parameter(
             "py",
             "Pa",
             "pressure",
@@ -511,7 +681,7 @@ SPEC = LawSpec(
         ),
         SEPARATION_PARAMETER,
     ),
-    reference=Reference(
+    reference=base.Reference(
         "C. Thornton, Z. Ning",
         1998,
         "A theoretical model for the stick/bounce behaviour of adhesive, elastic-plastic "
@@ -526,11 +696,10 @@ SPEC = LawSpec(
     ),
     needs_yield_strength=True,
     build=_build,
-    fitting=Fitting(
+    fitting=base.Fitting(
         default=("work_of_adhesion", "py"),
         starts=_fit_starts,
         run_parameters=_run_parameters,
     ),
-    default_n=200,
-    adhesive=True,
-)
+    default_n=DEFAULT_N, adhesive=True, timed_n=DEFAULT_N,
+)  # fmt: skip
