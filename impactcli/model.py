@@ -43,6 +43,7 @@ from impactcli.laws.registry import (
     ELASTIC_LAW,
     get_law,
 )
+from impactcli.limits import DAMPED_DEFAULT_N, DEFAULT_N
 from impactcli.pairs import effective_properties, weaker_yield_strength
 from impactcli.solution import PlanSolution
 from impactcli.validation import (
@@ -70,12 +71,6 @@ __all__ = [
     "solution_energy_summary",
 ]
 
-#: FILM segments per stage of a normal law by default (the paper's n = 25).
-DEFAULT_N = 25
-
-#: FILM segments per stage of a damped impact by default: e and the contact time within
-#: 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
-DAMPED_DEFAULT_N = 400
 
 
 def _positive(value: object) -> bool:
