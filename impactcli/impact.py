@@ -393,13 +393,16 @@ class ImpactResult:
         t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
         t = np.minimum(np.maximum(t, 0.0), float(self._solution(method).end_time))  # as delta(t)
         source = history_solution(self._solution(method))
+        own = method != "table" and isinstance(source, StagedSolution)  # W(t) from delta
+        segments = None
         if method == "table":
             delta, delta_dot = self._table_state(t)
+        elif own:  # the segments of the times, for the contact work too
+            delta, delta_dot, segments = source.evaluate_segments(t)
         else:
             delta, delta_dot = source.evaluate(t)
         force = source.force(t, delta, delta_dot)
-        own = method != "table" and isinstance(source, StagedSolution)  # W(t) from delta
-        return self._columns(t, delta, delta_dot, force, source, own)
+        return self._columns(t, delta, delta_dot, force, source, own, segments)
 
     def energy(
         self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
@@ -475,33 +478,38 @@ class ImpactResult:
         force: NDArray,
         source: ContactSolution,
         own: bool = False,
+        segments: tuple | None = None,
     ) -> dict[str, NDArray]:
         """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4, and the
         energy of ``source`` (:meth:`~impactcli.solution.ContactSolution.energy`; ``own``:
-        delta is the FILM stages' own, :class:`~impactcli.solution.StagedSolution`)."""
+        delta is the FILM stages' own, :class:`~impactcli.solution.StagedSolution`, at the
+        ``segments`` of :meth:`~impactcli.film.FilmSolution.evaluate_segments`)."""
         from impactcli.energy import energy_columns
 
         v0 = self.impact_velocity
-        r1, r2 = self.mass_ratios
-        e1, e2 = self.split_fractions
-        p1_, p2_ = self.permanent_fractions
-        d1 = self.v1 * t - r1 * (v0 * t - delta)
-        d2 = self.v2 * t - r2 * (v0 * t - delta)
-        v1 = self.v1 - r1 * (v0 - delta_dot)
-        v2 = self.v2 - r2 * (v0 - delta_dot)
+        (r1, r2), (e1, e2), (p1_, p2_) = self._shares()
+        # both spheres at once, a row each (the same operations as one sphere at a time)
+        axes = np.ndim(t)
+        velocity, ratio = _pair(self.v1, self.v2, axes), _pair(r1, r2, axes)
+        d1, d2 = velocity * t - ratio * (v0 * t - delta)
+        v12 = velocity - ratio * (v0 - delta_dot)
+        v1, v2 = v12
         with np.errstate(invalid="ignore"):
-            p1 = self.m1 * v1
-            p2 = -self.m2 * v2
+            p1, p2 = _pair(self.m1, -self.m2, axes) * v12
         if (e1, e2) == (p1_, p2_):
-            delta1, delta2 = e1 * delta, e2 * delta
-            delta1_dot, delta2_dot = e1 * delta_dot, e2 * delta_dot
+            share = _pair(e1, e2, axes)
+            delta1, delta2 = share * delta
+            delta1_dot, delta2_dot = share * delta_dot
         else:  # split yield: delta_i = e_i (delta - delta_p) + p_i delta_p
             dp = self.permanent_indentation(t, delta, source)
             dp_dot = self._permanent_rate(t, delta, delta_dot, source)
             delta1, delta2 = e1 * (delta - dp) + p1_ * dp, e2 * (delta - dp) + p2_ * dp
             delta1_dot = e1 * (delta_dot - dp_dot) + p1_ * dp_dot
             delta2_dot = e2 * (delta_dot - dp_dot) + p2_ * dp_dot
-        strain, dissipated = source.energy(t, delta, own=True) if own else source.energy(t, delta)
+        if own:
+            strain, dissipated = source.energy(t, delta, own=True, segments=segments)
+        else:
+            strain, dissipated = source.energy(t, delta)
         return {
             "t": t,
             "delta": delta,
@@ -518,7 +526,7 @@ class ImpactResult:
             "p1": p1,
             "p2": p2,
             **energy_columns(
-                (self.m1, self.m2), (v1, v2), strain, dissipated, self.energy_shares
+                (self.m1, self.m2), v12, strain, dissipated, self.energy_shares
             ),
         }
 
@@ -541,6 +549,12 @@ def _effective(a: float, b: float) -> float:
         return 1.0 / (1.0 / a + 1.0 / b)
     except ZeroDivisionError:
         return float(effective_mass(a, b))
+
+
+def _pair(first: float, second: float, axes: int = 1) -> NDArray:
+    """Two numbers, one per sphere, as a column (shape (2, 1, ...), ``axes`` ones) that
+    broadcasts against a history's times of ``axes`` dimensions: a row per sphere."""
+    return np.reshape(np.array((first, second), dtype=float), (2,) + (1,) * axes)
 
 
 def _nan(value: float | None) -> float:

@@ -264,26 +264,34 @@ class StagedSolution(FilmSolution):
 
         return plan_energy_constants(self.plan, self.contact, self.delta_max)
 
-    def contact_work(self, t: ArrayLike, delta: ArrayLike | None = None) -> Array:
+    def contact_work(
+        self, t: ArrayLike, delta: ArrayLike | None = None, segments: tuple | None = None
+    ) -> Array:
         """W(t): work of the contact force up to times ``t`` [s] along FILM's segments
         (:func:`impactcli.energy.film_contact_work`), [J]; ``delta``: this solution's
-        indentation at ``t`` [m] (:meth:`evaluate`), if the caller has it."""
+        indentation at ``t`` [m] (:meth:`evaluate`), and ``segments`` those of
+        :meth:`~impactcli.film.FilmSolution.evaluate_segments`, if the caller has them."""
         from impactcli.energy import film_contact_work
 
         laws = [stage.law for stage in self.plan.stages]
         return film_contact_work(
-            self.stages, laws, t, film=self, delta=delta, table=self._work_table
-        )
+            self.stages, laws, t, film=self, delta=delta, table=self._work_table,
+            segments=segments,
+        )  # fmt: skip
 
     def energy(
-        self, t: ArrayLike, delta: ArrayLike, own: bool = False
+        self, t: ArrayLike, delta: ArrayLike, own: bool = False, segments: tuple | None = None
     ) -> tuple[Array, Array]:
         """Stored strain energy and dissipated (plastic) energy at times ``t`` [s] and
         indentations ``delta`` [m], [J] (:func:`impactcli.energy.plan_energy`); ``own``:
-        ``delta`` is this solution's own at ``t`` (:meth:`evaluate`), used for W(t)."""
+        ``delta`` is this solution's own at ``t`` (:meth:`evaluate`), used for W(t), with
+        its ``segments`` (:meth:`~impactcli.film.FilmSolution.evaluate_segments`) if given."""
         from impactcli.energy import plan_energy
 
-        work = self.contact_work(t, delta if own else None)
+        if own:
+            work = self.contact_work(t, delta, segments)
+        else:
+            work = self.contact_work(t)
         return plan_energy(
             self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
             constants=self._energy_constants,
