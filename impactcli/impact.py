@@ -243,6 +243,30 @@ class ImpactResult:
     #: split between different materials.
     warnings: tuple[str, ...] = ()
 
+    @classmethod
+    def _of(
+        cls,
+        sphere1: Sphere,
+        sphere2: Sphere,
+        v1: float,
+        v2: float,
+        solution: ContactSolution,
+        n: int,
+        split: Split,
+        model: str,
+        contact: PairModel,
+        method: Method,
+    ) -> ImpactResult:
+        """The result as ``ImpactResult(...)`` makes it (an empty summary, no warnings),
+        its fields set at once rather than one by one (a frozen dataclass's ``__init__``):
+        :func:`solve_impact`'s, once per impact."""
+        result = object.__new__(cls)
+        result.__dict__.update(
+            sphere1=sphere1, sphere2=sphere2, v1=v1, v2=v2, solution=solution, n=n,
+            split=split, model=model, contact=contact, summary={}, method=method, warnings=(),
+        )  # fmt: skip
+        return result
+
     # -- derived constants -------------------------------------------------------------
     @property
     def m1(self) -> float:
@@ -702,10 +726,10 @@ def _summary_of_floats(
 ) -> dict[str, float]:
     """:func:`_summarise` on floats (the operations of :func:`impact_summary`, in order)."""
     v1, v2 = float(result.v1), float(result.v2)
-    m1, m2 = result.m1, result.m2
+    m1, m2 = result.sphere1.total_mass, result.sphere2.total_mass
     m = 1.0 / (1.0 / m1 + 1.0 / m2)
     r1, r2 = m / m1, m / m2
-    f1, f2 = result.split_fractions
+    _, (f1, f2), (p1, p2) = result._shares()
     v0, t_c = v1 + v2, contact_time
     summary = {
         "contact_time": t_c,
@@ -725,7 +749,6 @@ def _summary_of_floats(
         "effective_modulus": e,
     }
     if permanent:
-        p1, p2 = result.permanent_fractions
         summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
         summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
     sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
@@ -820,19 +843,17 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
         raise InputError(f"impact_warnings takes an ImpactResult, got {type(result).__name__}")
     s, v0 = result.summary, result.impact_velocity
     s1, s2 = result.sphere1, result.sphere2
-    found = [
-        first_yield_warning(v0, s["first_yield_velocity"])
-        if first_yield and "first_yield_velocity" in s
-        else None,
-        None
-        if _small_contact(s["delta_max"], s["effective_radius"])
-        else contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),
-        None
-        if result.split != "mass" or _same_material(s1, s2)
-        else mass_split_warning(
-            result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
-        ),
-    ]
+    found = ()
+    if first_yield and "first_yield_velocity" in s:
+        found += (first_yield_warning(v0, s["first_yield_velocity"]),)
+    if not _small_contact(s["delta_max"], s["effective_radius"]):
+        found += (contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),)
+    if result.split == "mass" and not _same_material(s1, s2):
+        found += (
+            mass_split_warning(
+                result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
+            ),
+        )
     return tuple(message for message in found if message)
 
 
@@ -932,10 +953,9 @@ def solve_impact(
     _validate(sphere1, sphere2, v1, v2, n, split, method)
     pair = model.for_spheres(sphere1, sphere2)
     solution = pair.solve(v1 + v2, n)
-    result = ImpactResult(
-        sphere1, sphere2, v1, v2, solution, int(n), split, pair.kind(solution), pair,
-        method=method,
-    )  # fmt: skip
+    result = ImpactResult._of(
+        sphere1, sphere2, v1, v2, solution, int(n), split, pair.kind(solution), pair, method
+    )
     _check_yield_split(result)
     result.summary.update(_solution_summary(result, solution))
     if method == "ode":

@@ -761,10 +761,12 @@ def first_yield_velocities_of(
     found = result.__dict__.get("_first_yield_")
     if found is None:
         sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
-        found = (
-            math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1),
-            math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2),
-        )
+        fy1 = math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1)
+        if sy2 == sy1 and sy1 is not None:  # the same strength: the same velocity
+            found = (fy1, fy1)
+        else:
+            fy2 = math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2)
+            found = (fy1, fy2)
         result.__dict__["_first_yield_"] = found
     return found
 

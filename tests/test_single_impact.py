@@ -523,3 +523,22 @@ def test_an_adhesive_impact_is_its_plan_solved_stage_by_stage(law, params, v0):
                                      impactcli.ContactModel(law, params)).summary  # fmt: skip
     assert summary["contact_time"] == pytest.approx(float(np.ravel(solved[-1].time)[-1]),
                                                     rel=1e-15)  # fmt: skip
+
+
+def test_a_result_made_at_once_is_the_dataclass_made_field_by_field():
+    """solve_impact sets an ImpactResult's fields at once (ImpactResult._of, one impact's
+    fixed cost): the same fields as the dataclass's own __init__ (an empty summary and no
+    warnings before they are filled in), and just as frozen."""
+    import dataclasses
+
+    from impactcli.impact import ImpactResult, Sphere, elastoplastic_impact
+
+    steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    made = elastoplastic_impact(*steel, 0.25, 0.75)
+    args = [getattr(made, f.name) for f in dataclasses.fields(ImpactResult)][:9]
+    at_once = ImpactResult._of(*args, made.method)
+    assert at_once == ImpactResult(*args, method=made.method)
+    assert at_once.summary == {} and at_once.warnings == ()
+    assert made == dataclasses.replace(at_once, summary=made.summary, warnings=made.warnings)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        made.n = 30  # type: ignore[misc]
