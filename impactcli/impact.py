@@ -77,6 +77,7 @@ from impactcli.solution import (
     StagedSolution,
     history_solution,
     history_times,
+    made_at_once,
     solve_plan,
 )
 from impactcli.summary import (
@@ -260,12 +261,11 @@ class ImpactResult:
         """The result as ``ImpactResult(...)`` makes it (an empty summary, no warnings),
         its fields set at once rather than one by one (a frozen dataclass's ``__init__``):
         :func:`solve_impact`'s, once per impact."""
-        result = object.__new__(cls)
-        result.__dict__.update(
-            sphere1=sphere1, sphere2=sphere2, v1=v1, v2=v2, solution=solution, n=n,
-            split=split, model=model, contact=contact, summary={}, method=method, warnings=(),
+        return made_at_once(
+            cls, {"sphere1": sphere1, "sphere2": sphere2, "v1": v1, "v2": v2,
+                  "solution": solution, "n": n, "split": split, "model": model,
+                  "contact": contact, "summary": {}, "method": method, "warnings": ()},
         )  # fmt: skip
-        return result
 
     # -- derived constants -------------------------------------------------------------
     @property
@@ -1126,7 +1126,11 @@ def law_impact(
         if law_params is not None:
             raise TypeError("give law_params or the deprecated params, not both")
         law_params = params
-    model = ContactModel(law, dict(law_params or {}), yield_strength=yield_strength)
+    model = made_at_once(  # ContactModel(law, law_params, yield_strength=...), at once
+        ContactModel,
+        {"law": law, "law_params": dict(law_params or {}), "damping": None, "alpha": None,
+         "restitution": None, "separation": "overlap", "yield_strength": yield_strength},
+    )  # fmt: skip
     return solve_impact(sphere1, sphere2, v1, v2, model, n, split, method)
 
 

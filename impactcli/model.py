@@ -45,7 +45,7 @@ from impactcli.laws.registry import (
 )
 from impactcli.limits import DAMPED_DEFAULT_N, DEFAULT_N
 from impactcli.pairs import effective_properties, weaker_yield_strength
-from impactcli.solution import PlanSolution
+from impactcli.solution import PlanSolution, made_at_once
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     needs_yield_strength,
@@ -207,7 +207,7 @@ class ContactModel:
             )
             m, r, e = effective_properties(sphere1, sphere2)
             pair = AdhesivePair if spec.adhesive else LawPair
-            return pair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+            return made_at_once(pair, _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y))
         m, r, e = effective_properties(sphere1, sphere2)
         return DampedPair(self, sphere1, sphere2, m, r, e)
 
@@ -408,6 +408,24 @@ class LawPair:
         return None
 
 
+def _pair_fields(
+    model: ContactModel,
+    spec: LawSpec,
+    sphere1: Any,
+    sphere2: Any,
+    mass: float,
+    radius: float,
+    modulus: float,
+    yield_strength: float | None,
+) -> dict[str, Any]:
+    """The fields of a :class:`LawPair` by name (:func:`~impactcli.solution.made_at_once`):
+    the model, the law, the spheres, m [kg], R [m], E* [Pa] and sigma_y [Pa] or None."""
+    return {
+        "model": model, "spec": spec, "sphere1": sphere1, "sphere2": sphere2, "mass": mass,
+        "radius": radius, "modulus": modulus, "yield_strength": yield_strength,
+    }  # fmt: skip
+
+
 @dataclass(frozen=True)
 class AdhesivePair(LawPair):
     """An adhesive law of the registry (:attr:`~impactcli.laws.base.LawSpec.adhesive`) for
@@ -475,7 +493,8 @@ class _ElasticModel(ContactModel):
         spec = get_law(ELASTIC_LAW)
         sigma_y = weaker_yield_strength(sphere1, sphere2)
         m, r, e = effective_properties(sphere1, sphere2)
-        return _ElasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+        fields = _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+        return made_at_once(_ElasticPair, fields)
 
 
 @dataclass(frozen=True)
@@ -516,7 +535,8 @@ class _ElastoplasticModel(ContactModel):
             raise ValueError(f"the pressure factor must be positive, got {factor}")
         m, r, e = effective_properties(sphere1, sphere2)
         spec = get_law(self.law)
-        return _ElastoplasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
+        fields = _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+        return made_at_once(_ElastoplasticPair, {**fields, "pressure_factor": factor})
 
 
 @dataclass(frozen=True)

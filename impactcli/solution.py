@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -46,6 +46,7 @@ __all__ = [
 ]
 
 Array = NDArray[np.float64]
+_T = TypeVar("_T")
 
 
 class ContactSolution(Protocol):
@@ -129,6 +130,16 @@ class ContactSolution(Protocol):
         """SciPy integration of the same impact (:mod:`impactcli.ode`), the reference; an
         integration returns itself."""
         ...
+
+
+def made_at_once(cls: type[_T], fields: dict[str, Any]) -> _T:
+    """``cls(**fields)`` of a frozen dataclass ``cls`` without ``__post_init__``, ``fields``
+    every one of its fields by name: set at once instead of one by one (a frozen
+    dataclass's ``__init__`` sets each field through ``object.__setattr__``, a large part
+    of one impact's fixed cost). For the results and models one impact makes."""
+    made = object.__new__(cls)
+    made.__dict__.update(fields)
+    return made
 
 
 def _first(value: ArrayLike) -> float:
@@ -378,7 +389,10 @@ class PlanSolution:
         quantities = None if summary_of is None else summary_of(impact_velocity, mass, n)
         if quantities is None:
             return None
-        return cls(contact, mass, impact_velocity, n, quantities)
+        return made_at_once(
+            cls, {"contact": contact, "mass": mass, "impact_velocity": impact_velocity, "n": n,
+                  "quantities": quantities},
+        )  # fmt: skip
 
     @classmethod
     def of_plan(
