@@ -406,7 +406,7 @@ def solve_stages(
     for k in range(1, count):  # each stage starts when the previous one ends
         time[k] += time[k - 1, -1:]
     offset = nodes[:, :-1] - force_r / stiffness
-    rows = _StageRows(nodes, time, direction, stiffness, offset, omega, x0, y0, work)
+    rows = FilmStage(nodes, velocity, time, direction, stiffness, offset, omega, x0, y0, turning)
     solved = []
     for k in range(count):
         stage = FilmStage(
@@ -421,39 +421,37 @@ def solve_stages(
             phase_y=y0[k],
             turning=turning[k],
         )
-        object.__setattr__(stage, "_rows", (rows, k))  # row k of the stages' arrays
+        object.__setattr__(stage, "_rows", (rows, work, k))  # row k of the stages' arrays
         solved.append(stage)
     return tuple(solved)
 
 
-class _StageRows(NamedTuple):
-    """The arrays of the stages of one impact solved in one pass (:func:`solve_stages`),
-    each stage a row (shape (stages, n + 1) for nodes, (stages, n) for segments): what
-    :class:`FilmSolution` gathers across the stages, taken at once, and the exact work of
-    each stage's law from its start to its nodes, [J] (eq. 13e)."""
+class StageRows(NamedTuple):
+    """The stages of one impact solved in one pass (:func:`solve_stages`) as the rows of
+    their arrays: what :class:`FilmSolution` gathers across the stages, taken at once.
 
-    delta: Array
-    time: Array
-    direction: Array
-    stiffness: Array
-    offset: Array
-    omega: Array
-    phase_x: Array
-    phase_y: Array
+    Attributes
+    ----------
+    stages : the stages as one :class:`FilmStage` whose arrays have a row per stage
+    work : the exact work of each stage's law from its start to its nodes, [J] (eq. 13e)
+    """
+
+    stages: FilmStage
     work: Array
 
 
-def stage_rows(stages: Sequence[FilmStage]) -> _StageRows | None:
+def stage_rows(stages: Sequence[FilmStage]) -> StageRows | None:
     """The one-pass arrays of ``stages`` (:func:`solve_stages`) when they are every row of
     them in order, else None (stages solved one by one, or a selection of them)."""
     found = getattr(stages[0], "_rows", None) if stages else None
     if found is None or found[0].delta.shape[0] != len(stages):
         return None
-    rows = found[0]
+    rows, work = found[0], found[1]
     for k, stage in enumerate(stages):
-        if getattr(stage, "_rows", None) != (rows, k):
+        mine = getattr(stage, "_rows", None)
+        if mine is None or mine[0] is not rows or mine[2] != k:
             return None
-    return rows
+    return StageRows(rows, work)
 
 
 def _chain_stages(
@@ -649,8 +647,9 @@ class FilmSolution:
             raise ValueError("a FILM solution needs at least one stage")
         cat = np.concatenate
         stages = self.stages
-        rows = stage_rows(stages)
-        if rows is not None:  # the stages' arrays are rows of one block: taken at once
+        found = stage_rows(stages)
+        if found is not None:  # the stages' arrays are rows of one block: taken at once
+            rows = found.stages
             starts, ends = rows.time[:, :-1].reshape(-1), rows.time[:, 1:].reshape(-1)
             block = np.empty((5, *rows.omega.shape))
             block[0], block[1], block[2] = rows.delta[:, :-1], rows.direction, rows.omega

@@ -84,6 +84,7 @@ from impactcli.summary import (
     ADHESIVE_SUMMARY_KEYS,
     ELASTIC_SUMMARY_KEYS,
     PLASTIC_SUMMARY_KEYS,
+    elastic_keys,
     impact_summary,
     plastic_summary,
 )
@@ -728,29 +729,11 @@ def _summary_of_floats(
     v1, v2 = float(result.v1), float(result.v2)
     m1, m2 = result.sphere1.total_mass, result.sphere2.total_mass
     m = 1.0 / (1.0 / m1 + 1.0 / m2)
-    r1, r2 = m / m1, m / m2
-    _, (f1, f2), (p1, p2) = result._shares()
-    v0, t_c = v1 + v2, contact_time
-    summary = {
-        "contact_time": t_c,
-        "delta_max": delta_max,
-        "force_max": force_max,
-        "t_max": t_max,
-        "v_cp": r2 * v1 - r1 * v2,
-        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_res),
-        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_res),
-        "v1_final": v1 - r1 * (1.0 + restitution) * v0,
-        "v2_final": v2 - r2 * (1.0 + restitution) * v0,
-        "delta1_max": f1 * delta_max,
-        "delta2_max": f2 * delta_max,
-        "restitution": restitution,
-        "effective_mass": m,
-        "effective_radius": r,
-        "effective_modulus": e,
-    }
-    if permanent:
-        summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
-        summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
+    _, fractions, shares = result._shares()
+    summary = elastic_keys(
+        (v1, v2), (m / m1, m / m2), fractions, shares if permanent else None, contact_time,
+        t_max, delta_max, force_max, delta_res, delta_res, restitution, (m, r, e),
+    )  # fmt: skip
     sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
     if sy1 is not None or sy2 is not None:  # the weaker sphere's
         fy1, fy2 = first_yield_velocities_of(result, m, r, e)

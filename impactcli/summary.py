@@ -16,7 +16,7 @@ Examples
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -31,6 +31,7 @@ __all__ = [
     "ADHESIVE_SUMMARY_KEYS",
     "ELASTIC_SUMMARY_KEYS",
     "PLASTIC_SUMMARY_KEYS",
+    "elastic_keys",
     "impact_summary",
     "plastic_summary",
 ]
@@ -123,17 +124,64 @@ def impact_summary(
     m = pairs.m
     r1, r2 = m / pairs.mass1, m / pairs.mass2
     f1, f2 = fractions
-    v0 = v1 + v2
     t_c = np.asarray(contact_time, dtype=float)
-    delta_max = np.asarray(plan.delta_max, dtype=float)
-    delta_res = np.asarray(plan.delta_res, dtype=float)
-    delta_end = np.asarray(plan.delta_end, dtype=float)  # delta_res, or where it parts
-    restitution = np.asarray(plan.restitution, dtype=float)
+    summary = elastic_keys(
+        (v1, v2), (r1, r2), (f1, f2), permanent, t_c, np.asarray(t_max, dtype=float),
+        np.asarray(plan.delta_max, dtype=float), np.asarray(plan.force_max, dtype=float),
+        np.asarray(plan.delta_res, dtype=float),
+        np.asarray(plan.delta_end, dtype=float),  # delta_res, or where it parts
+        np.asarray(plan.restitution, dtype=float), (m, pairs.radius, pairs.modulus),
+    )  # fmt: skip
+    summary["first_yield_velocity"] = first_yield_velocity(
+        m, pairs.radius, pairs.modulus, pairs.sigma_y
+    )
+    return summary
+
+
+def elastic_keys(
+    velocities: tuple[ArrayLike, ArrayLike],
+    ratios: tuple[ArrayLike, ArrayLike],
+    fractions: tuple[ArrayLike, ArrayLike],
+    permanent: tuple[ArrayLike, ArrayLike] | None,
+    contact_time: ArrayLike,
+    t_max: ArrayLike,
+    delta_max: ArrayLike,
+    force_max: ArrayLike,
+    delta_res: ArrayLike,
+    delta_end: ArrayLike,
+    restitution: ArrayLike,
+    effective: tuple[ArrayLike, ArrayLike, ArrayLike],
+) -> dict[str, Any]:
+    """:data:`ELASTIC_SUMMARY_KEYS` but the first-yield velocity, by eq. 12a,b: the one
+    set of operations of :func:`impact_summary` (arrays) and of one impact on floats
+    (:mod:`impactcli.impact`), whichever they are given.
+
+    Parameters
+    ----------
+    velocities : V1, V2, [m/s]
+    ratios : m/m_1, m/m_2, [-]
+    fractions : delta_i / delta of each sphere, [-]
+    permanent : shares p_i of the permanent indentation, or None (``fractions``)
+    contact_time, t_max : FILM's (or the integration's) times, [s]
+    delta_max, force_max, delta_res, restitution : the closed forms, [m], [N], [m], [-]
+    delta_end : the indentation at separation, [m]
+    effective : m [kg], R [m], E* [Pa]
+
+    Examples
+    --------
+    >>> keys = elastic_keys((0.25, 0.75), (0.5, 0.5), (0.5, 0.5), None, 2e-5, 1e-5,
+    ...                     1e-5, 1e3, 0.0, 0.0, 1.0, (1.0, 0.01, 1e11))
+    >>> keys["v1_final"], keys["d1_final"]
+    (-0.75, -5e-06)
+    """
+    (v1, v2), (r1, r2), (f1, f2) = velocities, ratios, fractions
+    v0, t_c = v1 + v2, contact_time
+    m, radius, modulus = effective
     summary = {
         "contact_time": t_c,
         "delta_max": delta_max,
-        "force_max": np.asarray(plan.force_max, dtype=float),
-        "t_max": np.asarray(t_max, dtype=float),
+        "force_max": force_max,
+        "t_max": t_max,
         "v_cp": r2 * v1 - r1 * v2,
         "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_end),
         "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_end),
@@ -143,16 +191,13 @@ def impact_summary(
         "delta2_max": f2 * delta_max,
         "restitution": restitution,
         "effective_mass": m,
-        "effective_radius": pairs.radius,
-        "effective_modulus": pairs.modulus,
+        "effective_radius": radius,
+        "effective_modulus": modulus,
     }
     if permanent is not None:
         p1, p2 = permanent
         summary["delta1_max"] = f1 * (delta_max - delta_res) + p1 * delta_res
         summary["delta2_max"] = f2 * (delta_max - delta_res) + p2 * delta_res
-    summary["first_yield_velocity"] = first_yield_velocity(
-        m, pairs.radius, pairs.modulus, pairs.sigma_y
-    )
     return summary
 
 

@@ -174,5 +174,6 @@ def test_one_pass_rows_give_what_the_stages_give_one_by_one(law):
         assert np.array_equal(a, b)
     work = [law.work(stage.delta[0], stage.delta) for law, stage in zip(laws, alone)]
     assert np.array_equal(stage_rows(staged.stages).work, np.array(work))
+    assert np.array_equal(stage_rows(staged.stages).stages.time, np.array([s.time for s in alone]))
     delta, _, segments = ours.evaluate_segments(t)
     assert np.array_equal(staged.contact_work(t, delta, segments), staged.contact_work(t))
