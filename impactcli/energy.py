@@ -239,7 +239,7 @@ def film_work_table(stages, laws) -> tuple[NDArray, NDArray, NDArray, NDArray, f
     for k, (stage, law) in enumerate(zip(stages, laws)):
         a = stage.delta[0]
         exact = law.work(a, stage.delta) if rows is None else rows.work[k]
-        work = base + np.reshape(exact, -1)
+        work = base + np.asarray(exact).reshape(-1)
         node_work.append(work[:-1])
         deltas.append(stage.delta[:-1])
         stiff.append(stage.stiffness)
@@ -265,9 +265,9 @@ def loading_work(laws, bounds, delta: ArrayLike) -> NDArray:
         last = k == len(laws) - 1
         inside = delta > a if last else (delta > a) & (delta <= b)
         if inside.any():
-            work[inside] = done + np.reshape(law.work(a, delta[inside]), -1)
+            work[inside] = done + np.asarray(law.work(a, delta[inside])).reshape(-1)
         if not last:
-            done += float(np.reshape(law.work(a, b), -1)[0])
+            done += float(np.asarray(law.work(a, b)).reshape(-1)[0])
     return work
 
 
@@ -367,7 +367,7 @@ def plan_energy_constants(
 
 def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
-    return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
+    return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 
 def energy_columns(

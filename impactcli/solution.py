@@ -144,7 +144,7 @@ def made_at_once(cls: type[_T], fields: dict[str, Any]) -> _T:
 
 def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
-    return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
+    return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 
 @dataclass(frozen=True)
