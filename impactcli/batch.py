@@ -54,13 +54,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.contact import ImpactPlan
 from impactcli.film import solve_stage
-from impactcli.impact import (
-    ADHESIVE_SUMMARY_KEYS,
-    DAMPED_DEFAULT_N,
-    PLASTIC_SUMMARY_KEYS,
-    impact_summary,
-    plastic_summary,
-)
 from impactcli.laws.registry import (
     DAMPING_LAWS,
     DEFAULT_LAW,
@@ -70,12 +63,19 @@ from impactcli.laws.registry import (
 )
 from impactcli.limits import (
     DAMPED_BLOCK,
+    DAMPED_DEFAULT_N,
     DAMPED_TABLE_ROWS,
     FILM_BLOCK,
     MAX_SEGMENTS,
     check_size,
 )
 from impactcli.pairs import SpherePairs, Split
+from impactcli.summary import (
+    ADHESIVE_SUMMARY_KEYS,
+    PLASTIC_SUMMARY_KEYS,
+    impact_summary,
+    plastic_summary,
+)
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     Problems,
@@ -544,11 +544,9 @@ def law_stage_times(
     :func:`plastic_stage_times`; a plan of ``linear`` stages alone (Walton & Braun's)
     through :func:`linear_stage_times`; a plan whose stage laws time their stages
     (``stage_times``: a linear tabulated curve) by theirs. Any other plan is solved by
-    :func:`impactcli.impact.solve_plan` (callers pass blocks of about :data:`FILM_BLOCK`
+    :func:`impactcli.solution.solve_plan` (callers pass blocks of about :data:`FILM_BLOCK`
     values).
     """
-    from impactcli.impact import solve_plan
-
     own = None if plan.timing is None else plan.timing(n)
     if own is not None:
         return own
@@ -565,6 +563,8 @@ def law_stage_times(
     times = _declared_stage_times(plan, m, n)
     if times is not None:
         return times
+    from impactcli.solution import solve_plan
+
     stages = solve_plan(plan, m, n)
     return stages[plan.turning].end_time, stages[-1].end_time
 

@@ -184,6 +184,7 @@ def film_contact_work(
     film: Any = None,
     delta: ArrayLike | None = None,
     table: tuple | None = None,
+    segments: tuple | None = None,
 ) -> NDArray:
     """Work done by the contact force up to times ``t`` along a FILM solution, [J].
 
@@ -207,6 +208,9 @@ def film_contact_work(
     film : the :class:`~impactcli.film.FilmSolution` of ``stages``, if the caller has it
     delta : its indentation at ``t`` [m] (``film.evaluate(t)``), if the caller has it
     table : :func:`film_work_table` of ``stages`` and ``laws``, if the caller has it
+    segments : the segment of each time and where it is the end of the contact
+        (:meth:`~impactcli.film.FilmSolution.evaluate_segments`, with ``delta``), if the
+        caller has them
     """
     t = np.asarray(t, dtype=float)
     table = film_work_table(stages, laws) if table is None else table
@@ -217,7 +221,7 @@ def film_contact_work(
         film = FilmSolution(tuple(stages))
     if delta is None:
         delta, _ = film.evaluate(t)
-    _, seg, end = film.segment_of(t)
+    seg, end = film.segment_of(t)[1:] if segments is None else segments
     d_r, c = deltas[seg], offset[seg]
     work = node_work[seg] + 0.5 * stiff[seg] * (delta - d_r) * (delta + d_r - 2.0 * c)
     return np.where(end, base, work)
@@ -227,11 +231,15 @@ def film_work_table(stages, laws) -> tuple[NDArray, NDArray, NDArray, NDArray, f
     """The segments of a FILM solution for :func:`film_contact_work`, across its stages:
     the exact work up to each segment's start node [J], its start node delta_r [m], its
     chord stiffness K_rs [N/m] and offset C_rs [m], and the work up to separation [J]."""
+    from impactcli.film import stage_rows
+
+    rows = stage_rows(stages)  # the stages solved in one pass: their laws' work already
     base = 0.0
     node_work, deltas, stiff, offset = [], [], [], []
-    for stage, law in zip(stages, laws):
+    for k, (stage, law) in enumerate(zip(stages, laws)):
         a = stage.delta[0]
-        work = base + np.reshape(law.work(a, stage.delta), -1)
+        exact = law.work(a, stage.delta) if rows is None else rows.work[k]
+        work = base + np.asarray(exact).reshape(-1)
         node_work.append(work[:-1])
         deltas.append(stage.delta[:-1])
         stiff.append(stage.stiffness)
@@ -257,9 +265,9 @@ def loading_work(laws, bounds, delta: ArrayLike) -> NDArray:
         last = k == len(laws) - 1
         inside = delta > a if last else (delta > a) & (delta <= b)
         if inside.any():
-            work[inside] = done + np.reshape(law.work(a, delta[inside]), -1)
+            work[inside] = done + np.asarray(law.work(a, delta[inside])).reshape(-1)
         if not last:
-            done += float(np.reshape(law.work(a, b), -1)[0])
+            done += float(np.asarray(law.work(a, b)).reshape(-1)[0])
     return work
 
 
@@ -359,7 +367,7 @@ def plan_energy_constants(
 
 def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
-    return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
+    return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 
 def energy_columns(
@@ -376,7 +384,8 @@ def energy_columns(
     Parameters
     ----------
     masses : m_1, m_2, [kg]
-    velocities : d_1', d_2' at each time, [m/s], toward the other sphere
+    velocities : d_1', d_2' at each time, [m/s], toward the other sphere (two arrays of one
+        shape, or the rows of one array)
     strain, dissipated : the stored strain energy and the dissipated energy, [J]
     shares : ``(elastic, permanent)`` fraction pairs (:func:`sphere_shares`)
 
@@ -386,15 +395,25 @@ def energy_columns(
         The columns of :func:`energy_history`, [J].
     """
     (e1, e2), (p1, p2) = shares
+    m1, m2 = masses
+    column = (2,) + (1,) * np.ndim(strain)  # a row per sphere: both at once
+    strain1, strain2 = np.reshape((e1, e2), column) * strain
+    dissipated1, dissipated2 = np.reshape((p1, p2), column) * dissipated
+    v = np.asarray(velocities, dtype=float)
+    finite = type(m1) is float and type(m2) is float and math.isfinite(m1) and math.isfinite(m2)
+    if finite and v.shape == column[:1] + np.shape(strain):  # as kinetic_energy, at once
+        ke1, ke2 = 0.5 * np.reshape((m1, m2), column) * v * v
+    else:
+        ke1, ke2 = kinetic_energy(m1, velocities[0]), kinetic_energy(m2, velocities[1])
     return {
-        "ke1": kinetic_energy(masses[0], velocities[0]),
-        "ke2": kinetic_energy(masses[1], velocities[1]),
+        "ke1": ke1,
+        "ke2": ke2,
         "strain_energy": strain,
-        "strain_energy1": e1 * strain,
-        "strain_energy2": e2 * strain,
+        "strain_energy1": strain1,
+        "strain_energy2": strain2,
         "dissipated": dissipated,
-        "dissipated1": p1 * dissipated,
-        "dissipated2": p2 * dissipated,
+        "dissipated1": dissipated1,
+        "dissipated2": dissipated2,
     }
 
 

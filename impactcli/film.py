@@ -406,8 +406,10 @@ def solve_stages(
     for k in range(1, count):  # each stage starts when the previous one ends
         time[k] += time[k - 1, -1:]
     offset = nodes[:, :-1] - force_r / stiffness
-    return tuple(
-        FilmStage(
+    rows = FilmStage(nodes, velocity, time, direction, stiffness, offset, omega, x0, y0, turning)
+    solved = []
+    for k in range(count):
+        stage = FilmStage(
             delta=nodes[k],
             velocity=velocity[k],
             time=time[k],
@@ -419,8 +421,37 @@ def solve_stages(
             phase_y=y0[k],
             turning=turning[k],
         )
-        for k in range(count)
-    )
+        object.__setattr__(stage, "_rows", (rows, work, k))  # row k of the stages' arrays
+        solved.append(stage)
+    return tuple(solved)
+
+
+class StageRows(NamedTuple):
+    """The stages of one impact solved in one pass (:func:`solve_stages`) as the rows of
+    their arrays: what :class:`FilmSolution` gathers across the stages, taken at once.
+
+    Attributes
+    ----------
+    stages : the stages as one :class:`FilmStage` whose arrays have a row per stage
+    work : the exact work of each stage's law from its start to its nodes, [J] (eq. 13e)
+    """
+
+    stages: FilmStage
+    work: Array
+
+
+def stage_rows(stages: Sequence[FilmStage]) -> StageRows | None:
+    """The one-pass arrays of ``stages`` (:func:`solve_stages`) when they are every row of
+    them in order, else None (stages solved one by one, or a selection of them)."""
+    found = getattr(stages[0], "_rows", None) if stages else None
+    if found is None or found[0].delta.shape[0] != len(stages):
+        return None
+    rows, work = found[0], found[1]
+    for k, stage in enumerate(stages):
+        mine = getattr(stage, "_rows", None)
+        if mine is None or mine[0] is not rows or mine[2] != k:
+            return None
+    return StageRows(rows, work)
 
 
 def _chain_stages(
@@ -616,29 +647,39 @@ class FilmSolution:
             raise ValueError("a FILM solution needs at least one stage")
         cat = np.concatenate
         stages = self.stages
-        starts = cat([s.time[:-1] for s in stages])
+        found = stage_rows(stages)
+        if found is not None:  # the stages' arrays are rows of one block: taken at once
+            rows = found.stages
+            starts, ends = rows.time[:, :-1].reshape(-1), rows.time[:, 1:].reshape(-1)
+            block = np.empty((5, *rows.omega.shape))
+            block[0], block[1], block[2] = rows.delta[:, :-1], rows.direction, rows.omega
+            block[3], block[4] = rows.phase_x, rows.phase_y
+            segments = block.reshape(5, -1)
+            hyper = np.zeros(starts.size, dtype=bool)  # one pass: rising stages alone
+        else:
+            starts, ends = cat([s.time[:-1] for s in stages]), cat([s.time[1:] for s in stages])
+            # the segment constants of eq. 7a,b, one row each: taken at once by evaluate()
+            segments = np.empty((5, starts.size))
+            at = 0
+            for s in stages:
+                row = slice(at, at + s.n)
+                segments[0, row] = s.delta[:-1]
+                segments[1, row] = s.direction
+                segments[2, row] = s.omega
+                segments[3, row] = s.phase_x
+                segments[4, row] = s.phase_y
+                at += s.n
+            hyper = cat([np.broadcast_to(s.hyperbolic, (s.n,)) for s in stages])
         object.__setattr__(self, "_start", starts)
-        object.__setattr__(self, "_end", cat([s.time[1:] for s in stages]))
-        # the segment constants of eq. 7a,b, one row each: taken at once by evaluate()
-        segments = np.empty((5, starts.size))
-        at = 0
-        for s in stages:
-            row = slice(at, at + s.n)
-            segments[0, row] = s.delta[:-1]
-            segments[1, row] = s.direction
-            segments[2, row] = s.omega
-            segments[3, row] = s.phase_x
-            segments[4, row] = s.phase_y
-            at += s.n
+        object.__setattr__(self, "_end", ends)
         object.__setattr__(self, "_segments", segments)
         object.__setattr__(self, "_delta", segments[0])
         object.__setattr__(self, "_direction", segments[1])
         object.__setattr__(self, "_omega", segments[2])
         object.__setattr__(self, "_x", segments[3])
         object.__setattr__(self, "_y", segments[4])
-        object.__setattr__(
-            self, "_hyper", cat([np.broadcast_to(s.hyperbolic, (s.n,)) for s in stages])
-        )
+        object.__setattr__(self, "_hyper", hyper)
+        object.__setattr__(self, "_any_hyper", bool(hyper.any()))
         first, last = stages[0], stages[-1]
         object.__setattr__(self, "_t0", float(first.time[0]))
         object.__setattr__(self, "_t1", float(last.time[-1]))
@@ -671,13 +712,29 @@ class FilmSolution:
         At a node time (to rounding) it gives the node's state (delta_r and the exact
         velocity of eq. 13e), the last node's at the end, not the oscillator that arrives.
         """
+        delta, delta_dot, _ = self._evaluate(t, keep=False)
+        return delta, delta_dot
+
+    def evaluate_segments(
+        self, t: ArrayLike
+    ) -> tuple[Array, Array, tuple[NDArray[np.intp], NDArray[np.bool_]]]:
+        """:meth:`evaluate` at times ``t`` [s], and the segment each time falls in and where
+        it is the end of the contact (:meth:`segment_of`), for the contact work at the
+        same times (:func:`impactcli.energy.film_contact_work`)."""
+        return self._evaluate(t, keep=True)  # type: ignore[return-value]
+
+    def _evaluate(
+        self, t: ArrayLike, keep: bool
+    ) -> tuple[Array, Array, tuple[NDArray[np.intp], NDArray[np.bool_]] | None]:
+        """:meth:`evaluate`, and (``keep``) the segments of :meth:`evaluate_segments`."""
         t, seg, end = self.segment_of(t)
+        found = (seg, end) if keep else None
         start = self._start[seg]  # type: ignore[attr-defined]
         tau = np.minimum(np.maximum(t - start, 0.0), self._end[seg] - start)  # type: ignore[attr-defined]
         delta_r, direction, omega, x, y = self._segments[:, seg]  # type: ignore[attr-defined]
         args = (tau, delta_r, direction, omega, x, y)
         delta, delta_dot = _oscillator(*args)
-        if self._hyper.any():  # type: ignore[attr-defined]  # segments of negative chord stiffness
+        if self._any_hyper:  # type: ignore[attr-defined]  # segments of negative chord stiffness
             hyper = self._hyper[seg]  # type: ignore[attr-defined]
             with np.errstate(over="ignore", invalid="ignore"):
                 h_delta, h_rate = _hyperbolic_oscillator(*args)
@@ -686,7 +743,8 @@ class FilmSolution:
         # the gathered segment data: no longer held (peak memory)
         del args, tau, seg, delta_r, direction, omega, x, y
         final_delta, final_velocity = self._final  # type: ignore[attr-defined]
-        return np.where(end, final_delta, delta), np.where(end, final_velocity, delta_dot)
+        delta = np.where(end, final_delta, delta)
+        return delta, np.where(end, final_velocity, delta_dot), found
 
 
 _EPS = float(np.finfo(float).eps)

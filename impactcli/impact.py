@@ -49,11 +49,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.contact import (
-    ImpactPlan,
-    effective_mass,
-    first_yield_velocity,
-)
+from impactcli.contact import ImpactPlan, effective_mass
 from impactcli.errors import InputError
 from impactcli.film import FilmSolution
 from impactcli.laws.registry import DEFAULT_LAW, DEFAULT_LAW_PARAMETERS
@@ -81,7 +77,16 @@ from impactcli.solution import (
     StagedSolution,
     history_solution,
     history_times,
+    made_at_once,
     solve_plan,
+)
+from impactcli.summary import (
+    ADHESIVE_SUMMARY_KEYS,
+    ELASTIC_SUMMARY_KEYS,
+    PLASTIC_SUMMARY_KEYS,
+    elastic_keys,
+    impact_summary,
+    plastic_summary,
 )
 from impactcli.validation import (
     SMALL_DEFORMATION_LIMIT,
@@ -175,33 +180,6 @@ ENERGY_SUMMARY_KEYS: tuple[str, ...] = (
     "first_yield_velocity2",
 )
 
-ELASTIC_SUMMARY_KEYS: tuple[str, ...] = (
-    "contact_time",
-    "delta_max",
-    "force_max",
-    "t_max",
-    "v_cp",
-    "d1_final",
-    "d2_final",
-    "v1_final",
-    "v2_final",
-    "delta1_max",
-    "delta2_max",
-    "restitution",
-    "effective_mass",
-    "effective_radius",
-    "effective_modulus",
-    "first_yield_velocity",
-)
-
-PLASTIC_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
-    "delta_y",
-    "yield_velocity",
-    "delta_res",
-    "delta1_res",
-    "delta2_res",
-    "energy_dissipated",
-)
 
 Method = Literal["film", "table", "ode"]
 
@@ -266,6 +244,29 @@ class ImpactResult:
     #: first-yield velocity of an elastic impact, a contact radius beyond 0.1 R, the mass
     #: split between different materials.
     warnings: tuple[str, ...] = ()
+
+    @classmethod
+    def _of(
+        cls,
+        sphere1: Sphere,
+        sphere2: Sphere,
+        v1: float,
+        v2: float,
+        solution: ContactSolution,
+        n: int,
+        split: Split,
+        model: str,
+        contact: PairModel,
+        method: Method,
+    ) -> ImpactResult:
+        """The result as ``ImpactResult(...)`` makes it (an empty summary, no warnings),
+        its fields set at once rather than one by one (a frozen dataclass's ``__init__``):
+        :func:`solve_impact`'s, once per impact."""
+        return made_at_once(
+            cls, {"sphere1": sphere1, "sphere2": sphere2, "v1": v1, "v2": v2,
+                  "solution": solution, "n": n, "split": split, "model": model,
+                  "contact": contact, "summary": {}, "method": method, "warnings": ()},
+        )  # fmt: skip
 
     # -- derived constants -------------------------------------------------------------
     @property
@@ -417,13 +418,16 @@ class ImpactResult:
         t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
         t = np.minimum(np.maximum(t, 0.0), float(self._solution(method).end_time))  # as delta(t)
         source = history_solution(self._solution(method))
+        own = method != "table" and isinstance(source, StagedSolution)  # W(t) from delta
+        segments = None
         if method == "table":
             delta, delta_dot = self._table_state(t)
+        elif own:  # the segments of the times, for the contact work too
+            delta, delta_dot, segments = source.evaluate_segments(t)
         else:
             delta, delta_dot = source.evaluate(t)
         force = source.force(t, delta, delta_dot)
-        own = method != "table" and isinstance(source, StagedSolution)  # W(t) from delta
-        return self._columns(t, delta, delta_dot, force, source, own)
+        return self._columns(t, delta, delta_dot, force, source, own, segments)
 
     def energy(
         self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None
@@ -499,33 +503,38 @@ class ImpactResult:
         force: NDArray,
         source: ContactSolution,
         own: bool = False,
+        segments: tuple | None = None,
     ) -> dict[str, NDArray]:
         """Every history column from delta(t) and delta'(t) by eq. 12a,b and eq. 4, and the
         energy of ``source`` (:meth:`~impactcli.solution.ContactSolution.energy`; ``own``:
-        delta is the FILM stages' own, :class:`~impactcli.solution.StagedSolution`)."""
+        delta is the FILM stages' own, :class:`~impactcli.solution.StagedSolution`, at the
+        ``segments`` of :meth:`~impactcli.film.FilmSolution.evaluate_segments`)."""
         from impactcli.energy import energy_columns
 
         v0 = self.impact_velocity
-        r1, r2 = self.mass_ratios
-        e1, e2 = self.split_fractions
-        p1_, p2_ = self.permanent_fractions
-        d1 = self.v1 * t - r1 * (v0 * t - delta)
-        d2 = self.v2 * t - r2 * (v0 * t - delta)
-        v1 = self.v1 - r1 * (v0 - delta_dot)
-        v2 = self.v2 - r2 * (v0 - delta_dot)
+        (r1, r2), (e1, e2), (p1_, p2_) = self._shares()
+        # both spheres at once, a row each (the same operations as one sphere at a time)
+        axes = np.ndim(t)
+        velocity, ratio = _pair(self.v1, self.v2, axes), _pair(r1, r2, axes)
+        d1, d2 = velocity * t - ratio * (v0 * t - delta)
+        v12 = velocity - ratio * (v0 - delta_dot)
+        v1, v2 = v12
         with np.errstate(invalid="ignore"):
-            p1 = self.m1 * v1
-            p2 = -self.m2 * v2
+            p1, p2 = _pair(self.m1, -self.m2, axes) * v12
         if (e1, e2) == (p1_, p2_):
-            delta1, delta2 = e1 * delta, e2 * delta
-            delta1_dot, delta2_dot = e1 * delta_dot, e2 * delta_dot
+            share = _pair(e1, e2, axes)
+            delta1, delta2 = share * delta
+            delta1_dot, delta2_dot = share * delta_dot
         else:  # split yield: delta_i = e_i (delta - delta_p) + p_i delta_p
             dp = self.permanent_indentation(t, delta, source)
             dp_dot = self._permanent_rate(t, delta, delta_dot, source)
             delta1, delta2 = e1 * (delta - dp) + p1_ * dp, e2 * (delta - dp) + p2_ * dp
             delta1_dot = e1 * (delta_dot - dp_dot) + p1_ * dp_dot
             delta2_dot = e2 * (delta_dot - dp_dot) + p2_ * dp_dot
-        strain, dissipated = source.energy(t, delta, own=True) if own else source.energy(t, delta)
+        if own:
+            strain, dissipated = source.energy(t, delta, own=True, segments=segments)
+        else:
+            strain, dissipated = source.energy(t, delta)
         return {
             "t": t,
             "delta": delta,
@@ -542,7 +551,7 @@ class ImpactResult:
             "p1": p1,
             "p2": p2,
             **energy_columns(
-                (self.m1, self.m2), (v1, v2), strain, dissipated, self.energy_shares
+                (self.m1, self.m2), v12, strain, dissipated, self.energy_shares
             ),
         }
 
@@ -565,6 +574,12 @@ def _effective(a: float, b: float) -> float:
         return 1.0 / (1.0 / a + 1.0 / b)
     except ZeroDivisionError:
         return float(effective_mass(a, b))
+
+
+def _pair(first: float, second: float, axes: int = 1) -> NDArray:
+    """Two numbers, one per sphere, as a column (shape (2, 1, ...), ``axes`` ones) that
+    broadcasts against a history's times of ``axes`` dimensions: a row per sphere."""
+    return np.reshape(np.array((first, second), dtype=float), (2,) + (1,) * axes)
 
 
 def _nan(value: float | None) -> float:
@@ -642,88 +657,6 @@ def _plain_pair(sphere1: Sphere, sphere2: Sphere, v1: object, v2: object) -> boo
     return 0.0 < m < math.inf and 0.0 < r < math.inf
 
 
-def impact_summary(
-    pairs: SpherePairs,
-    plan: ImpactPlan,
-    t_max: ArrayLike,
-    contact_time: ArrayLike,
-    fractions: tuple[ArrayLike, ArrayLike],
-    permanent: tuple[ArrayLike, ArrayLike] | None = None,
-) -> dict[str, NDArray]:
-    """The summary of impacts (:data:`ELASTIC_SUMMARY_KEYS`), SI, from their plans and times.
-
-    Shared by :func:`elastic_impact` (one pair) and :mod:`impactcli.batch` (one entry per
-    collision); every argument broadcasts.
-
-    Parameters
-    ----------
-    pairs : the spheres and their velocities toward each other
-        (:class:`~impactcli.pairs.SpherePairs`: masses [kg], ``inf`` for a fixed sphere;
-        effective radius R [m] and modulus E* [Pa]; sigma_y [Pa] of the first-yield
-        velocity, NaN where unknown)
-    plan : closed-form values ``delta_max`` [m], ``force_max`` [N], ``delta_res`` [m] and
-        ``restitution`` [-] (an :class:`~impactcli.contact.ImpactPlan`)
-    t_max : time of maximum indentation (end of the last loading stage), [s]
-    contact_time : time of separation, [s]
-    fractions : delta_i / delta of each sphere (:func:`split_fractions`), [-]
-    permanent : shares p_i of the permanent indentation (``split="yield"``); default
-        ``fractions``: then delta_i_max = f_i delta_max, else
-        e_i (delta_max - delta_res) + p_i delta_res
-
-    Notes
-    -----
-    At separation delta = delta_res (or the plan's ``delta_end``: where an adhesive
-    contact parts) and delta' = -e V0 (exact node values, eq. 13e), so by eq. 12:
-    d_i = V_i t_c - (m/m_i)(V0 t_c - delta_res), d_i' = V_i - (m/m_i)(1 + e) V0.
-    """
-    v1, v2 = pairs.v1, pairs.v2
-    m = pairs.m
-    r1, r2 = m / pairs.mass1, m / pairs.mass2
-    t_c = np.asarray(contact_time, dtype=float)
-    delta_max = np.asarray(plan.delta_max, dtype=float)
-    delta_res = np.asarray(plan.delta_res, dtype=float)
-    delta_end = np.asarray(plan.delta_end, dtype=float)  # delta_res, or where it parts
-    restitution = np.asarray(plan.restitution, dtype=float)
-    summary = _summary_values(
-        (v1, v2),
-        (m, r1, r2),
-        (np.asarray(t_max, dtype=float), t_c),
-        (delta_max, np.asarray(plan.force_max, dtype=float), delta_end, restitution),
-        _sphere_maxima(fractions, permanent, delta_max, delta_res),
-        (pairs.radius, pairs.modulus),
-    )
-    summary["first_yield_velocity"] = first_yield_velocity(
-        m, pairs.radius, pairs.modulus, pairs.sigma_y
-    )
-    return summary
-
-
-def plastic_summary(
-    contact: NormalContact,
-    mass: ArrayLike,
-    impact_velocity: ArrayLike,
-    plan: ImpactPlan,
-    fractions: tuple[ArrayLike, ArrayLike],
-) -> dict[str, NDArray]:
-    """The elastoplastic keys of :data:`PLASTIC_SUMMARY_KEYS` beyond the elastic ones, SI.
-
-    delta_y and V_y of the contact (docs/method.md §7), the residual indentation of the pair and
-    of each sphere, and the energy dissipated (1/2) m V0^2 (1 - e^2). Arrays broadcast.
-    """
-    m, v0 = np.asarray(mass, dtype=float), np.asarray(impact_velocity, dtype=float)
-    f1, f2 = fractions
-    delta_res = np.asarray(plan.delta_res, dtype=float)
-    restitution = np.asarray(plan.restitution, dtype=float)
-    return {
-        "delta_y": contact.yield_indentation,
-        "yield_velocity": contact.yield_velocity(m),
-        "delta_res": delta_res,
-        "delta1_res": f1 * delta_res,
-        "delta2_res": f2 * delta_res,
-        "energy_dissipated": 0.5 * m * v0**2 * (1.0 - restitution**2),
-    }
-
-
 def _summarise(
     result: ImpactResult,
     plan: ImpactPlan,
@@ -766,67 +699,13 @@ def _solution_summary(result: ImpactResult, solution: ContactSolution) -> dict[s
     try:  # on floats: impact_summary's operations, one impact
         if quantities is None:
             values, times = tuple(map(_float, values)), tuple(map(_float, times))
-        out = _summary_of_floats(result, pair.radius, pair.modulus, values, times, pair.permanent)
+        out = _summary_of_floats(result, pair.radius, pair.modulus, *values, *times,
+                                 pair.permanent)  # fmt: skip
     except (ArithmeticError, TypeError, ValueError):
         plan = ImpactPlan((), *(np.asarray(x) for x in values))
         out = _summarise(result, plan, solution.t_max, solution.end_time, permanent=pair.permanent)
     out.update(pair.summary(result, solution))
     return out
-
-
-def _sphere_maxima(
-    fractions: tuple[Any, Any],
-    permanent: tuple[Any, Any] | None,
-    delta_max: Any,
-    delta_res: Any,
-) -> tuple[Any, Any]:
-    """Each sphere's maximum indentation delta_i_max, [m]: f_i delta_max, or with the shares
-    p_i of the permanent indentation e_i (delta_max - delta_res) + p_i delta_res (floats or
-    arrays)."""
-    f1, f2 = fractions
-    if permanent is None:
-        return f1 * delta_max, f2 * delta_max
-    p1, p2 = permanent
-    elastic = delta_max - delta_res
-    return f1 * elastic + p1 * delta_res, f2 * elastic + p2 * delta_res
-
-
-def _summary_values(
-    velocities: tuple[Any, Any],
-    masses: tuple[Any, Any, Any],
-    times: tuple[Any, Any],
-    plan: tuple[Any, Any, Any, Any],
-    maxima: tuple[Any, Any],
-    effective: tuple[Any, Any],
-) -> dict[str, Any]:
-    """The summary of :func:`impact_summary` but the first-yield velocity (floats or arrays):
-    ``velocities`` V_1, V_2 [m/s]; ``masses`` m [kg] and m/m_1, m/m_2 [-]; ``times`` t_max and
-    t_c [s]; ``plan`` delta_max [m], F_max [N], delta at separation [m] and e [-]; ``maxima``
-    delta_1_max, delta_2_max [m] (:func:`_sphere_maxima`); ``effective`` R [m] and E* [Pa].
-    The motion after separation is eq. 12 at delta', delta there (see :func:`impact_summary`).
-    """
-    v1, v2 = velocities
-    m, r1, r2 = masses
-    t_max, t_c = times
-    delta_max, force_max, delta_end, restitution = plan
-    v0 = v1 + v2
-    return {
-        "contact_time": t_c,
-        "delta_max": delta_max,
-        "force_max": force_max,
-        "t_max": t_max,
-        "v_cp": r2 * v1 - r1 * v2,
-        "d1_final": v1 * t_c - r1 * (v0 * t_c - delta_end),
-        "d2_final": v2 * t_c - r2 * (v0 * t_c - delta_end),
-        "v1_final": v1 - r1 * (1.0 + restitution) * v0,
-        "v2_final": v2 - r2 * (1.0 + restitution) * v0,
-        "delta1_max": maxima[0],
-        "delta2_max": maxima[1],
-        "restitution": restitution,
-        "effective_mass": m,
-        "effective_radius": effective[0],
-        "effective_modulus": effective[1],
-    }
 
 
 def _float(value: ArrayLike) -> float:
@@ -838,20 +717,23 @@ def _summary_of_floats(
     result: ImpactResult,
     r: float,
     e: float,
-    values: tuple[float, float, float, float],
-    times: tuple[float, float],
+    delta_max: float,
+    force_max: float,
+    delta_res: float,
+    restitution: float,
+    t_max: float,
+    contact_time: float,
     permanent: bool,
 ) -> dict[str, float]:
-    """:func:`_summarise` on floats (the operations of :func:`impact_summary`, in order):
-    ``values`` delta_max [m], F_max [N], delta_res [m] and e [-]; ``times`` t_max and t_c
-    [s]; ``r``, ``e`` the effective radius [m] and modulus [Pa]."""
+    """:func:`_summarise` on floats (the operations of :func:`impact_summary`, in order)."""
     v1, v2 = float(result.v1), float(result.v2)
-    m1, m2 = result.m1, result.m2
+    m1, m2 = result.sphere1.total_mass, result.sphere2.total_mass
     m = 1.0 / (1.0 / m1 + 1.0 / m2)
-    r1, r2 = m / m1, m / m2
-    permanent_fractions = result.permanent_fractions if permanent else None
-    maxima = _sphere_maxima(result.split_fractions, permanent_fractions, values[0], values[2])
-    summary = _summary_values((v1, v2), (m, r1, r2), times, values, maxima, (r, e))
+    _, fractions, shares = result._shares()
+    summary = elastic_keys(
+        (v1, v2), (m / m1, m / m2), fractions, shares if permanent else None, contact_time,
+        t_max, delta_max, force_max, delta_res, delta_res, restitution, (m, r, e),
+    )  # fmt: skip
     sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
     if sy1 is not None or sy2 is not None:  # the weaker sphere's
         fy1, fy2 = first_yield_velocities_of(result, m, r, e)
@@ -944,19 +826,17 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
         raise InputError(f"impact_warnings takes an ImpactResult, got {type(result).__name__}")
     s, v0 = result.summary, result.impact_velocity
     s1, s2 = result.sphere1, result.sphere2
-    found = [
-        first_yield_warning(v0, s["first_yield_velocity"])
-        if first_yield and "first_yield_velocity" in s
-        else None,
-        None
-        if _small_contact(s["delta_max"], s["effective_radius"])
-        else contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),
-        None
-        if result.split != "mass" or _same_material(s1, s2)
-        else mass_split_warning(
-            result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
-        ),
-    ]
+    found = ()
+    if first_yield and "first_yield_velocity" in s:
+        found += (first_yield_warning(v0, s["first_yield_velocity"]),)
+    if not _small_contact(s["delta_max"], s["effective_radius"]):
+        found += (contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),)
+    if result.split == "mass" and not _same_material(s1, s2):
+        found += (
+            mass_split_warning(
+                result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
+            ),
+        )
     return tuple(message for message in found if message)
 
 
@@ -1056,10 +936,9 @@ def solve_impact(
     _validate(sphere1, sphere2, v1, v2, n, split, method)
     pair = model.for_spheres(sphere1, sphere2)
     solution = pair.solve(v1 + v2, n)
-    result = ImpactResult(
-        sphere1, sphere2, v1, v2, solution, int(n), split, pair.kind(solution), pair,
-        method=method,
-    )  # fmt: skip
+    result = ImpactResult._of(
+        sphere1, sphere2, v1, v2, solution, int(n), split, pair.kind(solution), pair, method
+    )
     _check_yield_split(result)
     result.summary.update(_solution_summary(result, solution))
     if method == "ode":
@@ -1230,7 +1109,11 @@ def law_impact(
         if law_params is not None:
             raise TypeError("give law_params or the deprecated params, not both")
         law_params = params
-    model = ContactModel(law, dict(law_params or {}), yield_strength=yield_strength)
+    model = made_at_once(  # ContactModel(law, law_params, yield_strength=...), at once
+        ContactModel,
+        {"law": law, "law_params": dict(law_params or {}), "damping": None, "alpha": None,
+         "restitution": None, "separation": "overlap", "yield_strength": yield_strength},
+    )  # fmt: skip
     return solve_impact(sphere1, sphere2, v1, v2, model, n, split, method)
 
 
@@ -1240,25 +1123,6 @@ DAMPED_SUMMARY_KEYS: tuple[str, ...] = ELASTIC_SUMMARY_KEYS + (
     "alpha",
     "energy_dissipated",
     "energy_stored",
-)
-
-#: Summary keys an adhesive law (jkr, dmt, thornton-ning: ``impact laws``) adds to
-#: :data:`PLASTIC_SUMMARY_KEYS` and :data:`ENERGY_SUMMARY_KEYS`
-#: (:class:`impactcli.model.AdhesivePair`): the indentation where the contact ends [m]
-#: (in tension, < 0; or where it is captured), ``captured`` (True: the spheres do not part,
-#: e = 0, and the contact time is the time to capture, when the relative velocity first
-#: returns to zero), the sticking velocity of the pair [m/s] (the largest V0 that sticks),
-#: the pull-off force [N] and the energy the adhesion takes [J] (the work of the
-#: attraction on the way out less that on the way in; all of (1/2) m V0^2 less the plastic
-#: work when captured), shared between the spheres as the strain energy is.
-ADHESIVE_SUMMARY_KEYS: tuple[str, ...] = (
-    "delta_separation",
-    "captured",
-    "sticking_velocity",
-    "pull_off_force",
-    "energy_adhesion",
-    "energy_adhesion1",
-    "energy_adhesion2",
 )
 
 #: Columns of :meth:`ImpactResult.energy`: the time and :data:`ENERGY_COLUMNS`.

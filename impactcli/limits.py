@@ -29,6 +29,8 @@ from impactcli.errors import InputError
 
 __all__ = [
     "DAMPED_BLOCK",
+    "DAMPED_DEFAULT_N",
+    "DEFAULT_N",
     "DAMPED_TABLE_ROWS",
     "FILM_BLOCK",
     "HISTORY_BLOCK",
@@ -46,6 +48,12 @@ __all__ = [
     "check_size",
 ]
 
+#: FILM segments per stage of a normal law by default (the paper's n = 25).
+DEFAULT_N = 25
+
+#: FILM segments per stage of a damped impact by default: e and the contact time within
+#: 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
+DAMPED_DEFAULT_N = 400
 #: FILM segments per stage (``--n``): 4.6 GB at the limit (``elastoplastic``).
 MAX_SEGMENTS = 10_000_000
 #: Points of a history (``--points``): 3.5 GB at the limit.

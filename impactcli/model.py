@@ -43,8 +43,9 @@ from impactcli.laws.registry import (
     ELASTIC_LAW,
     get_law,
 )
+from impactcli.limits import DAMPED_DEFAULT_N, DEFAULT_N
 from impactcli.pairs import effective_properties, weaker_yield_strength
-from impactcli.solution import PlanSolution
+from impactcli.solution import PlanSolution, made_at_once
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     needs_yield_strength,
@@ -70,12 +71,6 @@ __all__ = [
     "solution_energy_summary",
 ]
 
-#: FILM segments per stage of a normal law by default (the paper's n = 25).
-DEFAULT_N = 25
-
-#: FILM segments per stage of a damped impact by default: e and the contact time within
-#: 1e-6 (relative) of SciPy integration of the same law (docs/damping.md).
-DAMPED_DEFAULT_N = 400
 
 
 def _positive(value: object) -> bool:
@@ -212,7 +207,7 @@ class ContactModel:
             )
             m, r, e = effective_properties(sphere1, sphere2)
             pair = AdhesivePair if spec.adhesive else LawPair
-            return pair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+            return made_at_once(pair, _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y))
         m, r, e = effective_properties(sphere1, sphere2)
         return DampedPair(self, sphere1, sphere2, m, r, e)
 
@@ -413,6 +408,24 @@ class LawPair:
         return None
 
 
+def _pair_fields(
+    model: ContactModel,
+    spec: LawSpec,
+    sphere1: Any,
+    sphere2: Any,
+    mass: float,
+    radius: float,
+    modulus: float,
+    yield_strength: float | None,
+) -> dict[str, Any]:
+    """The fields of a :class:`LawPair` by name (:func:`~impactcli.solution.made_at_once`):
+    the model, the law, the spheres, m [kg], R [m], E* [Pa] and sigma_y [Pa] or None."""
+    return {
+        "model": model, "spec": spec, "sphere1": sphere1, "sphere2": sphere2, "mass": mass,
+        "radius": radius, "modulus": modulus, "yield_strength": yield_strength,
+    }  # fmt: skip
+
+
 @dataclass(frozen=True)
 class AdhesivePair(LawPair):
     """An adhesive law of the registry (:attr:`~impactcli.laws.base.LawSpec.adhesive`) for
@@ -485,7 +498,8 @@ class _ElasticModel(ContactModel):
         spec = get_law(ELASTIC_LAW)
         sigma_y = weaker_yield_strength(sphere1, sphere2)
         m, r, e = effective_properties(sphere1, sphere2)
-        return _ElasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+        fields = _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+        return made_at_once(_ElasticPair, fields)
 
 
 @dataclass(frozen=True)
@@ -526,7 +540,8 @@ class _ElastoplasticModel(ContactModel):
             raise ValueError(f"the pressure factor must be positive, got {factor}")
         m, r, e = effective_properties(sphere1, sphere2)
         spec = get_law(self.law)
-        return _ElastoplasticPair(self, spec, sphere1, sphere2, m, r, e, sigma_y, factor)
+        fields = _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y)
+        return made_at_once(_ElastoplasticPair, {**fields, "pressure_factor": factor})
 
 
 @dataclass(frozen=True)
@@ -771,10 +786,12 @@ def first_yield_velocities_of(
     found = result.__dict__.get("_first_yield_")
     if found is None:
         sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
-        found = (
-            math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1),
-            math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2),
-        )
+        fy1 = math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1)
+        if sy2 == sy1 and sy1 is not None:  # the same strength: the same velocity
+            found = (fy1, fy1)
+        else:
+            fy2 = math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2)
+            found = (fy1, fy2)
         result.__dict__["_first_yield_"] = found
     return found
 

@@ -32,9 +32,9 @@ from impactcli.batch import (
 )
 from impactcli.design import first_yield_velocities
 from impactcli.energy import permanent_fractions
-from impactcli.impact import DAMPED_DEFAULT_N
 from impactcli.laws.base import SEPARATIONS
 from impactcli.laws.registry import DAMPING_LAWS, ELASTIC_LAW, LAWS, get_law, parameter_laws
+from impactcli.limits import DAMPED_DEFAULT_N
 from impactcli.pairs import SPLITS, SpherePairs, split_fractions
 from impactcli.spheres import missing_properties, resolve_properties
 from impactcli.units import KINDS

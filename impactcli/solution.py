@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -46,6 +46,7 @@ __all__ = [
 ]
 
 Array = NDArray[np.float64]
+_T = TypeVar("_T")
 
 
 class ContactSolution(Protocol):
@@ -131,9 +132,19 @@ class ContactSolution(Protocol):
         ...
 
 
+def made_at_once(cls: type[_T], fields: dict[str, Any]) -> _T:
+    """``cls(**fields)`` of a frozen dataclass ``cls`` without ``__post_init__``, ``fields``
+    every one of its fields by name: set at once instead of one by one (a frozen
+    dataclass's ``__init__`` sets each field through ``object.__setattr__``, a large part
+    of one impact's fixed cost). For the results and models one impact makes."""
+    made = object.__new__(cls)
+    made.__dict__.update(fields)
+    return made
+
+
 def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
-    return float(np.reshape(np.asarray(value, dtype=float), -1)[0])
+    return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 
 @dataclass(frozen=True)
@@ -264,26 +275,34 @@ class StagedSolution(FilmSolution):
 
         return plan_energy_constants(self.plan, self.contact, self.delta_max)
 
-    def contact_work(self, t: ArrayLike, delta: ArrayLike | None = None) -> Array:
+    def contact_work(
+        self, t: ArrayLike, delta: ArrayLike | None = None, segments: tuple | None = None
+    ) -> Array:
         """W(t): work of the contact force up to times ``t`` [s] along FILM's segments
         (:func:`impactcli.energy.film_contact_work`), [J]; ``delta``: this solution's
-        indentation at ``t`` [m] (:meth:`evaluate`), if the caller has it."""
+        indentation at ``t`` [m] (:meth:`evaluate`), and ``segments`` those of
+        :meth:`~impactcli.film.FilmSolution.evaluate_segments`, if the caller has them."""
         from impactcli.energy import film_contact_work
 
         laws = [stage.law for stage in self.plan.stages]
         return film_contact_work(
-            self.stages, laws, t, film=self, delta=delta, table=self._work_table
-        )
+            self.stages, laws, t, film=self, delta=delta, table=self._work_table,
+            segments=segments,
+        )  # fmt: skip
 
     def energy(
-        self, t: ArrayLike, delta: ArrayLike, own: bool = False
+        self, t: ArrayLike, delta: ArrayLike, own: bool = False, segments: tuple | None = None
     ) -> tuple[Array, Array]:
         """Stored strain energy and dissipated (plastic) energy at times ``t`` [s] and
         indentations ``delta`` [m], [J] (:func:`impactcli.energy.plan_energy`); ``own``:
-        ``delta`` is this solution's own at ``t`` (:meth:`evaluate`), used for W(t)."""
+        ``delta`` is this solution's own at ``t`` (:meth:`evaluate`), used for W(t), with
+        its ``segments`` (:meth:`~impactcli.film.FilmSolution.evaluate_segments`) if given."""
         from impactcli.energy import plan_energy
 
-        work = self.contact_work(t, delta if own else None)
+        if own:
+            work = self.contact_work(t, delta, segments)
+        else:
+            work = self.contact_work(t)
         return plan_energy(
             self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
             constants=self._energy_constants,
@@ -370,7 +389,10 @@ class PlanSolution:
         quantities = None if summary_of is None else summary_of(impact_velocity, mass, n)
         if quantities is None:
             return None
-        return cls(contact, mass, impact_velocity, n, quantities)
+        return made_at_once(
+            cls, {"contact": contact, "mass": mass, "impact_velocity": impact_velocity, "n": n,
+                  "quantities": quantities},
+        )  # fmt: skip
 
     @classmethod
     def of_plan(

@@ -58,6 +58,7 @@ LIBRARY = (
     "impactcli.io.writers",
     "impactcli.ode",
     "impactcli.solution",
+    "impactcli.summary",
     "impactcli.model",
     "impactcli.lawlib",
     "impactcli.curves",

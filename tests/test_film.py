@@ -144,3 +144,36 @@ def test_hertz_loading_time_converges_to_the_integral():
     errors = [abs(hertz_loading_time(delta_e, v0, k_h, m, n) / exact - 1) for n in (10, 20, 40)]
     assert errors[2] < 1e-6
     assert errors[0] / errors[1] > 6 and errors[1] / errors[2] > 6  # order about 3
+
+
+@pytest.mark.parametrize("law", ["hertz", "du-wang", "thornton", "walton-braun"])
+def test_one_pass_rows_give_what_the_stages_give_one_by_one(law):
+    """The arrays of the one-pass stage solve (film.stage_rows) that a history reuses, its
+    segments and the contact work's table (the laws' work at the nodes), are bit for bit
+    those gathered and recomputed stage by stage (the same stages without their rows)."""
+    import dataclasses
+
+    from impactcli.energy import film_work_table
+    from impactcli.film import stage_rows
+    from impactcli.impact import Sphere, law_impact
+
+    steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    params = {"k_load": 2e7, "k_unload": 8e7} if law == "walton-braun" else {}
+    staged = law_impact(*steel, 0.25, 0.75, law, params).solution.staged
+    laws = [stage.law for stage in staged.plan.stages]
+    alone = tuple(dataclasses.replace(stage) for stage in staged.stages)  # no rows
+    assert stage_rows(staged.stages) is not None and stage_rows(alone) is None
+    assert stage_rows(staged.stages[1:]) is None  # a selection of the rows is not them
+    t = np.linspace(0.0, staged.end_time, 301)
+    ours, theirs = FilmSolution(staged.stages), FilmSolution(alone)
+    for name in ("_start", "_end", "_segments", "_hyper"):
+        assert np.array_equal(getattr(ours, name), getattr(theirs, name)), name
+    for a, b in zip(ours.evaluate(t), theirs.evaluate(t)):
+        assert np.array_equal(a, b)
+    for a, b in zip(film_work_table(staged.stages, laws), film_work_table(alone, laws)):
+        assert np.array_equal(a, b)
+    work = [law.work(stage.delta[0], stage.delta) for law, stage in zip(laws, alone)]
+    assert np.array_equal(stage_rows(staged.stages).work, np.array(work))
+    assert np.array_equal(stage_rows(staged.stages).stages.time, np.array([s.time for s in alone]))
+    delta, _, segments = ours.evaluate_segments(t)
+    assert np.array_equal(staged.contact_work(t, delta, segments), staged.contact_work(t))

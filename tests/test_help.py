@@ -206,6 +206,24 @@ def _modules_after(*args: str, cwd: Path = ROOT) -> tuple[subprocess.CompletedPr
     return result, set(modules.strip().split(","))
 
 
+@pytest.mark.parametrize("model", ["elastic", "elastoplastic"])
+def test_batch_imports_no_single_impact_result(model, tmp_path):
+    """``impact batch`` computes its rows with the batch kernels and the summary's keys
+    (:mod:`impactcli.summary`): the single impact's result, models and solutions
+    (impactcli.impact, impactcli.model, impactcli.solution: a dozen dataclasses) are not
+    imported on its way to the first row (start-up, issue 25)."""
+    pytest.importorskip("pyarrow")
+    (tmp_path / "in.csv").write_text(
+        "d1,d2,v1,v2,material\n20mm,40mm,5mm/s,7.5mm/s,steel\n22 mm,0.04,0.5 m/s,0.75,steel\n"
+    )
+    result, modules = _modules_after("batch", "in.csv", "--model", model, "-o", "out.csv",
+                                     cwd=tmp_path)  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "out.csv").read_text().count("\n") == 3
+    assert "impactcli.summary" in modules
+    assert not modules & {"impactcli.impact", "impactcli.model", "impactcli.solution"}
+
+
 @pytest.mark.parametrize(
     ("source", "output"), [("csv", "csv"), ("csv", "parquet"), ("parquet", "csv")]
 )

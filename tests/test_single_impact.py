@@ -531,3 +531,47 @@ def test_an_adhesive_impact_is_its_plan_solved_stage_by_stage(law, params, v0):
     assert quadrature is not None
     assert quadrature.contact_time == pytest.approx(float(np.ravel(film[-1].time)[-1]), rel=4e-7)
     assert quadrature.contact_time != float(np.ravel(film[-1].time)[-1])
+
+
+def test_a_result_made_at_once_is_the_dataclass_made_field_by_field():
+    """solve_impact sets an ImpactResult's fields at once (ImpactResult._of, one impact's
+    fixed cost): the same fields as the dataclass's own __init__ (an empty summary and no
+    warnings before they are filled in), and just as frozen."""
+    import dataclasses
+
+    from impactcli.impact import ImpactResult, Sphere, elastoplastic_impact
+
+    steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    made = elastoplastic_impact(*steel, 0.25, 0.75)
+    args = [getattr(made, f.name) for f in dataclasses.fields(ImpactResult)][:9]
+    at_once = ImpactResult._of(*args, made.method)
+    assert at_once == ImpactResult(*args, method=made.method)
+    assert at_once.summary == {} and at_once.warnings == ()
+    assert made == dataclasses.replace(at_once, summary=made.summary, warnings=made.warnings)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        made.n = 30  # type: ignore[misc]
+
+
+def test_models_made_at_once_are_the_dataclasses_made_field_by_field():
+    """The models and solutions one impact makes with solution.made_at_once (its fields set
+    at once) equal those of the dataclasses' own __init__, field for field."""
+    import dataclasses
+
+    from impactcli.impact import Sphere, law_impact
+    from impactcli.model import ContactModel
+
+    steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    for law in ("thornton", "du-wang", "hertz"):
+        made = law_impact(*steel, 0.25, 0.75, law)
+        pair, solution = made.contact, made.solution
+        assert pair.model == ContactModel(law)
+        for thing in (pair, solution, pair.model):
+            fields = {f.name: getattr(thing, f.name) for f in dataclasses.fields(thing)}
+            assert set(fields) <= set(vars(thing)), type(thing).__name__
+            again = type(thing)(**fields)
+            assert all(getattr(again, k) is getattr(thing, k) for k in fields)
+    elastic = impactcli.elastic_impact(*steel, 0.25, 0.75).contact
+    plastic = impactcli.elastoplastic_impact(*steel, 0.25, 0.75).contact
+    for pair in (elastic, plastic):
+        fields = {f.name: getattr(pair, f.name) for f in dataclasses.fields(pair)}
+        assert set(fields) <= set(vars(pair)) and type(pair)(**fields) == pair

@@ -192,12 +192,12 @@ class ImpactPlan:
         the shape of ``delta``). One impact's plan; each stage's law takes only the
         indentations that fall in it."""
         delta = np.asarray(delta, dtype=float)
-        k = np.broadcast_to(stage, delta.shape)
+        k = stage if np.shape(stage) == delta.shape else np.broadcast_to(stage, delta.shape)
         force = np.zeros_like(delta)
         for index, plan in enumerate(self.stages):  # a few stages, not rows
             mask = k == index
             if mask.any():
-                force[mask] = np.reshape(plan.law.force(delta[mask]), -1)
+                force[mask] = np.asarray(plan.law.force(delta[mask])).reshape(-1)
         return force
 
 

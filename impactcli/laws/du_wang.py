@@ -163,12 +163,17 @@ class DuWangContact:
     def plastic_law(self) -> DuWangPlastic:
         return DuWangPlastic(col(self.radius), col(self.mean_pressure), col(self.modulus))
 
+    @cached_property
+    def _plastic(self) -> DuWangPlastic:
+        """The plastic loading law with the contact's own parameters (not a column per
+        collision, as :meth:`plastic_law`), its slope and intercept worked out once."""
+        return DuWangPlastic(self.radius, self.mean_pressure, self.modulus)
+
     def maximum_indentation(self, impact_velocity: ArrayLike, mass: ArrayLike) -> NDArray:
         """delta_m from (1/2) m V0^2 = W(0, delta_m), a quadratic past delta_y, [m]."""
         m, v0 = np.asarray(mass, dtype=float), np.asarray(impact_velocity, dtype=float)
         k, dy = self.stiffness, self.yield_indentation
-        law = DuWangPlastic(self.radius, self.mean_pressure, self.modulus)
-        a, c = law.slope, law.intercept
+        a, c = self._plastic.slope, self._plastic.intercept
         # (a/2) d^2 - c d - [E0 - W_y + (a/2) dy^2 - c dy] = 0, E0 = m V0^2 / 2.
         rest = 0.5 * m * v0**2 - 0.4 * k * dy**2.5 + 0.5 * a * dy**2 - c * dy
         plastic = (c + np.sqrt(np.maximum(c**2 + 2.0 * a * rest, 0.0))) / a  # used past V_y
@@ -202,9 +207,10 @@ class DuWangContact:
         v0 = np.asarray(impact_velocity, dtype=float)
         m = np.asarray(mass, dtype=float)
         plastic = self.yields(v0, m)  # elastic within 1e-9 of V_y: see yields()
-        if not np.any(plastic):
+        every = bool(plastic) if plastic.ndim == 0 else bool(np.all(plastic))
+        if not every and (plastic.ndim == 0 or not np.any(plastic)):
             return HertzContact(self.stiffness).plan(v0, m)
-        if not np.all(plastic):
+        if not every:
             raise ValueError("a batch must be all above or all below the yield velocity")
         k, dy = self.stiffness, self.yield_indentation
         dm = self.maximum_indentation(v0, m)
@@ -220,7 +226,7 @@ class DuWangContact:
                 StagePlan("unloading", Hertz(col(k), col(dres)), dm, dres, zero),
             ),
             delta_max=dm,
-            force_max=DuWangPlastic(self.radius, self.mean_pressure, self.modulus).force(dm),
+            force_max=self._plastic.force(dm),
             delta_res=dres,
             restitution=restitution,
         )
