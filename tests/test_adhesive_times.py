@@ -18,6 +18,7 @@ from impactcli.laws.registry import get_law, plan_groups
 from impactcli.laws.thornton_ning import (
     SERIES_RATIO,
     ThorntonNingContact,
+    _loading_float,
     _series_terms,
     elastic_loading_time,
 )
@@ -135,6 +136,21 @@ def test_thornton_nings_elastic_loading_series_is_the_quadrature():
     np.testing.assert_allclose(got[series], exact[series], rtol=2e-15, atol=0.0)
     one = elastic_loading_time(float(s_y[-1]), float(kinetic[-1]))
     assert one == pytest.approx(got[-1], rel=1e-15)
+
+
+@pytest.mark.parametrize("nodes", [16, 24, jkr.NODES])
+def test_one_thornton_ning_impacts_loading_on_floats_is_the_quadrature(nodes):
+    """One impact's JKR loading to delta_y on floats (the same Gauss nodes, E - P(s)
+    directly) is motion_time's quadrature within 2e-15 where the speed at delta_y is 0.2 V0
+    (the least the quadrature takes) to V0."""
+    snap = float(jkr._potential(jkr.SNAP_S))
+    for s_y in (0.95, 1.2, 2.0, 5.0):
+        rise = float(jkr._potential(s_y)) - snap
+        for share in (0.04, 0.5, 0.75, 0.999, 0.99999):  # (V(delta_y) / V0)^2
+            kinetic = max(rise, 1e-3) / (1.0 - share)
+            energy = snap + kinetic
+            exact = float(jkr.motion_time(jkr.BRANCH, jkr.SNAP_S, s_y, energy=energy, nodes=nodes))
+            assert _loading_float(s_y, energy, nodes) == pytest.approx(exact, rel=2e-15)
 
 
 def test_a_thornton_ning_batch_of_fast_impacts_is_solve_ivps():
