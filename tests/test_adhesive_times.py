@@ -15,7 +15,13 @@ from impactcli.batch import batch_impacts
 from impactcli.laws import jkr
 from impactcli.laws.dmt import CURVE, DMTContact, build_table, loading_times
 from impactcli.laws.registry import get_law, plan_groups
-from impactcli.laws.thornton_ning import ThorntonNingContact
+from impactcli.laws.thornton_ning import (
+    SERIES_RATIO,
+    ThorntonNingContact,
+    _loading_float,
+    _series_terms,
+    elastic_loading_time,
+)
 from impactcli.ode import integrate_plan
 from impactcli.pairs import effective_properties
 from impactcli.solution import solve_plan
@@ -96,6 +102,74 @@ def test_thornton_ning_times_are_solve_ivps(py, v0):
     reference = ode_times(contact, v0)
     assert summary["t_max"] == pytest.approx(reference[0], rel=ODE)
     assert summary["contact_time"] == pytest.approx(reference[1], rel=ODE)
+
+
+def test_thornton_nings_elastic_loading_series_is_the_quadrature():
+    """The binomial series of the JKR loading's time to delta_y (closed-form terms) is
+    Gauss-Legendre quadrature in t = s - s_snap with P - P_snap a polynomial in t (no
+    cancellation: the speed stays above 0.9 V0 on the way) within 2e-15 wherever it serves
+    (r = max |P - P_snap| / E_k up to SERIES_RATIO, s_y from just past snap-in to 6), with 2
+    to 8 terms, and motion_time's quadrature within its rounding (E - P(s) near snap-in:
+    3e-14); beyond, that quadrature itself."""
+    rng = np.random.default_rng(7)
+    s_y = np.concatenate([jkr.SNAP_S + np.geomspace(1e-6, 0.1, 50), rng.uniform(0.9, 6.0, 950)])
+    snap = float(jkr._potential(jkr.SNAP_S))
+    rise = np.maximum(np.abs(jkr._potential(s_y) - snap),
+                      np.where(s_y > 1.0, snap - float(jkr._potential(1.0)), 0.0))  # fmt: skip
+    ratio = np.geomspace(1e-8, 3.0 * SERIES_RATIO, s_y.size)
+    rng.shuffle(ratio)
+    kinetic = rise / ratio
+    got = elastic_loading_time(s_y, kinetic)
+    quadrature = jkr.motion_time(jkr.BRANCH, jkr.SNAP_S, s_y, energy=snap + kinetic, nodes=160)
+    terms = _series_terms(ratio)
+    assert set(np.unique(terms)) == set(range(2, 10))  # every count of terms, and beyond
+    np.testing.assert_allclose(got, quadrature, rtol=3e-14, atol=0.0)
+    s = np.polynomial.Polynomial([jkr.SNAP_S, 1.0])  # in t = s - s_snap
+    well = sum(c * s**k for k, c in jkr.BRANCH.potential.items()) - snap
+    well.coef[0] = 0.0  # P(s_snap) - P_snap
+    slope = 4.0 * s**3 - 2.0 / 3.0
+    x, w = np.polynomial.legendre.leggauss(100)
+    t = 0.5 * np.outer(s_y - jkr.SNAP_S, x + 1.0)
+    speed = np.sqrt(2.0 * (kinetic[:, None] - well(t)))
+    exact = 0.5 * (s_y - jkr.SNAP_S) * ((slope(t) / speed) @ w)
+    series = terms < 9
+    np.testing.assert_allclose(got[series], exact[series], rtol=2e-15, atol=0.0)
+    one = elastic_loading_time(float(s_y[-1]), float(kinetic[-1]))
+    assert one == pytest.approx(got[-1], rel=1e-15)
+
+
+@pytest.mark.parametrize("nodes", [16, 24, jkr.NODES])
+def test_one_thornton_ning_impacts_loading_on_floats_is_the_quadrature(nodes):
+    """One impact's JKR loading to delta_y on floats (the same Gauss nodes, E - P(s)
+    directly) is motion_time's quadrature within 2e-15 where the speed at delta_y is 0.2 V0
+    (the least the quadrature takes) to V0."""
+    snap = float(jkr._potential(jkr.SNAP_S))
+    for s_y in (0.95, 1.2, 2.0, 5.0):
+        rise = float(jkr._potential(s_y)) - snap
+        for share in (0.04, 0.5, 0.75, 0.999, 0.99999):  # (V(delta_y) / V0)^2
+            kinetic = max(rise, 1e-3) / (1.0 - share)
+            energy = snap + kinetic
+            exact = float(jkr.motion_time(jkr.BRANCH, jkr.SNAP_S, s_y, energy=energy, nodes=nodes))
+            assert _loading_float(s_y, energy, nodes) == pytest.approx(exact, rel=2e-15)
+
+
+def test_a_thornton_ning_batch_of_fast_impacts_is_solve_ivps():
+    """Steel-like pairs far above V_y (the series' rows, as the bench's): the batch's times
+    within 2e-12 of solve_ivp of each row's plan."""
+    d = np.array([2e-3, 1e-2, 5e-2, 3e-2])
+    v0 = np.array([0.5, 2.0, 6.0, 1.0])
+    params = {"work_of_adhesion": 0.2, "py": 1e9}
+    out = batch_impacts(d, 2 * d, v0, 0.0, E1=210e9, nu1=0.3, E2=210e9, nu2=0.3,
+                        rho1=7800.0, rho2=7800.0, sy1=1e9, sy2=1e9, n=200,
+                        law="thornton-ning", law_params=params)  # fmt: skip
+    for i in range(d.size):
+        one = impactcli.Sphere(d[i], 210e9, 0.3, 7800.0)
+        two = impactcli.Sphere(2 * d[i], 210e9, 0.3, 7800.0)
+        mass, radius, modulus = effective_properties(one, two)
+        contact = ThorntonNingContact(radius, modulus, 0.2, 1e9)
+        solution = integrate_plan(contact.plan(v0[i], mass), mass, v0[i], rtol=1e-13)
+        assert out["t_max"][i] == pytest.approx(float(solution.t_max), rel=ODE)
+        assert out["contact_time"][i] == pytest.approx(float(solution.end_time), rel=ODE)
 
 
 @pytest.mark.parametrize("law", ["jkr", "dmt", "thornton-ning"])
