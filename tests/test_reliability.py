@@ -99,6 +99,37 @@ def test_signal_removes_the_temporary_file_and_keeps_the_old_output(tmp_path, si
     assert (tmp_path / "t.csv").read_text() == "old\n"
 
 
+#: A run whose cleanup, after the signal, ends in another exception than the signal's: a
+#: pipe to a worker the signal ended breaks (BrokenPipeError, which alone would mean "stdout
+#: closed", status 0), or a library's error.
+_CLEANUP_RAISES = """
+import os, signal
+from impactcli.cli.runner import run
+
+def call():
+    try:
+        os.kill(os.getpid(), signal.SIG{name})
+        signal.pause()
+    except BaseException:
+        raise {error}("a worker's pipe") from None
+
+os._exit(run(call, lambda exc: None))
+"""
+
+
+@pytest.mark.parametrize("error", ["BrokenPipeError", "RuntimeError", "OSError"])
+@pytest.mark.parametrize("name", ["TERM", "INT"])
+def test_a_run_stopped_by_a_signal_exits_with_its_status_whatever_its_cleanup_raises(
+    error, name
+):
+    code = _CLEANUP_RAISES.format(name=name, error=error)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env=env, timeout=60)  # fmt: skip
+    assert done.returncode == 128 + getattr(signal, f"SIG{name}"), done.stderr
+    assert "Traceback" not in done.stderr
+
+
 def _big_batch(folder: Path, rows: int) -> None:
     pair = "20mm,20mm,1,0,elastic,steel,\n20mm,20mm,5,0,elastoplastic,steel,300MPa\n"
     (folder / "big.csv").write_text("d1,d2,v1,v2,model,material,sy\n" + pair * (rows // 2))

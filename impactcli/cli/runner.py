@@ -46,6 +46,9 @@ class Terminated(BaseException):
 
 
 _stopping = False
+#: The signal that stopped the run (None: none): whatever exception its cleanup ends with
+#: (a BrokenPipeError of a worker's pipe, say), the run exits with that signal's status.
+_signalled: int | None = None
 
 #: Seconds a run stopped by a signal has to clean up and exit (remove its temporary files,
 #: end its worker processes and threads); past them it exits at once with the status of
@@ -54,10 +57,10 @@ CLEANUP_SECONDS = 20.0
 
 
 def _on_signal(signum: int, frame) -> None:  # noqa: ARG001 (the handler's signature)
-    global _stopping
+    global _stopping, _signalled
     if _stopping:  # a second signal during the cleanup: let the cleanup finish
         return
-    _stopping = True
+    _stopping, _signalled = True, signum
     _exit_by_deadline(CLEANUP_SECONDS, 128 + signum)
     end_children(kill=False)  # workers stop now, not when their tasks finish
     raise Terminated(signum)
@@ -86,8 +89,8 @@ def _exit_by_deadline(seconds: float, status: int) -> None:
 def signal_handlers() -> Iterator[None]:
     """SIGINT, SIGTERM and SIGHUP raise :class:`Terminated` in the main thread (no-op in
     another thread); the previous handlers are restored at the end."""
-    global _stopping
-    _stopping = False
+    global _stopping, _signalled
+    _stopping, _signalled = False, None
     previous = {}
     for name in HANDLED_SIGNALS:
         number = getattr(signal, name, None)
@@ -303,15 +306,18 @@ def run(call: Callable[[], object], usage_error: Callable[[BaseException], int |
                     raise
             except Exception as exc:
                 handled = usage_error(exc)
-                if handled is None:
+                if handled is None and _signalled is None:
                     raise
-                status = handled
+                status = 2 if handled is None else handled
     except Terminated as exc:  # a signal between the handlers' install and the try
         status = 128 + exc.signum
         end_children(kill=True)
     finally:
         common.pending_messages = None
         output.before_stdout = None
+    if _signalled is not None:  # stopped by a signal, whatever its cleanup raised
+        status = 128 + _signalled
+        end_children(kill=True)
     if status != 0:
         _quiet_stdout_if_broken()
     return status
