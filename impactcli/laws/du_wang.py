@@ -10,6 +10,7 @@ impact and the closed forms; :data:`SPEC` is its registry entry.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 from typing import ClassVar
@@ -249,13 +250,11 @@ class DuWangContact:
                 return None
             k, dy, v_y, dm, t_max, force = loading
             if math.isnan(t_max):  # below V_y: the Hertz impact, with this law's yield point
-                elastic = hertz_summary(k, v0, m, n)
-                if elastic is None:
-                    return None
-                dm = elastic.delta_max
-                work = 0.4 * k * max(dm - self._residual(r, e, factor * sy, dy, dm), 0.0) ** 2.5
-                summary = elastic._replace(delta_y=dy, yield_velocity=v_y, recoverable_work=work)
-                return summary if finite_summary(summary) else None
+                return below_yield_summary(
+                    k, dy, v_y, v0, m, n,
+                    lambda dm: 0.4 * k * max(dm - self._residual(r, e, factor * sy, dy, dm),
+                                             0.0) ** 2.5,
+                )  # fmt: skip
             dres = self._residual(r, e, factor * sy, dy, dm)
             restitution = math.sqrt(2.0 / m * 0.4 * k * (dm - dres) ** 2.5) / v0
             t_c = t_max + rebound_time(dm, dres, restitution * v0, n)
@@ -274,6 +273,27 @@ class DuWangContact:
         # equal numbers, whose last bits both paths then share
         root = float(np.cbrt(math.pi * math.sqrt(r) * p0 / e * (0.75 * dm - 0.25 * dy)))
         return dm - root * root
+
+
+def below_yield_summary(
+    k: float,
+    dy: float,
+    v_y: float,
+    v0: float,
+    m: float,
+    n: int,
+    recoverable_work: Callable[[float], float],
+) -> FilmSummary | None:
+    """One impact below the yield velocity of a law whose elastic stage is Hertz's, on
+    floats: :func:`~impactcli.laws.hertz.hertz_summary` with the law's yield point
+    delta_y [m], V_y [m/s] and the work recoverable from its delta_max [J] (its
+    ``recoverable_work(delta_max)``); None where the floats cannot judge."""
+    elastic = hertz_summary(k, v0, m, n)
+    if elastic is None:
+        return None
+    work = recoverable_work(elastic.delta_max)
+    summary = elastic._replace(delta_y=dy, yield_velocity=v_y, recoverable_work=work)
+    return summary if finite_summary(summary) else None
 
 
 def plastic_loading(

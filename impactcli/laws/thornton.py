@@ -24,12 +24,11 @@ from impactcli.laws.base import (
     finite_summary,
     floats,
 )
-from impactcli.laws.du_wang import DuWangContact, plastic_loading
+from impactcli.laws.du_wang import DuWangContact, below_yield_summary, plastic_loading
 from impactcli.laws.hertz import (
     FIRST_YIELD_PRESSURE_FACTOR,
     Hertz,
     hertz_stiffness,
-    hertz_summary,
     rebound_time,
 )
 
@@ -195,16 +194,9 @@ class ThorntonContact:
                 return None
             k, dy, v_y, dm, t_max, _ = loading
             if math.isnan(t_max):  # below V_y: the Hertz impact, with this law's yield point
-                elastic = hertz_summary(k, v0, m, n)
-                if elastic is None:
-                    return None
-                dm = elastic.delta_max
-                work = 0.4 * k * dm**2.5
-                if dm > dy:  # within the margin of V_y: Hertzian unloading on R_p
-                    fm, dres = self._unloading(k, dy, r, e, p, dm)
-                    work = 0.4 * fm * (dm - dres)
-                summary = elastic._replace(delta_y=dy, yield_velocity=v_y, recoverable_work=work)
-                return summary if finite_summary(summary) else None
+                return below_yield_summary(
+                    k, dy, v_y, v0, m, n, lambda dm: self._work_below_yield(k, dy, r, e, p, dm)
+                )
             fm, dres = self._unloading(k, dy, r, e, p, dm)
             work = 0.4 * fm * (dm - dres)
             restitution = math.sqrt(2.0 * work / m) / v0
@@ -213,6 +205,17 @@ class ThorntonContact:
             return None
         summary = FilmSummary(dm, fm, dres, restitution, t_max, t_c, dy, v_y, work, False, True)
         return summary if finite_summary(summary) else None
+
+    @classmethod
+    def _work_below_yield(
+        cls, k: float, dy: float, r: float, e: float, p: float, dm: float
+    ) -> float:
+        """The recoverable work [J] of an impact that stays below V_y: Hertz's, or within
+        the margin of V_y (delta_max beyond delta_y) that of Hertzian unloading on R_p."""
+        if dm > dy:
+            fm, dres = cls._unloading(k, dy, r, e, p, dm)
+            return 0.4 * fm * (dm - dres)
+        return 0.4 * k * dm**2.5
 
     @staticmethod
     def _unloading(
