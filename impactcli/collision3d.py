@@ -100,7 +100,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.collision2d import (
     ELASTOPLASTIC_NORMAL_LAW,
+    Momenta,
     line_of_centres,
+    momentum,
     normal_law_warnings,
 )
 from impactcli.errors import InputError
@@ -260,7 +262,7 @@ class NormalHistory:
 
 
 @dataclass(frozen=True)
-class Collision3D:
+class Collision3D(Momenta):
     """State before and after an oblique 3-D collision with friction (SI).
 
     Vectors have (x, y, z) on their last axis; other attributes have the batch shape.
@@ -428,16 +430,6 @@ class Collision3D:
         return np.arctan2(_dot(rel, self.slip_direction), -_dot(rel, self.normal))
 
     # -- momentum ----------------------------------------------------------------------
-    @property
-    def momentum_before(self) -> Array:
-        """m1 v1 + m2 v2, [kg m/s] (infinite for a fixed target)."""
-        return _momentum(self.m1, self.v1) + _momentum(self.m2, self.v2)
-
-    @property
-    def momentum_after(self) -> Array:
-        """m1 v1' + m2 v2', [kg m/s]."""
-        return _momentum(self.m1, self.v1_final) + _momentum(self.m2, self.v2_final)
-
     def _angular(self, i: int, point: Array, final: bool) -> Array:
         m, r, rot, p = (
             (self.m1, self.r1, self.rotation1, self.p1),
@@ -451,7 +443,7 @@ class Collision3D:
         with np.errstate(invalid="ignore", divide="ignore"):
             inertia = r * r / rot
             spin = np.where(np.isfinite(inertia)[..., None], inertia[..., None] * w, np.nan)
-            return np.cross(p - point, _momentum(m, v)) + spin
+            return np.cross(p - point, momentum(m, v)) + spin
 
     def angular_momentum_contact(self, sphere: int, final: bool = False) -> Array:
         """Angular momentum of one sphere about the contact point c,
@@ -1267,11 +1259,6 @@ def _lever(r: Array, rotation: Array) -> Array:
 
 def _dot(a: Array, b: Array) -> Array:
     return np.sum(a * b, axis=-1)
-
-
-def _momentum(m: Array, v: Array) -> Array:
-    with np.errstate(invalid="ignore"):
-        return m[..., None] * v
 
 
 
