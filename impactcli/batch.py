@@ -370,8 +370,8 @@ def batch_impacts(
         ``first_yield_velocity``
     plastic : True for the elastoplastic (Du & Wang) model, False for elastic Hertz, [-]
     n : FILM segments per stage; default 25, with ``damping``
-        :data:`~impactcli.limits.DAMPED_DEFAULT_N` (400, as :func:`impactcli.impact.
-        damped_impact`)
+        :data:`~impactcli.limits.DAMPED_DEFAULT_N` (400, as
+        :func:`impactcli.impact.damped_impact`)
     split : share of the indentation between the spheres: ``mass``, ``compliance`` or
         ``yield`` (the permanent part to the weaker sphere, :func:`impactcli.energy.
         permanent_fractions`)
@@ -381,15 +381,15 @@ def batch_impacts(
         ``p0_factor`` are then ignored; rows of several laws: one call per law, e.g.
         on the groups of a ``law`` column); None: Du & Wang where ``plastic``, else Hertz
     law_params : the law's parameters by name, scalars or one value per row (SI)
-    damping : a damping model of :data:`impactcli.laws.registry.DAMPING_LAWS` (``impact
-        laws``): Hertz plus viscous damping for every row (``plastic``, ``p0_factor`` and
-        ``law`` do not apply); None: no damping
+    damping : a damping model (``impact laws``, :data:`impactcli.laws.registry.DAMPING_LAWS`):
+        Hertz plus viscous damping for every row (``plastic``, ``p0_factor`` and ``law`` do
+        not apply); None: no damping
     alpha : the damping model's parameter, one value or one per row (unit of the model:
         [-] for ``tsuji``, [s/m] for ``hunt-crossley``, [s] for ``viscoelastic``); NaN
         where ``restitution`` is given
     restitution : with ``damping``, the target e [-] of each row instead of ``alpha`` (the
-        alpha that gives it at the row's V0, :func:`impactcli.damping.
-        damping_for_restitution`); one of the two per row
+        alpha that gives it at the row's V0,
+        :func:`impactcli.damping.damping_for_restitution`); one of the two per row
     separation : with ``damping``, where the spheres part: ``overlap`` or ``force``
         (docs/damping.md)
 
