@@ -121,7 +121,7 @@ def _first(value: ArrayLike) -> float:
     return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 
-def _plan_quantity(name: str, doc: str) -> Any:
+def _plan_quantity(name: str, doc: str) -> property:
     """A property of :class:`StagedSolution`: the plan's closed-form ``name`` as a float."""
     return property(lambda self: _first(getattr(self.plan, name)), doc=doc)
 
