@@ -1,14 +1,17 @@
-"""Pieces shared by the commands: the --format/-o/--plot options, the output format choice,
-the Rich console on demand, warnings and figure checks."""
+"""Pieces shared by the commands: the --format/-o/--plot options and where they write
+(:class:`Output`), the Rich console on demand, warnings and figure checks."""
 
 from __future__ import annotations
 
+import contextlib
+import dataclasses
 import enum
+import functools
 import inspect
 import os
 import sys
-from collections.abc import Iterable, Sequence
-from typing import IO, Annotated, Optional
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from typing import IO, Annotated, Any, Optional
 
 import typer
 
@@ -447,3 +450,90 @@ def save_plot(fig, path: str) -> None:  # fig: matplotlib.figure.Figure
         save_figure(fig, path)
     except OSError as exc:
         raise InputError(f"--plot: cannot write {path!r}: {exc.strerror or exc}") from None
+
+
+@dataclasses.dataclass(frozen=True)
+class Output:
+    """Where a command writes, as given: ``--format/-f`` (``fmt``; a command's own choice
+    of formats is read by its value), ``-o/--output FILE`` (``path``; None or '-' is
+    stdout) and ``--plot FILE`` (``plot``, None when not asked or not taken)."""
+
+    fmt: enum.Enum | None = None
+    path: str | None = None
+    plot: str | None = None
+
+    def check(self, *figures: str | None) -> None:
+        """Fail before any work if --plot, or one of the command's other ``figures``
+        files, cannot be drawn or is the same file as another output (:func:`check_plot`)."""
+        for figure in (self.plot, *figures):
+            check_plot(figure, self.path)
+        if figures:
+            from impactcli.output import check_distinct_outputs
+
+            check_distinct_outputs(self.path, self.plot, *figures)
+
+    def format(self) -> Format:
+        """The format to write (:func:`resolve_format`): an unknown ``-o`` extension is a
+        one-line :class:`~impactcli.errors.InputError`."""
+        return resolve_format(None if self.fmt is None else Format(self.fmt.value), self.path)
+
+    @contextlib.contextmanager
+    def open(self) -> Iterator[tuple[Format, IO[str]]]:
+        """The format to write (:meth:`format`) and the stream to write it to: stdout, or a
+        file written whole or not at all (:func:`impactcli.output.atomic_output`). A table
+        for the screen goes to ``console(stream)``."""
+        from impactcli.output import atomic_output
+
+        kind = self.format()
+        with atomic_output(self.path) as stream:
+            yield kind, stream
+
+
+def gather_options(
+    command: Callable,
+    name: str,
+    options: Sequence[inspect.Parameter],
+    gather: Callable[[dict[str, Any], dict[str, Any]], Any],
+) -> Callable:
+    """``command`` with the ``options`` in place of its parameter ``name`` in its signature
+    (and so in ``--help``, in that order), called with ``name=gather(values, others)``:
+    ``values`` the options' values by parameter name, ``others`` the command's other
+    arguments (which ``gather`` may change). The sphere, law, damping and output options
+    are declared once so and shared by the commands that take them."""
+    signature = inspect.signature(command, eval_str=True)
+    params = list(signature.parameters.values())
+    where = [p.name for p in params].index(name)
+    params[where : where + 1] = [p.replace(kind=params[where].kind) for p in options]
+    names = [p.name for p in options]
+
+    @functools.wraps(command)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        values = {n: kwargs.pop(n, None) for n in names}
+        return command(*args, **{name: gather(values, kwargs)}, **kwargs)
+
+    wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
+    wrapper.__annotations__ = {p.name: p.annotation for p in params}
+    return wrapper
+
+
+def _option(name: str, annotation: Any) -> inspect.Parameter:
+    return inspect.Parameter(
+        name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=None, annotation=annotation
+    )
+
+
+def with_output_options(
+    plot: bool = False, fmt: Any = OutputFormat
+) -> Callable[[Callable], Callable]:
+    """Decorate a command whose signature has an ``out`` parameter: ``--format/-f``
+    (``fmt``: its Annotated type, :data:`OutputFormat` or that of :func:`format_option`),
+    ``-o/--output FILE`` and, with ``plot``, ``--plot FILE`` take its place, and the command
+    receives them as ``out=Output(...)``."""
+    options = [_option("fmt", fmt), _option("output", OutputFile)]
+    if plot:
+        options.append(_option("plot", PlotFile))
+
+    def gather(values: Mapping[str, Any], _others: dict[str, Any]) -> Output:
+        return Output(values["fmt"], values["output"], values.get("plot"))
+
+    return lambda command: gather_options(command, "out", options, gather)
