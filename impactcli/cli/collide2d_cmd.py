@@ -9,7 +9,6 @@ from typing import IO, Optional
 import typer
 
 from impactcli.cli.common import (
-    Format,
     Model,
     Output,
     console,
@@ -23,7 +22,6 @@ from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
-from impactcli.output import write_csv, write_json
 from impactcli.spheres import SphereOptions
 from impactcli.validation import check_restitution
 
@@ -201,13 +199,12 @@ def collide2d(
         from impactcli.spheres import spheres_from_options
 
         inputs.update(law_inputs(chosen, weaker_yield_strength(*spheres_from_options(spheres))))
-    with out.open() as (kind, stream):
-        if kind is Format.csv:
-            write_csv(stream, tuple(summary), [((), np.array([list(summary.values())]))])
-        elif kind is Format.json:
-            write_json(stream, {"inputs": inputs, "summary": summary})
-        else:
-            _print_tables(stream, inputs, summary, paper_angles)
+    out.write(
+        tuple(summary),
+        [((), np.array([list(summary.values())]))],
+        lambda: {"inputs": inputs, "summary": summary},
+        lambda stream: _print_tables(stream, inputs, summary, paper_angles),
+    )
     if out.plot:
         _plot(out.plot, result, motion, radii, model_name, restitution)
 

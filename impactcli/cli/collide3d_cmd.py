@@ -12,7 +12,6 @@ from impactcli.cli.collide2d_cmd import E_GIVEN_HELP
 from impactcli.cli.common import (
     DAMPED_DEFAULT_N,
     FORMAT_HELP,
-    Format,
     Model,
     Output,
     console,
@@ -31,7 +30,6 @@ from impactcli.errors import InputError
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW
 from impactcli.laws.tangential import get_tangential, tangential_names
 from impactcli.limits import MAX_POINTS, check_size
-from impactcli.output import write_csv, write_json
 from impactcli.spheres import SphereOptions
 from impactcli.validation import check_friction, check_restitution
 
@@ -334,16 +332,11 @@ def _one(spheres: SphereOptions, texts: dict, normal_law: tuple, tangential_mode
                                                    tangential_model)  # fmt: skip
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
-    with out.open() as (kind, stream):
-        if kind is Format.csv:
-            write_csv(stream, tuple(summary), [((), [list(summary.values())])])
-        elif kind is Format.json:
-            document: dict[str, Any] = {"inputs": inputs, "summary": summary}
-            if force is not None:
-                document["tangential_force"] = force
-            write_json(stream, document)
-        else:
-            _print_tables(stream, inputs, summary)
+    document: dict[str, Any] = {"inputs": inputs, "summary": summary}
+    if force is not None:
+        document["tangential_force"] = force
+    out.write(tuple(summary), [((), [list(summary.values())])], lambda: document,
+              lambda stream: _print_tables(stream, inputs, summary))  # fmt: skip
     if out.plot:
         _plot(out.plot, result, inputs)
     if plot_force:

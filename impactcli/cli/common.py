@@ -462,6 +462,11 @@ class Output:
     path: str | None = None
     plot: str | None = None
 
+    @classmethod
+    def of(cls, values: Mapping[str, Any]) -> Output:
+        """The Output of the values of :func:`output_parameters` (by parameter name)."""
+        return cls(values["fmt"], values["output"], values.get("plot"))
+
     def check(self, *figures: str | None) -> None:
         """Fail before any work if --plot, or one of the command's other ``figures``
         files, cannot be drawn or is the same file as another output (:func:`check_plot`)."""
@@ -487,6 +492,26 @@ class Output:
         kind = self.format()
         with atomic_output(self.path) as stream:
             yield kind, stream
+
+    def write(
+        self,
+        columns: Sequence[str],
+        blocks: Iterable[tuple[Sequence[Any], Any]],
+        document: Callable[[], Any],
+        screen: Callable[[IO[str]], None],
+    ) -> None:
+        """A result in the format asked (:meth:`open`): CSV of ``columns`` and the rows of
+        ``blocks`` (:func:`impactcli.output.write_csv`), the JSON ``document()``, or
+        ``screen(stream)``, its tables on the screen (or as text in the ``-o`` file)."""
+        from impactcli.output import write_csv, write_json
+
+        with self.open() as (kind, stream):
+            if kind is Format.csv:
+                write_csv(stream, columns, blocks)
+            elif kind is Format.json:
+                write_json(stream, document())
+            else:
+                screen(stream)
 
 
 def gather_options(
@@ -516,24 +541,28 @@ def gather_options(
     return wrapper
 
 
-def _option(name: str, annotation: Any) -> inspect.Parameter:
+def option_parameter(name: str, annotation: Any, default: Any = None) -> inspect.Parameter:
+    """A parameter of a command's signature: ``annotation`` is its Annotated option type."""
     return inspect.Parameter(
-        name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=None, annotation=annotation
+        name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=default, annotation=annotation
     )
+
+
+def output_parameters(plot: bool = False, fmt: Any = OutputFormat) -> list[inspect.Parameter]:
+    """``--format/-f`` (``fmt``: its Annotated type, :data:`OutputFormat` or that of
+    :func:`format_option`), ``-o/--output FILE`` and, with ``plot``, ``--plot FILE``
+    (:meth:`Output.of` gathers them)."""
+    options = [option_parameter("fmt", fmt), option_parameter("output", OutputFile)]
+    if plot:
+        options.append(option_parameter("plot", PlotFile))
+    return options
 
 
 def with_output_options(
     plot: bool = False, fmt: Any = OutputFormat
 ) -> Callable[[Callable], Callable]:
-    """Decorate a command whose signature has an ``out`` parameter: ``--format/-f``
-    (``fmt``: its Annotated type, :data:`OutputFormat` or that of :func:`format_option`),
-    ``-o/--output FILE`` and, with ``plot``, ``--plot FILE`` take its place, and the command
-    receives them as ``out=Output(...)``."""
-    options = [_option("fmt", fmt), _option("output", OutputFile)]
-    if plot:
-        options.append(_option("plot", PlotFile))
-
-    def gather(values: Mapping[str, Any], _others: dict[str, Any]) -> Output:
-        return Output(values["fmt"], values["output"], values.get("plot"))
-
-    return lambda command: gather_options(command, "out", options, gather)
+    """Decorate a command whose signature has an ``out`` parameter: the
+    :func:`output_parameters` take its place, and the command receives them as
+    ``out=Output(...)``."""
+    options = output_parameters(plot, fmt)
+    return lambda command: gather_options(command, "out", options, lambda v, _: Output.of(v))

@@ -9,7 +9,6 @@ import typer
 
 from impactcli.cli.common import (
     DAMPED_DEFAULT_N,
-    Format,
     Output,
     console,
     damped_segments_help,
@@ -23,7 +22,6 @@ from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
-from impactcli.output import write_csv, write_json
 from impactcli.quantities import summary_quantities
 from impactcli.spheres import SphereOptions
 
@@ -121,23 +119,22 @@ def compare_laws(
         raise InputError(str(exc)) from None
     segments = _segments(results)
     table = {name: r.row for name, r in results.items()}
-    with out.open() as (kind, stream):
-        if kind is Format.csv:
-            write_csv(
-                stream,
-                ("law", *COMPARISON_KEYS),
-                [((name,), np.array([list(row.values())])) for name, row in table.items()],
-            )
-        elif kind is Format.json:
-            inputs = _inputs(s1, s2, v1, v2, segments.get("laws", 25), choices)
-            if damping_law is not None:
-                inputs.update(
-                    damping=damping_law, alpha=alpha, separation=separation,
-                    damping_n=segments["damped"],
-                )  # fmt: skip
-            write_json(stream, {"inputs": inputs, "laws": table})
-        else:
-            _print(stream, table, v1 + v2, segments)
+
+    def document() -> dict:
+        inputs = _inputs(s1, s2, v1, v2, segments.get("laws", 25), choices)
+        if damping_law is not None:
+            inputs.update(
+                damping=damping_law, alpha=alpha, separation=separation,
+                damping_n=segments["damped"],
+            )  # fmt: skip
+        return {"inputs": inputs, "laws": table}
+
+    out.write(
+        ("law", *COMPARISON_KEYS),
+        [((name,), np.array([list(row.values())])) for name, row in table.items()],
+        document,
+        lambda stream: _print(stream, table, v1 + v2, segments),
+    )
     if out.plot:
         _plot(
             out.plot, results, laws, spheres, s1, s2, v1 + v2, n, segments, ratio_min, ratio_max,

@@ -14,7 +14,7 @@ from impactcli.cli.common import FORMAT_HELP, Format, Output, console, warn, wit
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW
-from impactcli.output import write_csv, write_json
+from impactcli.output import write_json
 from impactcli.spheres import SphereOptions
 
 
@@ -249,6 +249,8 @@ def timestep(
 
     Example: impact timestep --d1 2mm --material glass --v0 1m/s
     """
+    import numpy as np
+
     from impactcli.design import pair_timestep_table
     from impactcli.spheres import spheres_from_options
 
@@ -261,16 +263,12 @@ def timestep(
         options = dataclasses.replace(options, **{k: options.get(k[:-1] + "1") for k in second})
     s1, s2 = spheres_from_options(options)
     table = pair_timestep_table(s1, s2, velocity)
-    with out.open() as (kind, stream):
-        if kind is Format.json:
-            write_json(stream, {"inputs": {"v0": velocity}, "timestep": table})
-        elif kind is Format.csv:
-            import numpy as np
-
-            keys = list(table)
-            write_csv(stream, keys, [((), np.array([[table[k] for k in keys]]))])
-        else:
-            _print_timestep(stream, table, velocity)
+    out.write(
+        list(table),
+        [((), np.array([list(table.values())]))],
+        lambda: {"inputs": {"v0": velocity}, "timestep": table},
+        lambda stream: _print_timestep(stream, table, velocity),
+    )
 
 
 def _meaning(key: str, velocity: float) -> str:

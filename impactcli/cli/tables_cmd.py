@@ -8,16 +8,8 @@ from typing import IO, Annotated, Optional
 import numpy as np
 import typer
 
-from impactcli.cli.common import (
-    Format,
-    Output,
-    console,
-    save_plot,
-    segments_option,
-    with_output_options,
-)
+from impactcli.cli.common import Output, console, save_plot, segments_option, with_output_options
 from impactcli.limits import MAX_CONVERGENCE_RUNS, MAX_SEGMENTS, check_size
-from impactcli.output import write_csv, write_json
 
 TABLE_TITLES = {
     "loading": "Table A1. Normalised solutions for total compliance response and constituent "
@@ -101,25 +93,15 @@ def tables(
 
     chosen = STAGES if stage is StageChoice.both else (stage.value,)
     data = {name: normalised_table(n, name, midpoint) for name in chosen}
-    with out.open() as (kind, stream):
-        if kind is Format.csv:
-            blocks = (
-                ((name,), np.column_stack([cols[c] for c in TABLE_COLUMNS]))
-                for name, cols in data.items()
-            )
-            write_csv(stream, ("stage", *TABLE_COLUMNS), blocks)
-        elif kind is Format.json:
-            write_json(
-                stream,
-                {
-                    "n": n,
-                    "midpoint": midpoint,
-                    "columns": list(TABLE_COLUMNS),
-                    "stages": data,
-                },
-            )
-        else:
-            _print_tables(stream, n, data)
+    blocks = (
+        ((name,), np.column_stack([cols[c] for c in TABLE_COLUMNS])) for name, cols in data.items()
+    )
+    out.write(
+        ("stage", *TABLE_COLUMNS),
+        blocks,
+        lambda: {"n": n, "midpoint": midpoint, "columns": list(TABLE_COLUMNS), "stages": data},
+        lambda stream: _print_tables(stream, n, data),
+    )
 
 
 def _print_tables(stream: IO[str] | None, n: int, data: dict) -> None:
@@ -195,40 +177,35 @@ def convergence(
         ],
         dtype=float,
     )
-    with out.open() as (kind, stream):
-        if kind is Format.csv:
-            write_csv(stream, columns, [((), matrix)])
-        elif kind is Format.json:
-            write_json(
-                stream,
-                {
-                    "exact": EXACT_CONTACT_DURATION,
-                    "carry_velocity": carry_velocity,
-                    "rows": [dict(zip(columns, row)) for row in matrix.tolist()],
-                    "note": note,
-                },
-            )
-        else:
-            from impactcli.cli.common import Table
-
-            table = Table(
-                title="FILM convergence: normalised contact duration t_c·V0/δm",
-                caption=note,
-            )
-            for header in ("n", "loading", "2·loading", "contact duration", "rel. error", "order"):
-                table.add_column(header, justify="right")
-            for r in rows:
-                table.add_row(
-                    str(r.n),
-                    f"{r.loading:.7f}",
-                    f"{2 * r.loading:.7f}",
-                    f"{r.contact_duration:.7f}",
-                    f"{r.relative_error:.3e}",
-                    "" if np.isnan(r.order) else f"{r.order:.2f}",
-                )
-            console(stream).print(table)
+    document = {
+        "exact": EXACT_CONTACT_DURATION,
+        "carry_velocity": carry_velocity,
+        "rows": [dict(zip(columns, row)) for row in matrix.tolist()],
+        "note": note,
+    }
+    out.write(columns, [((), matrix)], lambda: document,
+              lambda stream: _print_convergence(stream, rows, note))  # fmt: skip
     if out.plot:
         _plot_convergence(out.plot, rows, carry_velocity)
+
+
+def _print_convergence(stream: IO[str] | None, rows, note: str) -> None:
+    """The convergence rows on screen, with ``note`` as the caption."""
+    from impactcli.cli.common import Table
+
+    table = Table(title="FILM convergence: normalised contact duration t_c·V0/δm", caption=note)
+    for header in ("n", "loading", "2·loading", "contact duration", "rel. error", "order"):
+        table.add_column(header, justify="right")
+    for r in rows:
+        table.add_row(
+            str(r.n),
+            f"{r.loading:.7f}",
+            f"{2 * r.loading:.7f}",
+            f"{r.contact_duration:.7f}",
+            f"{r.relative_error:.3e}",
+            "" if np.isnan(r.order) else f"{r.order:.2f}",
+        )
+    console(stream).print(table)
 
 
 #: Points per FILM indentation history drawn by ``impact convergence --plot``.
