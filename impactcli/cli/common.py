@@ -534,7 +534,8 @@ def gather_options(
     @functools.wraps(command)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         values = {n: kwargs.pop(n, None) for n in names}
-        return command(*args, **{name: gather(values, kwargs)}, **kwargs)
+        gathered = gather(values, kwargs)  # first: it may change the other arguments
+        return command(*args, **{name: gathered}, **kwargs)
 
     wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
     wrapper.__annotations__ = {p.name: p.annotation for p in params}
