@@ -15,6 +15,7 @@ from impactcli.cli.common import (
     Model,
     Output,
     console,
+    file_option,
     quantity_table,
     save_plot,
     screen_values,
@@ -185,10 +186,8 @@ ROWS_OPTION = typer.Option(
     "batch); writes its columns and the results (-o OUT.csv or .parquet, else "
     "stdout as CSV); a bad row gets its reason in the error column.",
 )
-PLOT_FORCE_OPTION = typer.Option(
-    None,
+PLOT_FORCE = file_option(
     "--plot-force",
-    metavar="FILE",
     help="With a tangential spring (--tangential mindlin, ...): draw the tangential force "
     "history and its Coulomb limit mu F_n to FILE (.png, .svg or .pdf).",
 )
@@ -221,7 +220,7 @@ def collide3d(
     geometry: Geometry = GEOMETRY_OPTION,
     rows: Optional[str] = ROWS_OPTION,
     out: Output = None,  # type: ignore[assignment]  # --format, -o, --plot
-    plot_force: Optional[str] = PLOT_FORCE_OPTION,
+    plot_force: PLOT_FORCE = None,
 ) -> None:
     """Oblique 3-D collision of two rough, spinning spheres (or a sphere and a flat target).
 

@@ -42,34 +42,34 @@ class Model(enum.StrEnum):
     elastoplastic = "elastoplastic"
 
 
-#: ``-o FILE`` extension -> the format written when --format is not given (no extension:
-#: CSV). Any other extension is refused, since nothing else is written.
-OUTPUT_EXTENSIONS: dict[str, Format] = {
-    ".csv": Format.csv,
-    ".json": Format.json,
-    ".txt": Format.table,
-    "": Format.csv,
-}
-
-
 def resolve_format(requested: Format | None, output: str | None) -> Format:
-    """The format to write: as requested; else from the ``-o`` file's extension (.csv or
-    none -> csv, .json -> json, .txt -> the table as text; another extension is a one-line
+    """The format to write: as requested; else from the ``-o`` file's extension
+    (:data:`impactcli.output.FILE_FORMATS`: .csv or none -> csv, .json -> json, .txt -> the
+    table as text; another extension is a one-line
     :class:`~impactcli.errors.InputError`); else a Rich table on a terminal and CSV when
     piped ('-' is stdout)."""
     if requested is not None:
         return requested
     if output is not None and output != "-":
-        extension = os.path.splitext(output)[1].lower()
-        if extension not in OUTPUT_EXTENSIONS:
+        from impactcli.output import format_of_file
+
+        kind = format_of_file(output, [f.value for f in Format])
+        if kind is None:
             from impactcli.errors import InputError
 
+            extension = os.path.splitext(output)[1].lower()
             raise InputError(
                 f"-o {output}: unknown file type {extension!r}: use .csv, .json or .txt (the "
                 "table as text), or give --format"
             )
-        return OUTPUT_EXTENSIONS[extension]
+        return Format(kind)
     return Format.table if sys.stdout.isatty() else Format.csv
+
+
+def file_option(*flags: str, help: str):  # -> typing.Annotated
+    """The type of an option that names a file (``FILE`` in ``--help``), None when not
+    given: ``-o``, ``--plot``, ``--summary``, ``--curve``, ``--script``, ..."""
+    return Annotated[Optional[str], typer.Option(*flags, metavar="FILE", help=help)]
 
 
 SUMMARY_HELP = (
@@ -77,7 +77,7 @@ SUMMARY_HELP = (
     "SI ('-' is stdout, then give -o FILE for the history)."
 )
 #: ``--summary FILE``: the one-row summary CSV of ``impact elastic/elastoplastic``.
-SummaryFile = Annotated[Optional[str], typer.Option("--summary", metavar="FILE", help=SUMMARY_HELP)]
+SummaryFile = file_option("--summary", help=SUMMARY_HELP)
 
 
 def check_summary_file(path: str | None, output: str | None) -> None:
@@ -336,11 +336,9 @@ def format_option(csv_holds: str):  # -> typing.Annotated
     text = FORMAT_HELP.replace("csv or json", f"csv ({csv_holds}) or json", 1)
     return Annotated[Optional[Format], typer.Option("--format", "-f", help=text)]
 #: ``--output/-o FILE``.
-OutputFile = Annotated[
-    Optional[str], typer.Option("--output", "-o", metavar="FILE", help=OUTPUT_HELP)
-]
+OutputFile = file_option("--output", "-o", help=OUTPUT_HELP)
 #: ``--plot FILE``.
-PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
+PlotFile = file_option("--plot", help=PLOT_HELP)
 
 SEGMENTS_HELP = f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}."
 

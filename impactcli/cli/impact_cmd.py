@@ -21,6 +21,7 @@ from impactcli.cli.common import (
     check_summary_file,
     console,
     damped_segments_help,
+    file_option,
     format_option,
     gather_options,
     law_segments_help,
@@ -103,25 +104,17 @@ CHECK = Annotated[
 SPLIT = Annotated[Split, typer.Option("--split", help=SPLIT_HELP)]
 FMT = format_option("the history")
 SWEEP_FMT = format_option("one row per impact velocity")
-ENERGY_PLOT = Annotated[
-    Optional[str],
-    typer.Option(
-        "--energy-plot",
-        metavar="FILE",
-        help="Also draw the energy partition (each sphere's kinetic, stored and dissipated "
-        "energy against t) into this .png, .svg or .pdf file.",
-    ),
-]
-CURVE = Annotated[
-    Optional[str],
-    typer.Option(
-        "--curve",
-        metavar="FILE",
-        help="Your own loading curve instead of Hertz: CSV 'delta,force' in SI, or with "
-        "units in the header ('delta [um],force [N]'), run as an elastic, reversible law "
-        f"(law {CURVE_LAW}, linear interpolation; see 'impact laws').",
-    ),
-]
+ENERGY_PLOT = file_option(
+    "--energy-plot",
+    help="Also draw the energy partition (each sphere's kinetic, stored and dissipated energy "
+    "against t) into this .png, .svg or .pdf file.",
+)
+CURVE = file_option(
+    "--curve",
+    help="Your own loading curve instead of Hertz: CSV 'delta,force' in SI, or with units in "
+    "the header ('delta [um],force [N]'), run as an elastic, reversible law "
+    f"(law {CURVE_LAW}, linear interpolation; see 'impact laws').",
+)
 
 
 def _summary_units(result) -> dict[str, tuple[str, str]]:
