@@ -147,14 +147,15 @@ def _speed(text: str, name: str) -> float:
 @dataclasses.dataclass(frozen=True)
 class HistoryOptions:
     """The options impact elastic and elastoplastic share after the law, as given:
-    --points, --method, --check, --split, --format, -o, --plot and --summary."""
+    --points, --method, --check, --split, --format, -o, --plot and --summary (their
+    defaults: :data:`_HISTORY_PARAMETERS`)."""
 
-    points: int = 201
-    method: Method = Method.film
-    check: bool = False
-    split: Split = Split.mass
-    out: Output = Output()
-    summary: str | None = None
+    points: int
+    method: Method
+    check: bool
+    split: Split
+    out: Output
+    summary: str | None
 
 
 #: The parameters of :class:`HistoryOptions`, in the order of ``--help``.
