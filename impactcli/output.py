@@ -14,7 +14,7 @@ import os
 import stat
 import sys
 import tempfile
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Collection, Iterable, Iterator, Mapping, Sequence
 from typing import IO, Any
 
 import numpy as np
@@ -24,6 +24,8 @@ from impactcli.errors import InputError, OutputError, StdoutClosed
 __all__ = [
     "atomic_output",
     "check_distinct_outputs",
+    "file_extensions",
+    "format_of_file",
     "output_transaction",
     "remove_path",
     "temporary_path",
@@ -44,6 +46,33 @@ _FORMAT_VALUES = 32_768
 
 #: Prefix of the temporary files written beside an output before it replaces the target.
 TEMP_PREFIX = ".impact-"
+
+
+#: The extension of a file written with ``-o`` -> the format it holds when ``--format`` is
+#: not given: the commands' CSV, JSON and table as text, and the result tables of impact
+#: batch and impact collide3d --rows; no extension (and stdout) is CSV.
+FILE_FORMATS: dict[str, str] = {
+    ".csv": "csv", ".json": "json", ".txt": "table", "": "csv",
+    **dict.fromkeys((".parquet", ".pq", ".parq"), "parquet"),
+}  # fmt: skip
+
+
+def format_of_file(path: str | None, accepted: Collection[str]) -> str | None:
+    """The format that the extension of ``path`` names (:data:`FILE_FORMATS`; stdout, None
+    or '-', is CSV), or None when it names none of the ``accepted`` formats.
+
+    >>> format_of_file("run.JSON", ("csv", "json")), format_of_file("run.pq", ("csv", "json"))
+    ('json', None)
+    """
+    extension = "" if path is None or path == "-" else os.path.splitext(path)[1].lower()
+    kind = FILE_FORMATS.get(extension)
+    return kind if kind in accepted else None
+
+
+def file_extensions(accepted: Collection[str]) -> list[str]:
+    """The extensions of the files of the ``accepted`` formats, as :data:`FILE_FORMATS`
+    lists them (no extension left out)."""
+    return [extension for extension, kind in FILE_FORMATS.items() if extension and kind in accepted]
 
 
 def describe_os_error(exc: OSError) -> str:

@@ -9,24 +9,19 @@ from typing import IO, Optional
 import typer
 
 from impactcli.cli.common import (
-    Format,
     Model,
-    OutputFile,
-    OutputFormat,
-    PlotFile,
-    check_plot,
+    Output,
     console,
     quantity_table,
-    resolve_format,
     save_plot,
     warn,
+    with_output_options,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW, get_law
-from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.spheres import SphereOptions
 from impactcli.validation import check_restitution
 
@@ -122,6 +117,7 @@ PAPER_ANGLES_OPTION = typer.Option(
 @with_sphere_options(names=tuple(SPHERE_HELPS), helps=SPHERE_HELPS)
 @with_law_options(default=f"{ELASTIC_LAW}, e = 1; {DEFAULT_LAW} with --model elastoplastic")
 @with_damping_options(target_e=False)  # collide2d's --e is a given e, not a target of alpha
+@with_output_options(plot=True)
 def collide2d(
     m1: str = M1_OPTION,
     m2: str = M2_OPTION,
@@ -137,9 +133,7 @@ def collide2d(
     spheres: SphereOptions = None,  # type: ignore[assignment]  # --d1, --d2, --material, ...
     e: Optional[float] = E_OPTION,
     paper_angles: bool = PAPER_ANGLES_OPTION,
-    fmt: OutputFormat = None,
-    output: OutputFile = None,
-    plot: PlotFile = None,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o, --plot
 ) -> None:
     """Oblique 2-D collision of two smooth spheres (paper sec. 4.5, eqs. 17-21).
 
@@ -178,7 +172,7 @@ def collide2d(
     from impactcli.collision2d import PAPER_ANGLE_SIGN, collision_summary, sphere_collision_2d
     from impactcli.spheres import check_options
 
-    check_plot(plot, output)
+    out.check()
     sign = PAPER_ANGLE_SIGN if paper_angles else dict.fromkeys(PAPER_ANGLE_SIGN, 1.0)
     masses = (_mass(m1, "--m1"), _mass(m2, "--m2"))
     spheres = dataclasses.replace(spheres, m1=masses[0], m2=masses[1])
@@ -205,18 +199,14 @@ def collide2d(
         from impactcli.spheres import spheres_from_options
 
         inputs.update(law_inputs(chosen, weaker_yield_strength(*spheres_from_options(spheres))))
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            write_csv(stream, tuple(summary), [((), np.array([list(summary.values())]))])
-        elif kind is Format.json:
-            write_json(stream, {"inputs": inputs, "summary": summary})
-        else:
-            _print_tables(
-                stream if output not in (None, "-") else None, inputs, summary, paper_angles
-            )
-    if plot:
-        _plot(plot, result, motion, radii, model_name, restitution)
+    out.write(
+        tuple(summary),
+        [((), np.array([list(summary.values())]))],
+        lambda: {"inputs": inputs, "summary": summary},
+        lambda stream: _print_tables(stream, inputs, summary, paper_angles),
+    )
+    if out.plot:
+        _plot(out.plot, result, motion, radii, model_name, restitution)
 
 
 def _motion(

@@ -12,19 +12,17 @@ from impactcli.cli.collide2d_cmd import E_GIVEN_HELP
 from impactcli.cli.common import (
     DAMPED_DEFAULT_N,
     FORMAT_HELP,
-    Format,
     Model,
-    OutputFile,
-    PlotFile,
-    check_plot,
+    Output,
     console,
+    file_option,
     quantity_table,
-    resolve_format,
     save_plot,
     screen_values,
     segments_option,
     spin_options,
     warn,
+    with_output_options,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
@@ -33,7 +31,6 @@ from impactcli.errors import InputError
 from impactcli.laws.registry import DEFAULT_LAW, ELASTIC_LAW
 from impactcli.laws.tangential import get_tangential, tangential_names
 from impactcli.limits import MAX_POINTS, check_size
-from impactcli.output import atomic_output, check_distinct_outputs, write_csv, write_json
 from impactcli.spheres import SphereOptions
 from impactcli.validation import check_friction, check_restitution
 
@@ -189,10 +186,8 @@ ROWS_OPTION = typer.Option(
     "batch); writes its columns and the results (-o OUT.csv or .parquet, else "
     "stdout as CSV); a bad row gets its reason in the error column.",
 )
-PLOT_FORCE_OPTION = typer.Option(
-    None,
+PLOT_FORCE = file_option(
     "--plot-force",
-    metavar="FILE",
     help="With a tangential spring (--tangential mindlin, ...): draw the tangential force "
     "history and its Coulomb limit mu F_n to FILE (.png, .svg or .pdf).",
 )
@@ -201,6 +196,10 @@ PLOT_FORCE_OPTION = typer.Option(
 @with_law_options(default=f"{ELASTIC_LAW}, e = 1; {DEFAULT_LAW} with --model elastoplastic")
 @with_sphere_options(velocities=False)
 @with_damping_options(target_e=False)  # collide3d's --e is a given e, not a target of alpha
+@with_output_options(
+    plot=True,
+    fmt=Annotated[Optional[Collide3dFormat], typer.Option("--format", "-f", help=FORMAT_3D_HELP)],
+)
 def collide3d(
     v1: Optional[str] = V1_OPTION,
     v2: str = V2_OPTION,
@@ -220,12 +219,8 @@ def collide3d(
     n: Annotated[Optional[int], N_OPTION] = None,
     geometry: Geometry = GEOMETRY_OPTION,
     rows: Optional[str] = ROWS_OPTION,
-    fmt: Annotated[
-        Optional[Collide3dFormat], typer.Option("--format", "-f", help=FORMAT_3D_HELP)
-    ] = None,
-    output: OutputFile = None,
-    plot: PlotFile = None,
-    plot_force: Optional[str] = PLOT_FORCE_OPTION,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o, --plot
+    plot_force: PLOT_FORCE = None,
 ) -> None:
     """Oblique 3-D collision of two rough, spinning spheres (or a sphere and a flat target).
 
@@ -275,9 +270,7 @@ def collide3d(
     if n is None:
         n = DAMPED_DEFAULT_N if damping_law is not None else (HISTORY_N if spring else RIGID_N)
     check_size("--points", points, MAX_POINTS, minimum=3)
-    check_plot(plot, output)
-    check_plot(plot_force, output)
-    check_distinct_outputs(plot, plot_force)
+    out.check(plot_force)
     if plot_force is not None and not spring:
         raise InputError(
             "--plot-force draws the force history of a tangential spring: add --tangential "
@@ -293,11 +286,11 @@ def collide3d(
     check_options(spheres)  # every sphere option given is checked, used or not
     if rows is not None:
         single = [name for name, value in (("--v1", v1), ("--p1", p1), ("--p2", p2),
-                  ("--plot", plot), ("--plot-force", plot_force)) if value is not None]
+                  ("--plot", out.plot), ("--plot-force", plot_force)) if value is not None]
         single += [name for name, value in (("--v2", v2), ("--w1", w1), ("--w2", w2))
                    if value != "0,0,0"]
         single += [f"--{k}" for k, value in vars(spheres).items() if value is not None]
-        _rows(rows, output, fmt, single, law=law_name, params=params,
+        _rows(rows, out, single, law=law_name, params=params,
               damping=damping_law, alpha=alpha, separation=separation, restitution=e, mu=mu,
               tangential=tangential.value, points=points, n=n,
               tangential_damping=tangential_damping)  # fmt: skip
@@ -305,18 +298,18 @@ def collide3d(
     texts = {"--v1": v1, "--v2": v2, "--w1": w1, "--w2": w2, "--p1": p1, "--p2": p2}
     normal_law = (law_name, params, (damping_law, alpha, separation), e, n)
     _one(spheres, texts, normal_law, (mu, tangential, points, geometry, tangential_damping),
-         (fmt, output, plot, plot_force))  # fmt: skip
+         out, plot_force)  # fmt: skip
 
 
 def _one(spheres: SphereOptions, texts: dict, normal_law: tuple, tangential_model: tuple,
-         outputs: tuple) -> None:  # fmt: skip
+         out: Output, plot_force: str | None) -> None:  # fmt: skip
     """One collision: its vectors read from the options' ``texts`` (--v1 ... --p2), solved
-    (:func:`_solve`) and written in the format asked, with its figures."""
-    fmt, output, plot, plot_force = outputs
+    (:func:`_solve`) and written in the format asked, with its figures (``plot_force``: the
+    file of --plot-force)."""
     for name in ("--v1", "--p1", "--p2"):
         if texts[name] is None:
             raise InputError(f"missing {name} (or give --rows TABLE for many collisions)")
-    if fmt is Collide3dFormat.parquet:
+    if out.fmt is Collide3dFormat.parquet:
         raise InputError(
             "-f parquet writes the table of --rows; one collision is written as table, csv "
             "or json"
@@ -338,19 +331,13 @@ def _one(spheres: SphereOptions, texts: dict, normal_law: tuple, tangential_mode
                                                    tangential_model)  # fmt: skip
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
-    kind = resolve_format(None if fmt is None else Format(fmt.value), output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            write_csv(stream, tuple(summary), [((), [list(summary.values())])])
-        elif kind is Format.json:
-            document: dict[str, Any] = {"inputs": inputs, "summary": summary}
-            if force is not None:
-                document["tangential_force"] = force
-            write_json(stream, document)
-        else:
-            _print_tables(stream if output not in (None, "-") else None, inputs, summary)
-    if plot:
-        _plot(plot, result, inputs)
+    document: dict[str, Any] = {"inputs": inputs, "summary": summary}
+    if force is not None:
+        document["tangential_force"] = force
+    out.write(tuple(summary), [((), [list(summary.values())])], lambda: document,
+              lambda stream: _print_tables(stream, inputs, summary))  # fmt: skip
+    if out.plot:
+        _plot(out.plot, result, inputs)
     if plot_force:
         from impactcli.plots import tangential_force_figure
 
@@ -423,7 +410,7 @@ def _degrees(text: str, name: str) -> float:
         return parse_quantity(text, "angle", name)
 
 
-def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
+def _rows(path: str, out: Output, single: list[str], **options: Any) -> None:
     """``--rows TABLE``: every row through :func:`impactcli.table_runs.run_collisions3d`,
     file to file; ``single`` names the options of one collision that were given."""
     from impactcli.cli.common import warn
@@ -435,12 +422,13 @@ def _rows(path: str, output, fmt, single: list[str], **options: Any) -> None:
             f"--rows reads the collisions from the table: {', '.join(single)} belong in its "
             "columns (v1_x, ..., d1, material, ...)"
         )
+    fmt = out.fmt
     if fmt not in (None, Collide3dFormat.csv, Collide3dFormat.parquet):
         raise InputError(
             f"--rows writes a table: -f csv or parquet (or -o OUT.parquet), not {fmt.value}"
         )
-    table = table_format(None if fmt is None else fmt.value, output, "impact collide3d --rows")
-    report = run_collisions3d(path, output, table, **options)
+    table = table_format(None if fmt is None else fmt.value, out.path, "impact collide3d --rows")
+    report = run_collisions3d(path, out.path, table, **options)
     for line in report.lines:
         warn(line)
     if report.summary():

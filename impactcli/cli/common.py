@@ -1,14 +1,17 @@
-"""Pieces shared by the commands: the --format/-o/--plot options, the output format choice,
-the Rich console on demand, warnings and figure checks."""
+"""Pieces shared by the commands: the --format/-o/--plot options and where they write
+(:class:`Output`), the Rich console on demand, warnings and figure checks."""
 
 from __future__ import annotations
 
+import contextlib
+import dataclasses
 import enum
+import functools
 import inspect
 import os
 import sys
-from collections.abc import Iterable, Sequence
-from typing import IO, Annotated, Optional
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from typing import IO, Annotated, Any, Optional
 
 import typer
 
@@ -39,34 +42,34 @@ class Model(enum.StrEnum):
     elastoplastic = "elastoplastic"
 
 
-#: ``-o FILE`` extension -> the format written when --format is not given (no extension:
-#: CSV). Any other extension is refused, since nothing else is written.
-OUTPUT_EXTENSIONS: dict[str, Format] = {
-    ".csv": Format.csv,
-    ".json": Format.json,
-    ".txt": Format.table,
-    "": Format.csv,
-}
-
-
 def resolve_format(requested: Format | None, output: str | None) -> Format:
-    """The format to write: as requested; else from the ``-o`` file's extension (.csv or
-    none -> csv, .json -> json, .txt -> the table as text; another extension is a one-line
+    """The format to write: as requested; else from the ``-o`` file's extension
+    (:data:`impactcli.output.FILE_FORMATS`: .csv or none -> csv, .json -> json, .txt -> the
+    table as text; another extension is a one-line
     :class:`~impactcli.errors.InputError`); else a Rich table on a terminal and CSV when
     piped ('-' is stdout)."""
     if requested is not None:
         return requested
     if output is not None and output != "-":
-        extension = os.path.splitext(output)[1].lower()
-        if extension not in OUTPUT_EXTENSIONS:
+        from impactcli.output import format_of_file
+
+        kind = format_of_file(output, [f.value for f in Format])
+        if kind is None:
             from impactcli.errors import InputError
 
+            extension = os.path.splitext(output)[1].lower()
             raise InputError(
                 f"-o {output}: unknown file type {extension!r}: use .csv, .json or .txt (the "
                 "table as text), or give --format"
             )
-        return OUTPUT_EXTENSIONS[extension]
+        return Format(kind)
     return Format.table if sys.stdout.isatty() else Format.csv
+
+
+def file_option(*flags: str, help: str):  # -> typing.Annotated
+    """The type of an option that names a file (``FILE`` in ``--help``), None when not
+    given: ``-o``, ``--plot``, ``--summary``, ``--curve``, ``--script``, ..."""
+    return Annotated[Optional[str], typer.Option(*flags, metavar="FILE", help=help)]
 
 
 SUMMARY_HELP = (
@@ -74,7 +77,7 @@ SUMMARY_HELP = (
     "SI ('-' is stdout, then give -o FILE for the history)."
 )
 #: ``--summary FILE``: the one-row summary CSV of ``impact elastic/elastoplastic``.
-SummaryFile = Annotated[Optional[str], typer.Option("--summary", metavar="FILE", help=SUMMARY_HELP)]
+SummaryFile = file_option("--summary", help=SUMMARY_HELP)
 
 
 def check_summary_file(path: str | None, output: str | None) -> None:
@@ -333,11 +336,9 @@ def format_option(csv_holds: str):  # -> typing.Annotated
     text = FORMAT_HELP.replace("csv or json", f"csv ({csv_holds}) or json", 1)
     return Annotated[Optional[Format], typer.Option("--format", "-f", help=text)]
 #: ``--output/-o FILE``.
-OutputFile = Annotated[
-    Optional[str], typer.Option("--output", "-o", metavar="FILE", help=OUTPUT_HELP)
-]
+OutputFile = file_option("--output", "-o", help=OUTPUT_HELP)
 #: ``--plot FILE``.
-PlotFile = Annotated[Optional[str], typer.Option("--plot", metavar="FILE", help=PLOT_HELP)]
+PlotFile = file_option("--plot", help=PLOT_HELP)
 
 SEGMENTS_HELP = f"FILM segments per stage, 1 to {MAX_SEGMENTS:,}."
 
@@ -447,3 +448,120 @@ def save_plot(fig, path: str) -> None:  # fig: matplotlib.figure.Figure
         save_figure(fig, path)
     except OSError as exc:
         raise InputError(f"--plot: cannot write {path!r}: {exc.strerror or exc}") from None
+
+
+@dataclasses.dataclass(frozen=True)
+class Output:
+    """Where a command writes, as given: ``--format/-f`` (``fmt``; a command's own choice
+    of formats is read by its value), ``-o/--output FILE`` (``path``; None or '-' is
+    stdout) and ``--plot FILE`` (``plot``, None when not asked or not taken)."""
+
+    fmt: enum.Enum | None = None
+    path: str | None = None
+    plot: str | None = None
+
+    @classmethod
+    def of(cls, values: Mapping[str, Any]) -> Output:
+        """The Output of the values of :func:`output_parameters` (by parameter name)."""
+        return cls(values["fmt"], values["output"], values.get("plot"))
+
+    def check(self, *figures: str | None) -> None:
+        """Fail before any work if --plot, or one of the command's other ``figures``
+        files, cannot be drawn or is the same file as another output (:func:`check_plot`)."""
+        for figure in (self.plot, *figures):
+            check_plot(figure, self.path)
+        if figures:
+            from impactcli.output import check_distinct_outputs
+
+            check_distinct_outputs(self.path, self.plot, *figures)
+
+    def format(self) -> Format:
+        """The format to write (:func:`resolve_format`): an unknown ``-o`` extension is a
+        one-line :class:`~impactcli.errors.InputError`."""
+        return resolve_format(None if self.fmt is None else Format(self.fmt.value), self.path)
+
+    @contextlib.contextmanager
+    def open(self) -> Iterator[tuple[Format, IO[str]]]:
+        """The format to write (:meth:`format`) and the stream to write it to: stdout, or a
+        file written whole or not at all (:func:`impactcli.output.atomic_output`). A table
+        for the screen goes to ``console(stream)``."""
+        from impactcli.output import atomic_output
+
+        kind = self.format()
+        with atomic_output(self.path) as stream:
+            yield kind, stream
+
+    def write(
+        self,
+        columns: Sequence[str],
+        blocks: Iterable[tuple[Sequence[Any], Any]],
+        document: Callable[[], Any],
+        screen: Callable[[IO[str]], None],
+    ) -> None:
+        """A result in the format asked (:meth:`open`): CSV of ``columns`` and the rows of
+        ``blocks`` (:func:`impactcli.output.write_csv`), the JSON ``document()``, or
+        ``screen(stream)``, its tables on the screen (or as text in the ``-o`` file)."""
+        from impactcli.output import write_csv, write_json
+
+        with self.open() as (kind, stream):
+            if kind is Format.csv:
+                write_csv(stream, columns, blocks)
+            elif kind is Format.json:
+                write_json(stream, document())
+            else:
+                screen(stream)
+
+
+def gather_options(
+    command: Callable,
+    name: str,
+    options: Sequence[inspect.Parameter],
+    gather: Callable[[dict[str, Any], dict[str, Any]], Any],
+) -> Callable:
+    """``command`` with the ``options`` in place of its parameter ``name`` in its signature
+    (and so in ``--help``, in that order), called with ``name=gather(values, others)``:
+    ``values`` the options' values by parameter name, ``others`` the command's other
+    arguments (which ``gather`` may change). The sphere, law, damping and output options
+    are declared once so and shared by the commands that take them."""
+    signature = inspect.signature(command, eval_str=True)
+    params = list(signature.parameters.values())
+    where = [p.name for p in params].index(name)
+    params[where : where + 1] = [p.replace(kind=params[where].kind) for p in options]
+    names = [p.name for p in options]
+
+    @functools.wraps(command)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        values = {n: kwargs.pop(n, None) for n in names}
+        gathered = gather(values, kwargs)  # first: it may change the other arguments
+        return command(*args, **{name: gathered}, **kwargs)
+
+    wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
+    wrapper.__annotations__ = {p.name: p.annotation for p in params}
+    return wrapper
+
+
+def option_parameter(name: str, annotation: Any, default: Any = None) -> inspect.Parameter:
+    """A parameter of a command's signature: ``annotation`` is its Annotated option type."""
+    return inspect.Parameter(
+        name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=default, annotation=annotation
+    )
+
+
+def output_parameters(plot: bool = False, fmt: Any = OutputFormat) -> list[inspect.Parameter]:
+    """``--format/-f`` (``fmt``: its Annotated type, :data:`OutputFormat` or that of
+    :func:`format_option`), ``-o/--output FILE`` and, with ``plot``, ``--plot FILE``
+    (:meth:`Output.of` gathers them)."""
+    options = [option_parameter("fmt", fmt), option_parameter("output", OutputFile)]
+    if plot:
+        options.append(option_parameter("plot", PlotFile))
+    return options
+
+
+def with_output_options(
+    plot: bool = False, fmt: Any = OutputFormat
+) -> Callable[[Callable], Callable]:
+    """Decorate a command whose signature has an ``out`` parameter: the
+    :func:`output_parameters` take its place, and the command receives them as
+    ``out=Output(...)``."""
+    options = output_parameters(plot, fmt)
+    return lambda command: gather_options(command, "out", options, lambda v, _: Output.of(v))

@@ -9,16 +9,12 @@ import typer
 
 from impactcli.cli.common import (
     DAMPED_DEFAULT_N,
-    Format,
-    OutputFile,
-    OutputFormat,
-    PlotFile,
-    check_plot,
+    Output,
     console,
     damped_segments_help,
-    resolve_format,
     save_plot,
     segments_option,
+    with_output_options,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.impact_cmd import POINTS
@@ -26,7 +22,6 @@ from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_
 from impactcli.cli.sphere_options import pair_inputs, with_sphere_options
 from impactcli.errors import InputError
 from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS, check_size
-from impactcli.output import atomic_output, write_csv, write_json
 from impactcli.quantities import summary_quantities
 from impactcli.spheres import SphereOptions
 
@@ -48,6 +43,7 @@ COLUMNS = {
     default="every elastoplastic law that needs only the spheres' properties",
 )
 @with_damping_options(target_e=False)
+@with_output_options(plot=True)
 def compare_laws(
     spheres: SphereOptions,
     law: LawOptions = None,
@@ -72,9 +68,7 @@ def compare_laws(
             f"the velocities of its sweep; --count x --n at most {MAX_SWEEP_SEGMENTS:,}.",
         ),
     ] = 80,
-    fmt: OutputFormat = None,
-    output: OutputFile = None,
-    plot: PlotFile = None,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o, --plot
 ) -> None:
     """The same impact under several contact laws: e, contact time, maximum and permanent
     indentation of each, and (--plot) their force-indentation loops on one figure with e
@@ -106,12 +100,12 @@ def compare_laws(
     from impactcli.laws.registry import comparison_laws
     from impactcli.spheres import spheres_from_options, velocities_from_options
 
-    check_plot(plot, output)
+    out.check()
     if not 0 < ratio_min < ratio_max:
         raise InputError(f"need 0 < --ratio-min < --ratio-max, got {ratio_min:g}, {ratio_max:g}")
     choices = resolve_laws(law, default=comparison_laws())
     damping_law, alpha, _, separation = damping.parse()
-    if plot:  # the e panel: one sweep of --count velocities per law, at its n
+    if out.plot:  # the e panel: one sweep of --count velocities per law, at its n
         sweep_n = n if n is not None else (25 if damping_law is None else DAMPED_DEFAULT_N)
         check_size("--count x --n", count * sweep_n, MAX_SWEEP_SEGMENTS)
     s1, s2 = spheres_from_options(spheres)
@@ -120,32 +114,30 @@ def compare_laws(
     if damping_law is not None:
         laws.append(ContactModel(damping=damping_law, alpha=alpha, separation=separation))
     try:
-        results = summarise_laws(s1, s2, v1, v2, laws, n, points=points if plot else None)
+        results = summarise_laws(s1, s2, v1, v2, laws, n, points=points if out.plot else None)
     except ValueError as exc:
         raise InputError(str(exc)) from None
     segments = _segments(results)
     table = {name: r.row for name, r in results.items()}
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            write_csv(
-                stream,
-                ("law", *COMPARISON_KEYS),
-                [((name,), np.array([list(row.values())])) for name, row in table.items()],
-            )
-        elif kind is Format.json:
-            inputs = _inputs(s1, s2, v1, v2, segments.get("laws", 25), choices)
-            if damping_law is not None:
-                inputs.update(
-                    damping=damping_law, alpha=alpha, separation=separation,
-                    damping_n=segments["damped"],
-                )  # fmt: skip
-            write_json(stream, {"inputs": inputs, "laws": table})
-        else:
-            _print(stream if output not in (None, "-") else None, table, v1 + v2, segments)
-    if plot:
+
+    def document() -> dict:
+        inputs = _inputs(s1, s2, v1, v2, segments.get("laws", 25), choices)
+        if damping_law is not None:
+            inputs.update(
+                damping=damping_law, alpha=alpha, separation=separation,
+                damping_n=segments["damped"],
+            )  # fmt: skip
+        return {"inputs": inputs, "laws": table}
+
+    out.write(
+        ("law", *COMPARISON_KEYS),
+        [((name,), np.array([list(row.values())])) for name, row in table.items()],
+        document,
+        lambda stream: _print(stream, table, v1 + v2, segments),
+    )
+    if out.plot:
         _plot(
-            plot, results, laws, spheres, s1, s2, v1 + v2, n, segments, ratio_min, ratio_max,
+            out.plot, results, laws, spheres, s1, s2, v1 + v2, n, segments, ratio_min, ratio_max,
             count,
         )  # fmt: skip
 

@@ -12,7 +12,6 @@ of a law). The rules on the values (alpha >= 0, e in (0, 1], one of the two) liv
 from __future__ import annotations
 
 import enum
-import functools
 import inspect
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -20,6 +19,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from impactcli.cli.common import gather_options
 from impactcli.errors import InputError
 
 __all__ = ["DampingOptions", "damping_help", "with_damping_options"]
@@ -210,31 +210,15 @@ def with_damping_options(
     ``damping=DampingOptions(...)``. ``target_e=False``: no --e (the command's own --e, if
     any, is left to it). ``sweep``: the command sweeps V0, so --e is for tsuji alone (its
     e does not depend on V0), and its help says so."""
-    names = ("damping", "alpha", "e", "separation") if target_e else (
-        "damping", "alpha", "separation"
-    )  # fmt: skip
+    options = _parameters(target_e, sweep)
 
-    def decorate(command: Callable) -> Callable:
-        signature = inspect.signature(command, eval_str=True)
-        params = list(signature.parameters.values())
-        where = [p.name for p in params].index("damping")
-        new = [p.replace(kind=params[where].kind) for p in _parameters(target_e, sweep)]
-        params[where : where + 1] = new
+    def gather(raw: dict[str, Any], _others: dict[str, Any]) -> DampingOptions:
+        return DampingOptions(
+            damping=None if raw["damping"] is None else str(raw["damping"]),
+            alpha=raw["alpha"],
+            e=raw.get("e"),
+            separation=None if raw["separation"] is None else str(raw["separation"]),
+            target_e=target_e,
+        )
 
-        @functools.wraps(command)
-        def wrapper(*args: Any, **kwargs: Any) -> Any:
-            raw = {n: kwargs.pop(n, None) for n in names}
-            options = DampingOptions(
-                damping=None if raw["damping"] is None else str(raw["damping"]),
-                alpha=raw["alpha"],
-                e=raw.get("e"),
-                separation=None if raw["separation"] is None else str(raw["separation"]),
-                target_e=target_e,
-            )
-            return command(*args, damping=options, **kwargs)
-
-        wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
-        wrapper.__annotations__ = {p.name: p.annotation for p in params}
-        return wrapper
-
-    return decorate
+    return lambda command: gather_options(command, "damping", options, gather)

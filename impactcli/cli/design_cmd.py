@@ -10,19 +10,11 @@ from typing import Annotated, Optional
 
 import typer
 
-from impactcli.cli.common import (
-    FORMAT_HELP,
-    Format,
-    OutputFile,
-    OutputFormat,
-    console,
-    resolve_format,
-    warn,
-)
+from impactcli.cli.common import FORMAT_HELP, Format, Output, console, warn, with_output_options
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.laws.registry import ELASTIC_LAW
-from impactcli.output import atomic_output, write_csv, write_json
+from impactcli.output import write_json
 from impactcli.spheres import SphereOptions
 
 
@@ -82,6 +74,12 @@ def _speed(text: str, name: str) -> float:
         for i in (1, 2)
     },
 )
+@with_output_options(
+    fmt=Annotated[
+        Optional[LineFormat],
+        typer.Option("--format", "-f", metavar="[table|csv|json]", help=YIELD_FORMAT_HELP),
+    ]
+)
 def yield_limit(
     spheres: SphereOptions = None,
     sphere: Annotated[
@@ -122,11 +120,7 @@ def yield_limit(
     p0_factor: Annotated[
         float, typer.Option("--p0-factor", help=_pressure_factor_help())
     ] = _pressure_factor().default,
-    fmt: Annotated[
-        Optional[LineFormat],
-        typer.Option("--format", "-f", metavar="[table|csv|json]", help=YIELD_FORMAT_HELP),
-    ] = None,
-    output: OutputFile = None,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o
 ) -> None:
     """The largest impact velocity at which a chosen sphere stays elastic; or, given --v0,
     the largest diameter of one sphere (Kharaz & Gorham 2000: design an experiment in which
@@ -143,10 +137,10 @@ def yield_limit(
     from impactcli.formatting import format_quantity
     from impactcli.spheres import spheres_from_options
 
-    if fmt is LineFormat.text:
+    if out.fmt is LineFormat.text:
         warn("-f text is deprecated (it goes in 0.3): write -f table, the name every command uses")
-        fmt = LineFormat.table
-    kind = resolve_format(None if fmt is None else Format(fmt.value), output)
+        out = dataclasses.replace(out, fmt=LineFormat.table)
+    out.format()  # an unknown -o extension fails before any work
 
     try:
         factor = law_pressure_factor(law.value, p0_factor)
@@ -210,7 +204,7 @@ def yield_limit(
         else:
             size = f"for D{resized} up to {format_quantity(limit, 'm')}"
         line = f"sphere {sphere} stays elastic {at} {size} ({how})"
-    with atomic_output(output) as stream:
+    with out.open() as (kind, stream):
         if kind is Format.json:
             write_json(stream, doc)
         elif kind is Format.csv:
@@ -230,6 +224,7 @@ def yield_limit(
         "of sphere 1 when no sphere-2 option is given."
     },
 )
+@with_output_options()
 def timestep(
     spheres: SphereOptions = None,
     v0: Annotated[
@@ -241,8 +236,7 @@ def timestep(
             "asks for a diameter).",
         ),
     ] = "1",
-    fmt: OutputFormat = None,
-    output: OutputFile = None,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o
 ) -> None:
     """The Rayleigh time step of the particles and the Hertz contact time at V0, with the
     fractions DEM codes commonly take as their time step.
@@ -255,6 +249,8 @@ def timestep(
 
     Example: impact timestep --d1 2mm --material glass --v0 1m/s
     """
+    import numpy as np
+
     from impactcli.design import pair_timestep_table
     from impactcli.spheres import spheres_from_options
 
@@ -267,17 +263,12 @@ def timestep(
         options = dataclasses.replace(options, **{k: options.get(k[:-1] + "1") for k in second})
     s1, s2 = spheres_from_options(options)
     table = pair_timestep_table(s1, s2, velocity)
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.json:
-            write_json(stream, {"inputs": {"v0": velocity}, "timestep": table})
-        elif kind is Format.csv:
-            import numpy as np
-
-            keys = list(table)
-            write_csv(stream, keys, [((), np.array([[table[k] for k in keys]]))])
-        else:
-            _print_timestep(stream if output not in (None, "-") else None, table, velocity)
+    out.write(
+        list(table),
+        [((), np.array([list(table.values())]))],
+        lambda: {"inputs": {"v0": velocity}, "timestep": table},
+        lambda stream: _print_timestep(stream, table, velocity),
+    )
 
 
 def _meaning(key: str, velocity: float) -> str:

@@ -9,7 +9,7 @@ from typing import Any, Optional
 
 import typer
 
-from impactcli.cli.common import spin_options
+from impactcli.cli.common import file_option, spin_options
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawOptions, resolve_laws, with_law_options
 from impactcli.cli.sphere_options import with_sphere_options
@@ -102,13 +102,11 @@ def export(
         "LAMMPS's x_gamma_t (tangential VARIANT NULL X mu). Default 0: none. Refused without "
         "damping (LAMMPS: eta_n = 0, no tangential damping).",
     ),
-    from_fit: Optional[str] = typer.Option(
-        None,
+    from_fit: file_option(
         "--from-fit",
-        metavar="FILE",
         help="The contact of an 'impact fit -f json' result: its best fit, or the fit of "
         "--law NAME or --damping NAME; the fit's velocities are the default --v-range.",
-    ),
+    ) = None,
     v_range: Optional[str] = typer.Option(
         None,
         "--v-range",
@@ -132,14 +130,12 @@ def export(
         "or mindlin_rescale/force. Default: the one of --tangential (mindlin_rescale/force for "
         "rigid); another is LAMMPS's own, said so in the output.",
     ),
-    script: Optional[str] = typer.Option(
-        None,
+    script: file_option(
         "--script",
-        metavar="FILE",
         help="Also write a complete LAMMPS input for one collision at --v1, --v2, --w1, --w2 "
         "(fix nve/sphere, the time step of impact timestep, overridable by lmp -var dt) that "
         "prints e, t_c, delta_max and the spins after the impact, LAMMPS's beside this tool's.",
-    ),
+    ) = None,
 ) -> None:
     """The LAMMPS lines (units si) that reproduce a contact: pair_style granular and
     pair_coeff, and fix wall/gran for a flat target (--d2 inf --m2 inf), each parameter

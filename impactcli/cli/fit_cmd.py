@@ -13,22 +13,19 @@ import typer
 from impactcli.cli.common import (
     DAMPED_DEFAULT_N,
     Format,
-    OutputFile,
-    OutputFormat,
-    PlotFile,
-    check_plot,
+    Output,
     console,
-    resolve_format,
     save_plot,
     segments_option,
     warn,
+    with_output_options,
 )
 from impactcli.cli.sphere_options import with_sphere_options
 from impactcli.errors import InputError
 from impactcli.fit import FIT_LAWS, fit_parameter_help
 from impactcli.laws.registry import DAMPING_LAWS, LAWS, unit_kinds
 from impactcli.limits import MAX_SWEEP_SEGMENTS
-from impactcli.output import atomic_output, write_json
+from impactcli.output import write_json
 from impactcli.spheres import SphereOptions
 
 #: The normal laws fit can fit (--law); the damping models are --damping.
@@ -127,6 +124,7 @@ def _repeatable(flag: str, metavar: str, help: str) -> Any:
 
 
 @with_sphere_options(velocities=False)
+@with_output_options(plot=True)
 def fit(
     data: Annotated[
         str,
@@ -144,9 +142,7 @@ def fit(
     fix: _repeatable("--fix", "NAME=VALUE", FIX_HELP) = None,
     spheres: SphereOptions = None,
     n: Annotated[Optional[int], segments_option(N_HELP)] = None,
-    fmt: OutputFormat = None,
-    output: OutputFile = None,
-    plot: PlotFile = None,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o, --plot
 ) -> None:
     """Fit a contact law's parameters to measured restitution e(V0) (and contact time) by
     weighted least squares on the FILM model, and rank several laws.
@@ -164,8 +160,8 @@ def fit(
     from impactcli.fit import FIT_LAWS, fit_named_law, rank_fits, read_fit_data
     from impactcli.spheres import spheres_from_options
 
-    check_plot(plot, output)
-    kind = resolve_format(fmt, output)
+    out.check()
+    out.format()  # an unknown -o extension fails before the fits
     laws = _models(law or [], damping or [], FIT_LAWS)
     names = [_name(p) for p in param or []]
     given = {
@@ -201,17 +197,15 @@ def fit(
             warn(f"{result.law}: {message}")
     meaning = yield_strength_meaning(s1, s2)
 
-    with atomic_output(output) as stream:
+    with out.open() as (kind, stream):
         if kind is Format.json:
             write_json(stream, _document(measured, fits, rank, data, meaning))
         elif kind is Format.csv:
             _write_csv(stream, fits, rank)
         else:
-            _print_tables(
-                stream if output not in (None, "-") else None, measured, fits, ranked, meaning
-            )
-    if plot:
-        _plot(plot, measured, fits, ranked, s1, s2)
+            _print_tables(stream, measured, fits, ranked, meaning)
+    if out.plot:
+        _plot(out.plot, measured, fits, ranked, s1, s2)
 
 
 def _fit_plan(

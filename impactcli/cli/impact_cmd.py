@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import math
 from collections.abc import Callable
@@ -13,25 +14,26 @@ import typer
 from impactcli.cli.common import (
     DAMPED_DEFAULT_N,
     Format,
-    OutputFile,
-    OutputFormat,
-    PlotFile,
+    Output,
     Split,
     SummaryFile,
     append_help,
-    check_plot,
     check_summary_file,
     console,
     damped_segments_help,
+    file_option,
     format_option,
+    gather_options,
     law_segments_help,
     no_negative_zero,
     note,
-    resolve_format,
+    option_parameter,
+    output_parameters,
     save_plot,
     screen_value,
     segments_option,
     warn,
+    with_output_options,
 )
 from impactcli.cli.damping_options import DampingOptions, with_damping_options
 from impactcli.cli.law_options import LawChoice, LawOptions, resolve_laws, with_law_options
@@ -102,27 +104,17 @@ CHECK = Annotated[
 SPLIT = Annotated[Split, typer.Option("--split", help=SPLIT_HELP)]
 FMT = format_option("the history")
 SWEEP_FMT = format_option("one row per impact velocity")
-OUT = OutputFile
-PLOT = PlotFile
-ENERGY_PLOT = Annotated[
-    Optional[str],
-    typer.Option(
-        "--energy-plot",
-        metavar="FILE",
-        help="Also draw the energy partition (each sphere's kinetic, stored and dissipated "
-        "energy against t) into this .png, .svg or .pdf file.",
-    ),
-]
-CURVE = Annotated[
-    Optional[str],
-    typer.Option(
-        "--curve",
-        metavar="FILE",
-        help="Your own loading curve instead of Hertz: CSV 'delta,force' in SI, or with "
-        "units in the header ('delta [um],force [N]'), run as an elastic, reversible law "
-        f"(law {CURVE_LAW}, linear interpolation; see 'impact laws').",
-    ),
-]
+ENERGY_PLOT = file_option(
+    "--energy-plot",
+    help="Also draw the energy partition (each sphere's kinetic, stored and dissipated energy "
+    "against t) into this .png, .svg or .pdf file.",
+)
+CURVE = file_option(
+    "--curve",
+    help="Your own loading curve instead of Hertz: CSV 'delta,force' in SI, or with units in "
+    "the header ('delta [um],force [N]'), run as an elastic, reversible law "
+    f"(law {CURVE_LAW}, linear interpolation; see 'impact laws').",
+)
 
 
 def _summary_units(result) -> dict[str, tuple[str, str]]:
@@ -152,58 +144,136 @@ def _speed(text: str, name: str) -> float:
     return parse_quantity(text, "velocity", name)
 
 
+@dataclasses.dataclass(frozen=True)
+class HistoryOptions:
+    """The options impact elastic and elastoplastic share after the law, as given:
+    --points, --method, --check, --split, --format, -o, --plot and --summary (their
+    defaults: :data:`_HISTORY_PARAMETERS`)."""
+
+    points: int
+    method: Method
+    check: bool
+    split: Split
+    out: Output
+    summary: str | None
+
+
+#: The parameters of :class:`HistoryOptions`, in the order of ``--help``.
+_HISTORY_PARAMETERS = [
+    option_parameter("points", POINTS, 201),
+    option_parameter("method", METHOD, Method.film),
+    option_parameter("check", CHECK, False),
+    option_parameter("split", SPLIT, Split.mass),
+    *output_parameters(plot=True, fmt=FMT),
+    option_parameter("summary", SummaryFile),
+]
+
+
+def _history_options(values: dict[str, Any], _others: dict[str, Any]) -> HistoryOptions:
+    return HistoryOptions(
+        values["points"], values["method"], values["check"], values["split"],
+        Output.of(values), values["summary"],
+    )  # fmt: skip
+
+
+def with_history_options(command: Callable) -> Callable:
+    """Decorate a command whose signature has a ``history`` parameter: the options of
+    :class:`HistoryOptions` take its place, and the command receives them gathered."""
+    return gather_options(command, "history", _HISTORY_PARAMETERS, _history_options)
+
+
 def _run(
-    model: str,
-    spheres: SphereOptions,
-    *,
-    n: int,
-    points: int,
-    method: Method,
-    check: bool,
-    split: Split,
-    fmt: Format | None,
-    output: str | None,
-    plot: str | None,
-    summary: str | None = None,
-    law: LawChoice | None = None,
-    energy_plot: str | None = None,
-    damping: DampingOptions | None = None,
-) -> None:
-    from impactcli.impact import (
-        ADHESIVE_SUMMARY_KEYS,
-        ELASTIC_SUMMARY_KEYS,
-        ENERGY_SUMMARY_KEYS,
-        ContactModel,
-        solve_impact,
-    )
+    model: str, spheres: SphereOptions, run: HistoryOptions, n: int, law: LawChoice | None,
+    energy_plot: str | None, damping: DampingOptions | None = None,
+) -> None:  # fmt: skip
+    """One impact of ``impact elastic`` or ``impact elastoplastic`` (``model``): its files
+    checked, solved, its notes said, and its history, summary and figures written."""
     from impactcli.ode import film_ode_differences
     from impactcli.spheres import spheres_from_options, velocities_from_options
-    from impactcli.validation import (
-        below_yield_note,
-    )
 
-    check_plot(plot, output)
-    check_plot(energy_plot, output)
-    if energy_plot is not None:
-        from impactcli.output import check_distinct_outputs
-
-        check_distinct_outputs(output, summary, plot, energy_plot)
-    check_summary_file(summary, output)
+    _check_files(run, energy_plot)
     damping_law, alpha, target, separation = (damping or DampingOptions()).parse()
     if damping_law is not None and law is not None:
         raise InputError("--damping adds damping to Hertz; it does not combine with --curve")
     s1, s2 = spheres_from_options(spheres)
     v1, v2 = velocities_from_options(spheres)
+    contact = _contact(law, damping_law, alpha, target, separation)
+    result = _solve(model, (s1, s2, v1, v2), contact, n, run, law)
+    _notes(model, result, run.split, (s1, s2), (damping_law, target, separation, n))
+    history = result.history(points=run.points)
+    differences, reference = film_ode_differences(result, history) if run.check else (None, None)
+    inputs = {
+        "model": model,
+        **pair_inputs(s1, s2, v1, v2),
+        "n": n,
+        "method": run.method.value,
+        "split": run.split.value,
+    }
+    if law is not None:
+        from impactcli.cli.law_options import law_inputs
+        from impactcli.impact import weaker_yield_strength
+
+        inputs.update(law_inputs(law, weaker_yield_strength(s1, s2)))
     if damping_law is not None:
-        contact = ContactModel(
+        inputs.update(
+            damping=damping_law, alpha=result.summary["alpha"], e_target=target,
+            separation=separation,
+        )  # fmt: skip
+    _write_history(run.out, result, history, differences, inputs, law)
+    if run.summary:
+        _write_summary(run.summary, result)
+    if run.out.plot:
+        _plot(run.out.plot, result, history, reference, spheres, run.method, law)
+    if energy_plot:
+        from impactcli.plots import energy_figure
+
+        title = f"Energy partition, split {run.split.value}: " + _case_title(
+            result, spheres, run.method, law
+        )
+        fig = energy_figure(
+            history, title, summary=result.summary, relative_energy=result.relative_energy
+        )
+        save_plot(fig, energy_plot)
+
+
+def _check_files(run: HistoryOptions, energy_plot: str | None) -> None:
+    """Fail before any work if a figure cannot be drawn, two outputs are one file or
+    --summary is not a CSV file of its own."""
+    run.out.check(energy_plot)
+    if energy_plot is not None:
+        from impactcli.output import check_distinct_outputs
+
+        check_distinct_outputs(run.out.path, run.summary, run.out.plot, energy_plot)
+    check_summary_file(run.summary, run.out.path)
+
+
+def _contact(law: LawChoice | None, damping_law, alpha, target, separation):
+    """The ContactModel of --damping (with --alpha or a target --e), of --law or --curve,
+    else Hertz."""
+    from impactcli.impact import ContactModel
+
+    if damping_law is not None:
+        return ContactModel(
             damping=damping_law, alpha=alpha, restitution=target, separation=separation
         )
-    elif law is None:
-        contact = ContactModel.elastic()
-    else:
-        contact = ContactModel(law.name, dict(law.params or {}))
+    if law is None:
+        return ContactModel.elastic()
+    return ContactModel(law.name, dict(law.params or {}))
+
+
+def _solve(model: str, pair: tuple, contact, n: int, run: HistoryOptions,
+           law: LawChoice | None):  # fmt: skip
+    """The impact of the ``pair`` (sphere 1, sphere 2, v1, v2) solved by --method; under
+    impact elastic, an elastic law's summary keys alone."""
+    from impactcli.impact import (
+        ADHESIVE_SUMMARY_KEYS,
+        ELASTIC_SUMMARY_KEYS,
+        ENERGY_SUMMARY_KEYS,
+        solve_impact,
+    )
+
     try:
-        result = solve_impact(s1, s2, v1, v2, contact, n, split.value, method.value)
+        result = solve_impact(*pair, contact, n, run.split.value, run.method.value)
     except ValueError as exc:
         raise InputError(str(exc)) from None
     if model == "elastic" and law is not None:  # an elastic law: the elastic summary keys
@@ -211,9 +281,19 @@ def _run(
         kept = ELASTIC_SUMMARY_KEYS + ENERGY_SUMMARY_KEYS + ADHESIVE_SUMMARY_KEYS
         for key in [k for k in result.summary if k not in kept]:
             del result.summary[key]
-    if method is Method.table and result.model != "elastic":
+    if run.method is Method.table and result.model != "elastic":
         raise InputError("--method table is for elastic impacts (the tables are Hertz ones)")
+    return result
+
+
+def _notes(model: str, result, split: Split, spheres: tuple, damping: tuple) -> None:
+    """The notes and warnings of one impact: the alpha of a target e (``damping``: the
+    damping law, its target e, separation rule and n), an impact below the yield velocity,
+    the library's warnings, the split's notes on the ``spheres``, a captured pair."""
+    from impactcli.validation import below_yield_note
+
     s, v0 = result.summary, result.impact_velocity
+    damping_law, target, separation, n = damping
     if target is not None:
         from impactcli.damping import alpha_label
 
@@ -226,30 +306,16 @@ def _run(
         note(below_yield_note(v0, s["yield_velocity"], s.get("first_yield_velocity")))
     for message in result.warnings:  # the library's, as a Python caller gets them
         warn(message)
-    _split_notes(split, s1, s2)
+    _split_notes(split, *spheres)
     if s.get("captured"):
         note(_captured_note(s, v0))
 
-    history = result.history(points=points)
-    differences, reference = film_ode_differences(result, history) if check else (None, None)
-    inputs = {
-        "model": model,
-        **pair_inputs(s1, s2, v1, v2),
-        "n": n,
-        "method": method.value,
-        "split": split.value,
-    }
-    if law is not None:
-        from impactcli.cli.law_options import law_inputs
-        from impactcli.impact import weaker_yield_strength
 
-        inputs.update(law_inputs(law, weaker_yield_strength(s1, s2)))
-    if damping_law is not None:
-        inputs.update(
-            damping=damping_law, alpha=s["alpha"], e_target=target, separation=separation
-        )
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
+def _write_history(out: Output, result, history: dict, differences, inputs: dict,
+                   law: LawChoice | None) -> None:  # fmt: skip
+    """The history in the format asked: CSV (and the --check differences as notes), JSON
+    {"inputs", "summary", "history"} (and "check"), or the tables on screen."""
+    with out.open() as (kind, stream):
         if kind is Format.csv:
             cols = list(history)
             write_csv(stream, cols, [((), np.column_stack([history[c] for c in cols]))])
@@ -262,23 +328,7 @@ def _run(
                 doc["check"] = differences
             write_json(stream, doc)
         else:
-            _print(
-                stream if output not in (None, "-") else None, result, history, differences, law
-            )
-    if summary:
-        _write_summary(summary, result)
-    if plot:
-        _plot(plot, result, history, reference, spheres, method, law)
-    if energy_plot:
-        from impactcli.plots import energy_figure
-
-        title = f"Energy partition, split {split.value}: " + _case_title(
-            result, spheres, method, law
-        )
-        fig = energy_figure(
-            history, title, summary=result.summary, relative_energy=result.relative_energy
-        )
-        save_plot(fig, energy_plot)
+            _print(stream, result, history, differences, law)
 
 
 def _refuse_plastic(result, law: LawChoice) -> None:
@@ -489,19 +539,13 @@ def _material_parts(p: SphereOptions, s1, s2) -> list[str]:
 @with_sphere_options()
 @with_law_options(default=ELASTIC_LAW)
 @with_damping_options()
+@with_history_options
 def elastic(
     spheres: SphereOptions,
     law: LawOptions = None,
     damping: DampingOptions = None,  # type: ignore[assignment]
     n: N_DAMPED = None,
-    points: POINTS = 201,
-    method: METHOD = Method.film,
-    check: CHECK = False,
-    split: SPLIT = Split.mass,
-    fmt: FMT = None,
-    output: OUT = None,
-    plot: PLOT = None,
-    summary: SummaryFile = None,
+    history: HistoryOptions = None,  # type: ignore[assignment]  # --points ... --summary
     curve: CURVE = None,
     energy_plot: ENERGY_PLOT = None,
 ) -> None:
@@ -534,11 +578,7 @@ def elastic(
     own = _elastic_law(law, curve)
     if n is None:
         n = DAMPED_DEFAULT_N if damping is not None and damping.given else _law_n(own)
-    _run(
-        "elastic", spheres, n=n, points=points, method=method, check=check, split=split,
-        fmt=fmt, output=output, plot=plot, summary=summary, law=own, damping=damping,
-        energy_plot=energy_plot,
-    )  # fmt: skip
+    _run("elastic", spheres, history, n, own, energy_plot, damping)
 
 
 append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
@@ -580,18 +620,12 @@ def _law_n(choice: LawChoice | None) -> int:
 
 @with_sphere_options()
 @with_law_options()
+@with_history_options
 def elastoplastic(
     spheres: SphereOptions,
     law: LawOptions = None,
     n: N_LAW = None,
-    points: POINTS = 201,
-    method: METHOD = Method.film,
-    check: CHECK = False,
-    split: SPLIT = Split.mass,
-    fmt: FMT = None,
-    output: OUT = None,
-    plot: PLOT = None,
-    summary: SummaryFile = None,
+    history: HistoryOptions = None,  # type: ignore[assignment]  # --points ... --summary
     energy_plot: ENERGY_PLOT = None,
 ) -> None:
     """Elastoplastic impact (Du & Wang contact, paper eq. 16, or another --law): each
@@ -612,11 +646,7 @@ def elastoplastic(
     """
     (choice,) = resolve_laws(law)
     n = _law_n(choice) if n is None else n
-    _run(
-        "elastoplastic", spheres, n=n, points=points, method=method, check=check,
-        split=split, fmt=fmt, output=output, plot=plot, summary=summary, law=choice,
-        energy_plot=energy_plot,
-    )  # fmt: skip
+    _run("elastoplastic", spheres, history, n, choice, energy_plot)
 
 
 append_help(elastoplastic, f"{UNITS_HELP} {SIGN_HELP}")
@@ -625,6 +655,7 @@ append_help(elastoplastic, f"{UNITS_HELP} {SIGN_HELP}")
 @with_sphere_options(velocities=False)
 @with_law_options()
 @with_damping_options(sweep=True)
+@with_output_options(plot=True, fmt=SWEEP_FMT)
 def restitution(
     v_min: Annotated[str, typer.Option("--v-min", help="Lowest impact velocity V0 [m/s].")] = "0.1",
     v_max: Annotated[str, typer.Option("--v-max", help="Highest impact velocity V0 [m/s].")] = "10",
@@ -646,9 +677,7 @@ def restitution(
     damping: DampingOptions = None,  # type: ignore[assignment]
     n: N_DAMPED = None,
     split: SPLIT = Split.mass,
-    fmt: SWEEP_FMT = None,
-    output: OUT = None,
-    plot: PLOT = None,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o, --plot
 ) -> None:
     """Coefficient of restitution, contact time and permanent indentation against impact
     velocity (elastoplastic FILM, Du & Wang contact or another --law), for calibrating
@@ -682,7 +711,7 @@ def restitution(
         velocity_grid,
     )
 
-    check_plot(plot, output)
+    out.check()
     lo, hi = _speed(v_min, "--v-min"), _speed(v_max, "--v-max")
     velocities = velocity_grid(lo, hi, count, linear, names=("--v-min", "--v-max"))
     if damping is not None and damping.given:
@@ -699,11 +728,8 @@ def restitution(
                 "--law and its parameters are for the elastoplastic sweep; --damping sweeps "
                 "Hertz with viscous damping"
             )
-        _damped_sweep(
-            damping, spheres, velocities, n=DAMPED_DEFAULT_N if n is None else n, split=split,
-            fmt=fmt,
-            output=output, plot=plot, linear=linear,
-        )  # fmt: skip
+        n = DAMPED_DEFAULT_N if n is None else n
+        _damped_sweep(damping, spheres, velocities, n=n, split=split, out=out, linear=linear)
         return
     if damping is not None:
         damping.parse()  # refuses --alpha, --e or --separation without --damping
@@ -743,9 +769,9 @@ def restitution(
             _print_sweep(stream, title, data, _SWEEP_TABLE,
                          regime=lambda i: _regime(data, i, sticking))  # fmt: skip
 
-    _write_sweep(fmt, output, SWEEP_COLUMNS, data, document, table)
-    if plot:
-        _plot_sweep(plot, data, s1, s2, choice, spheres, n=n, linear=linear, sticking=sticking)
+    out.write(SWEEP_COLUMNS, _sweep_rows(data, SWEEP_COLUMNS), document, table)
+    if out.plot:
+        _plot_sweep(out.plot, data, s1, s2, choice, spheres, n=n, linear=linear, sticking=sticking)
 
 
 def _sticking_velocity(law: LawChoice, s1, s2) -> float | None:
@@ -786,25 +812,9 @@ _DAMPED_SWEEP_TABLE = ("impact_velocity", "restitution", "contact_time", "delta_
                        "delta_separation", "energy_dissipated")  # fmt: skip
 
 
-def _write_sweep(
-    fmt: Format | None,
-    output: str | None,
-    columns: tuple[str, ...],
-    data: dict,
-    document: Callable[[], dict],
-    table: Callable[[IO[str] | None], None],
-) -> None:
-    """A sweep in the format asked, to ``output`` (stdout for None or '-'): CSV of
-    ``columns``, the JSON ``document()``, or ``table(stream)`` on screen."""
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            matrix = np.column_stack([data[c] for c in columns])
-            write_csv(stream, columns, [((), matrix)])
-        elif kind is Format.json:
-            write_json(stream, document())
-        else:
-            table(stream if output not in (None, "-") else None)
+def _sweep_rows(data: dict, columns: tuple[str, ...]) -> list[tuple[tuple, np.ndarray]]:
+    """The CSV rows of a sweep: one per impact velocity, the ``columns`` of ``data``."""
+    return [((), np.column_stack([data[c] for c in columns]))]
 
 
 def _print_sweep(
@@ -846,9 +856,7 @@ def _damped_sweep(
     *,
     n: int,
     split: Split,
-    fmt: Format | None,
-    output: str | None,
-    plot: str | None,
+    out: Output,
     linear: bool,
 ) -> None:
     """``impact restitution --damping``: the damped sweep in every format, and its plot."""
@@ -888,8 +896,8 @@ def _damped_sweep(
         _print_sweep(stream, f"Restitution against impact velocity ({model}, FILM n = {n})",
                      data, _DAMPED_SWEEP_TABLE, ".6f")  # fmt: skip
 
-    _write_sweep(fmt, output, DAMPED_SWEEP_COLUMNS, data, document, table)
-    if plot:
+    out.write(DAMPED_SWEEP_COLUMNS, _sweep_rows(data, DAMPED_SWEEP_COLUMNS), document, table)
+    if out.plot:
         from impactcli.formatting import format_quantity
         from impactcli.plots import restitution_figure
 
@@ -909,7 +917,7 @@ def _damped_sweep(
             indentation_title="(c) Indentation",
             indentation_label=r"indentation $\delta$",
         )
-        save_plot(fig, plot)
+        save_plot(fig, out.plot)
 
 
 def _plot_sweep(
@@ -978,13 +986,13 @@ def _plot_sweep(
     save_plot(fig, path)
 
 
-def materials(fmt: OutputFormat = None, output: OUT = None) -> None:
+@with_output_options()
+def materials(out: Output = None) -> None:  # type: ignore[assignment]  # --format, -o
     """Built-in materials: Young's modulus, Poisson's ratio, density, yield strength, source."""
     from impactcli.materials import MATERIALS
 
     header = ("name", "E_Pa", "nu", "rho_kg_m3", "sy_Pa", "source")
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
+    with out.open() as (kind, stream):
         if kind is Format.json:
             write_json(
                 stream,
@@ -1030,7 +1038,7 @@ def materials(fmt: OutputFormat = None, output: OUT = None) -> None:
                     "-" if m.yield_strength is None else f"{m.yield_strength / 1e6:g}",
                     m.source,
                 )
-            console(stream if output not in (None, "-") else None).print(table)
+            console(stream).print(table)
 
 
 def register(app: typer.Typer) -> None:

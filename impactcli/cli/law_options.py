@@ -13,7 +13,6 @@ the defaults are the library's (:meth:`impactcli.laws.base.LawSpec.resolve`);
 
 from __future__ import annotations
 
-import functools
 import inspect
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -21,6 +20,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from impactcli.cli.common import gather_options
 from impactcli.errors import InputError
 
 __all__ = [
@@ -179,34 +179,24 @@ def with_law_options(
     def decorate(command: Callable) -> Callable:
         from impactcli.laws.registry import parameter_laws
 
-        signature = inspect.signature(command, eval_str=True)
-        params = list(signature.parameters.values())
-        where = [p.name for p in params].index("law")
         # a law parameter named as one of the command's own options (--separation of the
         # damping options) is given through that option: its law values go to the law
-        taken = frozenset(p.name for p in params) & frozenset(parameter_laws())
-        added = _parameters(multiple, default, taken)
-        params[where : where + 1] = added
-        names = [p.name for p in added]
+        own = inspect.signature(command, eval_str=True).parameters
+        taken = frozenset(own) & frozenset(parameter_laws())
 
-        @functools.wraps(command)
-        def wrapper(**kwargs: Any) -> Any:
-            raw = {n: kwargs.pop(n) for n in names}
+        def gather(raw: dict[str, Any], others: dict[str, Any]) -> LawOptions:
             given_names = raw.pop(f"{_PREFIX}name")
             if isinstance(given_names, str):
                 given_names = [given_names]
             given = {k[len(_PREFIX) :]: v for k, v in raw.items() if v is not None}
             for name in taken:
-                value = kwargs.get(name)
+                value = others.get(name)
                 if value is not None and str(value) in shared_choices(name):
                     given[name] = str(value)
-                    kwargs[name] = None
-            options = LawOptions(tuple(given_names or ()), given)
-            return command(law=options, **kwargs)
+                    others[name] = None
+            return LawOptions(tuple(given_names or ()), given)
 
-        wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
-        wrapper.__annotations__ = {p.name: p.annotation for p in params}
-        return wrapper
+        return gather_options(command, "law", _parameters(multiple, default, taken), gather)
 
     return decorate
 

@@ -8,8 +8,8 @@ from typing import IO
 
 import typer
 
-from impactcli.cli.common import Format, OutputFile, OutputFormat, console, resolve_format
-from impactcli.output import atomic_output, write_json
+from impactcli.cli.common import Format, Output, console, with_output_options
+from impactcli.output import write_json
 
 CSV_COLUMNS = (
     "law",
@@ -31,7 +31,8 @@ def _default(value) -> str:
     return "" if value is None else f"{value:g}" if isinstance(value, float) else str(value)
 
 
-def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
+@with_output_options()
+def laws(out: Output = None) -> None:  # type: ignore[assignment]  # --format, -o
     """List the contact laws and damping models FILM can run: name, kind, parameters (unit,
     default) and the published reference of each (authors, year, journal, DOI, equations).
 
@@ -44,8 +45,7 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
     viscous term, ``--damping NAME --alpha A``) are listed after the normal laws."""
     from impactcli.laws.registry import MODELS
 
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
+    with out.open() as (kind, stream):
         if kind is Format.json:
             write_json(stream, {"laws": [_described(spec) for spec in MODELS.values()]})
         elif kind is Format.csv:
@@ -70,7 +70,7 @@ def laws(fmt: OutputFormat = None, output: OutputFile = None) -> None:
                     )
                     writer.writerow((spec.name, spec.kind, *fields, cite, ref.doi, spec.validity))
         else:
-            _print_laws(stream if output not in (None, "-") else None)
+            _print_laws(stream)
 
 
 def _described(spec) -> dict:

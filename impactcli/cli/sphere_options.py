@@ -10,13 +10,13 @@ text. A new sphere option is one line in :data:`SPHERE_OPTIONS` and one field of
 
 from __future__ import annotations
 
-import functools
 import inspect
 from collections.abc import Callable
 from typing import Annotated, Any, Optional
 
 import typer
 
+from impactcli.cli.common import gather_options
 from impactcli.spheres import SphereOptions
 
 __all__ = ["SPHERE_METAVARS", "SPHERE_OPTIONS", "pair_inputs", "with_sphere_options"]
@@ -86,22 +86,12 @@ def with_sphere_options(
     ]  # fmt: skip
     helps = helps or {}
 
-    def decorate(command: Callable) -> Callable:
-        signature = inspect.signature(command, eval_str=True)
-        params = list(signature.parameters.values())
-        where = [p.name for p in params].index("spheres")
-        params[where : where + 1] = [_parameter(n, helps.get(n)) for n in names]
+    options = [_parameter(n, helps.get(n)) for n in names]
 
-        @functools.wraps(command)
-        def wrapper(**kwargs: Any) -> Any:
-            spheres = SphereOptions(**{n: kwargs.pop(n) for n in names})
-            return command(spheres=spheres, **kwargs)
+    def gather(values: dict[str, Any], _others: dict[str, Any]) -> SphereOptions:
+        return SphereOptions(**values)
 
-        wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
-        wrapper.__annotations__ = {p.name: p.annotation for p in params}
-        return wrapper
-
-    return decorate
+    return lambda command: gather_options(command, "spheres", options, gather)
 
 
 def pair_inputs(sphere1, sphere2, v1: float, v2: float) -> dict[str, float | None]:

@@ -8,19 +8,8 @@ from typing import IO, Annotated, Optional
 import numpy as np
 import typer
 
-from impactcli.cli.common import (
-    Format,
-    OutputFile,
-    OutputFormat,
-    PlotFile,
-    check_plot,
-    console,
-    resolve_format,
-    save_plot,
-    segments_option,
-)
+from impactcli.cli.common import Output, console, save_plot, segments_option, with_output_options
 from impactcli.limits import MAX_CONVERGENCE_RUNS, MAX_SEGMENTS, check_size
-from impactcli.output import atomic_output, write_csv, write_json
 
 TABLE_TITLES = {
     "loading": "Table A1. Normalised solutions for total compliance response and constituent "
@@ -76,6 +65,7 @@ class StageChoice(enum.StrEnum):
     both = "both"
 
 
+@with_output_options()
 def tables(
     n: Annotated[int, segments_option("The paper used 25.")] = 25,
     stage: StageChoice = typer.Option(
@@ -87,8 +77,7 @@ def tables(
         help="Add the row at the mid-time of the last loading (A1) / first restitution (A2) "
         "segment, as the paper did.",
     ),
-    fmt: OutputFormat = None,
-    output: OutputFile = None,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o
 ) -> None:
     """Normalised FILM Tables A1 (loading) and A2 (restitution) of the elastic impact.
 
@@ -104,26 +93,15 @@ def tables(
 
     chosen = STAGES if stage is StageChoice.both else (stage.value,)
     data = {name: normalised_table(n, name, midpoint) for name in chosen}
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            blocks = (
-                ((name,), np.column_stack([cols[c] for c in TABLE_COLUMNS]))
-                for name, cols in data.items()
-            )
-            write_csv(stream, ("stage", *TABLE_COLUMNS), blocks)
-        elif kind is Format.json:
-            write_json(
-                stream,
-                {
-                    "n": n,
-                    "midpoint": midpoint,
-                    "columns": list(TABLE_COLUMNS),
-                    "stages": data,
-                },
-            )
-        else:
-            _print_tables(stream if output not in (None, "-") else None, n, data)
+    blocks = (
+        ((name,), np.column_stack([cols[c] for c in TABLE_COLUMNS])) for name, cols in data.items()
+    )
+    out.write(
+        ("stage", *TABLE_COLUMNS),
+        blocks,
+        lambda: {"n": n, "midpoint": midpoint, "columns": list(TABLE_COLUMNS), "stages": data},
+        lambda stream: _print_tables(stream, n, data),
+    )
 
 
 def _print_tables(stream: IO[str] | None, n: int, data: dict) -> None:
@@ -149,6 +127,7 @@ def _print_tables(stream: IO[str] | None, n: int, data: dict) -> None:
         out.print(table)
 
 
+@with_output_options(plot=True)
 def convergence(
     ns: Optional[list[int]] = typer.Argument(
         None, metavar="[N]...", help="More segment counts (so '--n 1 3 5 25' works)."
@@ -166,9 +145,7 @@ def convergence(
         help="Start each segment with the velocity the previous one ends with (the paper's "
         "own scheme) instead of the exact energy balance.",
     ),
-    fmt: OutputFormat = None,
-    output: OutputFile = None,
-    plot: PlotFile = None,
+    out: Output = None,  # type: ignore[assignment]  # --format, -o, --plot
 ) -> None:
     """Convergence of FILM: normalised contact duration t_c·V0/δm against the number of
     segments n, its error against the exact 2(2/5)B(2/5,1/2) = 2.9432752 and the observed
@@ -185,7 +162,7 @@ def convergence(
         check_size("n", value, MAX_SEGMENTS)
     if values:
         check_size("the number of segment counts", len(values), MAX_CONVERGENCE_RUNS)
-    check_plot(plot, output)
+    out.check()
     if not values:
         values = [1, 2, 3, 5, 10, 25, 100, 1000, 10000]
     rows = run(values, carry_velocity=carry_velocity)
@@ -200,41 +177,35 @@ def convergence(
         ],
         dtype=float,
     )
-    kind = resolve_format(fmt, output)
-    with atomic_output(output) as stream:
-        if kind is Format.csv:
-            write_csv(stream, columns, [((), matrix)])
-        elif kind is Format.json:
-            write_json(
-                stream,
-                {
-                    "exact": EXACT_CONTACT_DURATION,
-                    "carry_velocity": carry_velocity,
-                    "rows": [dict(zip(columns, row)) for row in matrix.tolist()],
-                    "note": note,
-                },
-            )
-        else:
-            from impactcli.cli.common import Table
+    document = {
+        "exact": EXACT_CONTACT_DURATION,
+        "carry_velocity": carry_velocity,
+        "rows": [dict(zip(columns, row)) for row in matrix.tolist()],
+        "note": note,
+    }
+    out.write(columns, [((), matrix)], lambda: document,
+              lambda stream: _print_convergence(stream, rows, note))  # fmt: skip
+    if out.plot:
+        _plot_convergence(out.plot, rows, carry_velocity)
 
-            table = Table(
-                title="FILM convergence: normalised contact duration t_c·V0/δm",
-                caption=note,
-            )
-            for header in ("n", "loading", "2·loading", "contact duration", "rel. error", "order"):
-                table.add_column(header, justify="right")
-            for r in rows:
-                table.add_row(
-                    str(r.n),
-                    f"{r.loading:.7f}",
-                    f"{2 * r.loading:.7f}",
-                    f"{r.contact_duration:.7f}",
-                    f"{r.relative_error:.3e}",
-                    "" if np.isnan(r.order) else f"{r.order:.2f}",
-                )
-            console(stream if output not in (None, "-") else None).print(table)
-    if plot:
-        _plot_convergence(plot, rows, carry_velocity)
+
+def _print_convergence(stream: IO[str] | None, rows, note: str) -> None:
+    """The convergence rows on screen, with ``note`` as the caption."""
+    from impactcli.cli.common import Table
+
+    table = Table(title="FILM convergence: normalised contact duration t_c·V0/δm", caption=note)
+    for header in ("n", "loading", "2·loading", "contact duration", "rel. error", "order"):
+        table.add_column(header, justify="right")
+    for r in rows:
+        table.add_row(
+            str(r.n),
+            f"{r.loading:.7f}",
+            f"{2 * r.loading:.7f}",
+            f"{r.contact_duration:.7f}",
+            f"{r.relative_error:.3e}",
+            "" if np.isnan(r.order) else f"{r.order:.2f}",
+        )
+    console(stream).print(table)
 
 
 #: Points per FILM indentation history drawn by ``impact convergence --plot``.

@@ -7,7 +7,6 @@ pyarrow is imported inside the functions.
 from __future__ import annotations
 
 import enum
-import os
 from collections.abc import Collection, Sequence
 from typing import IO
 
@@ -16,7 +15,6 @@ import numpy as np
 from impactcli.errors import InputError
 
 __all__ = [
-    "TABLE_EXTENSIONS",
     "TableFormat",
     "TableSink",
     "check_writable",
@@ -33,25 +31,19 @@ class TableFormat(enum.StrEnum):
     parquet = "parquet"
 
 
-#: Extensions of a result table's file -> its format (no extension, or stdout: CSV).
-TABLE_EXTENSIONS: dict[str, TableFormat] = {
-    ".csv": TableFormat.csv,
-    ".parquet": TableFormat.parquet,
-    ".pq": TableFormat.parquet,
-    ".parq": TableFormat.parquet,
-}
-
-
 def table_format(fmt: TableFormat | str | None, output: str | None, command: str) -> TableFormat:
     """The format of the result table of ``command`` written to ``output`` (None or ``-``:
-    stdout): ``fmt`` if given, else from the extension (.parquet, .pq, .parq: Parquet;
-    .csv or none: CSV). Another extension, or pyarrow missing, is one line
+    stdout): ``fmt`` if given, else from the extension
+    (:data:`impactcli.output.FILE_FORMATS`: .parquet, .pq, .parq: Parquet; .csv or none:
+    CSV). Another extension, or pyarrow missing, is one line
     (:class:`~impactcli.errors.InputError`)."""
-    extension = "" if output in (None, "-") else os.path.splitext(output)[1].lower()
-    if extension and extension not in TABLE_EXTENSIONS:
+    from impactcli.output import file_extensions, format_of_file
+
+    kind = format_of_file(output, [f.value for f in TableFormat])
+    if kind is None:
         raise InputError(
-            f"-o {output}: {command} writes a table: {', '.join(TABLE_EXTENSIONS)} "
-            "(or no extension: CSV)"
+            f"-o {output}: {command} writes a table: "
+            f"{', '.join(file_extensions([f.value for f in TableFormat]))} (or no extension: CSV)"
         )
     try:
         import pyarrow  # noqa: F401
@@ -59,7 +51,7 @@ def table_format(fmt: TableFormat | str | None, output: str | None, command: str
         raise InputError(f"{command} needs pyarrow: pip install '.[batch]'") from None
     if fmt is not None:
         return TableFormat(fmt)
-    return TABLE_EXTENSIONS.get(extension, TableFormat.csv)
+    return TableFormat(kind)
 
 
 class TableSink:
