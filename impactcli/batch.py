@@ -339,33 +339,39 @@ def batch_impacts(
     sy1: ArrayLike = np.nan,
     sy2: ArrayLike = np.nan,
     plastic: ArrayLike = False,
-    n: int = 25,
+    n: int | None = None,
     split: Split = "mass",
     p0_factor: float = DEFAULT_LAW_PARAMETERS["p0_factor"],
     law: str | None = None,
     law_params: Mapping[str, Any] | None = None,
     *,
     pressure_factor: float | None = None,
+    damping: str | None = None,
+    alpha: ArrayLike = np.nan,
+    restitution: ArrayLike = np.nan,
+    separation: str = "overlap",
 ) -> dict[str, NDArray]:
     """Summaries of many impacts of two spheres, one per row; arrays broadcast.
 
     Row i gives what ``elastic_impact`` (``plastic[i]`` False) or ``elastoplastic_impact``
     (True) give for ``Sphere(d1[i], E1[i], nu1[i], rho1[i], m1[i], sy1[i])``, sphere 2 alike,
-    velocities ``v1[i]``, ``v2[i]``, n segments and ``split``. The columns make one
-    :class:`~impactcli.pairs.SpherePairs` for :func:`pair_impacts`, which takes the pairs.
+    velocities ``v1[i]``, ``v2[i]``, n segments and ``split``; with ``damping``, what
+    ``damped_impact`` gives (:func:`batch_damped_impacts`). The columns make one
+    :class:`~impactcli.pairs.SpherePairs` for :func:`pair_impacts` (with ``damping``:
+    :func:`damped_pair_impacts`), which takes the pairs.
 
     Parameters
     ----------
-    d1, d2 : diameters, [m]; ``inf`` for a flat target
-    v1, v2 : velocities of the centres toward the other sphere, [m/s]
-    E1, E2 : Young's moduli, [Pa]; ``inf`` for a rigid sphere
-    nu1, nu2 : Poisson's ratios, [-]
-    rho1, rho2 : densities, [kg/m^3]; NaN if the mass is given
-    m1, m2 : masses, [kg]; NaN for rho pi D^3 / 6, ``inf`` for a fixed target
-    sy1, sy2 : yield strengths, [Pa]; NaN where unknown. The lower known one is sigma_y of
-        the elastoplastic model and of ``first_yield_velocity``
+    d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2 : the columns, SI, as
+        the attributes of :class:`~impactcli.pairs.SpherePairs` (diameters [m], velocities
+        toward each other [m/s], Young's moduli [Pa], Poisson's ratios [-], densities
+        [kg/m^3], masses [kg], yield strengths [Pa]; NaN in rho, m, sy: not given). The
+        lower known sy is sigma_y of the elastoplastic model and of
+        ``first_yield_velocity``
     plastic : True for the elastoplastic (Du & Wang) model, False for elastic Hertz, [-]
-    n : FILM segments per stage
+    n : FILM segments per stage; default 25, with ``damping``
+        :data:`~impactcli.limits.DAMPED_DEFAULT_N` (400, as
+        :func:`impactcli.impact.damped_impact`)
     split : share of the indentation between the spheres: ``mass``, ``compliance`` or
         ``yield`` (the permanent part to the weaker sphere, :func:`impactcli.energy.
         permanent_fractions`)
@@ -375,6 +381,17 @@ def batch_impacts(
         ``p0_factor`` are then ignored; rows of several laws: one call per law, e.g.
         on the groups of a ``law`` column); None: Du & Wang where ``plastic``, else Hertz
     law_params : the law's parameters by name, scalars or one value per row (SI)
+    damping : a damping model (``impact laws``, :data:`impactcli.laws.registry.DAMPING_LAWS`):
+        Hertz plus viscous damping for every row (``plastic``, ``p0_factor`` and ``law`` do
+        not apply); None: no damping
+    alpha : the damping model's parameter, one value or one per row (unit of the model:
+        [-] for ``tsuji``, [s/m] for ``hunt-crossley``, [s] for ``viscoelastic``); NaN
+        where ``restitution`` is given
+    restitution : with ``damping``, the target e [-] of each row instead of ``alpha`` (the
+        alpha that gives it at the row's V0,
+        :func:`impactcli.damping.damping_for_restitution`); one of the two per row
+    separation : with ``damping``, where the spheres part: ``overlap`` or ``force``
+        (docs/damping.md)
 
     Returns
     -------
@@ -382,7 +399,8 @@ def batch_impacts(
         :data:`BATCH_KEYS` -> float arrays (NaN where a key does not apply: the plastic keys
         of elastic rows, ``first_yield_velocity`` without a yield strength, every key of an
         invalid row), and ``error`` -> object array of one-line reasons (``""`` when valid);
-        an adhesive ``law`` adds :data:`ADHESIVE_KEYS`.
+        an adhesive ``law`` adds :data:`ADHESIVE_KEYS`; ``damping`` adds ``alpha`` (the
+        parameter used; ``energy_dissipated`` is then the viscous dissipation [J]).
 
     Examples
     --------
@@ -392,11 +410,28 @@ def batch_impacts(
     ...                     rho1=7800.0, rho2=7800.0, sy1=1e9, sy2=1e9, plastic=[False, True])
     >>> (out["contact_time"] * 1e6).round(3), out["restitution"].round(5)
     (array([171.319,  75.988]), array([1.     , 0.85611]))
+
+    Damped, to a target e of 0.8 (Tsuji et al. 1992):
+
+    >>> out = batch_impacts(0.02, 0.04, 0.25, 0.75, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0,
+    ...                     damping="tsuji", restitution=0.8)
+    >>> out["restitution"].round(6), out["alpha"].round(4)
+    (array([0.8]), array([0.1584]))
     """
     p0_factor = renamed_p0_factor("batch_impacts", p0_factor, pressure_factor, 5)
-    n = _checked_options(n, p0_factor)
-    pairs = SpherePairs.from_columns(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2)
-    return _impacts(pairs, plastic, n, split, p0_factor, law, law_params)
+    columns = (d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2)
+    if damping is None:
+        n = _checked_options(25 if n is None else n, p0_factor)
+        return _impacts(SpherePairs.from_columns(*columns), plastic, n, split, p0_factor, law,
+                        law_params)  # fmt: skip
+    if law is not None or np.any(plastic):
+        raise ValueError(
+            f"damping {damping} is Hertz plus viscous damping: give it without law= and "
+            "plastic= (the damped rows are elastic)"
+        )
+    n = _checked_damping(DAMPED_DEFAULT_N if n is None else n, damping, separation)
+    *flat, alpha, e_target = flat_floats(*columns, alpha, restitution)
+    return _damped_impacts(SpherePairs(*flat), damping, alpha, e_target, n, split, separation)
 
 
 @without_float_warnings
@@ -743,32 +778,11 @@ def _scatter(values: NDArray, rows: NDArray[np.intp], size: int) -> NDArray:
     return out
 
 
-@without_float_warnings
-@input_errors
 def batch_damped_impacts(
-    d1: ArrayLike,
-    d2: ArrayLike,
-    v1: ArrayLike,
-    v2: ArrayLike,
-    E1: ArrayLike,
-    nu1: ArrayLike,
-    E2: ArrayLike,
-    nu2: ArrayLike,
-    rho1: ArrayLike = np.nan,
-    rho2: ArrayLike = np.nan,
-    m1: ArrayLike = np.nan,
-    m2: ArrayLike = np.nan,
-    sy1: ArrayLike = np.nan,
-    sy2: ArrayLike = np.nan,
-    *,
-    damping: str,
-    alpha: ArrayLike = np.nan,
-    restitution: ArrayLike = np.nan,
-    n: int = DAMPED_DEFAULT_N,
-    split: Split = "mass",
-    separation: str = "overlap",
+    *columns: ArrayLike, damping: str, n: int = DAMPED_DEFAULT_N, **options: Any
 ) -> dict[str, NDArray]:
-    """Summaries of many damped elastic impacts (Hertz plus viscous damping), one per row.
+    """Summaries of many damped elastic impacts (Hertz plus viscous damping), one per row:
+    :func:`batch_impacts` with ``damping``.
 
     The law ``damping`` of :mod:`impactcli.damping` (``tsuji``: Tsuji, Tanaka & Ishida
     1992, Powder Technol. 71:239-250, doi:10.1016/0032-5910(92)88030-L, alpha [-];
@@ -780,20 +794,32 @@ def batch_damped_impacts(
     damped_impact`),
     :func:`impactcli.damping.solve_damped_impact`, vectorised over the rows; the summary by
     :func:`impactcli.impact.impact_summary` with the indentation at separation in place of
-    delta_res (0 for ``overlap``). Arguments otherwise as :func:`batch_impacts`; the
-    columns make a :class:`~impactcli.pairs.SpherePairs` for :func:`damped_pair_impacts`.
+    delta_res (0 for ``overlap``). The columns make a :class:`~impactcli.pairs.SpherePairs`
+    for :func:`damped_pair_impacts`.
+
+    Parameters
+    ----------
+    columns : d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, SI, in that
+        order or by name, as :func:`batch_impacts` takes them
+    damping : the damping model (``impact laws``)
+    n : FILM segments per stage, [-]
+    options : ``alpha``, ``restitution``, ``split``, ``separation`` and the columns by
+        name, as :func:`batch_impacts`
 
     Returns
     -------
     dict
         :data:`BATCH_KEYS` (the plastic keys NaN; ``energy_dissipated`` the viscous
         dissipation [J]), ``alpha`` (the damping parameter used) and ``error``.
+
+    Examples
+    --------
+    >>> out = batch_damped_impacts(0.02, 0.04, 0.25, 0.75, 210e9, 0.3, 210e9, 0.3, 7800.0,
+    ...                            7800.0, damping="hunt-crossley", alpha=0.1)
+    >>> out["restitution"].round(4), out["error"]
+    (array([0.909]), array([''], dtype=object))
     """
-    n = _checked_damping(n, damping, separation)
-    *columns, alpha, e_target = flat_floats(
-        d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, alpha, restitution
-    )
-    return _damped_impacts(SpherePairs(*columns), damping, alpha, e_target, n, split, separation)
+    return batch_impacts(*columns, n=n, damping=damping, **options)
 
 
 @without_float_warnings

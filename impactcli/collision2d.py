@@ -222,8 +222,33 @@ def _component(vector: str, axis: str, doc: str) -> property:
     return property(component, doc=doc[:-1] + ", [m/s].")
 
 
+class Momenta:
+    """The total momentum before and after a collision (paper eq. 17a,b), of a result with
+    masses ``m1``, ``m2`` [kg] and velocities ``v1``, ``v2``, ``v1_final``, ``v2_final``
+    [m/s] (components on the last axis): :class:`ObliqueCollision` and
+    :class:`impactcli.collision3d.Collision3D`, whose fields they are."""
+
+    @property
+    def momentum_before(self) -> Array:
+        """Total momentum m1 v1 + m2 v2 before the impact, [kg m/s] (eq. 17a,b); NaN
+        components with a fixed target (infinite mass)."""
+        return momentum(self.m1, self.v1) + momentum(self.m2, self.v2)
+
+    @property
+    def momentum_after(self) -> Array:
+        """Total momentum m1 v1' + m2 v2' after the impact, [kg m/s] (eq. 17a,b)."""
+        return momentum(self.m1, self.v1_final) + momentum(self.m2, self.v2_final)
+
+
+def momentum(m: Array, v: Array) -> Array:
+    """m v of each body, [kg m/s]: masses [kg] of the batch shape, velocities [m/s] with
+    their components on the last axis (NaN, silently, for a fixed target at rest)."""
+    with np.errstate(invalid="ignore"):
+        return m[..., None] * v
+
+
 @dataclass(frozen=True)
-class ObliqueCollision:
+class ObliqueCollision(Momenta):
     """Velocities before and after an oblique collision of two smooth spheres (docs/method.md §8).
 
     Vectors have (x, y) on their last axis; every other attribute has the batch shape.
@@ -300,16 +325,6 @@ class ObliqueCollision:
     def normal_impulse(self) -> Array:
         """Impulse of sphere 1 on sphere 2, along n_hat: (1 + e) m v_rel,n, [N s]."""
         return (1.0 + self.restitution) * self.reduced_mass * self.approach_velocity
-
-    @property
-    def momentum_before(self) -> Array:
-        """Total momentum m1 v1 + m2 v2 before the impact, [kg m/s] (eq. 17a,b)."""
-        return self.m1[..., None] * self.v1 + self.m2[..., None] * self.v2
-
-    @property
-    def momentum_after(self) -> Array:
-        """Total momentum m1 v1' + m2 v2' after the impact, [kg m/s] (eq. 17a,b)."""
-        return self.m1[..., None] * self.v1_final + self.m2[..., None] * self.v2_final
 
     @property
     def kinetic_energy_before(self) -> Array:

@@ -100,7 +100,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.collision2d import (
     ELASTOPLASTIC_NORMAL_LAW,
+    Momenta,
     line_of_centres,
+    momentum,
     normal_law_warnings,
 )
 from impactcli.errors import InputError
@@ -260,7 +262,7 @@ class NormalHistory:
 
 
 @dataclass(frozen=True)
-class Collision3D:
+class Collision3D(Momenta):
     """State before and after an oblique 3-D collision with friction (SI).
 
     Vectors have (x, y, z) on their last axis; other attributes have the batch shape.
@@ -428,16 +430,6 @@ class Collision3D:
         return np.arctan2(_dot(rel, self.slip_direction), -_dot(rel, self.normal))
 
     # -- momentum ----------------------------------------------------------------------
-    @property
-    def momentum_before(self) -> Array:
-        """m1 v1 + m2 v2, [kg m/s] (infinite for a fixed target)."""
-        return _momentum(self.m1, self.v1) + _momentum(self.m2, self.v2)
-
-    @property
-    def momentum_after(self) -> Array:
-        """m1 v1' + m2 v2', [kg m/s]."""
-        return _momentum(self.m1, self.v1_final) + _momentum(self.m2, self.v2_final)
-
     def _angular(self, i: int, point: Array, final: bool) -> Array:
         m, r, rot, p = (
             (self.m1, self.r1, self.rotation1, self.p1),
@@ -451,7 +443,7 @@ class Collision3D:
         with np.errstate(invalid="ignore", divide="ignore"):
             inertia = r * r / rot
             spin = np.where(np.isfinite(inertia)[..., None], inertia[..., None] * w, np.nan)
-            return np.cross(p - point, _momentum(m, v)) + spin
+            return np.cross(p - point, momentum(m, v)) + spin
 
     def angular_momentum_contact(self, sphere: int, final: bool = False) -> Array:
         """Angular momentum of one sphere about the contact point c,
@@ -913,86 +905,6 @@ def oblique_collision_3d(
     >>> bool(r.stuck), round(float(r.v1_final[0]), 6), round(float(r.w1_final[1]), 3)
     (False, 3.018699, 358.8)
     """
-    result = _oblique(
-        m1, m2, 0.5 * np.asarray(d1, dtype=float), 0.5 * np.asarray(d2, dtype=float), p1, p2,
-        v1, v2, w1, w2, restitution, mu, tangential, inertia1, inertia2, history,
-        shear_modulus, steps, tangential_damping,
-    )  # fmt: skip
-    if warnings:
-        object.__setattr__(result, "warnings", tuple(warnings))
-    return result
-
-
-@input_errors
-def oblique_impact(
-    m1: ArrayLike,
-    m2: ArrayLike,
-    r1: ArrayLike,
-    r2: ArrayLike,
-    p1: ArrayLike,
-    p2: ArrayLike,
-    v1: ArrayLike,
-    v2: ArrayLike,
-    w1: ArrayLike = (0.0, 0.0, 0.0),
-    w2: ArrayLike = (0.0, 0.0, 0.0),
-    restitution: ArrayLike = 1.0,
-    friction: ArrayLike = 0.0,
-    tangential: str = "rigid",
-    inertia1: ArrayLike | None = None,
-    inertia2: ArrayLike | None = None,
-    history: NormalHistory | None = None,
-    shear_modulus: ArrayLike | None = None,
-) -> Collision3D:
-    """Deprecated (it goes in 0.3): :func:`oblique_collision_3d`, which takes diameters
-    and the arguments in the order of :func:`impactcli.collision2d.oblique_collision`
-    (``oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, ..., mu=...)``). The same
-    result, bit for bit.
-
-    Parameters
-    ----------
-    r1, r2 : radii, [m]; friction : mu, [-]; the others as :func:`oblique_collision_3d`
-
-    Returns
-    -------
-    Collision3D
-    """
-    import warnings
-
-    warnings.warn(
-        "oblique_impact(m1, m2, r1, r2, p1, p2, v1, v2, ..., friction=) is deprecated and goes "
-        "in 0.3: use oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, ..., mu=), with "
-        "diameters",
-        DeprecationWarning,
-        stacklevel=3,  # the caller, past the input_errors wrapper
-    )
-    return _oblique(
-        m1, m2, r1, r2, p1, p2, v1, v2, w1, w2, restitution, friction, tangential, inertia1,
-        inertia2, history, shear_modulus,
-    )  # fmt: skip
-
-
-def _oblique(
-    m1: ArrayLike,
-    m2: ArrayLike,
-    r1: ArrayLike,
-    r2: ArrayLike,
-    p1: ArrayLike,
-    p2: ArrayLike,
-    v1: ArrayLike,
-    v2: ArrayLike,
-    w1: ArrayLike = (0.0, 0.0, 0.0),
-    w2: ArrayLike = (0.0, 0.0, 0.0),
-    restitution: ArrayLike = 1.0,
-    friction: ArrayLike = 0.0,
-    tangential: str = "rigid",
-    inertia1: ArrayLike | None = None,
-    inertia2: ArrayLike | None = None,
-    history: NormalHistory | None = None,
-    shear_modulus: ArrayLike | None = None,
-    steps: Steps | None = None,
-    tangential_damping: ArrayLike = 0.0,
-) -> Collision3D:
-    """:func:`oblique_collision_3d` with radii [m] and friction mu [-]."""
     spec = get_tangential(tangential)
     x_t = np.asarray(tangential_damping, dtype=float)
     damped = spec.kind == "spring" and (
@@ -1000,8 +912,9 @@ def _oblique(
         or (steps is None and history is not None and history.damping is not None)
     )
     check_tangential_damping(x_t, tangential, damped)
+    r1, r2 = 0.5 * np.asarray(d1, dtype=float), 0.5 * np.asarray(d2, dtype=float)
     m1, m2, r1, r2, e, mu = (
-        np.asarray(x, dtype=float) for x in (m1, m2, r1, r2, restitution, friction)
+        np.asarray(x, dtype=float) for x in (m1, m2, r1, r2, restitution, mu)
     )
     for name, value in (("m1", m1), ("m2", m2), ("R1", r1), ("R2", r2)):
         bad = ~(value > 0.0)
@@ -1151,7 +1064,53 @@ def _oblique(
         model=tangential,
         times=times,
         tangential_force=force,
+        warnings=tuple(warnings),
     )
+
+
+@input_errors
+def oblique_impact(
+    m1: ArrayLike,
+    m2: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    p1: ArrayLike,
+    p2: ArrayLike,
+    v1: ArrayLike,
+    v2: ArrayLike,
+    *options: Any,
+    **named: Any,
+) -> Collision3D:
+    """Deprecated (it goes in 0.3): :func:`oblique_collision_3d`, which takes diameters
+    and the arguments in the order of :func:`impactcli.collision2d.oblique_collision`
+    (``oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, ..., mu=...)``). The same
+    result, bit for bit: the diameters 2 R are halved again exactly.
+
+    Parameters
+    ----------
+    m1, m2, p1, p2, v1, v2 : as :func:`oblique_collision_3d`
+    r1, r2 : radii, [m]
+    options : w1, w2, restitution, friction (mu, [-]), tangential, inertia1, inertia2,
+        history, shear_modulus, in that order, as :func:`oblique_collision_3d`
+    named : the same by name (``friction`` for ``mu``)
+
+    Returns
+    -------
+    Collision3D
+    """
+    import warnings
+
+    warnings.warn(
+        "oblique_impact(m1, m2, r1, r2, p1, p2, v1, v2, ..., friction=) is deprecated and goes "
+        "in 0.3: use oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, ..., mu=), with "
+        "diameters",
+        DeprecationWarning,
+        stacklevel=3,  # the caller, past the input_errors wrapper
+    )
+    if "friction" in named:
+        named["mu"] = named.pop("friction")
+    d1, d2 = (2.0 * np.asarray(r, dtype=float) for r in (r1, r2))
+    return oblique_collision_3d(m1, m2, v1, v2, p1, p2, d1, d2, *options, **named)
 
 
 def contact_distance_problem(
@@ -1300,11 +1259,6 @@ def _lever(r: Array, rotation: Array) -> Array:
 
 def _dot(a: Array, b: Array) -> Array:
     return np.sum(a * b, axis=-1)
-
-
-def _momentum(m: Array, v: Array) -> Array:
-    with np.errstate(invalid="ignore"):
-        return m[..., None] * v
 
 
 

@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from impactcli.errors import InputError
 from impactcli.limits import MAX_CURVE_BYTES, MAX_CURVE_LINE, MAX_CURVE_POINTS
-from impactcli.units import unit_factor
+from impactcli.units import KINDS, unit_factor
 
 __all__ = [
     "check_loading_curve",
@@ -44,19 +44,16 @@ __all__ = [
     "read_unloading_curves",
 ]
 
-#: column -> (SI unit, kind of quantity)
-_COLUMNS: dict[str, tuple[str, str]] = {
-    "delta": ("m", "length"),
-    "delta_max": ("m", "length"),
-    "force": ("N", "force"),
-}
+#: column -> kind of quantity (its SI unit that of :data:`impactcli.units.KINDS`)
+_COLUMN_KINDS: dict[str, str] = {"delta": "length", "delta_max": "length", "force": "force"}
 
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
 def _unit_factor(unit: str, column: str, where: str) -> float:
     """Factor from ``unit`` to the column's SI unit; InputError for a wrong kind."""
-    si, kind = _COLUMNS[column]
+    kind = _COLUMN_KINDS[column]
+    si = KINDS[kind][0]
     if unit in ("", si):
         return 1.0
     try:

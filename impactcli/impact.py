@@ -1217,7 +1217,10 @@ def damped_restitution_sweep(
     separation: str = "overlap",
     split: Split = "mass",
 ) -> dict[str, NDArray]:
-    """Restitution, contact time and indentations against V0 under a damped law, one batch.
+    """Restitution, contact time and indentations against V0 under a damped law, solved in
+    blocks of about :data:`impactcli.limits.DAMPED_BLOCK` values (velocities x (n + 1)) so
+    that memory does not grow with the number of velocities (a block is one velocity when
+    n is larger).
 
     As :func:`impactcli.sweep.restitution_sweep` for Hertz with viscous damping
     (:func:`damped_impact`; docs/damping.md): e does not depend on V0 for ``tsuji`` and
@@ -1225,9 +1228,28 @@ def damped_restitution_sweep(
     (``delta_res`` and its shares are 0, ``plastic`` 0); ``energy_dissipated`` is the
     damping's integral of c delta'^2 dt [J]; ``delta_separation`` the indentation at
     separation [m] (0 for ``overlap``).
+
+    Parameters
+    ----------
+    sphere1, sphere2 : the spheres (SI)
+    velocities : impact velocities V0 = V1 + V2, > 0, [m/s]
+    damping, alpha : the damping model and its alpha (unit of the model)
+    n : FILM segments per stage
+    separation, split : as for :func:`damped_impact`
+
+    Returns
+    -------
+    dict
+        :data:`DAMPED_SWEEP_COLUMNS` -> arrays, one value per velocity.
+
+    Examples
+    --------
+    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    >>> damped_restitution_sweep(*steel, [0.5, 1.0], "tsuji", 0.2)["restitution"].round(4)
+    array([0.7542, 0.7542])
     """
     from impactcli.damping import check_alpha, check_damping, solve_damped_impact
-    from impactcli.limits import MAX_COUNT, MAX_SWEEP_SEGMENTS
+    from impactcli.limits import DAMPED_BLOCK, MAX_COUNT, MAX_SWEEP_SEGMENTS
 
     v0 = np.asarray(velocities, dtype=float)
     if v0.ndim != 1 or v0.size == 0 or not np.all(np.isfinite(v0)) or np.any(v0 <= 0):
@@ -1242,24 +1264,34 @@ def damped_restitution_sweep(
         sphere1, sphere2
     )
     assert isinstance(pair, DampedPair)
-    sol = solve_damped_impact(pair.law(float(alpha)), v0, pair.mass, n, pair.separation)
-    if not np.all(np.isfinite(sol.contact_time)):
-        raise ValueError(
-            f"alpha = {alpha:g}: the contact never ends (overdamped: the indentation creeps "
-            "back toward 0 without reaching it); give a smaller alpha"
-        )
+    law = pair.law(float(alpha))
+    block = max(1, DAMPED_BLOCK // (int(n) + 1))
+    parts = []
+    for i in range(0, v0.size, block):
+        sol = solve_damped_impact(law, v0[i : i + block], pair.mass, n, pair.separation)
+        if not np.all(np.isfinite(sol.contact_time)):
+            raise ValueError(
+                f"alpha = {alpha:g}: the contact never ends (overdamped: the indentation "
+                "creeps back toward 0 without reaching it); give a smaller alpha"
+            )
+        parts.append([sol.restitution, sol.contact_time, sol.delta_max, sol.dissipated,
+                      sol.delta_separation])  # fmt: skip
+    e, contact_time, delta_max, dissipated, separated = (
+        np.concatenate([np.asarray(part[k], dtype=float).reshape(-1) for part in parts])
+        for k in range(5)
+    )
     zero = np.zeros_like(v0)
     return {
         "impact_velocity": v0,
-        "restitution": np.asarray(sol.restitution, dtype=float),
-        "contact_time": np.asarray(sol.contact_time, dtype=float),
-        "delta_max": np.asarray(sol.delta_max, dtype=float),
+        "restitution": e,
+        "contact_time": contact_time,
+        "delta_max": delta_max,
         "delta_res": zero,
         "delta1_res": zero.copy(),
         "delta2_res": zero.copy(),
-        "energy_dissipated": np.asarray(sol.dissipated, dtype=float),
+        "energy_dissipated": dissipated,
         "plastic": zero.copy(),
-        "delta_separation": np.asarray(sol.delta_separation, dtype=float),
+        "delta_separation": separated,
     }
 
 

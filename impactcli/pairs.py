@@ -306,34 +306,30 @@ class SpherePairs:
     nu1: NDArray
     E2: NDArray
     nu2: NDArray
-    rho1: NDArray
-    rho2: NDArray
-    m1: NDArray
-    m2: NDArray
-    sy1: NDArray
-    sy2: NDArray
+    rho1: NDArray = np.nan  # NaN: not given
+    rho2: NDArray = np.nan
+    m1: NDArray = np.nan
+    m2: NDArray = np.nan
+    sy1: NDArray = np.nan
+    sy2: NDArray = np.nan
 
     @classmethod
-    def from_columns(
-        cls,
-        d1: ArrayLike,
-        d2: ArrayLike,
-        v1: ArrayLike,
-        v2: ArrayLike,
-        E1: ArrayLike,
-        nu1: ArrayLike,
-        E2: ArrayLike,
-        nu2: ArrayLike,
-        rho1: ArrayLike = np.nan,
-        rho2: ArrayLike = np.nan,
-        m1: ArrayLike = np.nan,
-        m2: ArrayLike = np.nan,
-        sy1: ArrayLike = np.nan,
-        sy2: ArrayLike = np.nan,
-    ) -> SpherePairs:
-        """Pairs from columns (units as the class's attributes), broadcast to one shape and
-        flattened: one entry per collision. NaN in ``rho``, ``m`` or ``sy`` is "not given"."""
-        return cls(*flat_floats(d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2))
+    def from_columns(cls, *columns: ArrayLike, **named: ArrayLike) -> SpherePairs:
+        """Pairs from columns, in the order of :data:`COLUMNS` or by name, as the class's
+        attributes (their units; ``rho``, ``m`` and ``sy`` NaN, "not given", by default),
+        broadcast to one shape and flattened: one entry per collision.
+
+        Parameters
+        ----------
+        columns : d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2, SI
+        named : the same by name
+
+        Returns
+        -------
+        SpherePairs
+        """
+        given = cls(*columns, **named)  # the names, order and defaults of the attributes
+        return cls(*flat_floats(*given.columns()))
 
     @classmethod
     def from_spheres(

@@ -60,50 +60,24 @@ class ContactSolution(Protocol):
     ``stored`` (the elastic energy left in the contact at separation) [J].
     """
 
-    @property
-    def restitution(self) -> Any:
-        """e = -delta'(t_c) / V0, [-]."""
-        ...
-
-    @property
-    def end_time(self) -> Any:
-        """Time of separation t_c, [s]."""
-        ...
-
-    @property
-    def contact_time(self) -> Any:
-        """Time of separation t_c, [s] (:attr:`end_time`)."""
-        ...
-
-    @property
-    def t_max(self) -> Any:
-        """Time of the maximum indentation, [s]."""
-        ...
-
-    @property
-    def delta_max(self) -> Any:
-        """Maximum indentation, [m]."""
-        ...
-
-    @property
-    def force_max(self) -> Any:
-        """Maximum contact force, [N]."""
-        ...
-
-    @property
-    def delta_end(self) -> Any:
-        """Indentation at separation, [m]."""
-        ...
-
-    @property
-    def dissipated(self) -> Any:
-        """Energy dissipated by the contact over the impact, [J]."""
-        ...
-
-    @property
-    def stored(self) -> Any:
-        """Elastic energy left in the contact at separation, [J]."""
-        ...
+    restitution: Any
+    """e = -delta'(t_c) / V0, [-]."""
+    end_time: Any
+    """Time of separation t_c, [s]."""
+    contact_time: Any
+    """Time of separation t_c, [s] (:attr:`end_time`)."""
+    t_max: Any
+    """Time of the maximum indentation, [s]."""
+    delta_max: Any
+    """Maximum indentation, [m]."""
+    force_max: Any
+    """Maximum contact force, [N]."""
+    delta_end: Any
+    """Indentation at separation, [m]."""
+    dissipated: Any
+    """Energy dissipated by the contact over the impact, [J]."""
+    stored: Any
+    """Elastic energy left in the contact at separation, [J]."""
 
     def evaluate(self, t: ArrayLike) -> tuple[Array, Array]:
         """Indentation [m] and its rate [m/s] at times ``t`` [s], clamped to the contact."""
@@ -147,6 +121,11 @@ def _first(value: ArrayLike) -> float:
     return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 
+def _plan_quantity(name: str, doc: str) -> property:
+    """A property of :class:`StagedSolution`: the plan's closed-form ``name`` as a float."""
+    return property(lambda self: _first(getattr(self.plan, name)), doc=doc)
+
+
 @dataclass(frozen=True)
 class StagedSolution(FilmSolution):
     """FILM solution of one impact of a normal law as its solved stages: the stages of its
@@ -165,13 +144,13 @@ class StagedSolution(FilmSolution):
 
     Examples
     --------
-    The normalised Hertz impact (R = 1, E* = 15/16, so K_h = 5/4; m = V0 = delta_m = 1)
-    with n = 25 lasts 2.9432487 (exact 2.9432752, docs/method.md §6):
+    The stages of the normalised Hertz impact of :class:`PlanSolution`'s example, loading
+    and unloading, give its times:
 
     >>> from impactcli.laws.registry import get_law
     >>> s = StagedSolution.solve(get_law("hertz").contact(1.0, 0.9375), 1.0, 1.0, 25)
-    >>> s.restitution, round(s.contact_time, 7), round(s.t_max, 7)
-    (1.0, 2.9432487, 1.4716277)
+    >>> len(s.stages), s.restitution, round(s.contact_time, 7), round(s.t_max, 7)
+    (2, 1.0, 2.9432487, 1.4716277)
     """
 
     plan: ImpactPlan
@@ -181,23 +160,17 @@ class StagedSolution(FilmSolution):
 
     @classmethod
     def solve(
-        cls, contact: NormalContact, impact_velocity: float, mass: float, n: int
-    ) -> StagedSolution:
-        """Plan the impact at V0 [m/s] with effective mass m [kg] and solve its stages by
-        FILM with n segments each."""
-        plan = contact.plan(impact_velocity, mass)
-        return cls.of_plan(plan, contact, impact_velocity, mass, n)
-
-    @classmethod
-    def of_plan(
         cls,
-        plan: ImpactPlan,
         contact: NormalContact,
         impact_velocity: float,
         mass: float,
         n: int,
+        plan: ImpactPlan | None = None,
     ) -> StagedSolution:
-        """Solve the stages of ``plan`` by FILM with n segments each (:func:`solve_plan`)."""
+        """Plan the impact at V0 [m/s] with effective mass m [kg] (or take ``plan``, the
+        contact's plan of it made already) and solve its stages by FILM with n segments
+        each (:func:`solve_plan`)."""
+        plan = contact.plan(impact_velocity, mass) if plan is None else plan
         return cls(solve_plan(plan, mass, n), plan, contact, mass, impact_velocity)
 
     # -- the quantities of ContactSolution ------------------------------------------------
@@ -212,26 +185,19 @@ class StagedSolution(FilmSolution):
         ``turning`` stage), [s]."""
         return float(self.stages[self.plan.turning].end_time)
 
-    @property
-    def delta_max(self) -> float:
-        """Maximum indentation (the plan's closed form), [m]."""
-        return _first(self.plan.delta_max)
-
-    @property
-    def force_max(self) -> float:
-        """Maximum contact force (the plan's closed form), [N]."""
-        return _first(self.plan.force_max)
-
-    @property
-    def delta_end(self) -> float:
-        """The indentation at separation, [m]: the residual indentation delta_res, or where
-        an adhesive contact parts in tension or is captured (the plan's ``delta_end``)."""
-        return _first(self.plan.delta_end)
-
-    @property
-    def restitution(self) -> float:
-        """Coefficient of restitution e (the plan's, from the exact energy balance), [-]."""
-        return _first(self.plan.restitution)
+    delta_max = _plan_quantity("delta_max", "Maximum indentation (the plan's closed form), [m].")
+    force_max = _plan_quantity(
+        "force_max", "Maximum contact force (the plan's closed form), [N]."
+    )
+    delta_end = _plan_quantity(
+        "delta_end",
+        "The indentation at separation, [m]: the residual indentation delta_res, or where an "
+        "adhesive contact parts in tension or is captured (the plan's ``delta_end``).",
+    )
+    restitution = _plan_quantity(
+        "restitution",
+        "Coefficient of restitution e (the plan's, from the exact energy balance), [-].",
+    )
 
     @property
     def dissipated(self) -> float:
@@ -405,7 +371,7 @@ class PlanSolution:
     ) -> PlanSolution:
         """Solve the stages of ``plan`` by FILM with n segments each (:func:`solve_plan`):
         the quantities are those of the plan and its stages."""
-        staged = StagedSolution.of_plan(plan, contact, impact_velocity, mass, n)
+        staged = StagedSolution.solve(contact, impact_velocity, mass, n, plan)
         v0, m = impact_velocity, mass
         quantities = FilmSummary(
             staged.delta_max,
@@ -429,8 +395,8 @@ class PlanSolution:
     def staged(self) -> StagedSolution:
         """The FILM stages of the plan, solved (:class:`StagedSolution`): the histories,
         force and energy at any time."""
-        return StagedSolution.of_plan(
-            self.plan, self.contact, self.impact_velocity, self.mass, self.n
+        return StagedSolution.solve(
+            self.contact, self.impact_velocity, self.mass, self.n, self.plan
         )
 
     @cached_property

@@ -14,12 +14,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.batch import DAMPED_BLOCK, FILM_BLOCK, law_stage_times
+from impactcli.batch import FILM_BLOCK, law_stage_times
 from impactcli.contact import first_yield_velocity
 from impactcli.impact import (
-    DAMPED_DEFAULT_N,
     Sphere,
     check_pair,
+    damped_restitution_sweep,
     effective_properties,
     split_fractions,
     weaker_yield_strength,
@@ -233,56 +233,8 @@ def sweep_contact_warning(
     return contact_radius_warning(velocities, delta_max, r)
 
 
-@input_errors
-def damped_sweep(
-    sphere1: Sphere,
-    sphere2: Sphere,
-    velocities: ArrayLike,
-    damping: str,
-    alpha: float,
-    n: int = DAMPED_DEFAULT_N,
-    separation: str = "overlap",
-    split: str = "mass",
-) -> dict[str, NDArray]:
-    """:func:`impactcli.impact.damped_restitution_sweep` in blocks of velocities: about
-    :data:`impactcli.batch.DAMPED_BLOCK` values (velocities x (n + 1)) a block, so memory
-    does not grow with the number of velocities (a block is one velocity when n is larger).
-
-    Parameters
-    ----------
-    sphere1, sphere2 : the spheres (SI)
-    velocities : impact velocities V0 = V1 + V2, > 0, [m/s]
-    damping, alpha : the damping model and its alpha (unit of the model)
-    n : FILM segments per stage
-    separation, split : as for :func:`impactcli.impact.damped_impact`
-
-    Returns
-    -------
-    dict
-        :data:`impactcli.impact.DAMPED_SWEEP_COLUMNS` -> arrays, one value per velocity.
-
-    Examples
-    --------
-    >>> from impactcli.impact import Sphere
-    >>> steel = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
-    >>> damped_sweep(*steel, [0.5, 1.0], "tsuji", 0.2)["restitution"].round(4).tolist()
-    [0.7542, 0.7542]
-    """
-    from impactcli.impact import damped_restitution_sweep
-
-    v0 = np.asarray(velocities, dtype=float)
-    if v0.ndim != 1 or v0.size == 0:  # refused by the sweep, with its message
-        return damped_restitution_sweep(sphere1, sphere2, v0, damping, alpha, n, separation,
-                                        split)  # type: ignore[arg-type]  # fmt: skip
-    check_size("the number of velocities", v0.size, MAX_COUNT)
-    check_size("the number of velocities x n", v0.size * int(n), MAX_SWEEP_SEGMENTS)
-    block = max(1, DAMPED_BLOCK // (int(n) + 1))
-    parts = [
-        damped_restitution_sweep(sphere1, sphere2, v0[i : i + block], damping, alpha, n,
-                                 separation, split)  # type: ignore[arg-type]  # fmt: skip
-        for i in range(0, v0.size, block)
-    ]
-    return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
+#: :func:`impactcli.impact.damped_restitution_sweep`, in blocks of velocities.
+damped_sweep = damped_restitution_sweep
 
 
 def sweep_yield_velocity(

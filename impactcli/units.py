@@ -79,21 +79,6 @@ MAX_LENGTH = 100
 
 # Dimensions as exponents of (length, mass, time, angle).
 Dims = tuple[int, int, int, int]
-_DIMS: dict[str, Dims] = {
-    "length": (1, 0, 0, 0),
-    "velocity": (1, 0, -1, 0),
-    "mass": (0, 1, 0, 0),
-    "pressure": (-1, 1, -2, 0),
-    "density": (-3, 1, 0, 0),
-    "angle": (0, 0, 0, 1),
-    "time": (0, 0, 1, 0),
-    "angular_velocity": (0, 0, -1, 1),
-    "stiffness": (0, 1, -2, 0),
-    "force": (1, 1, -2, 0),
-    "dimensionless": (0, 0, 0, 0),
-    "inverse velocity": (-1, 0, 1, 0),
-    "surface energy": (0, 1, -2, 0),
-}
 _DIMENSION_NAMES = ("length", "mass", "time", "angle")
 
 # SI prefixes (the 1991 set, with u as well as both micro signs) and their powers of ten.
@@ -316,6 +301,13 @@ def _as_factor(total: Fraction) -> tuple[float, bool]:
     if total.numerator == 1 and total.denominator <= 2**53:
         return float(total.denominator), True
     return float(total), False
+
+
+#: kind -> the dimensions of a quantity of it: those of its SI unit (:data:`KINDS`)
+_DIMS: dict[str, Dims] = {
+    kind: _unit_fast(si)[1]  # type: ignore[index]  # each SI unit is a fast unit
+    for kind, (si, _examples) in KINDS.items()
+}
 
 
 @lru_cache(maxsize=1)

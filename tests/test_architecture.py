@@ -542,8 +542,6 @@ LAW_NAMES_ALLOWED: dict[tuple[str, str], str] = {
     ("impactcli/export/lammps.py", "*"): "LAMMPS's own models (hertz/material, damping tsuji, "
     "damping viscoelastic): the export maps this library's models onto LAMMPS's, with "
     "LAMMPS's conventions of each",
-    ("impactcli/export/__init__.py", "tsuji"): "re-exports tsuji_coefficient of "
-    "export.lammps (LAMMPS's damping tsuji)",
     ("impactcli/laws/tangential.py", "hertz"): "LAMMPS's pair gran/hertz/history, one of "
     "the codes that implement mindlin-displacement",
     ("impactcli/tangential.py", "hertz"): "hertz_steps: the rows of undamped Hertz share one "

@@ -247,13 +247,14 @@ def test_sweeps_in_blocks_give_the_numbers_of_one_block(monkeypatch):
     """restitution_sweep and the damped sweep run in blocks of velocities (FILM_BLOCK,
     DAMPED_BLOCK values); the blocks change no number of the elastoplastic sweep and none
     of the damped one beyond the last bits (its kernel's rounding follows the rows)."""
+    import impactcli.limits as limits
     import impactcli.sweep as sweep
 
     v0 = np.linspace(0.05, 3.0, 23)
     whole = sweep.restitution_sweep(S1, S2, v0, law="walton-braun", law_params=WALTON_PARAMS)
     damped = sweep.damped_sweep(S1, S2, v0, "hunt-crossley", 0.2, n=50)
     monkeypatch.setattr(sweep, "FILM_BLOCK", 5 * 26)  # 5 velocities of n = 25 a block
-    monkeypatch.setattr(sweep, "DAMPED_BLOCK", 4 * 51)
+    monkeypatch.setattr(limits, "DAMPED_BLOCK", 4 * 51)
     blocked = sweep.restitution_sweep(S1, S2, v0, law="walton-braun", law_params=WALTON_PARAMS)
     for key, value in whole.items():
         assert np.array_equal(blocked[key], value), key

@@ -779,3 +779,21 @@ def test_the_plane_of_the_impact_keeps_the_in_plane_vectors_lengths():
         np.testing.assert_allclose(normal_seen, normal)
         np.testing.assert_allclose(tangent @ tangent, 1.0)
         np.testing.assert_allclose(tangent @ normal_seen, 0.0, atol=1e-15)
+
+
+def test_the_deprecated_oblique_impact_is_oblique_collision_3d_in_radii():
+    """oblique_impact(m1, m2, r1, r2, p1, p2, v1, v2, w1, w2, e, friction, ...) forwards to
+    oblique_collision_3d with diameters 2 R, friction positional or by name: bit for bit."""
+    from impactcli.collision3d import oblique_impact as deprecated
+
+    args = (0.05, 0.15, 0.02, 0.03, ORIGIN, (0.05, 0.0, 0.0), (1.0, 0.5, 0.0), ORIGIN)
+    new = oblique_collision_3d(0.05, 0.15, (1.0, 0.5, 0.0), ORIGIN, ORIGIN, (0.05, 0.0, 0.0),
+                               0.04, 0.06, (0.0, 0.0, 1.0), restitution=0.9, mu=0.3)  # fmt: skip
+    with pytest.warns(DeprecationWarning, match="oblique_collision_3d"):
+        by_position = deprecated(*args, (0.0, 0.0, 1.0), ORIGIN, 0.9, 0.3)
+    with pytest.warns(DeprecationWarning):
+        by_name = deprecated(*args, w1=(0.0, 0.0, 1.0), restitution=0.9, friction=0.3)
+    for old in (by_position, by_name):
+        for key in ("v1_final", "v2_final", "w1_final", "w2_final", "r1", "r2"):
+            np.testing.assert_array_equal(getattr(old, key), getattr(new, key))
+    assert float(new.tangential_impulse) > 0.0 and new.r1 == 0.02

@@ -84,6 +84,41 @@ def test_impact_summary_of_pairs_is_the_single_impacts():
 
 
 def test_the_column_signatures_stay_for_scripts():
-    """batch_impacts and batch_damped_impacts keep their positional columns."""
-    for function in (batch_impacts, batch_damped_impacts):
-        assert list(inspect.signature(function).parameters)[:14] == list(COLUMNS)
+    """batch_impacts keeps its positional columns; batch_damped_impacts, batch_impacts with
+    damping, takes them in the same order or by name, and SpherePairs.from_columns too."""
+    assert list(inspect.signature(batch_impacts).parameters)[:14] == list(COLUMNS)
+    positional = [COLUMNS_OF_TWO.get(name, np.nan) for name in COLUMNS]
+    by_name = SpherePairs.from_columns(**COLUMNS_OF_TWO)
+    for name, column in zip(COLUMNS, SpherePairs.from_columns(*positional).columns()):
+        np.testing.assert_array_equal(column, getattr(by_name, name))
+    damping = dict(damping="hunt-crossley", alpha=[0.05, 0.2])
+    kernel = damped_pair_impacts(by_name, **damping)
+    for out in (batch_damped_impacts(*positional, **damping),
+                batch_damped_impacts(**COLUMNS_OF_TWO, **damping),
+                batch_impacts(*positional, **damping)):  # fmt: skip
+        assert out.keys() == kernel.keys()
+        for key in kernel:
+            np.testing.assert_array_equal(out[key], kernel[key])
+    assert kernel["error"].tolist() == ["", ""]
+    assert kernel["restitution"][0] > kernel["restitution"][1]  # more damping, lower e
+    with pytest.raises(TypeError, match="nu2"):
+        SpherePairs.from_columns(*positional[:7])
+
+
+def test_batch_impacts_with_damping_broadcasts_alpha_over_the_columns():
+    """One pair of columns, three alphas: three rows, as batch_damped_impacts gave them."""
+    out = batch_impacts(0.02, 0.04, 0.25, 0.75, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0,
+                        damping="tsuji", alpha=[0.0, 0.1, 0.3])  # fmt: skip
+    assert out["error"].tolist() == ["", "", ""]
+    assert out["restitution"][0] == pytest.approx(1.0, abs=1e-9)
+    assert out["restitution"][0] > out["restitution"][1] > out["restitution"][2]
+    assert out["alpha"].tolist() == [0.0, 0.1, 0.3]
+
+
+@pytest.mark.parametrize("how", [{"law": "thornton"}, {"plastic": True}])
+def test_damping_is_refused_with_a_law_or_plastic(how):
+    from impactcli import InputError
+
+    with pytest.raises(InputError, match="damping tsuji is Hertz plus viscous damping"):
+        batch_impacts(0.02, 0.04, 1.0, 0.0, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0,
+                      damping="tsuji", alpha=0.1, **how)  # fmt: skip

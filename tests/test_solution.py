@@ -20,7 +20,8 @@ from impactcli.solution import ContactSolution, PlanSolution
 R, E, SY, M, V0 = 6.6667e-3, 115.385e9, 1e9, 0.0290, 1.0
 K = 4.0 / 3.0 * E * np.sqrt(R)
 
-MEMBERS = [
+# the protocol's quantities (annotated attributes) and methods
+MEMBERS = [*ContactSolution.__annotations__] + [
     name
     for name in dir(ContactSolution)
     if not name.startswith("_") and name not in dir(object)

@@ -7,30 +7,7 @@ complete LAMMPS input for one collision (docs/export.md).
 
 from __future__ import annotations
 
-from impactcli.export.lammps import (
-    DEFAULT_LAMMPS_VERSION,
-    EXACT_TANGENTIAL,
-    LAMMPS_TANGENTIAL,
-    LAMMPS_VERSIONS,
-    LammpsInput,
-    NearestFit,
-    equivalent_material,
-    lammps_input,
-    read_lammps_summary,
-    run_lammps,
-    tsuji_coefficient,
-)
+from impactcli.export import lammps
+from impactcli.export.lammps import *  # noqa: F403  (the names of its __all__)
 
-__all__ = [
-    "DEFAULT_LAMMPS_VERSION",
-    "EXACT_TANGENTIAL",
-    "LAMMPS_TANGENTIAL",
-    "LAMMPS_VERSIONS",
-    "LammpsInput",
-    "NearestFit",
-    "equivalent_material",
-    "lammps_input",
-    "read_lammps_summary",
-    "run_lammps",
-    "tsuji_coefficient",
-]
+__all__ = list(lammps.__all__)
