@@ -85,7 +85,6 @@ __all__ = [
     "check_alpha",
     "check_damping",
     "damped_impact_ode",
-    "damped_ode_solution",
     "damping_for_restitution",
     "damping_label",
     "make_damping_law",
@@ -1273,29 +1272,18 @@ def damped_impact_ode(
     force_max, dissipated, stored (SI); :func:`impactcli.ode.integrate` also gives the
     histories.
     """
-    return damped_ode_solution(law, impact_velocity, mass, separation, rtol).summary
-
-
-def damped_ode_solution(
-    law,
-    impact_velocity: float,
-    mass: float,
-    separation: Separation = "overlap",
-    rtol: float = 1e-12,
-) -> OdeSolution:
-    """:func:`damped_impact_ode` with its dense output: :func:`impactcli.ode.integrate` of
-    the law, an :class:`impactcli.ode.OdeSolution` (``summary``, ``evaluate(t)``,
-    ``dissipated_at(t)``)."""
     from impactcli.ode import integrate
 
-    return integrate(law, mass, impact_velocity, separation, rtol)
+    return integrate(law, mass, impact_velocity, separation, rtol).summary
 
 
 def __getattr__(name: str):
     """The names this module had before :mod:`impactcli.laws`: the public names of each
     damping model's module (its model class and relations, e.g. ``TsujiDamping``), and the
-    deprecated ``DampedOdeSolution`` (:class:`impactcli.ode.OdeSolution`) and
-    ``ViscoelasticLaw`` (:class:`~impactcli.laws.base.DampingModel`), which go in 0.3."""
+    deprecated ``DampedOdeSolution`` (:class:`impactcli.ode.OdeSolution`),
+    ``damped_ode_solution`` (:func:`impactcli.ode.integrate`, its arguments in another
+    order) and ``ViscoelasticLaw`` (:class:`~impactcli.laws.base.DampingModel`), which go
+    in 0.3."""
     import sys
     import warnings
 
@@ -1321,4 +1309,16 @@ def __getattr__(name: str):
             stacklevel=2,
         )
         return OdeSolution
+    if name == "damped_ode_solution":
+        from impactcli.ode import integrate
+
+        warnings.warn(
+            "impactcli.damping.damped_ode_solution is deprecated and goes in 0.3: it is "
+            "impactcli.ode.integrate(law, mass, impact_velocity, separation, rtol)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return lambda law, impact_velocity, mass, *args: integrate(
+            law, mass, impact_velocity, *args
+        )
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -128,3 +128,18 @@ def test_the_former_damped_integration_type_is_a_deprecated_name():
         "restitution", "contact_time", "delta_separation", "delta_max", "t_max", "force_max",
         "dissipated", "stored",
     ]  # fmt: skip
+
+
+def test_the_former_damped_integration_with_its_dense_output_is_a_deprecated_name():
+    """damping.damped_ode_solution was ode.integrate with V0 and m swapped: the same
+    integration, a warning, and the same summary as damped_impact_ode."""
+    import impactcli.damping as damping
+    from impactcli.ode import integrate
+
+    law = TsujiDamping(K, M, 0.3)
+    with pytest.warns(DeprecationWarning, match="impactcli.ode.integrate"):
+        old = damping.damped_ode_solution(law, V0, M, "force", 1e-10)
+    new = integrate(law, M, V0, "force", 1e-10)
+    assert old.summary == new.summary
+    assert old.summary == damping.damped_impact_ode(law, V0, M, "force", 1e-10)
+    assert "damped_ode_solution" not in damping.__all__

