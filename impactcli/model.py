@@ -46,6 +46,7 @@ from impactcli.laws.registry import (
 from impactcli.limits import DAMPED_DEFAULT_N, DEFAULT_N
 from impactcli.pairs import effective_properties, weaker_yield_strength
 from impactcli.solution import PlanSolution, made_at_once
+from impactcli.summary import plastic_keys
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     needs_yield_strength,
@@ -68,6 +69,7 @@ __all__ = [
     "DampedPair",
     "LawPair",
     "PairModel",
+    "energy_keys",
     "solution_energy_summary",
 ]
 
@@ -363,31 +365,26 @@ class LawPair:
     def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
         """The plastic keys (:data:`impactcli.impact.PLASTIC_SUMMARY_KEYS` beyond the
         elastic ones) and the energy keys (:data:`impactcli.impact.ENERGY_SUMMARY_KEYS`)."""
-        out = self._plastic_summary(result, solution)
-        out.update(solution_energy_summary(result, solution))
+        q = getattr(solution, "quantities", None)  # FILM's: the closed forms, floats
+        if q is None:
+            out = self._plastic_summary(result, solution)
+            out.update(solution_energy_summary(result, solution))
+            return out
+        out = plastic_keys(q.delta_y, q.yield_velocity, q.delta_res, result._shares()[2],
+                           solution.dissipated)  # fmt: skip
+        out.update(energy_keys(result, q.restitution, q.recoverable_work))
         return out
 
     def _plastic_summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
         """delta_y and V_y of the contact (closed forms), the residual indentation of the
         pair and of each sphere (shared by the permanent fractions), and the energy
         dissipated, (1/2) m V0^2 (1 - e^2)."""
-        f1, f2 = result.permanent_fractions
-        delta_res = float(solution.delta_end)
-        quantities = getattr(solution, "quantities", None)  # FILM's: the closed forms
-        if quantities is not None:
-            delta_y, yield_velocity = quantities.delta_y, quantities.yield_velocity
-        else:
-            contact = self.normal_contact
-            delta_y = float(contact.yield_indentation)
-            yield_velocity = float(contact.yield_velocity(np.asarray(self.mass, dtype=float)))
-        return {
-            "delta_y": delta_y,
-            "yield_velocity": yield_velocity,
-            "delta_res": delta_res,
-            "delta1_res": f1 * delta_res,
-            "delta2_res": f2 * delta_res,
-            "energy_dissipated": float(solution.dissipated),
-        }
+        contact = self.normal_contact
+        return plastic_keys(
+            float(contact.yield_indentation),
+            float(contact.yield_velocity(np.asarray(self.mass, dtype=float))),
+            float(solution.delta_end), result.permanent_fractions, float(solution.dissipated),
+        )  # fmt: skip
 
     def method_error(self, method: str) -> str:
         return f"method must be film, table or ode, got {method!r}"
@@ -730,23 +727,28 @@ def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> 
     impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
     without a yield strength: :func:`impactcli.design.first_yield_velocities`).
     """
+    quantities = getattr(solution, "quantities", None)  # FILM's: the law's closed forms
+    if quantities is not None:
+        return energy_keys(result, quantities.restitution, quantities.recoverable_work)
+    restitution, delta_max = _float(solution.restitution), _float(solution.delta_max)
+    work = _one(result.contact_model.recoverable_work(np.array([delta_max])))
+    return energy_keys(result, restitution, work)
+
+
+def energy_keys(result: ImpactResult, restitution: float, work: float) -> dict[str, float]:
+    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact from its coefficient of
+    restitution e [-] and the work unloading from its delta_max gives back [J]
+    (:func:`solution_energy_summary`), SI."""
     pair = result.contact
     m, r, e_star = pair.mass, pair.radius, pair.modulus  # effective_properties of the pair
     v0 = result.impact_velocity
     relative = 0.5 * m * v0 * v0
-    restitution, delta_max = _float(solution.restitution), _float(solution.delta_max)
     (r1, r2), (e1, e2), (p1, p2) = result._shares()
-    quantities = getattr(solution, "quantities", None)  # FILM's: the law's closed forms
-    if quantities is not None:
-        work = quantities.recoverable_work
-    else:
-        work = _one(result.contact_model.recoverable_work(np.array([delta_max])))
     stored = min(work, relative)
     lost = relative * (1.0 - restitution**2)
     v1, v2, m1, m2 = result.v1, result.v2, result.m1, result.m2
     v1_final = v1 - r1 * (1.0 + restitution) * v0
     v2_final = v2 - r2 * (1.0 + restitution) * v0
-    sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
     try:  # on floats
         fy1, fy2 = first_yield_velocities_of(result, m, r, e_star)
         kinetic = (
@@ -756,6 +758,7 @@ def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> 
             _kinetic_energy(m2, v2_final),
         )
     except (ArithmeticError, TypeError, ValueError):
+        sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
         fy1, fy2 = map(float, first_yield_velocities(m, r, e_star, sy1, sy2))
         kinetic = tuple(
             float(kinetic_energy(mass, v))
