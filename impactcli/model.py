@@ -70,6 +70,7 @@ __all__ = [
     "LawPair",
     "PairModel",
     "energy_keys",
+    "pair_model",
     "solution_energy_summary",
 ]
 
@@ -212,6 +213,30 @@ class ContactModel:
             return made_at_once(pair, _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y))
         m, r, e = effective_properties(sphere1, sphere2)
         return DampedPair(self, sphere1, sphere2, m, r, e)
+
+
+#: The pair models of the last few (model, sphere1, sphere2), by identity, with the
+#: objects themselves (an id is not reused while its entry lives): :func:`pair_model`.
+_PAIRS: dict[tuple[int, int, int], tuple[Any, Any, Any, PairModel]] = {}
+
+#: How many pair models :func:`pair_model` keeps.
+_PAIRS_KEPT = 16
+
+
+def pair_model(model: ContactModel, sphere1: Sphere, sphere2: Sphere) -> PairModel:
+    """``model.for_spheres(sphere1, sphere2)``, kept for the next impact of the same model
+    and sphere objects (immutable, all three): a sweep of velocities over one pair builds
+    its effective properties, contact model and their constants (the law's yield point,
+    each sphere's share and first-yield velocity) once."""
+    key = (id(model), id(sphere1), id(sphere2))
+    found = _PAIRS.get(key)
+    if found is not None and found[0] is model and found[1] is sphere1 and found[2] is sphere2:
+        return found[3]
+    pair = model.for_spheres(sphere1, sphere2)
+    if len(_PAIRS) >= _PAIRS_KEPT:
+        _PAIRS.clear()
+    _PAIRS[key] = (model, sphere1, sphere2, pair)
+    return pair
 
 
 class PairModel(Protocol):
@@ -785,8 +810,9 @@ def first_yield_velocities_of(
 ) -> tuple[float, float]:
     """The first-yield velocity of each sphere of ``result`` on floats, [m/s] (``inf``
     without a yield strength), from the effective mass m [kg], radius R [m] and modulus E*
-    [Pa]; worked out once per result (:func:`impactcli.design.first_yield_velocities`)."""
-    found = result.__dict__.get("_first_yield_")
+    [Pa]; worked out once per pair model (:func:`impactcli.design.first_yield_velocities`)."""
+    kept = result.contact.__dict__  # the pair's: the same spheres, m, R and E*
+    found = kept.get("_first_yield_")
     if found is None:
         sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
         fy1 = math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1)
@@ -795,7 +821,7 @@ def first_yield_velocities_of(
         else:
             fy2 = math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2)
             found = (fy1, fy2)
-        result.__dict__["_first_yield_"] = found
+        kept["_first_yield_"] = found
     return found
 
 
