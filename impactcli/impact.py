@@ -738,9 +738,9 @@ def _summary_of_floats(
     v1, v2 = float(result.v1), float(result.v2)
     m1, m2 = result.sphere1.total_mass, result.sphere2.total_mass
     m = 1.0 / (1.0 / m1 + 1.0 / m2)
-    _, fractions, shares = result._shares()
+    ratios, fractions, shares = result._shares()  # ratios: m / m_i, m as here
     summary = elastic_keys(
-        (v1, v2), (m / m1, m / m2), fractions, shares if permanent else None, contact_time,
+        (v1, v2), ratios, fractions, shares if permanent else None, contact_time,
         t_max, delta_max, force_max, delta_res, delta_res, restitution, (m, r, e),
     )  # fmt: skip
     sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
@@ -846,7 +846,7 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
                 result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
             ),
         )
-    return tuple(message for message in found if message)
+    return tuple(filter(None, found)) if found else found
 
 
 def _small_contact(delta_max: float, radius: float) -> bool:
@@ -871,8 +871,9 @@ def _same_material(sphere1: Sphere, sphere2: Sphere) -> bool:
 
 
 def _warned(result: ImpactResult, first_yield: bool = False) -> ImpactResult:
-    """``result`` with its :attr:`~ImpactResult.warnings`."""
-    object.__setattr__(result, "warnings", impact_warnings(result, first_yield))
+    """``result`` with its :attr:`~ImpactResult.warnings` (set as :meth:`ImpactResult._of`
+    sets its fields)."""
+    result.__dict__["warnings"] = impact_warnings(result, first_yield)
     return result
 
 

@@ -766,12 +766,13 @@ def energy_keys(result: ImpactResult, restitution: float, work: float) -> dict[s
     (:func:`solution_energy_summary`), SI."""
     pair = result.contact
     m, r, e_star = pair.mass, pair.radius, pair.modulus  # effective_properties of the pair
-    v0 = result.impact_velocity
+    v1, v2 = result.v1, result.v2
+    v0 = v1 + v2  # result.impact_velocity
     relative = 0.5 * m * v0 * v0
     (r1, r2), (e1, e2), (p1, p2) = result._shares()
     stored = min(work, relative)
     lost = relative * (1.0 - restitution**2)
-    v1, v2, m1, m2 = result.v1, result.v2, result.m1, result.m2
+    m1, m2 = result.sphere1.total_mass, result.sphere2.total_mass
     v1_final = v1 - r1 * (1.0 + restitution) * v0
     v2_final = v2 - r2 * (1.0 + restitution) * v0
     try:  # on floats
