@@ -225,18 +225,31 @@ _PAIRS_KEPT = 16
 
 def pair_model(model: ContactModel, sphere1: Sphere, sphere2: Sphere) -> PairModel:
     """``model.for_spheres(sphere1, sphere2)``, kept for the next impact of the same model
-    and sphere objects (immutable, all three): a sweep of velocities over one pair builds
-    its effective properties, contact model and their constants (the law's yield point,
-    each sphere's share and first-yield velocity) once."""
+    and sphere objects: a sweep of velocities over one pair builds its effective
+    properties, contact model and their constants (the law's yield point, each sphere's
+    share and first-yield velocity) once. Kept only what cannot change under it: a model
+    and spheres of plain numbers, without law parameters (a dict the caller may change)."""
     key = (id(model), id(sphere1), id(sphere2))
     found = _PAIRS.get(key)
-    if found is not None and found[0] is model and found[1] is sphere1 and found[2] is sphere2:
-        return found[3]
+    if found is not None and not model.law_params:
+        if found[0] is model and found[1] is sphere1 and found[2] is sphere2:
+            return found[3]
     pair = model.for_spheres(sphere1, sphere2)
-    if len(_PAIRS) >= _PAIRS_KEPT:
-        _PAIRS.clear()
-    _PAIRS[key] = (model, sphere1, sphere2, pair)
+    if all(map(_unchanging, (model, sphere1, sphere2))):
+        if len(_PAIRS) >= _PAIRS_KEPT:
+            _PAIRS.clear()
+        _PAIRS[key] = (model, sphere1, sphere2, pair)
     return pair
+
+
+def _unchanging(made: object) -> bool:
+    """Every field of a model or sphere a number, a string, None or an empty dict (law
+    parameters, checked again when kept): nothing whose value changes in place, as a
+    NumPy array's or a dict's may."""
+    return all(
+        type(value) in (float, int, str, bool, type(None)) or (type(value) is dict and not value)
+        for value in vars(made).values()
+    )
 
 
 class PairModel(Protocol):

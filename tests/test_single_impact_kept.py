@@ -126,3 +126,28 @@ def test_the_kept_yield_point_gives_the_closed_forms(v0):
     work = 0.4 * k * dy**2.5 + float(line.work(dy, dm)[0])
     assert work == pytest.approx(0.5 * m * v0**2, rel=1e-13)
     assert force == pytest.approx(float(line.force(dm)[0]), rel=1e-14)
+
+
+def test_a_model_whose_parameters_change_is_not_kept():
+    """The law parameters of a model are a dict its caller may change between impacts:
+    each impact runs with the parameters it holds then (as a new model would)."""
+    forget()
+    s1, s2 = spheres()
+    params = {"py": 2e9}
+    model = impactcli.ContactModel("thornton", params)
+    first = impactcli.solve_impact(s1, s2, 0.25, 0.75, model)
+    params["py"] = 4e9
+    second = impactcli.solve_impact(s1, s2, 0.25, 0.75, model)
+    fresh = impactcli.solve_impact(
+        *spheres(), 0.25, 0.75, impactcli.ContactModel("thornton", {"py": 4e9})
+    )
+    assert second.summary == fresh.summary
+    assert second.summary["yield_velocity"] == pytest.approx(
+        first.summary["yield_velocity"] * 2.0**2.5, rel=1e-12
+    )  # V_y ~ delta_y^(5/4) ~ p_y^(5/2)
+    # an empty dict filled after a kept impact: the filled parameters count
+    empty: dict = {}
+    model = impactcli.ContactModel("thornton", empty)
+    impactcli.solve_impact(s1, s2, 0.25, 0.75, model)
+    empty["py"] = 4e9
+    assert impactcli.solve_impact(s1, s2, 0.25, 0.75, model).summary == fresh.summary
