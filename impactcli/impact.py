@@ -60,6 +60,7 @@ from impactcli.model import (
     DampedPair,
     PairModel,
     first_yield_velocities_of,
+    pair_model,
     solution_energy_summary,
 )
 from impactcli.pairs import (
@@ -308,9 +309,15 @@ class ImpactResult:
 
     def _shares(self) -> tuple[tuple[float, float], ...]:
         """(:attr:`mass_ratios`, :attr:`split_fractions`, :attr:`permanent_fractions`),
-        worked out on first use and kept."""
+        worked out on first use and kept (by the pair model, whose spheres these are, for
+        each split)."""
         shares = self.__dict__.get("_shares_")
         if shares is not None:
+            return shares
+        kept = self.contact.__dict__
+        shares = kept.get(f"_shares_{self.split}")
+        if shares is not None:
+            self.__dict__["_shares_"] = shares
             return shares
         m1, m2 = self.m1, self.m2
         m = _effective(m1, m2)
@@ -331,7 +338,9 @@ class ImpactResult:
                 permanent=True,
             )  # fmt: skip
             permanent = (float(f1), float(f2))
-        shares = self.__dict__["_shares_"] = (ratios, split, permanent)
+        shares = self.__dict__["_shares_"] = kept[f"_shares_{self.split}"] = (
+            ratios, split, permanent
+        )
         return shares
 
     @property
@@ -729,9 +738,9 @@ def _summary_of_floats(
     v1, v2 = float(result.v1), float(result.v2)
     m1, m2 = result.sphere1.total_mass, result.sphere2.total_mass
     m = 1.0 / (1.0 / m1 + 1.0 / m2)
-    _, fractions, shares = result._shares()
+    ratios, fractions, shares = result._shares()  # ratios: m / m_i, m as here
     summary = elastic_keys(
-        (v1, v2), (m / m1, m / m2), fractions, shares if permanent else None, contact_time,
+        (v1, v2), ratios, fractions, shares if permanent else None, contact_time,
         t_max, delta_max, force_max, delta_res, delta_res, restitution, (m, r, e),
     )  # fmt: skip
     sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
@@ -837,7 +846,7 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
                 result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
             ),
         )
-    return tuple(message for message in found if message)
+    return tuple(filter(None, found)) if found else found
 
 
 def _small_contact(delta_max: float, radius: float) -> bool:
@@ -862,8 +871,9 @@ def _same_material(sphere1: Sphere, sphere2: Sphere) -> bool:
 
 
 def _warned(result: ImpactResult, first_yield: bool = False) -> ImpactResult:
-    """``result`` with its :attr:`~ImpactResult.warnings`."""
-    object.__setattr__(result, "warnings", impact_warnings(result, first_yield))
+    """``result`` with its :attr:`~ImpactResult.warnings` (set as :meth:`ImpactResult._of`
+    sets its fields)."""
+    result.__dict__["warnings"] = impact_warnings(result, first_yield)
     return result
 
 
@@ -934,7 +944,7 @@ def solve_impact(
     model.check(method)
     n = model.default_n if n is None else n
     _validate(sphere1, sphere2, v1, v2, n, split, method)
-    pair = model.for_spheres(sphere1, sphere2)
+    pair = pair_model(model, sphere1, sphere2)
     solution = pair.solve(v1 + v2, n)
     result = ImpactResult._of(
         sphere1, sphere2, v1, v2, solution, int(n), split, pair.kind(solution), pair, method
@@ -1109,12 +1119,24 @@ def law_impact(
         if law_params is not None:
             raise TypeError("give law_params or the deprecated params, not both")
         law_params = params
-    model = made_at_once(  # ContactModel(law, law_params, yield_strength=...), at once
-        ContactModel,
-        {"law": law, "law_params": dict(law_params or {}), "damping": None, "alpha": None,
-         "restitution": None, "separation": "overlap", "yield_strength": yield_strength},
-    )  # fmt: skip
+    plain = not law_params and yield_strength is None and type(law) is str
+    model = _LAW_MODELS.get(law) if plain else None
+    if model is None:
+        model = made_at_once(  # ContactModel(law, law_params, yield_strength=...), at once
+            ContactModel,
+            {"law": law, "law_params": dict(law_params or {}), "damping": None, "alpha": None,
+             "restitution": None, "separation": "overlap", "yield_strength": yield_strength},
+        )  # fmt: skip
+        if plain:  # a law with its defaults: one model (immutable), whose pairs are kept
+            if len(_LAW_MODELS) >= 64:
+                _LAW_MODELS.clear()
+            _LAW_MODELS[law] = model
     return solve_impact(sphere1, sphere2, v1, v2, model, n, split, method)
+
+
+#: The models of :func:`law_impact` by law name, for a law with its default parameters and
+#: the spheres' yield strength (:func:`impactcli.model.pair_model` keeps their pairs).
+_LAW_MODELS: dict[str, ContactModel] = {}
 
 
 #: Summary keys of :func:`damped_impact`: the elastic ones and the damping's.

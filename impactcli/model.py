@@ -46,6 +46,7 @@ from impactcli.laws.registry import (
 from impactcli.limits import DAMPED_DEFAULT_N, DEFAULT_N
 from impactcli.pairs import effective_properties, weaker_yield_strength
 from impactcli.solution import PlanSolution, made_at_once
+from impactcli.summary import plastic_keys
 from impactcli.validation import (
     YIELD_STRENGTH_NEEDED,
     needs_yield_strength,
@@ -68,6 +69,8 @@ __all__ = [
     "DampedPair",
     "LawPair",
     "PairModel",
+    "energy_keys",
+    "pair_model",
     "solution_energy_summary",
 ]
 
@@ -210,6 +213,43 @@ class ContactModel:
             return made_at_once(pair, _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y))
         m, r, e = effective_properties(sphere1, sphere2)
         return DampedPair(self, sphere1, sphere2, m, r, e)
+
+
+#: The pair models of the last few (model, sphere1, sphere2), by identity, with the
+#: objects themselves (an id is not reused while its entry lives): :func:`pair_model`.
+_PAIRS: dict[tuple[int, int, int], tuple[Any, Any, Any, PairModel]] = {}
+
+#: How many pair models :func:`pair_model` keeps.
+_PAIRS_KEPT = 16
+
+
+def pair_model(model: ContactModel, sphere1: Sphere, sphere2: Sphere) -> PairModel:
+    """``model.for_spheres(sphere1, sphere2)``, kept for the next impact of the same model
+    and sphere objects: a sweep of velocities over one pair builds its effective
+    properties, contact model and their constants (the law's yield point, each sphere's
+    share and first-yield velocity) once. Kept only what cannot change under it: a model
+    and spheres of plain numbers, without law parameters (a dict the caller may change)."""
+    key = (id(model), id(sphere1), id(sphere2))
+    found = _PAIRS.get(key)
+    if found is not None and not model.law_params:
+        if found[0] is model and found[1] is sphere1 and found[2] is sphere2:
+            return found[3]
+    pair = model.for_spheres(sphere1, sphere2)
+    if all(map(_unchanging, (model, sphere1, sphere2))):
+        if len(_PAIRS) >= _PAIRS_KEPT:
+            _PAIRS.clear()
+        _PAIRS[key] = (model, sphere1, sphere2, pair)
+    return pair
+
+
+def _unchanging(made: object) -> bool:
+    """Every field of a model or sphere a number, a string, None or an empty dict (law
+    parameters, checked again when kept): nothing whose value changes in place, as a
+    NumPy array's or a dict's may."""
+    return all(
+        type(value) in (float, int, str, bool, type(None)) or (type(value) is dict and not value)
+        for value in vars(made).values()
+    )
 
 
 class PairModel(Protocol):
@@ -363,31 +403,26 @@ class LawPair:
     def summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
         """The plastic keys (:data:`impactcli.impact.PLASTIC_SUMMARY_KEYS` beyond the
         elastic ones) and the energy keys (:data:`impactcli.impact.ENERGY_SUMMARY_KEYS`)."""
-        out = self._plastic_summary(result, solution)
-        out.update(solution_energy_summary(result, solution))
+        q = getattr(solution, "quantities", None)  # FILM's: the closed forms, floats
+        if q is None:
+            out = self._plastic_summary(result, solution)
+            out.update(solution_energy_summary(result, solution))
+            return out
+        out = plastic_keys(q.delta_y, q.yield_velocity, q.delta_res, result._shares()[2],
+                           solution.dissipated)  # fmt: skip
+        out.update(energy_keys(result, q.restitution, q.recoverable_work))
         return out
 
     def _plastic_summary(self, result: ImpactResult, solution: Any) -> dict[str, float]:
         """delta_y and V_y of the contact (closed forms), the residual indentation of the
         pair and of each sphere (shared by the permanent fractions), and the energy
         dissipated, (1/2) m V0^2 (1 - e^2)."""
-        f1, f2 = result.permanent_fractions
-        delta_res = float(solution.delta_end)
-        quantities = getattr(solution, "quantities", None)  # FILM's: the closed forms
-        if quantities is not None:
-            delta_y, yield_velocity = quantities.delta_y, quantities.yield_velocity
-        else:
-            contact = self.normal_contact
-            delta_y = float(contact.yield_indentation)
-            yield_velocity = float(contact.yield_velocity(np.asarray(self.mass, dtype=float)))
-        return {
-            "delta_y": delta_y,
-            "yield_velocity": yield_velocity,
-            "delta_res": delta_res,
-            "delta1_res": f1 * delta_res,
-            "delta2_res": f2 * delta_res,
-            "energy_dissipated": float(solution.dissipated),
-        }
+        contact = self.normal_contact
+        return plastic_keys(
+            float(contact.yield_indentation),
+            float(contact.yield_velocity(np.asarray(self.mass, dtype=float))),
+            float(solution.delta_end), result.permanent_fractions, float(solution.dissipated),
+        )  # fmt: skip
 
     def method_error(self, method: str) -> str:
         return f"method must be film, table or ode, got {method!r}"
@@ -730,23 +765,29 @@ def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> 
     impact velocity at which each sphere starts to yield, [m/s] (``inf`` for a sphere
     without a yield strength: :func:`impactcli.design.first_yield_velocities`).
     """
-    pair = result.contact
-    m, r, e_star = pair.mass, pair.radius, pair.modulus  # effective_properties of the pair
-    v0 = result.impact_velocity
-    relative = 0.5 * m * v0 * v0
-    restitution, delta_max = _float(solution.restitution), _float(solution.delta_max)
-    (r1, r2), (e1, e2), (p1, p2) = result._shares()
     quantities = getattr(solution, "quantities", None)  # FILM's: the law's closed forms
     if quantities is not None:
-        work = quantities.recoverable_work
-    else:
-        work = _one(result.contact_model.recoverable_work(np.array([delta_max])))
+        return energy_keys(result, quantities.restitution, quantities.recoverable_work)
+    restitution, delta_max = _float(solution.restitution), _float(solution.delta_max)
+    work = _one(result.contact_model.recoverable_work(np.array([delta_max])))
+    return energy_keys(result, restitution, work)
+
+
+def energy_keys(result: ImpactResult, restitution: float, work: float) -> dict[str, float]:
+    """The keys of :data:`ENERGY_SUMMARY_KEYS` for one impact from its coefficient of
+    restitution e [-] and the work unloading from its delta_max gives back [J]
+    (:func:`solution_energy_summary`), SI."""
+    pair = result.contact
+    m, r, e_star = pair.mass, pair.radius, pair.modulus  # effective_properties of the pair
+    v1, v2 = result.v1, result.v2
+    v0 = v1 + v2  # result.impact_velocity
+    relative = 0.5 * m * v0 * v0
+    (r1, r2), (e1, e2), (p1, p2) = result._shares()
     stored = min(work, relative)
     lost = relative * (1.0 - restitution**2)
-    v1, v2, m1, m2 = result.v1, result.v2, result.m1, result.m2
+    m1, m2 = result.sphere1.total_mass, result.sphere2.total_mass
     v1_final = v1 - r1 * (1.0 + restitution) * v0
     v2_final = v2 - r2 * (1.0 + restitution) * v0
-    sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
     try:  # on floats
         fy1, fy2 = first_yield_velocities_of(result, m, r, e_star)
         kinetic = (
@@ -756,6 +797,7 @@ def solution_energy_summary(result: ImpactResult, solution: ContactSolution) -> 
             _kinetic_energy(m2, v2_final),
         )
     except (ArithmeticError, TypeError, ValueError):
+        sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
         fy1, fy2 = map(float, first_yield_velocities(m, r, e_star, sy1, sy2))
         kinetic = tuple(
             float(kinetic_energy(mass, v))
@@ -782,8 +824,9 @@ def first_yield_velocities_of(
 ) -> tuple[float, float]:
     """The first-yield velocity of each sphere of ``result`` on floats, [m/s] (``inf``
     without a yield strength), from the effective mass m [kg], radius R [m] and modulus E*
-    [Pa]; worked out once per result (:func:`impactcli.design.first_yield_velocities`)."""
-    found = result.__dict__.get("_first_yield_")
+    [Pa]; worked out once per pair model (:func:`impactcli.design.first_yield_velocities`)."""
+    kept = result.contact.__dict__  # the pair's: the same spheres, m, R and E*
+    found = kept.get("_first_yield_")
     if found is None:
         sy1, sy2 = result.sphere1.yield_strength, result.sphere2.yield_strength
         fy1 = math.inf if sy1 is None or math.isnan(sy1) else first_yield_velocity(m, r, e, sy1)
@@ -792,7 +835,7 @@ def first_yield_velocities_of(
         else:
             fy2 = math.inf if sy2 is None or math.isnan(sy2) else first_yield_velocity(m, r, e, sy2)
             found = (fy1, fy2)
-        result.__dict__["_first_yield_"] = found
+        kept["_first_yield_"] = found
     return found
 
 

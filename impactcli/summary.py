@@ -33,6 +33,7 @@ __all__ = [
     "PLASTIC_SUMMARY_KEYS",
     "elastic_keys",
     "impact_summary",
+    "plastic_keys",
     "plastic_summary",
 ]
 
@@ -214,14 +215,45 @@ def plastic_summary(
     of each sphere, and the energy dissipated (1/2) m V0^2 (1 - e^2). Arrays broadcast.
     """
     m, v0 = np.asarray(mass, dtype=float), np.asarray(impact_velocity, dtype=float)
-    f1, f2 = fractions
     delta_res = np.asarray(plan.delta_res, dtype=float)
     restitution = np.asarray(plan.restitution, dtype=float)
+    return plastic_keys(
+        contact.yield_indentation, contact.yield_velocity(m), delta_res, fractions,
+        0.5 * m * v0**2 * (1.0 - restitution**2),
+    )  # fmt: skip
+
+
+def plastic_keys(
+    delta_y: ArrayLike,
+    yield_velocity: ArrayLike,
+    delta_res: ArrayLike,
+    fractions: tuple[ArrayLike, ArrayLike],
+    dissipated: ArrayLike,
+) -> dict[str, Any]:
+    """The keys of :data:`PLASTIC_SUMMARY_KEYS` beyond the elastic ones from their values:
+    the one set of operations of :func:`plastic_summary` (arrays) and of one impact on
+    floats (:class:`impactcli.model.LawPair`), whichever they are given.
+
+    Parameters
+    ----------
+    delta_y : yield indentation, [m]
+    yield_velocity : V_y, [m/s]
+    delta_res : residual indentation of the pair, [m]
+    fractions : shares p_i of delta_res of each sphere, [-]
+    dissipated : energy dissipated (1/2) m V0^2 (1 - e^2), [J]
+
+    Examples
+    --------
+    >>> keys = plastic_keys(1e-6, 0.3, 4e-6, (0.75, 0.25), 0.01)
+    >>> keys["delta1_res"], keys["energy_dissipated"]
+    (3e-06, 0.01)
+    """
+    f1, f2 = fractions
     return {
-        "delta_y": contact.yield_indentation,
-        "yield_velocity": contact.yield_velocity(m),
+        "delta_y": delta_y,
+        "yield_velocity": yield_velocity,
         "delta_res": delta_res,
         "delta1_res": f1 * delta_res,
         "delta2_res": f2 * delta_res,
-        "energy_dissipated": 0.5 * m * v0**2 * (1.0 - restitution**2),
+        "energy_dissipated": dissipated,
     }

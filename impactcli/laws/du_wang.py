@@ -239,23 +239,22 @@ class DuWangContact:
         :meth:`plan` and FILM's times of its stages (:func:`plastic_loading`,
         :func:`~impactcli.laws.hertz.rebound_time`). None for arrays, and for an impact
         the array path must judge (a scale beyond double precision)."""
-        values = floats(self.radius, self.modulus, self.yield_strength, self.pressure_factor,
-                        impact_velocity, mass)  # fmt: skip
-        if values is None:
+        scalars = self._scalars
+        values = floats(impact_velocity, mass)
+        if scalars is None or values is None:
             return None
-        r, e, sy, factor, v0, m = values
+        (r, e, p0), (v0, m) = scalars, values
         try:
-            loading = plastic_loading(r, e, factor * sy, v0, m, n)
+            loading = plastic_loading(r, e, p0, v0, m, n)
             if loading is None:
                 return None
             k, dy, v_y, dm, t_max, force = loading
             if math.isnan(t_max):  # below V_y: the Hertz impact, with this law's yield point
                 return below_yield_summary(
                     k, dy, v_y, v0, m, n,
-                    lambda dm: 0.4 * k * max(dm - self._residual(r, e, factor * sy, dy, dm),
-                                             0.0) ** 2.5,
+                    lambda dm: 0.4 * k * max(dm - self._residual(r, e, p0, dy, dm), 0.0) ** 2.5,
                 )  # fmt: skip
-            dres = self._residual(r, e, factor * sy, dy, dm)
+            dres = self._residual(r, e, p0, dy, dm)
             restitution = math.sqrt(2.0 / m * 0.4 * k * (dm - dres) ** 2.5) / v0
             t_c = t_max + rebound_time(dm, dres, restitution * v0, n)
             work = 0.4 * k * max(dm - dres, 0.0) ** 2.5
@@ -263,6 +262,16 @@ class DuWangContact:
             return None
         summary = FilmSummary(dm, force, dres, restitution, t_max, t_c, dy, v_y, work, False, True)
         return summary if finite_summary(summary) else None
+
+    @cached_property
+    def _scalars(self) -> tuple[float, float, float] | None:
+        """(R [m], E* [Pa], p0 [Pa]) of one contact as floats, None for arrays: worked out
+        once for every impact of the contact (:meth:`film_summary`)."""
+        values = floats(self.radius, self.modulus, self.yield_strength, self.pressure_factor)
+        if values is None:
+            return None
+        r, e, sy, factor = values
+        return r, e, factor * sy
 
     @staticmethod
     def _residual(r: float, e: float, p0: float, dy: float, dm: float) -> float:
@@ -308,26 +317,58 @@ def plastic_loading(
     Past V_y: delta_m from the energy balance (:meth:`DuWangContact.maximum_indentation`);
     FILM's Hertz stage 0 -> delta_y (:func:`~impactcli.laws.hertz.hertz_loading_seconds`) and its
     linear stage delta_y -> delta_m, on which FILM is exact: one segment gives the time of
-    n (:func:`impactcli.film.segment_time`).
+    n (:func:`impactcli.film.segment_time`). The constants of the yield point are those of
+    :func:`_yield_point`, worked out once per contact and mass.
     """
-    r, e, v0, m = radius, modulus, impact_velocity, mass
+    v0, m = impact_velocity, mass
+    k, dy, v_y, w_y, rate_y, slope, intercept, plastic_start, root_start, force_y = (
+        _yield_point(radius, modulus, p0, mass)
+    )
+    if not v0 > v_y * (1.0 + YIELD_MARGIN):
+        return k, dy, v_y, math.nan, math.nan, math.nan
+    rest = 0.5 * m * (v0 * v0) - w_y + plastic_start - intercept * dy
+    dm = (intercept + math.sqrt(max(root_start + 2.0 * slope * rest, 0.0))) / slope
+    if not (TINY <= dm < math.inf and dy / dm >= MIN_YIELD_INDENTATION_RATIO):
+        return None
+    speed_y = math.sqrt(max(v0 * v0 - rate_y, 0.0))
+    force = slope * dm - intercept
+    t_y = hertz_loading_seconds(dy, v0, k, m, n)
+    t_max = t_y + segment_time(force_y, force, dy, dm, speed_y, m, end_at_rest=True)
+    return k, dy, v_y, dm, t_max, force
+
+
+#: The constants of :func:`_yield_point` by (R, E*, p0, m): the same for every V0.
+_YIELD_POINTS: dict[tuple[float, float, float, float], tuple[float, ...]] = {}
+
+
+def _yield_point(radius: float, modulus: float, p0: float, mass: float) -> tuple[float, ...]:
+    """The velocity-free constants of :func:`plastic_loading` on floats: K_h [N/m^1.5],
+    delta_y [m], V_y [m/s], the Hertz work up to delta_y, (2/5) K_h delta_y^2.5 [J], the
+    squared speed it takes, (2/m) (2/5) K_h delta_y^2.5 [m^2/s^2], the plastic line's
+    slope pi R p0 [N/m] and intercept pi^3 R^2 p0^3 / (12 E*^2) [N], (1/2) slope delta_y^2
+    [J], intercept^2 [N^2] and F_y [N] (each as plastic_loading's terms round it), kept for
+    the next impact of the same contact and mass (at most a few hundred of them)."""
+    key = (radius, modulus, p0, mass)
+    found = _YIELD_POINTS.get(key)
+    if found is not None:
+        return found
+    r, e, m = radius, modulus, mass
     k = 4.0 / 3.0 * e * math.sqrt(r)
     dy = math.pi**2 * r * (p0 * p0) / (4.0 * (e * e))
     dy25 = dy**2.5
     v_y = math.sqrt(2.0 / m * 0.4 * k * dy25)  # as hertz_velocity: the same rounding
-    if not v0 > v_y * (1.0 + YIELD_MARGIN):
-        return k, dy, v_y, math.nan, math.nan, math.nan
     slope = math.pi * r * p0
     intercept = math.pi**3 * (r * r) * p0**3 / (12.0 * (e * e))
-    rest = 0.5 * m * (v0 * v0) - 0.4 * k * dy25 + 0.5 * slope * (dy * dy) - intercept * dy
-    dm = (intercept + math.sqrt(max(intercept * intercept + 2.0 * slope * rest, 0.0))) / slope
-    if not (TINY <= dm < math.inf and dy / dm >= MIN_YIELD_INDENTATION_RATIO):
-        return None
-    speed_y = math.sqrt(max(v0 * v0 - 2.0 / m * 0.4 * k * dy25, 0.0))
-    force_y, force = slope * dy - intercept, slope * dm - intercept
-    t_y = hertz_loading_seconds(dy, v0, k, m, n)
-    t_max = t_y + segment_time(force_y, force, dy, dm, speed_y, m, end_at_rest=True)
-    return k, dy, v_y, dm, t_max, force
+    found = (
+        k, dy, v_y, 0.4 * k * dy25, 2.0 / m * 0.4 * k * dy25, slope, intercept,
+        0.5 * slope * (dy * dy), intercept * intercept, slope * dy - intercept,
+    )  # fmt: skip
+    if len(_YIELD_POINTS) >= 256:
+        _YIELD_POINTS.clear()
+    _YIELD_POINTS[key] = found
+    return found
+
+
 def du_wang_yield_velocity(
     first_yield_velocity: float, pressure_factor: float | None = None
 ) -> float:

@@ -184,10 +184,11 @@ class ThorntonContact:
         :meth:`unloading` and the Hertz rebound on R_p
         (:func:`~impactcli.laws.hertz.rebound_time`). None for arrays, and for an impact
         the array path must judge."""
-        values = floats(self.radius, self.modulus, self.limit_pressure, impact_velocity, mass)
-        if values is None:
+        scalars = self._scalars
+        values = floats(impact_velocity, mass)
+        if scalars is None or values is None:
             return None
-        r, e, p, v0, m = values
+        (r, e, p), (v0, m) = scalars, values
         try:
             loading = plastic_loading(r, e, p, v0, m, n)
             if loading is None:
@@ -205,6 +206,12 @@ class ThorntonContact:
             return None
         summary = FilmSummary(dm, fm, dres, restitution, t_max, t_c, dy, v_y, work, False, True)
         return summary if finite_summary(summary) else None
+
+    @cached_property
+    def _scalars(self) -> tuple[float, ...] | None:
+        """(R [m], E* [Pa], p_y [Pa]) of one contact as floats, None for arrays: worked out
+        once for every impact of the contact (:meth:`film_summary`)."""
+        return floats(self.radius, self.modulus, self.limit_pressure)
 
     @classmethod
     def _work_below_yield(
