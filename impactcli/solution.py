@@ -252,9 +252,18 @@ class StagedSolution(FilmSolution):
     ) -> Array:
         """Contact force F(delta) of the FILM stage each time [s] falls in, [N]."""
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
+        law = self._one_law
+        if law is not None:  # every stage's law: F(delta) of it, whatever the stage
+            return np.reshape(np.asarray(law.force(delta), dtype=float), delta.shape)
         ends = self._stage_ends
         stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
         return self.plan.force(stage, delta)
+
+    @cached_property
+    def _one_law(self) -> Any:
+        """The force law of every stage when they share one (an elastic impact), else None."""
+        laws = [stage.law for stage in self.plan.stages]
+        return laws[0] if all(law is laws[0] for law in laws) else None
 
     @cached_property
     def _stage_ends(self) -> Array:
@@ -297,12 +306,22 @@ class StagedSolution(FilmSolution):
         indentations ``delta`` [m], [J] (:func:`impactcli.energy.plan_energy`); ``own``:
         ``delta`` is this solution's own at ``t`` (:meth:`evaluate`), used for W(t), with
         its ``segments`` (:meth:`~impactcli.film.FilmSolution.evaluate_segments`) if given."""
-        from impactcli.energy import plan_energy
+        from impactcli.energy import plan_energy, plan_energy_constants
 
         if own:
             work = self.contact_work(t, delta, segments)
         else:
             work = self.contact_work(t)
+        constants = self.__dict__.get("_energy_constants")
+        if constants is None and np.ndim(delta) == 1:  # with the history's: delta_m appended
+            constants, work_at = plan_energy_constants(
+                self.plan, self.contact, self.delta_max, delta
+            )
+            self.__dict__["_energy_constants"] = constants
+            return plan_energy(
+                self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
+                constants=constants, work_at=work_at,
+            )  # fmt: skip
         return plan_energy(
             self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
             constants=self._energy_constants,
