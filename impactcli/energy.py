@@ -418,12 +418,12 @@ def energy_columns(
     (e1, e2), (p1, p2) = shares
     m1, m2 = masses
     column = (2,) + (1,) * np.ndim(strain)  # a row per sphere: both at once
-    strain1, strain2 = np.reshape((e1, e2), column) * strain
-    dissipated1, dissipated2 = np.reshape((p1, p2), column) * dissipated
+    strain1, strain2 = np.array((e1, e2), dtype=float).reshape(column) * strain
+    dissipated1, dissipated2 = np.array((p1, p2), dtype=float).reshape(column) * dissipated
     v = np.asarray(velocities, dtype=float)
     finite = type(m1) is float and type(m2) is float and math.isfinite(m1) and math.isfinite(m2)
     if finite and v.shape == column[:1] + np.shape(strain):  # as kinetic_energy, at once
-        ke1, ke2 = 0.5 * np.reshape((m1, m2), column) * v * v
+        ke1, ke2 = np.array((0.5 * m1, 0.5 * m2)).reshape(column) * v * v
     else:
         ke1, ke2 = kinetic_energy(m1, velocities[0]), kinetic_energy(m2, velocities[1])
     return {

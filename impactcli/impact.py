@@ -519,8 +519,12 @@ class ImpactResult:
         d1, d2 = velocity * t - ratio * (v0 * t - delta)
         v12 = velocity - ratio * (v0 - delta_dot)
         v1, v2 = v12
-        with np.errstate(invalid="ignore"):
-            p1, p2 = _pair(self.m1, -self.m2, axes) * v12
+        masses = _pair(self.m1, -self.m2, axes)
+        if math.isinf(self.m1) or math.isinf(self.m2):  # a fixed body: inf * 0
+            with np.errstate(invalid="ignore"):
+                p1, p2 = masses * v12
+        else:
+            p1, p2 = masses * v12
         if (e1, e2) == (p1_, p2_):
             share = _pair(e1, e2, axes)
             delta1, delta2 = share * delta
@@ -579,7 +583,7 @@ def _effective(a: float, b: float) -> float:
 def _pair(first: float, second: float, axes: int = 1) -> NDArray:
     """Two numbers, one per sphere, as a column (shape (2, 1, ...), ``axes`` ones) that
     broadcasts against a history's times of ``axes`` dimensions: a row per sphere."""
-    return np.reshape(np.array((first, second), dtype=float), (2,) + (1,) * axes)
+    return np.array((first, second), dtype=float).reshape((2,) + (1,) * axes)
 
 
 def _nan(value: float | None) -> float:

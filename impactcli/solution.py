@@ -312,6 +312,8 @@ class StagedSolution(FilmSolution):
             work = self.contact_work(t, delta, segments)
         else:
             work = self.contact_work(t)
+        if not getattr(self.contact, "dissipates", True):  # all of W(t) stored, as the
+            return work, np.zeros_like(work)  # threshold of strain_and_dissipated makes it
         constants = self.__dict__.get("_energy_constants")
         if constants is None and np.ndim(delta) == 1:  # with the history's: delta_m appended
             constants, work_at = plan_energy_constants(
