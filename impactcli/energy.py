@@ -239,8 +239,8 @@ def film_work_table(stages, laws) -> tuple[NDArray, NDArray, NDArray, NDArray, f
 
     rows = stage_rows(stages)  # the stages solved in one pass: their laws' work already
     if rows is not None:  # and this table, rows of their segment block
-        work, deltas, stiff, offset = rows.segments[[5, 0, 6, 7]].reshape(4, -1)
-        return work, deltas, stiff, offset, rows.work_end
+        block = rows.segments.reshape(8, -1)
+        return block[5], block[0], block[6], block[7], rows.work_end
     base = 0.0
     node_work, deltas, stiff, offset = [], [], [], []
     for stage, law in zip(stages, laws):

@@ -501,24 +501,23 @@ def _swept_rows(
 ) -> tuple[Array, NDArray[np.bool_]]:
     """:func:`swept_angles` of the rows of arrays of one shape, the rows ``at_rest``
     ending at their turning point."""
-    ends = np.zeros(np.shape(x0), dtype=bool)
-    ends[at_rest, -1] = True
-    return _swept_turning(x0, y0, h, ends)
+    return _swept_turning(x0, y0, h, (at_rest, -1))
 
 
 def _swept_turning(
-    x0: Array, y0: Array, h: Array, ends: NDArray[np.bool_] | None
+    x0: Array, y0: Array, h: Array, ends: tuple | None
 ) -> tuple[Array, NDArray[np.bool_]]:
-    """The angles of :func:`swept_angles` (x0, y0, h of one shape), the segments ``ends``
-    (or none) ending at their turning point."""
+    """The angles of :func:`swept_angles` (x0, y0, h of one shape), the segments at the
+    index ``ends`` (or none) ending at their turning point."""
     # Mirrored end state at the next node, from the oscillator's own energy.
-    x_end_sq = x0**2 - h * (2.0 * y0 + h)
+    width = 2.0 * y0 + h
+    x_end_sq = x0**2 - h * width
     turning = x_end_sq <= 0.0
     if ends is not None:
-        turning |= ends
+        turning[ends] = True
     x_end = np.sqrt(np.maximum(x_end_sq, 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
-        cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))
+        cross_node = h * (x0 + y0 * width / (x0 + x_end))
     dot_node = x0 * x_end + y0 * (y0 + h)
     swept = np.arctan2(cross_node, dot_node)
     # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0) (taken
@@ -551,11 +550,7 @@ def swept_angles(
     (swept, turning), broadcast from the inputs.
     """
     x0, y0, h = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x0, y0, h)))
-    ends = None
-    if end_at_rest:
-        ends = np.zeros(x0.shape, dtype=bool)
-        ends[..., -1] = True
-    return _swept_turning(x0, y0, h, ends)
+    return _swept_turning(x0, y0, h, (Ellipsis, -1) if end_at_rest else None)
 
 
 def swept_rapidities(
@@ -722,8 +717,8 @@ class FilmSolution:
         t = np.minimum(np.maximum(np.asarray(t, dtype=float), t0), t1)
         slack = 8.0 * _EPS * max(abs(t0), abs(t1))
         shifted = t + slack
+        # t >= t0, the first segment's start: 0 <= seg (NaN sorts last: the last segment)
         seg = np.searchsorted(self._start, shifted, side="right") - 1  # type: ignore[attr-defined]
-        seg = np.minimum(np.maximum(seg, 0), self._start.size - 1)  # type: ignore[attr-defined]
         return t, seg, shifted >= t1
 
     def evaluate(self, t: ArrayLike) -> tuple[Array, Array]:
@@ -754,7 +749,7 @@ class FilmSolution:
         tau = np.minimum(np.maximum(t - start, 0.0), self._end[seg] - start)  # type: ignore[attr-defined]
         table = self._table  # type: ignore[attr-defined]
         if keep and table is not None:  # the contact work's constants too, in one gather
-            gathered = table[:, seg]
+            gathered = table.take(seg, axis=1)
             found = (seg, end, gathered)
             delta_r, direction, omega, x, y = gathered[:5]
         else:

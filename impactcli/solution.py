@@ -198,7 +198,12 @@ class StagedSolution(FilmSolution):
         n: int,
     ) -> StagedSolution:
         """Solve the stages of ``plan`` by FILM with n segments each (:func:`solve_plan`)."""
-        return cls(solve_plan(plan, mass, n), plan, contact, mass, impact_velocity)
+        solution = made_at_once(
+            cls, {"stages": solve_plan(plan, mass, n), "plan": plan, "contact": contact,
+                  "mass": mass, "impact_velocity": impact_velocity},
+        )  # fmt: skip
+        solution.__post_init__()
+        return solution
 
     # -- the quantities of ContactSolution ------------------------------------------------
     @property
@@ -254,7 +259,7 @@ class StagedSolution(FilmSolution):
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
         law = self._one_law
         if law is not None:  # every stage's law: F(delta) of it, whatever the stage
-            return np.reshape(np.asarray(law.force(delta), dtype=float), delta.shape)
+            return np.asarray(law.force(delta), dtype=float).reshape(delta.shape)
         ends = self._stage_ends
         stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
         return self.plan.force(stage, delta)
@@ -576,6 +581,14 @@ def history_times(solution: ContactSolution, points: int) -> Array:
     return t
 
 
+def _scalar(value: ArrayLike) -> bool:
+    """``np.ndim(value) == 0``, read directly off an array or a float."""
+    kind = type(value)
+    if kind is np.ndarray:
+        return value.ndim == 0  # type: ignore[union-attr]
+    return kind is float or np.ndim(value) == 0
+
+
 def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:
     """Solve every stage of ``plan`` by FILM with n segments, chained in time
     (:func:`impactcli.film.solve_stage`); arrays of a batch broadcast.
@@ -585,7 +598,7 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     tuple of :class:`~impactcli.film.FilmStage`
     """
     values = [(s.delta_start, s.delta_end, s.speed_start) for s in plan.stages]
-    if np.ndim(mass) == 0 and all(np.ndim(x) == 0 for row in values for x in row):
+    if _scalar(mass) and all(_scalar(x) for row in values for x in row):
         return solve_stages(  # one impact: its stages in one pass
             [(s.law, float(a), float(b), float(v), s.end_at_rest)
              for s, (a, b, v) in zip(plan.stages, values)],
