@@ -261,6 +261,15 @@ class StagedSolution(FilmSolution):
         if law is not None:  # every stage's law: F(delta) of it, whatever the stage
             return np.asarray(law.force(delta), dtype=float).reshape(delta.shape)
         ends = self._stage_ends
+        if t.ndim == 1 and t.shape == delta.shape and bool((t[1:] >= t[:-1]).all()):
+            # times in order (a history's): each stage's a slice, as plan.force's masks
+            cuts = [0, *np.searchsorted(t, ends[:-1], side="right").tolist(), t.size]
+            force = np.empty_like(delta)
+            for k, stage in enumerate(self.plan.stages):
+                if cuts[k + 1] > cuts[k]:
+                    part = delta[cuts[k] : cuts[k + 1]]
+                    force[cuts[k] : cuts[k + 1]] = np.asarray(stage.law.force(part)).reshape(-1)
+            return force
         stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
         return self.plan.force(stage, delta)
 
