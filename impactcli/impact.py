@@ -415,8 +415,13 @@ class ImpactResult:
         method = self.method if method is None else method
         if method not in self.contact.methods:
             raise ValueError(self.contact.method_error(method))
-        t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
-        t = np.minimum(np.maximum(t, 0.0), float(self._solution(method).end_time))  # as delta(t)
+        end = float(self._solution(method).end_time)
+        if t is None:  # from 0 to t_c, over the stages' contact, which may end past t_c
+            t = self.times(points, method)
+            if float(history_solution(self._solution(method)).end_time) > end:
+                t = np.minimum(t, end)
+        else:  # as delta(t)
+            t = np.minimum(np.maximum(np.asarray(t, dtype=float), 0.0), end)
         source = history_solution(self._solution(method))
         own = method != "table" and isinstance(source, StagedSolution)  # W(t) from delta
         segments = None
