@@ -376,10 +376,11 @@ def solve_stages(
     nodes = a + span * _fractions(n)
     nodes[:, -1] = b[:, 0]
     laws = [stage[0] for stage in stages]
+    force = work = None
     if all(law is laws[0] for law in laws):  # one law for every stage: it takes them at once
         force = np.asarray(laws[0].force(nodes), dtype=float)
         work = np.asarray(laws[0].work(a, nodes), dtype=float)
-    else:
+    if force is None or force.shape != nodes.shape or work.shape != nodes.shape:
         force = np.empty_like(nodes)
         work = np.empty_like(nodes)
         for k, law in enumerate(laws):  # each stage's law: a few stages, not rows
