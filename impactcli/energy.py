@@ -388,6 +388,8 @@ def plan_energy_constants(plan, contact, delta_max, delta=None):
 
 def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
+    if type(value) is np.ndarray and value.dtype == np.float64 and value.size == 1:
+        return value.item()  # as below, read directly
     return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 

@@ -60,7 +60,9 @@ class ContactLaw(Protocol):
     Parameters of a law broadcast against the node arrays, so a batch of N collisions uses
     parameters of shape (N, 1). A law may place the stage's nodes itself
     (``stage_nodes(delta_start, delta_end, n)`` -> node indentations, shape (..., n + 1), ends
-    exact), e.g. graded toward an end where dF/d delta grows without bound.
+    exact), e.g. graded toward an end where dF/d delta grows without bound, and give its
+    force at the nodes and its work up to them in one call (``force_and_work(start,
+    nodes)``, the numbers of ``force`` and ``work``) when they share their work.
     """
 
     def force(self, delta: ArrayLike) -> Array:
@@ -378,14 +380,12 @@ def solve_stages(
     laws = [stage[0] for stage in stages]
     force = work = None
     if all(law is laws[0] for law in laws):  # one law for every stage: it takes them at once
-        force = np.asarray(laws[0].force(nodes), dtype=float)
-        work = np.asarray(laws[0].work(a, nodes), dtype=float)
+        force, work = (np.asarray(x, dtype=float) for x in _force_and_work(laws[0], a, nodes))
     if force is None or force.shape != nodes.shape or work.shape != nodes.shape:
         force = np.empty_like(nodes)
         work = np.empty_like(nodes)
         for k, law in enumerate(laws):  # each stage's law: a few stages, not rows
-            force[k] = law.force(nodes[k])
-            work[k] = law.work(a[k], nodes[k])
+            force[k], work[k] = _force_and_work(law, a[k], nodes[k])
     step = nodes[:, 1:] - nodes[:, :-1]
     # Node velocities from the energy balance (eq. 13e).
     velocity = direction * np.sqrt(np.maximum(v_a**2 - (2.0 / m) * work, 0.0))
@@ -431,6 +431,15 @@ def solve_stages(
         stage.__dict__["_rows"] = (found, k)  # row k of the stages' arrays
         solved.append(stage)
     return tuple(solved)
+
+
+def _force_and_work(law: ContactLaw, start: Array, nodes: Array) -> tuple[Array, Array]:
+    """The law's force at ``nodes`` [N] and its work from ``start`` to them [J], in one call
+    where the law has one (``force_and_work``)."""
+    both = getattr(law, "force_and_work", None)
+    if both is not None:
+        return both(start, nodes)
+    return law.force(nodes), law.work(start, nodes)
 
 
 _STAGE_FIELDS = (
