@@ -27,7 +27,7 @@ Each is written as two pairs of fractions, ``elastic`` (of delta - delta_p) and
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -208,7 +208,8 @@ def film_contact_work(
     film : the :class:`~impactcli.film.FilmSolution` of ``stages``, if the caller has it
     delta : its indentation at ``t`` [m] (``film.evaluate(t)``), if the caller has it
     table : :func:`film_work_table` of ``stages`` and ``laws``, if the caller has it
-    segments : the segment of each time and where it is the end of the contact
+    segments : the segment of each time, where it is the end of the contact and the
+        segments' constants or None
         (:meth:`~impactcli.film.FilmSolution.evaluate_segments`, with ``delta``), if the
         caller has them
     """
@@ -221,9 +222,12 @@ def film_contact_work(
         film = FilmSolution(tuple(stages))
     if delta is None:
         delta, _ = film.evaluate(t)
-    seg, end = film.segment_of(t)[1:] if segments is None else segments
-    d_r, c = deltas[seg], offset[seg]
-    work = node_work[seg] + 0.5 * stiff[seg] * (delta - d_r) * (delta + d_r - 2.0 * c)
+    seg, end, gathered = film.segment_of(t)[1:] + (None,) if segments is None else segments
+    if gathered is None:
+        w_r, d_r, k, c = node_work[seg], deltas[seg], stiff[seg], offset[seg]
+    else:  # the segments' constants gathered with their state (StageRows.segments)
+        w_r, d_r, k, c = gathered[5], gathered[0], gathered[6], gathered[7]
+    work = w_r + 0.5 * k * (delta - d_r) * (delta + d_r - 2.0 * c)
     return np.where(end, base, work)
 
 
@@ -234,12 +238,14 @@ def film_work_table(stages, laws) -> tuple[NDArray, NDArray, NDArray, NDArray, f
     from impactcli.film import stage_rows
 
     rows = stage_rows(stages)  # the stages solved in one pass: their laws' work already
+    if rows is not None:  # and this table, rows of their segment block
+        block = rows.segments.reshape(8, -1)
+        return block[5], block[0], block[6], block[7], rows.work_end
     base = 0.0
     node_work, deltas, stiff, offset = [], [], [], []
-    for k, (stage, law) in enumerate(zip(stages, laws)):
+    for stage, law in zip(stages, laws):
         a = stage.delta[0]
-        exact = law.work(a, stage.delta) if rows is None else rows.work[k]
-        work = base + np.asarray(exact).reshape(-1)
+        work = base + np.asarray(law.work(a, stage.delta)).reshape(-1)
         node_work.append(work[:-1])
         deltas.append(stage.delta[:-1])
         stiff.append(stage.stiffness)
@@ -319,6 +325,7 @@ def plan_energy(
     t_max: float,
     delta_max: float,
     constants: tuple | None = None,
+    work_at: tuple[NDArray, NDArray] | None = None,
 ) -> tuple[NDArray, NDArray]:
     """:func:`strain_and_dissipated` of an impact of a normal law, [J].
 
@@ -331,42 +338,58 @@ def plan_energy(
     contact_work : W(t) along the solution (FILM's or an integration's), [J]
     t_max, delta_max : the solution's turning point, [s], [m]
     constants : :func:`plan_energy_constants` of the impact, if the caller has them
+    work_at : the loading and the recoverable work at ``delta`` [J], if the caller has them
+        (:func:`plan_energy_constants` with ``delta``)
     """
     if constants is None:
         constants = plan_energy_constants(plan, contact, delta_max)
     laws, bounds, recoverable_max, loading_max = constants
     delta = np.asarray(delta, dtype=float)
+    if work_at is None:
+        work_at = (
+            loading_work(laws, bounds, delta),
+            np.reshape(contact.recoverable_work(delta), np.shape(delta)),
+        )
     return strain_and_dissipated(
-        t,
-        contact_work,
-        t_max,
-        loading_work(laws, bounds, delta),
-        np.reshape(contact.recoverable_work(delta), np.shape(delta)),
-        recoverable_max,
-        loading_max,
+        t, contact_work, t_max, work_at[0], work_at[1], recoverable_max, loading_max
     )
 
 
+@overload
 def plan_energy_constants(
     plan: ImpactPlan, contact: NormalContact, delta_max: float
-) -> tuple[list, list[tuple[float, float]], float, float]:
+) -> tuple[list, list[tuple[float, float]], float, float]: ...
+
+
+@overload
+def plan_energy_constants(
+    plan: ImpactPlan, contact: NormalContact, delta_max: float, delta: NDArray
+) -> tuple[tuple[list, list[tuple[float, float]], float, float], tuple[NDArray, NDArray]]: ...
+
+
+def plan_energy_constants(plan, contact, delta_max, delta=None):
     """What :func:`plan_energy` takes of the impact alone: the laws and ``(start, end)``
     indentations of its loading stages (up to the plan's ``turning`` stage) [m], and the
-    recoverable and the loading work at delta_max [m], [J]."""
+    recoverable and the loading work at delta_max [m], [J].
+
+    With ``delta`` (1-d, [m]) also the loading and the recoverable work at it [J], taken
+    with those at delta_max in one call each (delta_max appended to ``delta``):
+    ``(constants, (loading, recoverable))``."""
     turning = plan.turning % len(plan.stages)
     stages = plan.stages[: turning + 1]  # the loading stages; the rest unload
     laws = [stage.law for stage in stages]
     bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
-    return (
-        laws,
-        bounds,
-        _first(contact.recoverable_work(np.array([delta_max]))),
-        _first(loading_work(laws, bounds, np.array([delta_max]))),
-    )
+    at = np.array([delta_max]) if delta is None else np.append(delta, delta_max)
+    recoverable = np.reshape(contact.recoverable_work(at), at.shape)
+    loading = loading_work(laws, bounds, at)
+    constants = (laws, bounds, float(recoverable[-1]), float(loading[-1]))
+    return constants if delta is None else (constants, (loading[:-1], recoverable[:-1]))
 
 
 def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
+    if type(value) is np.ndarray and value.dtype == np.float64 and value.size == 1:
+        return value.item()  # as below, read directly
     return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 
@@ -397,12 +420,12 @@ def energy_columns(
     (e1, e2), (p1, p2) = shares
     m1, m2 = masses
     column = (2,) + (1,) * np.ndim(strain)  # a row per sphere: both at once
-    strain1, strain2 = np.reshape((e1, e2), column) * strain
-    dissipated1, dissipated2 = np.reshape((p1, p2), column) * dissipated
+    strain1, strain2 = np.array((e1, e2), dtype=float).reshape(column) * strain
+    dissipated1, dissipated2 = np.array((p1, p2), dtype=float).reshape(column) * dissipated
     v = np.asarray(velocities, dtype=float)
     finite = type(m1) is float and type(m2) is float and math.isfinite(m1) and math.isfinite(m2)
     if finite and v.shape == column[:1] + np.shape(strain):  # as kinetic_energy, at once
-        ke1, ke2 = 0.5 * np.reshape((m1, m2), column) * v * v
+        ke1, ke2 = np.array((0.5 * m1, 0.5 * m2)).reshape(column) * v * v
     else:
         ke1, ke2 = kinetic_energy(m1, velocities[0]), kinetic_energy(m2, velocities[1])
     return {

@@ -60,7 +60,9 @@ class ContactLaw(Protocol):
     Parameters of a law broadcast against the node arrays, so a batch of N collisions uses
     parameters of shape (N, 1). A law may place the stage's nodes itself
     (``stage_nodes(delta_start, delta_end, n)`` -> node indentations, shape (..., n + 1), ends
-    exact), e.g. graded toward an end where dF/d delta grows without bound.
+    exact), e.g. graded toward an end where dF/d delta grows without bound, and give its
+    force at the nodes and its work up to them in one call (``force_and_work(start,
+    nodes)``, the numbers of ``force`` and ``work``) when they share their work.
     """
 
     def force(self, delta: ArrayLike) -> Array:
@@ -368,62 +370,90 @@ def solve_stages(
     if any(getattr(stage[0], "stage_nodes", None) is not None for stage in stages):
         return _chain_stages(stages, mass, n)
     count = len(stages)
-    a = np.array([[stage[1]] for stage in stages], dtype=float)
-    b = np.array([[stage[2]] for stage in stages], dtype=float)
-    v_a = np.array([[stage[3]] for stage in stages], dtype=float)
-    m = np.asarray(mass, dtype=float)[..., None]
-    direction = np.sign(b - a)
-
-    nodes = a + (b - a) * _fractions(n)
+    ends = np.array([stage[1:4] for stage in stages], dtype=float)
+    a, b, v_a = ends[:, 0:1], ends[:, 1:2], ends[:, 2:3]
+    m = float(mass)
+    span = b - a
+    direction = np.sign(span)
+    nodes = a + span * _fractions(n)
     nodes[:, -1] = b[:, 0]
-    force = np.empty_like(nodes)
-    work = np.empty_like(nodes)
-    for k, (law, *_) in enumerate(stages):  # each stage's law: a few stages, not rows
-        force[k] = law.force(nodes[k])
-        work[k] = law.work(a[k], nodes[k])
+    laws = [stage[0] for stage in stages]
+    force = work = None
+    if all(law is laws[0] for law in laws):  # one law for every stage: it takes them at once
+        force, work = (np.asarray(x, dtype=float) for x in _force_and_work(laws[0], a, nodes))
+    if force is None or force.shape != nodes.shape or work.shape != nodes.shape:
+        force = np.empty_like(nodes)
+        work = np.empty_like(nodes)
+        for k, law in enumerate(laws):  # each stage's law: a few stages, not rows
+            force[k], work[k] = _force_and_work(law, a[k], nodes[k])
     step = nodes[:, 1:] - nodes[:, :-1]
     # Node velocities from the energy balance (eq. 13e).
-    speed_sq = v_a**2 - (2.0 / m) * work
-    velocity = direction * np.sqrt(np.maximum(speed_sq, 0.0))
+    velocity = direction * np.sqrt(np.maximum(v_a**2 - (2.0 / m) * work, 0.0))
 
     stiffness = (force[:, 1:] - force[:, :-1]) / step
     if not (stiffness > 0.0).all():  # a tensile branch, or a law that is not monotone
         return _chain_stages(stages, mass, n)  # solve_stage's hyperbolic segments or error
-    omega = np.sqrt(stiffness / m)
-    force_r = force[:, :-1]
-    h = np.abs(step)
-    y0 = direction * force_r / stiffness
-    x0 = np.abs(velocity[:, :-1]) / omega
+    # the segment constants of eq. 7a,b and of the contact work, one block
+    # (:attr:`StageRows.segments`): delta_r, s, omega, x0, y0, the work up to delta_r,
+    # K_rs and C_rs; y0 = s F_r / K_rs = s (F_r / K_rs) exactly (s = +-1)
+    block = np.empty((8, count, n))
+    block[0] = nodes[:, :-1]
+    block[1] = direction
+    omega = np.sqrt(stiffness / m, out=block[2])
+    block[6] = stiffness
+    ratio = force[:, :-1] / stiffness
+    y0 = np.multiply(direction, ratio, out=block[4])
+    x0 = np.divide(np.abs(velocity[:, :-1]), omega, out=block[3])
+    offset = np.subtract(nodes[:, :-1], ratio, out=block[7])
 
     at_rest = [k for k, stage in enumerate(stages) if stage[4]]
     velocity[at_rest, -1] = 0.0
-    swept, turning = _swept_rows(x0, y0, h, at_rest)
-    dt = swept / omega
+    swept, turning = _swept_rows(x0, y0, np.abs(step), at_rest)
 
     time = np.empty_like(nodes)
     time[:, 0] = 0.0
-    np.cumsum(dt, axis=-1, out=time[:, 1:])
-    for k in range(1, count):  # each stage starts when the previous one ends
-        time[k] += time[k - 1, -1:]
-    offset = nodes[:, :-1] - force_r / stiffness
-    rows = FilmStage(nodes, velocity, time, direction, stiffness, offset, omega, x0, y0, turning)
+    np.cumsum(swept / omega, axis=-1, out=time[:, 1:])
+    base = 0.0  # the exact work up to each stage's start (:func:`impactcli.energy.film_work_table`)
+    for k in range(count):
+        if k:  # each stage starts when the previous one ends
+            time[k] += time[k - 1, -1:]
+        block[5, k] = base + work[k, :-1]
+        base = float(base + work[k, -1])
+    rows = _made(FilmStage, nodes, velocity, time, direction, stiffness, offset, omega, x0, y0,
+                 turning)  # fmt: skip
+    found = (rows, work, block, base)
     solved = []
     for k in range(count):
-        stage = FilmStage(
-            delta=nodes[k],
-            velocity=velocity[k],
-            time=time[k],
-            direction=direction[k],
-            stiffness=stiffness[k],
-            offset=offset[k],
-            omega=omega[k],
-            phase_x=x0[k],
-            phase_y=y0[k],
-            turning=turning[k],
-        )
-        object.__setattr__(stage, "_rows", (rows, work, k))  # row k of the stages' arrays
+        stage = _made(
+            FilmStage, nodes[k], velocity[k], time[k], direction[k], stiffness[k], offset[k],
+            omega[k], x0[k], y0[k], turning[k],
+        )  # fmt: skip
+        stage.__dict__["_rows"] = (found, k)  # row k of the stages' arrays
         solved.append(stage)
     return tuple(solved)
+
+
+def _force_and_work(law: ContactLaw, start: Array, nodes: Array) -> tuple[Array, Array]:
+    """The law's force at ``nodes`` [N] and its work from ``start`` to them [J], in one call
+    where the law has one (``force_and_work``)."""
+    both = getattr(law, "force_and_work", None)
+    if both is not None:
+        return both(start, nodes)
+    return law.force(nodes), law.work(start, nodes)
+
+
+_STAGE_FIELDS = (
+    "delta", "velocity", "time", "direction", "stiffness", "offset", "omega", "phase_x",
+    "phase_y", "turning",
+)  # fmt: skip
+
+
+def _made(cls: type, *values: object) -> FilmStage:
+    """``FilmStage(*values)`` with its fields set at once (a frozen dataclass's ``__init__``
+    sets each through ``object.__setattr__``)."""
+    made = object.__new__(cls)
+    made.__dict__.update(zip(_STAGE_FIELDS, values))
+    return made
 
 
 class StageRows(NamedTuple):
@@ -434,24 +464,31 @@ class StageRows(NamedTuple):
     ----------
     stages : the stages as one :class:`FilmStage` whose arrays have a row per stage
     work : the exact work of each stage's law from its start to its nodes, [J] (eq. 13e)
+    segments : shape (8, stages, n): each segment's start node delta_r [m], direction s [-],
+        omega_rs [rad/s], phase_x and phase_y [m] (eq. 7a,b), the exact work up to delta_r
+        from first contact [J], K_rs [N/m] and C_rs [m]
+        (:func:`impactcli.energy.film_contact_work`)
+    work_end : the exact work from first contact to the end of the last stage, [J]
     """
 
     stages: FilmStage
     work: Array
+    segments: Array
+    work_end: float
 
 
 def stage_rows(stages: Sequence[FilmStage]) -> StageRows | None:
     """The one-pass arrays of ``stages`` (:func:`solve_stages`) when they are every row of
     them in order, else None (stages solved one by one, or a selection of them)."""
-    found = getattr(stages[0], "_rows", None) if stages else None
-    if found is None or found[0].delta.shape[0] != len(stages):
+    found = stages[0].__dict__.get("_rows") if stages else None
+    if found is None or found[0][0].delta.shape[0] != len(stages):
         return None
-    rows, work = found[0], found[1]
+    rows = found[0]
     for k, stage in enumerate(stages):
-        mine = getattr(stage, "_rows", None)
-        if mine is None or mine[0] is not rows or mine[2] != k:
+        mine = stage.__dict__.get("_rows")
+        if mine is None or mine[0] is not rows or mine[1] != k:
             return None
-    return StageRows(rows, work)
+    return StageRows(*rows)
 
 
 def _chain_stages(
@@ -474,24 +511,23 @@ def _swept_rows(
 ) -> tuple[Array, NDArray[np.bool_]]:
     """:func:`swept_angles` of the rows of arrays of one shape, the rows ``at_rest``
     ending at their turning point."""
-    ends = np.zeros(np.shape(x0), dtype=bool)
-    ends[at_rest, -1] = True
-    return _swept_turning(x0, y0, h, ends)
+    return _swept_turning(x0, y0, h, (at_rest, -1))
 
 
 def _swept_turning(
-    x0: Array, y0: Array, h: Array, ends: NDArray[np.bool_] | None
+    x0: Array, y0: Array, h: Array, ends: tuple | None
 ) -> tuple[Array, NDArray[np.bool_]]:
-    """The angles of :func:`swept_angles` (x0, y0, h of one shape), the segments ``ends``
-    (or none) ending at their turning point."""
+    """The angles of :func:`swept_angles` (x0, y0, h of one shape), the segments at the
+    index ``ends`` (or none) ending at their turning point."""
     # Mirrored end state at the next node, from the oscillator's own energy.
-    x_end_sq = x0**2 - h * (2.0 * y0 + h)
+    width = 2.0 * y0 + h
+    x_end_sq = x0**2 - h * width
     turning = x_end_sq <= 0.0
     if ends is not None:
-        turning |= ends
+        turning[ends] = True
     x_end = np.sqrt(np.maximum(x_end_sq, 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
-        cross_node = h * (x0 + y0 * (2.0 * y0 + h) / (x0 + x_end))
+        cross_node = h * (x0 + y0 * width / (x0 + x_end))
     dot_node = x0 * x_end + y0 * (y0 + h)
     swept = np.arctan2(cross_node, dot_node)
     # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0) (taken
@@ -524,11 +560,7 @@ def swept_angles(
     (swept, turning), broadcast from the inputs.
     """
     x0, y0, h = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x0, y0, h)))
-    ends = None
-    if end_at_rest:
-        ends = np.zeros(x0.shape, dtype=bool)
-        ends[..., -1] = True
-    return _swept_turning(x0, y0, h, ends)
+    return _swept_turning(x0, y0, h, (Ellipsis, -1) if end_at_rest else None)
 
 
 def swept_rapidities(
@@ -648,13 +680,12 @@ class FilmSolution:
         cat = np.concatenate
         stages = self.stages
         found = stage_rows(stages)
+        table = None
         if found is not None:  # the stages' arrays are rows of one block: taken at once
             rows = found.stages
             starts, ends = rows.time[:, :-1].reshape(-1), rows.time[:, 1:].reshape(-1)
-            block = np.empty((5, *rows.omega.shape))
-            block[0], block[1], block[2] = rows.delta[:, :-1], rows.direction, rows.omega
-            block[3], block[4] = rows.phase_x, rows.phase_y
-            segments = block.reshape(5, -1)
+            table = found.segments.reshape(8, -1)
+            segments = table[:5]
             hyper = np.zeros(starts.size, dtype=bool)  # one pass: rising stages alone
         else:
             starts, ends = cat([s.time[:-1] for s in stages]), cat([s.time[1:] for s in stages])
@@ -670,20 +701,14 @@ class FilmSolution:
                 segments[4, row] = s.phase_y
                 at += s.n
             hyper = cat([np.broadcast_to(s.hyperbolic, (s.n,)) for s in stages])
-        object.__setattr__(self, "_start", starts)
-        object.__setattr__(self, "_end", ends)
-        object.__setattr__(self, "_segments", segments)
-        object.__setattr__(self, "_delta", segments[0])
-        object.__setattr__(self, "_direction", segments[1])
-        object.__setattr__(self, "_omega", segments[2])
-        object.__setattr__(self, "_x", segments[3])
-        object.__setattr__(self, "_y", segments[4])
-        object.__setattr__(self, "_hyper", hyper)
-        object.__setattr__(self, "_any_hyper", bool(hyper.any()))
         first, last = stages[0], stages[-1]
-        object.__setattr__(self, "_t0", float(first.time[0]))
-        object.__setattr__(self, "_t1", float(last.time[-1]))
-        object.__setattr__(self, "_final", (last.delta[-1], last.velocity[-1]))
+        self.__dict__.update(
+            _start=starts, _end=ends, _segments=segments, _delta=segments[0],
+            _direction=segments[1], _omega=segments[2], _x=segments[3], _y=segments[4],
+            _hyper=hyper, _any_hyper=bool(hyper.any()), _t0=float(first.time[0]),
+            _t1=float(last.time[-1]), _final=(last.delta[-1], last.velocity[-1]),
+            _table=table,
+        )  # fmt: skip
 
     @property
     def start_time(self) -> float:
@@ -702,8 +727,8 @@ class FilmSolution:
         t = np.minimum(np.maximum(np.asarray(t, dtype=float), t0), t1)
         slack = 8.0 * _EPS * max(abs(t0), abs(t1))
         shifted = t + slack
+        # t >= t0, the first segment's start: 0 <= seg (NaN sorts last: the last segment)
         seg = np.searchsorted(self._start, shifted, side="right") - 1  # type: ignore[attr-defined]
-        seg = np.minimum(np.maximum(seg, 0), self._start.size - 1)  # type: ignore[attr-defined]
         return t, seg, shifted >= t1
 
     def evaluate(self, t: ArrayLike) -> tuple[Array, Array]:
@@ -717,21 +742,29 @@ class FilmSolution:
 
     def evaluate_segments(
         self, t: ArrayLike
-    ) -> tuple[Array, Array, tuple[NDArray[np.intp], NDArray[np.bool_]]]:
-        """:meth:`evaluate` at times ``t`` [s], and the segment each time falls in and where
-        it is the end of the contact (:meth:`segment_of`), for the contact work at the
-        same times (:func:`impactcli.energy.film_contact_work`)."""
+    ) -> tuple[Array, Array, tuple[NDArray[np.intp], NDArray[np.bool_], Array | None]]:
+        """:meth:`evaluate` at times ``t`` [s], and the segment each time falls in, where it
+        is the end of the contact (:meth:`segment_of`) and, for stages solved in one pass
+        (:func:`solve_stages`), the constants of each time's segment (its column of
+        :attr:`StageRows.segments`, else None), for the contact work at the same times
+        (:func:`impactcli.energy.film_contact_work`)."""
         return self._evaluate(t, keep=True)  # type: ignore[return-value]
 
     def _evaluate(
         self, t: ArrayLike, keep: bool
-    ) -> tuple[Array, Array, tuple[NDArray[np.intp], NDArray[np.bool_]] | None]:
+    ) -> tuple[Array, Array, tuple[NDArray[np.intp], NDArray[np.bool_], Array | None] | None]:
         """:meth:`evaluate`, and (``keep``) the segments of :meth:`evaluate_segments`."""
         t, seg, end = self.segment_of(t)
-        found = (seg, end) if keep else None
         start = self._start[seg]  # type: ignore[attr-defined]
         tau = np.minimum(np.maximum(t - start, 0.0), self._end[seg] - start)  # type: ignore[attr-defined]
-        delta_r, direction, omega, x, y = self._segments[:, seg]  # type: ignore[attr-defined]
+        table = self._table  # type: ignore[attr-defined]
+        if keep and table is not None:  # the contact work's constants too, in one gather
+            gathered = table.take(seg, axis=1)
+            found = (seg, end, gathered)
+            delta_r, direction, omega, x, y = gathered[:5]
+        else:
+            found = (seg, end, None) if keep else None
+            delta_r, direction, omega, x, y = self._segments[:, seg]  # type: ignore[attr-defined]
         args = (tau, delta_r, direction, omega, x, y)
         delta, delta_dot = _oscillator(*args)
         if self._any_hyper:  # type: ignore[attr-defined]  # segments of negative chord stiffness

@@ -424,8 +424,13 @@ class ImpactResult:
         method = self.method if method is None else method
         if method not in self.contact.methods:
             raise ValueError(self.contact.method_error(method))
-        t = self.times(points, method) if t is None else np.asarray(t, dtype=float)
-        t = np.minimum(np.maximum(t, 0.0), float(self._solution(method).end_time))  # as delta(t)
+        end = float(self._solution(method).end_time)
+        if t is None:  # from 0 to t_c, over the stages' contact, which may end past t_c
+            t = self.times(points, method)
+            if float(history_solution(self._solution(method)).end_time) > end:
+                t = np.minimum(t, end)
+        else:  # as delta(t)
+            t = np.minimum(np.maximum(np.asarray(t, dtype=float), 0.0), end)
         source = history_solution(self._solution(method))
         own = method != "table" and isinstance(source, StagedSolution)  # W(t) from delta
         segments = None
@@ -524,14 +529,17 @@ class ImpactResult:
         (r1, r2), (e1, e2), (p1_, p2_) = self._shares()
         # both spheres at once, a row each (the same operations as one sphere at a time)
         axes = np.ndim(t)
-        velocity, ratio = _pair(self.v1, self.v2, axes), _pair(r1, r2, axes)
+        pairs = ((self.v1, self.v2), (r1, r2), (self.m1, -self.m2), (e1, e2))
+        velocity, ratio, masses, share = np.array(pairs, dtype=float).reshape((4, 2) + (1,) * axes)
         d1, d2 = velocity * t - ratio * (v0 * t - delta)
         v12 = velocity - ratio * (v0 - delta_dot)
         v1, v2 = v12
-        with np.errstate(invalid="ignore"):
-            p1, p2 = _pair(self.m1, -self.m2, axes) * v12
+        if math.isinf(self.m1) or math.isinf(self.m2):  # a fixed body: inf * 0
+            with np.errstate(invalid="ignore"):
+                p1, p2 = masses * v12
+        else:
+            p1, p2 = masses * v12
         if (e1, e2) == (p1_, p2_):
-            share = _pair(e1, e2, axes)
             delta1, delta2 = share * delta
             delta1_dot, delta2_dot = share * delta_dot
         else:  # split yield: delta_i = e_i (delta - delta_p) + p_i delta_p
@@ -583,12 +591,6 @@ def _effective(a: float, b: float) -> float:
         return 1.0 / (1.0 / a + 1.0 / b)
     except ZeroDivisionError:
         return float(effective_mass(a, b))
-
-
-def _pair(first: float, second: float, axes: int = 1) -> NDArray:
-    """Two numbers, one per sphere, as a column (shape (2, 1, ...), ``axes`` ones) that
-    broadcasts against a history's times of ``axes`` dimensions: a row per sphere."""
-    return np.reshape(np.array((first, second), dtype=float), (2,) + (1,) * axes)
 
 
 def _nan(value: float | None) -> float:

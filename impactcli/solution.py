@@ -171,7 +171,12 @@ class StagedSolution(FilmSolution):
         contact's plan of it made already) and solve its stages by FILM with n segments
         each (:func:`solve_plan`)."""
         plan = contact.plan(impact_velocity, mass) if plan is None else plan
-        return cls(solve_plan(plan, mass, n), plan, contact, mass, impact_velocity)
+        solution = made_at_once(
+            cls, {"stages": solve_plan(plan, mass, n), "plan": plan, "contact": contact,
+                  "mass": mass, "impact_velocity": impact_velocity},
+        )  # fmt: skip
+        solution.__post_init__()
+        return solution
 
     # -- the quantities of ContactSolution ------------------------------------------------
     @property
@@ -218,9 +223,27 @@ class StagedSolution(FilmSolution):
     ) -> Array:
         """Contact force F(delta) of the FILM stage each time [s] falls in, [N]."""
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
+        law = self._one_law
+        if law is not None:  # every stage's law: F(delta) of it, whatever the stage
+            return np.asarray(law.force(delta), dtype=float).reshape(delta.shape)
         ends = self._stage_ends
+        if t.ndim == 1 and t.shape == delta.shape and bool((t[1:] >= t[:-1]).all()):
+            # times in order (a history's): each stage's a slice, as plan.force's masks
+            cuts = [0, *np.searchsorted(t, ends[:-1], side="right").tolist(), t.size]
+            force = np.empty_like(delta)
+            for k, stage in enumerate(self.plan.stages):
+                if cuts[k + 1] > cuts[k]:
+                    part = delta[cuts[k] : cuts[k + 1]]
+                    force[cuts[k] : cuts[k + 1]] = np.asarray(stage.law.force(part)).reshape(-1)
+            return force
         stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
         return self.plan.force(stage, delta)
+
+    @cached_property
+    def _one_law(self) -> Any:
+        """The force law of every stage when they share one (an elastic impact), else None."""
+        laws = [stage.law for stage in self.plan.stages]
+        return laws[0] if all(law is laws[0] for law in laws) else None
 
     @cached_property
     def _stage_ends(self) -> Array:
@@ -263,12 +286,24 @@ class StagedSolution(FilmSolution):
         indentations ``delta`` [m], [J] (:func:`impactcli.energy.plan_energy`); ``own``:
         ``delta`` is this solution's own at ``t`` (:meth:`evaluate`), used for W(t), with
         its ``segments`` (:meth:`~impactcli.film.FilmSolution.evaluate_segments`) if given."""
-        from impactcli.energy import plan_energy
+        from impactcli.energy import plan_energy, plan_energy_constants
 
         if own:
             work = self.contact_work(t, delta, segments)
         else:
             work = self.contact_work(t)
+        if not getattr(self.contact, "dissipates", True):  # all of W(t) stored, as the
+            return work, np.zeros_like(work)  # threshold of strain_and_dissipated makes it
+        constants = self.__dict__.get("_energy_constants")
+        if constants is None and np.ndim(delta) == 1:  # with the history's: delta_m appended
+            constants, work_at = plan_energy_constants(
+                self.plan, self.contact, self.delta_max, delta
+            )
+            self.__dict__["_energy_constants"] = constants
+            return plan_energy(
+                self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
+                constants=constants, work_at=work_at,
+            )  # fmt: skip
         return plan_energy(
             self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
             constants=self._energy_constants,
@@ -521,6 +556,14 @@ def history_times(solution: ContactSolution, points: int) -> Array:
     return t
 
 
+def _scalar(value: ArrayLike) -> bool:
+    """``np.ndim(value) == 0``, read directly off an array or a float."""
+    kind = type(value)
+    if kind is np.ndarray:
+        return value.ndim == 0  # type: ignore[union-attr]
+    return kind is float or np.ndim(value) == 0
+
+
 def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:
     """Solve every stage of ``plan`` by FILM with n segments, chained in time
     (:func:`impactcli.film.solve_stage`); arrays of a batch broadcast.
@@ -530,7 +573,7 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     tuple of :class:`~impactcli.film.FilmStage`
     """
     values = [(s.delta_start, s.delta_end, s.speed_start) for s in plan.stages]
-    if np.ndim(mass) == 0 and all(np.ndim(x) == 0 for row in values for x in row):
+    if _scalar(mass) and all(_scalar(x) for row in values for x in row):
         return solve_stages(  # one impact: its stages in one pass
             [(s.law, float(a), float(b), float(v), s.end_at_rest)
              for s, (a, b, v) in zip(plan.stages, values)],

@@ -10,12 +10,14 @@ import numpy as np
 import pytest
 
 from impactcli.damping import solve_damped_impact
+from impactcli.energy import plan_energy
+from impactcli.film import solve_stage
 from impactcli.laws import get_law
 from impactcli.laws.hertz import HertzContact
 from impactcli.laws.tsuji import TsujiDamping
 from impactcli.laws.viscoelastic import ViscoelasticDamping
 from impactcli.ode import OdeSolution, integrate
-from impactcli.solution import ContactSolution, PlanSolution
+from impactcli.solution import ContactSolution, PlanSolution, StagedSolution
 
 R, E, SY, M, V0 = 6.6667e-3, 115.385e9, 1e9, 0.0290, 1.0
 K = 4.0 / 3.0 * E * np.sqrt(R)
@@ -143,3 +145,78 @@ def test_the_former_damped_integration_with_its_dense_output_is_a_deprecated_nam
     assert old.summary == new.summary
     assert old.summary == damping.damped_impact_ode(law, V0, M, "force", 1e-10)
     assert "damped_ode_solution" not in damping.__all__
+
+
+def _one_by_one(solution: PlanSolution) -> StagedSolution:
+    """The staged solution of ``solution``'s plan with its stages solved one at a time
+    (:func:`impactcli.film.solve_stage`): the general path, without the one-pass block."""
+    plan, m, n = solution.plan, solution.mass, solution.n
+    stages, t_start = [], 0.0
+    for stage in plan.stages:
+        ends = float(stage.delta_start), float(stage.delta_end), float(stage.speed_start)
+        film = solve_stage(stage.law, *ends, m, n, t_start, end_at_rest=stage.end_at_rest)
+        stages.append(film)
+        t_start = film.end_time
+    return StagedSolution(tuple(stages), plan, solution.contact, m, solution.impact_velocity)
+
+
+@pytest.mark.parametrize("law", ["hertz", "du-wang", "thornton"])
+@pytest.mark.parametrize("n", [1, 3, 25, 400])
+def test_a_history_of_the_one_pass_stages_is_that_of_the_stages_one_by_one(law, n):
+    """The one-pass stages (their segment block, gathered once per time, the force of one
+    law or of each stage's slice of ordered times, the energy constants with the history's
+    work) give the numbers of the stages solved and read one by one, bit for bit: at the
+    nodes, a hair either side of them, beyond the contact and in any order."""
+    solution = PlanSolution.solve(get_law(law).contact(R, E, SY), V0, M, n)
+    fast, slow = solution.staged, _one_by_one(solution)
+    assert fast._table is not None and slow._table is None  # the two paths
+    nodes = np.concatenate([stage.time for stage in slow.stages])
+    t = np.sort(np.concatenate([
+        nodes, np.nextafter(nodes, -1.0), np.nextafter(nodes, 1.0),
+        np.linspace(-1e-6, 1.01 * slow.end_time, 301),
+    ]))  # fmt: skip
+    for times in (t, t[::-1].copy(), np.random.default_rng(1).permutation(t)):
+        a, b = fast.evaluate_segments(times), slow.evaluate_segments(times)
+        assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
+        assert np.array_equal(fast.force(times, a[0]), slow.force(times, b[0]))
+        assert np.array_equal(fast.contact_work(times, a[0], a[2]), slow.contact_work(times))
+        # the energy as plan_energy works it out alone, its constants apart
+        plan, work = slow.plan, slow.contact_work(times)
+        energy = plan_energy(plan, slow.contact, times, b[0], work, slow.t_max, slow.delta_max)
+        fresh = PlanSolution.solve(solution.contact, V0, M, n).staged  # no constants yet
+        for staged in (fresh, slow, fast):
+            mine = staged.energy(times, staged.evaluate(times)[0], own=True)
+            assert np.array_equal(mine[0], energy[0]) and np.array_equal(mine[1], energy[1])
+
+
+@pytest.mark.parametrize("law", ["du-wang", "thornton"])
+def test_the_force_at_times_in_order_is_the_law_of_each_stage(law):
+    """Times in order take each stage's law on a slice: the plan's force by stage, also
+    at the stage ends exactly (which belong to the stage that ends there)."""
+    solution = PlanSolution.solve(get_law(law).contact(R, E, SY), V0, M, 25)
+    staged = solution.staged
+    ends = np.array([float(stage.end_time) for stage in staged.stages])
+    t = np.sort(np.concatenate([ends, np.nextafter(ends, 0.0), np.nextafter(ends, 1.0),
+                                np.linspace(0.0, staged.end_time, 201)]))  # fmt: skip
+    delta, _ = staged.evaluate(t)
+    stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
+    assert np.array_equal(staged.force(t, delta), staged.plan.force(stage, delta))
+
+
+@pytest.mark.parametrize("v0", [1e-4, 1e-2, 1.0, 30.0])
+@pytest.mark.parametrize("n", [1, 25, 1000])
+def test_an_elastic_hertz_history_stores_all_its_contact_work(v0, n):
+    """HertzContact.dissipates is False: the history's stored energy is W(t) and it
+    dissipates nothing, which is what the loading less the recoverable work, thresholded
+    (plan_energy), gives."""
+    solution = PlanSolution.solve(HertzContact(K), v0, M, n)
+    staged = solution.staged
+    t = np.linspace(0.0, staged.end_time, 201)
+    delta, _ = staged.evaluate(t)
+    work = staged.contact_work(t)
+    strain, dissipated = staged.energy(t, delta)
+    full = plan_energy(staged.plan, staged.contact, t, delta, work, staged.t_max, staged.delta_max)
+    assert not np.any(dissipated) and np.array_equal(strain, work)
+    assert np.array_equal(full[0], strain) and np.array_equal(full[1], dissipated)
+    kinetic = 0.5 * M * staged.evaluate(t)[1] ** 2  # and the balance: (1/2) m V0^2
+    assert np.allclose(kinetic + strain, 0.5 * M * v0**2, rtol=1e-12, atol=0.0)
