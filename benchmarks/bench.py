@@ -14,8 +14,8 @@ issue 25 and whether it is MET. NOT MET rows are what to speed up next.
     the same force law (plain Python floats), a turning-point and a separation event, at
     the loosest rtol whose error is no larger than FILM's. The error is max(|e/e_ref - 1|,
     |t_c/t_c,ref - 1|), against the exact values for Hertz (e = 1, t_c = 2(2/5)B(2/5,1/2)
-    delta_m/V0) and for the others against e of the law's closed form and t_c of DOP853 at rtol 1e-13
-    (whose difference from rtol 1e-12 is printed); for the adhesive laws t_c of DOP853 at
+    delta_m/V0) and for the others against e of the law's closed form and t_c of DOP853 at
+    rtol 1e-13 (whose difference from rtol 1e-12 is printed); for the adhesive laws t_c of DOP853 at
     rtol 1e-13 stage by stage in variables in which the law is smooth (``SmoothIntegration``:
     the plain integration's event at the neck's fixed-grip end, where dF/d delta is
     infinite, and DMT's delta^1.5 at first touch hold it to about 2e-9), its e checked
