@@ -1,5 +1,5 @@
 """``python -m impactcli`` runs the ``impact`` command line."""
 
-from impactcli.cli import main
+from impactcli.cli import script
 
-main()
+script()

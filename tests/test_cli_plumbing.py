@@ -107,3 +107,36 @@ def test_output_check_refuses_one_file_as_two_figures(tmp_path):
     out = Output(Format.csv, str(tmp_path / "r.csv"), str(tmp_path / "f.png"))
     with pytest.raises(InputError, match="the same file is given as two outputs"):
         out.check(str(tmp_path / "f.png"))
+
+
+def test_the_executable_freezes_its_objects_for_the_exit_and_main_leaves_the_collector():
+    """``impact`` and ``python -m impactcli`` run :func:`impactcli.cli.script`: the command's
+    status and output as :func:`~impactcli.cli.main` gives them, then every object frozen
+    (gc.freeze) before the interpreter's exit walks them; ``main`` called in a process of
+    its own (tests, programs) does not touch the collector."""
+    import gc
+    import subprocess
+    import sys
+
+    from impactcli.cli import main
+
+    frozen = gc.get_freeze_count()
+    with pytest.raises(SystemExit) as stop:
+        main(["laws", "-f", "json"])
+    assert stop.value.code == 0 and gc.get_freeze_count() == frozen
+
+    probe = (
+        "import atexit, gc, sys\n"
+        "atexit.register(lambda: print('frozen', gc.get_freeze_count() > 0, file=sys.stderr))\n"
+        "sys.argv = ['impact'] + sys.argv[1:]\n"
+        "import runpy; runpy.run_module('impactcli', run_name='__main__')\n"
+    )
+    for args, status in ((["laws", "-f", "json"], 0), (["tables", "--n", "0"], 2)):
+        done = subprocess.run([sys.executable, "-c", probe, *args], capture_output=True,
+                              text=True, timeout=120)  # fmt: skip
+        assert done.returncode == status, done.stderr
+        assert done.stderr.splitlines()[-1] == "frozen True"
+        if status == 0:
+            assert '"hertz"' in done.stdout or "hertz" in done.stdout
+        else:
+            assert done.stderr.splitlines()[0].startswith("impact: error:")
