@@ -235,7 +235,7 @@ def pair_model(model: ContactModel, sphere1: Sphere, sphere2: Sphere) -> PairMod
         if found[0] is model and found[1] is sphere1 and found[2] is sphere2:
             return found[3]
     pair = model.for_spheres(sphere1, sphere2)
-    if all(map(_unchanging, (model, sphere1, sphere2))):
+    if _unchanging(model) and _unchanging(sphere1) and _unchanging(sphere2):
         if len(_PAIRS) >= _PAIRS_KEPT:
             _PAIRS.clear()
         _PAIRS[key] = (model, sphere1, sphere2, pair)
@@ -246,10 +246,14 @@ def _unchanging(made: object) -> bool:
     """Every field of a model or sphere a number, a string, None or an empty dict (law
     parameters, checked again when kept): nothing whose value changes in place, as a
     NumPy array's or a dict's may."""
-    return all(
-        type(value) in (float, int, str, bool, type(None)) or (type(value) is dict and not value)
-        for value in vars(made).values()
-    )
+    for value in vars(made).values():
+        if type(value) not in _PLAIN and (type(value) is not dict or value):
+            return False
+    return True
+
+
+#: The types of field :func:`_unchanging` keeps: values that cannot change in place.
+_PLAIN = frozenset((float, int, str, bool, type(None)))
 
 
 class PairModel(Protocol):
