@@ -1318,7 +1318,8 @@ def __getattr__(name: str):
             DeprecationWarning,
             stacklevel=2,
         )
-        return lambda law, impact_velocity, mass, *args: integrate(
-            law, mass, impact_velocity, *args
-        )
+        def damped_ode_solution(law, impact_velocity, mass, separation="overlap", rtol=1e-12):
+            return integrate(law, mass, impact_velocity, separation, rtol)
+
+        return damped_ode_solution
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

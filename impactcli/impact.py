@@ -1123,6 +1123,9 @@ def law_impact(
         law_params = params
     plain = not law_params and yield_strength is None and type(law) is str
     model = _LAW_MODELS.get(law) if plain else None
+    if model is not None and model.law_params:  # parameters put into its dict: not kept
+        _LAW_MODELS.pop(law, None)
+        model = None
     if model is None:
         model = made_at_once(  # ContactModel(law, law_params, yield_strength=...), at once
             ContactModel,

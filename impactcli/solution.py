@@ -178,6 +178,20 @@ class StagedSolution(FilmSolution):
         solution.__post_init__()
         return solution
 
+    @classmethod
+    def of_plan(cls, plan: ImpactPlan, contact: NormalContact, impact_velocity: float,
+                mass: float, n: int) -> StagedSolution:  # fmt: skip
+        """Deprecated, goes in 0.3: :meth:`solve` with ``plan=`` (the same solution)."""
+        import warnings
+
+        warnings.warn(
+            "StagedSolution.of_plan is deprecated and goes in 0.3: write "
+            "StagedSolution.solve(contact, impact_velocity, mass, n, plan=plan)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return cls.solve(contact, impact_velocity, mass, n, plan=plan)
+
     # -- the quantities of ContactSolution ------------------------------------------------
     @property
     def contact_time(self) -> float:

@@ -151,3 +151,18 @@ def test_a_model_whose_parameters_change_is_not_kept():
     impactcli.solve_impact(s1, s2, 0.25, 0.75, model)
     empty["py"] = 4e9
     assert impactcli.solve_impact(s1, s2, 0.25, 0.75, model).summary == fresh.summary
+
+
+def test_a_law_model_whose_parameters_a_caller_changed_is_not_kept():
+    """law_impact's one model per law with its defaults: parameters written into that
+    model's dict afterwards (through a result) do not reach the next law_impact, which
+    gives the law's defaults again (a fresh model, its pairs kept anew)."""
+    forget()
+    s1, s2 = spheres("steel")
+    fresh = impactcli.law_impact(s1, s2, 0.25, 0.75, "thornton").summary
+    changed = impactcli.law_impact(s1, s2, 0.25, 0.75, "thornton")
+    changed.contact.model.law_params["py"] = 3e9  # a caller's edit of the kept model
+    again = impactcli.law_impact(s1, s2, 0.25, 0.75, "thornton")
+    assert again.summary == fresh
+    assert again.contact.model is not changed.contact.model
+    assert again.contact.model.law_params == {}

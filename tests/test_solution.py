@@ -145,6 +145,11 @@ def test_the_former_damped_integration_with_its_dense_output_is_a_deprecated_nam
     assert old.summary == new.summary
     assert old.summary == damping.damped_impact_ode(law, V0, M, "force", 1e-10)
     assert "damped_ode_solution" not in damping.__all__
+    with pytest.warns(DeprecationWarning):  # its keywords as they were
+        named = damping.damped_ode_solution(
+            law=law, impact_velocity=V0, mass=M, separation="force", rtol=1e-10
+        )
+    assert named.summary == new.summary
 
 
 def _one_by_one(solution: PlanSolution) -> StagedSolution:
@@ -220,3 +225,22 @@ def test_an_elastic_hertz_history_stores_all_its_contact_work(v0, n):
     assert np.array_equal(full[0], strain) and np.array_equal(full[1], dissipated)
     kinetic = 0.5 * M * staged.evaluate(t)[1] ** 2  # and the balance: (1/2) m V0^2
     assert np.allclose(kinetic + strain, 0.5 * M * v0**2, rtol=1e-12, atol=0.0)
+
+
+def test_the_former_names_of_the_staged_solution_and_the_table_extensions_are_deprecated():
+    """StagedSolution.of_plan is solve(..., plan=), and io.writers.TABLE_EXTENSIONS the
+    table formats of output.FILE_FORMATS, each with a warning."""
+    import impactcli.io.writers as writers
+
+    contact = get_law("du-wang").contact(R, E, SY)
+    plan = contact.plan(V0, M)
+    with pytest.warns(DeprecationWarning, match="plan=plan"):
+        old = StagedSolution.of_plan(plan, contact, V0, M, 25)
+    new = StagedSolution.solve(contact, V0, M, 25, plan=plan)
+    assert type(old) is StagedSolution and old.restitution == new.restitution
+    assert old.end_time == new.end_time and old.delta_max == new.delta_max
+    with pytest.warns(DeprecationWarning, match="FILE_FORMATS"):
+        extensions = writers.TABLE_EXTENSIONS
+    assert extensions == {".csv": writers.TableFormat.csv, ".parquet": writers.TableFormat.parquet,
+                          ".pq": writers.TableFormat.parquet,
+                          ".parq": writers.TableFormat.parquet}  # fmt: skip

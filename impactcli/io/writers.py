@@ -31,6 +31,25 @@ class TableFormat(enum.StrEnum):
     parquet = "parquet"
 
 
+def __getattr__(name: str):
+    """``TABLE_EXTENSIONS`` (extension -> :class:`TableFormat`), deprecated: it goes in 0.3;
+    the extensions of every file the commands write are :data:`impactcli.output.FILE_FORMATS`."""
+    if name == "TABLE_EXTENSIONS":
+        import warnings
+
+        from impactcli.output import FILE_FORMATS
+
+        warnings.warn(
+            "impactcli.io.writers.TABLE_EXTENSIONS is deprecated and goes in 0.3: the "
+            "extensions of the files written are impactcli.output.FILE_FORMATS",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        kinds = {f.value for f in TableFormat}
+        return {e: TableFormat(k) for e, k in FILE_FORMATS.items() if e and k in kinds}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def table_format(fmt: TableFormat | str | None, output: str | None, command: str) -> TableFormat:
     """The format of the result table of ``command`` written to ``output`` (None or ``-``:
     stdout): ``fmt`` if given, else from the extension
