@@ -193,3 +193,22 @@ def test_batch_damped_impacts_refuses_bad_calls_with_an_input_error(extra, how, 
     with pytest.raises(InputError, match=message):
         batch_damped_impacts(*PAPER_COLUMNS, *extra, **how)
 
+
+def test_pairs_are_made_whole_or_not_at_all():
+    """SpherePairs of eight columns is refused when made (rho, m and sy have no default
+    there, as at 7b193af), not later by pair_impacts with an AttributeError; from_columns
+    fills them with NaN, "not given", of the pairs' shape."""
+    eight = [np.array([x, x]) for x in PAPER_COLUMNS[:8]]
+    with pytest.raises(TypeError, match="missing 6 required positional arguments: 'rho1'"):
+        SpherePairs(*eight)
+    pairs = SpherePairs.from_columns(*eight)
+    for name in COLUMNS[8:]:
+        column = getattr(pairs, name)
+        assert column.shape == (2,) and np.isnan(column).all(), name
+    out = pair_impacts(pairs)  # no mass, no density: each row says so
+    assert out["error"].tolist() == ["give m1, or a finite d1 and rho1"] * 2
+    with_density = SpherePairs.from_columns(*eight, rho1=7800.0, rho2=7800.0)
+    np.testing.assert_array_equal(
+        pair_impacts(with_density)["restitution"],
+        batch_impacts(*eight, rho1=7800.0, rho2=7800.0)["restitution"],
+    )
