@@ -475,7 +475,7 @@ def _check_undamped(alpha: ArrayLike, restitution: ArrayLike, separation: str) -
     """Raise ValueError if an option of a damping model is given without one: ``alpha`` or
     ``restitution`` not NaN, or ``separation`` not ``overlap``."""
     given = [name for name, value in (("alpha", alpha), ("restitution", restitution))
-             if np.any(~np.isnan(np.asarray(value, dtype=float)))]  # fmt: skip
+             if _not_nan(value)]  # fmt: skip
     if separation != "overlap":
         given.append("separation")
     if given:
@@ -484,6 +484,13 @@ def _check_undamped(alpha: ArrayLike, restitution: ArrayLike, separation: str) -
             f"are options of a damping model; give damping= ({', '.join(DAMPING_LAWS)}) or "
             "leave them out"
         )
+
+
+def _not_nan(value: ArrayLike) -> bool:
+    """Whether an entry of ``value`` is not NaN ("not given"); the default NaN at once."""
+    if isinstance(value, float):
+        return value == value  # False for NaN alone
+    return not np.isnan(np.asarray(value, dtype=float)).all()
 
 
 def _check_damped(

@@ -151,6 +151,7 @@ def test_damping_is_refused_with_an_option_of_the_undamped_laws(how, named):
     [
         ({"alpha": 0.3}, "alpha"),
         ({"alpha": [np.nan, 0.3]}, "alpha"),
+        ({"alpha": 0}, "alpha"),
         ({"restitution": 0.8}, "restitution"),
         ({"separation": "force"}, "separation"),
         ({"alpha": 0.3, "restitution": 0.8}, "alpha and restitution"),
