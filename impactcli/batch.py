@@ -69,7 +69,7 @@ from impactcli.limits import (
     MAX_SEGMENTS,
     check_size,
 )
-from impactcli.pairs import SpherePairs, Split
+from impactcli.pairs import COLUMNS, SpherePairs, Split
 from impactcli.summary import (
     ADHESIVE_SUMMARY_KEYS,
     PLASTIC_SUMMARY_KEYS,
@@ -382,9 +382,10 @@ def batch_impacts(
         on the groups of a ``law`` column); None: Du & Wang where ``plastic``, else Hertz
     law_params : the law's parameters by name, scalars or one value per row (SI)
     damping : a damping model (``impact laws``, :data:`impactcli.laws.registry.DAMPING_LAWS`):
-        Hertz plus viscous damping for every row (``plastic``, ``p0_factor`` and ``law`` do
-        not apply); None: no damping
-    alpha : the damping model's parameter, one value or one per row (unit of the model:
+        Hertz plus viscous damping for every row (``plastic``, ``p0_factor``, ``law`` and
+        ``law_params`` do not apply: an InputError if given); None: no damping (then
+        ``alpha``, ``restitution`` and ``separation`` are an InputError if given)
+    alpha : with ``damping``, its parameter, one value or one per row (unit of the model:
         [-] for ``tsuji``, [s/m] for ``hunt-crossley``, [s] for ``viscoelastic``); NaN
         where ``restitution`` is given
     restitution : with ``damping``, the target e [-] of each row instead of ``alpha`` (the
@@ -418,17 +419,14 @@ def batch_impacts(
     >>> out["restitution"].round(6), out["alpha"].round(4)
     (array([0.8]), array([0.1584]))
     """
-    p0_factor = renamed_p0_factor("batch_impacts", p0_factor, pressure_factor, 5)
     columns = (d1, d2, v1, v2, E1, nu1, E2, nu2, rho1, rho2, m1, m2, sy1, sy2)
     if damping is None:
+        _check_undamped(alpha, restitution, separation)
+        p0_factor = renamed_p0_factor("batch_impacts", p0_factor, pressure_factor, 5)
         n = _checked_options(25 if n is None else n, p0_factor)
         return _impacts(SpherePairs.from_columns(*columns), plastic, n, split, p0_factor, law,
                         law_params)  # fmt: skip
-    if law is not None or np.any(plastic):
-        raise ValueError(
-            f"damping {damping} is Hertz plus viscous damping: give it without law= and "
-            "plastic= (the damped rows are elastic)"
-        )
+    _check_damped(damping, plastic, law, law_params, p0_factor, pressure_factor)
     n = _checked_damping(DAMPED_DEFAULT_N if n is None else n, damping, separation)
     *flat, alpha, e_target = flat_floats(*columns, alpha, restitution)
     return _damped_impacts(SpherePairs(*flat), damping, alpha, e_target, n, split, separation)
@@ -471,6 +469,53 @@ def pair_impacts(
     """
     n = _checked_options(n, p0_factor)
     return _impacts(pairs.ravel(), plastic, n, split, p0_factor, law, law_params)
+
+
+def _check_undamped(alpha: ArrayLike, restitution: ArrayLike, separation: str) -> None:
+    """Raise ValueError if an option of a damping model is given without one: ``alpha`` or
+    ``restitution`` not NaN, or ``separation`` not ``overlap``."""
+    given = [name for name, value in (("alpha", alpha), ("restitution", restitution))
+             if _not_nan(value)]  # fmt: skip
+    if separation != "overlap":
+        given.append("separation")
+    if given:
+        raise ValueError(
+            f"{' and '.join(given)} given without damping: alpha, restitution and separation "
+            f"are options of a damping model; give damping= ({', '.join(DAMPING_LAWS)}) or "
+            "leave them out"
+        )
+
+
+def _not_nan(value: ArrayLike) -> bool:
+    """Whether an entry of ``value`` is not NaN ("not given"); the default NaN at once."""
+    if isinstance(value, float):
+        return value == value  # False for NaN alone
+    return not np.isnan(np.asarray(value, dtype=float)).all()
+
+
+def _check_damped(
+    damping: str,
+    plastic: ArrayLike,
+    law: str | None,
+    law_params: Mapping[str, Any] | None,
+    p0_factor: float,
+    pressure_factor: float | None,
+) -> None:
+    """Raise ValueError if an option of the undamped laws is given with ``damping``: a
+    ``law``, ``law_params``, a ``plastic`` row, or a ``p0_factor`` [-] of its own."""
+    given = [name for name, value in (
+        ("law", law is not None),
+        ("law_params", law_params is not None),
+        ("plastic", np.any(plastic)),
+        ("p0_factor", np.any(p0_factor != DEFAULT_LAW_PARAMETERS["p0_factor"])),
+        ("pressure_factor", pressure_factor is not None),
+    ) if value]  # fmt: skip
+    if given:
+        raise ValueError(
+            f"damping {damping} is Hertz plus viscous damping: give it without "
+            f"{' and '.join(name + '=' for name in given)} (the damped rows are elastic; "
+            "law, law_params, plastic and p0_factor are options of the undamped laws)"
+        )
 
 
 def _checked_options(n: int, p0_factor: float) -> int:
@@ -778,6 +823,7 @@ def _scatter(values: NDArray, rows: NDArray[np.intp], size: int) -> NDArray:
     return out
 
 
+@input_errors
 def batch_damped_impacts(
     *columns: ArrayLike, damping: str, n: int = DAMPED_DEFAULT_N, **options: Any
 ) -> dict[str, NDArray]:
@@ -819,6 +865,16 @@ def batch_damped_impacts(
     >>> out["restitution"].round(4), out["error"]
     (array([0.909]), array([''], dtype=object))
     """
+    if damping is None:
+        raise ValueError(
+            "batch_damped_impacts needs a damping model: damping= one of "
+            f"{', '.join(DAMPING_LAWS)} (batch_impacts without damping gives undamped rows)"
+        )
+    if len(columns) > len(COLUMNS):
+        raise TypeError(
+            f"batch_damped_impacts takes at most {len(COLUMNS)} columns in order "
+            f"({', '.join(COLUMNS)}), got {len(columns)}; give the other options by name"
+        )
     return batch_impacts(*columns, n=n, damping=damping, **options)
 
 

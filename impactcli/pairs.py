@@ -306,12 +306,12 @@ class SpherePairs:
     nu1: NDArray
     E2: NDArray
     nu2: NDArray
-    rho1: NDArray = np.nan  # NaN: not given
-    rho2: NDArray = np.nan
-    m1: NDArray = np.nan
-    m2: NDArray = np.nan
-    sy1: NDArray = np.nan
-    sy2: NDArray = np.nan
+    rho1: NDArray  # NaN: not given (from_columns' default)
+    rho2: NDArray
+    m1: NDArray
+    m2: NDArray
+    sy1: NDArray
+    sy2: NDArray
 
     @classmethod
     def from_columns(cls, *columns: ArrayLike, **named: ArrayLike) -> SpherePairs:
@@ -328,7 +328,8 @@ class SpherePairs:
         -------
         SpherePairs
         """
-        given = cls(*columns, **named)  # the names, order and defaults of the attributes
+        not_given = dict.fromkeys(COLUMNS[max(len(columns), COLUMNS.index("rho1")) :], np.nan)
+        given = cls(*columns, **(not_given | named))  # the attributes' names and order
         return cls(*flat_floats(*given.columns()))
 
     @classmethod

@@ -122,3 +122,94 @@ def test_damping_is_refused_with_a_law_or_plastic(how):
     with pytest.raises(InputError, match="damping tsuji is Hertz plus viscous damping"):
         batch_impacts(0.02, 0.04, 1.0, 0.0, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0,
                       damping="tsuji", alpha=0.1, **how)  # fmt: skip
+
+
+PAPER_COLUMNS = (0.02, 0.04, 0.25, 0.75, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0)
+
+
+@pytest.mark.parametrize(
+    "how, named",
+    [
+        ({"law_params": {"p0_factor": 3.0}}, "law_params="),
+        ({"p0_factor": 3.0}, "p0_factor="),
+        ({"pressure_factor": -1.0}, "pressure_factor="),
+        ({"law": "thornton", "plastic": [False, True]}, "law= and plastic="),
+    ],
+)
+def test_damping_is_refused_with_an_option_of_the_undamped_laws(how, named):
+    """law_params and p0_factor have no part in a damped row: an InputError that names
+    them, as at 7b193af, not the damped numbers without them."""
+    from impactcli import InputError
+
+    for function in (batch_impacts, batch_damped_impacts):
+        with pytest.raises(InputError, match=f"give it without {named} "):
+            function(*PAPER_COLUMNS, damping="tsuji", alpha=0.3, **how)
+
+
+@pytest.mark.parametrize(
+    "how, named",
+    [
+        ({"alpha": 0.3}, "alpha"),
+        ({"alpha": [np.nan, 0.3]}, "alpha"),
+        ({"alpha": 0}, "alpha"),
+        ({"restitution": 0.8}, "restitution"),
+        ({"separation": "force"}, "separation"),
+        ({"alpha": 0.3, "restitution": 0.8}, "alpha and restitution"),
+    ],
+)
+def test_damping_options_are_refused_without_damping(how, named):
+    """alpha, restitution or separation without a damping model: an InputError, not the
+    undamped rows (e = 1) as if they had not been given."""
+    from impactcli import InputError
+
+    with pytest.raises(InputError, match=rf"^{named} given without damping: .*\(tsuji,"):
+        batch_impacts(*PAPER_COLUMNS, **how)
+
+
+def test_damping_options_left_at_not_given_change_nothing():
+    """NaN alpha and restitution and the default separation are "not given": the
+    undamped rows of a call without them, bit for bit."""
+    plain = batch_impacts(*PAPER_COLUMNS)
+    same = batch_impacts(*PAPER_COLUMNS, alpha=np.nan, restitution=[np.nan],
+                         separation="overlap")  # fmt: skip
+    assert plain.keys() == same.keys()
+    for key in plain:
+        np.testing.assert_array_equal(same[key], plain[key])
+    assert plain["restitution"].tolist() == [1.0]
+
+
+@pytest.mark.parametrize(
+    "extra, how, message",
+    [
+        ((), {"alpha": 0.3}, "missing 1 required keyword-only argument: 'damping'"),
+        ((), {"damping": None, "alpha": 0.3}, "needs a damping model: damping= one of tsuji,"),
+        ((np.nan,) * 5, {"damping": "tsuji", "alpha": 0.3}, "at most 14 columns in order"),
+    ],
+)
+def test_batch_damped_impacts_refuses_bad_calls_with_an_input_error(extra, how, message):
+    """batch_damped_impacts is the damped call: without a damping model, or with more
+    columns than there are, an InputError (a ValueError), not a TypeError or undamped rows."""
+    from impactcli import InputError
+
+    with pytest.raises(InputError, match=message):
+        batch_damped_impacts(*PAPER_COLUMNS, *extra, **how)
+
+
+def test_pairs_are_made_whole_or_not_at_all():
+    """SpherePairs of eight columns is refused when made (rho, m and sy have no default
+    there, as at 7b193af), not later by pair_impacts with an AttributeError; from_columns
+    fills them with NaN, "not given", of the pairs' shape."""
+    eight = [np.array([x, x]) for x in PAPER_COLUMNS[:8]]
+    with pytest.raises(TypeError, match="missing 6 required positional arguments: 'rho1'"):
+        SpherePairs(*eight)
+    pairs = SpherePairs.from_columns(*eight)
+    for name in COLUMNS[8:]:
+        column = getattr(pairs, name)
+        assert column.shape == (2,) and np.isnan(column).all(), name
+    out = pair_impacts(pairs)  # no mass, no density: each row says so
+    assert out["error"].tolist() == ["give m1, or a finite d1 and rho1"] * 2
+    with_density = SpherePairs.from_columns(*eight, rho1=7800.0, rho2=7800.0)
+    np.testing.assert_array_equal(
+        pair_impacts(with_density)["restitution"],
+        batch_impacts(*eight, rho1=7800.0, rho2=7800.0)["restitution"],
+    )
