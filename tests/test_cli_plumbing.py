@@ -40,6 +40,9 @@ def test_one_table_of_extensions_serves_the_commands_and_the_result_tables(exten
     else:
         with pytest.raises(InputError, match="impact batch writes a table: .csv, .parquet"):
             table_format(None, path, "impact batch")
+    # --format wins over the file's name, in the commands and the result tables alike
+    assert resolve_format(Format.csv, path) is Format.csv
+    assert table_format(TableFormat.parquet, path, "impact batch") is TableFormat.parquet
 
 
 def test_stdout_and_a_file_without_extension_are_csv_and_the_message_lists_extensions():
@@ -140,3 +143,24 @@ def test_the_executable_freezes_its_objects_for_the_exit_and_main_leaves_the_col
             assert '"hertz"' in done.stdout or "hertz" in done.stdout
         else:
             assert done.stderr.splitlines()[0].startswith("impact: error:")
+
+
+def test_a_result_table_takes_any_file_name_with_format_as_every_command_does(tmp_path):
+    """impact batch -o out.dat -f csv writes the CSV that -o out.csv writes (as impact tables
+    -f csv -o out.dat does); without --format the unknown extension is one line, exit 2,
+    which says so, and no file."""
+    from tests.conftest import run_impact
+
+    rows = tmp_path / "rows.csv"
+    rows.write_text("d1,d2,v1,v2,material,model\n20mm,40mm,5mm/s,7.5mm/s,steel,elastic\n")
+    named = run_impact("batch", "--no-progress", str(rows), "-o", str(tmp_path / "out.csv"))
+    given = run_impact("batch", "--no-progress", str(rows), "-o", str(tmp_path / "out.dat"),
+                       "-f", "csv")  # fmt: skip
+    assert named.returncode == given.returncode == 0, given.stderr
+    assert (tmp_path / "out.dat").read_bytes() == (tmp_path / "out.csv").read_bytes()
+    refused = run_impact("batch", "--no-progress", str(rows), "-o", str(tmp_path / "x.dat"))
+    assert refused.returncode == 2 and not (tmp_path / "x.dat").exists()
+    assert refused.stderr.count("\n") == 1 and refused.stderr.startswith("impact: error: -o ")
+    assert "or give --format" in refused.stderr
+    tables = run_impact("tables", "--n", "2", "-f", "csv", "-o", str(tmp_path / "t.dat"))
+    assert tables.returncode == 0 and (tmp_path / "t.dat").read_text().startswith("stage,")

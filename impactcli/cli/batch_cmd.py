@@ -102,8 +102,8 @@ def batch(
         None,
         "--format",
         "-f",
-        help="Output csv or parquet. Default: from OUT's extension (.parquet, .pq, .parq), "
-        "else CSV; another extension than .csv is refused.",
+        help="Output csv or parquet, whatever OUT's name. Default: from OUT's extension "
+        "(.parquet, .pq, .parq), else CSV; another extension than .csv is refused.",
     ),
     n: Annotated[Optional[int], segments_option(damped_segments_help("on damped rows"))] = None,
     split: Split = typer.Option(

@@ -52,24 +52,23 @@ def __getattr__(name: str):
 
 def table_format(fmt: TableFormat | str | None, output: str | None, command: str) -> TableFormat:
     """The format of the result table of ``command`` written to ``output`` (None or ``-``:
-    stdout): ``fmt`` if given, else from the extension
-    (:data:`impactcli.output.FILE_FORMATS`: .parquet, .pq, .parq: Parquet; .csv or none:
-    CSV). Another extension, or pyarrow missing, is one line
-    (:class:`~impactcli.errors.InputError`)."""
+    stdout): ``fmt`` if given, whatever the file's name (as every command's ``--format``);
+    else from the extension (:data:`impactcli.output.FILE_FORMATS`: .parquet, .pq, .parq:
+    Parquet; .csv or none: CSV). Another extension without ``fmt``, or pyarrow missing, is
+    one line (:class:`~impactcli.errors.InputError`)."""
     from impactcli.output import file_extensions, format_of_file
 
-    kind = format_of_file(output, [f.value for f in TableFormat])
+    kinds = [f.value for f in TableFormat]
+    kind = fmt if fmt is not None else format_of_file(output, kinds)
     if kind is None:
         raise InputError(
-            f"-o {output}: {command} writes a table: "
-            f"{', '.join(file_extensions([f.value for f in TableFormat]))} (or no extension: CSV)"
+            f"-o {output}: {command} writes a table: {', '.join(file_extensions(kinds))} (or "
+            "no extension: CSV), or give --format"
         )
     try:
         import pyarrow  # noqa: F401
     except ImportError:
         raise InputError(f"{command} needs pyarrow: pip install '.[batch]'") from None
-    if fmt is not None:
-        return TableFormat(fmt)
     return TableFormat(kind)
 
 
