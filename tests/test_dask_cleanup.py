@@ -128,6 +128,20 @@ def _children(pid: int) -> list[int]:
     return _descendants(pid)
 
 
+def _terminated_when(proc: subprocess.Popen, ready, interval: float) -> int:
+    """SIGTERM to ``proc`` once ``ready()`` (polled every ``interval`` [s], at most 120 s)
+    while it still runs; its exit status, the process group ended whatever happens."""
+    try:
+        deadline = time.monotonic() + 120
+        while proc.poll() is None and time.monotonic() < deadline and not ready():
+            time.sleep(interval)
+        assert proc.poll() is None, proc.stderr.read()
+        proc.send_signal(signal.SIGTERM)
+        return proc.wait(timeout=60)
+    finally:
+        _end(proc)
+
+
 def _scratch(folder: Path) -> list[str]:
     return sorted(p.name for p in folder.iterdir())
 
@@ -160,19 +174,9 @@ def test_the_local_cluster_leaves_no_scratch_space_after_a_signal(tmp_path):
         cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
         start_new_session=True,
     )  # fmt: skip
-    try:
-        deadline = time.monotonic() + 120
-        # the cluster's workers write their scratch space as they start
-        while proc.poll() is None and time.monotonic() < deadline:
-            if any(temporary.rglob("worker-*")) and _stages(tmp_path):
-                break
-            time.sleep(0.05)
-        assert proc.poll() is None, proc.stderr.read()
-        proc.send_signal(signal.SIGTERM)
-        status = proc.wait(timeout=60)
-    finally:
-        _end(proc)
-    assert status == 143
+    # the cluster's workers write their scratch space as they start
+    ready = lambda: any(temporary.rglob("worker-*")) and _stages(tmp_path)  # noqa: E731
+    assert _terminated_when(proc, ready, 0.05) == 143
     assert _scratch(temporary) == []
     assert _stages(tmp_path) == []
 
@@ -194,18 +198,8 @@ def test_a_signal_while_the_local_cluster_starts_leaves_no_scratch_space(tmp_pat
             cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
             text=True, start_new_session=True,
         )  # fmt: skip
-        try:
-            deadline = time.monotonic() + 120
-            while proc.poll() is None and time.monotonic() < deadline:
-                if any(temporary.glob("impact-dask-*/dask-scratch-space")):
-                    break
-                time.sleep(0.01)
-            assert proc.poll() is None, proc.stderr.read()
-            proc.send_signal(signal.SIGTERM)
-            status = proc.wait(timeout=60)
-        finally:
-            _end(proc)
-        assert status == 143
+        ready = lambda t=temporary: any(t.glob("impact-dask-*/dask-scratch-space"))  # noqa: E731
+        assert _terminated_when(proc, ready, 0.01) == 143
         assert _scratch(temporary) == [], attempt
         assert _stages(tmp_path) == []
         assert not (tmp_path / "o.csv").exists()
