@@ -65,10 +65,6 @@ class Method(enum.StrEnum):
     ode = "ode"
 
 
-def _opt(help_text: str, *names: str, **kw: Any):
-    return typer.Option(*names, help=help_text, **kw)
-
-
 #: --n of the commands that take --damping: its default depends on it.
 N_DAMPED = Annotated[Optional[int], segments_option(damped_segments_help("with --damping"))]
 #: --n of a command that runs any law: its default is the law's.
