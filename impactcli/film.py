@@ -367,20 +367,31 @@ def solve_stages(
     tuple of :class:`FilmStage`, in time order (1-D arrays)
     """
     n = check_size("n", n, MAX_SEGMENTS)
-    if any(getattr(stage[0], "stage_nodes", None) is not None for stage in stages):
-        return _chain_stages(stages, mass, n)
-    count = len(stages)
     ends = np.array([stage[1:4] for stage in stages], dtype=float)
+    at_rest = [k for k, stage in enumerate(stages) if stage[4]]
+    return solve_rows([stage[0] for stage in stages], ends, at_rest, float(mass), n)
+
+
+def solve_rows(
+    laws: Sequence[ContactLaw], ends: Array, at_rest: Sequence[int], mass: float, n: int
+) -> tuple[FilmStage, ...]:
+    """:func:`solve_stages` of the stages' ``laws`` and ``ends``, shape (stages, 3): each
+    stage's delta_start [m], delta_end [m] and speed_start [m/s] as a row, ``at_rest`` the
+    indices of the stages that end at rest, n (>= 1) checked already."""
+    if any(getattr(law, "stage_nodes", None) is not None for law in laws):
+        return _chain_rows(laws, ends, at_rest, mass, n)
+    count = len(laws)
     a, b, v_a = ends[:, 0:1], ends[:, 1:2], ends[:, 2:3]
-    m = float(mass)
+    m = mass
     span = b - a
     direction = np.sign(span)
     nodes = a + span * _fractions(n)
     nodes[:, -1] = b[:, 0]
-    laws = [stage[0] for stage in stages]
+    law = laws[0]
     force = work = None
-    if all(law is laws[0] for law in laws):  # one law for every stage: it takes them at once
-        force, work = (np.asarray(x, dtype=float) for x in _force_and_work(laws[0], a, nodes))
+    if all(other is law for other in laws):  # one law for every stage: it takes them at once
+        force, work = _force_and_work(law, a, nodes)
+        force, work = np.asarray(force, dtype=float), np.asarray(work, dtype=float)
     if force is None or force.shape != nodes.shape or work.shape != nodes.shape:
         force = np.empty_like(nodes)
         work = np.empty_like(nodes)
@@ -388,40 +399,45 @@ def solve_stages(
             force[k], work[k] = _force_and_work(law, a[k], nodes[k])
     step = nodes[:, 1:] - nodes[:, :-1]
     # Node velocities from the energy balance (eq. 13e).
-    velocity = direction * np.sqrt(np.maximum(v_a**2 - (2.0 / m) * work, 0.0))
+    speed = np.multiply(2.0 / m, work)
+    np.subtract(v_a**2, speed, out=speed)
+    velocity = np.sqrt(np.maximum(speed, 0.0, out=speed), out=speed)
+    velocity *= direction
 
-    stiffness = (force[:, 1:] - force[:, :-1]) / step
+    stiffness = force[:, 1:] - force[:, :-1]
+    stiffness /= step
     if not (stiffness > 0.0).all():  # a tensile branch, or a law that is not monotone
-        return _chain_stages(stages, mass, n)  # solve_stage's hyperbolic segments or error
+        return _chain_rows(laws, ends, at_rest, mass, n)  # hyperbolic segments or an error
     # the segment constants of eq. 7a,b and of the contact work, one block
     # (:attr:`StageRows.segments`): delta_r, s, omega, x0, y0, the work up to delta_r,
     # K_rs and C_rs; y0 = s F_r / K_rs = s (F_r / K_rs) exactly (s = +-1)
     block = np.empty((8, count, n))
     block[0] = nodes[:, :-1]
     block[1] = direction
-    omega = np.sqrt(stiffness / m, out=block[2])
+    omega = np.sqrt(np.divide(stiffness, m, out=block[2]), out=block[2])
     block[6] = stiffness
-    ratio = force[:, :-1] / stiffness
-    y0 = np.multiply(direction, ratio, out=block[4])
-    x0 = np.divide(np.abs(velocity[:, :-1]), omega, out=block[3])
+    ratio = np.divide(force[:, :-1], stiffness, out=block[4])
     offset = np.subtract(nodes[:, :-1], ratio, out=block[7])
+    y0 = np.multiply(ratio, direction, out=block[4])
+    x0 = np.divide(np.abs(velocity[:, :-1]), omega, out=block[3])
 
-    at_rest = [k for k, stage in enumerate(stages) if stage[4]]
-    velocity[at_rest, -1] = 0.0
-    swept, turning = _swept_rows(x0, y0, np.abs(step), at_rest)
+    for k in at_rest:
+        velocity[k, -1] = 0.0
+    swept, turning = _swept_turning(x0, y0, np.abs(step), at_rest)
 
     time = np.empty_like(nodes)
     time[:, 0] = 0.0
-    np.cumsum(swept / omega, axis=-1, out=time[:, 1:])
+    np.divide(swept, omega, out=swept)
+    np.cumsum(swept, axis=-1, out=time[:, 1:])
     base = 0.0  # the exact work up to each stage's start (:func:`impactcli.energy.film_work_table`)
     for k in range(count):
         if k:  # each stage starts when the previous one ends
-            time[k] += time[k - 1, -1:]
-        block[5, k] = base + work[k, :-1]
+            time[k] += time[k - 1, -1]
+        np.add(work[k, :-1], base, out=block[5, k])
         base = float(base + work[k, -1])
     rows = _made(FilmStage, nodes, velocity, time, direction, stiffness, offset, omega, x0, y0,
                  turning)  # fmt: skip
-    found = (rows, work, block, base)
+    found = StageRows(rows, work, block, base)
     solved = []
     for k in range(count):
         stage = _made(
@@ -488,53 +504,47 @@ def stage_rows(stages: Sequence[FilmStage]) -> StageRows | None:
         mine = stage.__dict__.get("_rows")
         if mine is None or mine[0] is not rows or mine[1] != k:
             return None
-    return StageRows(*rows)
+    return rows
 
 
-def _chain_stages(
-    stages: Sequence[tuple[ContactLaw, float, float, float, bool]], mass: float, n: int
+def _chain_rows(
+    laws: Sequence[ContactLaw], ends: Array, at_rest: Sequence[int], mass: float, n: int
 ) -> tuple[FilmStage, ...]:
-    """:func:`solve_stages` one stage at a time (:func:`solve_stage`), chained in time."""
+    """:func:`solve_rows` one stage at a time (:func:`solve_stage`), chained in time."""
     solved: list[FilmStage] = []
     t_start = 0.0
-    for law, delta_start, delta_end, speed_start, end_at_rest in stages:
+    for k, law in enumerate(laws):
+        delta_start, delta_end, speed_start = (float(x) for x in ends[k])
         film = solve_stage(
-            law, delta_start, delta_end, speed_start, mass, n, t_start, end_at_rest=end_at_rest
+            law, delta_start, delta_end, speed_start, mass, n, t_start, end_at_rest=k in at_rest
         )
         solved.append(film)
         t_start = film.end_time
     return tuple(solved)
 
 
-def _swept_rows(
-    x0: Array, y0: Array, h: Array, at_rest: list[int]
-) -> tuple[Array, NDArray[np.bool_]]:
-    """:func:`swept_angles` of the rows of arrays of one shape, the rows ``at_rest``
-    ending at their turning point."""
-    return _swept_turning(x0, y0, h, (at_rest, -1))
-
-
 def _swept_turning(
-    x0: Array, y0: Array, h: Array, ends: tuple | None
+    x0: Array, y0: Array, h: Array, at_rest: Sequence[int] | bool | None
 ) -> tuple[Array, NDArray[np.bool_]]:
-    """The angles of :func:`swept_angles` (x0, y0, h of one shape), the segments at the
-    index ``ends`` (or none) ending at their turning point."""
+    """The angles of :func:`swept_angles` (x0, y0, h of one shape), the last segment of the
+    rows ``at_rest`` (indices of 2-d arrays; True: every row) ending at its turning
+    point."""
     # Mirrored end state at the next node, from the oscillator's own energy.
     width = 2.0 * y0 + h
     x_end_sq = x0**2 - h * width
     turning = x_end_sq <= 0.0
-    if ends is not None:
-        turning[ends] = True
+    if at_rest is True:
+        turning[..., -1] = True
+    elif at_rest:
+        for k in at_rest:
+            turning[k, -1] = True
     x_end = np.sqrt(np.maximum(x_end_sq, 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         cross_node = h * (x0 + y0 * width / (x0 + x_end))
     dot_node = x0 * x_end + y0 * (y0 + h)
     swept = np.arctan2(cross_node, dot_node)
-    # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0) (taken
-    # where the segments turn alone: few of them, often the last one only).
-    at = np.nonzero(turning)
-    if at[0].size:
-        swept[at] = np.arctan2(x0[at], y0[at])
+    # At a turning point the end vector is (0, R): the swept angle is atan2(x0, y0).
+    np.arctan2(x0, y0, out=swept, where=turning)
     return swept, turning
 
 
@@ -560,7 +570,7 @@ def swept_angles(
     (swept, turning), broadcast from the inputs.
     """
     x0, y0, h = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x0, y0, h)))
-    return _swept_turning(x0, y0, h, (Ellipsis, -1) if end_at_rest else None)
+    return _swept_turning(x0, y0, h, end_at_rest)
 
 
 def swept_rapidities(
@@ -682,11 +692,11 @@ class FilmSolution:
         found = stage_rows(stages)
         table = None
         if found is not None:  # the stages' arrays are rows of one block: taken at once
-            rows = found.stages
-            starts, ends = rows.time[:, :-1].reshape(-1), rows.time[:, 1:].reshape(-1)
+            time = found.stages.time
+            starts, ends = time[:, :-1].reshape(-1), time[:, 1:].reshape(-1)
             table = found.segments.reshape(8, -1)
             segments = table[:5]
-            hyper = np.zeros(starts.size, dtype=bool)  # one pass: rising stages alone
+            hyper = None  # one pass: rising stages alone
         else:
             starts, ends = cat([s.time[:-1] for s in stages]), cat([s.time[1:] for s in stages])
             # the segment constants of eq. 7a,b, one row each: taken at once by evaluate()
@@ -705,9 +715,9 @@ class FilmSolution:
         self.__dict__.update(
             _start=starts, _end=ends, _segments=segments, _delta=segments[0],
             _direction=segments[1], _omega=segments[2], _x=segments[3], _y=segments[4],
-            _hyper=hyper, _any_hyper=bool(hyper.any()), _t0=float(first.time[0]),
-            _t1=float(last.time[-1]), _final=(last.delta[-1], last.velocity[-1]),
-            _table=table,
+            _hyper=hyper, _any_hyper=hyper is not None and bool(hyper.any()),
+            _t0=float(first.time[0]), _t1=float(last.time[-1]),
+            _final=(last.delta[-1], last.velocity[-1]), _table=table,
         )  # fmt: skip
 
     @property
@@ -776,8 +786,11 @@ class FilmSolution:
         # the gathered segment data: no longer held (peak memory)
         del args, tau, seg, delta_r, direction, omega, x, y
         final_delta, final_velocity = self._final  # type: ignore[attr-defined]
-        delta = np.where(end, final_delta, delta)
-        return delta, np.where(end, final_velocity, delta_dot), found
+        if type(delta) is np.ndarray and type(delta_dot) is np.ndarray:  # np.where's, in place
+            np.copyto(delta, final_delta, where=end)
+            np.copyto(delta_dot, final_velocity, where=end)
+            return delta, delta_dot, found
+        return np.where(end, final_delta, delta), np.where(end, final_velocity, delta_dot), found
 
 
 _EPS = float(np.finfo(float).eps)

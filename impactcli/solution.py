@@ -23,13 +23,13 @@ Everything is SI and for one impact.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from impactcli.film import FilmSolution, FilmStage, FilmSummary, solve_stage, solve_stages
+from impactcli.film import FilmSolution, FilmStage, FilmSummary, solve_rows, solve_stage
 from impactcli.limits import MAX_SEGMENTS, check_size
 
 if TYPE_CHECKING:
@@ -565,9 +565,17 @@ def history_times(solution: ContactSolution, points: int) -> Array:
     time (the stages' end to rounding, where the state is that of separation), so that a
     history ends at the summary's time of separation."""
     history = history_solution(solution)
-    t = np.linspace(0.0, float(history.end_time), points)
+    t = _steps(points) * (float(history.end_time) / (points - 1))  # np.linspace's numbers
     t[-1] = float(solution.end_time)
     return t
+
+
+@lru_cache(maxsize=8)
+def _steps(points: int) -> Array:
+    """0, 1, ..., points - 1 as floats, read-only (:func:`history_times`)."""
+    steps = np.arange(points, dtype=float)
+    steps.flags.writeable = False
+    return steps
 
 
 def _scalar(value: ArrayLike) -> bool:
@@ -586,14 +594,22 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     -------
     tuple of :class:`~impactcli.film.FilmStage`
     """
-    values = [(s.delta_start, s.delta_end, s.speed_start) for s in plan.stages]
-    if _scalar(mass) and all(_scalar(x) for row in values for x in row):
-        return solve_stages(  # one impact: its stages in one pass
-            [(s.law, float(a), float(b), float(v), s.end_at_rest)
-             for s, (a, b, v) in zip(plan.stages, values)],
-            float(mass),
-            n,
-        )  # fmt: skip
+    plan_stages = plan.stages
+    if type(mass) is float or _scalar(mass):
+        try:  # one impact: its stages in one pass, when every end is one number
+            ends = np.array(
+                [(s.delta_start, s.delta_end, s.speed_start) for s in plan_stages], dtype=float
+            )
+        except ValueError:  # ends of different shapes
+            ends = None
+        if ends is not None and ends.ndim == 2:
+            return solve_rows(
+                [s.law for s in plan_stages],
+                ends,
+                [k for k, s in enumerate(plan_stages) if s.end_at_rest],
+                float(mass),
+                check_size("n", n, MAX_SEGMENTS),
+            )
     stages: list[FilmStage] = []
     t_start: ArrayLike = np.zeros_like(np.asarray(plan.delta_max, dtype=float))
     for stage in plan.stages:
