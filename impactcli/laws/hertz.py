@@ -154,7 +154,7 @@ def hertz_maximum_indentation(
     mass: ArrayLike, velocity: ArrayLike, stiffness: ArrayLike
 ) -> NDArray:
     """delta_m = (5 m V0^2 / (4 K_h))^(2/5), [m] (docs/method.md §3)."""
-    m, v, k = (np.asarray(x, dtype=float) for x in (mass, velocity, stiffness))
+    m, v, k = np.asarray(mass, float), np.asarray(velocity, float), np.asarray(stiffness, float)
     return (5.0 * m * v**2 / (4.0 * k)) ** 0.4
 
 
@@ -467,7 +467,7 @@ class HertzContact(NoYieldPoint):
         v0 = np.asarray(impact_velocity, dtype=float)
         delta_m = hertz_maximum_indentation(mass, v0, self.stiffness)
         law = Hertz(col(self.stiffness))
-        zero = np.zeros_like(delta_m)
+        zero = np.zeros(np.shape(delta_m))
         return ImpactPlan(
             stages=(
                 StagePlan("loading", law, zero, delta_m, v0, end_at_rest=True),
@@ -476,7 +476,7 @@ class HertzContact(NoYieldPoint):
             delta_max=delta_m,
             force_max=np.asarray(self.stiffness) * delta_m**1.5,
             delta_res=zero,
-            restitution=np.ones_like(delta_m),
+            restitution=np.ones(np.shape(delta_m)),
         )
 
     def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:
