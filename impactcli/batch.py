@@ -875,7 +875,20 @@ def batch_damped_impacts(
             f"batch_damped_impacts takes at most {len(COLUMNS)} columns in order "
             f"({', '.join(COLUMNS)}), got {len(columns)}; give the other options by name"
         )
+    unknown = [name for name in options if name not in _batch_options()]
+    if unknown:  # as Python words it, naming this function rather than batch_impacts
+        raise TypeError(
+            f"batch_damped_impacts() got an unexpected keyword argument {unknown[0]!r}"
+        )
     return batch_impacts(*columns, n=n, damping=damping, **options)
+
+
+@lru_cache(maxsize=1)
+def _batch_options() -> frozenset[str]:
+    """The names :func:`batch_impacts` takes."""
+    import inspect
+
+    return frozenset(inspect.signature(batch_impacts).parameters)
 
 
 @without_float_warnings

@@ -550,3 +550,17 @@ def test_rows_just_above_the_yield_velocity(margin):
             assert out["error"][i] == ""
             assert_row_matches({k: out[k][i] for k in BATCH_KEYS}, reference(row))
     assert _kernel([edge])["restitution"][0] == pytest.approx(1.0, abs=1e-6)
+
+
+def test_an_unknown_option_of_batch_damped_impacts_is_named_with_that_function():
+    """A misspelt option reaches the caller as one InputError that names the function the
+    caller called (not the batch_impacts it hands the rows to) and the option."""
+    from impactcli.batch import batch_damped_impacts
+    from impactcli.errors import InputError
+
+    args = (0.02, 0.04, 0.25, 0.75, 210e9, 0.3, 210e9, 0.3, 7800.0, 7800.0)
+    with pytest.raises(InputError, match=r"^batch_damped_impacts\(\) got an unexpected keyword "
+                       r"argument 'alfa'$"):
+        batch_damped_impacts(*args, damping="tsuji", alfa=0.3)
+    out = batch_damped_impacts(*args, damping="tsuji", alpha=0.3, split="compliance")
+    assert out["error"][0] == "" and 0.0 < out["restitution"][0] < 1.0
