@@ -420,6 +420,12 @@ class ImpactResult:
             Tables A1/A2 with the same n, scaled to this impact: elastic only; equal to
             ``film`` to rounding) or ``ode`` (SciPy integration, :attr:`ode`); default the
             method the result was computed with
+
+        Returns
+        -------
+        dict
+            Each column an array of the shape of ``t``; for one time (a number) each a
+            number (``numpy.float64``).
         """
         method = self.method if method is None else method
         if method not in self.contact.methods:
@@ -441,7 +447,10 @@ class ImpactResult:
         else:
             delta, delta_dot = source.evaluate(t)
         force = source.force(t, delta, delta_dot)
-        return self._columns(t, delta, delta_dot, force, source, own, segments)
+        columns = self._columns(t, delta, delta_dot, force, source, own, segments)
+        if np.ndim(t) == 0:  # one time: every column a number (NumPy's scalar), as NumPy gives
+            return {name: np.float64(value) for name, value in columns.items()}
+        return columns
 
     def energy(
         self, t: ArrayLike | None = None, points: int = 201, method: Method | None = None

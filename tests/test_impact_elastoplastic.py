@@ -431,3 +431,23 @@ def test_restitution_sweep_through_the_yield_velocity_equals_single_impacts():
         assert data["contact_time"][i] == pytest.approx(summary["contact_time"], rel=1e-12)
         assert data["delta_res"][i] == pytest.approx(summary["delta_res"], rel=1e-9, abs=1e-20)
     assert set(SWEEP_COLUMNS) <= set(data)
+
+
+@pytest.mark.parametrize("method", ["film", "ode"])
+@pytest.mark.parametrize("law", ["hertz", "du-wang", "tsuji"])
+def test_a_history_at_one_time_gives_numbers_equal_to_the_history_at_that_time(law, method):
+    """history(t) at one time gives every column as a number (numpy.float64, as NumPy gives
+    for a scalar), each equal to that column of the history at [t]."""
+    from impactcli import Sphere, damped_impact, law_impact
+
+    s1, s2 = Sphere.from_material(0.02, "steel"), Sphere.from_material(0.04, "steel")
+    if law == "tsuji":
+        result = damped_impact(s1, s2, 0.25, 0.75, "tsuji", alpha=0.3)
+    else:
+        result = law_impact(s1, s2, 0.25, 0.75, law)
+    t = 0.37 * result.summary["contact_time"]
+    one, many = result.history(t, method=method), result.history([t], method=method)
+    assert set(one) == set(many)
+    for name, value in one.items():
+        assert type(value) is np.float64, name
+        assert value == many[name][0], name
