@@ -308,12 +308,19 @@ def strain_and_dissipated(
     (strain_energy, dissipated), [J]
     """
     t = np.asarray(t, dtype=float)
-    w = np.asarray(contact_work, dtype=float)
     during = np.asarray(loading, dtype=float) - np.asarray(recoverable, dtype=float)
     dissipated = np.where(t <= t_max, during, loading_max - recoverable_max)
-    # rounding of loading - recoverable (an elastic law) is not dissipation
+    return _beyond_rounding(contact_work, dissipated, loading_max)
+
+
+def _beyond_rounding(
+    contact_work: ArrayLike, dissipated: NDArray, loading_max: float
+) -> tuple[NDArray, NDArray]:
+    """(strain, dissipated) of :func:`strain_and_dissipated` from the dissipated energy
+    before its threshold, [J]: rounding of loading - recoverable (an elastic law) is not
+    dissipation."""
     dissipated = np.where(dissipated > 1e-12 * abs(loading_max), dissipated, 0.0)
-    return w - dissipated, dissipated
+    return np.asarray(contact_work, dtype=float) - dissipated, dissipated
 
 
 def plan_energy(
@@ -338,21 +345,35 @@ def plan_energy(
     contact_work : W(t) along the solution (FILM's or an integration's), [J]
     t_max, delta_max : the solution's turning point, [s], [m]
     constants : :func:`plan_energy_constants` of the impact, if the caller has them
-    work_at : the loading and the recoverable work at ``delta`` [J], if the caller has them
-        (:func:`plan_energy_constants` with ``delta``)
+    work_at : the loading and the recoverable work at the indentations of the loading
+        times, ``delta[t <= t_max]`` [J], if the caller has them
+        (:func:`plan_energy_constants` with those)
+
+    Notes
+    -----
+    After the turning point the dissipated energy is the one at delta_max: the loading and
+    the recoverable work are worked out at the loading times alone (the same numbers at
+    those times: elementwise).
     """
-    if constants is None:
+    t = np.asarray(t, dtype=float)
+    delta = np.asarray(delta, dtype=float)
+    if t.shape != delta.shape:
+        t, delta = np.broadcast_arrays(t, delta)
+    loading = t <= t_max
+    if constants is None and delta.ndim and work_at is None:  # with delta_max appended
+        constants, work_at = plan_energy_constants(plan, contact, delta_max, delta[loading])
+    elif constants is None:
         constants = plan_energy_constants(plan, contact, delta_max)
     laws, bounds, recoverable_max, loading_max = constants
-    delta = np.asarray(delta, dtype=float)
-    if work_at is None:
+    if work_at is None:  # a 0-d delta as it is: the law's operations on one number
+        at = delta[loading] if delta.ndim else delta
         work_at = (
-            loading_work(laws, bounds, delta),
-            np.reshape(contact.recoverable_work(delta), np.shape(delta)),
+            loading_work(laws, bounds, at),
+            np.reshape(contact.recoverable_work(at), at.shape) if at.size else at,
         )
-    return strain_and_dissipated(
-        t, contact_work, t_max, work_at[0], work_at[1], recoverable_max, loading_max
-    )
+    dissipated = np.full(t.shape, loading_max - recoverable_max)
+    dissipated[loading] = work_at[0] - work_at[1]
+    return _beyond_rounding(contact_work, dissipated, loading_max)
 
 
 @overload

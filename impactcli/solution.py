@@ -309,18 +309,16 @@ class StagedSolution(FilmSolution):
         if not getattr(self.contact, "dissipates", True):  # all of W(t) stored, as the
             return work, np.zeros_like(work)  # threshold of strain_and_dissipated makes it
         constants = self.__dict__.get("_energy_constants")
-        if constants is None and np.ndim(delta) == 1:  # with the history's: delta_m appended
-            constants, work_at = plan_energy_constants(
-                self.plan, self.contact, self.delta_max, delta
-            )
+        work_at = None
+        if constants is None and np.ndim(delta) == 1 and np.shape(t) == np.shape(delta):
+            # with the history's loading times: delta_m appended to theirs
+            at = np.asarray(delta, dtype=float)[np.asarray(t, dtype=float) <= self.t_max]
+            constants, work_at = plan_energy_constants(self.plan, self.contact, self.delta_max, at)
             self.__dict__["_energy_constants"] = constants
-            return plan_energy(
-                self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
-                constants=constants, work_at=work_at,
-            )  # fmt: skip
         return plan_energy(
             self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
-            constants=self._energy_constants,
+            constants=self._energy_constants if constants is None else constants,
+            work_at=work_at,
         )  # fmt: skip
 
     def dissipated_at(self, t: ArrayLike) -> Array:
