@@ -265,15 +265,36 @@ def loading_work(laws, bounds, delta: ArrayLike) -> NDArray:
     delta : indentation, [m]; beyond the last stage the last law is extended
     """
     delta = np.asarray(delta, dtype=float)
-    work = np.zeros_like(delta)
+    work = np.zeros(delta.shape)
     done = 0.0
+    last = len(laws) - 1
     for k, (law, (a, b)) in enumerate(zip(laws, bounds)):
-        last = k == len(laws) - 1
-        inside = delta > a if last else (delta > a) & (delta <= b)
-        if inside.any():
-            work[inside] = done + np.asarray(law.work(a, delta[inside])).reshape(-1)
-        if not last:
-            done += float(np.asarray(law.work(a, b)).reshape(-1)[0])
+        inside = delta > a if k == last else (delta > a) & (delta <= b)
+        at = delta[inside]
+        if at.size:
+            work[inside] = done + np.asarray(law.work(a, at)).reshape(-1)
+        if k != last:
+            done += _stage_work(law, a, b)
+    return work
+
+
+#: :func:`_stage_work` by (id of the law, start, end): (the law, its work).
+_STAGE_WORK: dict[tuple[int, float, float], tuple[Any, float]] = {}
+
+
+def _stage_work(law: Any, start: float, end: float) -> float:
+    """The work of ``law`` from ``start`` to ``end`` [m], [J]: kept for the next impact
+    whose loading stage has the same law object and ends (a contact's plan of one impact
+    keeps the laws of its loading, so that of a velocity sweep is worked out once; the law
+    is held with it, so that its id is not another's; at most a few hundred)."""
+    key = (id(law), start, end)
+    found = _STAGE_WORK.get(key)
+    if found is not None and found[0] is law:
+        return found[1]
+    work = float(np.asarray(law.work(start, end)).reshape(-1)[0])
+    if len(_STAGE_WORK) >= 256:
+        _STAGE_WORK.clear()
+    _STAGE_WORK[key] = (law, work)
     return work
 
 
@@ -400,7 +421,7 @@ def plan_energy_constants(plan, contact, delta_max, delta=None):
     stages = plan.stages[: turning + 1]  # the loading stages; the rest unload
     laws = [stage.law for stage in stages]
     bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
-    at = np.array([delta_max]) if delta is None else np.append(delta, delta_max)
+    at = np.array([delta_max]) if delta is None else np.concatenate((np.ravel(delta), [delta_max]))
     recoverable = np.reshape(contact.recoverable_work(at), at.shape)
     loading = loading_work(laws, bounds, at)
     constants = (laws, bounds, float(recoverable[-1]), float(loading[-1]))
@@ -411,6 +432,8 @@ def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
     if type(value) is np.ndarray and value.dtype == np.float64 and value.size == 1:
         return value.item()  # as below, read directly
+    if isinstance(value, float):  # a float or a NumPy float64
+        return float(value)
     return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 

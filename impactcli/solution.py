@@ -237,32 +237,31 @@ class StagedSolution(FilmSolution):
     ) -> Array:
         """Contact force F(delta) of the FILM stage each time [s] falls in, [N]."""
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
-        law = self._one_law
-        if law is not None:  # every stage's law: F(delta) of it, whatever the stage
-            return np.asarray(law.force(delta), dtype=float).reshape(delta.shape)
-        ends = self._stage_ends
+        laws, ends = self._stage_laws
+        if ends is None:  # every stage's law: F(delta) of it, whatever the stage
+            return np.asarray(laws[0].force(delta), dtype=float).reshape(delta.shape)
         if t.ndim == 1 and t.shape == delta.shape and bool((t[1:] >= t[:-1]).all()):
             # times in order (a history's): each stage's a slice, as plan.force's masks
             cuts = [0, *np.searchsorted(t, ends[:-1], side="right").tolist(), t.size]
             force = np.empty_like(delta)
-            for k, stage in enumerate(self.plan.stages):
-                if cuts[k + 1] > cuts[k]:
-                    part = delta[cuts[k] : cuts[k + 1]]
-                    force[cuts[k] : cuts[k + 1]] = np.asarray(stage.law.force(part)).reshape(-1)
+            for law, a, b in zip(laws, cuts, cuts[1:]):
+                if b > a:
+                    force[a:b] = np.asarray(law.force(delta[a:b])).reshape(-1)
             return force
         stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
         return self.plan.force(stage, delta)
 
-    @cached_property
-    def _one_law(self) -> Any:
-        """The force law of every stage when they share one (an elastic impact), else None."""
-        laws = [stage.law for stage in self.plan.stages]
-        return laws[0] if all(law is laws[0] for law in laws) else None
-
-    @cached_property
-    def _stage_ends(self) -> Array:
-        """The time each stage ends, [s]."""
-        return np.array([float(stage.end_time) for stage in self.stages])
+    @property
+    def _stage_laws(self) -> tuple[list, Array | None]:
+        """The force law of each stage, and the time each stage ends [s] (None when every
+        stage has one law: an elastic impact); worked out on first use."""
+        found = self.__dict__.get("_laws_and_ends")
+        if found is None:
+            laws = [stage.law for stage in self.plan.stages]
+            one = all(law is laws[0] for law in laws)
+            ends = None if one else np.array([stage.time[-1] for stage in self.stages])
+            found = self.__dict__["_laws_and_ends"] = (laws, ends)
+        return found
 
     @cached_property
     def _work_table(self) -> tuple:

@@ -298,3 +298,21 @@ def test_batch_yield_split_equals_the_single_impact(law, sy1, sy2):
     assert rows["error"][0] == ""
     for key in ("delta1_max", "delta2_max", "delta1_res", "delta2_res"):
         assert float(rows[key][0]) == pytest.approx(single[key], rel=1e-12, abs=1e-18), key
+
+
+def test_the_loading_work_of_each_law_is_its_own_whatever_was_worked_out_before():
+    """loading_work keeps the work of a loading stage for the next impact of the same law
+    object and ends: a law made afresh with other parameters (the same ends) has its own,
+    (2/5) K delta_y^2.5 up to delta_y, then the line's integral."""
+    from impactcli.laws.du_wang import DuWangPlastic
+    from impactcli.laws.hertz import Hertz
+
+    dy, line = 2.0, DuWangPlastic(1.0, 1.0, 1.0)
+    delta = np.array([1.0, 3.0])
+    for k in (1.0, 3.0, 1.0, 7.0):
+        hertz = Hertz(k)
+        work = loading_work([hertz, line], [(0.0, dy), (dy, 5.0)], delta)
+        below = 0.4 * k * 1.0**2.5
+        line_work = 0.5 * np.pi * (3.0**2 - dy**2) - np.pi**3 / 12 * (3.0 - dy)
+        assert work == pytest.approx([below, 0.4 * k * dy**2.5 + line_work], rel=1e-14)
+        del hertz

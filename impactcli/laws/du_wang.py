@@ -187,10 +187,15 @@ class DuWangContact:
         (eq. 16c; force continuous at delta_m). Zero for delta_m <= delta_y.
         """
         dm = np.asarray(delta_max, dtype=float)
-        r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
         dy = self.yield_indentation
-        term = np.pi * np.sqrt(r) * self.mean_pressure / e * (0.75 * dm - 0.25 * dy)
+        term = self._residual_factor * (0.75 * dm - 0.25 * dy)
         return np.where(dm > dy, dm - np.cbrt(term) ** 2, 0.0)
+
+    @cached_property
+    def _residual_factor(self) -> NDArray:
+        """pi sqrt(R) p0 / E* of :meth:`residual_indentation`, [m^-1/2] (worked out once)."""
+        r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
+        return np.pi * np.sqrt(r) * self.mean_pressure / e
 
     def recoverable_work(self, delta: ArrayLike) -> NDArray:
         """Work that unloading from ``delta`` (taken as the maximum) gives back, [J]:
@@ -302,9 +307,10 @@ class DuWangContact:
         loading laws (Hertz, the plastic line) with K_h as a column."""
         k, dy = self.stiffness, self.yield_indentation
         a, c = self._plastic.slope, self._plastic.intercept
-        r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
-        factor = np.pi * np.sqrt(r) * self.mean_pressure / e
-        numbers = (k, dy, a, c, 0.4 * k * dy**2.5, 0.5 * a * dy**2, c * dy, c**2, 2.0 * a, factor)
+        numbers = (
+            k, dy, a, c, 0.4 * k * dy**2.5, 0.5 * a * dy**2, c * dy, c**2, 2.0 * a,
+            self._residual_factor,
+        )  # fmt: skip
         return (*(float(x) for x in numbers), Hertz(col(k)), self.plastic_law(), col(k))
 
     def _plan_point(self, mass: float) -> tuple[float, float, float, float]:
