@@ -392,7 +392,8 @@ def plan_energy(
             loading_work(laws, bounds, at),
             np.reshape(contact.recoverable_work(at), at.shape) if at.size else at,
         )
-    dissipated = np.full(t.shape, loading_max - recoverable_max)
+    dissipated = np.empty(t.shape)
+    dissipated.fill(loading_max - recoverable_max)
     dissipated[loading] = work_at[0] - work_at[1]
     return _beyond_rounding(contact_work, dissipated, loading_max)
 
@@ -463,24 +464,21 @@ def energy_columns(
     """
     (e1, e2), (p1, p2) = shares
     m1, m2 = masses
-    column = (2,) + (1,) * np.ndim(strain)  # a row per sphere: both at once
-    strain1, strain2 = np.array((e1, e2), dtype=float).reshape(column) * strain
-    dissipated1, dissipated2 = np.array((p1, p2), dtype=float).reshape(column) * dissipated
     v = np.asarray(velocities, dtype=float)
     finite = type(m1) is float and type(m2) is float and math.isfinite(m1) and math.isfinite(m2)
-    if finite and v.shape == column[:1] + np.shape(strain):  # as kinetic_energy, at once
-        ke1, ke2 = np.array((0.5 * m1, 0.5 * m2)).reshape(column) * v * v
+    if finite and v.shape == (2,) + np.shape(strain):  # as kinetic_energy: the rows of v
+        ke1, ke2 = 0.5 * m1 * v[0] * v[0], 0.5 * m2 * v[1] * v[1]
     else:
         ke1, ke2 = kinetic_energy(m1, velocities[0]), kinetic_energy(m2, velocities[1])
     return {
         "ke1": ke1,
         "ke2": ke2,
         "strain_energy": strain,
-        "strain_energy1": strain1,
-        "strain_energy2": strain2,
+        "strain_energy1": float(e1) * strain,
+        "strain_energy2": float(e2) * strain,
         "dissipated": dissipated,
-        "dissipated1": dissipated1,
-        "dissipated2": dissipated2,
+        "dissipated1": float(p1) * dissipated,
+        "dissipated2": float(p2) * dissipated,
     }
 
 

@@ -286,9 +286,8 @@ class StagedSolution(FilmSolution):
         :meth:`~impactcli.film.FilmSolution.evaluate_segments`, if the caller has them."""
         from impactcli.energy import film_contact_work
 
-        laws = [stage.law for stage in self.plan.stages]
         return film_contact_work(
-            self.stages, laws, t, film=self, delta=delta, table=self._work_table,
+            self.stages, self._stage_laws[0], t, film=self, delta=delta, table=self._work_table,
             segments=segments,
         )  # fmt: skip
 
