@@ -367,27 +367,35 @@ def plan_energy(
     t_max, delta_max : the solution's turning point, [s], [m]
     constants : :func:`plan_energy_constants` of the impact, if the caller has them
     work_at : the loading and the recoverable work at the indentations of the loading
-        times, ``delta[t <= t_max]`` [J], if the caller has them
-        (:func:`plan_energy_constants` with those)
+        times, ``delta[t <= t_max]`` [J] (at ``delta`` where it is one number or not of the
+        shape of ``t``), if the caller has them (:func:`plan_energy_constants` with those)
 
     Notes
     -----
     After the turning point the dissipated energy is the one at delta_max: the loading and
-    the recoverable work are worked out at the loading times alone (the same numbers at
-    those times: elementwise).
+    the recoverable work of a history (``t`` and ``delta`` of one shape) are worked out at
+    its loading times alone (the same numbers at those times: elementwise).
     """
     t = np.asarray(t, dtype=float)
     delta = np.asarray(delta, dtype=float)
-    if t.shape != delta.shape:
-        t, delta = np.broadcast_arrays(t, delta)
+    history = delta.ndim > 0 and t.shape == delta.shape
     loading = t <= t_max
-    if constants is None and delta.ndim and work_at is None:  # with delta_max appended
+    if constants is None and work_at is None and history:  # with delta_max appended
         constants, work_at = plan_energy_constants(plan, contact, delta_max, delta[loading])
     elif constants is None:
         constants = plan_energy_constants(plan, contact, delta_max)
     laws, bounds, recoverable_max, loading_max = constants
-    if work_at is None:  # a 0-d delta as it is: the law's operations on one number
-        at = delta[loading] if delta.ndim else delta
+    if not history:  # every time's, as strain_and_dissipated broadcasts them
+        if work_at is None:
+            work_at = (
+                loading_work(laws, bounds, delta),
+                np.reshape(contact.recoverable_work(delta), np.shape(delta)),
+            )
+        return strain_and_dissipated(
+            t, contact_work, t_max, work_at[0], work_at[1], recoverable_max, loading_max
+        )
+    if work_at is None:
+        at = delta[loading]
         work_at = (
             loading_work(laws, bounds, at),
             np.reshape(contact.recoverable_work(at), at.shape) if at.size else at,
