@@ -265,15 +265,36 @@ def loading_work(laws, bounds, delta: ArrayLike) -> NDArray:
     delta : indentation, [m]; beyond the last stage the last law is extended
     """
     delta = np.asarray(delta, dtype=float)
-    work = np.zeros_like(delta)
+    work = np.zeros(delta.shape)
     done = 0.0
+    last = len(laws) - 1
     for k, (law, (a, b)) in enumerate(zip(laws, bounds)):
-        last = k == len(laws) - 1
-        inside = delta > a if last else (delta > a) & (delta <= b)
-        if inside.any():
-            work[inside] = done + np.asarray(law.work(a, delta[inside])).reshape(-1)
-        if not last:
-            done += float(np.asarray(law.work(a, b)).reshape(-1)[0])
+        inside = delta > a if k == last else (delta > a) & (delta <= b)
+        at = delta[inside]
+        if at.size:
+            work[inside] = done + np.asarray(law.work(a, at)).reshape(-1)
+        if k != last:
+            done += _stage_work(law, a, b)
+    return work
+
+
+#: :func:`_stage_work` by (id of the law, start, end): (the law, its work).
+_STAGE_WORK: dict[tuple[int, float, float], tuple[Any, float]] = {}
+
+
+def _stage_work(law: Any, start: float, end: float) -> float:
+    """The work of ``law`` from ``start`` to ``end`` [m], [J]: kept for the next impact
+    whose loading stage has the same law object and ends (a contact's plan of one impact
+    keeps the laws of its loading, so that of a velocity sweep is worked out once; the law
+    is held with it, so that its id is not another's; at most a few hundred)."""
+    key = (id(law), start, end)
+    found = _STAGE_WORK.get(key)
+    if found is not None and found[0] is law:
+        return found[1]
+    work = float(np.asarray(law.work(start, end)).reshape(-1)[0])
+    if len(_STAGE_WORK) >= 256:
+        _STAGE_WORK.clear()
+    _STAGE_WORK[key] = (law, work)
     return work
 
 
@@ -308,12 +329,19 @@ def strain_and_dissipated(
     (strain_energy, dissipated), [J]
     """
     t = np.asarray(t, dtype=float)
-    w = np.asarray(contact_work, dtype=float)
     during = np.asarray(loading, dtype=float) - np.asarray(recoverable, dtype=float)
     dissipated = np.where(t <= t_max, during, loading_max - recoverable_max)
-    # rounding of loading - recoverable (an elastic law) is not dissipation
+    return _beyond_rounding(contact_work, dissipated, loading_max)
+
+
+def _beyond_rounding(
+    contact_work: ArrayLike, dissipated: NDArray, loading_max: float
+) -> tuple[NDArray, NDArray]:
+    """(strain, dissipated) of :func:`strain_and_dissipated` from the dissipated energy
+    before its threshold, [J]: rounding of loading - recoverable (an elastic law) is not
+    dissipation."""
     dissipated = np.where(dissipated > 1e-12 * abs(loading_max), dissipated, 0.0)
-    return w - dissipated, dissipated
+    return np.asarray(contact_work, dtype=float) - dissipated, dissipated
 
 
 def plan_energy(
@@ -338,21 +366,44 @@ def plan_energy(
     contact_work : W(t) along the solution (FILM's or an integration's), [J]
     t_max, delta_max : the solution's turning point, [s], [m]
     constants : :func:`plan_energy_constants` of the impact, if the caller has them
-    work_at : the loading and the recoverable work at ``delta`` [J], if the caller has them
-        (:func:`plan_energy_constants` with ``delta``)
+    work_at : the loading and the recoverable work at the indentations of the loading
+        times, ``delta[t <= t_max]`` [J] (at ``delta`` where it is one number or not of the
+        shape of ``t``), if the caller has them (:func:`plan_energy_constants` with those)
+
+    Notes
+    -----
+    After the turning point the dissipated energy is the one at delta_max: the loading and
+    the recoverable work of a history (``t`` and ``delta`` of one shape) are worked out at
+    its loading times alone (the same numbers at those times: elementwise).
     """
-    if constants is None:
+    t = np.asarray(t, dtype=float)
+    delta = np.asarray(delta, dtype=float)
+    history = delta.ndim > 0 and t.shape == delta.shape
+    loading = t <= t_max
+    if constants is None and work_at is None and history:  # with delta_max appended
+        constants, work_at = plan_energy_constants(plan, contact, delta_max, delta[loading])
+    elif constants is None:
         constants = plan_energy_constants(plan, contact, delta_max)
     laws, bounds, recoverable_max, loading_max = constants
-    delta = np.asarray(delta, dtype=float)
-    if work_at is None:
-        work_at = (
-            loading_work(laws, bounds, delta),
-            np.reshape(contact.recoverable_work(delta), np.shape(delta)),
+    if not history:  # every time's, as strain_and_dissipated broadcasts them
+        if work_at is None:
+            work_at = (
+                loading_work(laws, bounds, delta),
+                np.reshape(contact.recoverable_work(delta), np.shape(delta)),
+            )
+        return strain_and_dissipated(
+            t, contact_work, t_max, work_at[0], work_at[1], recoverable_max, loading_max
         )
-    return strain_and_dissipated(
-        t, contact_work, t_max, work_at[0], work_at[1], recoverable_max, loading_max
-    )
+    if work_at is None:
+        at = delta[loading]
+        work_at = (
+            loading_work(laws, bounds, at),
+            np.reshape(contact.recoverable_work(at), at.shape) if at.size else at,
+        )
+    dissipated = np.empty(t.shape)
+    dissipated.fill(loading_max - recoverable_max)
+    dissipated[loading] = work_at[0] - work_at[1]
+    return _beyond_rounding(contact_work, dissipated, loading_max)
 
 
 @overload
@@ -379,7 +430,7 @@ def plan_energy_constants(plan, contact, delta_max, delta=None):
     stages = plan.stages[: turning + 1]  # the loading stages; the rest unload
     laws = [stage.law for stage in stages]
     bounds = [(_first(s.delta_start), _first(s.delta_end)) for s in stages]
-    at = np.array([delta_max]) if delta is None else np.append(delta, delta_max)
+    at = np.array([delta_max]) if delta is None else np.concatenate((np.ravel(delta), [delta_max]))
     recoverable = np.reshape(contact.recoverable_work(at), at.shape)
     loading = loading_work(laws, bounds, at)
     constants = (laws, bounds, float(recoverable[-1]), float(loading[-1]))
@@ -390,6 +441,8 @@ def _first(value: ArrayLike) -> float:
     """The one value of a scalar or shape-(1,) array."""
     if type(value) is np.ndarray and value.dtype == np.float64 and value.size == 1:
         return value.item()  # as below, read directly
+    if isinstance(value, float):  # a float or a NumPy float64
+        return float(value)
     return float(np.asarray(value, dtype=float).reshape(-1)[0])
 
 
@@ -419,24 +472,21 @@ def energy_columns(
     """
     (e1, e2), (p1, p2) = shares
     m1, m2 = masses
-    column = (2,) + (1,) * np.ndim(strain)  # a row per sphere: both at once
-    strain1, strain2 = np.array((e1, e2), dtype=float).reshape(column) * strain
-    dissipated1, dissipated2 = np.array((p1, p2), dtype=float).reshape(column) * dissipated
     v = np.asarray(velocities, dtype=float)
     finite = type(m1) is float and type(m2) is float and math.isfinite(m1) and math.isfinite(m2)
-    if finite and v.shape == column[:1] + np.shape(strain):  # as kinetic_energy, at once
-        ke1, ke2 = np.array((0.5 * m1, 0.5 * m2)).reshape(column) * v * v
+    if finite and v.shape == (2,) + np.shape(strain):  # as kinetic_energy: the rows of v
+        ke1, ke2 = 0.5 * m1 * v[0] * v[0], 0.5 * m2 * v[1] * v[1]
     else:
         ke1, ke2 = kinetic_energy(m1, velocities[0]), kinetic_energy(m2, velocities[1])
     return {
         "ke1": ke1,
         "ke2": ke2,
         "strain_energy": strain,
-        "strain_energy1": strain1,
-        "strain_energy2": strain2,
+        "strain_energy1": float(e1) * strain,
+        "strain_energy2": float(e2) * strain,
         "dissipated": dissipated,
-        "dissipated1": dissipated1,
-        "dissipated2": dissipated2,
+        "dissipated1": float(p1) * dissipated,
+        "dissipated2": float(p2) * dissipated,
     }
 
 

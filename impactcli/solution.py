@@ -237,32 +237,31 @@ class StagedSolution(FilmSolution):
     ) -> Array:
         """Contact force F(delta) of the FILM stage each time [s] falls in, [N]."""
         t, delta = np.asarray(t, dtype=float), np.asarray(delta, dtype=float)
-        law = self._one_law
-        if law is not None:  # every stage's law: F(delta) of it, whatever the stage
-            return np.asarray(law.force(delta), dtype=float).reshape(delta.shape)
-        ends = self._stage_ends
+        laws, ends = self._stage_laws
+        if ends is None:  # every stage's law: F(delta) of it, whatever the stage
+            return np.asarray(laws[0].force(delta), dtype=float).reshape(delta.shape)
         if t.ndim == 1 and t.shape == delta.shape and bool((t[1:] >= t[:-1]).all()):
             # times in order (a history's): each stage's a slice, as plan.force's masks
             cuts = [0, *np.searchsorted(t, ends[:-1], side="right").tolist(), t.size]
             force = np.empty_like(delta)
-            for k, stage in enumerate(self.plan.stages):
-                if cuts[k + 1] > cuts[k]:
-                    part = delta[cuts[k] : cuts[k + 1]]
-                    force[cuts[k] : cuts[k + 1]] = np.asarray(stage.law.force(part)).reshape(-1)
+            for law, a, b in zip(laws, cuts, cuts[1:]):
+                if b > a:
+                    force[a:b] = np.asarray(law.force(delta[a:b])).reshape(-1)
             return force
         stage = np.minimum(np.searchsorted(ends, t, side="left"), ends.size - 1)
         return self.plan.force(stage, delta)
 
-    @cached_property
-    def _one_law(self) -> Any:
-        """The force law of every stage when they share one (an elastic impact), else None."""
-        laws = [stage.law for stage in self.plan.stages]
-        return laws[0] if all(law is laws[0] for law in laws) else None
-
-    @cached_property
-    def _stage_ends(self) -> Array:
-        """The time each stage ends, [s]."""
-        return np.array([float(stage.end_time) for stage in self.stages])
+    @property
+    def _stage_laws(self) -> tuple[list, Array | None]:
+        """The force law of each stage, and the time each stage ends [s] (None when every
+        stage has one law: an elastic impact); worked out on first use."""
+        found = self.__dict__.get("_laws_and_ends")
+        if found is None:
+            laws = [stage.law for stage in self.plan.stages]
+            one = all(law is laws[0] for law in laws)
+            ends = None if one else np.array([stage.time[-1] for stage in self.stages])
+            found = self.__dict__["_laws_and_ends"] = (laws, ends)
+        return found
 
     @cached_property
     def _work_table(self) -> tuple:
@@ -287,9 +286,8 @@ class StagedSolution(FilmSolution):
         :meth:`~impactcli.film.FilmSolution.evaluate_segments`, if the caller has them."""
         from impactcli.energy import film_contact_work
 
-        laws = [stage.law for stage in self.plan.stages]
         return film_contact_work(
-            self.stages, laws, t, film=self, delta=delta, table=self._work_table,
+            self.stages, self._stage_laws[0], t, film=self, delta=delta, table=self._work_table,
             segments=segments,
         )  # fmt: skip
 
@@ -309,18 +307,16 @@ class StagedSolution(FilmSolution):
         if not getattr(self.contact, "dissipates", True):  # all of W(t) stored, as the
             return work, np.zeros_like(work)  # threshold of strain_and_dissipated makes it
         constants = self.__dict__.get("_energy_constants")
-        if constants is None and np.ndim(delta) == 1:  # with the history's: delta_m appended
-            constants, work_at = plan_energy_constants(
-                self.plan, self.contact, self.delta_max, delta
-            )
+        work_at = None
+        if constants is None and np.ndim(delta) == 1 and np.shape(t) == np.shape(delta):
+            # with the history's loading times: delta_m appended to theirs
+            at = np.asarray(delta, dtype=float)[np.asarray(t, dtype=float) <= self.t_max]
+            constants, work_at = plan_energy_constants(self.plan, self.contact, self.delta_max, at)
             self.__dict__["_energy_constants"] = constants
-            return plan_energy(
-                self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
-                constants=constants, work_at=work_at,
-            )  # fmt: skip
         return plan_energy(
             self.plan, self.contact, t, delta, work, self.t_max, self.delta_max,
-            constants=self._energy_constants,
+            constants=self._energy_constants if constants is None else constants,
+            work_at=work_at,
         )  # fmt: skip
 
     def dissipated_at(self, t: ArrayLike) -> Array:

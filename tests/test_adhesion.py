@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -323,6 +324,25 @@ def test_thornton_ning_plastic_impact_agrees_with_solve_ivp(rule):
     assert s["contact_time"] == pytest.approx(t_ref, rel=1e-6)
     assert s["delta_separation"] == pytest.approx(d_end, rel=1e-6)
     assert s["pull_off_force"] == pytest.approx(1.5 * math.pi * W * r_p, rel=1e-9)
+
+
+def test_a_thornton_ning_impact_that_parts_in_tension_warns_nothing_and_keeps_its_energy():
+    """A slow Thornton & Ning impact parts in tension (delta < 0 at the end): its history
+    and energy come without a RuntimeWarning (Thornton's recoverable work of a negative
+    overlap is of the branch that W > 0 discards), finite, and with the energy balance
+    ke1 + ke2 + strain + dissipated = KE0 to rounding at every time."""
+    law = {"work_of_adhesion": W, "py": 1e9}
+    result = solve_impact(SILICA, SILICA, 0.3, 0.0, ContactModel("thornton-ning", law), n=8)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        history = result.history(points=201)
+        energy = result.energy(points=101)
+    assert history["delta"].min() < 0.0  # it parts in tension
+    ke0 = 0.5 * (2.0 * M) * 0.3**2  # sphere 1 (mass 2 m) at 0.3 m/s, sphere 2 at rest
+    for columns in (history, energy):
+        total = sum(columns[k] for k in ("ke1", "ke2", "strain_energy", "dissipated"))
+        assert np.all(np.isfinite(total))
+        assert np.allclose(total, ke0, rtol=1e-9, atol=0.0)
 
 
 # -- bad input ---------------------------------------------------------------------------------

@@ -298,3 +298,54 @@ def test_batch_yield_split_equals_the_single_impact(law, sy1, sy2):
     assert rows["error"][0] == ""
     for key in ("delta1_max", "delta2_max", "delta1_res", "delta2_res"):
         assert float(rows[key][0]) == pytest.approx(single[key], rel=1e-12, abs=1e-18), key
+
+
+def test_the_loading_work_of_each_law_is_its_own_whatever_was_worked_out_before():
+    """loading_work keeps the work of a loading stage for the next impact of the same law
+    object and ends: a law made afresh with other parameters (the same ends) has its own,
+    (2/5) K delta_y^2.5 up to delta_y, then the line's integral."""
+    from impactcli.laws.du_wang import DuWangPlastic
+    from impactcli.laws.hertz import Hertz
+
+    dy, line = 2.0, DuWangPlastic(1.0, 1.0, 1.0)
+    delta = np.array([1.0, 3.0])
+    for k in (1.0, 3.0, 1.0, 7.0):
+        hertz = Hertz(k)
+        work = loading_work([hertz, line], [(0.0, dy), (dy, 5.0)], delta)
+        below = 0.4 * k * 1.0**2.5
+        line_work = 0.5 * np.pi * (3.0**2 - dy**2) - np.pi**3 / 12 * (3.0 - dy)
+        assert work == pytest.approx([below, 0.4 * k * dy**2.5 + line_work], rel=1e-14)
+        del hertz
+
+
+@pytest.mark.parametrize(
+    ("law", "params"),
+    [("du-wang", None), ("thornton", None), ("walton-braun", {"k_load": 2e7, "k_unload": 8e7})],
+)
+def test_plan_energy_at_the_loading_times_alone_is_that_of_every_time(law, params):
+    """plan_energy works the loading and the recoverable work out at the loading times
+    alone (t <= t_max): the strain and dissipated energy of strain_and_dissipated with them
+    at every time, bit for bit, for times in order, shuffled, one time, and one indentation
+    at many times."""
+    from impactcli.energy import plan_energy, plan_energy_constants, strain_and_dissipated
+    from impactcli.impact import law_impact
+
+    result = law_impact(Sphere(0.02, **STEEL), Sphere(0.04, **STEEL), 0.5, 1.5, law, params)
+    staged = result.solution.staged
+    plan, contact, t_max, dm = staged.plan, staged.contact, staged.t_max, staged.delta_max
+    laws, bounds, recoverable_max, loading_max = plan_energy_constants(plan, contact, dm)
+    shuffled = np.random.default_rng(1).permutation(np.linspace(0.0, staged.end_time, 201))
+    for t in (np.linspace(0.0, staged.end_time, 201), shuffled, np.array(0.3 * t_max)):
+        delta, _ = staged.evaluate(t)
+        work = staged.contact_work(t)
+        recoverable = np.reshape(contact.recoverable_work(delta), np.shape(delta))
+        want = strain_and_dissipated(t, work, t_max, loading_work(laws, bounds, delta),
+                                     recoverable, recoverable_max, loading_max)  # fmt: skip
+        got = plan_energy(plan, contact, t, delta, work, t_max, dm)
+        assert all(np.array_equal(a, b) and a.shape == b.shape for a, b in zip(got, want))
+        assert np.any(got[1] > 0.0) or t.ndim == 0  # it dissipates
+    one = plan_energy(plan, contact, shuffled, delta, staged.contact_work(shuffled), t_max, dm)
+    want = strain_and_dissipated(shuffled, staged.contact_work(shuffled), t_max,
+                                 loading_work(laws, bounds, delta), recoverable,
+                                 recoverable_max, loading_max)  # fmt: skip
+    assert all(np.array_equal(a, b) for a, b in zip(one, want))

@@ -451,3 +451,39 @@ def test_a_history_at_one_time_gives_numbers_equal_to_the_history_at_that_time(l
     for name, value in one.items():
         assert type(value) is np.float64, name
         assert value == many[name][0], name
+
+
+def _same(a: object, b: object) -> bool:
+    """``a`` and ``b`` the same to the bit and in kind: numbers, arrays, laws and plans."""
+    if isinstance(a, (np.ndarray, np.generic)) or isinstance(b, (np.ndarray, np.generic)):
+        return type(a) is type(b) and np.shape(a) == np.shape(b) and (
+            np.asarray(a).tobytes() == np.asarray(b).tobytes()
+        )
+    if hasattr(a, "__dataclass_fields__"):
+        return type(a) is type(b) and all(
+            _same(getattr(a, name), getattr(b, name)) for name in a.__dataclass_fields__
+        )
+    if isinstance(a, tuple):
+        return type(b) is tuple and len(a) == len(b) and all(map(_same, a, b))
+    return type(a) is type(b) and a == b
+
+
+@pytest.mark.parametrize("pressure_factor", [2.57, 1.6])
+@pytest.mark.parametrize("mass", [0.029, 1e-9, 40.0])
+def test_one_plastic_impact_is_planned_on_floats_as_on_arrays(pressure_factor, mass):
+    """DuWangContact.plan of one impact on floats gives the plan of its arrays to the bit
+    and in kind (0-d arrays, NumPy floats, the laws' columns), from just past V_y (within
+    the 1e-9 margin: Hertz's plan) to 1000 V_y, with the energy balance of eq. 16:
+    (1/2) m (e V0)^2 = (2/5) K_h (delta_m - delta_res)^2.5."""
+    from impactcli.laws.du_wang import DuWangContact
+
+    contact = DuWangContact(6.6667e-3, 115.385e9, 1e9, pressure_factor)
+    v_y = float(contact.yield_velocity(mass))
+    for ratio in (1.0 + 5e-10, 1.0 + 2e-9, *np.geomspace(1.001, 1e3, 30).tolist()):
+        v0 = v_y * ratio
+        fast, arrays = contact.plan(v0, mass), contact._plan_arrays(v0, mass)
+        assert _same(fast, arrays)
+        assert len(fast.stages) == (2 if ratio < 1.0 + 1e-9 else 3)
+        rebound = 0.5 * mass * (float(fast.restitution) * v0) ** 2
+        work = contact.recoverable_work(float(fast.delta_max))
+        assert rebound == pytest.approx(float(work), rel=1e-12)

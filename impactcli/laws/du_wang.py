@@ -187,10 +187,15 @@ class DuWangContact:
         (eq. 16c; force continuous at delta_m). Zero for delta_m <= delta_y.
         """
         dm = np.asarray(delta_max, dtype=float)
-        r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
         dy = self.yield_indentation
-        term = np.pi * np.sqrt(r) * self.mean_pressure / e * (0.75 * dm - 0.25 * dy)
+        term = self._residual_factor * (0.75 * dm - 0.25 * dy)
         return np.where(dm > dy, dm - np.cbrt(term) ** 2, 0.0)
+
+    @cached_property
+    def _residual_factor(self) -> NDArray:
+        """pi sqrt(R) p0 / E* of :meth:`residual_indentation`, [m^-1/2] (worked out once)."""
+        r, e = np.asarray(self.radius, dtype=float), np.asarray(self.modulus, dtype=float)
+        return np.pi * np.sqrt(r) * self.mean_pressure / e
 
     def recoverable_work(self, delta: ArrayLike) -> NDArray:
         """Work that unloading from ``delta`` (taken as the maximum) gives back, [J]:
@@ -203,8 +208,27 @@ class DuWangContact:
         """Hertz 0 -> delta_y, linear delta_y -> delta_m, unloading delta_m -> delta_res.
 
         Up to the yield velocity (every entry, for a batch) it is the elastic Hertz plan.
-        A batch must be all elastic or all plastic: split it with :meth:`yields`.
+        A batch must be all elastic or all plastic: split it with :meth:`yields`. One
+        plastic impact of one contact is planned on floats (:meth:`_one_plan`), the same
+        numbers.
+
+        Examples
+        --------
+        The paper's example of sec. 4.4 (docs/method.md §7: R = 6.6667 mm, E* = 115.38 GPa,
+        sigma_y = 1 GPa, m = 29.042 g, V0 = 1 m/s): delta_m = 25.8208 um, e = 0.85611.
+
+        >>> contact = DuWangContact(0.02 / 3, 210e9 / (2 * (1 - 0.3**2)), 1e9)
+        >>> plan = contact.plan(1.0, 0.029042278753185644)
+        >>> [stage.name for stage in plan.stages]
+        ['elastic loading', 'plastic loading', 'unloading']
+        >>> round(float(plan.delta_max) * 1e6, 4), round(float(plan.restitution), 5)
+        (25.8208, 0.85611)
         """
+        one = self._one_plan(impact_velocity, mass)
+        return self._plan_arrays(impact_velocity, mass) if one is None else one
+
+    def _plan_arrays(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan:
+        """:meth:`plan` on arrays (a batch, or one impact given as 0-d arrays)."""
         v0 = np.asarray(impact_velocity, dtype=float)
         m = np.asarray(mass, dtype=float)
         plastic = self.yields(v0, m)  # elastic within 1e-9 of V_y: see yields()
@@ -231,6 +255,86 @@ class DuWangContact:
             delta_res=dres,
             restitution=restitution,
         )
+
+    def _one_plan(self, impact_velocity: ArrayLike, mass: ArrayLike) -> ImpactPlan | None:
+        """:meth:`_plan_arrays` of one plastic impact of a contact of floats, on floats:
+        each number worked out by the same operations on numbers of the same kind (a
+        NumPy power of a 0-d array is not the C library's power of a float, whose last
+        bit may differ), so the same plan to the bit. None for arrays, below the yield
+        velocity (the Hertz plan) and where a float operation fails (the arrays judge)."""
+        values = floats(impact_velocity, mass)
+        if values is None or self._scalars is None:
+            return None
+        v0, m = values
+        point = self._plan_point(m)
+        if not v0 > point[0]:  # yields(): elastic within 1e-9 of V_y
+            return None
+        q, rate, half_m = point[1:]
+        (k, dy, a, c, x, y, z, c2, a2, t, hertz, plastic, k_col) = self._plan_constants
+        try:
+            rest = half_m * (v0 * v0) - x + y - z  # maximum_indentation()
+            dm = (c + math.sqrt(max(c2 + a2 * rest, 0.0))) / a
+            # residual_indentation(): NumPy's cbrt and power of its float, as the arrays
+            dres = dm - np.cbrt(t * (0.75 * dm - 0.25 * dy)) ** 2 if dm > dy else 0.0
+            speed_y = math.sqrt(max(v0 * v0 - rate, 0.0))
+            restitution = math.sqrt(q * np.asarray(dm - dres) ** 2.5) / v0  # hertz_velocity()
+        except (ArithmeticError, ValueError):
+            return None
+        v0_, dm_, dres_ = np.asarray(impact_velocity, dtype=float), np.array(dm), np.array(dres)
+        zero = np.array(0.0)
+        return ImpactPlan(
+            stages=(
+                StagePlan("elastic loading", hertz, zero, self.yield_indentation, v0_),
+                StagePlan(
+                    "plastic loading", plastic, self.yield_indentation, dm_, np.float64(speed_y),
+                    end_at_rest=True,
+                ),
+                StagePlan("unloading", Hertz(k_col, dres_[..., None]), dm_, dres_, zero),
+            ),
+            delta_max=dm_,
+            force_max=np.float64(a * dm - c),
+            delta_res=dres_,
+            restitution=np.float64(restitution),
+        )
+
+    @cached_property
+    def _plan_constants(self) -> tuple:
+        """The velocity-free numbers of :meth:`_plan_arrays` of one impact, each as it works
+        them out: K_h [N/m^1.5], delta_y [m], the plastic line's slope [N/m] and intercept
+        [N], the terms of maximum_indentation()'s energy balance (2/5) K_h delta_y^2.5,
+        (1/2) slope delta_y^2 and intercept delta_y [J], intercept^2 [N^2] and 2 slope
+        [N/m], the factor pi sqrt(R) p0 / E* [m^-1/2] of residual_indentation(), and the
+        loading laws (Hertz, the plastic line) with K_h as a column."""
+        k, dy = self.stiffness, self.yield_indentation
+        a, c = self._plastic.slope, self._plastic.intercept
+        numbers = (
+            k, dy, a, c, 0.4 * k * dy**2.5, 0.5 * a * dy**2, c * dy, c**2, 2.0 * a,
+            self._residual_factor,
+        )  # fmt: skip
+        return (*(float(x) for x in numbers), Hertz(col(k)), self.plastic_law(), col(k))
+
+    def _plan_point(self, mass: float) -> tuple[float, float, float, float]:
+        """The mass's numbers of :meth:`_plan_arrays` of one impact, each as it works them
+        out: V_y (1 + 1e-9) [m/s] (:meth:`yields`), (2/m)(2/5) K_h [N/(kg m^1.5)], the squared
+        speed the Hertz loading to delta_y takes [m^2/s^2] and m/2 [kg]; kept for the next
+        impact of the same mass (at most a few hundred masses)."""
+        found = self._plan_points.get(mass)
+        if found is None:
+            m, k, dy = np.asarray(mass, dtype=float), self.stiffness, self.yield_indentation
+            q = 2.0 / m * 0.4 * k
+            found = (
+                float(self.yield_velocity(m) * (1.0 + YIELD_MARGIN)), float(q),
+                float(q * dy**2.5), float(0.5 * m),
+            )  # fmt: skip
+            if len(self._plan_points) >= 256:
+                self._plan_points.clear()
+            self._plan_points[mass] = found
+        return found
+
+    @cached_property
+    def _plan_points(self) -> dict[float, tuple[float, float, float, float]]:
+        """:meth:`_plan_point` by mass [kg]."""
+        return {}
 
 
     def film_summary(self, impact_velocity: float, mass: float, n: int) -> FilmSummary | None:

@@ -124,7 +124,7 @@ class ThorntonContact:
         p = np.asarray(self.limit_pressure, dtype=float)
         e = np.asarray(self.modulus, dtype=float)
         fy = self.yield_force
-        fm = fy + self._loading.plastic_law().slope[..., 0] * (dm - self.yield_indentation)
+        fm = fy + self._loading._plastic.slope * (dm - self.yield_indentation)
         am2 = (2.0 * fm + fy) / (2.0 * np.pi * p)
         rp = 4.0 * e * am2 * np.sqrt(am2) / (3.0 * fm)
         return fm, rp, dm - am2 / rp

@@ -716,8 +716,11 @@ class ThorntonNingContact(AdhesiveContact):
             end = np.where(rules == "pull-off", 0.5 ** (1.0 / 3.0), (1.0 / 6.0) ** (1.0 / 3.0))
             unit = out.branch.energy_unit[..., 0]
             given = np.maximum(unit * (_potential(out.s_max) - _potential(end)), 0.0)
+            # Thornton's (2/5) K_h delta^2.5 of a negative overlap (the spheres parting in
+            # tension) is NaN, of the rows W > 0 discards: no warning of it
+            thornton = self._thornton(shape).recoverable_work(d)
         adhesive = np.where(plastic, given, elastic)
-        return np.where(point["sticky"], adhesive, self._thornton(shape).recoverable_work(d))
+        return np.where(point["sticky"], adhesive, thornton)
 
     def sticking_velocity(self, mass: ArrayLike) -> Array:
         """The largest V0 at which the spheres stick, [m/s]: JKR's V_s when it lies below
