@@ -579,7 +579,7 @@ def _scalar(value: ArrayLike) -> bool:
     kind = type(value)
     if kind is np.ndarray:
         return value.ndim == 0  # type: ignore[union-attr]
-    return kind is float or np.ndim(value) == 0
+    return kind is float or isinstance(value, float) or np.ndim(value) == 0
 
 
 def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:

@@ -117,7 +117,10 @@ class Hertz:
 
     def work(self, start: ArrayLike, end: ArrayLike) -> NDArray:
         """Integral of F from ``start`` to ``end``: (2/5) K_h [(end-o)^2.5 - (start-o)^2.5], [J]."""
-        return 0.4 * self.stiffness * (_pow25(end, self.offset) - _pow25(start, self.offset))
+        offset = self.offset
+        if type(start) is float and start == 0.0 and type(offset) is float and offset >= 0.0:
+            return 0.4 * self.stiffness * (_pow25(end, offset) - 0.0)  # (start - o)^2.5 = 0
+        return 0.4 * self.stiffness * (_pow25(end, offset) - _pow25(start, offset))
 
     def force_and_work(self, start: ArrayLike, end: ArrayLike) -> tuple[NDArray, NDArray]:
         """:meth:`force` at ``end`` [N] and :meth:`work` from ``start`` to ``end`` [J], the
