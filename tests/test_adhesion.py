@@ -13,6 +13,8 @@ ends at the rule's point: ``instability`` the fixed-grip point (d delta / d a = 
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 import math
 import warnings
@@ -613,3 +615,25 @@ def test_impact_elastoplastic_thornton_ning_below_and_above_yield(cli, v1):
     assert (min(history["delta"]) < 0.0) == (v1 == "0.2")  # below V_y it parts in tension
     total = sum(np.asarray(history[k]) for k in ("ke1", "ke2", "strain_energy", "dissipated"))
     assert np.allclose(total, 0.5 * M * 2.0 * float(v1) ** 2, rtol=1e-9, atol=0.0)
+
+
+def test_impact_fit_thornton_ning_starts_from_a_valid_contact(cli, tmp_path):
+    """``impact fit --law thornton-ning`` without --start on 20 um steel spheres: its
+    default start of p_y (1.6 sigma_y = 1.6 GPa) lay below JKR's contact pressure at first
+    touch of its start W (a contact that yields as it touches: exit 2); the start now takes
+    p_y at least twice that pressure, and the fit recovers the W and p_y of e(V0) computed
+    with the law."""
+    steel = Sphere.from_material(20e-6, "steel")
+    model = ContactModel("thornton-ning", {"work_of_adhesion": 0.3, "py": 5e9})
+    rows = ["v0,e"]
+    for v0 in np.geomspace(0.04, 2.0, 7):
+        e = solve_impact(steel, steel, float(v0), 0.0, model).summary["restitution"]
+        rows.append(f"{float(v0)!r},{e!r}")
+    data = tmp_path / "e.csv"
+    data.write_text("\n".join(rows) + "\n")
+    pair = ["--d1", "20um", "--d2", "20um", "--material", "steel"]
+    status, out, err = cli("fit", str(data), "--law", "thornton-ning", *pair, "-f", "csv")
+    assert (status, err) == (0, "")
+    fitted = {row["parameter"]: float(row["value"]) for row in csv.DictReader(io.StringIO(out))}
+    assert fitted["work_of_adhesion"] == pytest.approx(0.3, rel=1e-6)
+    assert fitted["py"] == pytest.approx(5e9, rel=1e-6)

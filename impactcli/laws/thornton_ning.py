@@ -512,7 +512,8 @@ class ThorntonNingContact(AdhesiveContact):
                 f"the limiting contact pressure p_y = {py_i:.4g} Pa is below the JKR contact "
                 f"pressure at first touch, 2 E* a_1 / (pi R) = {least_i:.4g} Pa (a_1 the "
                 "snap-in contact radius): the contact would yield as it touches; give p_y "
-                f"above it (option --py) or a smaller W"
+                "above it (option --py; in impact fit --start py=VALUE or --fix py=VALUE) or "
+                "a smaller W"
             )
 
     # -- the elastic part and the yield point -------------------------------------------------
@@ -891,11 +892,17 @@ def _build(radius, modulus, sy, params) -> ThorntonNingContact:
 
 def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
     """W as ``jkr``'s start (V_s = V_ref / 2), p_y = 1.6 sigma_y and sigma_y, each within
-    x/1e3 to x*1e3 (W within x/1e4 to x*1e4, below the largest W of the pair)."""
-    sy = yield_strength
-    py = FIRST_YIELD_PRESSURE_FACTOR * sy
+    x/1e3 to x*1e3 (W within x/1e4 to x*1e4, below the largest W of the pair); p_y and
+    1.6 sigma_y at least twice JKR's contact pressure at first touch of that W (or of the W
+    held fixed), :func:`snap_in_pressure` (which grows as W^(1/3)), so that the start is a
+    valid contact."""
+    starts = jkr_fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed)
+    w = fixed.get("work_of_adhesion", starts["work_of_adhesion"][1])
+    least = 2.0 * float(snap_in_pressure(radius, modulus, w))
+    py = max(FIRST_YIELD_PRESSURE_FACTOR * yield_strength, least)
+    sy = py / FIRST_YIELD_PRESSURE_FACTOR
     return {
-        **jkr_fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed),
+        **starts,
         "py": ("Pa", py, py / 1e3, py * 1e3),
         "sy": ("Pa", sy, sy / 1e3, sy * 1e3),
     }
