@@ -3,13 +3,16 @@
 JKR loading (:mod:`impactcli.laws.jkr`: snap-in at first touch, then the JKR branch of the
 effective radius R) until the Hertzian part of the contact pressure at the centre,
 2 E* a / (pi R), reaches the limiting contact pressure p_y, at a_y = pi R p_y / (2 E*)
-(delta_y, F_y on the JKR branch); then plastic loading along the line
+(delta_y, F_y on the JKR branch); then plastic loading, the Hertzian part of the pressure
+held at p_y (Thornton 1997) and JKR's adhesive part,
 
-    F = F_y + pi p_y R (delta - delta_y),   a^2 = a_y^2 + R (delta - delta_y)
+    F = 4 E* a_y^3 / (3 R) + pi p_y (a^2 - a_y^2) - sqrt(8 pi W E* a^3),
 
-(Thornton's 1997 line, continuous in force at delta_y); unloading from delta_m, F_m, a_m
-along the JKR branch of the enlarged radius R_p of the flattened contact, through the
-turning point:
+taken as its tangent at delta_y, the line F = F_y + k_y (delta - delta_y), k_y the slope of
+JKR's branch there (:func:`plastic_slope`: continuous in force and slope, Thornton's
+pi p_y R at W = 0), with the contact radius a_m at F_m from the force above
+(:func:`plastic_contact_radius`); unloading from delta_m, F_m, a_m along the JKR branch of
+the enlarged radius R_p >= R of the flattened contact, through the turning point:
 
     R_p = 4 E* a_m^3 / (3 (F_m + sqrt(8 pi W E* a_m^3))),
     delta = delta_p + a^2 / R_p - sqrt(2 pi W a / E*),
@@ -19,6 +22,13 @@ neck to the separation point of the rule ``separation`` (as for ``jkr``), or to 
 The pull-off force of the flattened contact is (3/2) pi W R_p, larger than the elastic
 contact's: plastic flattening strengthens the bond. At W = 0 the law is Thornton's (1997),
 whose plan it then is.
+
+Thornton & Ning's line takes Hertz's slope pi p_y R = 2 E* a_y, which is steeper than JKR's
+branch at delta_y where W > 0: the contact would stiffen as it yields, and with the contact
+radius of Hertz's geometry, a^2 = a_y^2 + R (delta - delta_y), R_p < R, a negative delta_p
+and e > 1 just past yield. With the slope and contact radius above, R_p >= R, delta_p >= 0
+and e is at most JKR's (tests/test_adhesion.py: the energy balance by quadrature across
+V_y).
 """
 
 from __future__ import annotations
@@ -76,6 +86,8 @@ __all__ = [
     "PlasticLine",
     "ThorntonNingContact",
     "elastic_loading_time",
+    "plastic_contact_radius",
+    "plastic_slope",
     "snap_in_pressure",
     "thornton_ning_impact",
 ]
@@ -236,6 +248,97 @@ def snap_in_pressure(radius: ArrayLike, modulus: ArrayLike, work_of_adhesion: Ar
     return 2.0 * e * a1 / (np.pi * r)
 
 
+def plastic_slope(s_y: ArrayLike, force_unit: ArrayLike, length_unit: ArrayLike) -> Array:
+    """k_y = dF/d delta of JKR's branch at the yield point s_y = sqrt(a_y / a0), the slope of
+    the plastic line, [N/m]:
+
+        k_y = (F_c R / a0^2) 12 s_y^2 (2 s_y^3 - 1) / (4 s_y^3 - 2/3)
+            = 2 E* a_y (4 a_y / R - 3 h) / (4 a_y / R - h),  h = sqrt(2 pi W / (E* a_y)),
+
+    the slope at a_y of the loading whose Hertzian part is held at p_y past it (module
+    docstring); pi p_y R = 2 E* a_y, Thornton's (1997), as W -> 0, below it for W > 0.
+
+    Parameters
+    ----------
+    s_y : s at the yield point, above s_snap = (2/3)^(1/3), [-]
+    force_unit : F_c = (3/2) pi W R, [N]
+    length_unit : a0^2 / R, [m]
+
+    Examples
+    --------
+    Far above the well (s_y >> 1) it tends to Hertz's 2 E* a_y = 6 (F_c R / a0^2) s_y^2;
+    at the snap-in point a third of it:
+
+    >>> round(float(plastic_slope(100.0, 1.0, 1.0) / (6 * 100.0**2)), 6)
+    1.0
+    >>> s = (2 / 3) ** (1 / 3)
+    >>> round(float(plastic_slope(s, 1.0, 1.0) / (6 * s**2)), 12)
+    0.333333333333
+    """
+    s = np.asarray(s_y, dtype=float)
+    cube = s * s * s
+    stiffness = 12.0 * s * s * (2.0 * cube - 1.0) / (4.0 * cube - 2.0 / 3.0)
+    return np.asarray(force_unit, dtype=float) / np.asarray(length_unit, dtype=float) * stiffness
+
+
+def plastic_contact_radius(
+    force: ArrayLike,
+    a_y: ArrayLike,
+    radius: ArrayLike,
+    modulus: ArrayLike,
+    work_of_adhesion: ArrayLike,
+    limit_pressure: ArrayLike,
+) -> Array:
+    """The contact radius a >= a_y at the force ``force`` >= F_y on the plastic line, [m]:
+    the Hertzian part of the pressure held at p_y past a_y (Thornton 1997) and JKR's
+    adhesive part,
+
+        F = 4 E* a_y^3 / (3 R) + pi p_y (a^2 - a_y^2) - sqrt(8 pi W E* a^3),
+
+    by Newton's method in t = sqrt(a) from below the root (its value at W = 0, or a_y):
+    the right side is convex and increasing in t for a_y above JKR's snap-in radius
+    (:func:`snap_in_pressure`), so that one step goes above the root, the next ones down to
+    it, to rounding.
+
+    Parameters
+    ----------
+    force : F, [N]
+    a_y : the contact radius at yield, pi R p_y / (2 E*), [m]
+    radius : R, [m]
+    modulus : E*, [Pa]
+    work_of_adhesion : W, [J/m^2]
+    limit_pressure : p_y, [Pa]
+
+    Examples
+    --------
+    At W = 0 it is Thornton's a^2 = (2 F + F_y) / (2 pi p_y):
+
+    >>> import math
+    >>> r, e, py = 5e-6, 1e11, 1e9
+    >>> a_y = math.pi * r * py / (2 * e)
+    >>> f_y = 4 * e * a_y**3 / (3 * r)
+    >>> a = plastic_contact_radius(3 * f_y, a_y, r, e, 0.0, py)
+    >>> round(float(a**2 / ((2 * 3 * f_y + f_y) / (2 * math.pi * py))), 12)
+    1.0
+    """
+    k = np.pi * np.asarray(limit_pressure, dtype=float)
+    a_y = np.asarray(a_y, dtype=float)
+    r = np.asarray(radius, dtype=float)
+    c = np.sqrt(8.0 * np.pi * np.asarray(work_of_adhesion, dtype=float) * modulus)
+    hertz_y = 4.0 * np.asarray(modulus, dtype=float) * a_y**3 / (3.0 * r)
+    target = np.asarray(force, dtype=float) - hertz_y + k * a_y * a_y  # k t^4 - c t^3
+    t = np.sqrt(np.sqrt(np.maximum(target / k, a_y * a_y)))
+    for _ in range(100):
+        square = t * t
+        step = (k * square * square - c * square * t - target) / (
+            4.0 * k * square * t - 3.0 * c * square
+        )
+        t = t - step
+        if not np.any(np.abs(step) > 4.0 * np.finfo(float).eps * t):
+            break
+    return t * t
+
+
 def thornton_ning_impact(
     radius: float,
     modulus: float,
@@ -274,12 +377,12 @@ def thornton_ning_impact(
     share = 1.0 - work_y / kinetic  # (speed at delta_y / V0)^2
     if not (share >= QUADRATURE_MARGIN and kinetic >= QUADRATURE_MARGIN * unit * (snap - _p(1.0))):
         return None
-    slope = math.pi * py * r
+    slope = float(plastic_slope(s_y, force, length))
     rest = max(kinetic - work_y, 0.0)
     root = math.sqrt(f_y * f_y + 2.0 * slope * rest)
     x = (2.0 * rest / (f_y + root) if f_y >= 0.0 else (root - f_y) / slope) if rest > 0 else 0.0
     delta_m, f_m = delta_y + x, f_y + slope * x
-    a_m = math.sqrt(a_y**2 + r * x)
+    a_m = float(plastic_contact_radius(f_m, a_y, r, e, w, py))
     r_p = 4.0 * e * a_m**3 / (3.0 * (f_m + math.sqrt(8.0 * math.pi * w * e * a_m**3)))
     a0_p = float(np.cbrt(4.5 * np.pi * w * r_p * r_p / e))
     length_p, force_p = a0_p * a0_p / r_p, 1.5 * math.pi * w * r_p
@@ -337,7 +440,7 @@ class PlasticLine:
     ----------
     force_y : F_y, [N]
     delta_y : delta_y, [m]
-    slope : k = pi p_y R, [N/m]
+    slope : k_y, [N/m] (:func:`plastic_slope`)
     """
 
     force_y: ArrayLike
@@ -409,7 +512,8 @@ class ThorntonNingContact(AdhesiveContact):
                 f"the limiting contact pressure p_y = {py_i:.4g} Pa is below the JKR contact "
                 f"pressure at first touch, 2 E* a_1 / (pi R) = {least_i:.4g} Pa (a_1 the "
                 "snap-in contact radius): the contact would yield as it touches; give p_y "
-                f"above it (option --py) or a smaller W"
+                "above it (option --py; in impact fit --start py=VALUE or --fix py=VALUE) or "
+                "a smaller W"
             )
 
     # -- the elastic part and the yield point -------------------------------------------------
@@ -432,7 +536,8 @@ class ThorntonNingContact(AdhesiveContact):
         ).shape  # fmt: skip
 
     def _yield_point(self, shape: tuple[int, ...]) -> dict[str, Array]:
-        """s_y, delta_y, F_y and the work Phi_y from first touch to delta_y (W > 0 rows;
+        """s_y, delta_y, F_y, the work Phi_y from first touch to delta_y and the plastic
+        line's slope k_y (:func:`plastic_slope`) (W > 0 rows;
         Thornton's where W = 0); worked out once per shape (read-only arrays)."""
         known = self.__dict__.setdefault("_yield_points", {})
         if shape not in known:
@@ -451,6 +556,7 @@ class ThorntonNingContact(AdhesiveContact):
             "force": branch.force_at(s_y),
             "work": branch.energy_unit * (_potential(s_y) - _potential(SNAP_S)),
             "a": a_y,
+            "slope": plastic_slope(s_y, branch.force_unit, branch.length_unit),
             "sticky": sticky,
         }
 
@@ -492,7 +598,7 @@ class ThorntonNingContact(AdhesiveContact):
         shape = v0.shape
         r, e, w, py, _ = self._safe(shape)
         point = self._yield_point(shape)
-        slope = np.pi * py * r
+        slope = point["slope"]
         f_y = point["force"]
         if delta_max_or_none is None:
             rest = np.maximum(0.5 * m * v0 * v0 - point["work"], 0.0)
@@ -504,7 +610,7 @@ class ThorntonNingContact(AdhesiveContact):
             x = np.maximum(delta_max_or_none - point["delta"], 0.0)
         delta_m = point["delta"] + x
         f_m = f_y + slope * x
-        a_m = np.sqrt(point["a"] ** 2 + r * x)
+        a_m = plastic_contact_radius(f_m, point["a"], r, e, w, py)
         r_p = 4.0 * e * a_m**3 / (3.0 * (f_m + np.sqrt(8.0 * np.pi * w * e * a_m**3)))
         unloading = JKRBranch(r_p, e, w)
         s_m = np.sqrt(a_m / unloading.contact_radius_at_rest)
@@ -563,7 +669,6 @@ class ThorntonNingContact(AdhesiveContact):
         ends: dict,
         v0: Array,
         m: Array,
-        py: Array,
         separation: str,
     ) -> tuple[Array, Array]:
         """The time of maximum indentation and the contact time of plastic impacts, [s]:
@@ -580,8 +685,7 @@ class ThorntonNingContact(AdhesiveContact):
         share = float(np.min(1.0 - point["work"] / kinetic, initial=1.0))  # (V(delta_y)/V0)^2
         nodes = 16 if share >= 0.999 else 24 if share >= 0.75 else NODES
         elastic = scale * elastic_loading_time(point["s"], kinetic / unit, nodes=nodes)
-        r = self._safe(shape)[0]
-        stiffness = np.pi * py * r
+        stiffness = point["slope"]
         omega = np.sqrt(stiffness / m)
         speed_y = np.sqrt(np.maximum(v0 * v0 - 2.0 * point["work"] / m, 0.0))
         # F = F_y + k (delta - delta_y): the oscillator's phase at delta_y, a quarter to rest
@@ -632,14 +736,14 @@ class ThorntonNingContact(AdhesiveContact):
         loading = JKRBranch(col(r), col(e), col(w))
         out = self._unloading(None, v0, m)
         speed_y = np.sqrt(np.maximum(v0 * v0 - 2.0 * point["work"] / m, 0.0))
-        line = PlasticLine(col(point["force"]), col(point["delta"]), col(np.pi * py * r))
+        line = PlasticLine(col(point["force"]), col(point["delta"]), col(point["slope"]))
         stages, ends = unloading_plan(out.branch, out.delta_max, out.s_max, m, separation)
         restitution = ends["speed"] / v0
         # the attraction's work on the way out less that on the way in (docs/laws.md)
         unit, unit_p = loading.energy_unit[..., 0], out.branch.energy_unit[..., 0]
         s_y, f_y = point["s"], point["force"]
         inward = unit * (_potential(SNAP_S) - _potential(np.minimum(s_y, 1.0)))
-        inward = inward + np.where(f_y < 0.0, 0.5 * f_y * f_y / (np.pi * py * r), 0.0)
+        inward = inward + np.where(f_y < 0.0, 0.5 * f_y * f_y / point["slope"], 0.0)
         outward = unit_p * (_potential(ends["s_end"]) - _potential(1.0))
         lost = 0.5 * m * v0 * v0 * (1.0 - restitution * restitution)
         timing = None
@@ -648,7 +752,7 @@ class ThorntonNingContact(AdhesiveContact):
             def timing(n: int) -> tuple[Array, Array] | None:
                 if n != DEFAULT_N:
                     return None
-                return self._times(loading, out, ends, v0, m, py, separation)
+                return self._times(loading, out, ends, v0, m, separation)
 
         return ImpactPlan(
             stages=(
@@ -788,11 +892,17 @@ def _build(radius, modulus, sy, params) -> ThorntonNingContact:
 
 def _fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed) -> dict:
     """W as ``jkr``'s start (V_s = V_ref / 2), p_y = 1.6 sigma_y and sigma_y, each within
-    x/1e3 to x*1e3 (W within x/1e4 to x*1e4, below the largest W of the pair)."""
-    sy = yield_strength
-    py = FIRST_YIELD_PRESSURE_FACTOR * sy
+    x/1e3 to x*1e3 (W within x/1e4 to x*1e4, below the largest W of the pair); p_y and
+    1.6 sigma_y at least twice JKR's contact pressure at first touch of that W (or of the W
+    held fixed), :func:`snap_in_pressure` (which grows as W^(1/3)), so that the start is a
+    valid contact."""
+    starts = jkr_fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed)
+    w = fixed.get("work_of_adhesion", starts["work_of_adhesion"][1])
+    least = 2.0 * float(snap_in_pressure(radius, modulus, w))
+    py = max(FIRST_YIELD_PRESSURE_FACTOR * yield_strength, least)
+    sy = py / FIRST_YIELD_PRESSURE_FACTOR
     return {
-        **jkr_fit_starts(mass, radius, modulus, yield_strength, reference_velocity, fixed),
+        **starts,
         "py": ("Pa", py, py / 1e3, py * 1e3),
         "sy": ("Pa", sy, sy / 1e3, sy * 1e3),
     }
@@ -809,7 +919,8 @@ SPEC = base.LawSpec(
     kind="elastoplastic",
     description=(
         "Adhesive elastic-perfectly plastic contact: JKR loading until the Hertzian centre "
-        "pressure reaches p_y, then F = F_y + pi p_y R (delta - delta_y); unloading and neck "
+        "pressure reaches p_y, then F = F_y + k_y (delta - delta_y) (k_y JKR's slope at "
+        "delta_y, pi p_y R at W = 0); unloading and neck "
         "on the JKR branch of the enlarged radius R_p (pull-off (3/2) pi W R_p); "
         "Thornton (1997) at W = 0."
     ),
