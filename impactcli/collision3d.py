@@ -681,10 +681,12 @@ def normal_restitution_and_history(
 
     The normal law is run as a head-on impact at the normal approach velocity u_n of the
     contact (docs/collision3d.md), the pair checked as :func:`impactcli.impact.solve_impact` checks
-    it: the :class:`~impactcli.model.ContactModel` of a law of :mod:`impactcli.laws`
-    (``hertz``, ``du-wang``, ``thornton``, ``walton-braun``, ``tabulated``), or, with
-    ``damping``, of Hertz elasticity plus viscous damping (``tsuji`` or ``hunt-crossley``,
-    damping parameter ``alpha``; the contact ends by the rule ``separation``), solved by
+    it: the :class:`~impactcli.model.ContactModel` of a law of
+    :data:`impactcli.laws.registry.LAWS` (``impact laws``: the elastic, elastoplastic and
+    adhesive laws), or, with ``damping``, of Hertz elasticity plus viscous damping (a model
+    of :data:`impactcli.laws.registry.DAMPING_LAWS`: ``tsuji``, ``hunt-crossley`` or
+    ``viscoelastic``, damping parameter ``alpha``; the contact ends by the rule
+    ``separation``), solved by
     FILM (:meth:`impactcli.model.PairModel.solve`). A damped contact that never ends
     (overdamped) has e = 0.
 
@@ -694,8 +696,9 @@ def normal_restitution_and_history(
     u_n : normal approach velocity (v1 - v2) . n_hat > 0, [m/s]
     law : name of the normal law (``impact laws``); with ``damping`` only ``hertz``
     params : the law's parameters by name (SI)
-    damping : None, ``tsuji`` or ``hunt-crossley``
-    alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
+    damping : None, or a damping model: ``tsuji``, ``hunt-crossley`` or ``viscoelastic``
+    alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``, [s] for
+        ``viscoelastic``
     points : time points of the history (>= 3) for a tangential spring; None: no history
     n : FILM segments per stage; default 25 for e alone, :data:`HISTORY_N` (100) with a
         history, and :data:`impactcli.model.DAMPED_DEFAULT_N` (400) with damping

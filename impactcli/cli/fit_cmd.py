@@ -226,7 +226,7 @@ def _fit_plan(
                     f"{', '.join(sorted(map(_option_name, everywhere)))}"
                 )
     # each law: the parameters it fits, and the values given for its parameters, read in
-    # its units (alpha is [-] for tsuji, [s/m] for hunt-crossley)
+    # its units (alpha is in the damping model's: [-] for tsuji, [s/m] for hunt-crossley, ...)
     plan: list[tuple[str, tuple[str, ...], dict, dict, dict]] = []
     for key in laws:
         own = owns[key]
