@@ -1,5 +1,6 @@
 """Lists the documentation writes by hand stay complete: where a page or a docstring names
-the damping models, it names every one of the registry."""
+the damping models, it names every one of the registry, and where it names the history
+columns, every one of :data:`impactcli.impact.HISTORY_COLUMNS`."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from pathlib import Path
 import pytest
 
 import impactcli
+from impactcli.impact import HISTORY_COLUMNS
 from impactcli.laws.registry import DAMPING_LAWS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -71,3 +73,34 @@ def test_a_list_of_the_damping_models_names_every_model(source):
     # hunt-crossley alone; viscoelastic runs wherever they do.
     assert _partial_lists(source(), set(DAMPING_LAWS)) == []
 
+
+def test_the_elastic_guide_lists_every_history_column():
+    # docs/guide/elastic.md gave 14 of the columns of -f csv (t ... p2), not the energies.
+    text = (ROOT / "docs" / "guide" / "elastic.md").read_text(encoding="utf-8")
+    listed = re.search(r"`-f csv`\s+is the history \(`([^`]+)`", text)
+    assert listed is not None
+    assert tuple(listed.group(1).replace("\n", "").replace(" ", "").split(",")) == HISTORY_COLUMNS
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["elastic", "--v1", "5mm/s", "--v2", "7.5mm/s"],
+        ["elastic", "--v1", "0.25m/s", "--v2", "0.75m/s", "--damping", "viscoelastic",
+         "--alpha", "1us"],
+        ["elastoplastic", "--v1", "0.25m/s", "--v2", "0.75m/s"],
+    ],
+    ids=["elastic", "damped", "elastoplastic"],
+)  # fmt: skip
+def test_the_help_names_the_history_columns_the_csv_has(impact, command):
+    # impact elastic --help named 14 columns (t ... p2); -f csv writes 22.
+    helped = re.search(
+        r"History columns \(-f csv, SI\): ([a-z0-9_, ]+)\.",
+        " ".join(impact(command[0], "--help", env={"COLUMNS": "200"}).stdout.split()),
+    )
+    assert helped is not None
+    done = impact(*command, "--d1", "20mm", "--d2", "40mm", "--material", "steel",
+                  "--points", "3", "-f", "csv")  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    header = next(line for line in done.stdout.splitlines() if not line.startswith("#"))
+    assert helped.group(1).split(", ") == header.split(",") == list(HISTORY_COLUMNS)
