@@ -1189,7 +1189,8 @@ def damped_impact(
         alpha = A [s])
     alpha : the damping parameter, >= 0, in the model's unit: [-] (``tsuji``), [s/m]
         (``hunt-crossley``) or [s] (``viscoelastic``); or
-    restitution : the coefficient of restitution e in (0, 1] to reach at this V0, [-]: alpha is
+    restitution : the coefficient of restitution e in (0, 1] to reach at this V0, [-] (the
+        command line's ``--e``; ``e=`` is refused with a message saying so): alpha is
         solved for by the model (:func:`impactcli.damping.damping_for_restitution`, FILM
         with the same n and separation rule). Give exactly one of the two.
     n : FILM segments per stage (default :data:`DAMPED_DEFAULT_N`)
