@@ -1183,10 +1183,10 @@ def damped_impact(
     ----------
     sphere1, sphere2 : the spheres (SI)
     v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
-    damping : a damping model of :data:`impactcli.laws.registry.DAMPING_LAWS` (``impact
-        laws``): ``tsuji`` (Tsuji, Tanaka & Ishida 1992, alpha [-]), ``hunt-crossley``
-        (Hunt & Crossley 1975, alpha [s/m]) or ``viscoelastic`` (Brilliantov et al. 1996,
-        alpha = A [s])
+    damping : a damping model of :data:`impactcli.laws.registry.DAMPING_LAWS`, as
+        ``impact laws`` lists them: ``tsuji`` (Tsuji, Tanaka & Ishida 1992, alpha [-]),
+        ``hunt-crossley`` (Hunt & Crossley 1975, alpha [s/m]) or ``viscoelastic``
+        (Brilliantov et al. 1996, alpha = A [s])
     alpha : the damping parameter, >= 0, in the model's unit: [-] (``tsuji``), [s/m]
         (``hunt-crossley``) or [s] (``viscoelastic``); or
     restitution : the coefficient of restitution e in (0, 1] to reach at this V0, [-] (the
