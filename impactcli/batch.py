@@ -833,11 +833,12 @@ def batch_damped_impacts(
     The law ``damping`` of :mod:`impactcli.damping` (``tsuji``: Tsuji, Tanaka & Ishida
     1992, Powder Technol. 71:239-250, doi:10.1016/0032-5910(92)88030-L, alpha [-];
     ``hunt-crossley``: Hunt & Crossley 1975, J. Appl. Mech. 42:440-445,
-    doi:10.1115/1.3423596, alpha [s/m]) with each row's ``alpha``, or the alpha that gives
-    each row's target ``restitution`` at its V0 (:func:`impactcli.damping.
-    damping_for_restitution`; give one of the two per row). FILM with n segments per stage
-    (:data:`~impactcli.impact.DAMPED_DEFAULT_N` by default, as :func:`impactcli.impact.
-    damped_impact`),
+    doi:10.1115/1.3423596, alpha [s/m]; ``viscoelastic``: Brilliantov et al. 1996,
+    Phys. Rev. E 53:5382-5392, doi:10.1103/PhysRevE.53.5382, alpha = A [s]) with each
+    row's ``alpha``, or the alpha that gives each row's target ``restitution`` at its V0
+    (:func:`impactcli.damping.damping_for_restitution`; give one of the two per row). FILM
+    with n segments per stage (:data:`~impactcli.impact.DAMPED_DEFAULT_N` by default, as
+    :func:`impactcli.impact.damped_impact`),
     :func:`impactcli.damping.solve_damped_impact`, vectorised over the rows; the summary by
     :func:`impactcli.impact.impact_summary` with the indentation at separation in place of
     delta_res (0 for ``overlap``). The columns make a :class:`~impactcli.pairs.SpherePairs`
@@ -911,7 +912,8 @@ def damped_pair_impacts(
     pairs : the spheres and their velocities toward each other, SI
     damping : the damping model (``impact laws``)
     alpha : its parameter, one value or one per pair (unit of the model: [-] for
-        ``tsuji``, [s/m] for ``hunt-crossley``); NaN where ``restitution`` is given
+        ``tsuji``, [s/m] for ``hunt-crossley``, [s] for ``viscoelastic``); NaN where
+        ``restitution`` is given
     restitution : the target e [-] instead, one value or one per pair
     n, split, separation : as :func:`batch_damped_impacts`
 

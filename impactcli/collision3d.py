@@ -270,7 +270,9 @@ class Collision3D(Momenta):
     Attributes
     ----------
     m1, m2 : masses, [kg] (``inf`` for a fixed target)
-    r1, r2 : radii, [m] (``inf`` for a flat target)
+    d1, d2 : diameters, [m] (``inf`` for a flat target), as :func:`oblique_collision_3d`
+        takes them (properties: 2 ``r1``, 2 ``r2``)
+    r1, r2 : radii, [m] (``inf`` for a flat target), as the equations use them
     rotation1, rotation2 : R_i^2 / I_i, [1/kg] (0 for a body that cannot turn)
     p1, p2 : centres at contact, [m]
     v1, v2, w1, w2 : velocities [m/s] and angular velocities [rad/s] before the impact
@@ -279,7 +281,9 @@ class Collision3D(Momenta):
     contact_point : c, on the line of centres at distance R_1 from centre 1, [m]
     slip_direction : t_hat = u_t/|u_t| before the impact (zero without slip), [-]
     restitution : normal coefficient of restitution e (from the normal law), [-]
-    friction : Coulomb friction coefficient mu, [-]
+    mu : Coulomb friction coefficient, [-], as :func:`oblique_collision_3d` takes it
+        (``friction``, its former name, still reads it with a DeprecationWarning; it goes in
+        0.3)
     normal_impulse : J_n = (1 + e) m u_n, on sphere 2 along n_hat, [N s]
     tangential_impulse : J_t . t_hat, on sphere 2 along t_hat, [N s] (>= 0)
     stuck : True where the contact stuck (rigid: m_t |u_t| <= mu J_n; a spring: it was
@@ -326,7 +330,7 @@ class Collision3D(Momenta):
     contact_point: Array
     slip_direction: Array
     restitution: Array
-    friction: Array
+    mu: Array
     normal_impulse: Array
     tangential_impulse: Array
     stuck: NDArray[np.bool_]
@@ -337,6 +341,30 @@ class Collision3D(Momenta):
     geometry: str = "frozen"
     p1_final: Array | None = field(default=None, repr=False)
     p2_final: Array | None = field(default=None, repr=False)
+
+    # -- the inputs by the names oblique_collision_3d takes --------------------------------
+    @property
+    def d1(self) -> Array:
+        """Diameter of sphere 1, 2 R1, [m] (``inf`` for a flat target)."""
+        return 2.0 * self.r1
+
+    @property
+    def d2(self) -> Array:
+        """Diameter of sphere 2, 2 R2, [m] (``inf`` for a flat target)."""
+        return 2.0 * self.r2
+
+    @property
+    def friction(self) -> Array:
+        """Deprecated (it goes in 0.3): :attr:`mu`, the name :func:`oblique_collision_3d`
+        and ``impact collide3d --mu`` give the friction coefficient, [-]."""
+        import warnings
+
+        warnings.warn(
+            "Collision3D.friction is deprecated and goes in 0.3: use Collision3D.mu",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self.mu
 
     # -- masses ------------------------------------------------------------------------
     @property
@@ -681,10 +709,12 @@ def normal_restitution_and_history(
 
     The normal law is run as a head-on impact at the normal approach velocity u_n of the
     contact (docs/collision3d.md), the pair checked as :func:`impactcli.impact.solve_impact` checks
-    it: the :class:`~impactcli.model.ContactModel` of a law of :mod:`impactcli.laws`
-    (``hertz``, ``du-wang``, ``thornton``, ``walton-braun``, ``tabulated``), or, with
-    ``damping``, of Hertz elasticity plus viscous damping (``tsuji`` or ``hunt-crossley``,
-    damping parameter ``alpha``; the contact ends by the rule ``separation``), solved by
+    it: the :class:`~impactcli.model.ContactModel` of a law of
+    :data:`impactcli.laws.registry.LAWS` (``impact laws``: the elastic, elastoplastic and
+    adhesive laws), or, with ``damping``, of Hertz elasticity plus viscous damping (a model
+    of :data:`impactcli.laws.registry.DAMPING_LAWS`: ``tsuji``, ``hunt-crossley`` or
+    ``viscoelastic``, damping parameter ``alpha``; the contact ends by the rule
+    ``separation``), solved by
     FILM (:meth:`impactcli.model.PairModel.solve`). A damped contact that never ends
     (overdamped) has e = 0.
 
@@ -694,8 +724,9 @@ def normal_restitution_and_history(
     u_n : normal approach velocity (v1 - v2) . n_hat > 0, [m/s]
     law : name of the normal law (``impact laws``); with ``damping`` only ``hertz``
     params : the law's parameters by name (SI)
-    damping : None, ``tsuji`` or ``hunt-crossley``
-    alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``
+    damping : None, or a damping model: ``tsuji``, ``hunt-crossley`` or ``viscoelastic``
+    alpha : the damping parameter: [-] for ``tsuji``, [s/m] for ``hunt-crossley``, [s] for
+        ``viscoelastic``
     points : time points of the history (>= 3) for a tangential spring; None: no history
     n : FILM segments per stage; default 25 for e alone, :data:`HISTORY_N` (100) with a
         history, and :data:`impactcli.model.DAMPED_DEFAULT_N` (400) with damping
@@ -1057,7 +1088,7 @@ def oblique_collision_3d(
         contact_point=np.broadcast_to(contact, vec),
         slip_direction=t_hat,
         restitution=e,
-        friction=mu,
+        mu=mu,
         normal_impulse=j_n,
         tangential_impulse=j_t,
         stuck=np.asarray(stuck),

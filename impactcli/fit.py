@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -54,6 +54,7 @@ __all__ = [
     "FitData",
     "FitParameter",
     "FitResult",
+    "default_fit",
     "fit_curves",
     "fit_law",
     "fit_named_law",
@@ -470,6 +471,29 @@ FIT_LAWS: tuple[str, ...] = tuple(DEFAULT_FIT)
 DEFAULT_SEGMENTS: dict[str, int] = dict.fromkeys(DAMPING_LAWS, 50)
 
 
+def default_fit(law: str, fixed: Iterable[str] = ()) -> tuple[str, ...]:
+    """The parameters a fit of ``law`` takes when none is named: its :data:`DEFAULT_FIT`
+    but those held ``fixed`` (a parameter given a value is not fitted).
+
+    Parameters
+    ----------
+    law : a name of :data:`FIT_LAWS`
+    fixed : names of the law's parameters held at a value (``impact fit --fix``)
+
+    Returns
+    -------
+    tuple of str
+        The names, in the order of :data:`DEFAULT_FIT`; empty when every default is held
+        (the fit then scores the law as it is).
+
+    Examples
+    --------
+    >>> default_fit("thornton-ning"), default_fit("thornton-ning", {"work_of_adhesion": 0.2})
+    (('work_of_adhesion', 'py'), ('py',))
+    """
+    return tuple(name for name in DEFAULT_FIT[_check_law(law)] if name not in fixed)
+
+
 def _check_law(law: str) -> str:
     key = str(law).strip().lower().replace("_", "-")
     if key not in FIT_LAWS:
@@ -805,7 +829,8 @@ def fit_named_law(
     law : a name of :data:`FIT_LAWS`
     data : the measurements: V0 [m/s], e [-], optional contact times [s] and weights
         (:class:`FitData`; :func:`read_fit_data` reads them)
-    names : the parameters to fit; default :data:`DEFAULT_FIT` of the law
+    names : the parameters to fit; default :data:`DEFAULT_FIT` of the law but those in
+        ``fixed`` (:func:`default_fit`)
     start : starting values by name, SI (Pa for ``sy`` and ``py``, N/m for ``k_load``)
     bounds : ``(low, high)`` by name, SI
     fixed : values of other parameters of the law, SI (held during the fit)
@@ -833,7 +858,7 @@ def fit_named_law(
     """
     law = _check_law(law)
     fixed = dict(fixed or {})
-    names = tuple(DEFAULT_FIT[law] if names is None else names)
+    names = default_fit(law, fixed) if names is None else tuple(names)
     available = law_parameters(sphere1, sphere2, law, float(np.median(data.impact_velocity)), fixed)
     for name in (*names, *fixed, *(start or {}), *(bounds or {})):
         if name not in available:

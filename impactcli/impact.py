@@ -1192,10 +1192,14 @@ def damped_impact(
     ----------
     sphere1, sphere2 : the spheres (SI)
     v1, v2 : velocities of the centres toward the other sphere, [m/s]; V1 + V2 > 0
-    damping : ``tsuji`` (Tsuji, Tanaka & Ishida 1992, alpha [-]) or ``hunt-crossley``
-        (Hunt & Crossley 1975, alpha [s/m])
-    alpha : the damping parameter, >= 0, [-] (``tsuji``) or [s/m] (``hunt-crossley``); or
-    restitution : the coefficient of restitution e in (0, 1] to reach at this V0, [-]: alpha is
+    damping : a damping model of :data:`impactcli.laws.registry.DAMPING_LAWS`, as
+        ``impact laws`` lists them: ``tsuji`` (Tsuji, Tanaka & Ishida 1992, alpha [-]),
+        ``hunt-crossley`` (Hunt & Crossley 1975, alpha [s/m]) or ``viscoelastic``
+        (Brilliantov et al. 1996, alpha = A [s])
+    alpha : the damping parameter, >= 0, in the model's unit: [-] (``tsuji``), [s/m]
+        (``hunt-crossley``) or [s] (``viscoelastic``); or
+    restitution : the coefficient of restitution e in (0, 1] to reach at this V0, [-] (the
+        command line's ``--e``; ``e=`` is refused with a message saying so): alpha is
         solved for by the model (:func:`impactcli.damping.damping_for_restitution`, FILM
         with the same n and separation rule). Give exactly one of the two.
     n : FILM segments per stage (default :data:`DAMPED_DEFAULT_N`)
@@ -1259,8 +1263,9 @@ def damped_restitution_sweep(
     n is larger).
 
     As :func:`impactcli.sweep.restitution_sweep` for Hertz with viscous damping
-    (:func:`damped_impact`; docs/damping.md): e does not depend on V0 for ``tsuji`` and
-    falls with alpha V0 for ``hunt-crossley``. There is no permanent indentation
+    (:func:`damped_impact`; docs/damping.md): e does not depend on V0 for ``tsuji``, falls
+    with alpha V0 for ``hunt-crossley`` and with alpha (K/m)^(2/5) V0^(1/5) for
+    ``viscoelastic``. There is no permanent indentation
     (``delta_res`` and its shares are 0, ``plastic`` 0); ``energy_dissipated`` is the
     damping's integral of c delta'^2 dt [J]; ``delta_separation`` the indentation at
     separation [m] (0 for ``overlap``).
@@ -1349,7 +1354,8 @@ def damping_alpha(
     Returns
     -------
     float
-        alpha in the unit of the model ([-] for ``tsuji``, [s/m] for ``hunt-crossley``).
+        alpha in the unit of the model ([-] for ``tsuji``, [s/m] for ``hunt-crossley``,
+        [s] for ``viscoelastic``).
 
     Examples
     --------

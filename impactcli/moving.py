@@ -195,7 +195,7 @@ def moving_collision_3d(
     t_hat = frozen.slip_direction
     values = {f.name: getattr(frozen, f.name) for f in _fields(frozen)}
     values.update(
-        v1_final=v1f, v2_final=v2f, w1_final=w1f, w2_final=w2f, friction=np.asarray(mu),
+        v1_final=v1f, v2_final=v2f, w1_final=w1f, w2_final=w2f, mu=np.asarray(mu),
         normal_impulse=np.asarray(float(np.dot(impulse, normal0))),
         tangential_impulse=np.asarray(float(np.dot(impulse, t_hat))),
         stuck=np.asarray(contact.stuck), model=spec.name, geometry="moving",

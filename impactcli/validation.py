@@ -113,6 +113,27 @@ class Problems:
 _F = TypeVar("_F", bound=Callable)
 
 
+#: Options of the command line that the library's functions spell otherwise: a keyword
+#: of that spelling is refused with a message naming the function's own (``e=`` ->
+#: ``restitution=``); one name each, no second spelling.
+_OPTION_KEYWORDS = {"e": "restitution"}
+
+
+def _call_message(function: Callable, exc: Exception) -> str:
+    """The one-line message of ``exc``, raised by the call of ``function`` itself (not
+    below it): an unknown keyword that is a command-line option's spelling says which
+    keyword of ``function`` it is."""
+    text = " ".join(str(exc).split())
+    if isinstance(exc, TypeError) and exc.__traceback__ and exc.__traceback__.tb_next is None:
+        for option, keyword in _OPTION_KEYWORDS.items():
+            if text.endswith(f"unexpected keyword argument '{option}'"):
+                import inspect
+
+                if keyword in inspect.signature(function).parameters:
+                    text += f": give {keyword}= (the command line's --{option})"
+    return text
+
+
 def input_errors(function: _F) -> _F:
     """Make ``function`` a public entry point of the library: a :class:`ValueError` or
     :class:`TypeError` of bad input from any layer below it (and an :class:`OverflowError` or
@@ -128,7 +149,7 @@ def input_errors(function: _F) -> _F:
         except InputError:
             raise
         except (ValueError, TypeError) as exc:  # TypeError: e.g. 10**400 in a NumPy check
-            raise InputError(" ".join(str(exc).split())) from exc
+            raise InputError(_call_message(function, exc)) from exc
         except (OverflowError, ZeroDivisionError) as exc:
             raise InputError(
                 f"a number is beyond the range of a float ({exc}): check the values and "

@@ -159,6 +159,28 @@ def test_start_bounds_and_fix_are_read_with_units(cli, du_wang_data):
     assert fit["fixed"] == {"p0_factor": 2.57}
 
 
+def test_a_fixed_parameter_leaves_the_default_fitted_set(cli, tmp_path):
+    # --fix work-of-adhesion=0.2 on thornton-ning (default fit: work_of_adhesion and py)
+    # said "both fitted and held fixed" unless --param py was given too.
+    s = Sphere.from_material(20e-6, "steel")
+    v0 = np.geomspace(0.5, 5.0, 6)
+    made = {"work_of_adhesion": 0.2, "py": 2e9}
+    e = law_model(s, s, "thornton-ning")(made, v0)["restitution"]
+    rows = "".join(f"{v:.17g},{x:.17g}\n" for v, x in zip(v0, e))
+    path = write(tmp_path / "tn.csv", "v0,e\n" + rows)
+    pair = ["--d1", "20um", "--d2", "20um", "--material", "steel"]
+    code, out, err = cli("fit", path, "--law", "thornton-ning", "--fix", "work-of-adhesion=0.2",
+                         *pair, "-f", "json")  # fmt: skip
+    assert code == 0, err
+    (fit,) = json.loads(out)["fits"]
+    assert list(fit["parameters"]) == ["py"] and fit["fixed"] == {"work_of_adhesion": 0.2}
+    assert fit["parameters"]["py"]["value"] == pytest.approx(made["py"], rel=1e-6)
+    # naming it to be fitted as well is still a contradiction
+    code, out, err = cli("fit", path, "--law", "thornton-ning", "--fix", "work-of-adhesion=0.2",
+                         "--param", "work-of-adhesion", *pair)  # fmt: skip
+    assert code == 2 and out == "" and "both fitted and held fixed" in err
+
+
 @pytest.mark.parametrize(
     "extra, message",
     [

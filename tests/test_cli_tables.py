@@ -118,6 +118,28 @@ def test_convergence_csv_and_note(impact):
     assert "carrying" in doc["note"] and doc["exact"] == pytest.approx(2.9432752, abs=1e-7)
 
 
+def test_convergence_has_one_table_in_every_format(impact):
+    # -f table showed a 2·loading column, which the note names, and CSV and JSON did not
+    # have it: the paper's contact durations are twice the loading time (docs/method.md §6).
+    from impactcli.tables import convergence
+
+    rows = convergence([3, 5])
+    text = impact("convergence", "3", "5", "-f", "csv").stdout
+    csv_rows = list(csv.DictReader(io.StringIO(text)))
+    json_doc = json.loads(impact("convergence", "3", "5", "-f", "json").stdout)
+    screen = impact("convergence", "3", "5", "-f", "table", env={"COLUMNS": "200"}).stdout
+    for got in (csv_rows, json_doc["rows"]):
+        assert [float(r["twice_loading"]) for r in got] == pytest.approx(
+            [2.0 * r.loading for r in rows], rel=1e-11
+        )
+        assert [float(r["twice_loading"]) for r in got] == pytest.approx(
+            [2.94089, 2.94252], abs=5e-6
+        )  # the values the note quotes
+    assert list(csv_rows[0]) == list(json_doc["rows"][0])
+    assert "twice_loading" in json_doc["note"] and "2·loading" in screen
+    assert f"{2.0 * rows[0].loading:.7f}" in screen
+
+
 def test_convergence_bad_n(impact):
     result = impact("convergence", "--n", "3", "0")
     assert result.returncode == 2 and "n must be" in result.stderr

@@ -500,7 +500,7 @@ def _assert_target_invariants(r, target):
     assert np.all(ke_after <= ke_before + tol)
     assert np.all(r.energy_dissipated_friction >= -tol)
     assert np.all(np.abs(ke_before - ke_after - r.energy_dissipated) <= tol)
-    assert np.all(r.tangential_impulse <= r.friction * r.normal_impulse * (1 + 1e-12) + 1e-300)
+    assert np.all(r.tangential_impulse <= r.mu * r.normal_impulse * (1 + 1e-12) + 1e-300)
 
 
 @settings(max_examples=100, deadline=None)
@@ -797,3 +797,20 @@ def test_the_deprecated_oblique_impact_is_oblique_collision_3d_in_radii():
         for key in ("v1_final", "v2_final", "w1_final", "w2_final", "r1", "r2"):
             np.testing.assert_array_equal(getattr(old, key), getattr(new, key))
     assert float(new.tangential_impulse) > 0.0 and new.r1 == 0.02
+
+
+def test_the_result_names_its_inputs_as_the_function_takes_them():
+    # Collision3D exposed r1, r2 and friction while oblique_collision_3d takes d1, d2 and
+    # mu: the result now has d1, d2 (the diameters given, bit for bit; r1, r2 stay the radii)
+    # and mu; friction still reads mu, with a DeprecationWarning.
+    d1, d2, mu = np.array([0.004, 0.01]), np.array([0.006, np.inf]), np.array([0.3, 0.1])
+    c = oblique_collision_3d(0.05, np.array([0.15, np.inf]), (1.0, 0.5, -1.0), ORIGIN, ORIGIN,
+                             (0.0, 0.0, -0.005), d1, d2, restitution=0.9, mu=mu)  # fmt: skip
+    np.testing.assert_array_equal(c.d1, d1)
+    np.testing.assert_array_equal(c.d2, d2)
+    np.testing.assert_array_equal(c.r1, d1 / 2)
+    np.testing.assert_array_equal(c.mu, mu)
+    with pytest.warns(DeprecationWarning, match="Collision3D.mu"):
+        np.testing.assert_array_equal(c.friction, mu)
+    # mu caps the tangential impulse: J_t <= mu J_n
+    assert np.all(c.tangential_impulse <= c.mu * c.normal_impulse * (1 + 1e-12))

@@ -158,7 +158,9 @@ def batch(
     LAW_COLUMNS
 
     Output: each input row with its columns, then the summary of 'impact elastic' /
-    'impact elastoplastic' in SI (the elastoplastic keys empty on elastic rows), then
+    'impact elastoplastic' in SI (the elastoplastic keys empty on elastic rows; the alpha a
+    damped row ran with, the summary's alpha, is damping_alpha, since the input's alpha
+    column is carried as given), then
     error (empty when the row is valid) and warning (first yield exceeded on an elastic
     row, contact radius above 0.1 R). Invalid rows, malformed CSV lines included, are
     reported on stderr with their row number (data rows count from 1) and the others are

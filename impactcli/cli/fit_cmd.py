@@ -48,7 +48,10 @@ PARAM_HELP = (
 )
 START_HELP = "Starting value NAME=VALUE (repeatable), e.g. sy=800MPa. Default from the material."
 BOUNDS_HELP = "Bounds NAME=LO:HI (repeatable), e.g. sy=100MPa:5GPa; both > 0."
-FIX_HELP = "Hold a parameter at NAME=VALUE (repeatable), e.g. k-load=20MN/m or p0-factor=3."
+FIX_HELP = (
+    "Hold a parameter at NAME=VALUE (repeatable), e.g. k-load=20MN/m or p0-factor=3; a "
+    "parameter held is not fitted (the others of the default set are)."
+)
 N_HELP = (
     f"Default 25, 50 with --damping, for speed: the other commands take {DAMPED_DEFAULT_N} "
     "with damping; at 50, e and the contact time are within 1e-4 of theirs for e >= 0.3, "
@@ -214,7 +217,7 @@ def _fit_plan(
     """What each law fits: (law, the parameters it fits, --start values, --bounds, --fix
     values), read in its units, from --param ``names`` and the ``given`` NAME=VALUE options;
     one line for a parameter no model or none of ``laws`` has."""
-    from impactcli.fit import DEFAULT_FIT, FIT_LAWS, law_parameters
+    from impactcli.fit import FIT_LAWS, default_fit, law_parameters
 
     owns = {key: law_parameters(s1, s2, key) for key in laws}
     everywhere = {name for key in FIT_LAWS for name in law_parameters(s1, s2, key)}
@@ -226,11 +229,10 @@ def _fit_plan(
                     f"{', '.join(sorted(map(_option_name, everywhere)))}"
                 )
     # each law: the parameters it fits, and the values given for its parameters, read in
-    # its units (alpha is [-] for tsuji, [s/m] for hunt-crossley)
+    # its units (alpha is in the damping model's: [-] for tsuji, [s/m] for hunt-crossley, ...)
     plan: list[tuple[str, tuple[str, ...], dict, dict, dict]] = []
     for key in laws:
         own = owns[key]
-        chosen = tuple(nm for nm in names if nm in own) or DEFAULT_FIT[key]
         mine = {
             option: {k: v for k, v in items.items() if k in own} for option, items in given.items()
         }
@@ -241,6 +243,8 @@ def _fit_plan(
         held = {
             k: _value(v, own[k].unit, f"--fix {_option_name(k)}") for k, v in mine["--fix"].items()
         }
+        # the --param names it has, else its defaults but those held by --fix
+        chosen = tuple(nm for nm in names if nm in own) or default_fit(key, held)
         limits = {k: _bounds(v, own[k].unit, _option_name(k)) for k, v in mine["--bounds"].items()}
         plan.append((key, chosen, starts, limits, held))
     unused = [nm for nm in names if not any(nm in p[1] for p in plan)]

@@ -50,6 +50,15 @@ SIGN_HELP = (
     "Velocities are along the line of centres, positive toward the other sphere; "
     "V0 = V1 + V2 must be > 0."
 )
+#: The history columns of impact elastic and elastoplastic (-f csv), from
+#: :data:`impactcli.quantities.HISTORY_QUANTITIES`, whose keys are
+#: :data:`impactcli.impact.HISTORY_COLUMNS`.
+HISTORY_HELP = (
+    f"History columns (-f csv, SI): {', '.join(HISTORY_QUANTITIES)}. d_i and v_i are the "
+    "centre's displacement and velocity toward the other sphere; p1, p2 the momenta in the "
+    "x-frame where sphere 1 moves +x; ke_i the kinetic energies, strain_energy the recoverable "
+    "strain energy, dissipated the energy lost so far (1, 2: each sphere's part)."
+)
 SPLIT_HELP = (
     "How the total indentation is shared: 'mass' (the paper's contact plane moving at V_cp: "
     "delta_i = (m/m_i) delta; its convention for like spheres), 'compliance' (Hertz: "
@@ -548,10 +557,8 @@ def elastic(
     """Elastic (Hertz) impact of two spheres: each sphere's rigid-body motion and indentation.
 
     Gives the summary (contact time, maximum indentation and force, final displacements and
-    velocities, maximum indentation of each sphere) and the histories t, delta, delta_dot,
-    force, d1, d2, v1, v2, delta1, delta2, delta1_dot, delta2_dot, p1, p2 in SI. d_i and v_i
-    are the centre's displacement and velocity toward the other sphere; p1, p2 the momenta
-    in the x-frame where sphere 1 moves +x. The yield strength (--sy or the material) only
+    velocities, maximum indentation of each sphere) and the history of the motion and the
+    energies (its columns: below). The yield strength (--sy or the material) only
     serves the yield checks: above the first-yield velocity (Hertz peak pressure 1.6 sigma_y)
     a warning says so, and above Du & Wang's yield velocity V_y (p0 = 2.57 sigma_y) it says
     to use 'impact elastoplastic'.
@@ -577,7 +584,7 @@ def elastic(
     _run("elastic", spheres, history, n, own, energy_plot, damping)
 
 
-append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
+append_help(elastic, HISTORY_HELP, f"{UNITS_HELP} {SIGN_HELP}")
 
 
 def _elastic_law(law: LawOptions | None, curve: str | None) -> LawChoice | None:
@@ -645,7 +652,7 @@ def elastoplastic(
     _run("elastoplastic", spheres, history, n, choice, energy_plot)
 
 
-append_help(elastoplastic, f"{UNITS_HELP} {SIGN_HELP}")
+append_help(elastoplastic, HISTORY_HELP, f"{UNITS_HELP} {SIGN_HELP}")
 
 
 @with_sphere_options(velocities=False)

@@ -2,7 +2,9 @@
 
 Normal laws: :mod:`~impactcli.laws.hertz`, :mod:`~impactcli.laws.du_wang`,
 :mod:`~impactcli.laws.thornton`, :mod:`~impactcli.laws.walton_braun`,
-:mod:`~impactcli.laws.tabulated`. Damping models (Hertz plus a viscous term):
+:mod:`~impactcli.laws.tabulated`; the adhesive :mod:`~impactcli.laws.jkr`,
+:mod:`~impactcli.laws.dmt`, :mod:`~impactcli.laws.thornton_ning`. Damping models (Hertz
+plus a viscous term):
 :mod:`~impactcli.laws.tsuji`, :mod:`~impactcli.laws.hunt_crossley`,
 :mod:`~impactcli.laws.viscoelastic`. What they share: :mod:`~impactcli.laws.base` (and
 :mod:`~impactcli.laws.viscous` for the damping models); the one list of them:
