@@ -878,8 +878,11 @@ def batch_damped_impacts(
         )
     unknown = [name for name in options if name not in _batch_options()]
     if unknown:  # as Python words it, naming this function rather than batch_impacts
+        from impactcli.validation import keyword_hint
+
         raise TypeError(
             f"batch_damped_impacts() got an unexpected keyword argument {unknown[0]!r}"
+            + keyword_hint(unknown[0], _batch_options())
         )
     return batch_impacts(*columns, n=n, damping=damping, **options)
 

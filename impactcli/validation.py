@@ -13,7 +13,7 @@ warnings and notes are returned as text for the caller to show.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 from functools import lru_cache, wraps
 from typing import TypeVar
 
@@ -125,13 +125,27 @@ def _call_message(function: Callable, exc: Exception) -> str:
     keyword of ``function`` it is."""
     text = " ".join(str(exc).split())
     if isinstance(exc, TypeError) and exc.__traceback__ and exc.__traceback__.tb_next is None:
-        for option, keyword in _OPTION_KEYWORDS.items():
+        for option in _OPTION_KEYWORDS:
             if text.endswith(f"unexpected keyword argument '{option}'"):
                 import inspect
 
-                if keyword in inspect.signature(function).parameters:
-                    text += f": give {keyword}= (the command line's --{option})"
+                text += keyword_hint(option, inspect.signature(function).parameters)
     return text
+
+
+def keyword_hint(option: str, parameters: Collection[str]) -> str:
+    """What to add to "unexpected keyword argument ``option``" of a function taking the
+    keywords ``parameters``: ``: give restitution= (the command line's --e)`` for a
+    command-line option the library spells otherwise (:data:`_OPTION_KEYWORDS`) when the
+    function takes that keyword, else nothing.
+
+    >>> keyword_hint("e", ["alpha", "restitution"])
+    ": give restitution= (the command line's --e)"
+    """
+    keyword = _OPTION_KEYWORDS.get(option)
+    if keyword is None or keyword not in parameters:
+        return ""
+    return f": give {keyword}= (the command line's --{option})"
 
 
 def input_errors(function: _F) -> _F:
