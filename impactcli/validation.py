@@ -186,11 +186,12 @@ def sphere_problems(
     problems: Problems | None = None,
     given: Mapping[str, bool] | None = None,
 ) -> Problems:
-    """The checks of one sphere, SI: D, E > 0 (``inf`` allowed: flat, rigid), -1 < nu <
-    0.5, rho, m, sigma_y > 0 where given (NaN: not given), and a mass or a finite diameter
-    with a density. ``names`` names the properties in the messages (:data:`SPHERE_NAMES`,
-    :func:`sphere_names`). ``given`` marks rho, m, sy (keys as in ``names``) as given, so
-    that NaN there is a fault, not "not given" (a :class:`~impactcli.impact.Sphere`)."""
+    """The checks of one sphere, SI: D, E > 0 (``inf`` allowed: flat, rigid), -1 < nu <=
+    0.5 (0.5: incompressible), rho, m, sigma_y > 0 where given (NaN: not given), and a
+    mass or a finite diameter with a density. ``names`` names the properties in the
+    messages (:data:`SPHERE_NAMES`, :func:`sphere_names`). ``given`` marks rho, m, sy
+    (keys as in ``names``) as given, so that NaN there is a fault, not "not given" (a
+    :class:`~impactcli.impact.Sphere`)."""
     from impactcli.contact import sphere_mass
     d, e, nu, rho, m, sy = flat_floats(
         diameter, youngs_modulus, poisson_ratio, density, mass, yield_strength
@@ -201,7 +202,7 @@ def sphere_problems(
             p.add(np.isnan(x), f"{names[key]} is missing or NaN")
             p.add(~(x > 0), f"{names[key]} must be positive, got {{:g}}", x)
         p.add(np.isnan(nu), f"{names['nu']} is missing or NaN")
-        p.add(~((nu > -1.0) & (nu < 0.5)), f"{names['nu']} must lie in (-1, 0.5), got {{:g}}", nu)
+        p.add(~((nu > -1.0) & (nu <= 0.5)), f"{names['nu']} must lie in (-1, 0.5], got {{:g}}", nu)
         for key, x in (("rho", rho), ("m", m), ("sy", sy)):
             if given is not None and given.get(key):
                 p.add(np.isnan(x), f"{names[key]} is missing or NaN")
