@@ -331,3 +331,40 @@ def test_the_sweep_velocities_are_the_library_grid(impact):
                  "--v-min", "2", "--v-max", "1")  # fmt: skip
     assert bad.returncode == 2
     assert bad.stderr.strip() == "impact: error: need 0 < --v-min <= --v-max, got 2 and 1 m/s"
+
+
+@pytest.mark.parametrize(
+    "extra, command",
+    [
+        (["--p0-factor", "3"], "use impact elastoplastic --law du-wang"),
+        (["--law", "jkr", "--work-of-adhesion", "0.2", "--py", "1GPa"],
+         "use impact elastoplastic --law thornton"),
+        (["--law", "du-wang"], "use impact elastoplastic --law du-wang"),
+    ],
+)
+def test_elastic_points_an_elastoplastic_parameter_to_the_command_that_takes_it(
+    impact, extra, command
+):
+    """A parameter of elastoplastic laws alone in impact elastic names the command that runs
+    it, not --law X, which impact elastic refuses too; and the advice works."""
+    paper = ["--d1", "20mm", "--d2", "40mm", "--v1", "1m/s", "--material", "steel"]
+    done = impact("elastic", *paper, *extra)
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.startswith("impact: error: ") and command in done.stderr
+    assert "add --law" not in done.stderr and done.stderr.count("\n") == 1
+    advised = command.split("use impact ", 1)[1].split()  # the command and its --law
+    pairs = dict(zip(extra[::2], extra[1::2]))
+    kept = [x for k, v in pairs.items() if k not in ("--law", "--work-of-adhesion") for x in (k, v)]
+    assert impact(*advised, *paper, *kept).returncode == 0
+
+
+def test_elastic_law_help_lists_the_laws_it_runs(impact):
+    """The help of impact elastic's --law, generated from the registry, lists the elastic
+    laws (and their options) only: the elastoplastic ones are refused by the command."""
+    from impactcli.laws.registry import LAWS
+
+    text = " ".join(impact("elastic", "--help", env={"COLUMNS": "300"}).stdout.split())
+    law_help = text.split("Contact law (details: 'impact laws'): ", 1)[1].split("Default:")[0]
+    listed = {part.split(" (")[0].strip(" .") for part in law_help.split(";")}
+    assert listed == {n for n, s in LAWS.items() if s.kind.startswith("elastic")}
+    assert {"du-wang", "thornton", "walton-braun"}.isdisjoint(listed)

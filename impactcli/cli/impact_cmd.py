@@ -532,8 +532,15 @@ def _material_parts(p: SphereOptions, s1, s2) -> list[str]:
     return labels
 
 
+def _elastic_kind(spec) -> bool:
+    """Whether ``impact elastic`` runs the law of ``spec`` (a
+    :class:`~impactcli.laws.base.LawSpec`): an elastic one (``tabulated``: elastic or
+    elastoplastic, as its curves are)."""
+    return spec.kind.startswith("elastic")
+
+
 @with_sphere_options()
-@with_law_options(default=ELASTIC_LAW)
+@with_law_options(default=ELASTIC_LAW, takes=_elastic_kind)
 @with_damping_options()
 @with_history_options
 def elastic(
@@ -582,8 +589,9 @@ append_help(elastic, f"{UNITS_HELP} {SIGN_HELP}")
 
 def _elastic_law(law: LawOptions | None, curve: str | None) -> LawChoice | None:
     """The law of ``impact elastic``: None for Hertz as the paper runs it, the user's curve
-    (--curve), or an elastic law named by --law; an elastoplastic law is refused."""
-    from impactcli.laws.registry import LAWS
+    (--curve), or an elastic law named by --law; an elastoplastic law, or a parameter of
+    elastoplastic laws alone, is refused with the command that runs it."""
+    from impactcli.laws.registry import LAWS, parameter_laws
 
     names = law.names if law is not None else ()
     given = dict(law.given) if law is not None else {}
@@ -591,11 +599,19 @@ def _elastic_law(law: LawOptions | None, curve: str | None) -> LawChoice | None:
         given["curve"] = curve
     if not names and not given:
         return None
+    elastic = ", ".join(n for n, s in LAWS.items() if _elastic_kind(s))
+    for key in given:
+        param, owners = parameter_laws()[key]
+        if not any(_elastic_kind(LAWS[owner]) for owner in owners):
+            raise InputError(
+                f"{param.option} is a parameter of law {' or '.join(owners)}, not of an elastic "
+                f"law that impact elastic runs ({elastic}): use impact elastoplastic --law "
+                f"{owners[0]}"
+            )
     default = (CURVE_LAW,) if curve is not None else (ELASTIC_LAW,)
     (choice,) = resolve_laws(LawOptions(tuple(names), given), default=default)
     spec = LAWS[choice.name]
-    if not spec.kind.startswith("elastic"):
-        elastic = ", ".join(n for n, s in LAWS.items() if s.kind.startswith("elastic"))
+    if not _elastic_kind(spec):
         raise InputError(
             f"--law {choice.name} is {spec.kind}: impact elastic runs elastic laws ({elastic}); "
             f"use impact elastoplastic --law {choice.name}"
