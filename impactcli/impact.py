@@ -93,6 +93,7 @@ from impactcli.validation import (
     SMALL_DEFORMATION_LIMIT,
     contact_radius_warning,
     first_yield_warning,
+    fixed_body_split_warning,
     input_errors,
     mass_split_warning,
     pair_problems,
@@ -813,8 +814,8 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
     ``first_yield``: an elastic model, so V0 above the first-yield velocity (Hertz peak
     pressure 1.6 sigma_y) is worth a warning
     (:func:`impactcli.validation.first_yield_warning`); then, for every impact, a contact
-    radius beyond the small-deformation range and a mass split between different
-    materials.
+    radius beyond the small-deformation range, a mass split between different
+    materials and a mass split that leaves a fixed, deformable sphere or wall no share.
 
     Parameters
     ----------
@@ -846,6 +847,12 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
         found += (
             mass_split_warning(
                 result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
+            ),
+        )
+    if result.split == "mass" and math.inf in (s1.total_mass, s2.total_mass):
+        found += (
+            fixed_body_split_warning(
+                result.split, s1.total_mass, s2.total_mass, s1.compliance, s2.compliance
             ),
         )
     return tuple(filter(None, found)) if found else found

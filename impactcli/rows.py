@@ -44,6 +44,7 @@ from impactcli.validation import (
     contact_radius_warning,
     default_yield_velocity,
     first_yield_warning,
+    fixed_deformable,
     materials_differ,
     without_float_warnings,
 )
@@ -418,6 +419,11 @@ def _sphere_shares(
         "the spheres' materials differ and split is mass, the paper's convention for like "
         "spheres; split yield puts the permanent indentation on the sphere that yields"
     )
+    for i, fixed in enumerate(fixed_deformable(splits, mass1, mass2, c1, c2), start=1):
+        notes[valid & fixed & (notes == "")] = (
+            f"sphere {i} is fixed (m{i} = inf) but deforms (finite E{i}), and split mass gives "
+            f"it none of the indentation; split compliance shares it by compliance"
+        )
     delta_max, delta_res = result["delta_max"], result["delta_res"]
     permanent_part = np.where(np.isnan(delta_res), 0.0, delta_res)
     for i in (0, 1):

@@ -42,6 +42,8 @@ __all__ = [
     "contact_radius_warning",
     "ELASTOPLASTIC_ADVICE",
     "first_yield_warning",
+    "fixed_body_split_warning",
+    "fixed_deformable",
     "normal_impact_warnings",
     "renamed_p0_factor",
     "mass_split_warning",
@@ -207,6 +209,11 @@ def sphere_problems(
             if given is not None and given.get(key):
                 p.add(np.isnan(x), f"{names[key]} is missing or NaN")
             p.add(~np.isnan(x) & ~(x > 0), f"{names[key]} must be positive, got {{:g}}", x)
+        p.add(
+            np.isnan(m) & np.isinf(d),
+            f"{names['d']} = inf (a flat body) needs its {names['m']}: {names['m']} = inf makes "
+            f"it a fixed wall, a finite {names['m']} a flat body that moves",
+        )
         p.add(
             np.isnan(m) & (np.isnan(rho) | ~np.isfinite(d)),
             f"give {names['m']}, or a finite {names['d']} and {names['rho']}",
@@ -633,6 +640,45 @@ def mass_split_warning(
         "paper's convention for like spheres; --split yield gives the permanent indentation "
         "to the sphere that yields and the rest by compliance (--split compliance: Hertz)"
     )
+
+
+def fixed_deformable(
+    split: ArrayLike,
+    mass1: ArrayLike,
+    mass2: ArrayLike,
+    compliance1: ArrayLike,
+    compliance2: ArrayLike,
+) -> tuple[NDArray[np.bool_], NDArray[np.bool_]]:
+    """Where sphere 1, sphere 2 is a fixed body (mass [kg] inf) that deforms (compliance
+    (1 - nu^2)/E [1/Pa] > 0: a finite E) and the split is ``mass``, which gives it none of
+    the indentation (its share m / m_i is 0). Arrays broadcast."""
+    by_mass = np.asarray(split, dtype=object) == "mass"
+    with np.errstate(invalid="ignore"):
+        return tuple(  # type: ignore[return-value]
+            by_mass & np.isinf(np.asarray(m, dtype=float)) & (np.asarray(c, dtype=float) > 0)
+            for m, c in ((mass1, compliance1), (mass2, compliance2))
+        )
+
+
+def fixed_body_split_warning(
+    split: str, mass1: float, mass2: float, compliance1: float, compliance2: float
+) -> str | None:
+    """The warning when a fixed sphere or wall (mass [kg] inf) deforms (compliance
+    (1 - nu^2)/E [1/Pa] > 0) and the indentation is split by mass, which puts all of it
+    on the other sphere (:func:`fixed_deformable`), else None.
+
+    >>> fixed_body_split_warning("mass", 0.03, float("inf"), 4.3e-12, 4.3e-12)[:48]
+    'sphere 2 is fixed (m2 = inf) but deforms (finite'
+    """
+    fixed = fixed_deformable(split, mass1, mass2, compliance1, compliance2)
+    for i in (1, 2):
+        if fixed[i - 1]:
+            return (
+                f"sphere {i} is fixed (m{i} = inf) but deforms (finite E{i}), and --split mass "
+                f"gives all the indentation and dissipated energy to sphere {3 - i}, none to "
+                f"sphere {i}; --split compliance shares them by compliance (1 - nu^2)/E (Hertz)"
+            )
+    return None
 
 
 def brittle_notes(

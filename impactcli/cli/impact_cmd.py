@@ -352,15 +352,21 @@ def _captured_note(s: dict, v0: float) -> str:
 
 
 def _split_messages(split: Split, s1, s2) -> None:
-    """The warning of a mass split between different materials, and the notes of the
-    yield split (a sphere without a yield strength does not yield; ties)."""
-    from impactcli.validation import mass_split_warning
+    """The warnings of a mass split between different materials or that leaves a fixed,
+    deformable sphere no share, and the notes of the yield split (a sphere without a yield
+    strength does not yield; ties)."""
+    from impactcli.validation import fixed_body_split_warning, mass_split_warning
 
-    message = mass_split_warning(
-        split.value, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
-    )
-    if message:
-        warn(message)
+    for message in (
+        mass_split_warning(
+            split.value, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
+        ),
+        fixed_body_split_warning(
+            split.value, s1.total_mass, s2.total_mass, s1.compliance, s2.compliance
+        ),
+    ):
+        if message:
+            warn(message)
     _split_notes(split, s1, s2)
 
 
