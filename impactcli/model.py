@@ -411,8 +411,10 @@ class LawPair:
 
     @property
     def first_yield(self) -> bool:
-        """The elastic law (Hertz): V0 above the first-yield velocity is worth a warning."""
-        return self.spec.name == ELASTIC_LAW
+        """An elastic law: Hertz (V0 above the first-yield velocity is worth a warning) or
+        one that declares its first-yield check
+        (:attr:`~impactcli.laws.base.LawSpec.first_yield`)."""
+        return self.spec.name == ELASTIC_LAW or bool(self.spec.first_yield)
 
     @property
     def separation(self) -> None:

@@ -42,6 +42,7 @@ __all__ = [
     "contact_radius_warning",
     "ELASTOPLASTIC_ADVICE",
     "first_yield_warning",
+    "law_first_yield_warning",
     "fixed_body_split_warning",
     "fixed_deformable",
     "normal_impact_warnings",
@@ -430,6 +431,42 @@ def first_yield_warning(
         f"{head}, but stay below the yield velocity V_y = {yield_velocity:.4g} m/s "
         f"({criterion}), up to which {advice} gives this same Hertz result; "
         "the local yield is in neither model"
+    )
+
+
+def law_first_yield_warning(
+    law: str,
+    why: str,
+    delta_max: float,
+    radius: float,
+    modulus: float,
+    yield_strength: float,
+) -> str | None:
+    """The warning of an impact of an elastic law other than Hertz (``law``) past first
+    yield, else None: the Hertz peak pressure (2 E*/pi) sqrt(delta_max/R) of the spheres
+    at the impact's delta_max [m] above 1.6 sigma_y, i.e. delta_max above the first-yield
+    indentation delta_Y (:func:`impactcli.contact.first_yield_indentation`; R [m], E*
+    [Pa], sigma_y [Pa] of the weaker sphere). ``why``: why that pressure bounds the
+    law's (:attr:`~impactcli.laws.base.LawSpec.first_yield`). The check of V0 against
+    V_Y is Hertz's alone: an adhesive law pulls the spheres deeper than Hertz at one V0.
+
+    >>> law_first_yield_warning("dmt", "why", 2e-6, 0.01, 1e11, 1e9) is None
+    True
+    >>> law_first_yield_warning("dmt", "why", 2e-5, 0.01, 1e11, 1e9)[:44]
+    'delta_max = 2e-05 m of law dmt exceeds the f'
+    """
+    from impactcli.contact import first_yield_indentation
+
+    onset = _onset(ELASTIC_LAW)
+    delta_y = first_yield_indentation(radius, modulus, yield_strength,
+                                      onset.pressure_factor({}))  # fmt: skip
+    if not delta_max > delta_y:
+        return None
+    return (
+        f"delta_max = {delta_max:.4g} m of law {law} exceeds the first-yield indentation "
+        f"delta_Y = {delta_y:.4g} m of these spheres ({_first_yield_criterion()} at that "
+        f"indentation; {why}): the spheres begin to yield under the contact, which the "
+        f"elastic law {law} does not model"
     )
 
 
