@@ -112,7 +112,7 @@ def rayleigh_time_step(
     ----------
     radius : R, [m]
     youngs_modulus : E, [Pa]
-    poisson_ratio : nu, [-]
+    poisson_ratio : nu in (-1, 0.5], [-] (0.5: incompressible)
     density : rho, [kg/m^3]
 
     Returns

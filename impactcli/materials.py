@@ -21,7 +21,7 @@ class Material:
     ----------
     name : key used on the command line
     youngs_modulus : E, [Pa]
-    poisson_ratio : nu, [-]
+    poisson_ratio : nu in (-1, 0.5], [-] (0.5: incompressible)
     density : rho, [kg/m^3]
     yield_strength : sigma_y, [Pa]; ``None`` for brittle materials that do not yield
     source : where the values come from

@@ -66,7 +66,7 @@ class Sphere:
     ----------
     diameter : D, [m]; ``inf`` for a flat target
     youngs_modulus : E, [Pa]; ``inf`` for a rigid body
-    poisson_ratio : nu, [-]
+    poisson_ratio : nu in (-1, 0.5], [-] (0.5: incompressible)
     density : rho, [kg/m^3]
     mass : m, [kg]; ``None`` for rho pi D^3 / 6, ``inf`` for a fixed target
     yield_strength : sigma_y, [Pa], or ``None`` if unknown
