@@ -75,3 +75,19 @@ def test_a_batch_row_of_an_adhesive_law_warns_as_the_single_impact(impact, tmp_p
         single = law_impact(*steel, v0, 0.0, law, law_params=params)
         assert row["warning"] == "; ".join(single.warnings), (law, v0)
     assert "first-yield indentation" in out[0]["warning"] and out[1]["warning"] == ""
+
+
+def test_the_oblique_commands_check_an_adhesive_normal_law_for_first_yield(impact):
+    """collide2d and collide3d check the normal impact of an elastic adhesive law as the
+    head-on one does: JKR at u_n = 1 m/s is past first yield (delta_max 24 um > delta_Y
+    3.2 um), at 5 cm/s it is not."""
+    steel = ["--d1", "20mm", "--d2", "40mm", "--material", "steel"]
+    jkr = ["--law", "jkr", "--work-of-adhesion", "0.2"]
+    for speed, warns in (("1", True), ("0.05", False)):
+        three = impact("collide3d", *steel, *jkr, "--p1", "0,0,0", "--p2=0,0.03,0",
+                       "--v1", f"0,{speed},0")  # fmt: skip
+        two = impact("collide2d", *steel, *jkr, "--m1", "0.03kg", "--m2", "0.2kg",
+                     "--p1=0,0", "--p2=0.03,0", "--v1", f"{speed},0", "--v2", "0,0")  # fmt: skip
+        for done in (three, two):
+            assert done.returncode == 0, done.stderr
+            assert done.stderr.count("first-yield indentation delta_Y = 3.163e-06 m") == warns
