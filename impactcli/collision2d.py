@@ -56,6 +56,7 @@ from impactcli.validation import (
     check_restitution,
     check_vectors,
     input_errors,
+    law_first_yield_warning,
     normal_impact_warnings,
 )
 from impactcli.validation import where_first as _where
@@ -470,17 +471,27 @@ def normal_law_warnings(
     elastic: bool,
     velocity: str = "the normal approach velocity u_n",
     advice: str = ELASTOPLASTIC_NORMAL_LAW,
+    law: str = ELASTIC_LAW,
 ) -> tuple[str, ...]:
     """The warnings of the normal impact of two spheres at u_n [m/s] whose maximum
     indentation is delta_max [m] (:func:`impactcli.validation.normal_impact_warnings`);
-    ``elastic``: an elastic (Hertz) normal law, whose first yield is worth a warning;
-    ``velocity`` names u_n and ``advice`` the elastoplastic law in the messages."""
+    ``elastic``: an elastic normal law, whose first yield is worth a warning: u_n against
+    the first-yield velocity for Hertz, the Hertz peak pressure at delta_max for another
+    elastic ``law`` (:func:`impactcli.validation.law_first_yield_warning`); ``velocity``
+    names u_n and ``advice`` the elastoplastic law in the messages."""
     m, radius, modulus = effective_properties(sphere1, sphere2)
     sigma_y = weaker_yield_strength(sphere1, sphere2)
     first_yield = None
+    found: tuple[str, ...] = ()
     if elastic and sigma_y is not None:
-        first_yield = float(first_yield_velocity(m, radius, modulus, sigma_y))
-    return normal_impact_warnings(u_n, delta_max, radius, first_yield, velocity, advice)
+        spec = get_law(law)
+        if spec.first_yield:
+            words = law_first_yield_warning(spec.name, spec.first_yield, delta_max, radius,
+                                            modulus, sigma_y)  # fmt: skip
+            found = (words,) if words else ()
+        else:
+            first_yield = float(first_yield_velocity(m, radius, modulus, sigma_y))
+    return found + normal_impact_warnings(u_n, delta_max, radius, first_yield, velocity, advice)
 
 
 @input_errors
@@ -535,11 +546,11 @@ def sphere_collision_2d(
         from impactcli.impact import solve_impact
 
         result = solve_impact(*spheres, velocity, 0.0, normal)
-        elastic = (
-            normal is None or normal.damping is not None or get_law(normal.law).name == ELASTIC_LAW
-        )
+        law = ELASTIC_LAW if normal is None or normal.damping is not None else normal.law
+        spec = get_law(law)
+        elastic = spec.name == ELASTIC_LAW or bool(spec.first_yield)
         delta_max = result.summary["delta_max"]
-        warned = normal_law_warnings(*spheres, velocity, delta_max, elastic, *words)
+        warned = normal_law_warnings(*spheres, velocity, delta_max, elastic, *words, law=law)
         if normal is not None:
             restitution = float(result.summary["restitution"])
     collision = oblique_collision(*masses, v1, v2, p1, p2, restitution)

@@ -798,8 +798,10 @@ def normal_restitution_and_history(
     pair = model.for_spheres(sphere1, sphere2)
     solution = pair.solve(float(u_n), segments, must_end=False)
     e = float(solution.restitution)
-    elastic = get_law(law).name == ELASTIC_LAW  # Hertz, damped or not: its first yield
-    warned = normal_law_warnings(sphere1, sphere2, u_n, float(solution.delta_max), elastic)
+    spec = get_law(law)  # Hertz, damped or not, or another elastic law: its first yield
+    elastic = spec.name == ELASTIC_LAW or bool(spec.first_yield)
+    warned = normal_law_warnings(sphere1, sphere2, u_n, float(solution.delta_max), elastic,
+                                 law=law)  # fmt: skip
     if points is None:
         return NormalLaw(e, None, warned)
     t_c = float(solution.contact_time)

@@ -20,6 +20,7 @@ from impactcli.laws.du_wang import DU_WANG_PRESSURE_FACTOR, DuWangContact
 from impactcli.laws.hertz import (
     FIRST_YIELD_PRESSURE_FACTOR,
     HertzContact,
+    first_yield_indentation,
     first_yield_velocity,
     hertz_maximum_indentation,
 )
@@ -34,6 +35,7 @@ __all__ = [
     "effective_mass",
     "effective_modulus",
     "effective_radius",
+    "first_yield_indentation",
     "first_yield_velocity",
     "hertz_maximum_indentation",
     "sphere_compliance",

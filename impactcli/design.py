@@ -91,7 +91,7 @@ def _check_material(
     with np.errstate(invalid="ignore"):
         _require("the radius", r, r > 0, "> 0 (inf for a flat body)")
         _require("Young's modulus", e, e > 0, "> 0 (inf for a rigid body)")
-        _require("Poisson's ratio", nu, (nu > -1.0) & (nu < 0.5), "in (-1, 0.5)")
+        _require("Poisson's ratio", nu, (nu > -1.0) & (nu <= 0.5), "in (-1, 0.5]")
     return r, e, nu
 
 
@@ -112,7 +112,7 @@ def rayleigh_time_step(
     ----------
     radius : R, [m]
     youngs_modulus : E, [Pa]
-    poisson_ratio : nu, [-]
+    poisson_ratio : nu in (-1, 0.5], [-] (0.5: incompressible)
     density : rho, [kg/m^3]
 
     Returns

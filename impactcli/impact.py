@@ -93,7 +93,9 @@ from impactcli.validation import (
     SMALL_DEFORMATION_LIMIT,
     contact_radius_warning,
     first_yield_warning,
+    fixed_body_split_warning,
     input_errors,
+    law_first_yield_warning,
     mass_split_warning,
     pair_problems,
     raise_first,
@@ -821,9 +823,11 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
 
     ``first_yield``: an elastic model, so V0 above the first-yield velocity (Hertz peak
     pressure 1.6 sigma_y) is worth a warning
-    (:func:`impactcli.validation.first_yield_warning`); then, for every impact, a contact
-    radius beyond the small-deformation range and a mass split between different
-    materials.
+    (:func:`impactcli.validation.first_yield_warning`), or for an elastic law other than
+    Hertz, delta_max above the first-yield indentation
+    (:func:`impactcli.validation.law_first_yield_warning`); then, for every impact, a contact
+    radius beyond the small-deformation range, a mass split between different
+    materials and a mass split that leaves a fixed, deformable sphere or wall no share.
 
     Parameters
     ----------
@@ -848,7 +852,7 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
     s1, s2 = result.sphere1, result.sphere2
     found = ()
     if first_yield and "first_yield_velocity" in s:
-        found += (first_yield_warning(v0, s["first_yield_velocity"]),)
+        found += (_first_yield_warning(result),)
     if not _small_contact(s["delta_max"], s["effective_radius"]):
         found += (contact_radius_warning(v0, s["delta_max"], s["effective_radius"]),)
     if result.split == "mass" and not _same_material(s1, s2):
@@ -857,7 +861,29 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
                 result.split, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
             ),
         )
+    if result.split == "mass" and math.inf in (s1.total_mass, s2.total_mass):
+        found += (
+            fixed_body_split_warning(
+                result.split, s1.total_mass, s2.total_mass, s1.compliance, s2.compliance
+            ),
+        )
     return tuple(filter(None, found)) if found else found
+
+
+def _first_yield_warning(result: ImpactResult) -> str | None:
+    """The first-yield warning of an elastic impact: Hertz's (damped or not), V0 against
+    the first-yield velocity; another elastic law's (:attr:`~impactcli.laws.base.LawSpec.
+    first_yield`), the Hertz peak pressure at its delta_max, unless the impact was
+    plastic (a tabulated curve with unloading curves: the data carry the plasticity)."""
+    s = result.summary
+    spec = getattr(result.contact, "spec", None)
+    if spec is None or not spec.first_yield:
+        return first_yield_warning(result.impact_velocity, s["first_yield_velocity"])
+    if result.model == "elastoplastic":
+        return None
+    sy = weaker_yield_strength(result.sphere1, result.sphere2)
+    return law_first_yield_warning(spec.name, spec.first_yield, s["delta_max"],
+                                   s["effective_radius"], s["effective_modulus"], sy)  # fmt: skip
 
 
 def _small_contact(delta_max: float, radius: float) -> bool:

@@ -21,7 +21,7 @@ class Material:
     ----------
     name : key used on the command line
     youngs_modulus : E, [Pa]
-    poisson_ratio : nu, [-]
+    poisson_ratio : nu in (-1, 0.5], [-] (0.5: incompressible)
     density : rho, [kg/m^3]
     yield_strength : sigma_y, [Pa]; ``None`` for brittle materials that do not yield
     source : where the values come from
@@ -35,7 +35,7 @@ class Material:
     ------
     InputError
         A name or source that is not text, or a value out of range: E > 0 (``inf`` for a
-        rigid body), -1 < nu < 0.5, rho > 0 and finite, sigma_y > 0 and finite (or None).
+        rigid body), -1 < nu <= 0.5, rho > 0 and finite, sigma_y > 0 and finite (or None).
 
     Examples
     --------
@@ -64,7 +64,7 @@ class Material:
             raise InputError("a material's name must not be empty")
         checks = {
             "youngs_modulus": ("> 0 [Pa] (inf for a rigid body)", lambda x: x > 0.0),
-            "poisson_ratio": ("in (-1, 0.5)", lambda x: -1.0 < x < 0.5),
+            "poisson_ratio": ("in (-1, 0.5]", lambda x: -1.0 < x <= 0.5),
             "density": ("> 0 and finite [kg/m^3]", lambda x: 0.0 < x < math.inf),
             "yield_strength": ("> 0 and finite [Pa], or None for a brittle material",
                                lambda x: 0.0 < x < math.inf),

@@ -96,7 +96,10 @@ class ContactModel:
         (viscoelastic) (see ``impact laws``)
     restitution : instead of ``alpha``, the coefficient of restitution in (0, 1], [-], that the
         damping is to give at the impact's V0 (alpha is solved for by the model)
-    separation : ``overlap`` or ``force``: when a damped contact ends
+    separation : when the contact ends, one meaning as the command line's ``--separation``:
+        ``overlap`` (the default) or ``force`` with a damping model; ``instability`` or
+        ``pull-off`` with an adhesive law (``jkr``, ``thornton-ning``), which takes it as
+        its parameter ``law_params["separation"]`` (the two may not differ)
     yield_strength : sigma_y of the contact, [Pa]; default the lower of the spheres'
 
     Examples
@@ -117,6 +120,15 @@ class ContactModel:
     restitution: float | None = None
     separation: str = "overlap"
     yield_strength: float | None = None
+
+    def __post_init__(self) -> None:
+        """Without damping: alpha and e refused (InputError, as ``--alpha``, ``--e``
+        without ``--damping``), and a separation rule other than the default taken into
+        the law's parameters (:func:`_undamped_params`)."""
+        if self.damping is None and (
+            self.separation != "overlap" or self.alpha is not None or self.restitution is not None
+        ):
+            object.__setattr__(self, "law_params", _undamped_params(self))
 
     @property
     def name(self) -> str:
@@ -168,7 +180,8 @@ class ContactModel:
     def check(self, method: str = "film") -> None:
         """The checks of the model alone, before any sphere: a damping model's name, law,
         separation rule, ``method`` and alpha or e (ValueError, one line). A normal law is
-        checked with the spheres (:meth:`for_spheres`)."""
+        checked with the spheres (:meth:`for_spheres`); its alpha, e and separation rule
+        when it is made (:func:`_undamped_params`)."""
         if self.damping is None:
             return
         from impactcli.laws.registry import check_alpha, check_damping
@@ -213,6 +226,44 @@ class ContactModel:
             return made_at_once(pair, _pair_fields(self, spec, sphere1, sphere2, m, r, e, sigma_y))
         m, r, e = effective_properties(sphere1, sphere2)
         return DampedPair(self, sphere1, sphere2, m, r, e)
+
+
+def _undamped_params(model: ContactModel) -> Mapping[str, Any]:
+    """The law parameters of a model without damping, checked: alpha and e are a damping
+    model's (InputError); ``separation`` other than the default ``overlap`` is a rule of
+    the law's (an adhesive law's ``instability`` or ``pull-off``), put into its
+    parameters as the command line puts ``--separation`` there."""
+    from impactcli.errors import InputError
+
+    given = [n for n, v in (("alpha", model.alpha), ("restitution", model.restitution))
+             if v is not None]  # fmt: skip
+    if given:
+        verb = "needs" if len(given) == 1 else "need"
+        raise InputError(
+            f"{' and '.join(given)} {verb} a damping model: damping="
+            + " or ".join(repr(name) for name in DAMPING_LAWS)
+            + f" (law {model.law!r} without damping has no such parameter)"
+        )
+    if model.separation == "overlap":
+        return model.law_params
+    try:
+        spec = get_law(model.law)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    rules = next((p.choices for p in spec.parameters if p.name == "separation"), ())
+    if model.separation not in rules:
+        takes = f"takes {' or '.join(rules)}" if rules else "has no separation rule"
+        raise InputError(
+            f"separation {model.separation!r}: law {spec.name!r} without damping {takes}; "
+            "overlap and force are the rules of a damped contact (give damping=...)"
+        )
+    given_rule = model.law_params.get("separation")
+    if given_rule is not None and given_rule != model.separation:
+        raise InputError(
+            f"separation={model.separation!r} and law_params['separation']={given_rule!r} "
+            "differ: they are the same parameter (the command line's --separation), give one"
+        )
+    return {**model.law_params, "separation": model.separation}
 
 
 #: The pair models of the last few (model, sphere1, sphere2), by identity, with the
@@ -360,8 +411,10 @@ class LawPair:
 
     @property
     def first_yield(self) -> bool:
-        """The elastic law (Hertz): V0 above the first-yield velocity is worth a warning."""
-        return self.spec.name == ELASTIC_LAW
+        """An elastic law: Hertz (V0 above the first-yield velocity is worth a warning) or
+        one that declares its first-yield check
+        (:attr:`~impactcli.laws.base.LawSpec.first_yield`)."""
+        return self.spec.name == ELASTIC_LAW or bool(self.spec.first_yield)
 
     @property
     def separation(self) -> None:

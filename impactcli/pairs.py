@@ -66,7 +66,7 @@ class Sphere:
     ----------
     diameter : D, [m]; ``inf`` for a flat target
     youngs_modulus : E, [Pa]; ``inf`` for a rigid body
-    poisson_ratio : nu, [-]
+    poisson_ratio : nu in (-1, 0.5], [-] (0.5: incompressible)
     density : rho, [kg/m^3]
     mass : m, [kg]; ``None`` for rho pi D^3 / 6, ``inf`` for a fixed target
     yield_strength : sigma_y, [Pa], or ``None`` if unknown
@@ -178,7 +178,7 @@ class Sphere:
 def _plain_sphere(sphere: Sphere) -> bool:
     """True when every property of ``sphere`` is a plain number that plainly passes the
     checks of :func:`impactcli.validation.sphere_problems` (finite D > 0, E > 0,
-    -1 < nu < 0.5, rho, m, sigma_y > 0 where given, a mass of range): the common case, told
+    -1 < nu <= 0.5, rho, m, sigma_y > 0 where given, a mass of range): the common case, told
     on floats. False sends the sphere through those checks, which word what is wrong."""
     values = (sphere.diameter, sphere.youngs_modulus, sphere.poisson_ratio)
     extra = (sphere.density, sphere.mass, sphere.yield_strength)
@@ -187,7 +187,7 @@ def _plain_sphere(sphere: Sphere) -> bool:
     if not all(x is None or (type(x) in (float, int) and 0.0 < x < math.inf) for x in extra):
         return False
     d, e, nu = values
-    if not (0.0 < d < math.inf and 0.0 < e <= math.inf and -1.0 < nu < 0.5):
+    if not (0.0 < d < math.inf and 0.0 < e <= math.inf and -1.0 < nu <= 0.5):
         return False
     if sphere.mass is not None:
         return True

@@ -44,6 +44,8 @@ from impactcli.validation import (
     contact_radius_warning,
     default_yield_velocity,
     first_yield_warning,
+    fixed_deformable,
+    law_first_yield_warning,
     materials_differ,
     without_float_warnings,
 )
@@ -205,6 +207,7 @@ def compute_rows(
         result["effective_radius"],
         np.where(np.equal(laws, None), ~plastic, elastic_law) & ~errors.bad,
     )  # fmt: skip
+    _law_yield_warnings(result, laws, law_params, pairs, ~errors.bad)
     noted = np.flatnonzero((notes != "") & ~errors.bad)
     result["warning"][noted] = [
         f"{w}; {x}" if w else x for w, x in zip(result["warning"][noted], notes[noted])
@@ -304,6 +307,43 @@ def _kernel_results(
     return result
 
 
+def _law_yield_warnings(
+    result: dict[str, NDArray],
+    laws: NDArray[np.object_],
+    law_params: dict[str, NDArray],
+    pairs: SpherePairs,
+    valid: NDArray[np.bool_],
+) -> None:
+    """The first-yield warning of the rows of an elastic law other than Hertz
+    (:attr:`~impactcli.laws.base.LawSpec.first_yield`: JKR, DMT, a tabulated curve without
+    unloading curves), as a single impact words it
+    (:func:`impactcli.validation.law_first_yield_warning`), put before the row's other
+    warnings; only the rows that warn are worded."""
+    named = valid & ~np.equal(laws, None)
+    unloading = law_params.get("unload_curves")
+    for name in set(laws[named].tolist()):
+        spec = get_law(name)
+        if not spec.first_yield:
+            continue
+        mine = named & (laws == name)
+        if unloading is not None:
+            mine &= np.equal(unloading, None)  # its data carry the plasticity
+        rows = np.flatnonzero(mine)
+        with np.errstate(invalid="ignore"):
+            sy = np.fmin(pairs.sy1[rows], pairs.sy2[rows])  # the weaker sphere's
+        for i, strength in zip(rows.tolist(), sy.tolist()):
+            if math.isnan(strength):
+                continue
+            found = law_first_yield_warning(
+                name, spec.first_yield, float(result["delta_max"][i]),
+                float(result["effective_radius"][i]), float(result["effective_modulus"][i]),
+                strength,
+            )  # fmt: skip
+            if found:
+                rest = result["warning"][i]
+                result["warning"][i] = f"{found}; {rest}" if rest else found
+
+
 def _row_laws(
     reader: ColumnReader, errors: Problems
 ) -> tuple[NDArray[np.object_], dict[str, NDArray], NDArray[np.bool_]]:
@@ -326,7 +366,7 @@ def _row_laws(
             message[rows] = str(exc)
             continue
         laws[rows] = spec.name
-        elastic[rows] = spec.kind == "elastic"
+        elastic[rows] = spec.kind == "elastic" and not spec.first_yield  # else its own check
     errors.add_messages(message)
 
     declared = parameter_laws()
@@ -418,6 +458,11 @@ def _sphere_shares(
         "the spheres' materials differ and split is mass, the paper's convention for like "
         "spheres; split yield puts the permanent indentation on the sphere that yields"
     )
+    for i, fixed in enumerate(fixed_deformable(splits, mass1, mass2, c1, c2), start=1):
+        notes[valid & fixed & (notes == "")] = (
+            f"sphere {i} is fixed (m{i} = inf) but deforms (finite E{i}), and split mass gives "
+            f"it none of the indentation; split compliance shares it by compliance"
+        )
     delta_max, delta_res = result["delta_max"], result["delta_res"]
     permanent_part = np.where(np.isnan(delta_res), 0.0, delta_res)
     for i in (0, 1):

@@ -207,6 +207,11 @@ def sphere_from_options(options: SphereOptions, i: int, prefix: str = "--"):
     for unknown, message in missing_properties(i, values, prefix):
         if unknown:
             raise InputError(message)
+    if np.isinf(diameter) and np.isnan(mass):
+        raise InputError(
+            f"sphere {i}: {prefix}d{i} inf (a flat body) needs its mass: {prefix}m{i} inf "
+            f"makes it a fixed wall, a finite {prefix}m{i} a flat body that moves"
+        )
 
     def given(x: float) -> float | None:
         return None if np.isnan(x) else x

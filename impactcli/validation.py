@@ -42,6 +42,9 @@ __all__ = [
     "contact_radius_warning",
     "ELASTOPLASTIC_ADVICE",
     "first_yield_warning",
+    "law_first_yield_warning",
+    "fixed_body_split_warning",
+    "fixed_deformable",
     "normal_impact_warnings",
     "renamed_p0_factor",
     "mass_split_warning",
@@ -221,11 +224,12 @@ def sphere_problems(
     problems: Problems | None = None,
     given: Mapping[str, bool] | None = None,
 ) -> Problems:
-    """The checks of one sphere, SI: D, E > 0 (``inf`` allowed: flat, rigid), -1 < nu <
-    0.5, rho, m, sigma_y > 0 where given (NaN: not given), and a mass or a finite diameter
-    with a density. ``names`` names the properties in the messages (:data:`SPHERE_NAMES`,
-    :func:`sphere_names`). ``given`` marks rho, m, sy (keys as in ``names``) as given, so
-    that NaN there is a fault, not "not given" (a :class:`~impactcli.impact.Sphere`)."""
+    """The checks of one sphere, SI: D, E > 0 (``inf`` allowed: flat, rigid), -1 < nu <=
+    0.5 (0.5: incompressible), rho, m, sigma_y > 0 where given (NaN: not given), and a
+    mass or a finite diameter with a density. ``names`` names the properties in the
+    messages (:data:`SPHERE_NAMES`, :func:`sphere_names`). ``given`` marks rho, m, sy
+    (keys as in ``names``) as given, so that NaN there is a fault, not "not given" (a
+    :class:`~impactcli.impact.Sphere`)."""
     from impactcli.contact import sphere_mass
     d, e, nu, rho, m, sy = flat_floats(
         diameter, youngs_modulus, poisson_ratio, density, mass, yield_strength
@@ -236,11 +240,16 @@ def sphere_problems(
             p.add(np.isnan(x), f"{names[key]} is missing or NaN")
             p.add(~(x > 0), f"{names[key]} must be positive, got {{:g}}", x)
         p.add(np.isnan(nu), f"{names['nu']} is missing or NaN")
-        p.add(~((nu > -1.0) & (nu < 0.5)), f"{names['nu']} must lie in (-1, 0.5), got {{:g}}", nu)
+        p.add(~((nu > -1.0) & (nu <= 0.5)), f"{names['nu']} must lie in (-1, 0.5], got {{:g}}", nu)
         for key, x in (("rho", rho), ("m", m), ("sy", sy)):
             if given is not None and given.get(key):
                 p.add(np.isnan(x), f"{names[key]} is missing or NaN")
             p.add(~np.isnan(x) & ~(x > 0), f"{names[key]} must be positive, got {{:g}}", x)
+        p.add(
+            np.isnan(m) & np.isinf(d),
+            f"{names['d']} = inf (a flat body) needs its {names['m']}: {names['m']} = inf makes "
+            f"it a fixed wall, a finite {names['m']} a flat body that moves",
+        )
         p.add(
             np.isnan(m) & (np.isnan(rho) | ~np.isfinite(d)),
             f"give {names['m']}, or a finite {names['d']} and {names['rho']}",
@@ -460,6 +469,42 @@ def first_yield_warning(
     )
 
 
+def law_first_yield_warning(
+    law: str,
+    why: str,
+    delta_max: float,
+    radius: float,
+    modulus: float,
+    yield_strength: float,
+) -> str | None:
+    """The warning of an impact of an elastic law other than Hertz (``law``) past first
+    yield, else None: the Hertz peak pressure (2 E*/pi) sqrt(delta_max/R) of the spheres
+    at the impact's delta_max [m] above 1.6 sigma_y, i.e. delta_max above the first-yield
+    indentation delta_Y (:func:`impactcli.contact.first_yield_indentation`; R [m], E*
+    [Pa], sigma_y [Pa] of the weaker sphere). ``why``: why that pressure bounds the
+    law's (:attr:`~impactcli.laws.base.LawSpec.first_yield`). The check of V0 against
+    V_Y is Hertz's alone: an adhesive law pulls the spheres deeper than Hertz at one V0.
+
+    >>> law_first_yield_warning("dmt", "why", 2e-6, 0.01, 1e11, 1e9) is None
+    True
+    >>> law_first_yield_warning("dmt", "why", 2e-5, 0.01, 1e11, 1e9)[:44]
+    'delta_max = 2e-05 m of law dmt exceeds the f'
+    """
+    from impactcli.contact import first_yield_indentation
+
+    onset = _onset(ELASTIC_LAW)
+    delta_y = first_yield_indentation(radius, modulus, yield_strength,
+                                      onset.pressure_factor({}))  # fmt: skip
+    if not delta_max > delta_y:
+        return None
+    return (
+        f"delta_max = {delta_max:.4g} m of law {law} exceeds the first-yield indentation "
+        f"delta_Y = {delta_y:.4g} m of these spheres ({_first_yield_criterion()} at that "
+        f"indentation; {why}): the spheres begin to yield under the contact, which the "
+        f"elastic law {law} does not model"
+    )
+
+
 def renamed_p0_factor(
     function: str, p0_factor: float, pressure_factor: float | None, stacklevel: int = 4
 ) -> float:
@@ -667,6 +712,45 @@ def mass_split_warning(
         "paper's convention for like spheres; --split yield gives the permanent indentation "
         "to the sphere that yields and the rest by compliance (--split compliance: Hertz)"
     )
+
+
+def fixed_deformable(
+    split: ArrayLike,
+    mass1: ArrayLike,
+    mass2: ArrayLike,
+    compliance1: ArrayLike,
+    compliance2: ArrayLike,
+) -> tuple[NDArray[np.bool_], NDArray[np.bool_]]:
+    """Where sphere 1, sphere 2 is a fixed body (mass [kg] inf) that deforms (compliance
+    (1 - nu^2)/E [1/Pa] > 0: a finite E) and the split is ``mass``, which gives it none of
+    the indentation (its share m / m_i is 0). Arrays broadcast."""
+    by_mass = np.asarray(split, dtype=object) == "mass"
+    with np.errstate(invalid="ignore"):
+        return tuple(  # type: ignore[return-value]
+            by_mass & np.isinf(np.asarray(m, dtype=float)) & (np.asarray(c, dtype=float) > 0)
+            for m, c in ((mass1, compliance1), (mass2, compliance2))
+        )
+
+
+def fixed_body_split_warning(
+    split: str, mass1: float, mass2: float, compliance1: float, compliance2: float
+) -> str | None:
+    """The warning when a fixed sphere or wall (mass [kg] inf) deforms (compliance
+    (1 - nu^2)/E [1/Pa] > 0) and the indentation is split by mass, which puts all of it
+    on the other sphere (:func:`fixed_deformable`), else None.
+
+    >>> fixed_body_split_warning("mass", 0.03, float("inf"), 4.3e-12, 4.3e-12)[:48]
+    'sphere 2 is fixed (m2 = inf) but deforms (finite'
+    """
+    fixed = fixed_deformable(split, mass1, mass2, compliance1, compliance2)
+    for i in (1, 2):
+        if fixed[i - 1]:
+            return (
+                f"sphere {i} is fixed (m{i} = inf) but deforms (finite E{i}), and --split mass "
+                f"gives all the indentation and dissipated energy to sphere {3 - i}, none to "
+                f"sphere {i}; --split compliance shares them by compliance (1 - nu^2)/E (Hertz)"
+            )
+    return None
 
 
 def brittle_notes(

@@ -225,8 +225,8 @@ def test_sphere_and_rows_share_their_checks():
     cases = [
         (dict(diameter=-0.02), "diameter must be positive, got -0.02", dict(d1=-0.02),
          "d1 must be positive, got -0.02"),
-        (dict(poisson_ratio=0.7), "Poisson's ratio must lie in (-1, 0.5), got 0.7",
-         dict(nu1=0.7), "nu1 must lie in (-1, 0.5), got 0.7"),
+        (dict(poisson_ratio=0.7), "Poisson's ratio must lie in (-1, 0.5], got 0.7",
+         dict(nu1=0.7), "nu1 must lie in (-1, 0.5], got 0.7"),
         (dict(yield_strength=-5.0), "yield strength must be positive, got -5",
          dict(sy1=-5.0), "sy1 must be positive, got -5"),
     ]  # fmt: skip

@@ -164,7 +164,7 @@ def test_kernel_reports_each_bad_row_and_computes_the_others():
     assert "v1 must be a finite velocity" in out["error"][2]
     assert "do not approach" in out["error"][3]
     assert "yield strength" in out["error"][4]
-    assert "nu1 must lie in (-1, 0.5)" in out["error"][5]
+    assert "nu1 must lie in (-1, 0.5]" in out["error"][5]
     assert "flat" in out["error"][6]
     assert np.all(np.isnan(out["contact_time"][1:7]))
     assert out["restitution"][0] == out["restitution"][7] == pytest.approx(0.85611, abs=5e-6)

@@ -331,3 +331,83 @@ def test_the_sweep_velocities_are_the_library_grid(impact):
                  "--v-min", "2", "--v-max", "1")  # fmt: skip
     assert bad.returncode == 2
     assert bad.stderr.strip() == "impact: error: need 0 < --v-min <= --v-max, got 2 and 1 m/s"
+
+
+@pytest.mark.parametrize(
+    "extra, command",
+    [
+        (["--p0-factor", "3"], "use impact elastoplastic --law du-wang"),
+        (["--law", "jkr", "--work-of-adhesion", "0.2", "--py", "1GPa"],
+         "use impact elastoplastic --law thornton"),
+        (["--law", "du-wang"], "use impact elastoplastic --law du-wang"),
+    ],
+)
+def test_elastic_points_an_elastoplastic_parameter_to_the_command_that_takes_it(
+    impact, extra, command
+):
+    """A parameter of elastoplastic laws alone in impact elastic names the command that runs
+    it, not --law X, which impact elastic refuses too; and the advice works."""
+    paper = ["--d1", "20mm", "--d2", "40mm", "--v1", "1m/s", "--material", "steel"]
+    done = impact("elastic", *paper, *extra)
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.startswith("impact: error: ") and command in done.stderr
+    assert "add --law" not in done.stderr and done.stderr.count("\n") == 1
+    advised = command.split("use impact ", 1)[1].split()  # the command and its --law
+    pairs = dict(zip(extra[::2], extra[1::2]))
+    kept = [x for k, v in pairs.items() if k not in ("--law", "--work-of-adhesion") for x in (k, v)]
+    assert impact(*advised, *paper, *kept).returncode == 0
+
+
+def test_elastic_law_help_lists_the_laws_it_runs(impact):
+    """The help of impact elastic's --law, generated from the registry, lists the elastic
+    laws (and their options) only: the elastoplastic ones are refused by the command."""
+    from impactcli.laws.registry import LAWS
+
+    text = " ".join(impact("elastic", "--help", env={"COLUMNS": "300"}).stdout.split())
+    law_help = text.split("Contact law (details: 'impact laws'): ", 1)[1].split("Default:")[0]
+    listed = {part.split(" (")[0].strip(" .") for part in law_help.split(";")}
+    assert listed == {n for n, s in LAWS.items() if s.kind.startswith("elastic")}
+    assert {"du-wang", "thornton", "walton-braun"}.isdisjoint(listed)
+
+
+def test_a_deformable_fixed_wall_split_by_mass_warns():
+    """A steel ball on a fixed steel wall (m2 = inf, finite E2): the mass split gives the
+    wall no share (m / m2 = 0), though by compliance, Hertz's, it takes half the dent of a
+    like material. The default split stays, with a warning that names --split compliance;
+    a rigid wall (E2 = inf, no dent either way) or the compliance split do not warn."""
+    from impactcli.impact import Sphere, elastoplastic_impact
+
+    ball = Sphere.from_material(0.02, "steel")
+    steel = Sphere.from_material(0.02, "steel")
+    wall = Sphere(np.inf, steel.youngs_modulus, steel.poisson_ratio, mass=np.inf,
+                  yield_strength=steel.yield_strength)  # fmt: skip
+    by_mass = elastoplastic_impact(ball, wall, 1.0, 0.0)
+    s = by_mass.summary
+    assert s["delta2_max"] == 0.0 and s["delta1_max"] == s["delta_max"]
+    (warned,) = [w for w in by_mass.warnings if "fixed" in w]
+    assert "sphere 2 is fixed (m2 = inf) but deforms" in warned
+    assert "--split compliance" in warned
+    by_compliance = elastoplastic_impact(ball, wall, 1.0, 0.0, split="compliance")
+    c = by_compliance.summary
+    assert c["delta2_max"] == pytest.approx(0.5 * c["delta_max"], rel=1e-12)
+    assert not any("fixed" in w for w in by_compliance.warnings)
+    rigid = Sphere(np.inf, np.inf, 0.3, mass=np.inf)
+    assert not any("fixed" in w for w in elastoplastic_impact(ball, rigid, 1.0, 0.0).warnings)
+
+
+def test_the_fixed_wall_warning_in_every_command(impact, tmp_path):
+    """impact elastoplastic prints the warning, a batch row carries it in its warning
+    column, and --d2 inf without --m2 says that --m2 inf makes a fixed wall."""
+    wall = ["--d1", "20mm", "--d2", "inf", "--v1", "1m/s", "--material", "steel"]
+    done = impact("elastoplastic", *wall, "--m2", "inf", "-o", str(tmp_path / "h.csv"))
+    assert done.returncode == 0
+    assert done.stderr.count("sphere 2 is fixed (m2 = inf) but deforms") == 1
+    table = tmp_path / "in.csv"
+    table.write_text("d1,d2,m2,v1,v2,model,material\n0.02,inf,inf,1,0,elastoplastic,steel\n"
+                     "0.02,0.04,,1,0,elastoplastic,steel\n")  # fmt: skip
+    done = impact("batch", "--no-progress", str(table))
+    rows = list(csv.DictReader(io.StringIO(done.stdout)))
+    assert "sphere 2 is fixed (m2 = inf)" in rows[0]["warning"] and rows[1]["warning"] == ""
+    done = impact("elastoplastic", *wall)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1
+    assert "--d2 inf (a flat body) needs its mass: --m2 inf makes it a fixed wall" in done.stderr

@@ -239,3 +239,43 @@ def test_callers_build_contact_models_from_the_pair():
         source = (package / name).read_text()
         assert "hertz_stiffness" not in source, name
         assert "make_damping_law" not in source, name
+
+
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        (dict(restitution=0.5), "restitution needs a damping model: damping='tsuji'"),
+        (dict(law="thornton", alpha=0.3), "alpha needs a damping model"),
+        (dict(law="du-wang", separation="bogus"), "law 'du-wang' without damping has no "),
+        (dict(law="hertz", separation="force"), "overlap and force are the rules of a damped"),
+        (dict(law="jkr", separation="overlap-ish"), "law 'jkr' without damping takes "
+                                                    "instability or pull-off"),
+    ],
+)
+def test_a_model_without_damping_refuses_the_damping_fields(kwargs, words):
+    """alpha, e and a damped contact's separation rule mean nothing without damping: the
+    model refuses them (an InputError, one line) instead of running without them, as the
+    command line refuses --alpha, --e, --separation without --damping."""
+    from impactcli.errors import InputError
+
+    with pytest.raises(InputError, match="^[^\n]*$") as found:
+        ContactModel(**kwargs)
+    assert words in str(found.value)
+
+
+def test_separation_of_an_adhesive_law_is_its_rule():
+    """separation= means what --separation means: for an adhesive law, its rule; the model
+    with separation="pull-off" is the one with law_params["separation"] = "pull-off" and
+    its e differs from the default rule's (instability: the neck breaks later, e is lower);
+    the two spellings may not differ."""
+    from impactcli.errors import InputError
+
+    w = {"work_of_adhesion": 0.2}
+    given = solve_impact(S1, S1, 1e-3, 0.0, ContactModel("jkr", w, separation="pull-off"))
+    param = solve_impact(S1, S1, 1e-3, 0.0,
+                         ContactModel("jkr", {**w, "separation": "pull-off"}))  # fmt: skip
+    default = solve_impact(S1, S1, 1e-3, 0.0, ContactModel("jkr", w))
+    assert given.summary == param.summary
+    assert given.summary["restitution"] > default.summary["restitution"]
+    with pytest.raises(InputError, match="the same parameter"):
+        ContactModel("jkr", {**w, "separation": "instability"}, separation="pull-off")

@@ -454,7 +454,8 @@ def test_non_finite_velocities_raise(v1, v2):
         dict(mass=-1.0),
         dict(mass=np.nan),
         dict(poisson_ratio=np.nan),
-        dict(poisson_ratio=0.5),
+        dict(poisson_ratio=0.51),
+        dict(poisson_ratio=-1.0),
         dict(yield_strength=-1.0),
     ],
 )
@@ -509,3 +510,24 @@ def test_random_elastic_impacts_conserve_momentum_and_energy(d1, d2, rho1, rho2,
     ke = res.m1 * v1**2 + res.m2 * v2**2
     ke_final = res.m1 * out["v1_final"] ** 2 + res.m2 * out["v2_final"] ** 2
     assert ke_final == pytest.approx(ke, rel=1e-12, abs=1e-12 * ref["m"] * v0**2)
+
+
+def test_incompressible_sphere_is_hertz_with_nu_one_half(cli):
+    """nu = 0.5 (rubber) is accepted: Hertz needs only E* = E/(1 - nu^2) (nothing divides by
+    1 - 2 nu), so the impact is Hertz's closed form delta_m = (15 m V0^2 / (16 E* sqrt(R)))^(2/5)
+    with E* from E and nu by hand; nu just above 0.5 is refused, naming the range (-1, 0.5]."""
+    rubber = dict(youngs_modulus=10e6, poisson_ratio=0.5, density=1100.0)
+    s1, s2 = Sphere(0.02, **rubber), Sphere(0.04, **rubber)
+    r = elastic_impact(s1, s2, 1.0, 0.0)
+    e_star = 1.0 / (2 * (1 - 0.5**2) / 10e6)
+    m1, m2 = (1100.0 * np.pi * d**3 / 6 for d in (0.02, 0.04))
+    m, radius = m1 * m2 / (m1 + m2), 0.01 * 0.02 / 0.03
+    delta_m = (15 * m / (16 * e_star * np.sqrt(radius))) ** 0.4
+    assert r.summary["effective_modulus"] == pytest.approx(e_star, rel=1e-12)
+    assert r.summary["delta_max"] == pytest.approx(delta_m, rel=1e-9)
+    code, out, err = cli("elastic", "--d1", "20mm", "--d2", "40mm", "--v1", "1cm/s",
+                         "--E", "10MPa", "--nu", "0.5", "--rho", "1100", "-f", "csv")  # fmt: skip
+    assert code == 0 and err == "" and out.startswith("t,delta,")
+    code, _, err = cli("elastic", "--d1", "20mm", "--d2", "40mm", "--v1", "1",
+                       "--E", "10MPa", "--nu", "0.51", "--rho", "1100")  # fmt: skip
+    assert code == 2 and "must lie in (-1, 0.5], got 0.51" in err

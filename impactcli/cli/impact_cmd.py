@@ -361,15 +361,21 @@ def _captured_note(s: dict, v0: float) -> str:
 
 
 def _split_messages(split: Split, s1, s2) -> None:
-    """The warning of a mass split between different materials, and the notes of the
-    yield split (a sphere without a yield strength does not yield; ties)."""
-    from impactcli.validation import mass_split_warning
+    """The warnings of a mass split between different materials or that leaves a fixed,
+    deformable sphere no share, and the notes of the yield split (a sphere without a yield
+    strength does not yield; ties)."""
+    from impactcli.validation import fixed_body_split_warning, mass_split_warning
 
-    message = mass_split_warning(
-        split.value, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
-    )
-    if message:
-        warn(message)
+    for message in (
+        mass_split_warning(
+            split.value, s1.compliance, s2.compliance, s1.yield_strength, s2.yield_strength
+        ),
+        fixed_body_split_warning(
+            split.value, s1.total_mass, s2.total_mass, s1.compliance, s2.compliance
+        ),
+    ):
+        if message:
+            warn(message)
     _split_notes(split, s1, s2)
 
 
@@ -541,8 +547,15 @@ def _material_parts(p: SphereOptions, s1, s2) -> list[str]:
     return labels
 
 
+def _elastic_kind(spec) -> bool:
+    """Whether ``impact elastic`` runs the law of ``spec`` (a
+    :class:`~impactcli.laws.base.LawSpec`): an elastic one (``tabulated``: elastic or
+    elastoplastic, as its curves are)."""
+    return spec.kind.startswith("elastic")
+
+
 @with_sphere_options()
-@with_law_options(default=ELASTIC_LAW)
+@with_law_options(default=ELASTIC_LAW, takes=_elastic_kind)
 @with_damping_options()
 @with_history_options
 def elastic(
@@ -573,7 +586,9 @@ def elastic(
 
     --law NAME runs another elastic law of 'impact laws' (an adhesive one: the spheres snap
     together at first touch, may part in tension or stick; the summary then adds captured,
-    sticking_velocity, pull_off_force and energy_adhesion).
+    sticking_velocity, pull_off_force and energy_adhesion). With --curve or another --law the
+    first-yield warning compares the Hertz peak pressure of the spheres at the impact's
+    delta_max with 1.6 sigma_y (an adhesive law presses at least that hard).
 
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel
@@ -589,8 +604,9 @@ append_help(elastic, HISTORY_HELP, f"{UNITS_HELP} {SIGN_HELP}")
 
 def _elastic_law(law: LawOptions | None, curve: str | None) -> LawChoice | None:
     """The law of ``impact elastic``: None for Hertz as the paper runs it, the user's curve
-    (--curve), or an elastic law named by --law; an elastoplastic law is refused."""
-    from impactcli.laws.registry import LAWS
+    (--curve), or an elastic law named by --law; an elastoplastic law, or a parameter of
+    elastoplastic laws alone, is refused with the command that runs it."""
+    from impactcli.laws.registry import LAWS, parameter_laws
 
     names = law.names if law is not None else ()
     given = dict(law.given) if law is not None else {}
@@ -598,11 +614,19 @@ def _elastic_law(law: LawOptions | None, curve: str | None) -> LawChoice | None:
         given["curve"] = curve
     if not names and not given:
         return None
+    elastic = ", ".join(n for n, s in LAWS.items() if _elastic_kind(s))
+    for key in given:
+        param, owners = parameter_laws()[key]
+        if not any(_elastic_kind(LAWS[owner]) for owner in owners):
+            raise InputError(
+                f"{param.option} is a parameter of law {' or '.join(owners)}, not of an elastic "
+                f"law that impact elastic runs ({elastic}): use impact elastoplastic --law "
+                f"{owners[0]}"
+            )
     default = (CURVE_LAW,) if curve is not None else (ELASTIC_LAW,)
     (choice,) = resolve_laws(LawOptions(tuple(names), given), default=default)
     spec = LAWS[choice.name]
-    if not spec.kind.startswith("elastic"):
-        elastic = ", ".join(n for n, s in LAWS.items() if s.kind.startswith("elastic"))
+    if not _elastic_kind(spec):
         raise InputError(
             f"--law {choice.name} is {spec.kind}: impact elastic runs elastic laws ({elastic}); "
             f"use impact elastoplastic --law {choice.name}"

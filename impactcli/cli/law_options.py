@@ -84,11 +84,13 @@ def _metavar(param) -> str:
     return _METAVARS.get(param.kind, param.kind.upper())
 
 
-def _law_help(multiple: bool, default: str | None = None) -> str:
+def _law_help(multiple: bool, default: str | None = None, takes: Callable | None = None) -> str:
     from impactcli.laws.registry import DEFAULT_LAW, LAWS
 
     parts = []
     for spec in LAWS.values():
+        if takes is not None and not takes(spec):
+            continue
         options = ", ".join(p.option for p in spec.parameters)
         parts.append(f"{spec.name}" + (f" ({options})" if options else ""))
     again = " Give it several times to compare laws." if multiple else ""
@@ -132,7 +134,10 @@ def shared_choices(name: str) -> tuple[str, ...]:
 
 
 def _parameters(
-    multiple: bool, default: str | None = None, taken: frozenset[str] = frozenset()
+    multiple: bool,
+    default: str | None = None,
+    taken: frozenset[str] = frozenset(),
+    takes: Callable | None = None,
 ) -> list[inspect.Parameter]:
     from impactcli.laws.registry import parameter_laws
 
@@ -144,7 +149,7 @@ def _parameters(
             default=None,
             annotation=Annotated[
                 law_type,
-                typer.Option("--law", metavar="NAME", help=_law_help(multiple, default)),
+                typer.Option("--law", metavar="NAME", help=_law_help(multiple, default, takes)),
             ],
         )
     ]
@@ -169,12 +174,14 @@ def _parameters(
 
 
 def with_law_options(
-    multiple: bool = False, default: str | None = None
+    multiple: bool = False, default: str | None = None, takes: Callable | None = None
 ) -> Callable[[Callable], Callable]:
     """Decorate a command whose signature has a ``law`` parameter: ``--law`` (repeatable
     when ``multiple``) and the parameters of every law take its place, and the command
     receives them as ``law=LawOptions(...)``; ``default`` says in ``--help`` what runs
-    without ``--law`` when it is not the library's default law."""
+    without ``--law`` when it is not the library's default law; ``takes(spec)`` (a
+    :class:`~impactcli.laws.base.LawSpec`): whether the command runs that law, so that
+    the help of ``--law`` lists only those (None: every law)."""
 
     def decorate(command: Callable) -> Callable:
         from impactcli.laws.registry import parameter_laws
@@ -196,7 +203,8 @@ def with_law_options(
                     others[name] = None
             return LawOptions(tuple(given_names or ()), given)
 
-        return gather_options(command, "law", _parameters(multiple, default, taken), gather)
+        options = _parameters(multiple, default, taken, takes)
+        return gather_options(command, "law", options, gather)
 
     return decorate
 

@@ -472,6 +472,11 @@ class LawSpec:
     #: the law's LAMMPS normal model (None: LAMMPS has none; ``impact export lammps`` then
     #: fits the nearest model LAMMPS has)
     lammps: LammpsModel | None = field(default=None, repr=False)
+    #: an elastic law other than Hertz whose impacts are checked for first yield by the
+    #: Hertz peak pressure (2 E*/pi) sqrt(delta_max/R) of the spheres at the impact's
+    #: delta_max: why that pressure bounds the law's, in words for the warning ("": no
+    #: such check, e.g. a law that models yield itself; Hertz checks V0 against V_Y)
+    first_yield: str = ""
 
     def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """The parameters with defaults filled in (also for NaN entries of per-row arrays);

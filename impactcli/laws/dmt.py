@@ -372,6 +372,9 @@ SPEC = LawSpec(
         "a << R; any V0"
     ),
     needs_yield_strength=False, build=_build,
+    first_yield=(
+        "its contact pressure is Hertz's at the same indentation, the adhesion acting outside"
+    ),
     default_n=DEFAULT_N, adhesive=True, timed_n=DEFAULT_N,
     lammps=LAMMPS,
 )  # fmt: skip

@@ -39,6 +39,7 @@ __all__ = [
     "SPEC",
     "Hertz",
     "HertzContact",
+    "first_yield_indentation",
     "first_yield_velocity",
     "hertz_contact_time",
     "hertz_loading_seconds",
@@ -316,6 +317,23 @@ def hertz_loading_time(
     omega_unit = np.sqrt(k * np.sqrt(d) / m)[..., 0]  # Omega, [rad/s]
     return (swept / root).sum(axis=-1) / omega_unit
 
+
+
+def first_yield_indentation(
+    radius: float,
+    modulus: float,
+    yield_strength: float,
+    pressure_factor: float = FIRST_YIELD_PRESSURE_FACTOR,
+) -> float:
+    """Indentation delta_Y [m] at which the Hertz peak pressure (2 E*/pi) sqrt(delta/R)
+    reaches 1.6 sigma_y (``pressure_factor`` sigma_y): delta_Y = pi^2 R (1.6 sigma_y)^2 /
+    (4 E*^2), docs/method.md §7.1; R [m], E* [Pa], sigma_y [Pa].
+
+    >>> round(first_yield_indentation(20e-3 / 3, 210e9 / (2 * (1 - 0.3**2)), 1e9) * 1e6, 4)
+    3.163
+    """
+    p = pressure_factor * yield_strength
+    return math.pi**2 * radius * (p * p) / (4.0 * (modulus * modulus))
 
 
 def first_yield_velocity(

@@ -1444,6 +1444,9 @@ SPEC = LawSpec(
         "large or strongly adhering), a << R; any V0"
     ),
     needs_yield_strength=False, build=_build,
+    first_yield=(
+        "its loading presses at least as hard: its contact radius at an indentation exceeds Hertz's"
+    ),
     fitting=Fitting(
         default=("work_of_adhesion",),
         starts=_fit_starts,

@@ -672,4 +672,8 @@ SPEC = LawSpec(
     validity="within the tabulated indentations (an impact beyond them is an error)",
     needs_yield_strength=False,
     build=_build,
+    first_yield=(
+        "a curve gives no contact pressure: this is its Hertz equivalent; a curve with "
+        "unloading curves is not checked, its data carry the plasticity"
+    ),
 )
