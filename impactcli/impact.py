@@ -873,14 +873,11 @@ def impact_warnings(result: ImpactResult, first_yield: bool = False) -> tuple[st
 def _first_yield_warning(result: ImpactResult) -> str | None:
     """The first-yield warning of an elastic impact: Hertz's (damped or not), V0 against
     the first-yield velocity; another elastic law's (:attr:`~impactcli.laws.base.LawSpec.
-    first_yield`), the Hertz peak pressure at its delta_max, unless the impact was
-    plastic (a tabulated curve with unloading curves: the data carry the plasticity)."""
+    first_yield`), the Hertz peak pressure at its delta_max."""
     s = result.summary
     spec = getattr(result.contact, "spec", None)
     if spec is None or not spec.first_yield:
         return first_yield_warning(result.impact_velocity, s["first_yield_velocity"])
-    if result.model == "elastoplastic":
-        return None
     sy = weaker_yield_strength(result.sphere1, result.sphere2)
     return law_first_yield_warning(spec.name, spec.first_yield, s["delta_max"],
                                    s["effective_radius"], s["effective_modulus"], sy)  # fmt: skip

@@ -387,6 +387,12 @@ def _onset(law: str) -> YieldOnset:
 
 
 @lru_cache(maxsize=1)
+def _elastic_pressure_factor() -> float:
+    """The elastic law's first-yield peak pressure over sigma_y (1.6), looked up once."""
+    return _onset(ELASTIC_LAW).pressure_factor({})
+
+
+@lru_cache(maxsize=1)
 def _first_yield_criterion() -> str:
     """How a warning names the elastic law's first-yield criterion (worked out once)."""
     onset = _onset(ELASTIC_LAW)
@@ -492,9 +498,7 @@ def law_first_yield_warning(
     """
     from impactcli.contact import first_yield_indentation
 
-    onset = _onset(ELASTIC_LAW)
-    delta_y = first_yield_indentation(radius, modulus, yield_strength,
-                                      onset.pressure_factor({}))  # fmt: skip
+    delta_y = first_yield_indentation(radius, modulus, yield_strength, _elastic_pressure_factor())
     if not delta_max > delta_y:
         return None
     return (

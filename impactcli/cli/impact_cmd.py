@@ -586,9 +586,10 @@ def elastic(
 
     --law NAME runs another elastic law of 'impact laws' (an adhesive one: the spheres snap
     together at first touch, may part in tension or stick; the summary then adds captured,
-    sticking_velocity, pull_off_force and energy_adhesion). With --curve or another --law the
+    sticking_velocity, pull_off_force and energy_adhesion). With another --law the
     first-yield warning compares the Hertz peak pressure of the spheres at the impact's
-    delta_max with 1.6 sigma_y (an adhesive law presses at least that hard).
+    delta_max with 1.6 sigma_y (an adhesive law presses at least that hard); --curve has no
+    first-yield check (a curve gives the force, not the contact pressure).
 
     Example (paper sec. 4.3): impact elastic --d1 20mm --d2 40mm --v1 5mm/s --v2 7.5mm/s
     --material steel

@@ -475,7 +475,8 @@ class LawSpec:
     #: an elastic law other than Hertz whose impacts are checked for first yield by the
     #: Hertz peak pressure (2 E*/pi) sqrt(delta_max/R) of the spheres at the impact's
     #: delta_max: why that pressure bounds the law's, in words for the warning ("": no
-    #: such check, e.g. a law that models yield itself; Hertz checks V0 against V_Y)
+    #: such check, e.g. a law that models yield itself or a tabulated curve, which gives
+    #: no contact pressure; Hertz checks V0 against V_Y)
     first_yield: str = ""
 
     def resolve(self, params: Mapping[str, Any] | None = None) -> dict[str, Any]:
