@@ -116,6 +116,9 @@ def test_convergence_csv_and_note(impact):
     assert abs(float(rows[-1]["relative_error"])) <= 1e-5
     doc = json.loads(impact("convergence", "3", "5", "-f", "json").stdout)
     assert "carrying" in doc["note"] and doc["exact"] == pytest.approx(2.9432752, abs=1e-7)
+    # n is a count in JSON too (it was written 3.0, 5.0)
+    assert [r["n"] for r in doc["rows"]] == [3, 5]
+    assert all(type(r["n"]) is int for r in doc["rows"])
 
 
 def test_convergence_has_one_table_in_every_format(impact):

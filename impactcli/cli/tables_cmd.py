@@ -204,7 +204,8 @@ def convergence(
     document = {
         "exact": EXACT_CONTACT_DURATION,
         "carry_velocity": carry_velocity,
-        "rows": [dict(zip(columns, row)) for row in matrix.tolist()],
+        # n a count, as the command takes it (the matrix holds it as a float)
+        "rows": [{**dict(zip(columns, row)), "n": r.n} for r, row in zip(rows, matrix.tolist())],
         "note": note,
     }
     out.write(columns, [((), matrix)], lambda: document,
