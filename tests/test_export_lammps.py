@@ -471,3 +471,33 @@ def solve_impact_end(silica, model) -> float:
     from impactcli.impact import solve_impact
 
     return min(solve_impact(silica, silica, 0.1, 0.0, model).summary["delta_separation"], 0.0)
+
+
+def test_tsuji_damping_of_alpha_zero_exports_under_either_separation_rule(impact):
+    """Tsuji's damping with alpha = 0 is Hertz without damping: the force returns to 0 at
+    delta = 0, so --separation force exports as overlap does (no limit_damping, a zero
+    damping coefficient), from the command line and from Python."""
+    base = [*PAIR, "--damping", "tsuji", "--alpha", "0"]
+    scripts = {}
+    for rule in ("overlap", "force"):
+        done = impact("export", "lammps", *base, "--separation", rule)
+        assert done.returncode == 0, done.stderr
+        scripts[rule] = commands(done.stdout.splitlines())
+        assert "limit_damping" not in done.stdout.split("#")[0]
+    assert scripts["force"] == scripts["overlap"]
+    for words in scripts["force"]:
+        if "hertz/material" in words:
+            assert coefficients(words)["eta"] == 0.0
+    model = ContactModel(damping="tsuji", alpha=0.0, separation="force")
+    lines = lammps_input(STEEL, STEEL40, model).lines
+    assert commands(lines) == scripts["force"]
+
+
+def test_an_adhesive_law_with_its_separation_rule_exports_from_python():
+    """ContactModel's separation= of an adhesive law is the law's own rule (as
+    --separation): lammps_input writes the law's LAMMPS model (it raised KeyError)."""
+    silica = Sphere.from_material(20e-6, "steel")
+    model = ContactModel("jkr", {"work_of_adhesion": 0.2}, separation="pull-off")
+    lines = lammps_input(silica, silica, model).lines
+    assert any("jkr" in words for words in commands(lines))
+    assert "separation of the law" in " ".join(lines)

@@ -624,9 +624,9 @@ def _tsuji(alpha: float, separation: str, version: str, comments: list[str]):
 
     lammps = TsujiDamping.spec.lammps_damping
     exported = ContactModel(damping=_TSUJI, alpha=alpha, separation=separation)
-    if alpha == 0.0:
+    if alpha == 0.0:  # no damping: the force returns to 0 at delta = 0, either rule
         comments.append("# alpha = 0: " + _NO_DAMPING[2:])
-        return ContactModel(separation=separation), _undamped(), None
+        return ContactModel(), _undamped(), None
     if not alpha < math.sqrt(5.0):
         raise ValueError(
             f"Tsuji alpha = {alpha:g}: LAMMPS's Tsuji damping reaches alpha "
@@ -801,12 +801,13 @@ def _lines(sphere1, sphere2, exported, source, restitution, damping, limit, mu, 
         described = counterpart.comment + "; E, nu mixed as for Hertz"
     asked = "coefficient of restitution e = " + f"{restitution:g}" if restitution is not None \
         else _title(source)  # fmt: skip
-    rule = {"overlap": "overlap (LAMMPS's default: contact ends at delta = 0, the damping force "
-                       "may pull)",
-            "force": "force (limit_damping: no tension, contact ends when the total force "
-                     "returns to 0)"}[exported.separation]  # fmt: skip
     if counterpart is not None:  # an adhesive law: its own end of contact
         rule = f"of the law (LAMMPS's {normal}: see below)"
+    else:
+        rule = {"overlap": "overlap (LAMMPS's default: contact ends at delta = 0, the damping "
+                           "force may pull)",
+                "force": "force (limit_damping: no tension, contact ends when the total force "
+                         "returns to 0)"}[exported.separation]  # fmt: skip
     friction = "frictionless (mu = 0)" if mu == 0.0 else f"Coulomb friction mu = {mu:g}"
     out = [
         f"# impactcli {__version__} -> LAMMPS {version}, units si (docs/export.md)",
