@@ -45,7 +45,8 @@ from impactcli.validation import (
     default_yield_velocity,
     first_yield_warning,
     fixed_deformable,
-    law_first_yield_warning,
+    law_first_yield_indentation,
+    law_first_yield_text,
     materials_differ,
     without_float_warnings,
 )
@@ -207,7 +208,7 @@ def compute_rows(
         result["effective_radius"],
         np.where(np.equal(laws, None), ~plastic, elastic_law) & ~errors.bad,
     )  # fmt: skip
-    _law_yield_warnings(result, laws, law_params, pairs, ~errors.bad)
+    _law_yield_warnings(result, laws, pairs, ~errors.bad)
     noted = np.flatnonzero((notes != "") & ~errors.bad)
     result["warning"][noted] = [
         f"{w}; {x}" if w else x for w, x in zip(result["warning"][noted], notes[noted])
@@ -310,38 +311,41 @@ def _kernel_results(
 def _law_yield_warnings(
     result: dict[str, NDArray],
     laws: NDArray[np.object_],
-    law_params: dict[str, NDArray],
     pairs: SpherePairs,
     valid: NDArray[np.bool_],
 ) -> None:
     """The first-yield warning of the rows of an elastic law other than Hertz
-    (:attr:`~impactcli.laws.base.LawSpec.first_yield`: JKR, DMT, a tabulated curve without
-    unloading curves), as a single impact words it
+    (:attr:`~impactcli.laws.base.LawSpec.first_yield`: JKR, DMT) whose delta_max exceeds
+    the first-yield indentation of their spheres, in the words of a single impact
     (:func:`impactcli.validation.law_first_yield_warning`), put before the row's other
-    warnings; only the rows that warn are worded."""
+    warnings: the condition on whole arrays, the rows that warn worded together
+    (:func:`_fill`)."""
     named = valid & ~np.equal(laws, None)
-    unloading = law_params.get("unload_curves")
     for name in set(laws[named].tolist()):
         spec = get_law(name)
         if not spec.first_yield:
             continue
-        mine = named & (laws == name)
-        if unloading is not None:
-            mine &= np.equal(unloading, None)  # its data carry the plasticity
-        rows = np.flatnonzero(mine)
         with np.errstate(invalid="ignore"):
-            sy = np.fmin(pairs.sy1[rows], pairs.sy2[rows])  # the weaker sphere's
-        for i, strength in zip(rows.tolist(), sy.tolist()):
-            if math.isnan(strength):
-                continue
-            found = law_first_yield_warning(
-                name, spec.first_yield, float(result["delta_max"][i]),
-                float(result["effective_radius"][i]), float(result["effective_modulus"][i]),
-                strength,
-            )  # fmt: skip
-            if found:
-                rest = result["warning"][i]
-                result["warning"][i] = f"{found}; {rest}" if rest else found
+            sy = np.fmin(pairs.sy1, pairs.sy2)  # the weaker sphere's (NaN: none given)
+            delta_y = law_first_yield_indentation(
+                result["effective_radius"], result["effective_modulus"], sy
+            )
+            rows = np.flatnonzero(named & (laws == name) & (result["delta_max"] > delta_y))
+        if rows.size == 0:
+            continue
+        words = _fill(_law_yield_template(name, spec.first_yield),
+                      result["delta_max"][rows], delta_y[rows])  # fmt: skip
+        result["warning"][rows] = [
+            f"{w}; {rest}" if rest else w for w, rest in zip(words, result["warning"][rows])
+        ]
+
+
+@functools.lru_cache(maxsize=16)
+def _law_yield_template(law: str, why: str) -> str:
+    """The wording of a law's first-yield warning (:func:`law_first_yield_text`) as a
+    printf template with ``%s`` for delta_max and delta_Y, in that order."""
+    a, b = _SENTINELS[:2]
+    return _template(law_first_yield_text(law, why, a, b), f"{a:.4g}", f"{b:.4g}")
 
 
 def _row_laws(

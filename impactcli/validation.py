@@ -496,11 +496,33 @@ def law_first_yield_warning(
     >>> law_first_yield_warning("dmt", "why", 2e-5, 0.01, 1e11, 1e9)[:44]
     'delta_max = 2e-05 m of law dmt exceeds the f'
     """
-    from impactcli.contact import first_yield_indentation
-
-    delta_y = first_yield_indentation(radius, modulus, yield_strength, _elastic_pressure_factor())
+    delta_y = law_first_yield_indentation(radius, modulus, yield_strength)
     if not delta_max > delta_y:
         return None
+    return law_first_yield_text(law, why, delta_max, delta_y)
+
+
+def law_first_yield_indentation(
+    radius: ArrayLike, modulus: ArrayLike, yield_strength: ArrayLike
+) -> ArrayLike:
+    """delta_Y [m] of :func:`law_first_yield_warning`: the indentation at which the Hertz
+    peak pressure of the spheres (R [m], E* [Pa]) reaches the elastic law's first-yield
+    pressure, 1.6 sigma_y (sigma_y [Pa]; :func:`impactcli.contact.first_yield_indentation`,
+    docs/method.md §7.1). Floats or arrays that broadcast.
+
+    >>> round(law_first_yield_indentation(20e-3 / 3, 210e9 / (2 * (1 - 0.3**2)), 1e9) * 1e6, 4)
+    3.163
+    """
+    from impactcli.contact import first_yield_indentation
+
+    return first_yield_indentation(radius, modulus, yield_strength, _elastic_pressure_factor())
+
+
+def law_first_yield_text(law: str, why: str, delta_max: float, delta_y: float) -> str:
+    """The words of :func:`law_first_yield_warning` for an impact of ``law`` whose
+    delta_max [m] exceeds the first-yield indentation delta_Y [m] (``why``: why the Hertz
+    pressure bounds the law's); the batch fills them from this text
+    (:func:`impactcli.rows.row_warnings`'s templates)."""
     return (
         f"delta_max = {delta_max:.4g} m of law {law} exceeds the first-yield indentation "
         f"delta_Y = {delta_y:.4g} m of these spheres ({_first_yield_criterion()} at that "
