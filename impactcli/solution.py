@@ -579,7 +579,7 @@ def _scalar(value: ArrayLike) -> bool:
     kind = type(value)
     if kind is np.ndarray:
         return value.ndim == 0  # type: ignore[union-attr]
-    return kind is float or isinstance(value, float) or np.ndim(value) == 0
+    return isinstance(value, float) or np.ndim(value) == 0  # a float or a NumPy float64
 
 
 def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ...]:
@@ -591,7 +591,7 @@ def solve_plan(plan: ImpactPlan, mass: ArrayLike, n: int) -> tuple[FilmStage, ..
     tuple of :class:`~impactcli.film.FilmStage`
     """
     plan_stages = plan.stages
-    if type(mass) is float or _scalar(mass):
+    if _scalar(mass):
         try:  # one impact: its stages in one pass, when every end is one number
             ends = np.array(
                 [(s.delta_start, s.delta_end, s.speed_start) for s in plan_stages], dtype=float

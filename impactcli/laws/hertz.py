@@ -320,14 +320,15 @@ def hertz_loading_time(
 
 
 def first_yield_indentation(
-    radius: float,
-    modulus: float,
-    yield_strength: float,
+    radius: ArrayLike,
+    modulus: ArrayLike,
+    yield_strength: ArrayLike,
     pressure_factor: float = FIRST_YIELD_PRESSURE_FACTOR,
-) -> float:
+) -> ArrayLike:
     """Indentation delta_Y [m] at which the Hertz peak pressure (2 E*/pi) sqrt(delta/R)
     reaches 1.6 sigma_y (``pressure_factor`` sigma_y): delta_Y = pi^2 R (1.6 sigma_y)^2 /
-    (4 E*^2), docs/method.md §7.1; R [m], E* [Pa], sigma_y [Pa].
+    (4 E*^2), docs/method.md §7.1; R [m], E* [Pa], sigma_y [Pa]: floats, or arrays that
+    broadcast (:func:`first_yield_velocity` takes it from here).
 
     >>> round(first_yield_indentation(20e-3 / 3, 210e9 / (2 * (1 - 0.3**2)), 1e9) * 1e6, 4)
     3.163
@@ -352,16 +353,15 @@ def first_yield_velocity(
     """
     m, r, e, sy = mass, radius, modulus, yield_strength
     if type(m) is float and type(r) is float and type(e) is float and type(sy) is float:
-        p = pressure_factor * sy  # one impact
-        delta_y = math.pi**2 * r * (p * p) / (4.0 * (e * e))
+        delta_y = first_yield_indentation(r, e, sy, pressure_factor)  # one impact
         k = 4.0 / 3.0 * e * math.sqrt(r)
         try:
             return math.sqrt(2.0 / m * 0.4 * k * delta_y**2.5)  # type: ignore[return-value]
         except (OverflowError, ValueError, ZeroDivisionError):
             pass  # the arrays word it (inf, nan)
     r, e = np.asarray(radius, dtype=float), np.asarray(modulus, dtype=float)
-    p = pressure_factor * np.asarray(yield_strength, dtype=float)
-    delta_y = np.pi**2 * r * p**2 / (4.0 * e**2)
+    delta_y = first_yield_indentation(r, e, np.asarray(yield_strength, dtype=float),
+                                      pressure_factor)  # fmt: skip
     return hertz_velocity(mass, hertz_stiffness(e, r), delta_y)
 
 
